@@ -1,0 +1,301 @@
+//! Exhaustive checks of every quantisation and overflow mode on small widths, against a
+//! reference that works on exact rationals (numerator over a power of two) with plain integer
+//! division, not with the shift-and-sticky-bit logic of the implementation.
+
+use super::*;
+use proptest::prelude::*;
+
+/// All formats of width 1..=max_w with fraction bits in `fracs`.
+fn formats(max_w: u32, fracs: std::ops::RangeInclusive<i32>) -> Vec<Format> {
+    let mut v = Vec::new();
+    for w in 1..=max_w {
+        for f in fracs.clone() {
+            for s in [false, true] {
+                v.push(Format::new(w, f, s));
+            }
+        }
+    }
+    v
+}
+
+fn all_raw(fmt: Format) -> impl Iterator<Item = i128> {
+    fmt.min_raw()..=fmt.max_raw()
+}
+
+/// Reference rounding of `num / den` (den > 0) to an integer.
+fn ref_round(num: i128, den: i128, q: Quant) -> i128 {
+    let fl = num.div_euclid(den);
+    let rem = num.rem_euclid(den); // 0 <= rem < den
+    if rem == 0 {
+        return fl;
+    }
+    let up = fl + 1;
+    let twice = 2 * rem;
+    let neg = num < 0;
+    match q {
+        Quant::Trunc => fl,
+        Quant::TruncZero => {
+            if neg {
+                up
+            } else {
+                fl
+            }
+        }
+        _ if twice > den => up,
+        _ if twice < den => fl,
+        // exact tie
+        Quant::RoundHalfUp => up,
+        Quant::RoundHalfDown => fl,
+        Quant::RoundHalfZero => {
+            if neg {
+                up
+            } else {
+                fl
+            }
+        }
+        Quant::RoundHalfAway => {
+            if neg {
+                fl
+            } else {
+                up
+            }
+        }
+        Quant::RoundHalfEven => {
+            if fl.rem_euclid(2) == 0 {
+                fl
+            } else {
+                up
+            }
+        }
+    }
+}
+
+/// Reference overflow handling of integer `v` into `dst` (raw units).
+fn ref_overflow(v: i128, dst: Format, o: Overflow) -> i128 {
+    let w = dst.width();
+    let lo = if dst.is_signed() { -(1i128 << (w - 1)) } else { 0 };
+    let hi = if dst.is_signed() {
+        (1i128 << (w - 1)) - 1
+    } else {
+        (1i128 << w) - 1
+    };
+    match o {
+        Overflow::Wrap => {
+            let m = v.rem_euclid(1i128 << w);
+            if m > hi {
+                m - (1i128 << w)
+            } else {
+                m
+            }
+        }
+        Overflow::Saturate => v.clamp(lo, hi),
+        Overflow::SaturateSymmetric => {
+            let lo = if dst.is_signed() { -hi } else { 0 };
+            v.clamp(lo, hi)
+        }
+        Overflow::SaturateZero => {
+            if v < lo || v > hi {
+                0
+            } else {
+                v
+            }
+        }
+    }
+}
+
+fn ref_convert(raw: i128, src: Format, dst: Format, q: Quant, o: Overflow) -> i128 {
+    // value = raw * 2^-fs; in dst LSBs: raw * 2^(fd - fs)
+    let d = dst.frac() - src.frac();
+    let v = if d >= 0 {
+        raw * (1i128 << d)
+    } else {
+        ref_round(raw, 1i128 << (-d), q)
+    };
+    ref_overflow(v, dst, o)
+}
+
+#[test]
+fn convert_exhaustive_small_widths() {
+    let srcs = formats(7, -2..=6);
+    let dsts = formats(5, -2..=6);
+    let mut checked = 0u64;
+    for &src in &srcs {
+        for raw in all_raw(src) {
+            let x = Fx::from_raw(src, raw);
+            for &dst in &dsts {
+                for q in Quant::ALL {
+                    for o in Overflow::ALL {
+                        let got = x.convert(dst, q, o).raw();
+                        let want = ref_convert(raw, src, dst, q, o);
+                        assert_eq!(
+                            got, want,
+                            "{x} ({src}, raw {raw}) -> {dst} with {q}/{o}: got raw {got}, want {want}"
+                        );
+                        checked += 1;
+                    }
+                }
+            }
+        }
+    }
+    assert!(checked > 1_000_000, "sweep too small: {checked}");
+}
+
+#[test]
+fn convert_wide_shifts_and_extremes() {
+    // Shifts of 127 bits and more, and 128-bit formats, where the fast path cannot be used.
+    let src = Format::signed(64, 100);
+    let dst = Format::signed(8, -20);
+    for raw in [i64::MIN as i128, -1, 0, 1, i64::MAX as i128] {
+        let x = Fx::from_raw(src, raw);
+        for q in Quant::ALL {
+            let got = x.convert(dst, q, Overflow::Saturate).raw();
+            // |value| < 2^-36: rounds to 0, or to -1 (Trunc / ties impossible) for negatives.
+            let want = match q {
+                Quant::Trunc if raw < 0 => -1,
+                _ => 0,
+            };
+            assert_eq!(got, want, "{q} raw {raw}");
+        }
+    }
+    let big = Fx::from_raw(Format::sint(128), i128::MIN);
+    assert_eq!(
+        big.convert(Format::sint(8), Quant::Trunc, Overflow::Saturate)
+            .raw(),
+        -128
+    );
+    assert_eq!(
+        big.convert(Format::sint(8), Quant::Trunc, Overflow::Wrap).raw(),
+        0
+    );
+    // Widening far to the left overflows every format.
+    let one = Fx::from_int(Format::uint(2), 1);
+    let far = one.convert(Format::signed(16, 120), Quant::Trunc, Overflow::Saturate);
+    assert_eq!(far.raw(), i16::MAX as i128);
+}
+
+#[test]
+fn arithmetic_is_full_precision_exhaustive() {
+    let fs = formats(4, -1..=3);
+    for &a in &fs {
+        for &b in &fs {
+            for ra in all_raw(a) {
+                for rb in all_raw(b) {
+                    let x = Fx::from_raw(a, ra);
+                    let y = Fx::from_raw(b, rb);
+                    // Exact rational reference with denominator 2^8.
+                    let sc = |r: i128, f: &Format| r * (1i128 << (8 - f.frac()));
+                    let (vx, vy) = (sc(ra, &a), sc(rb, &b));
+                    let s = x + y;
+                    assert_eq!(sc(s.raw(), &s.fmt()), vx + vy, "{x}+{y}");
+                    let d = x - y;
+                    assert_eq!(sc(d.raw(), &d.fmt()), vx - vy, "{x}-{y}");
+                    assert!(d.fmt().is_signed());
+                    let p = x * y;
+                    assert_eq!(p.fmt().width(), a.width() + b.width());
+                    assert_eq!(p.fmt().frac(), a.frac() + b.frac());
+                    assert_eq!(
+                        p.raw() * (1i128 << (16 - p.fmt().frac())),
+                        vx * vy,
+                        "{x}*{y}"
+                    );
+                    let n = -x;
+                    assert_eq!(n.raw(), -ra);
+                    assert_eq!(x.partial_cmp(&y), vx.partial_cmp(&vy));
+                }
+            }
+        }
+    }
+}
+
+#[test]
+fn sum_grows_one_bit_product_adds_widths() {
+    let a = Format::signed(8, 4);
+    let b = Format::signed(8, 4);
+    assert_eq!(Format::sum(a, b), Format::signed(9, 4));
+    assert_eq!(Format::product(a, b), Format::signed(16, 8));
+    let u = Format::unsigned(8, 8);
+    assert_eq!(Format::sum(u, u), Format::unsigned(9, 8));
+    // unsigned inside a signed result gains its sign bit
+    assert_eq!(Format::sum(u, a), Format::signed(13, 8));
+    assert_eq!(Format::difference(u, u), Format::signed(10, 8));
+    assert_eq!(Format::product(Format::sint(64), Format::sint(64)), Format::sint(128));
+}
+
+#[test]
+fn formats_are_checked() {
+    assert!(Format::try_new(0, 0, false).is_err());
+    assert!(Format::try_new(128, 0, false).is_err());
+    assert!(Format::try_new(128, 0, true).is_ok());
+    assert!(Format::try_new(8, 121, true).is_err());
+    assert!(std::panic::catch_unwind(|| Fx::from_raw(Format::uint(4), 16)).is_err());
+    assert!(std::panic::catch_unwind(|| Fx::from_raw(Format::sint(4), -9)).is_err());
+    assert!(
+        std::panic::catch_unwind(|| Format::product(Format::uint(64), Format::uint(64))).is_err()
+    );
+    for s in ["uQ1.7", "sQ2.14", "u8", "s12", "uQ0.9"] {
+        assert_eq!(Format::parse(s).unwrap().to_string(), s);
+    }
+    for s in ["", "x8", "u0", "uQ1", "sQa.b", "u200"] {
+        assert!(Format::parse(s).is_err(), "{s}");
+    }
+}
+
+#[test]
+fn formatting_is_exact() {
+    let f = Format::signed(10, 4);
+    assert_eq!(Fx::from_raw(f, -1).to_string(), "-0.0625");
+    assert_eq!(format!("{:#x}", Fx::from_raw(f, -1)), "0x3ff");
+    assert_eq!(format!("{:x}", Fx::from_raw(f, 0x25)), "025");
+    assert_eq!(format!("{:b}", Fx::from_raw(f, 5)), "0000000101");
+    assert_eq!(Fx::from_raw(Format::unsigned(9, 9), 257).to_string(), "0.501953125");
+    assert_eq!(Fx::from_raw(Format::signed(6, -3), -3).to_string(), "-24");
+    assert_eq!(Fx::from_bits(f, 0x3ff).raw(), -1);
+    assert_eq!(Fx::from_raw(f, 5).to_bitvec().len(), 10);
+}
+
+#[test]
+fn fixed_crate_interop() {
+    use fixed::types::{I8F8, U0F16};
+    let x = Fx::from_fixed(I8F8::from_num(-1.25));
+    assert_eq!(x.fmt(), Format::signed(16, 8));
+    assert_eq!(x.raw(), -320);
+    assert_eq!(x.to_fixed::<I8F8>(), Some(I8F8::from_num(-1.25)));
+    assert_eq!(x.to_fixed::<U0F16>(), None);
+}
+
+#[test]
+fn from_f64_rejects_nan_and_quantises_exactly() {
+    let f = Format::signed(8, 4);
+    assert_eq!(
+        Fx::from_f64(f, f64::NAN, Quant::Trunc, Overflow::Wrap),
+        Err(FxError::NotFinite)
+    );
+    let r = |x: f64, q| Fx::from_f64(f, x, q, Overflow::Saturate).unwrap().raw();
+    assert_eq!(r(0.03125, Quant::RoundHalfEven), 0); // tie at 0.5 LSB -> even
+    assert_eq!(r(0.09375, Quant::RoundHalfEven), 2); // 1.5 LSB -> 2
+    assert_eq!(r(-0.03125, Quant::RoundHalfUp), 0);
+    assert_eq!(r(-0.03125, Quant::Trunc), -1);
+    assert_eq!(r(1e300, Quant::Trunc), 127);
+    assert_eq!(r(5e-324, Quant::RoundHalfUp), 0);
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig::with_cases(2000))]
+    /// Wide formats: conversion agrees with the rational reference where it can be computed.
+    #[test]
+    fn convert_random_wide(
+        sw in 1u32..=60, sf in -8i32..=60, ss: bool,
+        dw in 1u32..=60, df in -8i32..=60, ds: bool,
+        seed: i128, qi in 0usize..7, oi in 0usize..4,
+    ) {
+        let src = Format::new(sw, sf, ss);
+        let dst = Format::new(dw, df, ds);
+        let span = src.max_raw() - src.min_raw() + 1;
+        let raw = src.min_raw() + seed.rem_euclid(span);
+        let (q, o) = (Quant::ALL[qi], Overflow::ALL[oi]);
+        let d = df - sf;
+        prop_assume!(d.abs() < 60);
+        let got = Fx::from_raw(src, raw).convert(dst, q, o).raw();
+        prop_assert_eq!(got, ref_convert(raw, src, dst, q, o));
+    }
+}

@@ -1,0 +1,457 @@
+//! Fixed-point values: full-precision arithmetic, explicit quantisation.
+
+use super::format::Format;
+use super::modes::{Overflow, Quant};
+use std::cmp::Ordering;
+use std::fmt;
+use std::ops::{Add, Mul, Neg, Sub};
+
+/// A fixed-point value: `raw * 2^-frac` in a [`Format`].
+///
+/// `raw` always lies in the format's range: every constructor checks it.
+#[derive(Clone, Copy, PartialEq, Eq, Hash, Debug)]
+pub struct Fx {
+    raw: i128,
+    fmt: Format,
+}
+
+/// Why a value could not be made.
+#[derive(Clone, Debug, PartialEq)]
+pub enum FxError {
+    /// The raw integer is outside the format's range.
+    OutOfRange { raw: i128, fmt: Format },
+    /// The value is not exactly representable (bits would be lost).
+    Inexact { value: Fx, fmt: Format },
+    /// A floating-point input was NaN or infinite.
+    NotFinite,
+}
+
+impl fmt::Display for FxError {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        match self {
+            FxError::OutOfRange { raw, fmt } => write!(
+                f,
+                "raw value {raw} does not fit {fmt} ({}..={})",
+                fmt.min_raw(),
+                fmt.max_raw()
+            ),
+            FxError::Inexact { value, fmt } => write!(
+                f,
+                "{value} ({}) is not exactly representable in {fmt}",
+                value.fmt
+            ),
+            FxError::NotFinite => f.write_str("NaN or infinite input"),
+        }
+    }
+}
+
+impl std::error::Error for FxError {}
+
+/// Bit `i` of `raw`, two's complement, sign-extended to infinity.
+#[inline]
+fn bit(raw: i128, i: u32) -> bool {
+    if i >= 127 {
+        raw < 0
+    } else {
+        (raw >> i) & 1 == 1
+    }
+}
+
+/// Whether any of bits `0..n` of `raw` (sign-extended) is set.
+#[inline]
+fn any_low(raw: i128, n: u32) -> bool {
+    if n == 0 {
+        false
+    } else if n >= 128 {
+        raw != 0
+    } else {
+        raw & ((1i128 << n) - 1) != 0
+    }
+}
+
+/// The core of every narrowing: `raw * 2^-src_frac` into `dst`, rounding by `q`, then
+/// resolving overflow by `o`. Works for any shift, so floats with tiny or huge exponents
+/// quantise exactly too.
+pub(crate) fn quantise(raw: i128, src_frac: i32, dst: Format, q: Quant, o: Overflow) -> i128 {
+    let negative = raw < 0;
+    let shift = src_frac - dst.frac();
+    // `value` is the rounded value in units of the destination LSB; `huge` marks one that
+    // does not even fit an i128 (then only its sign and its low bits matter).
+    let (value, huge) = if shift > 0 {
+        let s = shift as u32;
+        let floor = if s >= 127 { raw >> 127 } else { raw >> s };
+        let inc = q.increment(negative, floor & 1 == 1, bit(raw, s - 1), any_low(raw, s - 1));
+        (floor + i128::from(inc), false)
+    } else {
+        let s = (-shift) as u32;
+        if s == 0 {
+            (raw, false)
+        } else if s >= 127 {
+            (if s >= 128 { 0 } else { raw.wrapping_shl(s) }, raw != 0)
+        } else {
+            let v = raw.wrapping_shl(s);
+            (v, (v >> s) != raw)
+        }
+    };
+    if !huge && dst.contains_raw(value) {
+        if o == Overflow::SaturateSymmetric && dst.is_signed() && value == dst.min_raw() {
+            return -dst.max_raw();
+        }
+        return value;
+    }
+    let below = if huge { negative } else { value < 0 };
+    match o {
+        Overflow::Wrap => {
+            let bits = (value as u128) & dst.mask();
+            sign_extend(bits, dst)
+        }
+        Overflow::Saturate => {
+            if below {
+                dst.min_raw()
+            } else {
+                dst.max_raw()
+            }
+        }
+        Overflow::SaturateSymmetric => {
+            if below {
+                if dst.is_signed() {
+                    -dst.max_raw()
+                } else {
+                    0
+                }
+            } else {
+                dst.max_raw()
+            }
+        }
+        Overflow::SaturateZero => 0,
+    }
+}
+
+/// Interprets the low `width` bits as a value of `fmt` (sign-extending signed formats).
+#[inline]
+fn sign_extend(bits: u128, fmt: Format) -> i128 {
+    let w = fmt.width();
+    if fmt.is_signed() && w < 128 && (bits >> (w - 1)) & 1 == 1 {
+        (bits | !fmt.mask()) as i128
+    } else {
+        bits as i128
+    }
+}
+
+impl Fx {
+    /// The value `raw * 2^-frac`; panics if `raw` does not fit `fmt`.
+    #[track_caller]
+    pub fn from_raw(fmt: Format, raw: i128) -> Fx {
+        Fx::try_from_raw(fmt, raw).unwrap_or_else(|e| panic!("{e}"))
+    }
+
+    /// The value `raw * 2^-frac`, or an error if `raw` does not fit `fmt`.
+    pub fn try_from_raw(fmt: Format, raw: i128) -> Result<Fx, FxError> {
+        if fmt.contains_raw(raw) {
+            Ok(Fx { raw, fmt })
+        } else {
+            Err(FxError::OutOfRange { raw, fmt })
+        }
+    }
+
+    /// The value whose two's complement bits are the low `width` bits of `bits` (higher bits
+    /// must be zero: panics otherwise).
+    #[track_caller]
+    pub fn from_bits(fmt: Format, bits: u128) -> Fx {
+        assert!(
+            bits & !fmt.mask() == 0,
+            "bits {bits:#x} wider than {} bits of {fmt}",
+            fmt.width()
+        );
+        Fx {
+            raw: sign_extend(bits, fmt),
+            fmt,
+        }
+    }
+
+    /// The integer `v` in `fmt` (panics unless exactly representable).
+    #[track_caller]
+    pub fn from_int(fmt: Format, v: i128) -> Fx {
+        Fx::from_raw(Format::sint(128), v).exact(fmt)
+    }
+
+    /// Zero in `fmt`.
+    pub fn zero(fmt: Format) -> Fx {
+        Fx { raw: 0, fmt }
+    }
+
+    /// A float quantised into `fmt` by `q` and `o`, exactly as an integer would be (the float's
+    /// mantissa and exponent are converted without any intermediate rounding).
+    pub fn from_f64(fmt: Format, x: f64, q: Quant, o: Overflow) -> Result<Fx, FxError> {
+        if !x.is_finite() {
+            return Err(FxError::NotFinite);
+        }
+        if x == 0.0 {
+            return Ok(Fx::zero(fmt));
+        }
+        let b = x.to_bits();
+        let exp = ((b >> 52) & 0x7ff) as i32;
+        let man = b & ((1u64 << 52) - 1);
+        let (m, e) = if exp == 0 {
+            (man, -1074)
+        } else {
+            (man | (1u64 << 52), exp - 1075)
+        };
+        let m = if x < 0.0 { -(m as i128) } else { m as i128 };
+        Ok(Fx {
+            raw: quantise(m, -e, fmt, q, o),
+            fmt,
+        })
+    }
+
+    /// The nearest f64 (exact for widths up to 53 bits). For display and golden comparison at
+    /// the edges of a model, never inside one.
+    pub fn to_f64(self) -> f64 {
+        (self.raw as f64) * 2f64.powi(-self.fmt.frac())
+    }
+
+    pub const fn raw(self) -> i128 {
+        self.raw
+    }
+    pub const fn fmt(self) -> Format {
+        self.fmt
+    }
+
+    /// The `width` bits of the value, two's complement.
+    pub const fn bits(self) -> u128 {
+        (self.raw as u128) & self.fmt.mask()
+    }
+
+    /// Bit `i` (0 = LSB) of the two's complement pattern.
+    pub fn bit(self, i: u32) -> bool {
+        assert!(i < self.fmt.width(), "bit {i} of a {}-bit value", self.fmt.width());
+        bit(self.raw, i)
+    }
+
+    /// The bits as a `bitvec` vector, LSB first, exactly `width` long.
+    pub fn to_bitvec(self) -> bitvec::vec::BitVec<u64, bitvec::order::Lsb0> {
+        (0..self.fmt.width()).map(|i| bit(self.raw, i)).collect()
+    }
+
+    /// Narrowing (or widening) conversion into `fmt`, rounding by `q`, overflow by `o`.
+    #[inline]
+    pub fn convert(self, fmt: Format, q: Quant, o: Overflow) -> Fx {
+        Fx {
+            raw: quantise(self.raw, self.fmt.frac(), fmt, q, o),
+            fmt,
+        }
+    }
+
+    /// Conversion that must not lose anything: panics if the value is not exactly
+    /// representable in `fmt`.
+    #[track_caller]
+    pub fn exact(self, fmt: Format) -> Fx {
+        self.try_exact(fmt).unwrap_or_else(|e| panic!("{e}"))
+    }
+
+    /// Conversion that must not lose anything.
+    pub fn try_exact(self, fmt: Format) -> Result<Fx, FxError> {
+        let t = self.convert(fmt, Quant::Trunc, Overflow::Wrap);
+        if t.cmp_value(&self) == Ordering::Equal {
+            Ok(t)
+        } else {
+            Err(FxError::Inexact { value: self, fmt })
+        }
+    }
+
+    /// Whether the value is exactly representable in `fmt`.
+    pub fn fits(self, fmt: Format) -> bool {
+        self.try_exact(fmt).is_ok()
+    }
+
+    /// Multiplies by `2^n` exactly: the raw bits stay, the binary point moves (a wire shift).
+    #[track_caller]
+    pub fn scale_pow2(self, n: i32) -> Fx {
+        let fmt = Format::try_new(self.fmt.width(), self.fmt.frac() - n, self.fmt.is_signed())
+            .unwrap_or_else(|e| panic!("{self} scaled by 2^{n}: {e}"));
+        Fx { raw: self.raw, fmt }
+    }
+
+    /// Reinterprets the same bits as unsigned / signed (a wire relabel, as in Verilog
+    /// `$unsigned` / `$signed`).
+    pub fn reinterpret(self, signed: bool) -> Fx {
+        let fmt = Format::new(self.fmt.width(), self.fmt.frac(), signed);
+        Fx::from_bits(fmt, self.bits())
+    }
+
+    /// Compares the values (not the formats).
+    pub fn cmp_value(&self, other: &Fx) -> Ordering {
+        let f = self.fmt.frac().max(other.fmt.frac());
+        let a = align(self.raw, (f - self.fmt.frac()) as u32);
+        let b = align(other.raw, (f - other.fmt.frac()) as u32);
+        match (a, b) {
+            (Some(a), Some(b)) => a.cmp(&b),
+            // A value that overflows the alignment is larger in magnitude than the other.
+            (None, _) => self.raw.cmp(&0),
+            (_, None) => 0.cmp(&other.raw),
+        }
+    }
+
+    pub fn is_negative(self) -> bool {
+        self.raw < 0
+    }
+    pub fn is_zero(self) -> bool {
+        self.raw == 0
+    }
+
+    /// Hex of the `width` bits, zero-padded to whole digits, e.g. `0x1f4`.
+    pub fn to_hex(self) -> String {
+        format!("{self:#x}")
+    }
+}
+
+fn align(raw: i128, s: u32) -> Option<i128> {
+    if s == 0 || raw == 0 {
+        return Some(raw);
+    }
+    if s >= 127 {
+        return None;
+    }
+    let v = raw.wrapping_shl(s);
+    ((v >> s) == raw).then_some(v)
+}
+
+impl Add for Fx {
+    type Output = Fx;
+    /// Full-precision sum: one bit wider than the wider operand.
+    fn add(self, rhs: Fx) -> Fx {
+        let fmt = Format::sum(self.fmt, rhs.fmt);
+        let a = self.raw << (fmt.frac() - self.fmt.frac());
+        let b = rhs.raw << (fmt.frac() - rhs.fmt.frac());
+        Fx { raw: a + b, fmt }
+    }
+}
+
+impl Sub for Fx {
+    type Output = Fx;
+    /// Full-precision difference: signed, one bit wider than the wider operand.
+    fn sub(self, rhs: Fx) -> Fx {
+        let fmt = Format::difference(self.fmt, rhs.fmt);
+        let a = self.raw << (fmt.frac() - self.fmt.frac());
+        let b = rhs.raw << (fmt.frac() - rhs.fmt.frac());
+        Fx { raw: a - b, fmt }
+    }
+}
+
+impl Mul for Fx {
+    type Output = Fx;
+    /// Full-precision product: `W1 + W2` bits, `F1 + F2` fraction bits.
+    fn mul(self, rhs: Fx) -> Fx {
+        let fmt = Format::product(self.fmt, rhs.fmt);
+        Fx {
+            raw: self.raw * rhs.raw,
+            fmt,
+        }
+    }
+}
+
+impl Neg for Fx {
+    type Output = Fx;
+    /// Full-precision negation: signed, one bit wider.
+    fn neg(self) -> Fx {
+        Fx {
+            raw: -self.raw,
+            fmt: Format::negation(self.fmt),
+        }
+    }
+}
+
+impl PartialOrd for Fx {
+    /// Orders by value, whatever the formats.
+    fn partial_cmp(&self, other: &Fx) -> Option<Ordering> {
+        Some(self.cmp_value(other))
+    }
+}
+
+impl fmt::Display for Fx {
+    /// The exact decimal value (a fixed-point number with F fraction bits has at most F
+    /// decimal fraction digits).
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        let neg = self.raw < 0;
+        let m = self.raw.unsigned_abs();
+        let sign = if neg { "-" } else { "" };
+        let fr = self.fmt.frac();
+        if fr <= 0 {
+            let s = (-fr) as u32;
+            return match m.checked_mul(1u128.checked_shl(s).unwrap_or(0)) {
+                Some(v) if s < 128 => write!(f, "{sign}{v}"),
+                _ => write!(f, "{sign}{m}*2^{s}"),
+            };
+        }
+        let fr = fr as u32;
+        let (int, mut rest) = if fr >= 128 {
+            (0, m)
+        } else {
+            (m >> fr, m & ((1u128 << fr) - 1))
+        };
+        write!(f, "{sign}{int}")?;
+        if rest == 0 {
+            return Ok(());
+        }
+        f.write_str(".")?;
+        // rest / 2^fr, one decimal digit at a time; rest * 10 < 2^(fr+4) fits for fr <= 120.
+        while rest != 0 {
+            rest *= 10;
+            let d = rest >> fr;
+            rest &= (1u128 << fr) - 1;
+            write!(f, "{d}")?;
+        }
+        Ok(())
+    }
+}
+
+impl fmt::LowerHex for Fx {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        let d = self.fmt.hex_digits();
+        if f.alternate() {
+            write!(f, "0x{:0d$x}", self.bits())
+        } else {
+            write!(f, "{:0d$x}", self.bits())
+        }
+    }
+}
+
+impl fmt::UpperHex for Fx {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        let d = self.fmt.hex_digits();
+        if f.alternate() {
+            write!(f, "0x{:0d$X}", self.bits())
+        } else {
+            write!(f, "{:0d$X}", self.bits())
+        }
+    }
+}
+
+impl fmt::Binary for Fx {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        let d = self.fmt.width() as usize;
+        write!(f, "{:0d$b}", self.bits())
+    }
+}
+
+/// Interoperation with the `fixed` crate where a standard width fits.
+impl Fx {
+    /// The exact value of a `fixed` number (e.g. `I8F8` becomes `sQ8.8`).
+    pub fn from_fixed<F: fixed::traits::Fixed>(x: F) -> Fx {
+        let fmt = Format::new(F::INT_NBITS + F::FRAC_NBITS, F::FRAC_NBITS as i32, F::IS_SIGNED);
+        let raw: i128 = x
+            .to_bits()
+            .try_into()
+            .unwrap_or_else(|_| panic!("u128 fixed value beyond i128"));
+        Fx::from_raw(fmt, raw)
+    }
+
+    /// The value as a `fixed` number, if it is exactly representable there.
+    pub fn to_fixed<F: fixed::traits::Fixed>(self) -> Option<F> {
+        let fmt =
+            Format::try_new(F::INT_NBITS + F::FRAC_NBITS, F::FRAC_NBITS as i32, F::IS_SIGNED)
+                .ok()?;
+        let v = self.try_exact(fmt).ok()?;
+        F::Bits::try_from(v.raw).ok().map(F::from_bits)
+    }
+}

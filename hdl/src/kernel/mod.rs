@@ -1,0 +1,18 @@
+//! The RTL kernel: signals with declared formats, registers, two-process clocked modules,
+//! hierarchy, and a cycle-based simulator.
+//!
+//! The design follows what makes cycle simulators fast (Verilator's choices): the schedule is
+//! fixed in code (each parent's `eval` evaluates its children in dataflow order), values are
+//! plain machine integers, every call is statically dispatched, nothing allocates per cycle,
+//! and tracing is a single branch when it is off.
+
+mod module;
+mod signal;
+mod sim;
+
+pub use module::{Dir, Module, Visitor};
+pub use signal::{Reg, Signal};
+pub use sim::{signal_paths, NoTrace, Sim, Trace};
+
+#[cfg(test)]
+mod tests;

@@ -1,0 +1,68 @@
+//! Clocked modules, their hierarchy and the visitor that tracing and checks walk it with.
+
+use super::signal::{Reg, Signal};
+
+/// What a traced signal is to its module.
+#[derive(Clone, Copy, PartialEq, Eq, Debug, Hash)]
+pub enum Dir {
+    Input,
+    Output,
+    /// A register's current value.
+    Reg,
+    /// An internal combinational value worth seeing.
+    Wire,
+}
+
+/// Walks a module hierarchy: every instance, then every port, register and wire in it.
+///
+/// Tracing, the schedule check and any other tool that needs to see "every signal" use this,
+/// so a signal is declared once (in [`Module::visit`]) and appears everywhere.
+pub trait Visitor {
+    /// Enters an instance `instance` of module type `kind`.
+    fn enter(&mut self, instance: &str, kind: &str);
+    /// Leaves the instance entered last.
+    fn leave(&mut self);
+    /// A signal of the current instance.
+    fn signal(&mut self, dir: Dir, s: &Signal);
+    /// A register of the current instance (its current value is traced).
+    fn reg(&mut self, r: &Reg) {
+        self.signal(Dir::Reg, r.q());
+    }
+}
+
+/// A clocked hardware module in two-process style.
+///
+/// * [`eval`](Module::eval) is the combinational process: from the inputs and the registers'
+///   current values it computes the outputs and the registers' next values. It must not change
+///   any register's current value, and evaluating it twice must give the same result (the
+///   simulator checks this when asked: see [`crate::kernel::Sim::check_schedule`]).
+/// * [`tick`](Module::tick) is the clock edge: every register commits its next value, or its
+///   reset value when the synchronous reset is asserted.
+///
+/// A parent module's `eval` is the static schedule of its children: it copies its inputs to
+/// the children's inputs and evaluates them in dataflow order, each exactly once. Everything is
+/// static dispatch, so the compiler inlines across module boundaries.
+pub trait Module {
+    /// The instance name (unique among its siblings).
+    fn instance(&self) -> &str;
+    /// The module type's name, e.g. `blend_adjust`.
+    fn kind(&self) -> &'static str;
+    /// Combinational process.
+    fn eval(&mut self);
+    /// Clock edge with synchronous reset.
+    fn tick(&mut self, reset: bool);
+    /// Declares the instance's signals and children: call `v.enter`, list every port and
+    /// register, visit the children, `v.leave`.
+    fn visit(&self, v: &mut dyn Visitor);
+}
+
+/// Lists signals of a module for [`Module::visit`]:
+/// `signals!(v; Input: self.a, self.b; Output: self.y; Reg: self.r)`.
+#[macro_export]
+macro_rules! signals {
+    ($v:expr; $($dir:ident : $($s:expr),+ );+ $(;)?) => {
+        $( $( $crate::signals!(@one $v, $dir, $s); )+ )+
+    };
+    (@one $v:expr, Reg, $s:expr) => { $v.reg(&$s) };
+    (@one $v:expr, $dir:ident, $s:expr) => { $v.signal($crate::kernel::Dir::$dir, &$s) };
+}

@@ -1,0 +1,222 @@
+//! Signals (wires and ports) and registers: a declared format, a value that must fit it.
+
+use crate::fx::{Format, Fx};
+
+/// A wire or port: up to 64 bits, with a declared [`Format`] (width, fraction bits,
+/// signedness). The value is stored as its two's complement bit pattern.
+///
+/// Every write is checked: a value that does not fit the declared format panics with the
+/// signal's name, width and value. The check is one compare, so it stays on in release builds.
+#[derive(Clone, Debug)]
+pub struct Signal {
+    bits: u64,
+    fmt: Format,
+    name: &'static str,
+}
+
+impl Signal {
+    /// A signal of `fmt` named `name` (local to its module), initially zero.
+    #[track_caller]
+    pub fn new(name: &'static str, fmt: Format) -> Signal {
+        assert!(
+            fmt.width() <= 64,
+            "signal '{name}': {fmt} is {} bits; signals hold at most 64",
+            fmt.width()
+        );
+        Signal { bits: 0, fmt, name }
+    }
+
+    /// A one-bit unsigned signal.
+    pub fn bit(name: &'static str) -> Signal {
+        Signal::new(name, Format::uint(1))
+    }
+
+    pub fn name(&self) -> &'static str {
+        self.name
+    }
+    pub fn fmt(&self) -> Format {
+        self.fmt
+    }
+    pub fn width(&self) -> u32 {
+        self.fmt.width()
+    }
+
+    /// The bit pattern (zero above `width`).
+    #[inline]
+    pub fn bits(&self) -> u64 {
+        self.bits
+    }
+
+    /// The value as a signed integer (sign-extended for signed formats).
+    #[inline]
+    pub fn raw(&self) -> i64 {
+        let w = self.fmt.width();
+        if self.fmt.is_signed() && w < 64 {
+            let sh = 64 - w;
+            ((self.bits << sh) as i64) >> sh
+        } else {
+            self.bits as i64
+        }
+    }
+
+    /// The value as an unsigned integer (for unsigned formats; panics on a negative value).
+    #[inline]
+    pub fn uint(&self) -> u64 {
+        let r = self.raw();
+        assert!(r >= 0, "signal '{}' holds negative {r}", self.name);
+        r as u64
+    }
+
+    /// A one-bit signal as a bool.
+    #[inline]
+    pub fn is_high(&self) -> bool {
+        self.bits & 1 == 1
+    }
+
+    /// The value as a fixed-point number of the signal's format.
+    #[inline]
+    pub fn fx(&self) -> Fx {
+        Fx::from_bits(self.fmt, self.bits as u128)
+    }
+
+    /// Writes a bit pattern; panics if bits above `width` are set.
+    #[inline]
+    #[track_caller]
+    pub fn set_bits(&mut self, bits: u64) {
+        let w = self.fmt.width();
+        if w < 64 && bits >> w != 0 {
+            self.overflow(format!("bits {bits:#x}"));
+        }
+        self.bits = bits;
+    }
+
+    /// Writes a raw integer (value `raw * 2^-frac`); panics if it is out of range.
+    #[inline]
+    #[track_caller]
+    pub fn set_raw(&mut self, raw: i64) {
+        if !self.fmt.contains_raw(raw as i128) {
+            self.overflow(format!("raw {raw}"));
+        }
+        self.bits = (raw as u64) & (self.fmt.mask() as u64);
+    }
+
+    /// Writes a bool to a one-bit signal.
+    #[inline]
+    #[track_caller]
+    pub fn set_bool(&mut self, b: bool) {
+        self.set_bits(u64::from(b));
+    }
+
+    /// Writes a fixed-point value, which must be exactly representable in the signal's format
+    /// (quantise explicitly with [`Fx::convert`] first: a signal never rounds or wraps).
+    #[inline]
+    #[track_caller]
+    pub fn set(&mut self, v: Fx) {
+        self.bits = self.encode(v);
+    }
+
+    /// The bit pattern of `v` in this signal's format; panics unless exactly representable.
+    #[inline]
+    #[track_caller]
+    fn encode(&self, v: Fx) -> u64 {
+        if v.fmt() == self.fmt {
+            return v.bits() as u64;
+        }
+        match v.try_exact(self.fmt) {
+            Ok(x) => x.bits() as u64,
+            Err(_) => self.overflow(format!("{v} ({})", v.fmt())),
+        }
+    }
+
+    #[cold]
+    #[track_caller]
+    fn overflow(&self, what: String) -> ! {
+        panic!(
+            "signal '{}' ({}, {} bits): {what} does not fit",
+            self.name,
+            self.fmt,
+            self.fmt.width()
+        )
+    }
+}
+
+/// A clocked register: current value `q`, next value `d`, synchronous reset value.
+///
+/// Two-process style: combinational logic reads `q()` and writes `set_next*`; the clock edge
+/// ([`Reg::tick`]) commits `d` to `q`, or the reset value when reset is asserted. A register
+/// whose next value is not written in a cycle holds its value.
+#[derive(Clone, Debug)]
+pub struct Reg {
+    q: Signal,
+    d: u64,
+    reset: u64,
+}
+
+impl Reg {
+    /// A register of `fmt` that resets to zero.
+    pub fn new(name: &'static str, fmt: Format) -> Reg {
+        Reg {
+            q: Signal::new(name, fmt),
+            d: 0,
+            reset: 0,
+        }
+    }
+
+    /// A register that resets to `value` (which must fit `fmt`).
+    #[track_caller]
+    pub fn with_reset(name: &'static str, fmt: Format, value: Fx) -> Reg {
+        let mut q = Signal::new(name, fmt);
+        q.set(value);
+        let bits = q.bits();
+        Reg {
+            q,
+            d: bits,
+            reset: bits,
+        }
+    }
+
+    /// The current (registered) value.
+    #[inline]
+    pub fn q(&self) -> &Signal {
+        &self.q
+    }
+
+    /// Writes the next value; checked like [`Signal::set`].
+    #[inline]
+    #[track_caller]
+    pub fn set_next(&mut self, v: Fx) {
+        self.d = self.q.encode(v);
+    }
+
+    /// Writes the next value as a raw integer; checked like [`Signal::set_raw`].
+    #[inline]
+    #[track_caller]
+    pub fn set_next_raw(&mut self, raw: i64) {
+        let fmt = self.q.fmt;
+        if !fmt.contains_raw(raw as i128) {
+            self.q.overflow(format!("next raw {raw}"));
+        }
+        self.d = (raw as u64) & (fmt.mask() as u64);
+    }
+
+    /// Writes the next value of a one-bit register.
+    #[inline]
+    #[track_caller]
+    pub fn set_next_bool(&mut self, b: bool) {
+        self.set_next_raw(i64::from(b));
+    }
+
+    /// The pending next value's bits (what the edge will commit unless reset).
+    #[inline]
+    pub fn next_bits(&self) -> u64 {
+        self.d
+    }
+
+    /// The clock edge: commit `d`, or the reset value under synchronous reset.
+    #[inline]
+    pub fn tick(&mut self, reset: bool) {
+        let v = if reset { self.reset } else { self.d };
+        self.q.bits = v;
+        self.d = v;
+    }
+}

@@ -1,0 +1,168 @@
+//! Kernel tests on a small nested design: a combinational incrementer feeding a combinational
+//! doubler feeding a registered accumulator.
+
+use super::*;
+use crate::fx::{Format, Fx};
+use crate::signals;
+
+struct Inc {
+    a: Signal,
+    y: Signal,
+}
+impl Module for Inc {
+    fn instance(&self) -> &str {
+        "inc"
+    }
+    fn kind(&self) -> &'static str {
+        "inc"
+    }
+    fn eval(&mut self) {
+        self.y.set_raw(self.a.raw() + 1);
+    }
+    fn tick(&mut self, _: bool) {}
+    fn visit(&self, v: &mut dyn Visitor) {
+        v.enter("inc", "inc");
+        signals!(v; Input: self.a; Output: self.y);
+        v.leave();
+    }
+}
+
+struct Top {
+    x: Signal,
+    acc_out: Signal,
+    inc: Inc,
+    dbl: Signal,
+    acc: Reg,
+    good_order: bool,
+}
+
+impl Top {
+    fn new(good_order: bool) -> Top {
+        Top {
+            x: Signal::new("x", Format::uint(4)),
+            acc_out: Signal::new("acc_out", Format::uint(12)),
+            inc: Inc {
+                a: Signal::new("a", Format::uint(4)),
+                y: Signal::new("y", Format::uint(5)),
+            },
+            dbl: Signal::new("dbl", Format::uint(6)),
+            acc: Reg::new("acc", Format::uint(12)),
+            good_order,
+        }
+    }
+}
+
+impl Module for Top {
+    fn instance(&self) -> &str {
+        "top"
+    }
+    fn kind(&self) -> &'static str {
+        "top"
+    }
+    fn eval(&mut self) {
+        if self.good_order {
+            self.inc.a.set_bits(self.x.bits());
+            self.inc.eval();
+            self.dbl.set_raw(self.inc.y.raw() * 2);
+        } else {
+            // Reads the child's output before evaluating it: a schedule bug.
+            self.dbl.set_raw(self.inc.y.raw() * 2);
+            self.inc.a.set_bits(self.x.bits());
+            self.inc.eval();
+        }
+        let sum = self.acc.q().fx() + self.dbl.fx();
+        self.acc.set_next(sum.convert(
+            Format::uint(12),
+            crate::fx::Quant::Trunc,
+            crate::fx::Overflow::Wrap,
+        ));
+        self.acc_out.set_bits(self.acc.q().bits());
+    }
+    fn tick(&mut self, reset: bool) {
+        self.acc.tick(reset);
+    }
+    fn visit(&self, v: &mut dyn Visitor) {
+        v.enter("top", "top");
+        signals!(v; Input: self.x; Output: self.acc_out; Wire: self.dbl; Reg: self.acc);
+        self.inc.visit(v);
+        v.leave();
+    }
+}
+
+#[test]
+fn nested_design_accumulates_and_resets() {
+    let mut sim = Sim::new(Top::new(true)).check_schedule(true);
+    sim.reset(2);
+    let mut model = 0u64;
+    for c in 0..40u64 {
+        sim.dut.x.set_bits(c % 16);
+        sim.eval();
+        assert_eq!(sim.dut.acc_out.bits(), model, "cycle {c}");
+        model = (model + 2 * (c % 16 + 1)) % 4096;
+        sim.tick();
+    }
+    sim.set_reset(true);
+    sim.step();
+    sim.set_reset(false);
+    sim.eval();
+    assert_eq!(sim.dut.acc_out.bits(), 0);
+    assert_eq!(sim.cycle(), 43);
+}
+
+#[test]
+#[should_panic(expected = "schedule error")]
+fn wrong_evaluation_order_is_caught() {
+    let mut sim = Sim::new(Top::new(false)).check_schedule(true);
+    for c in 0..4 {
+        sim.dut.x.set_bits(c);
+        sim.step();
+    }
+}
+
+#[test]
+fn paths_are_hierarchical() {
+    let p = signal_paths(&Top::new(true));
+    assert_eq!(
+        p,
+        ["top.x", "top.acc_out", "top.dbl", "top.acc", "top.inc.a", "top.inc.y"]
+    );
+}
+
+#[test]
+fn register_holds_when_not_written() {
+    let mut r = Reg::with_reset("r", Format::sint(6), Fx::from_int(Format::sint(6), -5));
+    assert_eq!(r.q().raw(), -5);
+    r.set_next_raw(7);
+    r.tick(false);
+    assert_eq!(r.q().raw(), 7);
+    r.tick(false);
+    assert_eq!(r.q().raw(), 7, "hold");
+    r.tick(true);
+    assert_eq!(r.q().raw(), -5, "reset value");
+}
+
+#[test]
+fn signals_check_every_write() {
+    let mut s = Signal::new("s", Format::signed(6, 2));
+    s.set_raw(-32);
+    assert_eq!(s.bits(), 0x20);
+    assert_eq!(s.raw(), -32);
+    assert_eq!(s.fx().to_string(), "-8");
+    s.set(Fx::from_raw(Format::signed(3, 0), 3));
+    assert_eq!(s.raw(), 12);
+    let cases: [(&str, fn(&mut Signal)); 4] = [
+        ("raw 32", |s| s.set_raw(32)),
+        ("bits 0x40", |s| s.set_bits(0x40)),
+        ("inexact", |s| s.set(Fx::from_raw(Format::signed(4, 3), 1))),
+        ("too big", |s| s.set(Fx::from_int(Format::sint(8), 8))),
+    ];
+    for (what, f) in cases {
+        let mut t = s.clone();
+        let r = std::panic::catch_unwind(std::panic::AssertUnwindSafe(|| f(&mut t)));
+        assert!(r.is_err(), "{what} was accepted");
+    }
+    let mut r = Reg::new("r", Format::uint(3));
+    let e = std::panic::catch_unwind(std::panic::AssertUnwindSafe(|| r.set_next_raw(8)));
+    assert!(e.is_err());
+    assert!(std::panic::catch_unwind(|| Signal::new("w", Format::uint(65))).is_err());
+}
