@@ -1,1 +1,15 @@
+//! Waveforms of texrtl simulations: a VCD tracer that sees every signal of a design through the
+//! kernel's [`Visitor`](hdl::kernel::Visitor), and GTKWave save files that open each trace with
+//! its signals grouped per unit.
+//!
+//! Conventions: the timescale is 1 ps; cycle `n` is sampled at `n * period` with `clk` rising
+//! there and falling half a period later; the DUT's instance sits in scope `tb` beside `clk`,
+//! `rst` and `tb.golden` (the testbench's probes). Every fixed-point signal gets a companion
+//! `real` variable `<name>_real` with its value.
 
+pub mod glob;
+pub mod gtkw;
+mod vcd_trace;
+
+pub use vcd_trace::{ProbeId, TraceConfig, VcdTracer, ROOT};
+pub mod check;

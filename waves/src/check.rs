@@ -1,0 +1,211 @@
+//! Reads a VCD back with an independent reader (the `wellen` crate, which the Surfer viewer
+//! uses) and checks what GTKWave needs: a timescale, hierarchical scopes, every variable with
+//! a value at the first timestamp (`$dumpvars`), strictly increasing timestamps, and a `.gtkw`
+//! beside it that names only variables that exist, with their real widths.
+
+use std::collections::BTreeMap;
+use std::path::Path;
+use wellen::{simple, SignalValue, SignalValueRef};
+
+/// A variable as the independent reader saw it.
+#[derive(Clone, Debug, PartialEq)]
+pub struct VarInfo {
+    /// Bits, or `None` for a real.
+    pub width: Option<u32>,
+    /// Every change: time and value (`b0101`-style bit string, or the real printed).
+    pub changes: Vec<(u64, Value)>,
+}
+
+/// A value read back.
+#[derive(Clone, Debug, PartialEq)]
+pub enum Value {
+    Bits(String),
+    Real(f64),
+}
+
+impl Value {
+    /// The value as an unsigned integer (bit vectors of up to 64 bits).
+    pub fn as_u64(&self) -> Option<u64> {
+        match self {
+            Value::Bits(b) => u64::from_str_radix(b, 2).ok(),
+            Value::Real(_) => None,
+        }
+    }
+    pub fn as_f64(&self) -> Option<f64> {
+        match self {
+            Value::Real(r) => Some(*r),
+            Value::Bits(_) => None,
+        }
+    }
+}
+
+/// What a VCD holds, by full hierarchical name (`tb.ba.u0`).
+#[derive(Clone, Debug)]
+pub struct Readback {
+    /// Timescale exponent (-12 for 1 ps).
+    pub timescale_exp: Option<i8>,
+    pub scopes: Vec<String>,
+    pub vars: BTreeMap<String, VarInfo>,
+    /// Every timestamp, in order.
+    pub times: Vec<u64>,
+}
+
+impl Readback {
+    /// The value of `var` at time `t` (the last change at or before it).
+    pub fn value_at(&self, var: &str, t: u64) -> Option<&Value> {
+        let v = self.vars.get(var)?;
+        v.changes.iter().rev().find(|(ct, _)| *ct <= t).map(|(_, v)| v)
+    }
+
+    /// Total value changes (including the initial values).
+    pub fn total_changes(&self) -> usize {
+        self.vars.values().map(|v| v.changes.len()).sum()
+    }
+}
+
+/// Reads `path` with wellen and checks it (see the module docs). The error names the file.
+pub fn read_vcd(path: &Path) -> Result<Readback, String> {
+    let err = |m: String| format!("{}: {m}", path.display());
+    // Timestamps must increase strictly: checked on the text, since readers may merge.
+    let text = std::fs::read_to_string(path).map_err(|e| err(e.to_string()))?;
+    let mut last: Option<u64> = None;
+    let mut saw_dumpvars = false;
+    for line in text.lines() {
+        if let Some(t) = line.strip_prefix('#') {
+            let t: u64 = t.trim().parse().map_err(|_| err(format!("bad timestamp '{line}'")))?;
+            if last.is_some_and(|l| t <= l) {
+                return Err(err(format!("timestamp {t} does not increase")));
+            }
+            last = Some(t);
+        } else if line.starts_with("$dumpvars") {
+            saw_dumpvars = true;
+        }
+    }
+    if !saw_dumpvars {
+        return Err(err("no $dumpvars block".into()));
+    }
+    let mut w = simple::read(path).map_err(|e| err(format!("wellen: {e}")))?;
+    let h = w.hierarchy();
+    let timescale_exp = h.timescale().and_then(|t| {
+        t.unit.to_exponent().map(|e| e + (t.factor as f64).log10() as i8)
+    });
+    if timescale_exp.is_none() {
+        return Err(err("no $timescale".into()));
+    }
+    let scopes: Vec<String> = h.all_scopes().map(|s| h[s].full_name(h)).collect();
+    let vars: Vec<(String, Option<u32>, wellen::SignalRef)> = h
+        .all_vars()
+        .map(|v| {
+            let var = &h[v];
+            (var.full_name(h), var.length(h), var.signal_ref())
+        })
+        .collect();
+    let refs: Vec<_> = vars.iter().map(|v| v.2).collect();
+    w.load_signals(&refs);
+    let times = w.time_table().to_vec();
+    let first = *times.first().ok_or_else(|| err("no timestamps".into()))?;
+    let mut out = BTreeMap::new();
+    for (name, width, r) in vars {
+        let sig = w.get_signal(r).ok_or_else(|| err(format!("{name} not loaded")))?;
+        let mut changes = Vec::new();
+        for (ti, v) in sig.iter_changes() {
+            let t = times[ti as usize];
+            let v: SignalValue = v.into();
+            let v = match SignalValueRef::from(&v) {
+                SignalValueRef::Real(r) => Value::Real(r),
+                other => Value::Bits(
+                    other
+                        .to_bit_string()
+                        .ok_or_else(|| err(format!("{name}: unsupported value")))?,
+                ),
+            };
+            if let (Value::Bits(b), Some(wd)) = (&v, width) {
+                if b.len() as u32 != wd {
+                    return Err(err(format!("{name}: value {b} is not {wd} bits")));
+                }
+            }
+            changes.push((t, v));
+        }
+        if changes.first().is_none_or(|c| c.0 != first) {
+            return Err(err(format!("{name} has no initial value at time {first}")));
+        }
+        let real = changes.iter().any(|c| matches!(c.1, Value::Real(_)));
+        out.insert(
+            name,
+            VarInfo {
+                width: if real { None } else { width },
+                changes,
+            },
+        );
+    }
+    Ok(Readback {
+        timescale_exp,
+        scopes,
+        vars: out,
+        times,
+    })
+}
+
+/// Checks the `.gtkw` beside `vcd`: it exists, names this dump, and every trace it lists
+/// exists in `rb` with the width in its `[msb:lsb]` suffix. Returns the number of traces.
+pub fn check_gtkw(vcd: &Path, rb: &Readback) -> Result<usize, String> {
+    let g = vcd.with_extension("gtkw");
+    let err = |m: String| format!("{}: {m}", g.display());
+    let text = std::fs::read_to_string(&g).map_err(|e| err(e.to_string()))?;
+    let name = vcd.file_name().unwrap_or_default().to_string_lossy();
+    let opens = text.lines().any(|l| {
+        l.strip_prefix("[dumpfile] \"")
+            .and_then(|r| r.strip_suffix('"'))
+            .is_some_and(|p| Path::new(p).file_name() == vcd.file_name())
+    });
+    if !opens {
+        return Err(err(format!("does not open {name}")));
+    }
+    let mut n = 0;
+    let mut depth = 0i32;
+    let mut last_flags = "";
+    for line in text.lines() {
+        if let Some(f) = line.strip_prefix('@') {
+            last_flags = f;
+            continue;
+        }
+        if line.starts_with('-') {
+            match last_flags {
+                "800200" => depth += 1,
+                "1000200" => depth -= 1,
+                _ => {}
+            }
+            if depth < 0 {
+                return Err(err("group closed twice".into()));
+            }
+            continue;
+        }
+        if line.is_empty() || line.starts_with('[') || line.starts_with('*') {
+            continue;
+        }
+        let (base, width) = match line.split_once('[') {
+            Some((b, r)) => {
+                let r = r.trim_end_matches(']');
+                let (msb, lsb) = r.split_once(':').ok_or_else(|| err(format!("bad range in {line}")))?;
+                let msb: u32 = msb.parse().map_err(|_| err(format!("bad range in {line}")))?;
+                let lsb: u32 = lsb.parse().map_err(|_| err(format!("bad range in {line}")))?;
+                (b, Some(msb - lsb + 1))
+            }
+            None => (line, None),
+        };
+        let v = rb
+            .vars
+            .get(base)
+            .ok_or_else(|| err(format!("trace {base} is not in the dump")))?;
+        if let Some(wd) = width {
+            if v.width != Some(wd) {
+                return Err(err(format!("trace {line}: the dump says {:?} bits", v.width)));
+            }
+        }
+        n += 1;
+    }
+    if depth != 0 {
+        return Err(err("unbalanced groups".into()));
+    }
+    Ok(n)
+}

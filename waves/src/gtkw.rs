@@ -1,0 +1,191 @@
+//! GTKWave save files (`.gtkw`) that open a trace with the signals grouped per unit.
+//!
+//! Trace flags (hex, from GTKWave's save-file format): binary 0x8, hex 0x2, decimal 0x4,
+//! signed 0x400, right-justify 0x20, analog step 0x8000, real 0x40000, blank/comment 0x200,
+//! group begin 0x800000, group end 0x1000000.
+
+use std::io::{self, Write};
+use std::path::{Path, PathBuf};
+
+/// How a trace is shown.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Style {
+    /// One-bit signals: binary.
+    Bin,
+    /// Unsigned vectors: hexadecimal.
+    Hex,
+    /// Signed vectors: signed decimal (the raw two's complement integer).
+    SignedDec,
+    /// Real values (fixed-point companions, golden values): analog step waveform.
+    Analog,
+}
+
+impl Style {
+    /// The `@` flags line.
+    pub fn flags(self) -> u32 {
+        const RJUSTIFY: u32 = 0x20;
+        match self {
+            Style::Bin => 0x8 | RJUSTIFY,
+            Style::Hex => 0x2 | RJUSTIFY,
+            Style::SignedDec => 0x4 | 0x400 | RJUSTIFY,
+            Style::Analog => 0x8000 | 0x40000 | RJUSTIFY,
+        }
+    }
+}
+
+/// One line group of a save file.
+#[derive(Clone, Debug, PartialEq)]
+pub enum Item {
+    Trace { name: String, style: Style },
+    GroupBegin(String),
+    GroupEnd(String),
+}
+
+/// A save file being assembled.
+#[derive(Clone, Debug)]
+pub struct Gtkw {
+    path: PathBuf,
+    dumpfile: String,
+    items: Vec<Item>,
+    open: Vec<String>,
+    tree: Vec<String>,
+    end_time: u64,
+}
+
+/// The trace name without a `[msb:lsb]` suffix.
+fn base(name: &str) -> &str {
+    name.split_once('[').map_or(name, |(b, _)| b)
+}
+
+impl Gtkw {
+    /// The save file for the dump at `vcd` (same name, `.gtkw`).
+    ///
+    /// GTKWave 3.3 resolves a relative `[dumpfile]` against its working directory, not the save
+    /// file's, so both paths are written absolute; when the pair is moved together, GTKWave
+    /// finds the dump through the `[savefile]` line, and `gtkwave X.vcd X.gtkw` always works.
+    pub fn new(vcd: &Path) -> Gtkw {
+        let abs = std::path::absolute(vcd).unwrap_or_else(|_| vcd.to_path_buf());
+        Gtkw {
+            path: vcd.with_extension("gtkw"),
+            dumpfile: abs.to_string_lossy().into_owned(),
+            items: Vec::new(),
+            open: Vec::new(),
+            tree: Vec::new(),
+            end_time: 0,
+        }
+    }
+
+    pub fn path(&self) -> &Path {
+        &self.path
+    }
+
+    /// The dump's last timestamp: the view opens zoomed to show all of it.
+    pub fn set_end_time(&mut self, t: u64) {
+        self.end_time = t;
+    }
+
+    /// Expands scope `path` in the signal tree.
+    pub fn treeopen(&mut self, path: &str) {
+        self.tree.push(path.to_string());
+    }
+
+    /// Opens a group (and expands its scope in the tree).
+    pub fn begin_group(&mut self, label: &str, scope: &str) {
+        self.items.push(Item::GroupBegin(label.to_string()));
+        self.open.push(label.to_string());
+        self.treeopen(scope);
+    }
+
+    /// Closes the innermost group.
+    pub fn end_group(&mut self) {
+        let label = self.open.pop().expect("no open group");
+        self.items.push(Item::GroupEnd(label));
+    }
+
+    pub fn push(&mut self, item: Item) {
+        self.items.push(item);
+    }
+
+    /// Adds `trace` right after the trace named `beside` (and its `_real` companion), or at the
+    /// end in a group "golden" when there is no such trace.
+    pub fn place(&mut self, trace: Item, beside: Option<&str>) {
+        let pos = beside.and_then(|b| {
+            let i = self.items.iter().position(|it| matches!(it, Item::Trace { name, .. } if base(name) == b))?;
+            let companion = format!("{b}_real");
+            let next_is_companion = matches!(self.items.get(i + 1), Some(Item::Trace { name, .. }) if *name == companion);
+            Some(i + 1 + usize::from(next_is_companion))
+        });
+        match pos {
+            Some(p) => self.items.insert(p, trace),
+            None => {
+                let g = "golden".to_string();
+                let end = Item::GroupEnd(g.clone());
+                if self.items.last() == Some(&end) {
+                    let n = self.items.len();
+                    self.items.insert(n - 1, trace);
+                } else {
+                    self.items.push(Item::GroupBegin(g));
+                    self.items.push(trace);
+                    self.items.push(end);
+                }
+            }
+        }
+    }
+
+    /// The save file's text.
+    pub fn render(&self, title: &str) -> String {
+        let mut s = String::new();
+        s.push_str(&format!("[*] texrtl: {title}\n"));
+        s.push_str(&format!("[dumpfile] \"{}\"\n", self.dumpfile));
+        let save = std::path::absolute(&self.path).unwrap_or_else(|_| self.path.clone());
+        s.push_str(&format!("[savefile] \"{}\"\n", save.display()));
+        s.push_str("[timestart] 0\n[size] 1600 900\n[pos] -1 -1\n");
+        // At zoom 0 GTKWave 3.3 shows about 5 time units across the wave pane and each unit of
+        // zoom halves or doubles that (measured under Xvfb): fit the whole run, with a margin.
+        let zoom = -((self.end_time.max(10) as f64) * 1.05 / 5.0).log2();
+        s.push_str(&format!("*{zoom:.6} 0\n"));
+        s.push_str("[sst_width] 260\n[signals_width] 300\n[sst_expanded] 1\n[sst_vpaned_height] 260\n");
+        for t in &self.tree {
+            s.push_str(&format!("[treeopen] {t}.\n"));
+        }
+        let mut flags = None;
+        for it in &self.items {
+            match it {
+                Item::Trace { name, style } => {
+                    if flags != Some(style.flags()) {
+                        s.push_str(&format!("@{:x}\n", style.flags()));
+                        flags = Some(style.flags());
+                    }
+                    s.push_str(name);
+                    s.push('\n');
+                }
+                Item::GroupBegin(l) => {
+                    s.push_str(&format!("@800200\n-{l}\n"));
+                    flags = None;
+                }
+                Item::GroupEnd(l) => {
+                    s.push_str(&format!("@1000200\n-{l}\n"));
+                    flags = None;
+                }
+            }
+        }
+        s.push_str("[pattern_trace] 1\n[pattern_trace] 0\n");
+        s
+    }
+
+    /// Writes the save file (via a temporary name, so it is never left half written).
+    pub fn write(&self, title: &str) -> io::Result<()> {
+        let mut tmp = self.path.clone().into_os_string();
+        tmp.push(".partial");
+        let tmp = PathBuf::from(tmp);
+        let mut f = std::fs::File::create(&tmp)?;
+        f.write_all(self.render(title).as_bytes())?;
+        f.sync_all().ok();
+        std::fs::rename(&tmp, &self.path)
+    }
+
+    /// The traces in order (for tests and tools).
+    pub fn items(&self) -> &[Item] {
+        &self.items
+    }
+}

@@ -1,0 +1,509 @@
+//! A VCD tracer for the kernel's [`Sim`](hdl::kernel::Sim), written with the `vcd` crate.
+
+use crate::glob::glob_match;
+use crate::gtkw::{Gtkw, Item, Style};
+use hdl::fx::Format;
+use hdl::kernel::{Dir, Module, Signal, Trace, Visitor};
+use std::fs::File;
+use std::io::{self, BufWriter, Write};
+use std::path::{Path, PathBuf};
+use vcd::{IdCode, ReferenceIndex, TimescaleUnit, Value, VarType};
+
+/// The scope every trace starts with; the DUT's instance is inside it, beside `clk`, `rst` and
+/// the testbench's probes.
+pub const ROOT: &str = "tb";
+
+/// What to trace and how.
+#[derive(Clone, Debug)]
+pub struct TraceConfig {
+    /// Clock period in picoseconds (the VCD timescale is 1 ps). Default 10 000 (100 MHz).
+    pub period_ps: u64,
+    /// Deepest scope traced: 0 = only `tb` (clock, reset, probes), 1 = the DUT's own ports and
+    /// registers, 2 = its children's, ... `None` = everything.
+    pub max_depth: Option<usize>,
+    /// Glob patterns (`*` any run, `?` one character) on hierarchical names such as
+    /// `tb.ba.u0`; a signal is traced if any pattern matches. Empty = every signal.
+    pub filters: Vec<String>,
+    /// Cycles `[start, end)` to record; `None` = the whole run.
+    pub window: Option<(u64, u64)>,
+    /// Add a `real` companion (`<name>_real`) for every fixed-point signal (fraction bits != 0).
+    pub companions: bool,
+}
+
+impl Default for TraceConfig {
+    fn default() -> Self {
+        TraceConfig {
+            period_ps: 10_000,
+            max_depth: None,
+            filters: Vec::new(),
+            window: None,
+            companions: true,
+        }
+    }
+}
+
+/// A value the testbench traces beside the design: the golden model's result, a scoreboard
+/// flag, a transaction count.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct ProbeId(usize);
+
+#[derive(Clone, Copy, Debug, PartialEq)]
+enum ProbeValue {
+    Real(f64),
+    Bits(u64),
+}
+
+struct Probe {
+    name: String,
+    id: IdCode,
+    width: u32,
+    value: ProbeValue,
+    last: Option<ProbeValue>,
+    beside: Option<String>,
+}
+
+struct Entry {
+    id: Option<IdCode>,
+    real: Option<IdCode>,
+    fmt: Format,
+    last: u64,
+}
+
+/// Writes a VCD (and its `.gtkw`) of a simulation: every port and register of every instance
+/// under its hierarchical scope, with its declared width; `$dumpvars` with every initial value;
+/// afterwards only changes, at increasing timestamps.
+///
+/// The file is written as `NAME.vcd.partial` and renamed when the run finishes, so a failed or
+/// abandoned run leaves no partial output.
+pub struct VcdTracer {
+    path: PathBuf,
+    tmp: PathBuf,
+    w: Option<vcd::Writer<BufWriter<File>>>,
+    cfg: TraceConfig,
+    title: String,
+    entries: Vec<Entry>,
+    probes: Vec<Probe>,
+    clk: Option<IdCode>,
+    rst: Option<IdCode>,
+    rst_last: Option<bool>,
+    dumped: bool,
+    last_time: Option<u64>,
+    gtkw: Gtkw,
+    finished: bool,
+    changes: u64,
+}
+
+fn escape(name: &str) -> String {
+    name.chars()
+        .map(|c| {
+            if c.is_ascii_alphanumeric() || c == '_' {
+                c
+            } else {
+                '_'
+            }
+        })
+        .collect()
+}
+
+fn io_err(msg: String) -> io::Error {
+    io::Error::new(io::ErrorKind::InvalidInput, msg)
+}
+
+impl VcdTracer {
+    /// A tracer that will write `path` (a `.vcd`) and, beside it, the same name with `.gtkw`.
+    pub fn create(path: impl AsRef<Path>, title: &str, cfg: TraceConfig) -> io::Result<Self> {
+        let path = path.as_ref().to_path_buf();
+        if cfg.period_ps < 2 || cfg.period_ps % 2 != 0 {
+            return Err(io_err(format!(
+                "{}: clock period {} ps must be even and at least 2",
+                path.display(),
+                cfg.period_ps
+            )));
+        }
+        if let Some((a, b)) = cfg.window {
+            if a >= b {
+                return Err(io_err(format!(
+                    "{}: empty trace window {a}..{b}",
+                    path.display()
+                )));
+            }
+        }
+        let mut tmp = path.clone().into_os_string();
+        tmp.push(".partial");
+        let tmp = PathBuf::from(tmp);
+        let file = File::create(&tmp).map_err(|e| {
+            io::Error::new(e.kind(), format!("{}: {e}", tmp.display()))
+        })?;
+        Ok(VcdTracer {
+            gtkw: Gtkw::new(&path),
+            path,
+            tmp,
+            w: Some(vcd::Writer::new(BufWriter::with_capacity(1 << 16, file))),
+            cfg,
+            title: title.to_string(),
+            entries: Vec::new(),
+            probes: Vec::new(),
+            clk: None,
+            rst: None,
+            rst_last: None,
+            dumped: false,
+            last_time: None,
+            finished: false,
+            changes: 0,
+        })
+    }
+
+    /// Declares a real-valued probe `tb.golden.NAME` (call before the simulation starts). With
+    /// `beside`, the hierarchical name of a DUT signal (e.g. `tb.ba.u0`), the `.gtkw` shows the
+    /// probe right under that signal.
+    pub fn probe_real(&mut self, name: &str, beside: Option<&str>) -> ProbeId {
+        self.add_probe(name, 0, ProbeValue::Real(0.0), beside)
+    }
+
+    /// Declares an integer probe `tb.golden.NAME` of `width` bits.
+    pub fn probe_bits(&mut self, name: &str, width: u32, beside: Option<&str>) -> ProbeId {
+        assert!((1..=64).contains(&width), "probe width {width}");
+        self.add_probe(name, width, ProbeValue::Bits(0), beside)
+    }
+
+    fn add_probe(&mut self, name: &str, width: u32, v: ProbeValue, beside: Option<&str>) -> ProbeId {
+        assert!(self.clk.is_none(), "probes must be declared before the simulation starts");
+        self.probes.push(Probe {
+            name: escape(name),
+            id: IdCode::FIRST,
+            width,
+            value: v,
+            last: None,
+            beside: beside.map(str::to_string),
+        });
+        ProbeId(self.probes.len() - 1)
+    }
+
+    /// Sets a real probe's value for the current cycle.
+    pub fn set_real(&mut self, p: ProbeId, v: f64) {
+        self.probes[p.0].value = ProbeValue::Real(v);
+    }
+
+    /// Sets an integer probe's value for the current cycle (must fit its width).
+    pub fn set_bits(&mut self, p: ProbeId, v: u64) {
+        let w = self.probes[p.0].width;
+        assert!(w == 64 || v >> w == 0, "probe {} value {v} wider than {w} bits", self.probes[p.0].name);
+        self.probes[p.0].value = ProbeValue::Bits(v);
+    }
+
+    /// The final VCD path.
+    pub fn path(&self) -> &Path {
+        &self.path
+    }
+
+    /// The `.gtkw` save file path.
+    pub fn gtkw_path(&self) -> &Path {
+        self.gtkw.path()
+    }
+
+    /// Value changes written so far (including `$dumpvars`).
+    pub fn changes(&self) -> u64 {
+        self.changes
+    }
+
+    fn writer(&mut self) -> &mut vcd::Writer<BufWriter<File>> {
+        self.w.as_mut().expect("tracer already finished")
+    }
+
+    fn in_window(&self, cycle: u64) -> bool {
+        self.cfg.window.is_none_or(|(a, b)| cycle >= a && cycle < b)
+    }
+
+    fn timestamp(&mut self, t: u64) -> io::Result<()> {
+        if let Some(last) = self.last_time {
+            if t <= last {
+                return Err(io_err(format!(
+                    "{}: time {t} after {last}: timestamps must increase",
+                    self.path.display()
+                )));
+            }
+        }
+        self.last_time = Some(t);
+        self.writer().timestamp(t)
+    }
+}
+
+fn write_bits<W: Write>(w: &mut vcd::Writer<W>, id: IdCode, width: u32, bits: u64) -> io::Result<()> {
+    if width == 1 {
+        w.change_scalar(id, if bits & 1 == 1 { Value::V1 } else { Value::V0 })
+    } else {
+        w.change_vector(
+            id,
+            (0..width).rev().map(|i| if (bits >> i) & 1 == 1 { Value::V1 } else { Value::V0 }),
+        )
+    }
+}
+
+fn real_of(bits: u64, fmt: Format) -> f64 {
+    hdl::fx::Fx::from_bits(fmt, bits as u128).to_f64()
+}
+
+/// Declares the design's scopes and variables.
+struct Declare<'a> {
+    t: &'a mut VcdTracer,
+    scope: Vec<String>,
+    err: Option<io::Error>,
+}
+
+impl Visitor for Declare<'_> {
+    fn enter(&mut self, instance: &str, kind: &str) {
+        let name = escape(instance);
+        self.scope.push(name.clone());
+        let depth = self.scope.len();
+        let path = self.scope.join(".");
+        if self.t.cfg.max_depth.is_none_or(|d| depth <= d) {
+            self.t.gtkw.begin_group(&format!("{name} ({kind})"), &path);
+        }
+        if let Err(e) = self.t.writer().add_module(&name) {
+            self.err.get_or_insert(e);
+        }
+    }
+    fn leave(&mut self) {
+        let depth = self.scope.len();
+        self.scope.pop();
+        if self.t.cfg.max_depth.is_none_or(|d| depth <= d) {
+            self.t.gtkw.end_group();
+        }
+        if let Err(e) = self.t.writer().upscope() {
+            self.err.get_or_insert(e);
+        }
+    }
+    fn signal(&mut self, _: Dir, s: &Signal) {
+        let depth = self.scope.len();
+        let name = escape(s.name());
+        let full = format!("{}.{}", self.scope.join("."), name);
+        let cfg = &self.t.cfg;
+        let keep = cfg.max_depth.is_none_or(|d| depth <= d)
+            && (cfg.filters.is_empty() || cfg.filters.iter().any(|f| glob_match(f, &full)));
+        let fmt = s.fmt();
+        let mut e = Entry {
+            id: None,
+            real: None,
+            fmt,
+            last: 0,
+        };
+        if keep {
+            let w = fmt.width();
+            let idx = (w > 1).then(|| ReferenceIndex::Range(w as i32 - 1, 0));
+            let r = self
+                .t
+                .writer()
+                .add_var(VarType::Wire, w, &name, idx)
+                .and_then(|id| {
+                    e.id = Some(id);
+                    if self.t.cfg.companions && fmt.frac() != 0 {
+                        e.real = Some(self.t.writer().add_var(
+                            VarType::Real,
+                            64,
+                            &format!("{name}_real"),
+                            None,
+                        )?);
+                    }
+                    Ok(())
+                });
+            if let Err(err) = r {
+                self.err.get_or_insert(err);
+            }
+            let style = if w == 1 {
+                Style::Bin
+            } else if fmt.is_signed() {
+                Style::SignedDec
+            } else {
+                Style::Hex
+            };
+            let vname = if w > 1 { format!("{full}[{}:0]", w - 1) } else { full.clone() };
+            self.t.gtkw.push(Item::Trace { name: vname, style });
+            if e.real.is_some() {
+                self.t.gtkw.push(Item::Trace {
+                    name: format!("{full}_real"),
+                    style: Style::Analog,
+                        });
+            }
+        }
+        self.t.entries.push(e);
+    }
+}
+
+/// Writes the changes of one cycle.
+struct Sample<'a> {
+    w: &'a mut vcd::Writer<BufWriter<File>>,
+    entries: &'a mut [Entry],
+    next: usize,
+    all: bool,
+    changes: u64,
+    err: Option<io::Error>,
+}
+
+impl Visitor for Sample<'_> {
+    fn enter(&mut self, _: &str, _: &str) {}
+    fn leave(&mut self) {}
+    #[inline]
+    fn signal(&mut self, _: Dir, s: &Signal) {
+        let e = &mut self.entries[self.next];
+        self.next += 1;
+        let Some(id) = e.id else { return };
+        let bits = s.bits();
+        if !self.all && bits == e.last {
+            return;
+        }
+        e.last = bits;
+        self.changes += 1;
+        let mut r = write_bits(self.w, id, e.fmt.width(), bits);
+        if let (Some(rid), Ok(())) = (e.real, &r) {
+            r = self.w.change_real(rid, real_of(bits, e.fmt));
+            self.changes += 1;
+        }
+        if let Err(err) = r {
+            self.err.get_or_insert(err);
+        }
+    }
+}
+
+impl Trace for VcdTracer {
+    fn start(&mut self, top: &dyn Module) -> io::Result<()> {
+        let title = self.title.clone();
+        let w = self.writer();
+        w.comment(&format!("texrtl: {title}"))?;
+        w.version(concat!("texrtl ", env!("CARGO_PKG_VERSION")))?;
+        w.timescale(1, TimescaleUnit::PS)?;
+        w.add_module(ROOT)?;
+        let clk = w.add_wire(1, "clk")?;
+        let rst = w.add_wire(1, "rst")?;
+        self.clk = Some(clk);
+        self.rst = Some(rst);
+        self.gtkw.treeopen(ROOT);
+        self.gtkw.push(Item::Trace {
+            name: format!("{ROOT}.clk"),
+            style: Style::Bin,
+        });
+        self.gtkw.push(Item::Trace {
+            name: format!("{ROOT}.rst"),
+            style: Style::Bin,
+        });
+        let mut d = Declare {
+            t: self,
+            scope: vec![ROOT.to_string()],
+            err: None,
+        };
+        top.visit(&mut d);
+        if let Some(e) = d.err {
+            return Err(e);
+        }
+        if !self.probes.is_empty() {
+            self.writer().add_module("golden")?;
+            for i in 0..self.probes.len() {
+                let (name, width, real) = {
+                    let p = &self.probes[i];
+                    (p.name.clone(), p.width, matches!(p.value, ProbeValue::Real(_)))
+                };
+                let id = if real {
+                    self.writer().add_var(VarType::Real, 64, &name, None)?
+                } else {
+                    let idx = (width > 1).then(|| ReferenceIndex::Range(width as i32 - 1, 0));
+                    self.writer().add_var(VarType::Wire, width, &name, idx)?
+                };
+                self.probes[i].id = id;
+                let full = format!("{ROOT}.golden.{name}");
+                let trace = Item::Trace {
+                    name: if !real && width > 1 {
+                        format!("{full}[{}:0]", width - 1)
+                    } else {
+                        full
+                    },
+                    style: if real { Style::Analog } else { Style::Hex },
+                        };
+                let beside = self.probes[i].beside.clone();
+                self.gtkw.place(trace, beside.as_deref());
+            }
+            self.writer().upscope()?;
+        }
+        self.writer().upscope()?;
+        self.writer().enddefinitions()
+    }
+
+    fn sample(&mut self, cycle: u64, reset: bool, top: &dyn Module) -> io::Result<()> {
+        if !self.in_window(cycle) {
+            return Ok(());
+        }
+        let t = cycle * self.cfg.period_ps;
+        self.timestamp(t)?;
+        let all = !self.dumped;
+        let (clk, rst) = (self.clk.unwrap(), self.rst.unwrap());
+        let w = self.w.as_mut().expect("tracer already finished");
+        if all {
+            w.begin(vcd::SimulationCommand::Dumpvars)?;
+        }
+        w.change_scalar(clk, Value::V1)?;
+        let mut n = 1;
+        if all || self.rst_last != Some(reset) {
+            w.change_scalar(rst, if reset { Value::V1 } else { Value::V0 })?;
+            self.rst_last = Some(reset);
+            n += 1;
+        }
+        let mut s = Sample {
+            w,
+            entries: &mut self.entries,
+            next: 0,
+            all,
+            changes: 0,
+            err: None,
+        };
+        top.visit(&mut s);
+        if let Some(e) = s.err {
+            return Err(e);
+        }
+        n += s.changes;
+        for p in &mut self.probes {
+            if all || p.last != Some(p.value) {
+                match p.value {
+                    ProbeValue::Real(x) => s.w.change_real(p.id, x)?,
+                    ProbeValue::Bits(b) => write_bits(s.w, p.id, p.width, b)?,
+                }
+                p.last = Some(p.value);
+                n += 1;
+            }
+        }
+        if all {
+            s.w.end()?;
+            self.dumped = true;
+        }
+        self.changes += n;
+        let half = t + self.cfg.period_ps / 2;
+        self.timestamp(half)?;
+        let clk = self.clk.unwrap();
+        self.writer().change_scalar(clk, Value::V0)
+    }
+
+    fn finish(&mut self, cycles: u64) -> io::Result<()> {
+        let end = match self.cfg.window {
+            Some((_, b)) => cycles.min(b),
+            None => cycles,
+        };
+        let t_end = end * self.cfg.period_ps;
+        if self.last_time.is_none_or(|l| t_end > l) {
+            self.timestamp(t_end)?;
+        }
+        let mut w = self.w.take().expect("tracer already finished");
+        w.flush()?;
+        drop(w);
+        std::fs::rename(&self.tmp, &self.path)?;
+        self.gtkw.set_end_time(self.last_time.unwrap_or(0));
+        self.gtkw.write(&self.title)?;
+        self.finished = true;
+        Ok(())
+    }
+}
+
+impl Drop for VcdTracer {
+    fn drop(&mut self) {
+        if !self.finished {
+            self.w = None;
+            let _ = std::fs::remove_file(&self.tmp);
+        }
+    }
+}

@@ -1,0 +1,144 @@
+//! Traces a real module, reads the VCD back with wellen and checks hierarchy, widths, values,
+//! companions, probes, filters, windows and the save file.
+
+use hdl::blend_adjust::{BlendAdjust, BlendAdjustParams};
+use hdl::kernel::Sim;
+use std::path::PathBuf;
+use waves::check::{check_gtkw, read_vcd, Value};
+use waves::{TraceConfig, VcdTracer};
+
+fn tmpdir(name: &str) -> PathBuf {
+    let d = std::env::temp_dir().join(format!("texrtl-waves-{}-{name}", std::process::id()));
+    std::fs::create_dir_all(&d).unwrap();
+    d
+}
+
+/// Runs the blend adjust unit for 20 cycles with u = 10 * cycle, traced by `cfg`.
+fn run(name: &str, cfg: TraceConfig, finish: bool) -> PathBuf {
+    let path = tmpdir(name).join("ba.vcd");
+    let mut t = VcdTracer::create(&path, "blend adjust", cfg).unwrap();
+    let gold = t.probe_real("u0", Some("tb.ba.u0"));
+    let dut = BlendAdjust::new("ba", BlendAdjustParams::default());
+    let mut sim = Sim::traced(dut, t).unwrap();
+    sim.reset(2);
+    for c in 0..20u64 {
+        sim.dut.i.valid_in.set_bool(true);
+        sim.dut.i.u_in.set_bits(10 * c);
+        sim.eval();
+        let u = sim.dut.o.u0.fx().to_f64();
+        sim.trace_mut().unwrap().set_real(gold, u);
+        sim.tick();
+    }
+    if finish {
+        sim.finish().unwrap();
+    }
+    path
+}
+
+#[test]
+fn full_trace_reads_back() {
+    let path = run("full", TraceConfig::default(), true);
+    let rb = read_vcd(&path).unwrap();
+    assert_eq!(rb.timescale_exp, Some(-12));
+    assert!(rb.scopes.contains(&"tb.ba".to_string()), "{:?}", rb.scopes);
+    let w = |n: &str| rb.vars[n].width;
+    assert_eq!(w("tb.clk"), Some(1));
+    assert_eq!(w("tb.ba.u_in"), Some(8));
+    assert_eq!(w("tb.ba.u0"), Some(9));
+    assert_eq!(w("tb.ba.u0_r"), Some(9));
+    assert_eq!(w("tb.ba.u0_real"), None, "companion is real");
+    assert_eq!(w("tb.golden.u0"), None);
+    // Cycle 2 + c is sampled at (2 + c) * 10 ns; the registered output shows input c - 1.
+    let t = |c: u64| (2 + c) * 10_000;
+    assert_eq!(rb.value_at("tb.ba.u_in", t(5)).unwrap().as_u64(), Some(50));
+    assert_eq!(rb.value_at("tb.ba.u0", t(5)).unwrap().as_u64(), Some(0x100 + 40));
+    let r = rb.value_at("tb.ba.u0_real", t(5)).unwrap().as_f64().unwrap();
+    assert_eq!(r, (256.0 + 40.0) / 512.0);
+    let g = rb.value_at("tb.golden.u0", t(5)).unwrap().as_f64().unwrap();
+    assert_eq!(g, r, "golden probe beside the DUT value");
+    assert_eq!(rb.value_at("tb.rst", 0), Some(&Value::Bits("1".into())));
+    assert_eq!(rb.value_at("tb.rst", t(0)), Some(&Value::Bits("0".into())));
+    // The clock toggles every half period; the trace ends at the last cycle's end.
+    assert_eq!(rb.vars["tb.clk"].changes.len(), 44);
+    assert_eq!(*rb.times.last().unwrap(), 22 * 10_000);
+    // Only changes are written: u_in changes once per cycle after reset, never more.
+    assert_eq!(rb.vars["tb.ba.u_in"].changes.len(), 20);
+    let n = check_gtkw(&path, &rb).unwrap();
+    assert!(n >= 20, "{n} traces");
+    let g = std::fs::read_to_string(path.with_extension("gtkw")).unwrap();
+    let i_u0 = g.find("tb.ba.u0[8:0]").unwrap();
+    let i_gold = g.find("tb.golden.u0").unwrap();
+    assert!(i_gold > i_u0 && !g[i_u0..i_gold].contains("tb.ba.u1"), "golden beside u0");
+    assert!(g.contains("-ba (blend_adjust)"));
+}
+
+#[test]
+fn depth_filter_window() {
+    let d0 = run(
+        "depth0",
+        TraceConfig {
+            max_depth: Some(0),
+            ..Default::default()
+        },
+        true,
+    );
+    let rb = read_vcd(&d0).unwrap();
+    assert!(rb.vars.keys().all(|k| !k.starts_with("tb.ba.")), "{:?}", rb.vars.keys());
+    assert!(rb.vars.contains_key("tb.clk"));
+    check_gtkw(&d0, &rb).unwrap();
+
+    let f = run(
+        "filter",
+        TraceConfig {
+            filters: vec!["tb.ba.u0*".into()],
+            companions: false,
+            ..Default::default()
+        },
+        true,
+    );
+    let rb = read_vcd(&f).unwrap();
+    let dut: Vec<_> = rb.vars.keys().filter(|k| k.starts_with("tb.ba.")).cloned().collect();
+    assert_eq!(dut, ["tb.ba.u0", "tb.ba.u0_r"]);
+    check_gtkw(&f, &rb).unwrap();
+
+    let w = run(
+        "window",
+        TraceConfig {
+            window: Some((5, 9)),
+            ..Default::default()
+        },
+        true,
+    );
+    let rb = read_vcd(&w).unwrap();
+    assert_eq!(rb.times.first(), Some(&50_000));
+    assert_eq!(rb.times.last(), Some(&90_000));
+    // Initial values at the window's start: cycle 5 is input c = 3.
+    assert_eq!(rb.value_at("tb.ba.u_in", 50_000).unwrap().as_u64(), Some(30));
+}
+
+#[test]
+fn abandoned_trace_leaves_no_file() {
+    let p = run("abandon", TraceConfig::default(), false);
+    assert!(!p.exists());
+    let mut partial = p.clone().into_os_string();
+    partial.push(".partial");
+    assert!(!PathBuf::from(partial).exists());
+    assert!(!p.with_extension("gtkw").exists());
+}
+
+#[test]
+fn bad_configs_are_refused() {
+    let dir = tmpdir("bad");
+    let e = VcdTracer::create(
+        dir.join("x.vcd"),
+        "x",
+        TraceConfig {
+            window: Some((4, 4)),
+            ..Default::default()
+        },
+    )
+    .err()
+    .unwrap();
+    assert!(e.to_string().contains("x.vcd"), "{e}");
+    assert!(VcdTracer::create(dir.join("no/such/dir/x.vcd"), "x", TraceConfig::default()).is_err());
+}
