@@ -1,0 +1,254 @@
+//! Functional coverage: coverpoints with bins, crosses of two coverpoints, and a report that
+//! lists every bin never hit.
+
+use serde::Serialize;
+use std::fmt::Write;
+
+/// A bin: an inclusive range of sampled values, with a name and a hit count.
+#[derive(Clone, Debug, Serialize)]
+pub struct Bin {
+    pub name: String,
+    pub lo: i64,
+    pub hi: i64,
+    pub hits: u64,
+}
+
+/// A coverpoint: named bins over one sampled value.
+#[derive(Clone, Debug, Serialize)]
+pub struct Coverpoint {
+    pub name: String,
+    pub bins: Vec<Bin>,
+    /// Samples that fell in no bin.
+    pub unbinned: u64,
+}
+
+impl Coverpoint {
+    pub fn new(name: &str) -> Coverpoint {
+        Coverpoint {
+            name: name.to_string(),
+            bins: Vec::new(),
+            unbinned: 0,
+        }
+    }
+
+    /// Adds a bin for `lo..=hi`.
+    pub fn bin(mut self, name: &str, lo: i64, hi: i64) -> Coverpoint {
+        assert!(lo <= hi, "bin {name}: {lo} > {hi}");
+        self.bins.push(Bin {
+            name: name.to_string(),
+            lo,
+            hi,
+            hits: 0,
+        });
+        self
+    }
+
+    /// Adds a bin for one value.
+    pub fn value(self, name: &str, v: i64) -> Coverpoint {
+        self.bin(name, v, v)
+    }
+
+    /// Splits `lo..=hi` into `n` bins of (nearly) equal size, named `name[k]`.
+    pub fn ranges(mut self, name: &str, lo: i64, hi: i64, n: usize) -> Coverpoint {
+        let span = (hi - lo + 1) as i128;
+        let n = (n as i128).min(span).max(1);
+        for k in 0..n {
+            let a = lo as i128 + span * k / n;
+            let b = lo as i128 + span * (k + 1) / n - 1;
+            self = self.bin(&format!("{name}[{k}]"), a as i64, b as i64);
+        }
+        self
+    }
+
+    /// Index of the first bin holding `v`.
+    pub fn find(&self, v: i64) -> Option<usize> {
+        self.bins.iter().position(|b| b.lo <= v && v <= b.hi)
+    }
+
+    /// Samples `v`: every bin holding it is hit.
+    pub fn sample(&mut self, v: i64) {
+        let mut any = false;
+        for b in &mut self.bins {
+            if b.lo <= v && v <= b.hi {
+                b.hits += 1;
+                any = true;
+            }
+        }
+        self.unbinned += u64::from(!any);
+    }
+
+    pub fn hit_bins(&self) -> usize {
+        self.bins.iter().filter(|b| b.hits > 0).count()
+    }
+}
+
+/// The cross of two coverpoints: one bin per pair of their bins.
+#[derive(Clone, Debug, Serialize)]
+pub struct Cross {
+    pub name: String,
+    pub a: usize,
+    pub b: usize,
+    /// hits[i][j]: bin i of `a` with bin j of `b`.
+    pub hits: Vec<Vec<u64>>,
+}
+
+/// A coverage model: coverpoints and crosses, sampled together.
+#[derive(Clone, Debug, Default, Serialize)]
+pub struct Coverage {
+    pub points: Vec<Coverpoint>,
+    pub crosses: Vec<Cross>,
+}
+
+impl Coverage {
+    pub fn new() -> Coverage {
+        Coverage::default()
+    }
+
+    /// Adds a coverpoint; returns its index.
+    pub fn add(&mut self, p: Coverpoint) -> usize {
+        self.points.push(p);
+        self.points.len() - 1
+    }
+
+    /// Crosses coverpoints `a` and `b` (indices from [`Coverage::add`]).
+    pub fn cross(&mut self, name: &str, a: usize, b: usize) -> usize {
+        let (na, nb) = (self.points[a].bins.len(), self.points[b].bins.len());
+        self.crosses.push(Cross {
+            name: name.to_string(),
+            a,
+            b,
+            hits: vec![vec![0; nb]; na],
+        });
+        self.crosses.len() - 1
+    }
+
+    /// Samples one value per coverpoint (in the order they were added) and every cross.
+    pub fn sample(&mut self, values: &[i64]) {
+        assert_eq!(values.len(), self.points.len(), "one value per coverpoint");
+        for (p, v) in self.points.iter_mut().zip(values) {
+            p.sample(*v);
+        }
+        for c in &mut self.crosses {
+            let (pa, pb) = (&self.points[c.a], &self.points[c.b]);
+            for (i, ba) in pa.bins.iter().enumerate() {
+                if !(ba.lo <= values[c.a] && values[c.a] <= ba.hi) {
+                    continue;
+                }
+                for (j, bb) in pb.bins.iter().enumerate() {
+                    if bb.lo <= values[c.b] && values[c.b] <= bb.hi {
+                        c.hits[i][j] += 1;
+                    }
+                }
+            }
+        }
+    }
+
+    /// Bins (coverpoint bins and cross bins) in all, and how many were hit.
+    pub fn totals(&self) -> (usize, usize) {
+        let mut total = 0;
+        let mut hit = 0;
+        for p in &self.points {
+            total += p.bins.len();
+            hit += p.hit_bins();
+        }
+        for c in &self.crosses {
+            for row in &c.hits {
+                total += row.len();
+                hit += row.iter().filter(|h| **h > 0).count();
+            }
+        }
+        (total, hit)
+    }
+
+    /// Percentage of bins hit (100 for an empty model).
+    pub fn percent(&self) -> f64 {
+        let (t, h) = self.totals();
+        if t == 0 {
+            100.0
+        } else {
+            100.0 * h as f64 / t as f64
+        }
+    }
+
+    /// Names of every bin never hit: `point.bin` and `cross.(binA, binB)`.
+    pub fn unhit(&self) -> Vec<String> {
+        let mut v = Vec::new();
+        for p in &self.points {
+            for b in p.bins.iter().filter(|b| b.hits == 0) {
+                v.push(format!("{}.{}", p.name, b.name));
+            }
+        }
+        for c in &self.crosses {
+            for (i, row) in c.hits.iter().enumerate() {
+                for (j, h) in row.iter().enumerate() {
+                    if *h == 0 {
+                        v.push(format!(
+                            "{}.({}, {})",
+                            c.name, self.points[c.a].bins[i].name, self.points[c.b].bins[j].name
+                        ));
+                    }
+                }
+            }
+        }
+        v
+    }
+
+    /// A readable report: per coverpoint and cross, bins hit of total, then the unhit bins.
+    pub fn report(&self) -> String {
+        let mut s = String::new();
+        let (t, h) = self.totals();
+        let _ = writeln!(s, "coverage: {h}/{t} bins ({:.1} %)", self.percent());
+        for p in &self.points {
+            let _ = writeln!(
+                s,
+                "  {:<24} {}/{} bins{}",
+                p.name,
+                p.hit_bins(),
+                p.bins.len(),
+                if p.unbinned > 0 {
+                    format!(", {} samples in no bin", p.unbinned)
+                } else {
+                    String::new()
+                }
+            );
+        }
+        for c in &self.crosses {
+            let n: usize = c.hits.iter().map(Vec::len).sum();
+            let hit: usize = c.hits.iter().flatten().filter(|x| **x > 0).count();
+            let _ = writeln!(s, "  {:<24} {hit}/{n} bins (cross)", c.name);
+        }
+        let u = self.unhit();
+        if !u.is_empty() {
+            let _ = writeln!(s, "  unhit: {}", u.join(", "));
+        }
+        s
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn bins_crosses_and_unhit_report() {
+        let mut c = Coverage::new();
+        let a = c.add(Coverpoint::new("mode").value("normal", 0).value("bypass", 1));
+        let b = c.add(Coverpoint::new("u").value("zero", 0).value("max", 255).ranges("mid", 1, 254, 4));
+        c.cross("mode_x_u", a, b);
+        c.sample(&[0, 0]);
+        c.sample(&[1, 255]);
+        c.sample(&[0, 100]);
+        c.sample(&[7, 100]);
+        assert_eq!(c.points[1].bins.len(), 6);
+        assert_eq!(c.points[1].bins[2].lo, 1);
+        assert_eq!(c.points[1].bins[5].hi, 254);
+        assert_eq!(c.points[0].unbinned, 1);
+        let (t, h) = c.totals();
+        assert_eq!(t, 2 + 6 + 12);
+        assert_eq!(h, 2 + 3 + 3);
+        let u = c.unhit();
+        assert!(u.contains(&"u.mid[0]".to_string()));
+        assert!(u.contains(&"mode_x_u.(bypass, zero)".to_string()));
+        assert!(c.report().contains("unhit"));
+    }
+}

@@ -1,0 +1,151 @@
+//! In-order scoreboard: golden transactions in, DUT transactions in, every mismatch recorded.
+
+use serde::Serialize;
+use std::collections::VecDeque;
+use std::fmt::Debug;
+
+/// One disagreement between the DUT and the golden model.
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct Mismatch {
+    /// Index of the transaction (0 = first compared).
+    pub index: u64,
+    /// Cycle in which the DUT's transaction was seen (`None` for a missing one).
+    pub cycle: Option<u64>,
+    pub expected: String,
+    pub actual: String,
+    /// What differs.
+    pub detail: String,
+}
+
+/// Compares DUT transactions `A` against golden transactions `E` in order, with a comparator
+/// that says what differs (or `Ok` when they agree).
+pub struct Scoreboard<E, A> {
+    expected: VecDeque<E>,
+    compare: Box<dyn Fn(&E, &A) -> Result<(), String>>,
+    mismatches: Vec<Mismatch>,
+    compared: u64,
+    /// Keep at most this many mismatches in detail (all are counted).
+    pub keep: usize,
+    count: u64,
+}
+
+impl<E: Debug, A: Debug> Scoreboard<E, A> {
+    pub fn new(compare: impl Fn(&E, &A) -> Result<(), String> + 'static) -> Self {
+        Scoreboard {
+            expected: VecDeque::new(),
+            compare: Box::new(compare),
+            mismatches: Vec::new(),
+            compared: 0,
+            keep: 100,
+            count: 0,
+        }
+    }
+
+    /// Queues a golden transaction.
+    pub fn expect(&mut self, e: E) {
+        self.expected.push_back(e);
+    }
+
+    /// Compares a DUT transaction seen in `cycle` with the oldest golden one. Returns whether
+    /// they agree.
+    pub fn observe(&mut self, cycle: u64, a: A) -> bool {
+        let index = self.compared;
+        self.compared += 1;
+        match self.expected.pop_front() {
+            Some(e) => match (self.compare)(&e, &a) {
+                Ok(()) => true,
+                Err(detail) => {
+                    self.record(Mismatch {
+                        index,
+                        cycle: Some(cycle),
+                        expected: format!("{e:?}"),
+                        actual: format!("{a:?}"),
+                        detail,
+                    });
+                    false
+                }
+            },
+            None => {
+                self.record(Mismatch {
+                    index,
+                    cycle: Some(cycle),
+                    expected: "nothing".into(),
+                    actual: format!("{a:?}"),
+                    detail: "unexpected transaction from the DUT".into(),
+                });
+                false
+            }
+        }
+    }
+
+    /// At the end of a run: every golden transaction still waiting is a mismatch.
+    pub fn drain(&mut self) {
+        while let Some(e) = self.expected.pop_front() {
+            let index = self.compared;
+            self.compared += 1;
+            self.record(Mismatch {
+                index,
+                cycle: None,
+                expected: format!("{e:?}"),
+                actual: "nothing".into(),
+                detail: "the DUT never produced it".into(),
+            });
+        }
+    }
+
+    fn record(&mut self, m: Mismatch) {
+        self.count += 1;
+        if self.mismatches.len() < self.keep {
+            self.mismatches.push(m);
+        }
+    }
+
+    /// Transactions compared (including missing and unexpected ones).
+    pub fn compared(&self) -> u64 {
+        self.compared
+    }
+    /// Mismatches counted.
+    pub fn mismatch_count(&self) -> u64 {
+        self.count
+    }
+    /// The first `keep` mismatches in detail.
+    pub fn mismatches(&self) -> &[Mismatch] {
+        &self.mismatches
+    }
+    pub fn pending(&self) -> usize {
+        self.expected.len()
+    }
+    pub fn passed(&self) -> bool {
+        self.count == 0
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn records_mismatch_missing_and_unexpected() {
+        let mut sb = Scoreboard::new(|e: &u32, a: &u32| {
+            if e == a {
+                Ok(())
+            } else {
+                Err(format!("{a} != {e}"))
+            }
+        });
+        sb.expect(1);
+        sb.expect(2);
+        sb.expect(3);
+        assert!(sb.observe(10, 1));
+        assert!(!sb.observe(11, 5));
+        sb.drain();
+        assert!(!sb.observe(12, 7));
+        assert_eq!(sb.mismatch_count(), 3);
+        let m = sb.mismatches();
+        assert_eq!((m[0].index, m[0].cycle), (1, Some(11)));
+        assert_eq!(m[0].detail, "5 != 2");
+        assert_eq!(m[1].cycle, None);
+        assert_eq!(m[2].expected, "nothing");
+        assert!(!sb.passed());
+    }
+}

@@ -1,0 +1,127 @@
+//! Error statistics of a DUT against its golden model, in LSBs of the DUT's output format.
+
+use serde::Serialize;
+use std::collections::BTreeMap;
+
+/// Error of fixed-point results against real-valued golden results, in output LSBs.
+///
+/// Each sample's error is `(dut - golden) / lsb`. Reported: count, max and mean absolute
+/// error, counts of exact results (error 0) and of results within +-1 LSB, a histogram of
+/// the error rounded to the nearest whole LSB, and the SQNR in dB (golden power over error
+/// power).
+#[derive(Clone, Debug, Default, Serialize)]
+pub struct ErrorStats {
+    pub count: u64,
+    pub max_abs_lsb: f64,
+    pub sum_abs_lsb: f64,
+    pub exact: u64,
+    pub within_1_lsb: u64,
+    /// Error rounded to whole LSBs (ties away from zero) -> count.
+    pub histogram: BTreeMap<i64, u64>,
+    sum_sq_signal: f64,
+    sum_sq_error: f64,
+    /// Sample index and values of the worst error: (index, dut, golden).
+    pub worst: Option<(u64, f64, f64)>,
+}
+
+impl ErrorStats {
+    pub fn new() -> ErrorStats {
+        ErrorStats::default()
+    }
+
+    /// Records one result: the DUT's value, the golden value, the DUT's LSB weight (`2^-F`).
+    /// A NaN golden value is a testbench bug and panics.
+    pub fn record(&mut self, dut: f64, golden: f64, lsb: f64) {
+        assert!(golden.is_finite() && dut.is_finite(), "non-finite value: dut {dut}, golden {golden}");
+        let e = (dut - golden) / lsb;
+        let a = e.abs();
+        if a > self.max_abs_lsb || self.worst.is_none() {
+            self.max_abs_lsb = a;
+            self.worst = Some((self.count, dut, golden));
+        }
+        self.count += 1;
+        self.sum_abs_lsb += a;
+        self.exact += u64::from(e == 0.0);
+        self.within_1_lsb += u64::from(a <= 1.0);
+        *self.histogram.entry(e.round() as i64).or_insert(0) += 1;
+        self.sum_sq_signal += golden * golden;
+        self.sum_sq_error += (dut - golden) * (dut - golden);
+    }
+
+    /// Mean absolute error in LSBs (0 when empty).
+    pub fn mean_abs_lsb(&self) -> f64 {
+        if self.count == 0 {
+            0.0
+        } else {
+            self.sum_abs_lsb / self.count as f64
+        }
+    }
+
+    /// Signal-to-quantisation-noise ratio in dB; `None` when the error is zero.
+    pub fn sqnr_db(&self) -> Option<f64> {
+        (self.sum_sq_error > 0.0).then(|| 10.0 * (self.sum_sq_signal / self.sum_sq_error).log10())
+    }
+
+    /// Combines statistics of two runs (shards).
+    pub fn merge(&mut self, o: &ErrorStats) {
+        if o.max_abs_lsb > self.max_abs_lsb {
+            self.max_abs_lsb = o.max_abs_lsb;
+            self.worst = o.worst.map(|(i, d, g)| (i + self.count, d, g));
+        }
+        self.count += o.count;
+        self.sum_abs_lsb += o.sum_abs_lsb;
+        self.exact += o.exact;
+        self.within_1_lsb += o.within_1_lsb;
+        for (k, v) in &o.histogram {
+            *self.histogram.entry(*k).or_insert(0) += v;
+        }
+        self.sum_sq_signal += o.sum_sq_signal;
+        self.sum_sq_error += o.sum_sq_error;
+    }
+
+    /// One line: `n=…, max=… LSB, mean=… LSB, exact=…, ±1=…`.
+    pub fn summary(&self) -> String {
+        format!(
+            "n={} max={:.3} LSB mean={:.4} LSB exact={} within±1={}{}",
+            self.count,
+            self.max_abs_lsb,
+            self.mean_abs_lsb(),
+            self.exact,
+            self.within_1_lsb,
+            self.sqnr_db().map(|s| format!(" SQNR={s:.1} dB")).unwrap_or_default()
+        )
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn statistics_in_lsbs() {
+        let mut s = ErrorStats::new();
+        let lsb = 1.0 / 256.0;
+        s.record(0.5, 0.5, lsb);
+        s.record(0.5 + lsb, 0.5, lsb);
+        s.record(0.5 - 3.0 * lsb, 0.5, lsb);
+        assert_eq!(s.count, 3);
+        assert_eq!(s.exact, 1);
+        assert_eq!(s.within_1_lsb, 2);
+        assert_eq!(s.max_abs_lsb, 3.0);
+        assert!((s.mean_abs_lsb() - 4.0 / 3.0).abs() < 1e-12);
+        assert_eq!(s.histogram.get(&-3), Some(&1));
+        assert_eq!(s.worst.unwrap().0, 2);
+        let mut t = ErrorStats::new();
+        t.record(1.0, 1.0, lsb);
+        t.merge(&s);
+        assert_eq!(t.count, 4);
+        assert_eq!(t.worst.unwrap().0, 3);
+        assert!(t.sqnr_db().unwrap() > 40.0);
+    }
+
+    #[test]
+    #[should_panic(expected = "non-finite")]
+    fn nan_is_refused() {
+        ErrorStats::new().record(0.0, f64::NAN, 1.0);
+    }
+}
