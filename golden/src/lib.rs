@@ -1,1 +1,5 @@
+//! f64 reference models of texrtl's hardware, written from the mathematics of the source
+//! documents. This crate deliberately shares no code with `texrtl-hdl` (it does not even
+//! depend on it), so a bug in the hardware model cannot hide in a shared helper.
 
+pub mod blend_adjust;

@@ -1,1 +1,7 @@
+//! texrtl's testbenches and the machinery of the `texrtl` program.
+//!
+//! One module per testbench, named after the unit it verifies; `regress` runs them all.
 
+pub mod blend_adjust;
+pub mod regress;
+pub mod report;

@@ -20,7 +20,7 @@ mod stats;
 pub use coverage::{Coverage, Coverpoint, Cross};
 pub use random::{seeded_runner, Seed, Stimulus, SEED_ENV};
 pub use run::{run, Driver, Event, Monitor, Pacing, RunStats, Timeout, Watchdog};
-pub use scoreboard::{Mismatch, Scoreboard};
+pub use scoreboard::{Mismatch, Outcome, Scoreboard};
 pub use stats::ErrorStats;
 
 #[cfg(test)]

@@ -17,6 +17,14 @@ pub struct Mismatch {
     pub detail: String,
 }
 
+/// The result of comparing one DUT transaction.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Outcome<E> {
+    pub ok: bool,
+    /// The golden transaction it was compared with (`None`: the DUT produced one too many).
+    pub expected: Option<E>,
+}
+
 /// Compares DUT transactions `A` against golden transactions `E` in order, with a comparator
 /// that says what differs (or `Ok` when they agree).
 pub struct Scoreboard<E, A> {
@@ -47,13 +55,16 @@ impl<E: Debug, A: Debug> Scoreboard<E, A> {
     }
 
     /// Compares a DUT transaction seen in `cycle` with the oldest golden one. Returns whether
-    /// they agree.
-    pub fn observe(&mut self, cycle: u64, a: A) -> bool {
+    /// they agree, and the golden transaction it was compared with (for error statistics).
+    pub fn observe(&mut self, cycle: u64, a: A) -> Outcome<E> {
         let index = self.compared;
         self.compared += 1;
         match self.expected.pop_front() {
             Some(e) => match (self.compare)(&e, &a) {
-                Ok(()) => true,
+                Ok(()) => Outcome {
+                    ok: true,
+                    expected: Some(e),
+                },
                 Err(detail) => {
                     self.record(Mismatch {
                         index,
@@ -62,7 +73,10 @@ impl<E: Debug, A: Debug> Scoreboard<E, A> {
                         actual: format!("{a:?}"),
                         detail,
                     });
-                    false
+                    Outcome {
+                        ok: false,
+                        expected: Some(e),
+                    }
                 }
             },
             None => {
@@ -73,7 +87,10 @@ impl<E: Debug, A: Debug> Scoreboard<E, A> {
                     actual: format!("{a:?}"),
                     detail: "unexpected transaction from the DUT".into(),
                 });
-                false
+                Outcome {
+                    ok: false,
+                    expected: None,
+                }
             }
         }
     }
@@ -136,10 +153,10 @@ mod tests {
         sb.expect(1);
         sb.expect(2);
         sb.expect(3);
-        assert!(sb.observe(10, 1));
-        assert!(!sb.observe(11, 5));
+        assert!(sb.observe(10, 1).ok);
+        assert!(!sb.observe(11, 5).ok);
         sb.drain();
-        assert!(!sb.observe(12, 7));
+        assert!(!sb.observe(12, 7).ok);
         assert_eq!(sb.mismatch_count(), 3);
         let m = sb.mismatches();
         assert_eq!((m[0].index, m[0].cycle), (1, Some(11)));

@@ -1,0 +1,340 @@
+//! Testbench of the blend-factor adjust unit 153 (`hdl::blend_adjust`).
+//!
+//! Stimulus, for every blend-factor width F = 4..=16:
+//! * **sweep**: every value of `u` (all 2^F), in both modes (adjust and Blinn bypass), at one
+//!   transaction per clock; `v` takes every value too, paired with `u` by the permutation
+//!   `v = (u * 0x9E5 + 7) mod 2^F` so the two channels never carry the same sequence;
+//! * **random**: seeded constrained-random transactions with independent `u`, `v`, `bypass`,
+//!   corner values weighted up, and random idle cycles between them.
+//!
+//! Every output is scored against `golden::blend_adjust` with zero tolerance: the adjustment is
+//! exact in `F + 1` fraction bits, so any error at all is a bug. Coverage: width x mode,
+//! `u`/`v` classes (zero, max, interior ranges) crossed with the mode. The run at the traced
+//! width (default F = 8) writes `blend_adjust.vcd` with the golden values beside the outputs.
+
+use crate::report::TbResult;
+use hdl::blend_adjust::{BlendAdjust, BlendAdjustParams};
+use hdl::kernel::{NoTrace, Sim, Trace};
+use proptest::prelude::*;
+use std::path::PathBuf;
+use verif::{
+    run, Coverage, Coverpoint, Driver, ErrorStats, Event, Monitor, Pacing, Scoreboard, Seed,
+    Stimulus, Watchdog,
+};
+use waves::{ProbeId, TraceConfig, VcdTracer};
+
+/// An input transaction: one pair of blend factors (raw `uQ0.F` bits) and the mode.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct BaIn {
+    pub u: u32,
+    pub v: u32,
+    pub bypass: bool,
+}
+
+/// An output transaction: the four adjusted factors, raw `uQ0.(F+1)` bits.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct BaOut {
+    pub u0: u32,
+    pub u1: u32,
+    pub v0: u32,
+    pub v1: u32,
+}
+
+/// Drives `valid_in`, `bypass`, `u_in`, `v_in`.
+pub struct BaDriver;
+
+impl Driver<BlendAdjust> for BaDriver {
+    type Txn = BaIn;
+    fn drive(&mut self, dut: &mut BlendAdjust, t: Option<&BaIn>) {
+        dut.i.valid_in.set_bool(t.is_some());
+        let t = t.copied().unwrap_or(BaIn {
+            u: 0,
+            v: 0,
+            bypass: false,
+        });
+        dut.i.bypass.set_bool(t.bypass);
+        dut.i.u_in.set_bits(u64::from(t.u));
+        dut.i.v_in.set_bits(u64::from(t.v));
+    }
+}
+
+/// Collects the four outputs whenever `valid` is high. With `fault`, flips the LSB of `u1` in
+/// transaction number `fault` (to show that the testbench catches a one-bit error).
+pub struct BaMonitor {
+    pub fault: Option<u64>,
+    seen: u64,
+}
+
+impl Monitor<BlendAdjust> for BaMonitor {
+    type Txn = BaOut;
+    fn sample(&mut self, dut: &BlendAdjust) -> Option<BaOut> {
+        if !dut.o.valid.is_high() {
+            return None;
+        }
+        let mut o = BaOut {
+            u0: dut.o.u0.bits() as u32,
+            u1: dut.o.u1.bits() as u32,
+            v0: dut.o.v0.bits() as u32,
+            v1: dut.o.v1.bits() as u32,
+        };
+        if self.fault == Some(self.seen) {
+            o.u1 ^= 1;
+        }
+        self.seen += 1;
+        Some(o)
+    }
+}
+
+/// The golden result of a transaction, as real numbers `[u0, u1, v0, v1]`.
+pub fn golden(t: &BaIn, frac_bits: u32) -> [f64; 4] {
+    let scale = (frac_bits as f64).exp2();
+    let (u0, u1) = golden::blend_adjust::adjust(f64::from(t.u) / scale, t.bypass);
+    let (v0, v1) = golden::blend_adjust::adjust(f64::from(t.v) / scale, t.bypass);
+    [u0, u1, v0, v1]
+}
+
+/// What to run.
+#[derive(Clone, Debug)]
+pub struct BaConfig {
+    pub frac_range: std::ops::RangeInclusive<u32>,
+    pub registered: bool,
+    /// Random transactions per width.
+    pub random_per_width: usize,
+    pub seed: Seed,
+    /// Trace the run of this width into `vcd` (with `trace`).
+    pub trace_frac: u32,
+    pub vcd: Option<PathBuf>,
+    pub trace: TraceConfig,
+    /// Corrupt one output transaction (see [`BaMonitor`]).
+    pub fault: Option<u64>,
+    /// Run the kernel's schedule check on every cycle.
+    pub check_schedule: bool,
+}
+
+impl Default for BaConfig {
+    fn default() -> Self {
+        BaConfig {
+            frac_range: BlendAdjustParams::FRAC_RANGE,
+            registered: true,
+            random_per_width: 2000,
+            seed: Seed(0x7e47_1153),
+            trace_frac: 8,
+            vcd: None,
+            trace: TraceConfig::default(),
+            fault: None,
+            check_schedule: false,
+        }
+    }
+}
+
+fn sweep(f: u32) -> Vec<BaIn> {
+    let n = 1u32 << f;
+    let mut v = Vec::with_capacity(2 * n as usize);
+    for bypass in [false, true] {
+        for u in 0..n {
+            v.push(BaIn {
+                u,
+                v: (u.wrapping_mul(0x9e5).wrapping_add(7)) & (n - 1),
+                bypass,
+            });
+        }
+    }
+    v
+}
+
+fn random(f: u32, n: usize, stim: &mut Stimulus) -> Vec<BaIn> {
+    let max = (1u32 << f) - 1;
+    // Corners (0, 1, max-1, max) a quarter of the time, otherwise uniform.
+    let val = prop_oneof![
+        1 => prop_oneof![Just(0u32), Just(1), Just(max - 1), Just(max)],
+        3 => 0..=max,
+    ];
+    let s = (val.clone(), val, any::<bool>()).prop_map(|(u, v, bypass)| BaIn { u, v, bypass });
+    stim.draw_n(&s, n)
+}
+
+fn coverage_model() -> Coverage {
+    let mut c = Coverage::new();
+    let w = c.add(Coverpoint::new("frac_bits").ranges("F", 4, 16, 13));
+    let m = c.add(Coverpoint::new("mode").value("adjust", 0).value("bypass", 1));
+    let classes = |name: &str| {
+        Coverpoint::new(name)
+            .value("zero", 0)
+            .value("max", 1 << 16)
+            .ranges("interior", 1, (1 << 16) - 1, 8)
+    };
+    let u = c.add(classes("u"));
+    c.add(classes("v"));
+    c.cross("frac_bits_x_mode", w, m);
+    c.cross("mode_x_u", m, u);
+    c
+}
+
+/// A value's coverage class on a common scale: 0 for zero, 2^16 for the maximum, otherwise
+/// the value scaled to 16 bits (1..2^16-1).
+fn class(x: u32, f: u32) -> i64 {
+    let max = (1u32 << f) - 1;
+    if x == 0 {
+        0
+    } else if x == max {
+        1 << 16
+    } else {
+        (i64::from(x) << (16 - f)).max(1)
+    }
+}
+
+/// Runs the testbench; `Err` only for I/O errors of the trace.
+pub fn run_tb(cfg: &BaConfig) -> Result<TbResult, String> {
+    let mut res = TbResult::new("blend_adjust", "unit 153 (FIG. 7, para. 0058-0061, 0085)");
+    let mut cov = coverage_model();
+    let mut stats = ErrorStats::new();
+    let mut stim = Stimulus::new(cfg.seed);
+    res.seed = Some(cfg.seed.to_string());
+    for f in cfg.frac_range.clone() {
+        let params = BlendAdjustParams {
+            frac_bits: f,
+            registered: cfg.registered,
+        };
+        params.validate()?;
+        let dut = BlendAdjust::new("ba", params);
+        let traced = f == cfg.trace_frac && cfg.vcd.is_some();
+        if traced {
+            let path = cfg.vcd.clone().unwrap();
+            let mut t = VcdTracer::create(&path, &format!("blend_adjust F={f}"), cfg.trace.clone())
+                .map_err(|e| e.to_string())?;
+            let probes = [
+                t.probe_real("u0_golden", Some("tb.ba.u0")),
+                t.probe_real("u1_golden", Some("tb.ba.u1")),
+                t.probe_real("v0_golden", Some("tb.ba.v0")),
+                t.probe_real("v1_golden", Some("tb.ba.v1")),
+            ];
+            let miss = t.probe_bits("mismatch", 1, Some("tb.ba.valid"));
+            let sim = Sim::traced(dut, t).map_err(|e| e.to_string())?;
+            let sim = one_width(sim, cfg, f, &mut stim, &mut cov, &mut stats, &mut res, Some((probes, miss)));
+            sim.finish().map_err(|e| e.to_string())?;
+            res.vcd = Some(path);
+        } else {
+            let sim: Sim<BlendAdjust, NoTrace> = Sim::new(dut);
+            one_width(sim, cfg, f, &mut stim, &mut cov, &mut stats, &mut res, None);
+        }
+    }
+    res.coverage_percent = cov.percent();
+    res.unhit = cov.unhit();
+    res.coverage_report = cov.report();
+    res.stats = stats;
+    res.finish();
+    Ok(res)
+}
+
+type Probes = ([ProbeId; 4], ProbeId);
+
+/// Resets the unit, runs the full-rate sweep and the randomly paced transactions of one width.
+#[allow(clippy::too_many_arguments)]
+fn one_width<T: Trace + ProbeSink>(
+    sim: Sim<BlendAdjust, T>,
+    cfg: &BaConfig,
+    f: u32,
+    stim: &mut Stimulus,
+    cov: &mut Coverage,
+    stats: &mut ErrorStats,
+    res: &mut TbResult,
+    probes: Option<Probes>,
+) -> Sim<BlendAdjust, T> {
+    let mut sim = sim.check_schedule(cfg.check_schedule);
+    sim.reset(2);
+    let lsb = (-(f as f64 + 1.0)).exp2();
+    let latency = u64::from(sim.dut.params().latency());
+    let mut monitor = BaMonitor {
+        fault: cfg.fault,
+        seen: 0,
+    };
+    for (phase, stimulus) in [("sweep", sweep(f)), ("random", random(f, cfg.random_per_width, stim))] {
+        let n = stimulus.len() as u64;
+        let mut pacing = if phase == "sweep" {
+            Pacing::full()
+        } else {
+            Pacing::random(250, stim.seed().derive(u64::from(f)))
+        };
+        let mut sb: Scoreboard<(BaIn, [f64; 4]), BaOut> = Scoreboard::new(move |(_, g): &(BaIn, [f64; 4]), a: &BaOut| {
+            let got = [a.u0, a.u1, a.v0, a.v1].map(|x| f64::from(x) * lsb);
+            let names = ["u0", "u1", "v0", "v1"];
+            let bad: Vec<String> = (0..4)
+                .filter(|&k| got[k] != g[k])
+                .map(|k| format!("{}={} want {}", names[k], got[k], g[k]))
+                .collect();
+            if bad.is_empty() {
+                Ok(())
+            } else {
+                Err(bad.join(", "))
+            }
+        });
+        let watchdog = Watchdog::cycles(8 * n + 100);
+        let r = run(&mut sim, &mut BaDriver, &mut monitor, stimulus, n, &mut pacing, watchdog, |sim, ev| match ev {
+            Event::Sent { txn, .. } => {
+                let g = golden(txn, f);
+                cov.sample(&[f as i64, i64::from(txn.bypass), class(txn.u, f), class(txn.v, f)]);
+                sb.expect((*txn, g));
+            }
+            Event::Received { cycle, txn } => {
+                let out = sb.observe(cycle, txn);
+                let got = [txn.u0, txn.u1, txn.v0, txn.v1].map(|x| f64::from(x) * lsb);
+                if let Some((_, g)) = out.expected {
+                    for k in 0..4 {
+                        stats.record(got[k], g[k], lsb);
+                    }
+                    if let (Some((p, miss)), Some(t)) = (probes, sim.trace_mut()) {
+                        for k in 0..4 {
+                            t.probe(p[k], g[k]);
+                        }
+                        t.flag(miss, !out.ok);
+                    }
+                }
+            }
+        });
+        res.transactions += n;
+        res.mismatches += sb.mismatch_count();
+        for m in sb.mismatches().iter().take(10) {
+            res.mismatch_log.push(format!("F={f} {phase}: {} (cycle {:?}): {}", m.index, m.cycle, m.detail));
+        }
+        match r {
+            Ok(st) => {
+                res.cycles += st.cycles;
+                if phase == "sweep" {
+                    // One per clock: n transactions take n + latency cycles.
+                    if st.cycles != n + latency || st.min_latency != Some(latency) || st.max_latency != Some(latency) {
+                        res.failures.push(format!(
+                            "F={f}: {} cycles for {n} transactions, latency {:?}..{:?}, want {} and {latency}",
+                            st.cycles,
+                            st.min_latency,
+                            st.max_latency,
+                            n + latency
+                        ));
+                    }
+                    res.latency = Some(latency);
+                }
+            }
+            Err(t) => res.failures.push(format!("F={f} {phase}: {t}")),
+        }
+    }
+    sim
+}
+
+/// Lets the testbench set probes on whichever tracer it runs with.
+pub trait ProbeSink {
+    fn probe(&mut self, p: ProbeId, v: f64);
+    fn flag(&mut self, p: ProbeId, v: bool);
+}
+
+impl ProbeSink for VcdTracer {
+    fn probe(&mut self, p: ProbeId, v: f64) {
+        self.set_real(p, v);
+    }
+    fn flag(&mut self, p: ProbeId, v: bool) {
+        self.set_bits(p, u64::from(v));
+    }
+}
+
+impl ProbeSink for NoTrace {
+    fn probe(&mut self, _: ProbeId, _: f64) {}
+    fn flag(&mut self, _: ProbeId, _: bool) {}
+}

@@ -1,0 +1,114 @@
+//! Results of testbenches, the summary table and `summary.json`.
+
+use serde::Serialize;
+use std::fmt::Write;
+use std::path::{Path, PathBuf};
+use verif::ErrorStats;
+
+/// What one testbench found.
+#[derive(Clone, Debug, Serialize)]
+pub struct TbResult {
+    pub name: String,
+    /// The hardware unit and where the source document describes it.
+    pub unit: String,
+    pub transactions: u64,
+    pub cycles: u64,
+    pub mismatches: u64,
+    /// The first mismatches in detail.
+    pub mismatch_log: Vec<String>,
+    /// Anything else that failed: latency, throughput, watchdog, coverage holes, waveforms.
+    pub failures: Vec<String>,
+    pub coverage_percent: f64,
+    pub unhit: Vec<String>,
+    #[serde(skip)]
+    pub coverage_report: String,
+    /// Error against the golden model, in output LSBs.
+    pub stats: ErrorStats,
+    pub latency: Option<u64>,
+    pub seed: Option<String>,
+    pub vcd: Option<PathBuf>,
+    pub passed: bool,
+}
+
+impl TbResult {
+    pub fn new(name: &str, unit: &str) -> TbResult {
+        TbResult {
+            name: name.into(),
+            unit: unit.into(),
+            transactions: 0,
+            cycles: 0,
+            mismatches: 0,
+            mismatch_log: Vec::new(),
+            failures: Vec::new(),
+            coverage_percent: 0.0,
+            unhit: Vec::new(),
+            coverage_report: String::new(),
+            stats: ErrorStats::new(),
+            latency: None,
+            seed: None,
+            vcd: None,
+            passed: false,
+        }
+    }
+
+    /// Decides pass/fail: no mismatch, no other failure, every coverage bin hit.
+    pub fn finish(&mut self) {
+        if !self.unhit.is_empty() {
+            self.failures.push(format!(
+                "coverage holes ({} bins): {}",
+                self.unhit.len(),
+                self.unhit.iter().take(8).cloned().collect::<Vec<_>>().join(", ")
+            ));
+        }
+        self.passed = self.mismatches == 0 && self.failures.is_empty();
+    }
+}
+
+/// The summary table printed by `texrtl regress`.
+pub fn table(results: &[TbResult]) -> String {
+    let mut s = String::new();
+    let _ = writeln!(
+        s,
+        "{:<14} {:>9} {:>9} {:>6} {:>7} {:>9} {:>10} {:>7}  result",
+        "testbench", "txns", "cycles", "mism", "cover", "max LSB", "mean LSB", "latency"
+    );
+    for r in results {
+        let _ = writeln!(
+            s,
+            "{:<14} {:>9} {:>9} {:>6} {:>6.1}% {:>9.3} {:>10.4} {:>7}  {}",
+            r.name,
+            r.transactions,
+            r.cycles,
+            r.mismatches,
+            r.coverage_percent,
+            r.stats.max_abs_lsb,
+            r.stats.mean_abs_lsb(),
+            r.latency.map(|l| l.to_string()).unwrap_or_else(|| "-".into()),
+            if r.passed { "PASS" } else { "FAIL" }
+        );
+    }
+    for r in results.iter().filter(|r| !r.passed) {
+        for m in r.mismatch_log.iter().chain(&r.failures) {
+            let _ = writeln!(s, "  {}: {m}", r.name);
+        }
+    }
+    s
+}
+
+/// `summary.json`: every result, the seed and the tool version.
+#[derive(Serialize)]
+pub struct Summary<'a> {
+    pub texrtl: &'static str,
+    pub seed: String,
+    pub passed: bool,
+    pub testbenches: &'a [TbResult],
+}
+
+/// Writes `contents` to `path` through a temporary file, so no partial file is ever left.
+pub fn write_atomic(path: &Path, contents: &[u8]) -> std::io::Result<()> {
+    let mut tmp = path.as_os_str().to_owned();
+    tmp.push(".partial");
+    let tmp = PathBuf::from(tmp);
+    std::fs::write(&tmp, contents)?;
+    std::fs::rename(&tmp, path)
+}
