@@ -175,13 +175,7 @@ impl Module for BlendAdjust {
         let valid = self.i.valid_in.bits();
         let comb = [valid, u0, u1, v0, v1];
         let o = &mut self.o;
-        let outs = [
-            &mut o.valid,
-            &mut o.u0,
-            &mut o.u1,
-            &mut o.v0,
-            &mut o.v1,
-        ];
+        let outs = [&mut o.valid, &mut o.u0, &mut o.u1, &mut o.v0, &mut o.v1];
         if self.params.registered {
             for ((reg, out), next) in self.r.iter_mut().zip(outs).zip(comb) {
                 reg.set_next_raw(next as i64);

@@ -1,1 +1,92 @@
-fn main(){}
+//! Speed of the RTL kernel and the fixed-point layer (criterion). Run with
+//! `cargo bench -p texrtl --bench kernel`; figures are recorded in README.md.
+
+use criterion::{criterion_group, criterion_main, BatchSize, Criterion, Throughput};
+use hdl::blend_adjust::{BlendAdjust, BlendAdjustParams};
+use hdl::fx::{Format, Fx, Overflow, Quant};
+use hdl::kernel::{Sim, Trace};
+use std::hint::black_box;
+use waves::{TraceConfig, VcdTracer};
+
+const CYCLES: u64 = 4096;
+
+fn drive<T: Trace>(sim: &mut Sim<BlendAdjust, T>) -> u64 {
+    let mut acc = 0;
+    for c in 0..CYCLES {
+        sim.dut.i.valid_in.set_bool(true);
+        sim.dut.i.u_in.set_bits(c & 0xff);
+        sim.dut.i.v_in.set_bits((c * 7) & 0xff);
+        sim.dut.i.bypass.set_bool(c & 0x100 != 0);
+        sim.eval();
+        acc += sim.dut.o.u0.bits();
+        sim.tick();
+    }
+    acc
+}
+
+fn kernel(c: &mut Criterion) {
+    let mut g = c.benchmark_group("kernel");
+    g.throughput(Throughput::Elements(CYCLES));
+    g.bench_function("blend_adjust_cycles_untraced", |b| {
+        let mut sim = Sim::new(BlendAdjust::new("ba", BlendAdjustParams::default()));
+        b.iter(|| black_box(drive(&mut sim)))
+    });
+    g.bench_function("blend_adjust_cycles_schedule_checked", |b| {
+        let mut sim =
+            Sim::new(BlendAdjust::new("ba", BlendAdjustParams::default())).check_schedule(true);
+        b.iter(|| black_box(drive(&mut sim)))
+    });
+    let dir = std::env::temp_dir().join(format!("texrtl-bench-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let path = dir.join("ba.vcd");
+    g.bench_function("blend_adjust_cycles_traced_vcd", |b| {
+        b.iter_batched(
+            || {
+                let t = VcdTracer::create(&path, "bench", TraceConfig::default()).unwrap();
+                Sim::traced(BlendAdjust::new("ba", BlendAdjustParams::default()), t).unwrap()
+            },
+            |mut sim| {
+                let a = drive(&mut sim);
+                sim.finish().unwrap();
+                black_box(a)
+            },
+            BatchSize::PerIteration,
+        )
+    });
+    g.finish();
+    let _ = std::fs::remove_dir_all(&dir);
+}
+
+fn fixed_point(c: &mut Criterion) {
+    let mut g = c.benchmark_group("fx");
+    let src = Format::signed(24, 16);
+    let dst = Format::signed(12, 6);
+    let xs: Vec<Fx> = (0..1024)
+        .map(|i| Fx::from_raw(src, (i * 7919 - 4_000_000) % (1 << 23)))
+        .collect();
+    g.throughput(Throughput::Elements(xs.len() as u64));
+    g.bench_function("convert_round_half_even_saturate", |b| {
+        b.iter(|| {
+            let mut s = 0i128;
+            for x in &xs {
+                s += x
+                    .convert(dst, Quant::RoundHalfEven, Overflow::Saturate)
+                    .raw();
+            }
+            black_box(s)
+        })
+    });
+    g.bench_function("mul_add_full_precision", |b| {
+        b.iter(|| {
+            let mut s = 0i128;
+            for w in xs.windows(2) {
+                s += (w[0] * w[1] + w[0]).raw();
+            }
+            black_box(s)
+        })
+    });
+    g.finish();
+}
+
+criterion_group!(benches, kernel, fixed_point);
+criterion_main!(benches);

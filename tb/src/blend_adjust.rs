@@ -156,7 +156,11 @@ fn random(f: u32, n: usize, stim: &mut Stimulus) -> Vec<BaIn> {
 fn coverage_model() -> Coverage {
     let mut c = Coverage::new();
     let w = c.add(Coverpoint::new("frac_bits").ranges("F", 4, 16, 13));
-    let m = c.add(Coverpoint::new("mode").value("adjust", 0).value("bypass", 1));
+    let m = c.add(
+        Coverpoint::new("mode")
+            .value("adjust", 0)
+            .value("bypass", 1),
+    );
     let classes = |name: &str| {
         Coverpoint::new(name)
             .value("zero", 0)
@@ -210,7 +214,16 @@ pub fn run_tb(cfg: &BaConfig) -> Result<TbResult, String> {
             ];
             let miss = t.probe_bits("mismatch", 1, Some("tb.ba.valid"));
             let sim = Sim::traced(dut, t).map_err(|e| e.to_string())?;
-            let sim = one_width(sim, cfg, f, &mut stim, &mut cov, &mut stats, &mut res, Some((probes, miss)));
+            let sim = one_width(
+                sim,
+                cfg,
+                f,
+                &mut stim,
+                &mut cov,
+                &mut stats,
+                &mut res,
+                Some((probes, miss)),
+            );
             sim.finish().map_err(|e| e.to_string())?;
             res.vcd = Some(path);
         } else {
@@ -248,60 +261,84 @@ fn one_width<T: Trace + ProbeSink>(
         fault: cfg.fault,
         seen: 0,
     };
-    for (phase, stimulus) in [("sweep", sweep(f)), ("random", random(f, cfg.random_per_width, stim))] {
+    for (phase, stimulus) in [
+        ("sweep", sweep(f)),
+        ("random", random(f, cfg.random_per_width, stim)),
+    ] {
         let n = stimulus.len() as u64;
         let mut pacing = if phase == "sweep" {
             Pacing::full()
         } else {
             Pacing::random(250, stim.seed().derive(u64::from(f)))
         };
-        let mut sb: Scoreboard<(BaIn, [f64; 4]), BaOut> = Scoreboard::new(move |(_, g): &(BaIn, [f64; 4]), a: &BaOut| {
-            let got = [a.u0, a.u1, a.v0, a.v1].map(|x| f64::from(x) * lsb);
-            let names = ["u0", "u1", "v0", "v1"];
-            let bad: Vec<String> = (0..4)
-                .filter(|&k| got[k] != g[k])
-                .map(|k| format!("{}={} want {}", names[k], got[k], g[k]))
-                .collect();
-            if bad.is_empty() {
-                Ok(())
-            } else {
-                Err(bad.join(", "))
-            }
-        });
+        let mut sb: Scoreboard<(BaIn, [f64; 4]), BaOut> =
+            Scoreboard::new(move |(_, g): &(BaIn, [f64; 4]), a: &BaOut| {
+                let got = [a.u0, a.u1, a.v0, a.v1].map(|x| f64::from(x) * lsb);
+                let names = ["u0", "u1", "v0", "v1"];
+                let bad: Vec<String> = (0..4)
+                    .filter(|&k| got[k] != g[k])
+                    .map(|k| format!("{}={} want {}", names[k], got[k], g[k]))
+                    .collect();
+                if bad.is_empty() {
+                    Ok(())
+                } else {
+                    Err(bad.join(", "))
+                }
+            });
         let watchdog = Watchdog::cycles(8 * n + 100);
-        let r = run(&mut sim, &mut BaDriver, &mut monitor, stimulus, n, &mut pacing, watchdog, |sim, ev| match ev {
-            Event::Sent { txn, .. } => {
-                let g = golden(txn, f);
-                cov.sample(&[f as i64, i64::from(txn.bypass), class(txn.u, f), class(txn.v, f)]);
-                sb.expect((*txn, g));
-            }
-            Event::Received { cycle, txn } => {
-                let out = sb.observe(cycle, txn);
-                let got = [txn.u0, txn.u1, txn.v0, txn.v1].map(|x| f64::from(x) * lsb);
-                if let Some((_, g)) = out.expected {
-                    for k in 0..4 {
-                        stats.record(got[k], g[k], lsb);
-                    }
-                    if let (Some((p, miss)), Some(t)) = (probes, sim.trace_mut()) {
+        let r = run(
+            &mut sim,
+            &mut BaDriver,
+            &mut monitor,
+            stimulus,
+            n,
+            &mut pacing,
+            watchdog,
+            |sim, ev| match ev {
+                Event::Sent { txn, .. } => {
+                    let g = golden(txn, f);
+                    cov.sample(&[
+                        f as i64,
+                        i64::from(txn.bypass),
+                        class(txn.u, f),
+                        class(txn.v, f),
+                    ]);
+                    sb.expect((*txn, g));
+                }
+                Event::Received { cycle, txn } => {
+                    let out = sb.observe(cycle, txn);
+                    let got = [txn.u0, txn.u1, txn.v0, txn.v1].map(|x| f64::from(x) * lsb);
+                    if let Some((_, g)) = out.expected {
                         for k in 0..4 {
-                            t.probe(p[k], g[k]);
+                            stats.record(got[k], g[k], lsb);
                         }
-                        t.flag(miss, !out.ok);
+                        if let (Some((p, miss)), Some(t)) = (probes, sim.trace_mut()) {
+                            for k in 0..4 {
+                                t.probe(p[k], g[k]);
+                            }
+                            t.flag(miss, !out.ok);
+                        }
                     }
                 }
-            }
-        });
+            },
+        );
         res.transactions += n;
         res.mismatches += sb.mismatch_count();
         for m in sb.mismatches().iter().take(10) {
-            res.mismatch_log.push(format!("F={f} {phase}: {} (cycle {:?}): {}", m.index, m.cycle, m.detail));
+            res.mismatch_log.push(format!(
+                "F={f} {phase}: {} (cycle {:?}): {}",
+                m.index, m.cycle, m.detail
+            ));
         }
         match r {
             Ok(st) => {
                 res.cycles += st.cycles;
                 if phase == "sweep" {
                     // One per clock: n transactions take n + latency cycles.
-                    if st.cycles != n + latency || st.min_latency != Some(latency) || st.max_latency != Some(latency) {
+                    if st.cycles != n + latency
+                        || st.min_latency != Some(latency)
+                        || st.max_latency != Some(latency)
+                    {
                         res.failures.push(format!(
                             "F={f}: {} cycles for {n} transactions, latency {:?}..{:?}, want {} and {latency}",
                             st.cycles,

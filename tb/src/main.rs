@@ -71,10 +71,10 @@ fn fail(msg: impl std::fmt::Display) -> ExitCode {
 
 fn run_regress(a: RegressArgs) -> ExitCode {
     if a.out.exists() && !a.out.is_dir() {
-        return fail(format!("--out {}: exists and is not a directory", a.out.display()));
-    }
-    if a.period_ps < 2 || a.period_ps % 2 != 0 {
-        return fail(format!("--period-ps {}: must be even and at least 2", a.period_ps));
+        return fail(format!(
+            "--out {}: exists and is not a directory",
+            a.out.display()
+        ));
     }
     let cfg = RegressConfig {
         out: a.out,
@@ -88,7 +88,13 @@ fn run_regress(a: RegressArgs) -> ExitCode {
             companions: true,
         },
     };
-    eprintln!("texrtl regress: seed {} (replay with --seed {})", cfg.seed, cfg.seed);
+    if let Err(e) = cfg.trace.validate() {
+        return fail(format!("--period-ps/--trace-window: {e}"));
+    }
+    eprintln!(
+        "texrtl regress: seed {} (replay with --seed {})",
+        cfg.seed, cfg.seed
+    );
     match regress(&cfg) {
         Ok(results) => {
             print!("{}", render(&results, &cfg));

@@ -57,7 +57,12 @@ impl TbResult {
             self.failures.push(format!(
                 "coverage holes ({} bins): {}",
                 self.unhit.len(),
-                self.unhit.iter().take(8).cloned().collect::<Vec<_>>().join(", ")
+                self.unhit
+                    .iter()
+                    .take(8)
+                    .cloned()
+                    .collect::<Vec<_>>()
+                    .join(", ")
             ));
         }
         self.passed = self.mismatches == 0 && self.failures.is_empty();
@@ -83,7 +88,9 @@ pub fn table(results: &[TbResult]) -> String {
             r.coverage_percent,
             r.stats.max_abs_lsb,
             r.stats.mean_abs_lsb(),
-            r.latency.map(|l| l.to_string()).unwrap_or_else(|| "-".into()),
+            r.latency
+                .map(|l| l.to_string())
+                .unwrap_or_else(|| "-".into()),
             if r.passed { "PASS" } else { "FAIL" }
         );
     }

@@ -53,7 +53,11 @@ fn a_one_bit_error_is_caught_with_its_cycle() {
     assert!(!r.passed);
     assert_eq!(r.mismatches, 1);
     // Reset takes cycles 0-1; transaction 5 enters in cycle 7 and leaves in cycle 8.
-    assert!(r.mismatch_log[0].contains("Some(8)"), "{}", r.mismatch_log[0]);
+    assert!(
+        r.mismatch_log[0].contains("Some(8)"),
+        "{}",
+        r.mismatch_log[0]
+    );
     assert!(r.mismatch_log[0].contains("u1="), "{}", r.mismatch_log[0]);
     assert!((r.stats.max_abs_lsb - 1.0).abs() < 1e-12);
 }

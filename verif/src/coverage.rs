@@ -232,8 +232,17 @@ mod tests {
     #[test]
     fn bins_crosses_and_unhit_report() {
         let mut c = Coverage::new();
-        let a = c.add(Coverpoint::new("mode").value("normal", 0).value("bypass", 1));
-        let b = c.add(Coverpoint::new("u").value("zero", 0).value("max", 255).ranges("mid", 1, 254, 4));
+        let a = c.add(
+            Coverpoint::new("mode")
+                .value("normal", 0)
+                .value("bypass", 1),
+        );
+        let b = c.add(
+            Coverpoint::new("u")
+                .value("zero", 0)
+                .value("max", 255)
+                .ranges("mid", 1, 254, 4),
+        );
         c.cross("mode_x_u", a, b);
         c.sample(&[0, 0]);
         c.sample(&[1, 255]);

@@ -25,7 +25,8 @@ impl Seed {
             Some(h) => u64::from_str_radix(h, 16),
             None => t.parse(),
         };
-        r.map(Seed).map_err(|_| format!("'{s}' is not a seed (hex 0x... or decimal)"))
+        r.map(Seed)
+            .map_err(|_| format!("'{s}' is not a seed (hex 0x... or decimal)"))
     }
 
     /// `TEXRTL_SEED` if set, else `default`. A malformed variable is an error, not ignored.
@@ -47,7 +48,9 @@ impl Seed {
 
     /// A seed derived from this one for an independent stream `k` (shards, sub-benches).
     pub fn derive(self, k: u64) -> Seed {
-        Seed(splitmix(self.0 ^ splitmix(k.wrapping_add(0x9e37_79b9_7f4a_7c15))))
+        Seed(splitmix(
+            self.0 ^ splitmix(k.wrapping_add(0x9e37_79b9_7f4a_7c15)),
+        ))
     }
 
     /// The proptest RNG for this seed (ChaCha, identical on every platform and version).
@@ -135,7 +138,10 @@ mod tests {
         assert_eq!(Seed::parse("0x10").unwrap(), Seed(16));
         assert_eq!(Seed::parse("16").unwrap(), Seed(16));
         assert!(Seed::parse("zz").is_err());
-        assert_eq!(Seed::parse(&Seed(0xdead).to_string()).unwrap(), Seed(0xdead));
+        assert_eq!(
+            Seed::parse(&Seed(0xdead).to_string()).unwrap(),
+            Seed(0xdead)
+        );
         assert_ne!(Seed(1).derive(0), Seed(1).derive(1));
     }
 }

@@ -168,11 +168,17 @@ where
         };
         if elapsed >= watchdog.max_cycles {
             driver.drive(&mut sim.dut, None);
-            return Err(timeout(format!("{} cycles elapsed", watchdog.max_cycles), &st));
+            return Err(timeout(
+                format!("{} cycles elapsed", watchdog.max_cycles),
+                &st,
+            ));
         }
-        if elapsed % 1024 == 0 && t0.elapsed() > watchdog.max_wall {
+        if elapsed.is_multiple_of(1024) && t0.elapsed() > watchdog.max_wall {
             driver.drive(&mut sim.dut, None);
-            return Err(timeout(format!("{:?} of wall time elapsed", watchdog.max_wall), &st));
+            return Err(timeout(
+                format!("{:?} of wall time elapsed", watchdog.max_wall),
+                &st,
+            ));
         }
         let txn = if it.peek().is_some() && pacing.send() {
             it.next()

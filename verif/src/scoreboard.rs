@@ -17,6 +17,9 @@ pub struct Mismatch {
     pub detail: String,
 }
 
+/// Says what differs between a golden and a DUT transaction, or `Ok` when they agree.
+pub type Comparator<E, A> = Box<dyn Fn(&E, &A) -> Result<(), String>>;
+
 /// The result of comparing one DUT transaction.
 #[derive(Clone, Debug, PartialEq)]
 pub struct Outcome<E> {
@@ -29,7 +32,7 @@ pub struct Outcome<E> {
 /// that says what differs (or `Ok` when they agree).
 pub struct Scoreboard<E, A> {
     expected: VecDeque<E>,
-    compare: Box<dyn Fn(&E, &A) -> Result<(), String>>,
+    compare: Comparator<E, A>,
     mismatches: Vec<Mismatch>,
     compared: u64,
     /// Keep at most this many mismatches in detail (all are counted).

@@ -32,7 +32,10 @@ impl ErrorStats {
     /// Records one result: the DUT's value, the golden value, the DUT's LSB weight (`2^-F`).
     /// A NaN golden value is a testbench bug and panics.
     pub fn record(&mut self, dut: f64, golden: f64, lsb: f64) {
-        assert!(golden.is_finite() && dut.is_finite(), "non-finite value: dut {dut}, golden {golden}");
+        assert!(
+            golden.is_finite() && dut.is_finite(),
+            "non-finite value: dut {dut}, golden {golden}"
+        );
         let e = (dut - golden) / lsb;
         let a = e.abs();
         if a > self.max_abs_lsb || self.worst.is_none() {
@@ -88,7 +91,9 @@ impl ErrorStats {
             self.mean_abs_lsb(),
             self.exact,
             self.within_1_lsb,
-            self.sqnr_db().map(|s| format!(" SQNR={s:.1} dB")).unwrap_or_default()
+            self.sqnr_db()
+                .map(|s| format!(" SQNR={s:.1} dB"))
+                .unwrap_or_default()
         )
     }
 }

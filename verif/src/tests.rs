@@ -78,17 +78,36 @@ impl Monitor<Plus1> for Mon {
     }
 }
 
-fn bench(stall: bool, pacing: &mut Pacing, n: usize) -> (Result<RunStats, Timeout>, Scoreboard<u16, u16>) {
+fn bench(
+    stall: bool,
+    pacing: &mut Pacing,
+    n: usize,
+) -> (Result<RunStats, Timeout>, Scoreboard<u16, u16>) {
     let mut sim = Sim::new(Plus1::new(stall)).check_schedule(true);
     sim.reset(1);
-    let mut sb = Scoreboard::new(|e: &u16, a: &u16| if e == a { Ok(()) } else { Err("differs".into()) });
-    let stim = Stimulus::new(Seed(7)).draw_n(&proptest::num::u8::ANY, n);
-    let r = run(&mut sim, &mut Drv, &mut Mon, stim, n as u64, pacing, Watchdog::cycles(1000), |_, ev| match ev {
-        Event::Sent { txn, .. } => sb.expect(u16::from(*txn) + 1),
-        Event::Received { cycle, txn } => {
-            sb.observe(cycle, txn);
+    let mut sb = Scoreboard::new(|e: &u16, a: &u16| {
+        if e == a {
+            Ok(())
+        } else {
+            Err("differs".into())
         }
     });
+    let stim = Stimulus::new(Seed(7)).draw_n(&proptest::num::u8::ANY, n);
+    let r = run(
+        &mut sim,
+        &mut Drv,
+        &mut Mon,
+        stim,
+        n as u64,
+        pacing,
+        Watchdog::cycles(1000),
+        |_, ev| match ev {
+            Event::Sent { txn, .. } => sb.expect(u16::from(*txn) + 1),
+            Event::Received { cycle, txn } => {
+                sb.observe(cycle, txn);
+            }
+        },
+    );
     (r, sb)
 }
 

@@ -54,7 +54,11 @@ impl Readback {
     /// The value of `var` at time `t` (the last change at or before it).
     pub fn value_at(&self, var: &str, t: u64) -> Option<&Value> {
         let v = self.vars.get(var)?;
-        v.changes.iter().rev().find(|(ct, _)| *ct <= t).map(|(_, v)| v)
+        v.changes
+            .iter()
+            .rev()
+            .find(|(ct, _)| *ct <= t)
+            .map(|(_, v)| v)
     }
 
     /// Total value changes (including the initial values).
@@ -72,7 +76,10 @@ pub fn read_vcd(path: &Path) -> Result<Readback, String> {
     let mut saw_dumpvars = false;
     for line in text.lines() {
         if let Some(t) = line.strip_prefix('#') {
-            let t: u64 = t.trim().parse().map_err(|_| err(format!("bad timestamp '{line}'")))?;
+            let t: u64 = t
+                .trim()
+                .parse()
+                .map_err(|_| err(format!("bad timestamp '{line}'")))?;
             if last.is_some_and(|l| t <= l) {
                 return Err(err(format!("timestamp {t} does not increase")));
             }
@@ -87,7 +94,9 @@ pub fn read_vcd(path: &Path) -> Result<Readback, String> {
     let mut w = simple::read(path).map_err(|e| err(format!("wellen: {e}")))?;
     let h = w.hierarchy();
     let timescale_exp = h.timescale().and_then(|t| {
-        t.unit.to_exponent().map(|e| e + (t.factor as f64).log10() as i8)
+        t.unit
+            .to_exponent()
+            .map(|e| e + (t.factor as f64).log10() as i8)
     });
     if timescale_exp.is_none() {
         return Err(err("no $timescale".into()));
@@ -106,7 +115,9 @@ pub fn read_vcd(path: &Path) -> Result<Readback, String> {
     let first = *times.first().ok_or_else(|| err("no timestamps".into()))?;
     let mut out = BTreeMap::new();
     for (name, width, r) in vars {
-        let sig = w.get_signal(r).ok_or_else(|| err(format!("{name} not loaded")))?;
+        let sig = w
+            .get_signal(r)
+            .ok_or_else(|| err(format!("{name} not loaded")))?;
         let mut changes = Vec::new();
         for (ti, v) in sig.iter_changes() {
             let t = times[ti as usize];
@@ -186,9 +197,15 @@ pub fn check_gtkw(vcd: &Path, rb: &Readback) -> Result<usize, String> {
         let (base, width) = match line.split_once('[') {
             Some((b, r)) => {
                 let r = r.trim_end_matches(']');
-                let (msb, lsb) = r.split_once(':').ok_or_else(|| err(format!("bad range in {line}")))?;
-                let msb: u32 = msb.parse().map_err(|_| err(format!("bad range in {line}")))?;
-                let lsb: u32 = lsb.parse().map_err(|_| err(format!("bad range in {line}")))?;
+                let (msb, lsb) = r
+                    .split_once(':')
+                    .ok_or_else(|| err(format!("bad range in {line}")))?;
+                let msb: u32 = msb
+                    .parse()
+                    .map_err(|_| err(format!("bad range in {line}")))?;
+                let lsb: u32 = lsb
+                    .parse()
+                    .map_err(|_| err(format!("bad range in {line}")))?;
                 (b, Some(msb - lsb + 1))
             }
             None => (line, None),
@@ -199,7 +216,10 @@ pub fn check_gtkw(vcd: &Path, rb: &Readback) -> Result<usize, String> {
             .ok_or_else(|| err(format!("trace {base} is not in the dump")))?;
         if let Some(wd) = width {
             if v.width != Some(wd) {
-                return Err(err(format!("trace {line}: the dump says {:?} bits", v.width)));
+                return Err(err(format!(
+                    "trace {line}: the dump says {:?} bits",
+                    v.width
+                )));
             }
         }
         n += 1;

@@ -144,7 +144,9 @@ impl Gtkw {
         // zoom halves or doubles that (measured under Xvfb): fit the whole run, with a margin.
         let zoom = -((self.end_time.max(10) as f64) * 1.05 / 5.0).log2();
         s.push_str(&format!("*{zoom:.6} 0\n"));
-        s.push_str("[sst_width] 260\n[signals_width] 300\n[sst_expanded] 1\n[sst_vpaned_height] 260\n");
+        s.push_str(
+            "[sst_width] 260\n[signals_width] 300\n[sst_expanded] 1\n[sst_vpaned_height] 260\n",
+        );
         for t in &self.tree {
             s.push_str(&format!("[treeopen] {t}.\n"));
         }

@@ -30,6 +30,24 @@ pub struct TraceConfig {
     pub companions: bool,
 }
 
+impl TraceConfig {
+    /// Checks the period (even, at least 2 ps, so the clock can fall half-way) and the window.
+    pub fn validate(&self) -> Result<(), String> {
+        if self.period_ps < 2 || !self.period_ps.is_multiple_of(2) {
+            return Err(format!(
+                "clock period {} ps must be even and at least 2",
+                self.period_ps
+            ));
+        }
+        if let Some((a, b)) = self.window {
+            if a >= b {
+                return Err(format!("empty trace window {a}..{b}"));
+            }
+        }
+        Ok(())
+    }
+}
+
 impl Default for TraceConfig {
     fn default() -> Self {
         TraceConfig {
@@ -113,27 +131,13 @@ impl VcdTracer {
     /// A tracer that will write `path` (a `.vcd`) and, beside it, the same name with `.gtkw`.
     pub fn create(path: impl AsRef<Path>, title: &str, cfg: TraceConfig) -> io::Result<Self> {
         let path = path.as_ref().to_path_buf();
-        if cfg.period_ps < 2 || cfg.period_ps % 2 != 0 {
-            return Err(io_err(format!(
-                "{}: clock period {} ps must be even and at least 2",
-                path.display(),
-                cfg.period_ps
-            )));
-        }
-        if let Some((a, b)) = cfg.window {
-            if a >= b {
-                return Err(io_err(format!(
-                    "{}: empty trace window {a}..{b}",
-                    path.display()
-                )));
-            }
-        }
+        cfg.validate()
+            .map_err(|e| io_err(format!("{}: {e}", path.display())))?;
         let mut tmp = path.clone().into_os_string();
         tmp.push(".partial");
         let tmp = PathBuf::from(tmp);
-        let file = File::create(&tmp).map_err(|e| {
-            io::Error::new(e.kind(), format!("{}: {e}", tmp.display()))
-        })?;
+        let file = File::create(&tmp)
+            .map_err(|e| io::Error::new(e.kind(), format!("{}: {e}", tmp.display())))?;
         Ok(VcdTracer {
             gtkw: Gtkw::new(&path),
             path,
@@ -166,8 +170,17 @@ impl VcdTracer {
         self.add_probe(name, width, ProbeValue::Bits(0), beside)
     }
 
-    fn add_probe(&mut self, name: &str, width: u32, v: ProbeValue, beside: Option<&str>) -> ProbeId {
-        assert!(self.clk.is_none(), "probes must be declared before the simulation starts");
+    fn add_probe(
+        &mut self,
+        name: &str,
+        width: u32,
+        v: ProbeValue,
+        beside: Option<&str>,
+    ) -> ProbeId {
+        assert!(
+            self.clk.is_none(),
+            "probes must be declared before the simulation starts"
+        );
         self.probes.push(Probe {
             name: escape(name),
             id: IdCode::FIRST,
@@ -187,7 +200,11 @@ impl VcdTracer {
     /// Sets an integer probe's value for the current cycle (must fit its width).
     pub fn set_bits(&mut self, p: ProbeId, v: u64) {
         let w = self.probes[p.0].width;
-        assert!(w == 64 || v >> w == 0, "probe {} value {v} wider than {w} bits", self.probes[p.0].name);
+        assert!(
+            w == 64 || v >> w == 0,
+            "probe {} value {v} wider than {w} bits",
+            self.probes[p.0].name
+        );
         self.probes[p.0].value = ProbeValue::Bits(v);
     }
 
@@ -228,13 +245,24 @@ impl VcdTracer {
     }
 }
 
-fn write_bits<W: Write>(w: &mut vcd::Writer<W>, id: IdCode, width: u32, bits: u64) -> io::Result<()> {
+fn write_bits<W: Write>(
+    w: &mut vcd::Writer<W>,
+    id: IdCode,
+    width: u32,
+    bits: u64,
+) -> io::Result<()> {
     if width == 1 {
         w.change_scalar(id, if bits & 1 == 1 { Value::V1 } else { Value::V0 })
     } else {
         w.change_vector(
             id,
-            (0..width).rev().map(|i| if (bits >> i) & 1 == 1 { Value::V1 } else { Value::V0 }),
+            (0..width).rev().map(|i| {
+                if (bits >> i) & 1 == 1 {
+                    Value::V1
+                } else {
+                    Value::V0
+                }
+            }),
         )
     }
 }
@@ -316,13 +344,17 @@ impl Visitor for Declare<'_> {
             } else {
                 Style::Hex
             };
-            let vname = if w > 1 { format!("{full}[{}:0]", w - 1) } else { full.clone() };
+            let vname = if w > 1 {
+                format!("{full}[{}:0]", w - 1)
+            } else {
+                full.clone()
+            };
             self.t.gtkw.push(Item::Trace { name: vname, style });
             if e.real.is_some() {
                 self.t.gtkw.push(Item::Trace {
                     name: format!("{full}_real"),
                     style: Style::Analog,
-                        });
+                });
             }
         }
         self.t.entries.push(e);
@@ -399,7 +431,11 @@ impl Trace for VcdTracer {
             for i in 0..self.probes.len() {
                 let (name, width, real) = {
                     let p = &self.probes[i];
-                    (p.name.clone(), p.width, matches!(p.value, ProbeValue::Real(_)))
+                    (
+                        p.name.clone(),
+                        p.width,
+                        matches!(p.value, ProbeValue::Real(_)),
+                    )
                 };
                 let id = if real {
                     self.writer().add_var(VarType::Real, 64, &name, None)?
@@ -416,7 +452,7 @@ impl Trace for VcdTracer {
                         full
                     },
                     style: if real { Style::Analog } else { Style::Hex },
-                        };
+                };
                 let beside = self.probes[i].beside.clone();
                 self.gtkw.place(trace, beside.as_deref());
             }

@@ -51,8 +51,15 @@ fn full_trace_reads_back() {
     // Cycle 2 + c is sampled at (2 + c) * 10 ns; the registered output shows input c - 1.
     let t = |c: u64| (2 + c) * 10_000;
     assert_eq!(rb.value_at("tb.ba.u_in", t(5)).unwrap().as_u64(), Some(50));
-    assert_eq!(rb.value_at("tb.ba.u0", t(5)).unwrap().as_u64(), Some(0x100 + 40));
-    let r = rb.value_at("tb.ba.u0_real", t(5)).unwrap().as_f64().unwrap();
+    assert_eq!(
+        rb.value_at("tb.ba.u0", t(5)).unwrap().as_u64(),
+        Some(0x100 + 40)
+    );
+    let r = rb
+        .value_at("tb.ba.u0_real", t(5))
+        .unwrap()
+        .as_f64()
+        .unwrap();
     assert_eq!(r, (256.0 + 40.0) / 512.0);
     let g = rb.value_at("tb.golden.u0", t(5)).unwrap().as_f64().unwrap();
     assert_eq!(g, r, "golden probe beside the DUT value");
@@ -68,7 +75,10 @@ fn full_trace_reads_back() {
     let g = std::fs::read_to_string(path.with_extension("gtkw")).unwrap();
     let i_u0 = g.find("tb.ba.u0[8:0]").unwrap();
     let i_gold = g.find("tb.golden.u0").unwrap();
-    assert!(i_gold > i_u0 && !g[i_u0..i_gold].contains("tb.ba.u1"), "golden beside u0");
+    assert!(
+        i_gold > i_u0 && !g[i_u0..i_gold].contains("tb.ba.u1"),
+        "golden beside u0"
+    );
     assert!(g.contains("-ba (blend_adjust)"));
 }
 
@@ -83,7 +93,11 @@ fn depth_filter_window() {
         true,
     );
     let rb = read_vcd(&d0).unwrap();
-    assert!(rb.vars.keys().all(|k| !k.starts_with("tb.ba.")), "{:?}", rb.vars.keys());
+    assert!(
+        rb.vars.keys().all(|k| !k.starts_with("tb.ba.")),
+        "{:?}",
+        rb.vars.keys()
+    );
     assert!(rb.vars.contains_key("tb.clk"));
     check_gtkw(&d0, &rb).unwrap();
 
@@ -97,7 +111,12 @@ fn depth_filter_window() {
         true,
     );
     let rb = read_vcd(&f).unwrap();
-    let dut: Vec<_> = rb.vars.keys().filter(|k| k.starts_with("tb.ba.")).cloned().collect();
+    let dut: Vec<_> = rb
+        .vars
+        .keys()
+        .filter(|k| k.starts_with("tb.ba."))
+        .cloned()
+        .collect();
     assert_eq!(dut, ["tb.ba.u0", "tb.ba.u0_r"]);
     check_gtkw(&f, &rb).unwrap();
 
@@ -113,7 +132,10 @@ fn depth_filter_window() {
     assert_eq!(rb.times.first(), Some(&50_000));
     assert_eq!(rb.times.last(), Some(&90_000));
     // Initial values at the window's start: cycle 5 is input c = 3.
-    assert_eq!(rb.value_at("tb.ba.u_in", 50_000).unwrap().as_u64(), Some(30));
+    assert_eq!(
+        rb.value_at("tb.ba.u_in", 50_000).unwrap().as_u64(),
+        Some(30)
+    );
 }
 
 #[test]

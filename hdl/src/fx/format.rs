@@ -38,7 +38,10 @@ impl fmt::Display for FormatError {
                 if *signed { MAX_WIDTH } else { MAX_WIDTH - 1 }
             ),
             FormatError::Frac { frac } => {
-                write!(f, "fraction bits {frac} out of range -{MAX_FRAC}..={MAX_FRAC}")
+                write!(
+                    f,
+                    "fraction bits {frac} out of range -{MAX_FRAC}..={MAX_FRAC}"
+                )
             }
         }
     }

@@ -73,7 +73,11 @@ fn ref_round(num: i128, den: i128, q: Quant) -> i128 {
 /// Reference overflow handling of integer `v` into `dst` (raw units).
 fn ref_overflow(v: i128, dst: Format, o: Overflow) -> i128 {
     let w = dst.width();
-    let lo = if dst.is_signed() { -(1i128 << (w - 1)) } else { 0 };
+    let lo = if dst.is_signed() {
+        -(1i128 << (w - 1))
+    } else {
+        0
+    };
     let hi = if dst.is_signed() {
         (1i128 << (w - 1)) - 1
     } else {
@@ -164,7 +168,8 @@ fn convert_wide_shifts_and_extremes() {
         -128
     );
     assert_eq!(
-        big.convert(Format::sint(8), Quant::Trunc, Overflow::Wrap).raw(),
+        big.convert(Format::sint(8), Quant::Trunc, Overflow::Wrap)
+            .raw(),
         0
     );
     // Widening far to the left overflows every format.
@@ -218,7 +223,10 @@ fn sum_grows_one_bit_product_adds_widths() {
     // unsigned inside a signed result gains its sign bit
     assert_eq!(Format::sum(u, a), Format::signed(13, 8));
     assert_eq!(Format::difference(u, u), Format::signed(10, 8));
-    assert_eq!(Format::product(Format::sint(64), Format::sint(64)), Format::sint(128));
+    assert_eq!(
+        Format::product(Format::sint(64), Format::sint(64)),
+        Format::sint(128)
+    );
 }
 
 #[test]
@@ -247,7 +255,10 @@ fn formatting_is_exact() {
     assert_eq!(format!("{:#x}", Fx::from_raw(f, -1)), "0x3ff");
     assert_eq!(format!("{:x}", Fx::from_raw(f, 0x25)), "025");
     assert_eq!(format!("{:b}", Fx::from_raw(f, 5)), "0000000101");
-    assert_eq!(Fx::from_raw(Format::unsigned(9, 9), 257).to_string(), "0.501953125");
+    assert_eq!(
+        Fx::from_raw(Format::unsigned(9, 9), 257).to_string(),
+        "0.501953125"
+    );
     assert_eq!(Fx::from_raw(Format::signed(6, -3), -3).to_string(), "-24");
     assert_eq!(Fx::from_bits(f, 0x3ff).raw(), -1);
     assert_eq!(Fx::from_raw(f, 5).to_bitvec().len(), 10);
@@ -298,4 +309,11 @@ proptest! {
         let got = Fx::from_raw(src, raw).convert(dst, q, o).raw();
         prop_assert_eq!(got, ref_convert(raw, src, dst, q, o));
     }
+}
+
+#[test]
+fn upper_hex() {
+    let x = Fx::from_raw(Format::signed(10, 4), -2);
+    assert_eq!(format!("{x:X}"), "3FE");
+    assert_eq!(format!("{x:#X}"), "0x3FE");
 }

@@ -80,7 +80,12 @@ pub(crate) fn quantise(raw: i128, src_frac: i32, dst: Format, q: Quant, o: Overf
     let (value, huge) = if shift > 0 {
         let s = shift as u32;
         let floor = if s >= 127 { raw >> 127 } else { raw >> s };
-        let inc = q.increment(negative, floor & 1 == 1, bit(raw, s - 1), any_low(raw, s - 1));
+        let inc = q.increment(
+            negative,
+            floor & 1 == 1,
+            bit(raw, s - 1),
+            any_low(raw, s - 1),
+        );
         (floor + i128::from(inc), false)
     } else {
         let s = (-shift) as u32;
@@ -224,7 +229,11 @@ impl Fx {
 
     /// Bit `i` (0 = LSB) of the two's complement pattern.
     pub fn bit(self, i: u32) -> bool {
-        assert!(i < self.fmt.width(), "bit {i} of a {}-bit value", self.fmt.width());
+        assert!(
+            i < self.fmt.width(),
+            "bit {i} of a {}-bit value",
+            self.fmt.width()
+        );
         bit(self.raw, i)
     }
 
@@ -405,27 +414,24 @@ impl fmt::Display for Fx {
     }
 }
 
-impl fmt::LowerHex for Fx {
-    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        let d = self.fmt.hex_digits();
-        if f.alternate() {
-            write!(f, "0x{:0d$x}", self.bits())
-        } else {
-            write!(f, "{:0d$x}", self.bits())
+/// `{:x}` / `{:X}`: the `width` bits zero-padded to whole hex digits; `{:#x}` adds `0x`.
+macro_rules! hex_impl {
+    ($tr:ident, $spec:literal, $alt:literal) => {
+        impl fmt::$tr for Fx {
+            fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+                let d = self.fmt.hex_digits();
+                if f.alternate() {
+                    write!(f, $alt, self.bits(), d = d)
+                } else {
+                    write!(f, $spec, self.bits(), d = d)
+                }
+            }
         }
-    }
+    };
 }
 
-impl fmt::UpperHex for Fx {
-    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        let d = self.fmt.hex_digits();
-        if f.alternate() {
-            write!(f, "0x{:0d$X}", self.bits())
-        } else {
-            write!(f, "{:0d$X}", self.bits())
-        }
-    }
-}
+hex_impl!(LowerHex, "{:0d$x}", "0x{:0d$x}");
+hex_impl!(UpperHex, "{:0d$X}", "0x{:0d$X}");
 
 impl fmt::Binary for Fx {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
@@ -438,7 +444,11 @@ impl fmt::Binary for Fx {
 impl Fx {
     /// The exact value of a `fixed` number (e.g. `I8F8` becomes `sQ8.8`).
     pub fn from_fixed<F: fixed::traits::Fixed>(x: F) -> Fx {
-        let fmt = Format::new(F::INT_NBITS + F::FRAC_NBITS, F::FRAC_NBITS as i32, F::IS_SIGNED);
+        let fmt = Format::new(
+            F::INT_NBITS + F::FRAC_NBITS,
+            F::FRAC_NBITS as i32,
+            F::IS_SIGNED,
+        );
         let raw: i128 = x
             .to_bits()
             .try_into()
@@ -448,9 +458,12 @@ impl Fx {
 
     /// The value as a `fixed` number, if it is exactly representable there.
     pub fn to_fixed<F: fixed::traits::Fixed>(self) -> Option<F> {
-        let fmt =
-            Format::try_new(F::INT_NBITS + F::FRAC_NBITS, F::FRAC_NBITS as i32, F::IS_SIGNED)
-                .ok()?;
+        let fmt = Format::try_new(
+            F::INT_NBITS + F::FRAC_NBITS,
+            F::FRAC_NBITS as i32,
+            F::IS_SIGNED,
+        )
+        .ok()?;
         let v = self.try_exact(fmt).ok()?;
         F::Bits::try_from(v.raw).ok().map(F::from_bits)
     }

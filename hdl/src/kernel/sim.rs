@@ -200,7 +200,8 @@ pub fn signal_paths(top: &dyn Module) -> Vec<String> {
             self.scope.pop();
         }
         fn signal(&mut self, _: Dir, s: &Signal) {
-            self.out.push(format!("{}.{}", self.scope.join("."), s.name()));
+            self.out
+                .push(format!("{}.{}", self.scope.join("."), s.name()));
         }
     }
     let mut p = Paths::default();

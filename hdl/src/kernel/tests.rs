@@ -124,7 +124,14 @@ fn paths_are_hierarchical() {
     let p = signal_paths(&Top::new(true));
     assert_eq!(
         p,
-        ["top.x", "top.acc_out", "top.dbl", "top.acc", "top.inc.a", "top.inc.y"]
+        [
+            "top.x",
+            "top.acc_out",
+            "top.dbl",
+            "top.acc",
+            "top.inc.a",
+            "top.inc.y"
+        ]
     );
 }
 
@@ -150,7 +157,8 @@ fn signals_check_every_write() {
     assert_eq!(s.fx().to_string(), "-8");
     s.set(Fx::from_raw(Format::signed(3, 0), 3));
     assert_eq!(s.raw(), 12);
-    let cases: [(&str, fn(&mut Signal)); 4] = [
+    type Write = fn(&mut Signal);
+    let cases: [(&str, Write); 4] = [
         ("raw 32", |s| s.set_raw(32)),
         ("bits 0x40", |s| s.set_bits(0x40)),
         ("inexact", |s| s.set(Fx::from_raw(Format::signed(4, 3), 1))),
