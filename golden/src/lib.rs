@@ -3,3 +3,4 @@
 //! depend on it), so a bug in the hardware model cannot hide in a shared helper.
 
 pub mod blend_adjust;
+pub mod bump;

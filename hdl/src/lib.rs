@@ -7,3 +7,15 @@ pub mod fx;
 pub mod kernel;
 
 pub mod blend_adjust;
+
+// The FIG. 7 normal pipeline of US 2004/0207631, one module per unit.
+pub mod address;
+pub mod bilinear;
+pub mod bump_params;
+pub mod height_map;
+pub mod normal;
+pub mod normal_pipeline;
+pub mod replicate;
+pub mod rsqrt;
+pub mod tangent;
+pub mod texel_fetch;

@@ -3,5 +3,7 @@
 //! One module per testbench, named after the unit it verifies; `regress` runs them all.
 
 pub mod blend_adjust;
+pub mod maps;
+pub mod normals;
 pub mod regress;
 pub mod report;

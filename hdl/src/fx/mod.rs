@@ -30,7 +30,7 @@ mod value;
 
 pub use format::{Format, FormatError};
 pub use modes::{Overflow, Quant};
-pub use value::{Fx, FxError};
+pub use value::{quantise, Fx, FxError};
 
 #[cfg(test)]
 mod tests;

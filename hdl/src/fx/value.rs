@@ -70,9 +70,10 @@ fn any_low(raw: i128, n: u32) -> bool {
 }
 
 /// The core of every narrowing: `raw * 2^-src_frac` into `dst`, rounding by `q`, then
-/// resolving overflow by `o`. Works for any shift, so floats with tiny or huge exponents
-/// quantise exactly too.
-pub(crate) fn quantise(raw: i128, src_frac: i32, dst: Format, q: Quant, o: Overflow) -> i128 {
+/// resolving overflow by `o`; returns the raw integer of `dst`. Works for any shift, so floats
+/// with tiny or huge exponents quantise exactly too. Datapath models call it directly on raw
+/// integers whose formats they computed once, at construction.
+pub fn quantise(raw: i128, src_frac: i32, dst: Format, q: Quant, o: Overflow) -> i128 {
     let negative = raw < 0;
     let shift = src_frac - dst.frac();
     // `value` is the rounded value in units of the destination LSB; `huge` marks one that

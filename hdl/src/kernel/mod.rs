@@ -6,10 +6,12 @@
 //! plain machine integers, every call is statically dispatched, nothing allocates per cycle,
 //! and tracing is a single branch when it is off.
 
+mod delay;
 mod module;
 mod signal;
 mod sim;
 
+pub use delay::Delay;
 pub use module::{Dir, Module, Visitor};
 pub use signal::{Reg, Signal};
 pub use sim::{signal_paths, NoTrace, Sim, Trace};

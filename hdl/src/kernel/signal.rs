@@ -100,6 +100,14 @@ impl Signal {
         self.bits = (raw as u64) & (self.fmt.mask() as u64);
     }
 
+    /// Copies another signal's value (a wire between two ports); the formats must agree.
+    #[inline]
+    #[track_caller]
+    pub fn follow(&mut self, src: &Signal) {
+        debug_assert_eq!(self.fmt, src.fmt, "'{}' <- '{}'", self.name, src.name);
+        self.set_bits(src.bits);
+    }
+
     /// Writes a bool to a one-bit signal.
     #[inline]
     #[track_caller]
@@ -197,6 +205,17 @@ impl Reg {
             self.q.overflow(format!("next raw {raw}"));
         }
         self.d = (raw as u64) & (fmt.mask() as u64);
+    }
+
+    /// Writes the next value as a bit pattern; checked like [`Signal::set_bits`].
+    #[inline]
+    #[track_caller]
+    pub fn set_next_bits(&mut self, bits: u64) {
+        let w = self.q.fmt.width();
+        if w < 64 && bits >> w != 0 {
+            self.q.overflow(format!("next bits {bits:#x}"));
+        }
+        self.d = bits;
     }
 
     /// Writes the next value of a one-bit register.

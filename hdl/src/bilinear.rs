@@ -1,0 +1,94 @@
+//! Bilinear unit (one of 65-68 of US 2004/0207631, FIG. 7; the prior-art blend of para.
+//! 0017-0021): `lerp(lerp(p00, p10, s), lerp(p01, p11, s), t)`.
+//!
+//! Both linear blends are computed exactly (`a + s (b - a)` at full precision); the result is
+//! then rounded to the output format (nearest, ties to even; it cannot overflow, since the
+//! exact result lies between the smallest and largest texel). With the default output format
+//! nothing is rounded at all, which is what makes the Bezier path (para. 0083) give the very
+//! same bits as the blend-adjust path.
+//!
+//! # Formats
+//! | port | format |
+//! |---|---|
+//! | `p00`, `p10`, `p01`, `p11` | replicate output, `uQ<i>.<f>` (`uQ6.4` for 8-bit texels) |
+//! | `s`, `t` | adjusted blend factors `uQ0.(F+1)` |
+//! | `q` | `uQ<i>.<bf>`, `bf` = `bilinear_frac`, default `f + 2(F+1)` (exact) |
+//!
+//! One register stage: latency 1.
+
+use crate::bump_params::{ROUND, SAT};
+use crate::fx::{quantise, Format};
+use crate::kernel::{Module, Reg, Signal, Visitor};
+use crate::signals;
+
+/// One bilinear unit.
+#[derive(Clone, Debug)]
+pub struct Bilinear {
+    name: String,
+    /// Fraction bits of the blend factors (F+1) and of the texels.
+    sf: u32,
+    pf: u32,
+    out: Format,
+    pub p: [Signal; 4],
+    pub s: Signal,
+    pub t: Signal,
+    pub q: Signal,
+    r: Reg,
+}
+
+impl Bilinear {
+    pub fn new(name: &str, texel: Format, blend: Format, out: Format) -> Bilinear {
+        Bilinear {
+            name: name.into(),
+            sf: blend.frac() as u32,
+            pf: texel.frac() as u32,
+            out,
+            p: ["p00", "p10", "p01", "p11"].map(|n| Signal::new(n, texel)),
+            s: Signal::new("s", blend),
+            t: Signal::new("t", blend),
+            q: Signal::new("q", out),
+            r: Reg::new("q_r", out),
+        }
+    }
+
+    /// The exact blend, raw with `pf + 2 sf` fraction bits.
+    #[inline]
+    pub fn exact(p: [i64; 4], s: i64, t: i64, sf: u32) -> i128 {
+        let lerp = |a: i128, b: i128, x: i128| (a << sf) + x * (b - a);
+        let (p, s, t) = (p.map(i128::from), i128::from(s), i128::from(t));
+        let r0 = lerp(p[0], p[1], s);
+        let r1 = lerp(p[2], p[3], s);
+        lerp(r0, r1, t)
+    }
+
+    /// The unit's result for raw inputs, raw in the output format.
+    #[inline]
+    pub fn compute(&self, p: [i64; 4], s: i64, t: i64) -> i64 {
+        let x = Self::exact(p, s, t, self.sf);
+        quantise(x, (self.pf + 2 * self.sf) as i32, self.out, ROUND, SAT) as i64
+    }
+}
+
+impl Module for Bilinear {
+    fn instance(&self) -> &str {
+        &self.name
+    }
+    fn kind(&self) -> &'static str {
+        "bilinear"
+    }
+    fn eval(&mut self) {
+        let p = [0, 1, 2, 3].map(|k| self.p[k].raw());
+        let v = self.compute(p, self.s.raw(), self.t.raw());
+        self.r.set_next_raw(v);
+        self.q.follow(self.r.q());
+    }
+    fn tick(&mut self, reset: bool) {
+        self.r.tick(reset);
+    }
+    fn visit(&self, v: &mut dyn Visitor) {
+        v.enter(&self.name, self.kind());
+        let p = &self.p;
+        signals!(v; Input: p[0], p[1], p[2], p[3], self.s, self.t; Output: self.q);
+        v.leave();
+    }
+}

@@ -1,0 +1,275 @@
+//! Parameters of the FIG. 7 normal pipeline (US 2004/0207631), shared by its units.
+//!
+//! Every width an architect might want to change is here; [`BumpParams::validate`] checks
+//! them, and every unit derives its formats from them once, at construction.
+
+use crate::fx::{Format, Overflow, Quant};
+use std::fmt;
+use std::str::FromStr;
+
+/// Which height function the pipeline evaluates.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub enum Filter {
+    /// Bi-quadratic B-spline via the blend-factor adjust unit 153 (para. 0058-0061).
+    BSpline,
+    /// The same surface via Bezier control points made in a modified replicate unit 152
+    /// (Equation 1, para. 0083); unit 153 bypassed. Gives bit-identical normals.
+    Bezier,
+    /// Blinn's height function (para. 0031, 0085): unit 153 bypassed, three bilinear units,
+    /// tangents G-R and B-R.
+    Blinn,
+}
+
+/// What the texel fetch unit 151 does with coordinates outside the map.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub enum Border {
+    /// Repeat: `i mod size`.
+    Wrap,
+    /// Clamp to the edge texel.
+    Clamp,
+    /// Mirrored repeat with period `2 * size` (the edge texel is repeated once).
+    Mirror,
+    /// Outside texels read as this raw height value.
+    Constant(u8),
+}
+
+macro_rules! parse_names {
+    ($t:ty, $($name:literal => $v:expr),+) => {
+        impl FromStr for $t {
+            type Err = String;
+            fn from_str(s: &str) -> Result<Self, String> {
+                match s {
+                    $($name => Ok($v),)+
+                    _ => Err(format!("unknown {} '{s}' (one of {})", stringify!($t).to_lowercase(), [$($name),+].join(", "))),
+                }
+            }
+        }
+    };
+}
+
+parse_names!(Filter, "bspline" => Filter::BSpline, "bezier" => Filter::Bezier, "blinn" => Filter::Blinn);
+
+impl FromStr for Border {
+    type Err = String;
+    fn from_str(s: &str) -> Result<Self, String> {
+        match s {
+            "wrap" => Ok(Border::Wrap),
+            "clamp" => Ok(Border::Clamp),
+            "mirror" => Ok(Border::Mirror),
+            _ => match s.strip_prefix("constant") {
+                Some("") => Ok(Border::Constant(0)),
+                Some(v) => v
+                    .strip_prefix(':')
+                    .and_then(|v| v.parse().ok())
+                    .map(Border::Constant)
+                    .ok_or_else(|| format!("bad border '{s}' (constant:N with N in 0..=255)")),
+                None => Err(format!(
+                    "unknown border '{s}' (one of wrap, clamp, mirror, constant[:N])"
+                )),
+            },
+        }
+    }
+}
+
+impl fmt::Display for Filter {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        f.write_str(match self {
+            Filter::BSpline => "bspline",
+            Filter::Bezier => "bezier",
+            Filter::Blinn => "blinn",
+        })
+    }
+}
+
+impl fmt::Display for Border {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        match self {
+            Border::Wrap => f.write_str("wrap"),
+            Border::Clamp => f.write_str("clamp"),
+            Border::Mirror => f.write_str("mirror"),
+            Border::Constant(v) => write!(f, "constant:{v}"),
+        }
+    }
+}
+
+/// Height texel format (para. 0050): `bits` per texel, a quarter of them fraction bits.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub enum HeightTexel {
+    /// 8 bits, 2 fraction bits: `uQ6.2` (the default).
+    Bits8,
+    /// 4 bits, 1 fraction bit: `uQ3.1`.
+    Bits4,
+}
+
+impl HeightTexel {
+    pub fn format(self) -> Format {
+        match self {
+            HeightTexel::Bits8 => Format::unsigned(8, 2),
+            HeightTexel::Bits4 => Format::unsigned(4, 1),
+        }
+    }
+}
+
+/// The inverse-square-root unit inside normal unit 156.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub struct RsqrtParams {
+    /// Table index bits (one selects [1,2) or [2,4), the rest are the mantissa's leading
+    /// fraction bits). 3..=14.
+    pub table_bits: u32,
+    /// Newton-Raphson iterations after the table, 0..=3 (one pipeline stage each).
+    pub iterations: u32,
+    /// Fraction bits of the mantissa fed to the unit (`uQ2.M`), 8..=40.
+    pub mant_frac: u32,
+    /// Fraction bits of the table entries and of every iterate (`uQ1.Y`), 8..=40.
+    pub y_frac: u32,
+}
+
+impl Default for RsqrtParams {
+    fn default() -> Self {
+        RsqrtParams {
+            table_bits: 8,
+            iterations: 1,
+            mant_frac: 22,
+            y_frac: 24,
+        }
+    }
+}
+
+/// Every parameter of the pipeline. `Default` gives the documented defaults.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub struct BumpParams {
+    /// Blend-factor fraction bits F (sub-texel precision), 4..=16. Default 8 (the D3D11 minimum).
+    pub blend_bits: u32,
+    /// Integer bits of the signed position `sQ<pos_int>.<pos_frac>`, 4..=24. Default 16.
+    pub pos_int: u32,
+    /// Fraction bits of the position, `blend_bits..=24`; the address unit truncates (floors)
+    /// the bits below `blend_bits`. Default = `blend_bits`.
+    pub pos_frac: u32,
+    pub height: HeightTexel,
+    /// Fraction bits kept at the bilinear units' outputs; `None` keeps them all (exact).
+    pub bilinear_frac: Option<u32>,
+    /// Fraction bits of the tangents (and the interpolated height) out of unit 155, 8..=24.
+    /// Default 16.
+    pub tangent_frac: u32,
+    /// Integer and fraction bits of the unsigned height-scale factor (para. 0082).
+    /// Default `uQ8.8`.
+    pub scale_int: u32,
+    pub scale_frac: u32,
+    pub rsqrt: RsqrtParams,
+    /// Fraction bits of the normal's components, `sQ2.<out_frac>`, 8..=24. Default 16.
+    pub out_frac: u32,
+    pub filter: Filter,
+    pub border: Border,
+    /// Trilinear normals from two MIP levels (para. 0081).
+    pub trilinear: bool,
+}
+
+impl Default for BumpParams {
+    fn default() -> Self {
+        BumpParams {
+            blend_bits: 8,
+            pos_int: 16,
+            pos_frac: 8,
+            height: HeightTexel::Bits8,
+            bilinear_frac: None,
+            tangent_frac: 16,
+            scale_int: 8,
+            scale_frac: 8,
+            rsqrt: RsqrtParams::default(),
+            out_frac: 16,
+            filter: Filter::BSpline,
+            border: Border::Wrap,
+            trilinear: false,
+        }
+    }
+}
+
+/// Rounding of every narrowing in the pipeline (tangents, mantissa aside, normal): nearest,
+/// ties to even. The mantissa fed to the rsqrt unit is truncated (documented there).
+pub const ROUND: Quant = Quant::RoundHalfEven;
+/// Overflow of every narrowing: saturate.
+pub const SAT: Overflow = Overflow::Saturate;
+
+impl BumpParams {
+    /// Checks every parameter's range.
+    pub fn validate(&self) -> Result<(), String> {
+        let chk = |name: &str, v: u32, lo: u32, hi: u32| {
+            if (lo..=hi).contains(&v) {
+                Ok(())
+            } else {
+                Err(format!("{name} {v} outside {lo}..={hi}"))
+            }
+        };
+        chk("blend_bits", self.blend_bits, 4, 16)?;
+        chk("pos_int", self.pos_int, 4, 24)?;
+        chk("pos_frac", self.pos_frac, self.blend_bits, 24)?;
+        if let Some(b) = self.bilinear_frac {
+            chk("bilinear_frac", b, self.replicate_fmt().frac() as u32, 40)?;
+        }
+        chk("tangent_frac", self.tangent_frac, 8, 24)?;
+        chk("scale_int", self.scale_int, 1, 12)?;
+        chk("scale_frac", self.scale_frac, 0, 16)?;
+        chk("rsqrt.table_bits", self.rsqrt.table_bits, 3, 14)?;
+        chk("rsqrt.iterations", self.rsqrt.iterations, 0, 3)?;
+        chk("rsqrt.mant_frac", self.rsqrt.mant_frac, 8, 40)?;
+        chk("rsqrt.y_frac", self.rsqrt.y_frac, 8, 40)?;
+        chk("out_frac", self.out_frac, 8, 24)?;
+        Ok(())
+    }
+
+    /// Position `sQ<pos_int>.<pos_frac>`.
+    pub fn pos_fmt(&self) -> Format {
+        Format::signed(self.pos_int + self.pos_frac, self.pos_frac as i32)
+    }
+    /// Integer texel coordinate out of the address unit: one bit more than the position's
+    /// integer part (the colour-mode half-texel subtraction can reach one below its minimum).
+    pub fn coord_fmt(&self) -> Format {
+        Format::sint(self.pos_int + 1)
+    }
+    /// Blend factor `uQ0.F`.
+    pub fn blend_fmt(&self) -> Format {
+        Format::unsigned(self.blend_bits, self.blend_bits as i32)
+    }
+    /// Adjusted blend factor `uQ0.(F+1)`.
+    pub fn adj_fmt(&self) -> Format {
+        Format::unsigned(self.blend_bits + 1, self.blend_bits as i32 + 1)
+    }
+    /// Height texel.
+    pub fn texel_fmt(&self) -> Format {
+        self.height.format()
+    }
+    /// Replicate outputs: a height with two more fraction bits, room for the Bezier averages.
+    pub fn replicate_fmt(&self) -> Format {
+        let t = self.texel_fmt();
+        Format::unsigned(t.width() + 2, t.frac() + 2)
+    }
+    /// Exact bilinear result: replicate format with two `F+1`-bit blends' worth of fraction.
+    pub fn bilinear_exact_frac(&self) -> u32 {
+        self.replicate_fmt().frac() as u32 + 2 * (self.blend_bits + 1)
+    }
+    /// Bilinear unit output (unsigned, within the range of the texels).
+    pub fn bilinear_fmt(&self) -> Format {
+        let f = self.bilinear_frac.unwrap_or(self.bilinear_exact_frac());
+        Format::unsigned(self.texel_fmt().int_bits() as u32 + f, f as i32)
+    }
+    /// Height-scale factor `uQ<scale_int>.<scale_frac>`.
+    pub fn scale_fmt(&self) -> Format {
+        Format::unsigned(self.scale_int + self.scale_frac, self.scale_frac as i32)
+    }
+    /// Tangent `dH/du`, `dH/dv` out of unit 155: signed, enough integer bits for the steepest
+    /// B-spline slope (one texel's full range per texel, twice that for the trilinear blend
+    /// headroom) times the largest scale.
+    pub fn tangent_fmt(&self) -> Format {
+        let int = self.texel_fmt().int_bits() as u32 + self.scale_int + 2;
+        Format::signed(int + self.tangent_frac, self.tangent_frac as i32)
+    }
+    /// Interpolated height out of unit 155 (para. 0084), scaled.
+    pub fn height_out_fmt(&self) -> Format {
+        let int = self.texel_fmt().int_bits() as u32 + self.scale_int;
+        Format::unsigned(int + self.tangent_frac, self.tangent_frac as i32)
+    }
+    /// Normal component `sQ2.<out_frac>`.
+    pub fn normal_fmt(&self) -> Format {
+        Format::signed(2 + self.out_frac, self.out_frac as i32)
+    }
+}

@@ -1,0 +1,177 @@
+//! Normal unit 156 of US 2004/0207631 (FIG. 7, para. 0076-0080): the cross product of the
+//! tangents, then normalisation by "squaring the N vector, computing the inverse of the square
+//! root of the result, and multiplying that scalar by the original components".
+//!
+//! With tangents `T1 = (1, 0, dH/du)` and `T2 = (0, 1, dH/dv)` (x along +u, y along +v, z up,
+//! texel units) the cross product is `N = (-dH/du, -dH/dv, 1)`: the patent's simplification
+//! of para. 0077-0079 in these axes. Then
+//!
+//! ```text
+//! s = N.N = du^2 + dv^2 + 1        (exact)
+//! s = m * 4^k,  m in [1, 4)        (leading-one detect; m truncated to M fraction bits)
+//! y = rsqrt(m)                     (table + Newton-Raphson, see `rsqrt`)
+//! n = N * y * 2^-k                 (rounded to nearest, ties to even; saturating)
+//! ```
+//!
+//! # Formats
+//! | port | format |
+//! |---|---|
+//! | `du`, `dv` | tangent `sQ16.<tf>` (symmetric range, so negation is exact) |
+//! | `nx`, `ny`, `nz` | `sQ2.<out_frac>` (default `sQ2.16`) |
+//! | internal `m`, `k` | `uQ2.M`, `u6` |
+//!
+//! Pipeline: square/normalise stage, the rsqrt stages, multiply stage: latency
+//! `3 + iterations`.
+
+use crate::bump_params::{BumpParams, ROUND, SAT};
+use crate::fx::{quantise, Format};
+use crate::kernel::{Delay, Dir, Module, Reg, Signal, Visitor};
+use crate::rsqrt::{m_fmt, Rsqrt};
+
+/// `(k, m)` with `s * 2^-s_frac = m * 4^k`, `m` truncated to `mant_frac` fraction bits.
+#[inline]
+pub fn normalise(s: u128, s_frac: u32, mant_frac: u32) -> (u32, u64) {
+    debug_assert!(s >> s_frac >= 1, "s < 1");
+    let l = 128 - s.leading_zeros(); // bit length
+    let k = (l - 1 - s_frac) / 2;
+    let shift = (s_frac + 2 * k) as i32 - mant_frac as i32;
+    let m = if shift >= 0 {
+        s >> shift
+    } else {
+        s << (-shift)
+    };
+    (k, m as u64)
+}
+
+/// Normal unit 156.
+#[derive(Clone, Debug)]
+pub struct Normal {
+    name: String,
+    tf: u32,
+    mf: u32,
+    yf: u32,
+    out: Format,
+    pub du: Signal,
+    pub dv: Signal,
+    pub nx: Signal,
+    pub ny: Signal,
+    pub nz: Signal,
+    /// Square stage: -du, -dv, k, m.
+    sq: [Reg; 4],
+    pub rsqrt: Rsqrt,
+    carry: Delay,
+    /// Multiply stage: nx, ny, nz.
+    mul: [Reg; 3],
+}
+
+const K_FMT: Format = Format::uint(6);
+
+impl Normal {
+    pub fn new(name: &str, p: &BumpParams) -> Normal {
+        let tan = p.tangent_fmt();
+        let out = p.normal_fmt();
+        let rsqrt = Rsqrt::new("rsqrt", p.rsqrt);
+        let carry = Delay::new(
+            "carry",
+            &[("nx_in", tan), ("ny_in", tan), ("k_in", K_FMT)],
+            rsqrt.latency(),
+            &["nx_d", "ny_d", "k_d"],
+        );
+        Normal {
+            name: name.into(),
+            tf: p.tangent_frac,
+            mf: p.rsqrt.mant_frac,
+            yf: p.rsqrt.y_frac,
+            out,
+            du: Signal::new("du", tan),
+            dv: Signal::new("dv", tan),
+            nx: Signal::new("nx", out),
+            ny: Signal::new("ny", out),
+            nz: Signal::new("nz", out),
+            sq: [
+                Reg::new("nx_sq", tan),
+                Reg::new("ny_sq", tan),
+                Reg::new("k_sq", K_FMT),
+                Reg::new("m_sq", m_fmt(&p.rsqrt)),
+            ],
+            rsqrt,
+            carry,
+            mul: [
+                Reg::new("nx_r", out),
+                Reg::new("ny_r", out),
+                Reg::new("nz_r", out),
+            ],
+        }
+    }
+
+    pub fn latency(&self) -> usize {
+        2 + self.rsqrt.latency()
+    }
+
+    /// The multiply stage on raw values: `N * y * 2^-k` into the output format.
+    #[inline]
+    fn scale(&self, n: i64, y: u64, k: u32) -> i64 {
+        let x = i128::from(n) * i128::from(y);
+        quantise(x, (self.tf + self.yf + k) as i32, self.out, ROUND, SAT) as i64
+    }
+}
+
+impl Module for Normal {
+    fn instance(&self) -> &str {
+        &self.name
+    }
+    fn kind(&self) -> &'static str {
+        "normal_156"
+    }
+    fn eval(&mut self) {
+        // Square stage.
+        let (du, dv) = (self.du.raw(), self.dv.raw());
+        let s =
+            (du as i128 * du as i128 + dv as i128 * dv as i128) as u128 + (1u128 << (2 * self.tf));
+        let (k, m) = normalise(s, 2 * self.tf, self.mf);
+        self.sq[0].set_next_raw(-du);
+        self.sq[1].set_next_raw(-dv);
+        self.sq[2].set_next_raw(i64::from(k));
+        self.sq[3].set_next_bits(m);
+        // Rsqrt stages and the carried components.
+        self.rsqrt.m.follow(self.sq[3].q());
+        self.rsqrt.eval();
+        self.carry.i[0].follow(self.sq[0].q());
+        self.carry.i[1].follow(self.sq[1].q());
+        self.carry.i[2].follow(self.sq[2].q());
+        self.carry.eval();
+        // Multiply stage.
+        let y = self.rsqrt.y.bits();
+        let k = self.carry.o[2].bits() as u32;
+        let nx = self.scale(self.carry.o[0].raw(), y, k);
+        let ny = self.scale(self.carry.o[1].raw(), y, k);
+        let nz = self.scale(1i64 << self.tf, y, k);
+        self.mul[0].set_next_raw(nx);
+        self.mul[1].set_next_raw(ny);
+        self.mul[2].set_next_raw(nz);
+        self.nx.follow(self.mul[0].q());
+        self.ny.follow(self.mul[1].q());
+        self.nz.follow(self.mul[2].q());
+    }
+    fn tick(&mut self, reset: bool) {
+        for r in self.sq.iter_mut().chain(self.mul.iter_mut()) {
+            r.tick(reset);
+        }
+        self.rsqrt.tick(reset);
+        self.carry.tick(reset);
+    }
+    fn visit(&self, v: &mut dyn Visitor) {
+        v.enter(&self.name, self.kind());
+        v.signal(Dir::Input, &self.du);
+        v.signal(Dir::Input, &self.dv);
+        for s in [&self.nx, &self.ny, &self.nz] {
+            v.signal(Dir::Output, s);
+        }
+        for r in &self.sq {
+            v.reg(r);
+        }
+        self.rsqrt.visit(v);
+        self.carry.visit(v);
+        v.leave();
+    }
+}

@@ -1,0 +1,329 @@
+//! The normal-generation pipeline of FIG. 7 of US 2004/0207631 (para. 0050-0087): height map
+//! in, unit normals out, one sample per clock.
+//!
+//! ```text
+//! (u,v) -> address 150 -> texel fetch 151 -> replicate 152 -> bilinear 65..68 -> tangent 155 -> normal 156
+//!                      \-> blend adjust 153 ------------------^ (factors)     ^ (tu, tv, scale, lod carried)
+//! ```
+//!
+//! Stages (one register each): address; texel fetch with blend adjust beside it; bilinear
+//! units; tangent unit; normal unit (square, rsqrt table, one per Newton-Raphson iteration,
+//! multiply). Latency `7 + rsqrt.iterations` cycles (8 by default), throughput one sample per
+//! clock. With `trilinear`, a second address unit, fetch, adjust, replicate and four more
+//! bilinear units work on the next MIP level at `(u/2, v/2)` in parallel (para. 0081).
+//!
+//! Variants by [`BumpParams::filter`]: B-spline (unit 153 active), Bezier (unit 153 bypassed,
+//! replicate 152 makes Equation 1's Bezier points), Blinn (unit 153 bypassed, tangents G-R and
+//! B-R; the alpha unit's result is unused). Outputs: the unit normal and the interpolated,
+//! scaled height (para. 0084).
+//!
+//! # Ports
+//! | port | format |
+//! |---|---|
+//! | `valid_in` / `valid` | `u1` |
+//! | `u`, `v` | `sQ<pos_int>.<pos_frac>`, texel units of the finer level |
+//! | `scale` | `uQ<scale_int>.<scale_frac>` |
+//! | `lod` | `uQ0.F`, weight of the coarser level (trilinear only) |
+//! | `nx`, `ny`, `nz` | `sQ2.<out_frac>` |
+//! | `height` | `uQ14.<tangent_frac>` |
+
+use crate::address::AddressUnit;
+use crate::bilinear::Bilinear;
+use crate::blend_adjust::{BlendAdjust, BlendAdjustParams};
+use crate::bump_params::{BumpParams, Filter};
+use crate::fx::Format;
+use crate::height_map::HeightMap;
+use crate::kernel::{Delay, Module, Signal, Visitor};
+use crate::normal::Normal;
+use crate::replicate::Replicate;
+use crate::signals;
+use crate::tangent::Tangent;
+use crate::texel_fetch::TexelFetch;
+
+/// Per MIP level: address, fetch, adjust, replicate and four bilinear units.
+#[derive(Clone, Debug)]
+struct Level {
+    addr: AddressUnit,
+    fetch: TexelFetch,
+    adjust: BlendAdjust,
+    rep: Replicate,
+    bil: [Bilinear; 4],
+}
+
+const LEVEL_NAMES: [[&str; 5]; 2] = [
+    ["address", "fetch", "adjust", "replicate", "bl"],
+    ["address1", "fetch1", "adjust1", "replicate1", "bl1"],
+];
+const BIL_NAMES: [[&str; 4]; 2] = [
+    ["red", "green", "blue", "alpha"],
+    ["red1", "green1", "blue1", "alpha1"],
+];
+
+impl Level {
+    fn new(k: usize, p: &BumpParams, map: HeightMap) -> Level {
+        let n = LEVEL_NAMES[k];
+        // The coarser level sees (u/2, v/2): the same bits with one more fraction bit.
+        let pos = Format::signed(
+            p.pos_int + p.pos_frac + k as u32,
+            p.pos_frac as i32 + k as i32,
+        );
+        let addr = AddressUnit::new(n[0], pos, p.blend_bits);
+        let coord = addr.ui.fmt();
+        Level {
+            addr,
+            fetch: TexelFetch::new(n[1], map, p.border, coord),
+            adjust: BlendAdjust::new(
+                n[2],
+                BlendAdjustParams {
+                    frac_bits: p.blend_bits,
+                    registered: true,
+                },
+            ),
+            rep: Replicate::new(n[3], p.texel_fmt(), p.filter == Filter::Bezier),
+            bil: BIL_NAMES[k]
+                .map(|b| Bilinear::new(b, p.replicate_fmt(), p.adj_fmt(), p.bilinear_fmt())),
+        }
+    }
+
+    /// Address, fetch/adjust, replicate and bilinear stages for position `(u, v)` raw.
+    #[inline]
+    fn eval(&mut self, u: u64, v: u64, bypass: bool) {
+        self.addr.u.set_bits(u);
+        self.addr.v.set_bits(v);
+        self.addr.eval();
+        self.fetch.ui.follow(&self.addr.ui);
+        self.fetch.vj.follow(&self.addr.vj);
+        self.fetch.eval();
+        let a = &mut self.adjust;
+        a.i.valid_in.set_bool(true);
+        a.i.bypass.set_bool(bypass);
+        a.i.u_in.follow(&self.addr.ub);
+        a.i.v_in.follow(&self.addr.vb);
+        a.eval();
+        for k in 0..9 {
+            self.rep.h[k].follow(&self.fetch.h[k]);
+        }
+        self.rep.eval();
+        let o = &self.adjust.o;
+        // Red (U0, V0), green (U1, V0), blue (U0, V1), alpha (U1, V1): para. 0060.
+        let st = [
+            (&o.u0, &o.v0),
+            (&o.u1, &o.v0),
+            (&o.u0, &o.v1),
+            (&o.u1, &o.v1),
+        ];
+        for (w, b) in self.bil.iter_mut().enumerate() {
+            for k in 0..4 {
+                b.p[k].follow(&self.rep.w[w][k]);
+            }
+            b.s.follow(st[w].0);
+            b.t.follow(st[w].1);
+            b.eval();
+        }
+    }
+
+    fn tick(&mut self, reset: bool) {
+        self.addr.tick(reset);
+        self.fetch.tick(reset);
+        self.adjust.tick(reset);
+        self.rep.tick(reset);
+        for b in &mut self.bil {
+            b.tick(reset);
+        }
+    }
+
+    fn visit(&self, v: &mut dyn Visitor) {
+        self.addr.visit(v);
+        self.fetch.visit(v);
+        self.adjust.visit(v);
+        self.rep.visit(v);
+        for b in &self.bil {
+            b.visit(v);
+        }
+    }
+}
+
+/// The FIG. 7 pipeline.
+#[derive(Clone, Debug)]
+pub struct NormalPipeline {
+    name: String,
+    params: BumpParams,
+    pub valid_in: Signal,
+    pub u: Signal,
+    pub v: Signal,
+    pub scale: Signal,
+    pub lod: Signal,
+    pub valid: Signal,
+    pub nx: Signal,
+    pub ny: Signal,
+    pub nz: Signal,
+    pub height: Signal,
+    levels: Vec<Level>,
+    /// tu, tv (and tu1, tv1) from the address units to the tangent unit: 2 stages.
+    blend_d: Delay,
+    /// scale, lod from the inputs to the tangent unit: 3 stages.
+    side_d: Delay,
+    pub tangent: Tangent,
+    pub normal: Normal,
+    height_d: Delay,
+    valid_d: Delay,
+}
+
+impl NormalPipeline {
+    /// The pipeline over `map` (and `coarse`, the next MIP level, when `p.trilinear`).
+    pub fn new(
+        name: &str,
+        p: BumpParams,
+        map: HeightMap,
+        coarse: Option<HeightMap>,
+    ) -> Result<NormalPipeline, String> {
+        p.validate()?;
+        if map.fmt() != p.texel_fmt() {
+            return Err(format!(
+                "height map texels are {}, the pipeline expects {}",
+                map.fmt(),
+                p.texel_fmt()
+            ));
+        }
+        if p.rsqrt.table_bits > p.rsqrt.mant_frac {
+            return Err("rsqrt.table_bits must not exceed rsqrt.mant_frac".into());
+        }
+        let mut levels = vec![Level::new(0, &p, map)];
+        match (p.trilinear, coarse) {
+            (true, Some(c)) => levels.push(Level::new(1, &p, c)),
+            (true, None) => return Err("trilinear needs the coarser MIP level".into()),
+            (false, _) => {}
+        }
+        let blend = p.blend_fmt();
+        let normal = Normal::new("normal", &p);
+        let latency = 4 + normal.latency();
+        Ok(NormalPipeline {
+            name: name.into(),
+            params: p,
+            valid_in: Signal::bit("valid_in"),
+            u: Signal::new("u", p.pos_fmt()),
+            v: Signal::new("v", p.pos_fmt()),
+            scale: Signal::new("scale", p.scale_fmt()),
+            lod: Signal::new("lod", blend),
+            valid: Signal::bit("valid"),
+            nx: Signal::new("nx", p.normal_fmt()),
+            ny: Signal::new("ny", p.normal_fmt()),
+            nz: Signal::new("nz", p.normal_fmt()),
+            height: Signal::new("height", p.height_out_fmt()),
+            levels,
+            blend_d: Delay::new(
+                "blend_carry",
+                &[("tu", blend), ("tv", blend), ("tu1", blend), ("tv1", blend)],
+                2,
+                &["tu_d", "tv_d", "tu1_d", "tv1_d"],
+            ),
+            side_d: Delay::new(
+                "side_carry",
+                &[("scale", p.scale_fmt()), ("lod", blend)],
+                3,
+                &["scale_d", "lod_d"],
+            ),
+            tangent: Tangent::new("tangent", &p),
+            height_d: Delay::new(
+                "height_carry",
+                &[("height", p.height_out_fmt())],
+                normal.latency(),
+                &["height_d"],
+            ),
+            normal,
+            valid_d: Delay::new(
+                "valid_carry",
+                &[("valid", Format::uint(1))],
+                latency,
+                &["valid_d"],
+            ),
+        })
+    }
+
+    pub fn params(&self) -> &BumpParams {
+        &self.params
+    }
+
+    /// Cycles from a sample's input to its normal.
+    pub fn latency(&self) -> usize {
+        self.valid_d.depth()
+    }
+}
+
+impl Module for NormalPipeline {
+    fn instance(&self) -> &str {
+        &self.name
+    }
+    fn kind(&self) -> &'static str {
+        "normal_pipeline_fig7"
+    }
+    fn eval(&mut self) {
+        let bypass = self.params.filter != Filter::BSpline;
+        let (u, v) = (self.u.bits(), self.v.bits());
+        for l in &mut self.levels {
+            l.eval(u, v, bypass);
+        }
+        // Blend factors and side values, carried to the tangent unit.
+        let l0 = &self.levels[0].addr;
+        self.blend_d.i[0].follow(&l0.ub);
+        self.blend_d.i[1].follow(&l0.vb);
+        if let Some(l1) = self.levels.get(1) {
+            self.blend_d.i[2].follow(&l1.addr.ub);
+            self.blend_d.i[3].follow(&l1.addr.vb);
+        }
+        self.blend_d.eval();
+        self.side_d.i[0].follow(&self.scale);
+        self.side_d.i[1].follow(&self.lod);
+        self.side_d.eval();
+        // Tangent unit 155.
+        let t = &mut self.tangent;
+        for (k, l) in self.levels.iter().enumerate() {
+            for w in 0..4 {
+                t.rgba[4 * k + w].follow(&l.bil[w].q);
+            }
+        }
+        t.tu.follow(&self.blend_d.o[0]);
+        t.tv.follow(&self.blend_d.o[1]);
+        t.tu1.follow(&self.blend_d.o[2]);
+        t.tv1.follow(&self.blend_d.o[3]);
+        t.scale.follow(&self.side_d.o[0]);
+        t.lod.follow(&self.side_d.o[1]);
+        t.eval();
+        // Normal unit 156.
+        self.normal.du.follow(&self.tangent.du);
+        self.normal.dv.follow(&self.tangent.dv);
+        self.normal.eval();
+        self.height_d.i[0].follow(&self.tangent.height);
+        self.height_d.eval();
+        self.valid_d.i[0].follow(&self.valid_in);
+        self.valid_d.eval();
+        self.valid.follow(&self.valid_d.o[0]);
+        self.nx.follow(&self.normal.nx);
+        self.ny.follow(&self.normal.ny);
+        self.nz.follow(&self.normal.nz);
+        self.height.follow(&self.height_d.o[0]);
+    }
+    fn tick(&mut self, reset: bool) {
+        for l in &mut self.levels {
+            l.tick(reset);
+        }
+        self.blend_d.tick(reset);
+        self.side_d.tick(reset);
+        self.tangent.tick(reset);
+        self.normal.tick(reset);
+        self.height_d.tick(reset);
+        self.valid_d.tick(reset);
+    }
+    fn visit(&self, v: &mut dyn Visitor) {
+        v.enter(&self.name, self.kind());
+        signals!(v;
+            Input: self.valid_in, self.u, self.v, self.scale, self.lod;
+            Output: self.valid, self.nx, self.ny, self.nz, self.height);
+        for l in &self.levels {
+            l.visit(v);
+        }
+        self.tangent.visit(v);
+        self.normal.visit(v);
+        v.leave();
+    }
+}

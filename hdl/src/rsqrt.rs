@@ -1,0 +1,212 @@
+//! Inverse square root of normal unit 156 (US 2004/0207631, para. 0080: "computing the inverse
+//! of the square root"): a table of first approximations plus Newton-Raphson iterations.
+//!
+//! The input is a mantissa `m` in [1, 4) (`uQ2.M`); the output `y ~ 1/sqrt(m)` in (1/2, 1]
+//! (`uQ1.Y`). The table is indexed by one bit that tells [1,2) from [2,4) and the next
+//! `table_bits - 1` bits below the leading one; each entry is `1/sqrt` of its interval's
+//! midpoint, correctly rounded to Y fraction bits (computed with integer square roots at
+//! construction). Each iteration is
+//!
+//! ```text
+//! t  = round(m * y^2)            to Y+2 fraction bits
+//! y' = round(y * (3 - t) / 2)    to Y fraction bits
+//! ```
+//!
+//! (nearest, ties to even; all products exact before rounding). Error: a table entry is off by
+//! at most `e0 = 2^-(table_bits+1) + 2^-(Y+1)` relative; an iteration turns a relative error
+//! `e` into at most `1.5 e^2 + 0.5 e^3` plus its rounding (`2^-Y` and `2^-(Y+2)` scaled):
+//! `rsqrt_error_bound` gives the bound in ULPs, which the exhaustive test checks against the
+//! exact integer reference over every input.
+//!
+//! Pipeline: the table lookup is one register stage, each iteration one more: latency
+//! `1 + iterations`.
+
+use crate::bump_params::{RsqrtParams, ROUND, SAT};
+use crate::fx::{quantise, Format};
+use crate::kernel::{Dir, Module, Reg, Signal, Visitor};
+
+/// The first-approximation table.
+#[derive(Clone, Debug)]
+pub struct RsqrtTable {
+    p: RsqrtParams,
+    entries: Vec<u64>,
+}
+
+impl RsqrtTable {
+    pub fn new(p: RsqrtParams) -> RsqrtTable {
+        assert!(
+            p.table_bits - 1 < p.mant_frac,
+            "rsqrt: table_bits {} too large for mant_frac {}",
+            p.table_bits,
+            p.mant_frac
+        );
+        let lo_bits = p.table_bits - 1;
+        let mut entries = Vec::with_capacity(1 << p.table_bits);
+        for hi in 0..2u32 {
+            for lo in 0..(1u64 << lo_bits) {
+                let shift = p.mant_frac + hi - lo_bits;
+                let start = ((1u128 << lo_bits) | u128::from(lo)) << shift;
+                // Midpoint with one more fraction bit: 2*start + 2^shift, over 2^(M+1).
+                let mid2 = 2 * start + (1u128 << shift);
+                // y = sqrt(2^(2Y+M+1) / mid2); z = floor(2y); round = (z+1)/2.
+                let z = ((1u128 << (2 * p.y_frac + p.mant_frac + 1 + 2)) / mid2).isqrt();
+                entries.push(((z + 1) >> 1) as u64);
+            }
+        }
+        RsqrtTable { p, entries }
+    }
+
+    /// The table index of mantissa `m` (raw `uQ2.M`, in [2^M, 2^(M+2))).
+    #[inline]
+    pub fn index(&self, m: u64) -> usize {
+        let (mf, lo_bits) = (self.p.mant_frac, self.p.table_bits - 1);
+        let hi = (m >> (mf + 1)) & 1;
+        let shift = mf + hi as u32 - lo_bits;
+        let lo = (m >> shift) & ((1 << lo_bits) - 1);
+        ((hi << lo_bits) | lo) as usize
+    }
+
+    #[inline]
+    pub fn lookup(&self, m: u64) -> u64 {
+        self.entries[self.index(m)]
+    }
+
+    pub fn entries(&self) -> &[u64] {
+        &self.entries
+    }
+}
+
+/// One Newton-Raphson iteration on raw values: `m` (`uQ2.M`), `y` (`uQ1.Y`).
+#[inline]
+pub fn nr_step(p: &RsqrtParams, m: u64, y: u64) -> u64 {
+    let (mf, yf) = (p.mant_frac, p.y_frac);
+    let (m, y) = (i128::from(m), i128::from(y));
+    let t_fmt = Format::unsigned(yf + 4, yf as i32 + 2);
+    let t = quantise(m * y * y, (mf + 2 * yf) as i32, t_fmt, ROUND, SAT);
+    let e = (3i128 << (yf + 2)) - t;
+    quantise(y * e, (2 * yf + 3) as i32, y_fmt(p), ROUND, SAT) as u64
+}
+
+/// Output format `uQ1.Y`.
+pub fn y_fmt(p: &RsqrtParams) -> Format {
+    Format::unsigned(p.y_frac + 1, p.y_frac as i32)
+}
+
+/// Mantissa format `uQ2.M`.
+pub fn m_fmt(p: &RsqrtParams) -> Format {
+    Format::unsigned(p.mant_frac + 2, p.mant_frac as i32)
+}
+
+/// The whole unit as a function (what the pipeline computes, stage by stage).
+pub fn rsqrt(table: &RsqrtTable, m: u64) -> u64 {
+    let mut y = table.lookup(m);
+    for _ in 0..table.p.iterations {
+        y = nr_step(&table.p, m, y);
+    }
+    y
+}
+
+/// A bound on `|y - 1/sqrt(m)|` in ULPs of `2^-Y`, from the error analysis in the module
+/// docs (the exact value is at most 1, so relative error times `2^Y` bounds the ULPs).
+pub fn rsqrt_error_bound(p: &RsqrtParams) -> f64 {
+    let ulp = (-(p.y_frac as f64)).exp2();
+    // Table: half an interval of width 2^-(tb-1) at the steepest point (m = 1, slope 1/2 of
+    // the relative change), plus the entry's rounding.
+    let mut e = (-(p.table_bits as f64 + 1.0)).exp2() + 0.5 * ulp;
+    for _ in 0..p.iterations {
+        // Quadratic convergence, then rounding of t (half an ULP of 2^-(Y+2), times y/2 <= 1/2)
+        // and of y' (half an ULP), with y <= 1.
+        e = 1.5 * e * e + 0.5 * e * e * e + 0.25 * ulp * 0.5 + 0.5 * ulp;
+    }
+    e / ulp
+}
+
+const M_NAMES: [&str; 4] = ["m0_r", "m1_r", "m2_r", "m3_r"];
+const Y_NAMES: [&str; 4] = ["y0_r", "y1_r", "y2_r", "y3_r"];
+
+/// The rsqrt unit as pipeline stages: table (1 stage) then one stage per iteration.
+#[derive(Clone, Debug)]
+pub struct Rsqrt {
+    name: String,
+    table: RsqrtTable,
+    pub m: Signal,
+    pub y: Signal,
+    /// Per stage: the mantissa carried along and the current approximation.
+    m_r: Vec<Reg>,
+    y_r: Vec<Reg>,
+}
+
+impl Rsqrt {
+    pub fn new(name: &str, p: RsqrtParams) -> Rsqrt {
+        let n = 1 + p.iterations as usize;
+        Rsqrt {
+            name: name.into(),
+            table: RsqrtTable::new(p),
+            m: Signal::new("m", m_fmt(&p)),
+            y: Signal::new("y", y_fmt(&p)),
+            m_r: M_NAMES[..n]
+                .iter()
+                .map(|nm| Reg::new(nm, m_fmt(&p)))
+                .collect(),
+            y_r: Y_NAMES[..n]
+                .iter()
+                .map(|nm| Reg::new(nm, y_fmt(&p)))
+                .collect(),
+        }
+    }
+
+    pub fn latency(&self) -> usize {
+        self.y_r.len()
+    }
+
+    pub fn table(&self) -> &RsqrtTable {
+        &self.table
+    }
+}
+
+impl Module for Rsqrt {
+    fn instance(&self) -> &str {
+        &self.name
+    }
+    fn kind(&self) -> &'static str {
+        "rsqrt"
+    }
+    fn eval(&mut self) {
+        let m = self.m.bits();
+        // Stage 0: table lookup (an input of zero, never produced by unit 156 since its sum of
+        // squares is at least 1, reads entry 0).
+        let y0 = if m >> self.table.p.mant_frac == 0 {
+            0
+        } else {
+            self.table.lookup(m)
+        };
+        self.m_r[0].set_next_bits(m);
+        self.y_r[0].set_next_bits(y0);
+        for s in 1..self.y_r.len() {
+            let (mq, yq) = (self.m_r[s - 1].q().bits(), self.y_r[s - 1].q().bits());
+            let y = if mq >> self.table.p.mant_frac == 0 {
+                0
+            } else {
+                nr_step(&self.table.p, mq, yq)
+            };
+            self.m_r[s].set_next_bits(mq);
+            self.y_r[s].set_next_bits(y);
+        }
+        let last = self.y_r.len() - 1;
+        self.y.follow(self.y_r[last].q());
+    }
+    fn tick(&mut self, reset: bool) {
+        for r in self.m_r.iter_mut().chain(self.y_r.iter_mut()) {
+            r.tick(reset);
+        }
+    }
+    fn visit(&self, v: &mut dyn Visitor) {
+        v.enter(&self.name, self.kind());
+        v.signal(Dir::Input, &self.m);
+        v.signal(Dir::Output, &self.y);
+        for r in &self.y_r {
+            v.reg(r);
+        }
+        v.leave();
+    }
+}

@@ -1,0 +1,212 @@
+//! Tangent unit 155 of US 2004/0207631 (FIG. 7, para. 0062-0075), with the height scale of
+//! para. 0082, the interpolated height of para. 0084, Blinn's tangents of para. 0085 and the
+//! trilinear blend of para. 0081.
+//!
+//! From the bilinear results R, G, B, A and the original blend factors `(tu, tv)`:
+//!
+//! ```text
+//! B-spline / Bezier:  dH/du = 2 lerp(tv, G - R, A - B)      dH/dv = 2 lerp(tu, B - R, A - G)
+//!                     H     = lerp(tv, lerp(tu, R, G), lerp(tu, B, A))
+//! Blinn:              dH/du = G - R    dH/dv = B - R    H = R
+//! ```
+//!
+//! The factor 2 is the derivative of a quadratic Bezier segment, twice the difference of its
+//! last de Casteljau points, which the patent's listing leaves implicit (para. 0062-0074 give
+//! `lerp(...)` alone); the golden model differentiates the B-spline and agrees with it.
+//! Trilinear: `dH/du = lerp(lod, dH0/du, dH1/du / 2)` (the coarser level's texels are twice as
+//! wide), `H = lerp(lod, H0, H1)`. Then both tangents and the height are multiplied by the
+//! height scale.
+//!
+//! Everything is exact up to one rounding per output (nearest, ties to even). Tangents
+//! saturate symmetrically (so normal unit 156 can negate them without overflow).
+//!
+//! # Formats
+//! | port | format |
+//! |---|---|
+//! | `r`,`g`,`b`,`a` (and `r1`.. for the second MIP level) | bilinear output `uQ6.<bf>` |
+//! | `tu`, `tv` (and `tu1`, `tv1`), `lod` | `uQ0.F` |
+//! | `scale` | `uQ<scale_int>.<scale_frac>` (default `uQ8.8`) |
+//! | `du`, `dv` | `sQ<16>.<tangent_frac>` (default `sQ16.16`) |
+//! | `height` | `uQ<14>.<tangent_frac>` |
+//!
+//! One register stage: latency 1.
+
+use crate::bump_params::{BumpParams, Filter, ROUND};
+use crate::fx::{quantise, Format, Overflow};
+use crate::kernel::{Dir, Module, Reg, Signal, Visitor};
+
+/// One level's exact results: `(dU, dV, fraction bits)`, `(H, fraction bits)`.
+#[inline]
+fn level(
+    rgba: [i64; 4],
+    tu: i64,
+    tv: i64,
+    f: u32,
+    fb: u32,
+    blinn: bool,
+) -> (i128, i128, u32, i128, u32) {
+    let [r, g, b, a] = rgba.map(i128::from);
+    if blinn {
+        return (g - r, b - r, fb, r, fb);
+    }
+    let (tu, tv) = (i128::from(tu), i128::from(tv));
+    let lerp = |x: i128, y: i128, t: i128| (x << f) + t * (y - x);
+    let du = lerp(g - r, a - b, tv);
+    let dv = lerp(b - r, a - g, tu);
+    let h = lerp(lerp(r, g, tu), lerp(b, a, tu), tv);
+    // x2: the same bits with one fraction bit less.
+    (du, dv, fb + f - 1, h, fb + 2 * f)
+}
+
+/// Tangent unit 155.
+#[derive(Clone, Debug)]
+pub struct Tangent {
+    name: String,
+    f: u32,
+    fb: u32,
+    sf: u32,
+    blinn: bool,
+    trilinear: bool,
+    tan: Format,
+    hfmt: Format,
+    /// R, G, B, A of level 0 then (trilinear) of level 1.
+    pub rgba: Vec<Signal>,
+    pub tu: Signal,
+    pub tv: Signal,
+    pub tu1: Signal,
+    pub tv1: Signal,
+    pub lod: Signal,
+    pub scale: Signal,
+    pub du: Signal,
+    pub dv: Signal,
+    pub height: Signal,
+    r: [Reg; 3],
+}
+
+impl Tangent {
+    pub fn new(name: &str, p: &BumpParams) -> Tangent {
+        let bl = p.bilinear_fmt();
+        let blend = p.blend_fmt();
+        let names: &[&'static str] = if p.trilinear {
+            &["r", "g", "b", "a", "r1", "g1", "b1", "a1"]
+        } else {
+            &["r", "g", "b", "a"]
+        };
+        Tangent {
+            name: name.into(),
+            f: p.blend_bits,
+            fb: bl.frac() as u32,
+            sf: p.scale_frac,
+            blinn: p.filter == Filter::Blinn,
+            trilinear: p.trilinear,
+            tan: p.tangent_fmt(),
+            hfmt: p.height_out_fmt(),
+            rgba: names.iter().map(|n| Signal::new(n, bl)).collect(),
+            tu: Signal::new("tu", blend),
+            tv: Signal::new("tv", blend),
+            tu1: Signal::new("tu1", blend),
+            tv1: Signal::new("tv1", blend),
+            lod: Signal::new("lod", blend),
+            scale: Signal::new("scale", p.scale_fmt()),
+            du: Signal::new("du", p.tangent_fmt()),
+            dv: Signal::new("dv", p.tangent_fmt()),
+            height: Signal::new("height", p.height_out_fmt()),
+            r: [
+                Reg::new("du_r", p.tangent_fmt()),
+                Reg::new("dv_r", p.tangent_fmt()),
+                Reg::new("height_r", p.height_out_fmt()),
+            ],
+        }
+    }
+
+    /// Raw `(du, dv, height)` for raw inputs: `rgba` of one or two levels.
+    #[allow(clippy::too_many_arguments)]
+    #[inline]
+    pub fn compute(
+        &self,
+        rgba: &[i64],
+        tu: i64,
+        tv: i64,
+        tu1: i64,
+        tv1: i64,
+        lod: i64,
+        scale: i64,
+    ) -> (i64, i64, i64) {
+        let (f, fb) = (self.f, self.fb);
+        let l0 = [rgba[0], rgba[1], rgba[2], rgba[3]];
+        let (mut du, mut dv, mut fd, mut h, mut fh) = level(l0, tu, tv, f, fb, self.blinn);
+        if self.trilinear {
+            let l1 = [rgba[4], rgba[5], rgba[6], rgba[7]];
+            let (du1, dv1, _, h1, _) = level(l1, tu1, tv1, f, fb, self.blinn);
+            let lod = i128::from(lod);
+            // Level 1's slopes are halved: same raw value, one more fraction bit.
+            let mix = |x0: i128, x1: i128| ((x0 << 1) << f) + lod * (x1 - (x0 << 1));
+            du = mix(du, du1);
+            dv = mix(dv, dv1);
+            fd += 1 + f;
+            h = (h << f) + lod * (h1 - h);
+            fh += f;
+        }
+        let s = i128::from(scale);
+        let q = |x: i128, fr: u32, fmt: Format, o: Overflow| {
+            quantise(x * s, (fr + self.sf) as i32, fmt, ROUND, o) as i64
+        };
+        (
+            q(du, fd, self.tan, Overflow::SaturateSymmetric),
+            q(dv, fd, self.tan, Overflow::SaturateSymmetric),
+            q(h, fh, self.hfmt, Overflow::Saturate),
+        )
+    }
+}
+
+impl Module for Tangent {
+    fn instance(&self) -> &str {
+        &self.name
+    }
+    fn kind(&self) -> &'static str {
+        "tangent_155"
+    }
+    fn eval(&mut self) {
+        let mut rgba = [0i64; 8];
+        for (k, s) in self.rgba.iter().enumerate() {
+            rgba[k] = s.raw();
+        }
+        let (du, dv, h) = self.compute(
+            &rgba,
+            self.tu.raw(),
+            self.tv.raw(),
+            self.tu1.raw(),
+            self.tv1.raw(),
+            self.lod.raw(),
+            self.scale.raw(),
+        );
+        self.r[0].set_next_raw(du);
+        self.r[1].set_next_raw(dv);
+        self.r[2].set_next_raw(h);
+        self.du.follow(self.r[0].q());
+        self.dv.follow(self.r[1].q());
+        self.height.follow(self.r[2].q());
+    }
+    fn tick(&mut self, reset: bool) {
+        for r in &mut self.r {
+            r.tick(reset);
+        }
+    }
+    fn visit(&self, v: &mut dyn Visitor) {
+        v.enter(&self.name, self.kind());
+        for s in &self.rgba {
+            v.signal(Dir::Input, s);
+        }
+        let mut ins = vec![&self.tu, &self.tv, &self.scale];
+        if self.trilinear {
+            ins.extend([&self.tu1, &self.tv1, &self.lod]);
+        }
+        for s in ins {
+            v.signal(Dir::Input, s);
+        }
+        for s in [&self.du, &self.dv, &self.height] {
+            v.signal(Dir::Output, s);
+        }
+        v.leave();
+    }
+}

@@ -1,0 +1,400 @@
+//! Testbench of the FIG. 7 normal pipeline (`hdl::normal_pipeline`) against the surfaces of
+//! `golden::bump`, and the machinery the `normals`, `render` and `sweep normals` commands use.
+//!
+//! Stimulus is a list of samples (position, height scale, MIP weight). Inputs are quantised to
+//! the pipeline's formats first (positions and scale round to nearest, ties to even; a position
+//! outside the format's range is an error, not clamped), and the golden model is evaluated at
+//! exactly the quantised inputs, so the measured error is the pipeline's own.
+//!
+//! Accuracy criterion (issue: default widths, positions exact in the blend-factor format): every
+//! component within `2^-13` of the golden normal and every normal within 0.01 degrees of it.
+
+use crate::report::TbResult;
+use golden::bump::{self as g, Heights};
+use hdl::bump_params::{Border, BumpParams, Filter};
+use hdl::fx::{Format, Fx, Overflow, Quant};
+use hdl::height_map::HeightMap;
+use hdl::kernel::{NoTrace, Sim, Trace};
+use hdl::normal_pipeline::NormalPipeline;
+use std::path::PathBuf;
+use verif::{
+    run, Coverage, Coverpoint, Driver, ErrorStats, Event, Monitor, Pacing, Scoreboard, Watchdog,
+};
+use waves::{ProbeId, TraceConfig, VcdTracer};
+
+/// One sample request.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Sample {
+    pub u: f64,
+    pub v: f64,
+    pub scale: f64,
+    /// Weight of the coarser MIP level (trilinear only).
+    pub lod: f64,
+}
+
+/// A sample as raw pipeline inputs.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct RawSample {
+    pub u: i64,
+    pub v: i64,
+    pub scale: u64,
+    pub lod: u64,
+}
+
+/// The pipeline's result for one sample: raw `sQ2.<out_frac>` components and raw height.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct RawNormal {
+    pub n: [i64; 3],
+    pub height: u64,
+}
+
+/// Quantises a sample into the pipeline's input formats.
+pub fn quantise(p: &BumpParams, s: &Sample) -> Result<RawSample, String> {
+    let q = |x: f64, f: Format, what: &str| -> Result<i64, String> {
+        if !x.is_finite() {
+            return Err(format!("{what} {x} is not a number"));
+        }
+        let v = Fx::from_f64(f, x, Quant::RoundHalfEven, Overflow::Saturate)
+            .map_err(|e| format!("{what}: {e}"))?;
+        let lo = Fx::from_raw(f, f.min_raw()).to_f64();
+        let hi = Fx::from_raw(f, f.max_raw()).to_f64();
+        if x < lo || x > hi {
+            return Err(format!("{what} {x} outside {lo}..={hi} ({f})"));
+        }
+        Ok(v.raw() as i64)
+    };
+    Ok(RawSample {
+        u: q(s.u, p.pos_fmt(), "u")?,
+        v: q(s.v, p.pos_fmt(), "v")?,
+        scale: q(s.scale, p.scale_fmt(), "scale")? as u64,
+        lod: q(s.lod, p.blend_fmt(), "lod")? as u64,
+    })
+}
+
+/// The real value of a raw input (what the golden model is evaluated at).
+pub fn real(raw: i64, f: Format) -> f64 {
+    Fx::from_raw(f, i128::from(raw)).to_f64()
+}
+
+/// Golden `(normal, scaled height)` for a raw sample.
+pub fn golden_normal(
+    p: &BumpParams,
+    fine: &Heights,
+    coarse: Option<&Heights>,
+    r: &RawSample,
+) -> ([f64; 3], f64) {
+    let (u, v) = (real(r.u, p.pos_fmt()), real(r.v, p.pos_fmt()));
+    let scale = real(r.scale as i64, p.scale_fmt());
+    let lod = real(r.lod as i64, p.blend_fmt());
+    let border = golden_border(p);
+    let f: fn(&Heights, f64, f64, g::Border) -> g::Surface = match p.filter {
+        Filter::BSpline | Filter::Bezier => g::bspline,
+        Filter::Blinn => g::blinn,
+    };
+    let s = match coarse {
+        Some(c) if p.trilinear => g::trilinear(f, fine, c, u, v, lod, border),
+        _ => f(fine, u, v, border),
+    };
+    (g::normal(s, scale), s.0 * scale)
+}
+
+fn golden_border(p: &BumpParams) -> g::Border {
+    match p.border {
+        Border::Wrap => g::Border::Wrap,
+        Border::Clamp => g::Border::Clamp,
+        Border::Mirror => g::Border::Mirror,
+        Border::Constant(c) => {
+            g::Border::Constant(f64::from(c) / f64::from(1u32 << p.texel_fmt().frac()))
+        }
+    }
+}
+
+/// Heights of a map for the golden model.
+pub fn heights(m: &HeightMap) -> Heights {
+    Heights::from_raw(
+        m.width() as usize,
+        m.height() as usize,
+        m.texels(),
+        m.fmt().frac() as u32,
+    )
+}
+
+struct Drv;
+impl Driver<NormalPipeline> for Drv {
+    type Txn = RawSample;
+    fn drive(&mut self, dut: &mut NormalPipeline, t: Option<&RawSample>) {
+        dut.valid_in.set_bool(t.is_some());
+        if let Some(t) = t {
+            dut.u.set_raw(t.u);
+            dut.v.set_raw(t.v);
+            dut.scale.set_raw(t.scale as i64);
+            dut.lod.set_raw(t.lod as i64);
+        }
+    }
+}
+
+struct Mon;
+impl Monitor<NormalPipeline> for Mon {
+    type Txn = RawNormal;
+    fn sample(&mut self, dut: &NormalPipeline) -> Option<RawNormal> {
+        dut.valid.is_high().then(|| RawNormal {
+            n: [dut.nx.raw(), dut.ny.raw(), dut.nz.raw()],
+            height: dut.height.bits(),
+        })
+    }
+}
+
+/// What to run.
+#[derive(Clone, Debug)]
+pub struct NormalsRun {
+    pub name: String,
+    pub params: BumpParams,
+    pub map: HeightMap,
+    pub samples: Vec<Sample>,
+    /// Random idle cycles (per mille) between samples; 0 = one per clock.
+    pub idle_per_mille: u32,
+    pub vcd: Option<PathBuf>,
+    pub trace: TraceConfig,
+    /// Check the accuracy criterion (default widths, representable positions).
+    pub check_accuracy: bool,
+    pub seed: verif::Seed,
+}
+
+/// Results of a run: per-sample outputs and a testbench result.
+pub struct NormalsOutcome {
+    pub outputs: Vec<RawNormal>,
+    pub golden: Vec<[f64; 3]>,
+    pub result: TbResult,
+    /// Worst angle to the golden normal, degrees.
+    pub max_angle_deg: f64,
+    /// Worst component error, absolute.
+    pub max_component_err: f64,
+    /// Worst error of the interpolated, scaled height (para. 0084), absolute.
+    pub max_height_err: f64,
+    pub latency: usize,
+}
+
+/// Component tolerance of the accuracy criterion.
+pub const COMPONENT_TOL: f64 = 1.0 / 8192.0;
+/// Angle tolerance of the accuracy criterion, degrees.
+pub const ANGLE_TOL_DEG: f64 = 0.01;
+
+/// Runs the pipeline over the samples under the verification framework.
+pub fn run_normals(cfg: &NormalsRun) -> Result<NormalsOutcome, String> {
+    let p = cfg.params;
+    let coarse_map = p.trilinear.then(|| cfg.map.downsample());
+    let dut = NormalPipeline::new("pipe", p, cfg.map.clone(), coarse_map.clone())?;
+    let raws = cfg
+        .samples
+        .iter()
+        .map(|s| quantise(&p, s))
+        .collect::<Result<Vec<_>, _>>()?;
+    let fine = heights(&cfg.map);
+    let coarse = coarse_map.as_ref().map(heights);
+    match &cfg.vcd {
+        Some(path) => {
+            let mut t =
+                VcdTracer::create(path, &cfg.name, cfg.trace.clone()).map_err(|e| e.to_string())?;
+            let probes = [
+                t.probe_real("nx_golden", Some("tb.pipe.nx")),
+                t.probe_real("ny_golden", Some("tb.pipe.ny")),
+                t.probe_real("nz_golden", Some("tb.pipe.nz")),
+                t.probe_real("angle_err_deg", Some("tb.pipe.nz")),
+            ];
+            let sim = Sim::traced(dut, t).map_err(|e| e.to_string())?;
+            let (sim, out) = drive(sim, cfg, raws, &fine, coarse.as_ref(), Some(probes));
+            sim.finish().map_err(|e| e.to_string())?;
+            let mut out = out;
+            out.result.vcd = Some(path.clone());
+            Ok(out)
+        }
+        None => {
+            let sim: Sim<NormalPipeline, NoTrace> = Sim::new(dut);
+            Ok(drive(sim, cfg, raws, &fine, coarse.as_ref(), None).1)
+        }
+    }
+}
+
+/// Sets golden values beside the DUT's in a trace.
+pub trait GoldenProbe {
+    fn golden(&mut self, p: &[ProbeId; 4], v: [f64; 4]);
+}
+impl GoldenProbe for VcdTracer {
+    fn golden(&mut self, p: &[ProbeId; 4], v: [f64; 4]) {
+        for k in 0..4 {
+            self.set_real(p[k], v[k]);
+        }
+    }
+}
+impl GoldenProbe for NoTrace {
+    fn golden(&mut self, _: &[ProbeId; 4], _: [f64; 4]) {}
+}
+
+fn coverage_model() -> Coverage {
+    let mut c = Coverage::new();
+    let f = c.add(
+        Coverpoint::new("blend_u")
+            .value("zero", 0)
+            .value("max", 2)
+            .value("interior", 1),
+    );
+    let g = c.add(
+        Coverpoint::new("blend_v")
+            .value("zero", 0)
+            .value("max", 2)
+            .value("interior", 1),
+    );
+    c.add(
+        Coverpoint::new("border_cell")
+            .value("inside", 0)
+            .value("edge", 1),
+    );
+    c.cross("blend_u_x_blend_v", f, g);
+    c
+}
+
+fn drive<T: Trace + GoldenProbe>(
+    sim: Sim<NormalPipeline, T>,
+    cfg: &NormalsRun,
+    raws: Vec<RawSample>,
+    fine: &Heights,
+    coarse: Option<&Heights>,
+    probes: Option<[ProbeId; 4]>,
+) -> (Sim<NormalPipeline, T>, NormalsOutcome) {
+    let p = cfg.params;
+    let mut sim = sim.check_schedule(false);
+    sim.reset(2);
+    let latency = sim.dut.latency();
+    let lsb = (-(p.out_frac as f64)).exp2();
+    let nf = p.normal_fmt();
+    let mut res = TbResult::new(
+        &cfg.name,
+        "FIG. 7 pipeline (units 150-156, para. 0050-0087)",
+    );
+    res.seed = Some(cfg.seed.to_string());
+    let mut stats = ErrorStats::new();
+    let mut cov = coverage_model();
+    let hf = p.height_out_fmt();
+    let mut max_height = 0.0f64;
+    let mut sb: Scoreboard<([f64; 3], f64), RawNormal> =
+        Scoreboard::new(move |(g, _): &([f64; 3], f64), a: &RawNormal| {
+            let d = a.n.map(|x| real(x, nf));
+            let err = (0..3).map(|k| (d[k] - g[k]).abs()).fold(0.0, f64::max);
+            let ang = g::angle_deg(*g, d);
+            if err <= COMPONENT_TOL && ang <= ANGLE_TOL_DEG {
+                Ok(())
+            } else {
+                Err(format!(
+                    "normal {d:?} vs golden {g:?}: component error {err:.3e}, angle {ang:.2e} deg"
+                ))
+            }
+        });
+    let n = raws.len() as u64;
+    let (mut outputs, mut goldens) = (
+        Vec::with_capacity(raws.len()),
+        Vec::with_capacity(raws.len()),
+    );
+    let (mut max_angle, mut max_comp) = (0.0f64, 0.0f64);
+    let mut pacing = if cfg.idle_per_mille == 0 {
+        Pacing::full()
+    } else {
+        Pacing::random(cfg.idle_per_mille, cfg.seed)
+    };
+    let (w, h) = (cfg.map.width() as i64, cfg.map.height() as i64);
+    let pf = p.pos_frac;
+    let fb = p.pos_frac - p.blend_bits;
+    let r = run(
+        &mut sim,
+        &mut Drv,
+        &mut Mon,
+        raws,
+        n,
+        &mut pacing,
+        Watchdog::cycles(4 * n + 100),
+        |sim, ev| match ev {
+            Event::Sent { txn, .. } => {
+                sb.expect(golden_normal(&p, fine, coarse, txn));
+                let blend = |x: i64| {
+                    let b = (x >> fb) & ((1 << p.blend_bits) - 1);
+                    if b == 0 {
+                        0
+                    } else if b == (1 << p.blend_bits) - 1 {
+                        2
+                    } else {
+                        1
+                    }
+                };
+                let (iu, iv) = (txn.u >> pf, txn.v >> pf);
+                let edge = iu <= 0 || iv <= 0 || iu >= w - 1 || iv >= h - 1;
+                cov.sample(&[blend(txn.u), blend(txn.v), i64::from(edge)]);
+            }
+            Event::Received { cycle, txn } => {
+                let out = sb.observe(cycle, txn);
+                if let Some((gn, gh)) = out.expected {
+                    max_height = max_height.max((real(txn.height as i64, hf) - gh).abs());
+                    let d = txn.n.map(|x| real(x, nf));
+                    for k in 0..3 {
+                        stats.record(d[k], gn[k], lsb);
+                        max_comp = max_comp.max((d[k] - gn[k]).abs());
+                    }
+                    let a = g::angle_deg(gn, d);
+                    max_angle = max_angle.max(a);
+                    if let (Some(pr), Some(t)) = (probes.as_ref(), sim.trace_mut()) {
+                        t.golden(pr, [gn[0], gn[1], gn[2], a]);
+                    }
+                    goldens.push(gn);
+                }
+                outputs.push(txn);
+            }
+        },
+    );
+    res.transactions = n;
+    match r {
+        Ok(st) => {
+            res.cycles = st.cycles;
+            res.latency = st.max_latency;
+            if cfg.idle_per_mille == 0 && n > 0 && st.cycles != n + latency as u64 {
+                res.failures.push(format!(
+                    "{} cycles for {n} samples: not one per clock",
+                    st.cycles
+                ));
+            }
+            if n > 0
+                && (st.min_latency != Some(latency as u64)
+                    || st.max_latency != Some(latency as u64))
+            {
+                res.failures.push(format!(
+                    "latency {:?}..{:?}, expected {latency}",
+                    st.min_latency, st.max_latency
+                ));
+            }
+        }
+        Err(t) => res.failures.push(t.to_string()),
+    }
+    if cfg.check_accuracy {
+        res.mismatches = sb.mismatch_count();
+        for m in sb.mismatches().iter().take(10) {
+            res.mismatch_log.push(format!(
+                "sample {} (cycle {:?}): {}",
+                m.index, m.cycle, m.detail
+            ));
+        }
+    }
+    res.coverage_percent = cov.percent();
+    res.unhit = cov.unhit();
+    res.coverage_report = cov.report();
+    res.stats = stats;
+    res.finish();
+    (
+        sim,
+        NormalsOutcome {
+            outputs,
+            golden: goldens,
+            result: res,
+            max_angle_deg: max_angle,
+            max_component_err: max_comp,
+            max_height_err: max_height,
+            latency,
+        },
+    )
+}
