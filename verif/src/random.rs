@@ -85,6 +85,13 @@ pub fn seeded_runner(test: &str, cases: u32) -> TestRunner {
     TestRunner::new_with_rng(cfg, seed.rng())
 }
 
+/// A [`Stimulus`] seeded from `TEXRTL_SEED` or a fresh seed, printed like [`seeded_runner`]'s.
+pub fn seeded_stimulus(test: &str) -> Stimulus {
+    let seed = Seed::from_env_or_fresh().unwrap_or_else(|e| panic!("{e}"));
+    eprintln!("{test}: stimulus seed {seed}; replay with {SEED_ENV}={seed}");
+    Stimulus::new(seed)
+}
+
 /// Draws values from proptest strategies with a seeded RNG: the constrained-random source of
 /// a testbench. The same seed gives the same values on every machine.
 pub struct Stimulus {
