@@ -87,9 +87,10 @@ impl Level {
 
     /// Address, fetch/adjust, replicate and bilinear stages for position `(u, v)` raw.
     #[inline]
-    fn eval(&mut self, u: u64, v: u64, bypass: bool) {
-        self.addr.u.set_bits(u);
-        self.addr.v.set_bits(v);
+    fn eval(&mut self, u: i64, v: i64, bypass: bool) {
+        // Raw values, not bit patterns: the coarser level's position is one bit wider.
+        self.addr.u.set_raw(u);
+        self.addr.v.set_raw(v);
         self.addr.eval();
         self.fetch.ui.follow(&self.addr.ui);
         self.fetch.vj.follow(&self.addr.vj);
@@ -259,7 +260,7 @@ impl Module for NormalPipeline {
     }
     fn eval(&mut self) {
         let bypass = self.params.filter != Filter::BSpline;
-        let (u, v) = (self.u.bits(), self.v.bits());
+        let (u, v) = (self.u.raw(), self.v.raw());
         for l in &mut self.levels {
             l.eval(u, v, bypass);
         }

@@ -172,6 +172,7 @@ pub struct NormalsOutcome {
     /// Worst error of the interpolated, scaled height (para. 0084), absolute.
     pub max_height_err: f64,
     pub latency: usize,
+    pub coverage: Coverage,
 }
 
 /// Component tolerance of the accuracy criterion.
@@ -230,27 +231,67 @@ impl GoldenProbe for NoTrace {
     fn golden(&mut self, _: &[ProbeId; 4], _: [f64; 4]) {}
 }
 
-fn coverage_model() -> Coverage {
+/// The coverage model: border mode x variant, blend factors at 0 / interior / max, samples
+/// in edge cells, and height extremes (the 3x3 neighbourhood holds the lowest and/or highest
+/// texel value of the format).
+pub fn coverage_model() -> Coverage {
     let mut c = Coverage::new();
+    let b = c.add(
+        Coverpoint::new("border")
+            .value("wrap", 0)
+            .value("clamp", 1)
+            .value("mirror", 2)
+            .value("constant", 3),
+    );
+    let v = c.add(
+        Coverpoint::new("variant")
+            .value("bspline", 0)
+            .value("bezier", 1)
+            .value("blinn", 2)
+            .value("trilinear", 3),
+    );
     let f = c.add(
         Coverpoint::new("blend_u")
             .value("zero", 0)
-            .value("max", 2)
-            .value("interior", 1),
+            .value("interior", 1)
+            .value("max", 2),
     );
     let g = c.add(
         Coverpoint::new("blend_v")
             .value("zero", 0)
+            .value("interior", 1)
+            .value("max", 2),
+    );
+    c.add(Coverpoint::new("cell").value("inside", 0).value("edge", 1));
+    let h = c.add(
+        Coverpoint::new("height_extremes")
+            .value("neither", 0)
+            .value("min", 1)
             .value("max", 2)
-            .value("interior", 1),
+            .value("both", 3),
     );
-    c.add(
-        Coverpoint::new("border_cell")
-            .value("inside", 0)
-            .value("edge", 1),
-    );
+    c.cross("border_x_variant", b, v);
     c.cross("blend_u_x_blend_v", f, g);
+    c.cross("variant_x_height_extremes", v, h);
     c
+}
+
+fn variant_id(p: &BumpParams) -> i64 {
+    match (p.trilinear, p.filter) {
+        (true, _) => 3,
+        (false, Filter::BSpline) => 0,
+        (false, Filter::Bezier) => 1,
+        (false, Filter::Blinn) => 2,
+    }
+}
+
+fn border_id(p: &BumpParams) -> i64 {
+    match p.border {
+        Border::Wrap => 0,
+        Border::Clamp => 1,
+        Border::Mirror => 2,
+        Border::Constant(_) => 3,
+    }
 }
 
 fn drive<T: Trace + GoldenProbe>(
@@ -302,6 +343,8 @@ fn drive<T: Trace + GoldenProbe>(
     };
     let (w, h) = (cfg.map.width() as i64, cfg.map.height() as i64);
     let pf = p.pos_frac;
+    let tf = p.texel_fmt();
+    let tmax = tf.max_raw() as f64 / f64::from(1u32 << tf.frac());
     let fb = p.pos_frac - p.blend_bits;
     let r = run(
         &mut sim,
@@ -326,7 +369,22 @@ fn drive<T: Trace + GoldenProbe>(
                 };
                 let (iu, iv) = (txn.u >> pf, txn.v >> pf);
                 let edge = iu <= 0 || iv <= 0 || iu >= w - 1 || iv >= h - 1;
-                cov.sample(&[blend(txn.u), blend(txn.v), i64::from(edge)]);
+                let gb = golden_border(&p);
+                let mut ext = 0;
+                for dj in -1..=1 {
+                    for di in -1..=1 {
+                        let t = fine.texel(iu + di, iv + dj, gb);
+                        ext |= i64::from(t == 0.0) | (i64::from(t == tmax) << 1);
+                    }
+                }
+                cov.sample(&[
+                    border_id(&p),
+                    variant_id(&p),
+                    blend(txn.u),
+                    blend(txn.v),
+                    i64::from(edge),
+                    ext,
+                ]);
             }
             Event::Received { cycle, txn } => {
                 let out = sb.observe(cycle, txn);
@@ -384,7 +442,7 @@ fn drive<T: Trace + GoldenProbe>(
     res.unhit = cov.unhit();
     res.coverage_report = cov.report();
     res.stats = stats;
-    res.finish();
+    res.finish_with(false);
     (
         sim,
         NormalsOutcome {
@@ -395,6 +453,173 @@ fn drive<T: Trace + GoldenProbe>(
             max_component_err: max_comp,
             max_height_err: max_height,
             latency,
+            coverage: cov,
         },
     )
+}
+
+/// Positions for a `w x h` map on the grid of `bits` fraction bits: `n` seeded random ones,
+/// blend factors 0 / 1/2 / just below 1 in every combination, and every border cell (and one
+/// texel beyond, for the border modes). Scales are 1, except every fourth sample, which draws a
+/// scale in [0, 8).
+pub fn stimulus(
+    w: u32,
+    h: u32,
+    bits: u32,
+    n: usize,
+    stim: &mut verif::Stimulus,
+    trilinear: bool,
+) -> Vec<Sample> {
+    let step = (-(bits as f64)).exp2();
+    let q = |x: u64| x as f64 * step;
+    let mut s = Vec::new();
+    let lod = |k: usize| {
+        if trilinear {
+            (k % 257) as f64 / 256.0 % 1.0
+        } else {
+            0.0
+        }
+    };
+    let strat = (
+        0..(u64::from(w) << bits),
+        0..(u64::from(h) << bits),
+        0u64..2048,
+    );
+    for k in 0..n {
+        let (u, v, sc) = stim.draw(&strat);
+        let scale = if k % 4 == 3 { sc as f64 / 256.0 } else { 1.0 };
+        s.push(Sample {
+            u: q(u),
+            v: q(v),
+            scale,
+            lod: lod(k),
+        });
+    }
+    let edge = 1.0 - step;
+    for bu in [0.0, 0.5, edge] {
+        for bv in [0.0, 0.5, edge] {
+            s.push(Sample {
+                u: 1.0 + bu,
+                v: 1.0 + bv,
+                scale: 1.0,
+                lod: lod(s.len()),
+            });
+        }
+    }
+    let (fw, fh) = (f64::from(w), f64::from(h));
+    for k in 0..w.max(h) {
+        let k = f64::from(k);
+        for (u, v) in [
+            (k, 0.0),
+            (k, fh - step),
+            (0.0, k),
+            (fw - step, k),
+            (k - 1.0, -1.0),
+            (fw, k + 0.5),
+        ] {
+            s.push(Sample {
+                u,
+                v,
+                scale: 1.0,
+                lod: lod(s.len()),
+            });
+        }
+    }
+    s
+}
+
+/// The normals testbench of `texrtl regress`: every built-in map (flat, steep, steps, noise,
+/// smooth, extremes) in every variant (B-spline, Bezier, Blinn, trilinear) and border mode,
+/// default widths, against the accuracy criterion; one traced run (noise, B-spline, wrap).
+pub fn regress_suite(
+    seed: verif::Seed,
+    vcd: Option<PathBuf>,
+    trace: TraceConfig,
+) -> Result<TbResult, String> {
+    let mut res = TbResult::new(
+        "normals",
+        "FIG. 7 pipeline (units 150-156, para. 0050-0087)",
+    );
+    res.seed = Some(seed.to_string());
+    let mut cov = coverage_model();
+    let mut stim = verif::Stimulus::new(seed);
+    let (w, h) = (16, 16);
+    let mut worst = (0.0f64, 0.0f64, 0.0f64);
+    let variants = [
+        (Filter::BSpline, false),
+        (Filter::Bezier, false),
+        (Filter::Blinn, false),
+        (Filter::BSpline, true),
+    ];
+    let borders = [
+        Border::Wrap,
+        Border::Clamp,
+        Border::Mirror,
+        Border::Constant(255),
+    ];
+    for map in ["flat", "steep", "steps", "noise", "smooth", "extremes"] {
+        for (filter, trilinear) in variants {
+            for border in borders {
+                let p = BumpParams {
+                    filter,
+                    trilinear,
+                    border,
+                    ..BumpParams::default()
+                };
+                let m = crate::maps::builtin(map, w, h, p.texel_fmt())?;
+                let traced = map == "noise"
+                    && filter == Filter::BSpline
+                    && !trilinear
+                    && border == Border::Wrap;
+                // Trilinear positions are exact in the coarser level's blend format too.
+                let bits = if trilinear {
+                    p.blend_bits - 1
+                } else {
+                    p.blend_bits
+                };
+                let n = if traced { 400 } else { 150 };
+                let o = run_normals(&NormalsRun {
+                    name: format!("normals {map} {filter} trilinear={trilinear} {border}"),
+                    params: p,
+                    map: m,
+                    samples: stimulus(w, h, bits, n, &mut stim, trilinear),
+                    idle_per_mille: if traced { 0 } else { 100 },
+                    vcd: if traced { vcd.clone() } else { None },
+                    trace: trace.clone(),
+                    check_accuracy: true,
+                    seed: stim.seed().derive(res.transactions),
+                })?;
+                let r = &o.result;
+                res.transactions += r.transactions;
+                res.cycles += r.cycles;
+                res.mismatches += r.mismatches;
+                res.mismatch_log.extend(
+                    r.mismatch_log
+                        .iter()
+                        .take(3)
+                        .map(|m| format!("{}: {m}", r.name)),
+                );
+                res.failures
+                    .extend(r.failures.iter().map(|f| format!("{}: {f}", r.name)));
+                res.stats.merge(&r.stats);
+                res.latency = r.latency.or(res.latency);
+                if r.vcd.is_some() {
+                    res.vcd = r.vcd.clone();
+                }
+                cov.merge(&o.coverage);
+                worst.0 = worst.0.max(o.max_component_err);
+                worst.1 = worst.1.max(o.max_angle_deg);
+                worst.2 = worst.2.max(o.max_height_err);
+            }
+        }
+    }
+    res.notes.push(format!(
+        "worst component error {:.3e} (tolerance {COMPONENT_TOL:.3e}), worst angle {:.3e} deg (tolerance {ANGLE_TOL_DEG}), worst height error {:.3e}",
+        worst.0, worst.1, worst.2
+    ));
+    res.coverage_percent = cov.percent();
+    res.unhit = cov.unhit();
+    res.coverage_report = cov.report();
+    res.finish();
+    Ok(res)
 }

@@ -31,6 +31,11 @@ pub fn regress(cfg: &RegressConfig) -> Result<Vec<TbResult>, String> {
         ..BaConfig::default()
     };
     results.push(blend_adjust::run_tb(&ba)?);
+    results.push(crate::normals::regress_suite(
+        cfg.seed.derive(7),
+        cfg.vcd.then(|| cfg.out.join("normals.vcd")),
+        cfg.trace.clone(),
+    )?);
 
     for r in &mut results {
         if let Some(vcd) = &r.vcd {

@@ -225,3 +225,36 @@ fn random_pacing_keeps_latency_and_order() {
     assert_eq!(o.result.latency, Some(8));
     assert_eq!(o.latency, 8);
 }
+
+/// Regression: the coarser level's position is one bit wider than the fine one; a negative
+/// position must be sign-extended, not zero-extended (wrap hid this, clamp shows it).
+#[test]
+fn trilinear_outside_the_map_in_every_border_mode() {
+    for border in [
+        Border::Wrap,
+        Border::Clamp,
+        Border::Mirror,
+        Border::Constant(255),
+    ] {
+        let p = BumpParams {
+            trilinear: true,
+            border,
+            ..BumpParams::default()
+        };
+        let m = builtin("noise", 16, 16, p.texel_fmt()).unwrap();
+        let s: Vec<Sample> = (0..64)
+            .map(|k| Sample {
+                u: -3.0 + k as f64 * 0.375,
+                v: -2.0 - k as f64 * 0.125,
+                scale: 1.0,
+                lod: (k % 4) as f64 / 4.0,
+            })
+            .collect();
+        let o = run_normals(&cfg(p, m, s)).unwrap();
+        assert_eq!(
+            o.result.mismatches, 0,
+            "{border}: {:?}",
+            o.result.mismatch_log
+        );
+    }
+}

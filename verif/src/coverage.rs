@@ -143,6 +143,25 @@ impl Coverage {
         }
     }
 
+    /// Adds the hits of `o`, a model of the same shape (a run of the same testbench).
+    pub fn merge(&mut self, o: &Coverage) {
+        assert_eq!(self.points.len(), o.points.len(), "coverage models differ");
+        for (a, b) in self.points.iter_mut().zip(&o.points) {
+            assert_eq!(a.bins.len(), b.bins.len(), "coverpoint {} differs", a.name);
+            for (x, y) in a.bins.iter_mut().zip(&b.bins) {
+                x.hits += y.hits;
+            }
+            a.unbinned += b.unbinned;
+        }
+        for (a, b) in self.crosses.iter_mut().zip(&o.crosses) {
+            for (ra, rb) in a.hits.iter_mut().zip(&b.hits) {
+                for (x, y) in ra.iter_mut().zip(rb) {
+                    *x += y;
+                }
+            }
+        }
+    }
+
     /// Bins (coverpoint bins and cross bins) in all, and how many were hit.
     pub fn totals(&self) -> (usize, usize) {
         let mut total = 0;
