@@ -219,7 +219,8 @@ mod tests {
             height: 10,
             h: n,
         };
-        for f in [bspline as fn(&Heights, f64, f64, Border) -> Surface] {
+        {
+            let f = bspline;
             let (u, v, e) = (3.3, 6.6, 1e-6);
             let s = f(&m, u, v, Border::Wrap);
             let du =

@@ -38,6 +38,10 @@ pub struct Bilinear {
 
 impl Bilinear {
     pub fn new(name: &str, texel: Format, blend: Format, out: Format) -> Bilinear {
+        assert!(
+            texel.width() + 2 * blend.width() + 2 <= 62,
+            "bilinear: {texel} texels and {blend} factors exceed the 62-bit datapath"
+        );
         Bilinear {
             name: name.into(),
             sf: blend.frac() as u32,
@@ -51,11 +55,11 @@ impl Bilinear {
         }
     }
 
-    /// The exact blend, raw with `pf + 2 sf` fraction bits.
+    /// The exact blend, raw with `pf + 2 sf` fraction bits. Texels of up to 12 bits and
+    /// factors of up to 17 bits keep every intermediate within 48 bits, so `i64` holds it.
     #[inline]
-    pub fn exact(p: [i64; 4], s: i64, t: i64, sf: u32) -> i128 {
-        let lerp = |a: i128, b: i128, x: i128| (a << sf) + x * (b - a);
-        let (p, s, t) = (p.map(i128::from), i128::from(s), i128::from(t));
+    pub fn exact(p: [i64; 4], s: i64, t: i64, sf: u32) -> i64 {
+        let lerp = |a: i64, b: i64, x: i64| (a << sf) + x * (b - a);
         let r0 = lerp(p[0], p[1], s);
         let r1 = lerp(p[2], p[3], s);
         lerp(r0, r1, t)
@@ -65,7 +69,12 @@ impl Bilinear {
     #[inline]
     pub fn compute(&self, p: [i64; 4], s: i64, t: i64) -> i64 {
         let x = Self::exact(p, s, t, self.sf);
-        quantise(x, (self.pf + 2 * self.sf) as i32, self.out, ROUND, SAT) as i64
+        let f = self.pf + 2 * self.sf;
+        if f == self.out.frac() as u32 {
+            x
+        } else {
+            quantise(i128::from(x), f as i32, self.out, ROUND, SAT) as i64
+        }
     }
 }
 
@@ -77,7 +86,12 @@ impl Module for Bilinear {
         "bilinear"
     }
     fn eval(&mut self) {
-        let p = [0, 1, 2, 3].map(|k| self.p[k].raw());
+        let p = [
+            self.p[0].raw(),
+            self.p[1].raw(),
+            self.p[2].raw(),
+            self.p[3].raw(),
+        ];
         let v = self.compute(p, self.s.raw(), self.t.raw());
         self.r.set_next_raw(v);
         self.q.follow(self.r.q());

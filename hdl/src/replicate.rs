@@ -75,7 +75,7 @@ impl Module for Replicate {
         "replicate_152"
     }
     fn eval(&mut self) {
-        let p = control_points(self.h.clone().map(|s| s.bits()), self.bezier);
+        let p = control_points(std::array::from_fn(|k| self.h[k].bits()), self.bezier);
         for (wi, idx) in WINDOWS.iter().enumerate() {
             for (k, &i) in idx.iter().enumerate() {
                 self.w[wi][k].set_bits(p[i]);

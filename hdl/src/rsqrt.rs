@@ -81,10 +81,12 @@ impl RsqrtTable {
 pub fn nr_step(p: &RsqrtParams, m: u64, y: u64) -> u64 {
     let (mf, yf) = (p.mant_frac, p.y_frac);
     let (m, y) = (i128::from(m), i128::from(y));
-    let t_fmt = Format::unsigned(yf + 4, yf as i32 + 2);
+    // t = m y^2 in uQ2.(Y+2): y^2 m is close to 1; 4 integer bits leave room for any input.
+    let t_fmt = Format::new(yf + 4, yf as i32 + 2, false);
     let t = quantise(m * y * y, (mf + 2 * yf) as i32, t_fmt, ROUND, SAT);
     let e = (3i128 << (yf + 2)) - t;
-    quantise(y * e, (2 * yf + 3) as i32, y_fmt(p), ROUND, SAT) as u64
+    let out = Format::new(yf + 1, yf as i32, false);
+    quantise(y * e, (2 * yf + 3) as i32, out, ROUND, SAT) as u64
 }
 
 /// Output format `uQ1.Y`.

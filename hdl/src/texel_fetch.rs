@@ -83,6 +83,23 @@ impl TexelFetch {
     #[inline]
     pub fn grid(&self, ui: i64, vj: i64) -> [u8; 9] {
         let (w, h) = (self.map.width(), self.map.height());
+        // Inside the map every mode reads the same texels: no border logic.
+        if ui >= 1 && vj >= 1 && ui + 1 < i64::from(w) && vj + 1 < i64::from(h) {
+            let t = self.map.texels();
+            let w = w as usize;
+            let base = (vj as usize - 1) * w + ui as usize - 1;
+            return [
+                t[base],
+                t[base + 1],
+                t[base + 2],
+                t[base + w],
+                t[base + w + 1],
+                t[base + w + 2],
+                t[base + 2 * w],
+                t[base + 2 * w + 1],
+                t[base + 2 * w + 2],
+            ];
+        }
         let xs = [-1, 0, 1].map(|d| border_index(ui + d, w, self.border));
         let ys = [-1, 0, 1].map(|d| border_index(vj + d, h, self.border));
         let c = match self.border {
@@ -111,9 +128,9 @@ impl Module for TexelFetch {
     }
     fn eval(&mut self) {
         let g = self.grid(self.ui.raw(), self.vj.raw());
-        for k in 0..9 {
-            self.r[k].set_next_raw(i64::from(g[k]));
-            self.h[k].follow(self.r[k].q());
+        for ((r, h), g) in self.r.iter_mut().zip(&mut self.h).zip(g) {
+            r.set_next_raw(i64::from(g));
+            h.follow(r.q());
         }
     }
     fn tick(&mut self, reset: bool) {

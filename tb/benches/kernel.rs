@@ -3,9 +3,12 @@
 
 use criterion::{criterion_group, criterion_main, BatchSize, Criterion, Throughput};
 use hdl::blend_adjust::{BlendAdjust, BlendAdjustParams};
+use hdl::bump_params::BumpParams;
 use hdl::fx::{Format, Fx, Overflow, Quant};
 use hdl::kernel::{Sim, Trace};
+use hdl::normal_pipeline::NormalPipeline;
 use std::hint::black_box;
+use tb::maps::builtin;
 use waves::{TraceConfig, VcdTracer};
 
 const CYCLES: u64 = 4096;
@@ -88,5 +91,63 @@ fn fixed_point(c: &mut Criterion) {
     g.finish();
 }
 
-criterion_group!(benches, kernel, fixed_point);
+fn pipeline<T: Trace>(sim: &mut Sim<NormalPipeline, T>) -> u64 {
+    let mut acc = 0;
+    for c in 0..CYCLES as i64 {
+        sim.dut.valid_in.set_bool(true);
+        sim.dut.u.set_raw((c * 37) % (16 << 8));
+        sim.dut.v.set_raw((c * 91) % (16 << 8));
+        sim.dut.scale.set_raw(256);
+        sim.eval();
+        acc += sim.dut.nz.bits();
+        sim.tick();
+    }
+    acc
+}
+
+fn normal_pipeline(c: &mut Criterion) {
+    let p = BumpParams::default();
+    let map = builtin("noise", 16, 16, p.texel_fmt()).unwrap();
+    let mut g = c.benchmark_group("normal_pipeline");
+    g.throughput(Throughput::Elements(CYCLES));
+    g.bench_function("cycles_untraced", |b| {
+        let mut sim = Sim::new(NormalPipeline::new("pipe", p, map.clone(), None).unwrap());
+        b.iter(|| black_box(pipeline(&mut sim)))
+    });
+    let tri = BumpParams {
+        trilinear: true,
+        ..p
+    };
+    g.bench_function("cycles_untraced_trilinear", |b| {
+        let mut sim = Sim::new(
+            NormalPipeline::new("pipe", tri, map.clone(), Some(map.downsample())).unwrap(),
+        );
+        b.iter(|| black_box(pipeline(&mut sim)))
+    });
+    let dir = std::env::temp_dir().join(format!("texrtl-bench-p-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let path = dir.join("pipe.vcd");
+    g.bench_function("cycles_traced_vcd", |b| {
+        b.iter_batched(
+            || {
+                let t = VcdTracer::create(&path, "bench", TraceConfig::default()).unwrap();
+                Sim::traced(
+                    NormalPipeline::new("pipe", p, map.clone(), None).unwrap(),
+                    t,
+                )
+                .unwrap()
+            },
+            |mut sim| {
+                let a = pipeline(&mut sim);
+                sim.finish().unwrap();
+                black_box(a)
+            },
+            BatchSize::PerIteration,
+        )
+    });
+    g.finish();
+    let _ = std::fs::remove_dir_all(&dir);
+}
+
+criterion_group!(benches, kernel, fixed_point, normal_pipeline);
 criterion_main!(benches);

@@ -3,7 +3,9 @@
 //! One module per testbench, named after the unit it verifies; `regress` runs them all.
 
 pub mod blend_adjust;
+pub mod commands;
 pub mod maps;
 pub mod normals;
+pub mod pgm;
 pub mod regress;
 pub mod report;

@@ -1,8 +1,10 @@
 //! The `texrtl` command line. With no arguments it runs `texrtl regress`.
 
 use clap::{Args, Parser, Subcommand};
+use hdl::bump_params::{Border, Filter};
 use std::path::PathBuf;
 use std::process::ExitCode;
+use tb::commands::{self, parse_light, CmdError, NormalsArgs, RenderArgs, Widths};
 use tb::regress::{regress, render, RegressConfig};
 use verif::Seed;
 use waves::TraceConfig;
@@ -25,6 +27,130 @@ struct Cli {
 enum Cmd {
     /// Run every testbench on built-in stimulus (the default command).
     Regress(RegressArgs),
+    /// Normals of a height map at given positions through the FIG. 7 pipeline.
+    Normals(NormalsCli),
+    /// Dot3-lit pictures: Blinn | B-spline (bit-exact) | golden | error heat map.
+    Render(RenderCli),
+    /// Error tables over bit widths, for choosing widths.
+    #[command(subcommand)]
+    Sweep(SweepCmd),
+}
+
+#[derive(Subcommand)]
+enum SweepCmd {
+    /// Max and mean normal error against blend-factor bits and rsqrt table bits.
+    Normals {
+        /// Built-in height map: flat, steep, steps, noise, smooth, extremes, bumps.
+        #[arg(long, default_value = "smooth")]
+        map: String,
+        /// Positions per configuration.
+        #[arg(long, default_value_t = 2000)]
+        samples: usize,
+        #[arg(long, value_parser = Seed::parse, default_value = "0x5eed")]
+        seed: Seed,
+    },
+}
+
+/// Bit widths of the FIG. 7 pipeline.
+#[derive(Args, Clone)]
+struct WidthArgs {
+    /// Blend-factor fraction bits F (4..=16).
+    #[arg(long, default_value_t = 8)]
+    blend_bits: u32,
+    /// Height texel bits: 8 (uQ6.2) or 4 (uQ3.1).
+    #[arg(long, default_value_t = 8)]
+    texel_bits: u32,
+    /// Inverse-square-root table index bits (3..=14).
+    #[arg(long, default_value_t = 8)]
+    rsqrt_table_bits: u32,
+    /// Newton-Raphson iterations after the table (0..=3).
+    #[arg(long, default_value_t = 1)]
+    rsqrt_iterations: u32,
+    /// Fraction bits of the normal components (8..=24).
+    #[arg(long, default_value_t = 16)]
+    out_frac: u32,
+    /// Fraction bits of the tangents (8..=24).
+    #[arg(long, default_value_t = 16)]
+    tangent_frac: u32,
+}
+
+impl WidthArgs {
+    fn widths(&self) -> Widths {
+        Widths {
+            blend_bits: self.blend_bits,
+            texel_bits: self.texel_bits,
+            table_bits: self.rsqrt_table_bits,
+            iterations: self.rsqrt_iterations,
+            out_frac: self.out_frac,
+            tangent_frac: self.tangent_frac,
+        }
+    }
+}
+
+#[derive(Args)]
+struct NormalsCli {
+    /// Height map: 8-bit PGM, binary (P5) or ASCII (P2); texel values are raw heights.
+    #[arg(long)]
+    height: PathBuf,
+    /// CSV with header u,v: positions in texel units.
+    #[arg(long)]
+    coords: PathBuf,
+    /// Output CSV u,v,nx,ny,nz (exact decimal values of the fixed-point results).
+    #[arg(long)]
+    out: PathBuf,
+    #[arg(long, default_value = "bspline", value_parser = parse_filter)]
+    filter: Filter,
+    /// Height scale factor (quantised to uQ8.8).
+    #[arg(long, default_value_t = 1.0, value_parser = parse_finite)]
+    scale: f64,
+    /// wrap, clamp, mirror or constant[:N].
+    #[arg(long, default_value = "wrap", value_parser = parse_border)]
+    border: Border,
+    /// Waveform of the run (with its .gtkw beside it).
+    #[arg(long)]
+    vcd: Option<PathBuf>,
+    /// Trilinear normals from this map and its next MIP level (2x2 box filter).
+    #[arg(long)]
+    trilinear: bool,
+    /// Weight of the coarser level with --trilinear, in [0, 1).
+    #[arg(long, default_value_t = 0.0, value_parser = parse_finite)]
+    lod: f64,
+    #[command(flatten)]
+    widths: WidthArgs,
+}
+
+#[derive(Args)]
+struct RenderCli {
+    /// Height map: 8-bit PGM.
+    #[arg(long)]
+    height: PathBuf,
+    /// Output PNG.
+    #[arg(long)]
+    out: PathBuf,
+    /// Light direction X,Y,Z (normalised).
+    #[arg(long, default_value = "1,1,2", value_parser = parse_light)]
+    light: [f64; 3],
+    /// Height scale factor.
+    #[arg(long, default_value_t = 1.0, value_parser = parse_finite)]
+    scale: f64,
+    /// Pixels per texel (a power of two up to 64).
+    #[arg(long, default_value_t = 4)]
+    zoom: u32,
+    #[command(flatten)]
+    widths: WidthArgs,
+}
+
+fn parse_filter(s: &str) -> Result<Filter, String> {
+    s.parse()
+}
+fn parse_border(s: &str) -> Result<Border, String> {
+    s.parse()
+}
+fn parse_finite(s: &str) -> Result<f64, String> {
+    match s.parse::<f64>() {
+        Ok(x) if x.is_finite() => Ok(x),
+        _ => Err(format!("'{s}' is not a finite number")),
+    }
 }
 
 #[derive(Args, Clone)]
@@ -123,8 +249,42 @@ fn main() -> ExitCode {
             return fail(format!("{first} (see texrtl --help)"));
         }
     };
-    match cli.cmd {
-        Some(Cmd::Regress(a)) => run_regress(a),
-        None => run_regress(cli.regress),
+    let r = match cli.cmd {
+        Some(Cmd::Regress(a)) => return run_regress(a),
+        None => return run_regress(cli.regress),
+        Some(Cmd::Normals(a)) => commands::normals(&NormalsArgs {
+            height: a.height,
+            coords: a.coords,
+            out: a.out,
+            filter: a.filter,
+            scale: a.scale,
+            border: a.border,
+            vcd: a.vcd,
+            trilinear: a.trilinear,
+            lod: a.lod,
+            widths: a.widths.widths(),
+        }),
+        Some(Cmd::Render(a)) => commands::render(&RenderArgs {
+            height: a.height,
+            out: a.out,
+            light: a.light,
+            scale: a.scale,
+            zoom: a.zoom,
+            widths: a.widths.widths(),
+        }),
+        Some(Cmd::Sweep(SweepCmd::Normals { map, samples, seed })) => {
+            commands::sweep_normals(&map, samples, seed)
+        }
+    };
+    match r {
+        Ok(msg) => {
+            println!("{msg}");
+            ExitCode::SUCCESS
+        }
+        Err(CmdError::Input(e)) => fail(e),
+        Err(CmdError::Failed(e)) => {
+            eprintln!("texrtl: {e}");
+            ExitCode::from(1)
+        }
     }
 }

@@ -122,3 +122,166 @@ fn bad_input_is_one_line_exit_2_and_no_output() {
         assert!(!out.exists(), "{args:?} created output");
     }
 }
+
+fn write(dir: &Path, name: &str, data: &[u8]) -> PathBuf {
+    std::fs::create_dir_all(dir).unwrap();
+    let p = dir.join(name);
+    std::fs::write(&p, data).unwrap();
+    p
+}
+
+#[test]
+fn normals_render_and_sweep_commands() {
+    let d = tmp("normals");
+    let mut pgm = b"P5\n4 3\n255\n".to_vec();
+    pgm.extend((0..12u8).map(|k| k * 20));
+    let h = write(&d, "h.pgm", &pgm);
+    let c = write(&d, "c.csv", b"u,v\n0,0\n1.5,2.25\n-0.5,0.125\n");
+    let out = d.join("n.csv");
+    let vcd = d.join("n.vcd");
+    let o = texrtl(&[
+        "normals",
+        "--height",
+        h.to_str().unwrap(),
+        "--coords",
+        c.to_str().unwrap(),
+        "--out",
+        out.to_str().unwrap(),
+        "--vcd",
+        vcd.to_str().unwrap(),
+    ]);
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    let csv = std::fs::read_to_string(&out).unwrap();
+    let rows: Vec<&str> = csv.lines().collect();
+    assert_eq!(rows[0], "u,v,nx,ny,nz");
+    assert_eq!(rows.len(), 4);
+    assert!(rows[2].starts_with("1.5,2.25,"), "{csv}");
+    // Components are exact decimals of sQ2.16 values: at most 16 fraction digits, |n| ~ 1.
+    for r in &rows[1..] {
+        let n: Vec<f64> = r.split(',').skip(2).map(|x| x.parse().unwrap()).collect();
+        let len = (n[0] * n[0] + n[1] * n[1] + n[2] * n[2]).sqrt();
+        assert!((len - 1.0).abs() < 1e-4, "{r}");
+    }
+    let rb = read_vcd(&vcd).unwrap();
+    assert!(rb.vars.contains_key("tb.pipe.normal.nx"));
+    assert!(rb.vars.contains_key("tb.golden.nx_golden"));
+    check_gtkw(&vcd, &rb).unwrap();
+
+    let png = d.join("r.png");
+    let o = texrtl(&[
+        "render",
+        "--height",
+        h.to_str().unwrap(),
+        "--out",
+        png.to_str().unwrap(),
+        "--zoom",
+        "2",
+    ]);
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    assert!(std::fs::read(&png).unwrap().starts_with(b"\x89PNG"));
+
+    let o = texrtl(&["sweep", "normals", "--samples", "50"]);
+    assert!(o.status.success());
+    assert!(String::from_utf8_lossy(&o.stdout).contains("blend\\table"));
+}
+
+#[test]
+fn normals_bad_input_is_one_line_exit_2_and_no_output() {
+    let d = tmp("normals-bad");
+    let good_h = write(&d, "h.pgm", b"P2\n2 2\n255\n1 2 3 4\n");
+    let good_c = write(&d, "c.csv", b"u,v\n0.5,0.5\n");
+    let cases: Vec<(PathBuf, PathBuf, Vec<&str>, &str)> = vec![
+        (
+            write(&d, "a.pgm", b"P6\n2 2\n255\n"),
+            good_c.clone(),
+            vec![],
+            "not a PGM",
+        ),
+        (
+            write(&d, "b.pgm", b"P2\n1 1\n255\n7\n"),
+            good_c.clone(),
+            vec![],
+            "1x1",
+        ),
+        (
+            good_h.clone(),
+            write(&d, "nan.csv", b"u,v\nNaN,0\n"),
+            vec![],
+            "not a finite number",
+        ),
+        (
+            good_h.clone(),
+            write(&d, "bad.csv", b"u,v\n1;2\n"),
+            vec![],
+            "has 1 fields",
+        ),
+        (
+            good_h.clone(),
+            write(&d, "hdr.csv", b"x,y\n1,2\n"),
+            vec![],
+            "not 'u,v'",
+        ),
+        (
+            good_h.clone(),
+            write(&d, "far.csv", b"u,v\n1e9,0\n"),
+            vec![],
+            "outside",
+        ),
+        (
+            good_h.clone(),
+            good_c.clone(),
+            vec!["--filter", "cubic"],
+            "cubic",
+        ),
+        (
+            good_h.clone(),
+            good_c.clone(),
+            vec!["--blend-bits", "3"],
+            "blend_bits 3",
+        ),
+        (
+            good_h.clone(),
+            good_c.clone(),
+            vec!["--scale", "inf"],
+            "inf",
+        ),
+        (good_h.clone(), good_c.clone(), vec!["--bogus"], "--bogus"),
+    ];
+    for (h, c, extra, needle) in cases {
+        let out = d.join("out.csv");
+        let vcd = d.join("out.vcd");
+        let mut args = vec![
+            "normals",
+            "--height",
+            h.to_str().unwrap(),
+            "--coords",
+            c.to_str().unwrap(),
+            "--out",
+            out.to_str().unwrap(),
+            "--vcd",
+            vcd.to_str().unwrap(),
+        ];
+        args.extend(extra);
+        let o = texrtl(&args);
+        let err = String::from_utf8_lossy(&o.stderr);
+        assert_eq!(o.status.code(), Some(2), "{needle}: {err}");
+        assert_eq!(err.trim_end().lines().count(), 1, "{needle}: {err}");
+        assert!(err.contains(needle), "{needle}: {err}");
+        assert!(
+            !out.exists() && !vcd.exists() && !d.join("out.gtkw").exists(),
+            "{needle}: output written"
+        );
+        assert!(no_partials(&d));
+    }
+    let o = texrtl(&[
+        "render",
+        "--height",
+        good_h.to_str().unwrap(),
+        "--out",
+        d.join("r.png").to_str().unwrap(),
+        "--light",
+        "0,0,0",
+    ]);
+    assert_eq!(o.status.code(), Some(2));
+    assert!(!d.join("r.png").exists());
+}

@@ -26,8 +26,8 @@ fn windows_and_bezier_points() {
         let mut sim = Sim::new(Replicate::new("rep", texel, bezier)).check_schedule(true);
         for _ in 0..2000 {
             let g: [u8; 9] = stim.draw(&proptest::array::uniform9(proptest::num::u8::ANY));
-            for k in 0..9 {
-                sim.dut.h[k].set_bits(u64::from(g[k]));
+            for (h, g) in sim.dut.h.iter_mut().zip(g) {
+                h.set_bits(u64::from(g));
             }
             sim.eval();
             let grid = [[g[0], g[1], g[2]], [g[3], g[4], g[5]], [g[6], g[7], g[8]]]

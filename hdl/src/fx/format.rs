@@ -144,10 +144,19 @@ impl Format {
         }
     }
 
-    /// Whether `raw` lies in this format's range.
+    /// Whether `raw` lies in this format's range (two shifts and a compare).
     #[inline]
     pub const fn contains_raw(self, raw: i128) -> bool {
-        raw >= self.min_raw() && raw <= self.max_raw()
+        let w = self.width as u32;
+        if self.signed {
+            if w == 128 {
+                return true;
+            }
+            let t = raw >> (w - 1);
+            t == 0 || t == -1
+        } else {
+            raw >> w == 0
+        }
     }
 
     /// Number of hex digits that show every bit.

@@ -73,7 +73,61 @@ fn any_low(raw: i128, n: u32) -> bool {
 /// resolving overflow by `o`; returns the raw integer of `dst`. Works for any shift, so floats
 /// with tiny or huge exponents quantise exactly too. Datapath models call it directly on raw
 /// integers whose formats they computed once, at construction.
+#[inline]
 pub fn quantise(raw: i128, src_frac: i32, dst: Format, q: Quant, o: Overflow) -> i128 {
+    let shift = src_frac - dst.frac();
+    // Fast paths: nothing dropped, or fewer than 127 bits dropped, with the result in range.
+    // The most negative code is out of range under symmetric saturation.
+    let in_range = |v: i128| {
+        dst.contains_raw(v)
+            && !(o == Overflow::SaturateSymmetric && dst.is_signed() && v == dst.min_raw())
+    };
+    if shift == 0 && in_range(raw) {
+        return raw;
+    }
+    // 64-bit path for values and shifts that fit a machine word.
+    if shift > 0 && shift < 63 && dst.width() < 63 && raw == i128::from(raw as i64) {
+        let (r, s) = (raw as i64, shift as u32);
+        let floor = r >> s;
+        let half_bit = 1i64 << (s - 1);
+        let inc = q.increment(
+            r < 0,
+            floor & 1 == 1,
+            r & half_bit != 0,
+            r & (half_bit - 1) != 0,
+        );
+        let v = floor + i64::from(inc);
+        let w = dst.width();
+        let fits = if dst.is_signed() {
+            let t = v >> (w - 1);
+            (t == 0 || t == -1) && !(o == Overflow::SaturateSymmetric && v == -(1i64 << (w - 1)))
+        } else {
+            v >> w == 0
+        };
+        if fits {
+            return i128::from(v);
+        }
+    }
+    if shift > 0 && shift < 127 {
+        let s = shift as u32;
+        let floor = raw >> s;
+        let half_bit = 1i128 << (s - 1);
+        let inc = q.increment(
+            raw < 0,
+            floor & 1 == 1,
+            raw & half_bit != 0,
+            raw & (half_bit - 1) != 0,
+        );
+        let v = floor + i128::from(inc);
+        if in_range(v) {
+            return v;
+        }
+    }
+    quantise_general(raw, src_frac, dst, q, o)
+}
+
+#[cold]
+fn quantise_general(raw: i128, src_frac: i32, dst: Format, q: Quant, o: Overflow) -> i128 {
     let negative = raw < 0;
     let shift = src_frac - dst.frac();
     // `value` is the rounded value in units of the destination LSB; `huge` marks one that

@@ -1,8 +1,11 @@
 //! A delay line: a bundle of signals delayed by a fixed number of register stages, the
 //! pipeline registers that carry values alongside a datapath.
+//!
+//! Modelled as the shift register it is, but stored as a ring buffer: one write and one read
+//! per signal per cycle, whatever the depth.
 
 use super::module::{Dir, Module, Visitor};
-use super::signal::{Reg, Signal};
+use super::signal::Signal;
 use crate::fx::Format;
 
 /// `depth` register stages for each of a bundle of signals. Depth 0 is a wire.
@@ -11,11 +14,15 @@ pub struct Delay {
     name: String,
     pub i: Vec<Signal>,
     pub o: Vec<Signal>,
-    stages: Vec<Vec<Reg>>,
+    depth: usize,
+    /// `depth` slots of `n` values; `head` is the oldest (the stage the outputs show).
+    ring: Vec<u64>,
+    head: usize,
+    next: Vec<u64>,
 }
 
 impl Delay {
-    /// Signals named and formatted by `sigs`; each output is named `<name>_d<depth>`.
+    /// Inputs named and formatted by `sigs`, outputs named by `out_names`.
     pub fn new(
         name: &str,
         sigs: &[(&'static str, Format)],
@@ -23,6 +30,7 @@ impl Delay {
         out_names: &[&'static str],
     ) -> Delay {
         assert_eq!(sigs.len(), out_names.len());
+        let n = sigs.len();
         Delay {
             name: name.into(),
             i: sigs.iter().map(|(n, f)| Signal::new(n, *f)).collect(),
@@ -31,14 +39,15 @@ impl Delay {
                 .zip(out_names)
                 .map(|((_, f), n)| Signal::new(n, *f))
                 .collect(),
-            stages: (0..depth)
-                .map(|_| sigs.iter().map(|(n, f)| Reg::new(n, *f)).collect())
-                .collect(),
+            depth,
+            ring: vec![0; depth * n],
+            head: 0,
+            next: vec![0; n],
         }
     }
 
     pub fn depth(&self) -> usize {
-        self.stages.len()
+        self.depth
     }
 }
 
@@ -51,35 +60,37 @@ impl Module for Delay {
     }
     fn eval(&mut self) {
         let n = self.i.len();
-        match self.stages.len() {
-            0 => {
-                for k in 0..n {
-                    let b = self.i[k].bits();
-                    self.o[k].set_bits(b);
-                }
+        if self.depth == 0 {
+            for (o, i) in self.o.iter_mut().zip(&self.i) {
+                o.follow(i);
             }
-            d => {
-                for k in 0..n {
-                    let b = self.i[k].bits();
-                    self.stages[0][k].set_next_bits(b);
-                }
-                for s in 1..d {
-                    for k in 0..n {
-                        let b = self.stages[s - 1][k].q().bits();
-                        self.stages[s][k].set_next_bits(b);
-                    }
-                }
-                for k in 0..n {
-                    let b = self.stages[d - 1][k].q().bits();
-                    self.o[k].set_bits(b);
-                }
-            }
+            return;
+        }
+        let oldest = &self.ring[self.head * n..(self.head + 1) * n];
+        for (((next, i), o), &old) in self
+            .next
+            .iter_mut()
+            .zip(&self.i)
+            .zip(&mut self.o)
+            .zip(oldest)
+        {
+            *next = i.bits();
+            o.set_bits(old);
         }
     }
     fn tick(&mut self, reset: bool) {
-        for r in self.stages.iter_mut().flatten() {
-            r.tick(reset);
+        if self.depth == 0 {
+            return;
         }
+        let n = self.i.len();
+        if reset {
+            self.ring.fill(0);
+            self.head = 0;
+            return;
+        }
+        // The oldest slot takes the newest values and becomes the youngest stage.
+        self.ring[self.head * n..(self.head + 1) * n].copy_from_slice(&self.next);
+        self.head = (self.head + 1) % self.depth;
     }
     fn visit(&self, v: &mut dyn Visitor) {
         v.enter(&self.name, self.kind());

@@ -10,6 +10,11 @@ use crate::fx::{Format, Fx};
 #[derive(Clone, Debug)]
 pub struct Signal {
     bits: u64,
+    /// `width` low bits set.
+    mask: u64,
+    /// Range of raw values.
+    lo: i64,
+    hi: i64,
     fmt: Format,
     name: &'static str,
 }
@@ -23,7 +28,14 @@ impl Signal {
             "signal '{name}': {fmt} is {} bits; signals hold at most 64",
             fmt.width()
         );
-        Signal { bits: 0, fmt, name }
+        Signal {
+            bits: 0,
+            mask: fmt.mask() as u64,
+            lo: fmt.min_raw().max(i128::from(i64::MIN)) as i64,
+            hi: fmt.max_raw().min(i128::from(i64::MAX)) as i64,
+            fmt,
+            name,
+        }
     }
 
     /// A one-bit unsigned signal.
@@ -83,8 +95,7 @@ impl Signal {
     #[inline]
     #[track_caller]
     pub fn set_bits(&mut self, bits: u64) {
-        let w = self.fmt.width();
-        if w < 64 && bits >> w != 0 {
+        if bits & !self.mask != 0 {
             self.overflow(format!("bits {bits:#x}"));
         }
         self.bits = bits;
@@ -94,18 +105,23 @@ impl Signal {
     #[inline]
     #[track_caller]
     pub fn set_raw(&mut self, raw: i64) {
-        if !self.fmt.contains_raw(raw as i128) {
+        if raw < self.lo || raw > self.hi {
             self.overflow(format!("raw {raw}"));
         }
-        self.bits = (raw as u64) & (self.fmt.mask() as u64);
+        self.bits = (raw as u64) & self.mask;
     }
 
     /// Copies another signal's value (a wire between two ports); the formats must agree.
     #[inline]
     #[track_caller]
     pub fn follow(&mut self, src: &Signal) {
+        // A value that does not fit is always caught; a wiring of equal widths but different
+        // binary points or signedness is caught in debug builds (and so in every test).
         debug_assert_eq!(self.fmt, src.fmt, "'{}' <- '{}'", self.name, src.name);
-        self.set_bits(src.bits);
+        if src.bits & !self.mask != 0 {
+            self.overflow(format!("'{}' of {}", src.name, src.fmt));
+        }
+        self.bits = src.bits;
     }
 
     /// Writes a bool to a one-bit signal.
@@ -200,19 +216,17 @@ impl Reg {
     #[inline]
     #[track_caller]
     pub fn set_next_raw(&mut self, raw: i64) {
-        let fmt = self.q.fmt;
-        if !fmt.contains_raw(raw as i128) {
+        if raw < self.q.lo || raw > self.q.hi {
             self.q.overflow(format!("next raw {raw}"));
         }
-        self.d = (raw as u64) & (fmt.mask() as u64);
+        self.d = (raw as u64) & self.q.mask;
     }
 
     /// Writes the next value as a bit pattern; checked like [`Signal::set_bits`].
     #[inline]
     #[track_caller]
     pub fn set_next_bits(&mut self, bits: u64) {
-        let w = self.q.fmt.width();
-        if w < 64 && bits >> w != 0 {
+        if bits & !self.q.mask != 0 {
             self.q.overflow(format!("next bits {bits:#x}"));
         }
         self.d = bits;
@@ -234,8 +248,10 @@ impl Reg {
     /// The clock edge: commit `d`, or the reset value under synchronous reset.
     #[inline]
     pub fn tick(&mut self, reset: bool) {
-        let v = if reset { self.reset } else { self.d };
-        self.q.bits = v;
-        self.d = v;
+        if reset {
+            self.d = self.reset;
+        }
+        // `d` keeps its value: a register not written next cycle holds.
+        self.q.bits = self.d;
     }
 }
