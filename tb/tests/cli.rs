@@ -130,6 +130,21 @@ fn write(dir: &Path, name: &str, data: &[u8]) -> PathBuf {
     p
 }
 
+fn normals_args<'a>(h: &'a Path, c: &'a Path, out: &'a Path, vcd: &'a Path) -> Vec<&'a str> {
+    let s = |p: &'a Path| p.to_str().unwrap();
+    vec![
+        "normals",
+        "--height",
+        s(h),
+        "--coords",
+        s(c),
+        "--out",
+        s(out),
+        "--vcd",
+        s(vcd),
+    ]
+}
+
 #[test]
 fn normals_render_and_sweep_commands() {
     let d = tmp("normals");
@@ -139,17 +154,7 @@ fn normals_render_and_sweep_commands() {
     let c = write(&d, "c.csv", b"u,v\n0,0\n1.5,2.25\n-0.5,0.125\n");
     let out = d.join("n.csv");
     let vcd = d.join("n.vcd");
-    let o = texrtl(&[
-        "normals",
-        "--height",
-        h.to_str().unwrap(),
-        "--coords",
-        c.to_str().unwrap(),
-        "--out",
-        out.to_str().unwrap(),
-        "--vcd",
-        vcd.to_str().unwrap(),
-    ]);
+    let o = texrtl(&normals_args(&h, &c, &out, &vcd));
     assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
     let csv = std::fs::read_to_string(&out).unwrap();
     let rows: Vec<&str> = csv.lines().collect();
@@ -250,17 +255,7 @@ fn normals_bad_input_is_one_line_exit_2_and_no_output() {
     for (h, c, extra, needle) in cases {
         let out = d.join("out.csv");
         let vcd = d.join("out.vcd");
-        let mut args = vec![
-            "normals",
-            "--height",
-            h.to_str().unwrap(),
-            "--coords",
-            c.to_str().unwrap(),
-            "--out",
-            out.to_str().unwrap(),
-            "--vcd",
-            vcd.to_str().unwrap(),
-        ];
+        let mut args = normals_args(&h, &c, &out, &vcd);
         args.extend(extra);
         let o = texrtl(&args);
         let err = String::from_utf8_lossy(&o.stderr);

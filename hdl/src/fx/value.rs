@@ -87,16 +87,7 @@ pub fn quantise(raw: i128, src_frac: i32, dst: Format, q: Quant, o: Overflow) ->
     }
     // 64-bit path for values and shifts that fit a machine word.
     if shift > 0 && shift < 63 && dst.width() < 63 && raw == i128::from(raw as i64) {
-        let (r, s) = (raw as i64, shift as u32);
-        let floor = r >> s;
-        let half_bit = 1i64 << (s - 1);
-        let inc = q.increment(
-            r < 0,
-            floor & 1 == 1,
-            r & half_bit != 0,
-            r & (half_bit - 1) != 0,
-        );
-        let v = floor + i64::from(inc);
+        let v = round_shift(raw as i64, shift as u32, q);
         let w = dst.width();
         let fits = if dst.is_signed() {
             let t = v >> (w - 1);
@@ -109,21 +100,31 @@ pub fn quantise(raw: i128, src_frac: i32, dst: Format, q: Quant, o: Overflow) ->
         }
     }
     if shift > 0 && shift < 127 {
-        let s = shift as u32;
-        let floor = raw >> s;
-        let half_bit = 1i128 << (s - 1);
-        let inc = q.increment(
-            raw < 0,
-            floor & 1 == 1,
-            raw & half_bit != 0,
-            raw & (half_bit - 1) != 0,
-        );
-        let v = floor + i128::from(inc);
+        let v = round_shift(raw, shift as u32, q);
         if in_range(v) {
             return v;
         }
     }
     quantise_general(raw, src_frac, dst, q, o)
+}
+
+/// `r >> s` (1 <= s < bits) rounded by `q`, in any signed machine integer.
+#[inline]
+fn round_shift<T: num_traits::PrimInt + num_traits::Signed>(r: T, s: u32, q: Quant) -> T {
+    let (zero, one) = (T::zero(), T::one());
+    let floor = r >> s as usize;
+    let half_bit = one << (s - 1) as usize;
+    let inc = q.increment(
+        r < zero,
+        floor & one == one,
+        r & half_bit != zero,
+        r & (half_bit - one) != zero,
+    );
+    if inc {
+        floor + one
+    } else {
+        floor
+    }
 }
 
 #[cold]
