@@ -35,22 +35,28 @@ use crate::bump_params::{BumpParams, Filter, ROUND};
 use crate::fx::{quantise, Format, Overflow};
 use crate::kernel::{Dir, Module, Reg, Signal, Visitor};
 
+/// Signed machine integers the tangent datapath can be computed in: `i64` when the widths
+/// allow (decided once, at construction), `i128` otherwise. Same bits either way.
+trait Word: num_traits::PrimInt + num_traits::Signed + From<i64> + Into<i128> {}
+impl Word for i64 {}
+impl Word for i128 {}
+
 /// One level's exact results: `(dU, dV, fraction bits)`, `(H, fraction bits)`.
 #[inline]
-fn level(
+fn level<T: Word>(
     rgba: [i64; 4],
     tu: i64,
     tv: i64,
     f: u32,
     fb: u32,
     blinn: bool,
-) -> (i128, i128, u32, i128, u32) {
-    let [r, g, b, a] = rgba.map(i128::from);
+) -> (T, T, u32, T, u32) {
+    let [r, g, b, a] = rgba.map(<T as From<i64>>::from);
     if blinn {
         return (g - r, b - r, fb, r, fb);
     }
-    let (tu, tv) = (i128::from(tu), i128::from(tv));
-    let lerp = |x: i128, y: i128, t: i128| (x << f) + t * (y - x);
+    let (tu, tv) = (<T as From<i64>>::from(tu), <T as From<i64>>::from(tv));
+    let lerp = |x: T, y: T, t: T| (x << f as usize) + t * (y - x);
     let du = lerp(g - r, a - b, tv);
     let dv = lerp(b - r, a - g, tu);
     let h = lerp(lerp(r, g, tu), lerp(b, a, tu), tv);
@@ -65,6 +71,8 @@ pub struct Tangent {
     f: u32,
     fb: u32,
     sf: u32,
+    /// Every intermediate fits 62 bits: compute in `i64`.
+    narrow: bool,
     blinn: bool,
     trilinear: bool,
     tan: Format,
@@ -97,6 +105,8 @@ impl Tangent {
             f: p.blend_bits,
             fb: bl.frac() as u32,
             sf: p.scale_frac,
+            // |H| < 2^bw scaled by 2^(2F) and the scale; slopes by less.
+            narrow: !p.trilinear && bl.width() + 2 * p.blend_bits + p.scale_fmt().width() <= 61,
             blinn: p.filter == Filter::Blinn,
             trilinear: p.trilinear,
             tan: p.tangent_fmt(),
@@ -132,24 +142,44 @@ impl Tangent {
         lod: i64,
         scale: i64,
     ) -> (i64, i64, i64) {
+        if self.narrow {
+            self.compute_in::<i64>(rgba, tu, tv, tu1, tv1, lod, scale)
+        } else {
+            self.compute_in::<i128>(rgba, tu, tv, tu1, tv1, lod, scale)
+        }
+    }
+
+    #[allow(clippy::too_many_arguments)]
+    #[inline]
+    fn compute_in<T: Word>(
+        &self,
+        rgba: &[i64],
+        tu: i64,
+        tv: i64,
+        tu1: i64,
+        tv1: i64,
+        lod: i64,
+        scale: i64,
+    ) -> (i64, i64, i64) {
         let (f, fb) = (self.f, self.fb);
         let l0 = [rgba[0], rgba[1], rgba[2], rgba[3]];
-        let (mut du, mut dv, mut fd, mut h, mut fh) = level(l0, tu, tv, f, fb, self.blinn);
+        let (mut du, mut dv, mut fd, mut h, mut fh) = level::<T>(l0, tu, tv, f, fb, self.blinn);
         if self.trilinear {
             let l1 = [rgba[4], rgba[5], rgba[6], rgba[7]];
-            let (du1, dv1, _, h1, _) = level(l1, tu1, tv1, f, fb, self.blinn);
-            let lod = i128::from(lod);
+            let (du1, dv1, _, h1, _) = level::<T>(l1, tu1, tv1, f, fb, self.blinn);
+            let lod = <T as From<i64>>::from(lod);
+            let sh = f as usize;
             // Level 1's slopes are halved: same raw value, one more fraction bit.
-            let mix = |x0: i128, x1: i128| ((x0 << 1) << f) + lod * (x1 - (x0 << 1));
+            let mix = |x0: T, x1: T| ((x0 << 1) << sh) + lod * (x1 - (x0 << 1));
             du = mix(du, du1);
             dv = mix(dv, dv1);
             fd += 1 + f;
-            h = (h << f) + lod * (h1 - h);
+            h = (h << sh) + lod * (h1 - h);
             fh += f;
         }
-        let s = i128::from(scale);
-        let q = |x: i128, fr: u32, fmt: Format, o: Overflow| {
-            quantise(x * s, (fr + self.sf) as i32, fmt, ROUND, o) as i64
+        let s = <T as From<i64>>::from(scale);
+        let q = |x: T, fr: u32, fmt: Format, o: Overflow| {
+            quantise((x * s).into(), (fr + self.sf) as i32, fmt, ROUND, o) as i64
         };
         (
             q(du, fd, self.tan, Overflow::SaturateSymmetric),
