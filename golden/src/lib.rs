@@ -4,3 +4,4 @@
 
 pub mod blend_adjust;
 pub mod bump;
+pub mod mipmap;

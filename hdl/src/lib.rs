@@ -19,3 +19,7 @@ pub mod replicate;
 pub mod rsqrt;
 pub mod tangent;
 pub mod texel_fetch;
+
+// Real-time mipmap generation for interlaced video (Schilling & Knittel, section 12, FIG. 14).
+pub mod fifo;
+pub mod mipmap;

@@ -6,9 +6,12 @@ use hdl::blend_adjust::{BlendAdjust, BlendAdjustParams};
 use hdl::bump_params::BumpParams;
 use hdl::fx::{Format, Fx, Overflow, Quant};
 use hdl::kernel::{Sim, Trace};
+use hdl::mipmap::{MipmapGen, MipmapParams, Rounding, Scan};
 use hdl::normal_pipeline::NormalPipeline;
 use std::hint::black_box;
 use tb::maps::builtin;
+use tb::mipmap::synthetic_video;
+use verif::Seed;
 use waves::{TraceConfig, VcdTracer};
 
 const CYCLES: u64 = 4096;
@@ -149,5 +152,37 @@ fn normal_pipeline(c: &mut Criterion) {
     let _ = std::fs::remove_dir_all(&dir);
 }
 
-criterion_group!(benches, kernel, fixed_point, normal_pipeline);
+fn mipmap(c: &mut Criterion) {
+    let mut g = c.benchmark_group("mipmap");
+    g.sample_size(20);
+    for (w, h, scan) in [
+        (512u32, 512u32, Scan::InterlacedTop),
+        (1024, 1024, Scan::Progressive),
+    ] {
+        let p = MipmapParams {
+            width: w,
+            height: h,
+            scan,
+            rounding: Rounding::Round,
+        };
+        let frame = synthetic_video(w, h, 1, Seed(1)).remove(0);
+        g.throughput(Throughput::Elements(u64::from(w * h)));
+        g.bench_function(format!("texels_{w}x{h}_{scan:?}_untraced"), |b| {
+            let mut sim = Sim::new(MipmapGen::new("mip", p).unwrap());
+            b.iter(|| {
+                for (k, &t) in frame.iter().enumerate() {
+                    let d = &mut sim.dut;
+                    d.valid.set_bool(true);
+                    d.sof.set_bool(k == 0);
+                    d.texel.set_bits(u64::from(t));
+                    sim.step();
+                }
+                black_box(sim.dut.completed.len())
+            })
+        });
+    }
+    g.finish();
+}
+
+criterion_group!(benches, kernel, fixed_point, normal_pipeline, mipmap);
 criterion_main!(benches);

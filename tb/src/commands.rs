@@ -414,3 +414,108 @@ pub fn sweep_normals(map_name: &str, samples: usize, seed: Seed) -> Result<Strin
     }
     Ok(s)
 }
+
+/// Options of `texrtl mipmap`.
+pub struct MipmapArgs {
+    pub inputs: Vec<PathBuf>,
+    pub out: PathBuf,
+    pub scan: hdl::mipmap::Scan,
+    pub rounding: hdl::mipmap::Rounding,
+    pub vcd: Option<PathBuf>,
+}
+
+/// `texrtl mipmap`: every frame through the cycle-accurate generator; `DIR/levelK.pgm` (or
+/// `DIR/frameF/levelK.pgm` for several frames) and `DIR/stats.json`. Every input is checked
+/// before anything is written.
+pub fn mipmap(a: &MipmapArgs) -> Result<String, CmdError> {
+    if a.inputs.is_empty() {
+        return Err(CmdError::Input("mipmap: no --in frame".into()));
+    }
+    let mut frames = Vec::new();
+    let mut size = None;
+    for path in &a.inputs {
+        let img = pgm::read(path)?;
+        let p = hdl::mipmap::MipmapParams {
+            width: img.width,
+            height: img.height,
+            scan: a.scan,
+            rounding: a.rounding,
+        };
+        p.validate()
+            .map_err(|e| format!("{}: {e}", path.display()))?;
+        match size {
+            None => size = Some((img.width, img.height)),
+            Some(s) if s != (img.width, img.height) => {
+                return Err(CmdError::Input(format!(
+                    "{}: {}x{} differs from the first frame's {}x{}",
+                    path.display(),
+                    img.width,
+                    img.height,
+                    s.0,
+                    s.1
+                )))
+            }
+            _ => {}
+        }
+        frames.push(img.pixels);
+    }
+    if a.out.exists() && !a.out.is_dir() {
+        return Err(CmdError::Input(format!(
+            "{}: exists and is not a directory",
+            a.out.display()
+        )));
+    }
+    if let Some(v) = &a.vcd {
+        if v.is_dir() {
+            return Err(CmdError::Input(format!("{}: is a directory", v.display())));
+        }
+    }
+    let (w, h) = size.expect("at least one frame");
+    let p = hdl::mipmap::MipmapParams {
+        width: w,
+        height: h,
+        scan: a.scan,
+        rounding: a.rounding,
+    };
+    let o = crate::mipmap::run_mipmap(
+        p,
+        &frames,
+        a.vcd.clone().map(|v| (v, TraceConfig::default())),
+    )
+    .map_err(CmdError::Failed)?;
+    if o.error != 0 {
+        return Err(CmdError::Failed(format!(
+            "mipmap generator reported error code {}",
+            o.error
+        )));
+    }
+    std::fs::create_dir_all(&a.out)
+        .map_err(|e| CmdError::Input(format!("{}: {e}", a.out.display())))?;
+    let dims = p.levels();
+    for (f, levels) in o.frames.iter().enumerate() {
+        let dir = if frames.len() == 1 {
+            a.out.clone()
+        } else {
+            a.out.join(format!("frame{f}"))
+        };
+        std::fs::create_dir_all(&dir)
+            .map_err(|e| CmdError::Input(format!("{}: {e}", dir.display())))?;
+        for (k, texels) in levels.iter().enumerate() {
+            let path = dir.join(format!("level{k}.pgm"));
+            write_atomic(&path, &pgm::encode(dims[k].0, dims[k].1, texels))
+                .map_err(|e| CmdError::Input(format!("{}: {e}", path.display())))?;
+        }
+    }
+    let json = serde_json::to_vec_pretty(&o.stats).map_err(|e| CmdError::Failed(e.to_string()))?;
+    let stats = a.out.join("stats.json");
+    write_atomic(&stats, &json)
+        .map_err(|e| CmdError::Input(format!("{}: {e}", stats.display())))?;
+    Ok(format!(
+        "{} frame(s) of {w}x{h}: {} levels written to {}; {} cycles, mipmap complete {} cycles after the last texel",
+        frames.len(),
+        dims.len(),
+        a.out.display(),
+        o.stats.cycles,
+        o.stats.latency_after_last_texel
+    ))
+}

@@ -5,6 +5,7 @@
 pub mod blend_adjust;
 pub mod commands;
 pub mod maps;
+pub mod mipmap;
 pub mod normals;
 pub mod pgm;
 pub mod regress;

@@ -2,9 +2,10 @@
 
 use clap::{Args, Parser, Subcommand};
 use hdl::bump_params::{Border, Filter};
+use hdl::mipmap::{Rounding, Scan};
 use std::path::PathBuf;
 use std::process::ExitCode;
-use tb::commands::{self, parse_light, CmdError, NormalsArgs, RenderArgs, Widths};
+use tb::commands::{self, parse_light, CmdError, MipmapArgs, NormalsArgs, RenderArgs, Widths};
 use tb::regress::{regress, render, RegressConfig};
 use verif::Seed;
 use waves::TraceConfig;
@@ -31,6 +32,8 @@ enum Cmd {
     Normals(NormalsCli),
     /// Dot3-lit pictures: Blinn | B-spline (bit-exact) | golden | error heat map.
     Render(RenderCli),
+    /// Mipmaps of video frames through the cycle-accurate generator of FIG. 14.
+    Mipmap(MipmapCli),
     /// Error tables over bit widths, for choosing widths.
     #[command(subcommand)]
     Sweep(SweepCmd),
@@ -117,6 +120,32 @@ struct NormalsCli {
     lod: f64,
     #[command(flatten)]
     widths: WidthArgs,
+}
+
+#[derive(Args)]
+struct MipmapCli {
+    /// A frame: 8-bit PGM with power-of-two sides up to 1024; repeat for a sequence.
+    #[arg(long = "in", required = true)]
+    inputs: Vec<PathBuf>,
+    /// Output directory: levelK.pgm (frameF/levelK.pgm for several frames) and stats.json.
+    #[arg(long)]
+    out: PathBuf,
+    /// progressive, interlaced-top (even lines first) or interlaced-bottom.
+    #[arg(long, default_value = "progressive", value_parser = parse_scan)]
+    scan: Scan,
+    /// round ((a+b+c+d+2)>>2) or truncate (>>2).
+    #[arg(long, default_value = "round", value_parser = parse_rounding)]
+    rounding: Rounding,
+    /// Waveform of the run (with its .gtkw beside it).
+    #[arg(long)]
+    vcd: Option<PathBuf>,
+}
+
+fn parse_scan(s: &str) -> Result<Scan, String> {
+    s.parse()
+}
+fn parse_rounding(s: &str) -> Result<Rounding, String> {
+    s.parse()
 }
 
 #[derive(Args)]
@@ -271,6 +300,13 @@ fn main() -> ExitCode {
             scale: a.scale,
             zoom: a.zoom,
             widths: a.widths.widths(),
+        }),
+        Some(Cmd::Mipmap(a)) => commands::mipmap(&MipmapArgs {
+            inputs: a.inputs,
+            out: a.out,
+            scan: a.scan,
+            rounding: a.rounding,
+            vcd: a.vcd,
         }),
         Some(Cmd::Sweep(SweepCmd::Normals { map, samples, seed })) => {
             commands::sweep_normals(&map, samples, seed)

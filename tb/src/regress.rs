@@ -37,6 +37,12 @@ pub fn regress(cfg: &RegressConfig) -> Result<Vec<TbResult>, String> {
         cfg.trace.clone(),
     )?);
 
+    results.push(crate::mipmap::regress_suite(
+        cfg.seed.derive(816),
+        cfg.vcd.then(|| cfg.out.join("mipmap.vcd")),
+        cfg.trace.clone(),
+    )?);
+
     for r in &mut results {
         if let Some(vcd) = &r.vcd {
             match read_vcd(vcd).and_then(|rb| check_gtkw(vcd, &rb)) {

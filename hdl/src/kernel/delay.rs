@@ -90,7 +90,10 @@ impl Module for Delay {
         }
         // The oldest slot takes the newest values and becomes the youngest stage.
         self.ring[self.head * n..(self.head + 1) * n].copy_from_slice(&self.next);
-        self.head = (self.head + 1) % self.depth;
+        self.head += 1;
+        if self.head == self.depth {
+            self.head = 0;
+        }
     }
     fn visit(&self, v: &mut dyn Visitor) {
         v.enter(&self.name, self.kind());
