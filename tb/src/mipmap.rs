@@ -250,11 +250,14 @@ fn check_one(
                     st.max_abs_lsb
                 ));
             }
-            if worst.len() <= k {
-                worst.push((format!("level {k}"), 0.0, bound));
+            let name = format!("level {k} {}", if p.rounding == Rounding::Round { "round" } else { "truncate" });
+            match worst.iter_mut().find(|w| w.0 == name) {
+                Some(w) => {
+                    w.1 = w.1.max(st.max_abs_lsb);
+                    w.2 = w.2.max(bound);
+                }
+                None => worst.push((name, st.max_abs_lsb, bound)),
             }
-            worst[k].1 = worst[k].1.max(st.max_abs_lsb);
-            worst[k].2 = worst[k].2.max(bound);
             res.stats.merge(&st);
         }
     }
@@ -408,6 +411,7 @@ pub fn regress_suite(
             }
         }
     }
+    worst.sort_by(|a, b| a.0.cmp(&b.0));
     for (name, e, b) in &worst {
         res.notes.push(format!(
             "{name}: worst error {e:.3} LSB against the block average (bound {b})"
