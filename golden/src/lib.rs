@@ -5,3 +5,4 @@
 pub mod blend_adjust;
 pub mod bump;
 pub mod mipmap;
+pub mod rsqrt;

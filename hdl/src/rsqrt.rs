@@ -15,7 +15,7 @@
 //! (nearest, ties to even; all products exact before rounding). Error: a table entry is off by
 //! at most `e0 = 2^-(table_bits+1) + 2^-(Y+1)` relative; an iteration turns a relative error
 //! `e` into at most `1.5 e^2 + 0.5 e^3` plus its rounding (`2^-Y` and `2^-(Y+2)` scaled):
-//! `rsqrt_error_bound` gives the bound in ULPs, which the exhaustive test checks against the
+//! `golden::rsqrt::error_bound_ulps` gives the bound in ULPs, which the exhaustive test checks against the
 //! exact integer reference over every input.
 //!
 //! Pipeline: the table lookup is one register stage, each iteration one more: latency
@@ -106,21 +106,6 @@ pub fn rsqrt(table: &RsqrtTable, m: u64) -> u64 {
         y = nr_step(&table.p, m, y);
     }
     y
-}
-
-/// A bound on `|y - 1/sqrt(m)|` in ULPs of `2^-Y`, from the error analysis in the module
-/// docs (the exact value is at most 1, so relative error times `2^Y` bounds the ULPs).
-pub fn rsqrt_error_bound(p: &RsqrtParams) -> f64 {
-    let ulp = (-(p.y_frac as f64)).exp2();
-    // Table: half an interval of width 2^-(tb-1) at the steepest point (m = 1, slope 1/2 of
-    // the relative change), plus the entry's rounding.
-    let mut e = (-(p.table_bits as f64 + 1.0)).exp2() + 0.5 * ulp;
-    for _ in 0..p.iterations {
-        // Quadratic convergence, then rounding of t (half an ULP of 2^-(Y+2), times y/2 <= 1/2)
-        // and of y' (half an ULP), with y <= 1.
-        e = 1.5 * e * e + 0.5 * e * e * e + 0.25 * ulp * 0.5 + 0.5 * ulp;
-    }
-    e / ulp
 }
 
 const M_NAMES: [&str; 4] = ["m0_r", "m1_r", "m2_r", "m3_r"];

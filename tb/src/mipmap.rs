@@ -250,7 +250,14 @@ fn check_one(
                     st.max_abs_lsb
                 ));
             }
-            let name = format!("level {k} {}", if p.rounding == Rounding::Round { "round" } else { "truncate" });
+            let name = format!(
+                "level {k} {}",
+                if p.rounding == Rounding::Round {
+                    "round"
+                } else {
+                    "truncate"
+                }
+            );
             match worst.iter_mut().find(|w| w.0 == name) {
                 Some(w) => {
                     w.1 = w.1.max(st.max_abs_lsb);
