@@ -10,3 +10,4 @@ pub mod normals;
 pub mod pgm;
 pub mod regress;
 pub mod report;
+pub mod vectors;

@@ -34,6 +34,15 @@ enum Cmd {
     Render(RenderCli),
     /// Mipmaps of video frames through the cycle-accurate generator of FIG. 14.
     Mipmap(MipmapCli),
+    /// Export a unit's bit-accuracy vectors as $readmemh files for a Verilog testbench.
+    Vectors {
+        /// blend_adjust, normals or mipmap.
+        #[arg(long)]
+        unit: String,
+        /// Directory for <unit>_stimulus.hex and <unit>_expected.hex.
+        #[arg(long)]
+        out: PathBuf,
+    },
     /// Error tables over bit widths, for choosing widths.
     #[command(subcommand)]
     Sweep(SweepCmd),
@@ -206,6 +215,10 @@ struct RegressArgs {
     /// Clock period in picoseconds shown in the waveforms (even, >= 2).
     #[arg(long, default_value_t = 10_000)]
     period_ps: u64,
+    /// Rewrite the bit-accuracy vectors under golden/vectors/ after a deliberate change, and
+    /// print what changed.
+    #[arg(long)]
+    bless: bool,
 }
 
 fn parse_window(s: &str) -> Result<(u64, u64), String> {
@@ -231,6 +244,7 @@ fn run_regress(a: RegressArgs) -> ExitCode {
             a.out.display()
         ));
     }
+    let bless = a.bless;
     let cfg = RegressConfig {
         out: a.out,
         seed: a.seed,
@@ -253,6 +267,17 @@ fn run_regress(a: RegressArgs) -> ExitCode {
     match regress(&cfg) {
         Ok(results) => {
             print!("{}", render(&results, &cfg));
+            if bless {
+                match tb::vectors::bless(&tb::vectors::vectors_dir()) {
+                    Ok(changed) if changed.is_empty() => println!("vectors: unchanged"),
+                    Ok(changed) => {
+                        for c in changed {
+                            println!("vectors blessed: {c}");
+                        }
+                    }
+                    Err(e) => return fail(e),
+                }
+            }
             if results.iter().all(|r| r.passed) {
                 ExitCode::SUCCESS
             } else {
@@ -261,6 +286,26 @@ fn run_regress(a: RegressArgs) -> ExitCode {
         }
         Err(e) => fail(e),
     }
+}
+
+fn vectors_cmd(unit: &str, out: &std::path::Path) -> Result<String, CmdError> {
+    let v = tb::vectors::unit_vectors(unit).map_err(CmdError::Input)?;
+    if out.exists() && !out.is_dir() {
+        return Err(CmdError::Input(format!(
+            "{}: exists and is not a directory",
+            out.display()
+        )));
+    }
+    let files = v
+        .write_readmemh(out)
+        .map_err(|e| CmdError::Input(format!("{}: {e}", out.display())))?;
+    let names: Vec<String> = files.iter().map(|p| p.display().to_string()).collect();
+    Ok(format!(
+        "{} vectors of {}: {}",
+        v.rows.len(),
+        unit,
+        names.join(", ")
+    ))
 }
 
 fn main() -> ExitCode {
@@ -301,6 +346,7 @@ fn main() -> ExitCode {
             zoom: a.zoom,
             widths: a.widths.widths(),
         }),
+        Some(Cmd::Vectors { unit, out }) => vectors_cmd(&unit, &out),
         Some(Cmd::Mipmap(a)) => commands::mipmap(&MipmapArgs {
             inputs: a.inputs,
             out: a.out,

@@ -43,6 +43,26 @@ pub fn regress(cfg: &RegressConfig) -> Result<Vec<TbResult>, String> {
         cfg.trace.clone(),
     )?);
 
+    // Bit-accuracy vectors of this source tree, when it is there (not for an installed binary).
+    let dir = crate::vectors::vectors_dir();
+    if dir.is_dir() {
+        let mut r = TbResult::new(
+            "vectors",
+            "bit-accuracy regression vectors (golden/vectors/)",
+        );
+        r.coverage_percent = 100.0;
+        match crate::vectors::check(&dir) {
+            Ok(d) => {
+                r.transactions = crate::vectors::UNITS.len() as u64;
+                r.mismatches = d.len() as u64;
+                r.mismatch_log = d;
+            }
+            Err(e) => r.failures.push(e),
+        }
+        r.finish_with(false);
+        results.push(r);
+    }
+
     for r in &mut results {
         if let Some(vcd) = &r.vcd {
             match read_vcd(vcd).and_then(|rb| check_gtkw(vcd, &rb)) {

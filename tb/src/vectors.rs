@@ -1,0 +1,370 @@
+//! Bit-accuracy regression vectors: the bit-exact outputs of every unit for a fixed set of
+//! stimuli, kept under `golden/vectors/` (a hash of every output bit plus a few readable
+//! vectors), and their export as `$readmemh` files for Verilog testbenches.
+//!
+//! The stimuli do not depend on any seed: a change of a single output bit changes the hash,
+//! which fails `cargo test` (`tb/tests/vectors.rs`); `texrtl regress --bless` rewrites the files
+//! after a deliberate change and prints what changed.
+
+use crate::normals::{quantise, run_normals, NormalsRun, Sample};
+use hdl::blend_adjust::{BlendAdjust, BlendAdjustParams};
+use hdl::bump_params::{BumpParams, Filter};
+use hdl::kernel::Sim;
+use hdl::mipmap::{MipmapParams, Rounding, Scan};
+use serde::{Deserialize, Serialize};
+use std::fmt::Write;
+use std::path::{Path, PathBuf};
+
+/// A named field of a vector and its width in bits.
+#[derive(Clone, Debug, PartialEq, Eq, Serialize, Deserialize)]
+pub struct Field {
+    pub name: String,
+    pub width: u32,
+}
+
+/// Stimulus and expected outputs of one unit, one row per transaction.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub struct UnitVectors {
+    pub unit: String,
+    pub description: String,
+    pub inputs: Vec<Field>,
+    pub outputs: Vec<Field>,
+    /// Raw bit patterns (two's complement within each field's width).
+    pub rows: Vec<(Vec<u64>, Vec<u64>)>,
+}
+
+/// What `golden/vectors/<unit>.json` holds.
+#[derive(Clone, Debug, PartialEq, Eq, Serialize, Deserialize)]
+pub struct VectorFile {
+    pub unit: String,
+    pub description: String,
+    pub inputs: Vec<Field>,
+    pub outputs: Vec<Field>,
+    pub count: usize,
+    /// FNV-1a 64 over every field of every row, as hex.
+    pub hash: String,
+    /// The first rows, readable: `"inputs -> outputs"` in hex.
+    pub first: Vec<String>,
+}
+
+/// Units with vectors.
+pub const UNITS: [&str; 3] = ["blend_adjust", "normals", "mipmap"];
+
+fn f(name: &str, width: u32) -> Field {
+    Field {
+        name: name.into(),
+        width,
+    }
+}
+
+fn mask(v: i64, w: u32) -> u64 {
+    if w >= 64 {
+        v as u64
+    } else {
+        (v as u64) & ((1u64 << w) - 1)
+    }
+}
+
+/// The vectors of `unit` (one of [`UNITS`]).
+pub fn unit_vectors(unit: &str) -> Result<UnitVectors, String> {
+    match unit {
+        "blend_adjust" => Ok(blend_adjust()),
+        "normals" => normals(),
+        "mipmap" => mipmap(),
+        _ => Err(format!(
+            "unknown unit '{unit}' (one of {})",
+            UNITS.join(", ")
+        )),
+    }
+}
+
+fn blend_adjust() -> UnitVectors {
+    let p = BlendAdjustParams {
+        frac_bits: 8,
+        registered: false,
+    };
+    let mut sim = Sim::new(BlendAdjust::new("ba", p));
+    let mut rows = Vec::new();
+    for bypass in [0u64, 1] {
+        for u in 0..256u64 {
+            let v = (u * 0x9e5 + 7) & 0xff;
+            let d = &mut sim.dut;
+            d.i.u_in.set_bits(u);
+            d.i.v_in.set_bits(v);
+            d.i.bypass.set_bits(bypass);
+            sim.eval();
+            let o = &sim.dut.o;
+            rows.push((
+                vec![bypass, u, v],
+                vec![o.u0.bits(), o.u1.bits(), o.v0.bits(), o.v1.bits()],
+            ));
+            sim.tick();
+        }
+    }
+    UnitVectors {
+        unit: "blend_adjust".into(),
+        description:
+            "unit 153, F = 8, combinational: every u in both modes, v = (u * 0x9e5 + 7) mod 256"
+                .into(),
+        inputs: vec![f("bypass", 1), f("u_in", 8), f("v_in", 8)],
+        outputs: vec![f("u0", 9), f("u1", 9), f("v0", 9), f("v1", 9)],
+        rows,
+    }
+}
+
+fn normals() -> Result<UnitVectors, String> {
+    let mut rows = Vec::new();
+    let mut desc = Vec::new();
+    for (filter, map) in [
+        (Filter::BSpline, "noise"),
+        (Filter::Blinn, "smooth"),
+        (Filter::BSpline, "steps"),
+    ] {
+        let p = BumpParams {
+            filter,
+            ..BumpParams::default()
+        };
+        let m = crate::maps::builtin(map, 16, 16, p.texel_fmt())?;
+        let samples: Vec<Sample> = (0..128u32)
+            .map(|k| Sample {
+                u: f64::from(k * 37 % 4096) / 256.0 - 0.5,
+                v: f64::from(k * 91 % 4096) / 256.0,
+                scale: f64::from(1 + k % 5) * 0.75,
+                lod: 0.0,
+            })
+            .collect();
+        let o = run_normals(&NormalsRun {
+            name: "vectors".into(),
+            params: p,
+            map: m,
+            samples: samples.clone(),
+            idle_per_mille: 0,
+            vcd: None,
+            trace: Default::default(),
+            check_accuracy: false,
+            seed: verif::Seed(0),
+        })?;
+        let (pw, sw, nw, hw) = (
+            p.pos_fmt().width(),
+            p.scale_fmt().width(),
+            p.normal_fmt().width(),
+            p.height_out_fmt().width(),
+        );
+        for (s, n) in samples.iter().zip(&o.outputs) {
+            let r = quantise(&p, s)?;
+            rows.push((
+                vec![
+                    u64::from(filter == Filter::Blinn),
+                    mask(r.u, pw),
+                    mask(r.v, pw),
+                    r.scale & ((1 << sw) - 1),
+                ],
+                vec![
+                    mask(n.n[0], nw),
+                    mask(n.n[1], nw),
+                    mask(n.n[2], nw),
+                    n.height & ((1 << hw) - 1),
+                ],
+            ));
+        }
+        desc.push(format!("{filter} on {map}"));
+    }
+    let p = BumpParams::default();
+    Ok(UnitVectors {
+        unit: "normals".into(),
+        description: format!(
+            "FIG. 7 pipeline, default widths, 16x16 built-in maps, wrap: 128 samples each of {}",
+            desc.join(", ")
+        ),
+        inputs: vec![
+            f("blinn", 1),
+            f("u", p.pos_fmt().width()),
+            f("v", p.pos_fmt().width()),
+            f("scale", p.scale_fmt().width()),
+        ],
+        outputs: vec![
+            f("nx", p.normal_fmt().width()),
+            f("ny", p.normal_fmt().width()),
+            f("nz", p.normal_fmt().width()),
+            f("height", p.height_out_fmt().width()),
+        ],
+        rows,
+    })
+}
+
+fn mipmap() -> Result<UnitVectors, String> {
+    let mut rows = Vec::new();
+    for (scan, code) in [(Scan::InterlacedTop, 1u64), (Scan::Progressive, 0)] {
+        let p = MipmapParams {
+            width: 16,
+            height: 8,
+            scan,
+            rounding: Rounding::Round,
+        };
+        let frames = crate::mipmap::synthetic_video(16, 8, 1, verif::Seed(5));
+        let o = crate::mipmap::run_mipmap(p, &frames, None)?;
+        // One row per output texel: (scan, level, index) -> value; the frame itself is level 0.
+        for (k, level) in o.frames[0].iter().enumerate() {
+            for (i, &t) in level.iter().enumerate() {
+                rows.push((vec![code, k as u64, i as u64], vec![u64::from(t)]));
+            }
+        }
+    }
+    Ok(UnitVectors {
+        unit: "mipmap".into(),
+        description: "FIG. 14 generator, 16x8 synthetic frame (seed 5), round half up, interlaced top-first then progressive: every texel of every level".into(),
+        inputs: vec![f("interlaced", 1), f("level", 4), f("index", 8)],
+        outputs: vec![f("texel", 8)],
+        rows,
+    })
+}
+
+/// FNV-1a 64 over every field value (little-endian bytes).
+pub fn hash(v: &UnitVectors) -> String {
+    let mut h: u64 = 0xcbf2_9ce4_8422_2325;
+    for (i, o) in &v.rows {
+        for x in i.iter().chain(o) {
+            for b in x.to_le_bytes() {
+                h ^= u64::from(b);
+                h = h.wrapping_mul(0x0100_0000_01b3);
+            }
+        }
+    }
+    format!("{h:016x}")
+}
+
+fn hex_row(fields: &[Field], vals: &[u64]) -> String {
+    fields
+        .iter()
+        .zip(vals)
+        .map(|(f, v)| format!("{v:0w$x}", w = (f.width as usize).div_ceil(4)))
+        .collect::<Vec<_>>()
+        .join("_")
+}
+
+impl UnitVectors {
+    /// The file kept under `golden/vectors/`.
+    pub fn file(&self) -> VectorFile {
+        VectorFile {
+            unit: self.unit.clone(),
+            description: self.description.clone(),
+            inputs: self.inputs.clone(),
+            outputs: self.outputs.clone(),
+            count: self.rows.len(),
+            hash: hash(self),
+            first: self
+                .rows
+                .iter()
+                .take(8)
+                .map(|(i, o)| {
+                    format!(
+                        "{} -> {}",
+                        hex_row(&self.inputs, i),
+                        hex_row(&self.outputs, o)
+                    )
+                })
+                .collect(),
+        }
+    }
+
+    /// `$readmemh` files: `<unit>_stimulus.hex` and `<unit>_expected.hex`, each line one
+    /// vector with its fields concatenated MSB first (the header names fields and widths).
+    pub fn write_readmemh(&self, dir: &Path) -> std::io::Result<Vec<PathBuf>> {
+        std::fs::create_dir_all(dir)?;
+        let mut out = Vec::new();
+        for (kind, fields, pick) in [
+            ("stimulus", &self.inputs, 0usize),
+            ("expected", &self.outputs, 1),
+        ] {
+            let total: u32 = fields.iter().map(|f| f.width).sum();
+            let mut s = String::new();
+            let _ = writeln!(s, "// texrtl {} {kind}: {}", self.unit, self.description);
+            let layout: Vec<String> = fields
+                .iter()
+                .map(|f| format!("{}[{}:0]", f.name, f.width - 1))
+                .collect();
+            let _ = writeln!(
+                s,
+                "// {} vectors of {total} bits, fields MSB first: {}",
+                self.rows.len(),
+                layout.join(" ")
+            );
+            for row in &self.rows {
+                let vals = if pick == 0 { &row.0 } else { &row.1 };
+                let mut word: u128 = 0;
+                for (f, v) in fields.iter().zip(vals) {
+                    word = (word << f.width) | u128::from(*v);
+                }
+                let _ = writeln!(s, "{word:0w$x}", w = (total as usize).div_ceil(4));
+            }
+            let path = dir.join(format!("{}_{kind}.hex", self.unit));
+            crate::report::write_atomic(&path, s.as_bytes())?;
+            out.push(path);
+        }
+        Ok(out)
+    }
+}
+
+/// `golden/vectors/` of this source tree.
+pub fn vectors_dir() -> PathBuf {
+    Path::new(env!("CARGO_MANIFEST_DIR")).join("../golden/vectors")
+}
+
+/// Compares every unit's vectors with the kept files; returns one line per difference.
+pub fn check(dir: &Path) -> Result<Vec<String>, String> {
+    let mut diffs = Vec::new();
+    for u in UNITS {
+        let now = unit_vectors(u)?.file();
+        let path = dir.join(format!("{u}.json"));
+        let kept: VectorFile = match std::fs::read(&path) {
+            Ok(b) => serde_json::from_slice(&b).map_err(|e| format!("{}: {e}", path.display()))?,
+            Err(e) => {
+                diffs.push(format!("{}: {e}", path.display()));
+                continue;
+            }
+        };
+        if kept != now {
+            diffs.push(describe(&kept, &now));
+        }
+    }
+    Ok(diffs)
+}
+
+fn describe(kept: &VectorFile, now: &VectorFile) -> String {
+    let mut s = format!(
+        "{}: hash {} -> {} ({} -> {} vectors)",
+        now.unit, kept.hash, now.hash, kept.count, now.count
+    );
+    if let Some((a, b)) = kept.first.iter().zip(&now.first).find(|(a, b)| a != b) {
+        let _ = write!(s, "; first readable change: {a} => {b}");
+    } else if kept.hash != now.hash {
+        s.push_str("; the first readable vectors are unchanged: the change is further in");
+    }
+    s
+}
+
+/// Rewrites the kept files; returns a line per unit that changed.
+pub fn bless(dir: &Path) -> Result<Vec<String>, String> {
+    std::fs::create_dir_all(dir).map_err(|e| format!("{}: {e}", dir.display()))?;
+    let mut changed = Vec::new();
+    for u in UNITS {
+        let now = unit_vectors(u)?.file();
+        let path = dir.join(format!("{u}.json"));
+        let kept: Option<VectorFile> = std::fs::read(&path)
+            .ok()
+            .and_then(|b| serde_json::from_slice(&b).ok());
+        match &kept {
+            Some(k) if *k == now => continue,
+            Some(k) => changed.push(describe(k, &now)),
+            None => changed.push(format!(
+                "{u}: new, {} vectors, hash {}",
+                now.count, now.hash
+            )),
+        }
+        let mut json = serde_json::to_vec_pretty(&now).map_err(|e| e.to_string())?;
+        json.push(b'\n');
+        crate::report::write_atomic(&path, &json)
+            .map_err(|e| format!("{}: {e}", path.display()))?;
+    }
+    Ok(changed)
+}

@@ -1,0 +1,82 @@
+//! Bit-accuracy regression: the bit-exact outputs of every unit for fixed stimuli must equal
+//! those kept in golden/vectors/. After a deliberate change, `texrtl regress --bless` rewrites
+//! them and prints what changed.
+
+use tb::vectors::{check, hash, unit_vectors, vectors_dir, UNITS};
+
+#[test]
+fn outputs_match_the_kept_vectors() {
+    let d = check(&vectors_dir()).unwrap();
+    assert!(
+        d.is_empty(),
+        "bit-accuracy vectors changed (run `texrtl regress --bless` if deliberate):\n{}",
+        d.join("\n")
+    );
+}
+
+#[test]
+fn a_single_flipped_bit_changes_the_hash() {
+    for u in UNITS {
+        let v = unit_vectors(u).unwrap();
+        let h = hash(&v);
+        for (r, c, bit) in [(0, 0, 0), (v.rows.len() - 1, v.rows[0].1.len() - 1, 3)] {
+            let mut w = v.clone();
+            w.rows[r].1[c] ^= 1 << bit;
+            assert_ne!(
+                hash(&w),
+                h,
+                "{u}: flipping output {c} bit {bit} of row {r} went unnoticed"
+            );
+        }
+    }
+}
+
+#[test]
+fn readmemh_export() {
+    let d = std::env::temp_dir().join(format!("texrtl-vec-{}", std::process::id()));
+    let v = unit_vectors("blend_adjust").unwrap();
+    let files = v.write_readmemh(&d).unwrap();
+    let text = std::fs::read_to_string(&files[1]).unwrap();
+    let lines: Vec<&str> = text.lines().filter(|l| !l.starts_with("//")).collect();
+    assert_eq!(lines.len(), 512);
+    // u = 1, adjust mode: U0 = 0x101, U1 = 0x001 in 9 bits each, packed u0 u1 v0 v1.
+    let (u0, u1) = (v.rows[1].1[0], v.rows[1].1[1]);
+    assert_eq!((u0, u1), (0x101, 0x001));
+    let word = u128::from_str_radix(lines[1], 16).unwrap();
+    assert_eq!(word >> 27, 0x101);
+    assert_eq!((word >> 18) & 0x1ff, 0x001);
+    assert!(text
+        .lines()
+        .nth(1)
+        .unwrap()
+        .contains("u0[8:0] u1[8:0] v0[8:0] v1[8:0]"));
+    assert!(unit_vectors("nope").is_err());
+}
+
+#[test]
+fn bless_writes_and_reports_changes() {
+    let d = std::env::temp_dir().join(format!("texrtl-bless-{}", std::process::id()));
+    let _ = std::fs::remove_dir_all(&d);
+    let first = tb::vectors::bless(&d).unwrap();
+    assert_eq!(first.len(), UNITS.len(), "all new: {first:?}");
+    assert!(check(&d).unwrap().is_empty());
+    assert!(
+        tb::vectors::bless(&d).unwrap().is_empty(),
+        "nothing changed"
+    );
+    // Tamper with a kept hash: check reports it, bless restores it and says what changed.
+    let p = d.join("mipmap.json");
+    let text = std::fs::read_to_string(&p).unwrap();
+    let h = hash(&unit_vectors("mipmap").unwrap());
+    std::fs::write(&p, text.replace(&h, "0000000000000000")).unwrap();
+    let diffs = check(&d).unwrap();
+    assert_eq!(diffs.len(), 1);
+    assert!(
+        diffs[0].starts_with("mipmap: hash 0000000000000000 ->"),
+        "{}",
+        diffs[0]
+    );
+    let changed = tb::vectors::bless(&d).unwrap();
+    assert_eq!(changed.len(), 1);
+    assert!(check(&d).unwrap().is_empty());
+}
