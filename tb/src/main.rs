@@ -7,7 +7,7 @@ use std::path::PathBuf;
 use std::process::ExitCode;
 use tb::commands::{self, parse_light, CmdError, MipmapArgs, NormalsArgs, RenderArgs, Widths};
 use tb::regress::{regress, render, RegressConfig};
-use verif::Seed;
+use verif::{Seed, Shard};
 use waves::TraceConfig;
 
 #[derive(Parser)]
@@ -34,6 +34,15 @@ enum Cmd {
     Render(RenderCli),
     /// Mipmaps of video frames through the cycle-accurate generator of FIG. 14.
     Mipmap(MipmapCli),
+    /// Combine the summary.json files of all shards of a run into one.
+    Merge {
+        /// Where to write the merged summary.json.
+        #[arg(long)]
+        out: PathBuf,
+        /// The shards' summary.json files.
+        #[arg(required = true)]
+        summaries: Vec<PathBuf>,
+    },
     /// Export a unit's bit-accuracy vectors as $readmemh files for a Verilog testbench.
     Vectors {
         /// blend_adjust, normals or mipmap.
@@ -219,6 +228,13 @@ struct RegressArgs {
     /// print what changed.
     #[arg(long)]
     bless: bool,
+    /// Run only shard I of N (configurations dealt round-robin; merge the summaries with
+    /// `texrtl merge`).
+    #[arg(long, value_parser = Shard::parse, default_value = "1/1")]
+    shard: Shard,
+    /// Random transactions per configuration (default: each testbench's own).
+    #[arg(long)]
+    count: Option<usize>,
 }
 
 fn parse_window(s: &str) -> Result<(u64, u64), String> {
@@ -229,6 +245,12 @@ fn parse_window(s: &str) -> Result<(u64, u64), String> {
         return Err(format!("window {a}..{b} is empty"));
     }
     Ok((a, b))
+}
+
+/// Writes to stdout; a closed pipe (`texrtl | head`) is not an error worth a panic.
+fn say(s: &str) {
+    use std::io::Write;
+    let _ = std::io::stdout().lock().write_all(s.as_bytes());
 }
 
 /// Bad input: one line, exit status 2.
@@ -256,6 +278,8 @@ fn run_regress(a: RegressArgs) -> ExitCode {
             window: a.trace_window,
             companions: true,
         },
+        shard: a.shard,
+        count: a.count,
     };
     if let Err(e) = cfg.trace.validate() {
         return fail(format!("--period-ps/--trace-window: {e}"));
@@ -266,13 +290,13 @@ fn run_regress(a: RegressArgs) -> ExitCode {
     );
     match regress(&cfg) {
         Ok(results) => {
-            print!("{}", render(&results, &cfg));
+            say(&render(&results, &cfg));
             if bless {
                 match tb::vectors::bless(&tb::vectors::vectors_dir()) {
-                    Ok(changed) if changed.is_empty() => println!("vectors: unchanged"),
+                    Ok(changed) if changed.is_empty() => say("vectors: unchanged\n"),
                     Ok(changed) => {
                         for c in changed {
-                            println!("vectors blessed: {c}");
+                            say(&format!("vectors blessed: {c}\n"));
                         }
                     }
                     Err(e) => return fail(e),
@@ -285,6 +309,31 @@ fn run_regress(a: RegressArgs) -> ExitCode {
             }
         }
         Err(e) => fail(e),
+    }
+}
+
+fn merge_cmd(out: &std::path::Path, paths: &[PathBuf]) -> Result<String, CmdError> {
+    let m = tb::regress::merge(paths).map_err(CmdError::Input)?;
+    if out.is_dir() {
+        return Err(CmdError::Input(format!(
+            "{}: is a directory",
+            out.display()
+        )));
+    }
+    let json = serde_json::to_vec_pretty(&m).map_err(|e| CmdError::Failed(e.to_string()))?;
+    tb::report::write_atomic(out, &json)
+        .map_err(|e| CmdError::Input(format!("{}: {e}", out.display())))?;
+    let mut s = tb::report::table(&m.testbenches);
+    s.push_str(&format!(
+        "merged {} shards into {}",
+        paths.len(),
+        out.display()
+    ));
+    if m.passed {
+        Ok(s)
+    } else {
+        say(&format!("{s}\n"));
+        Err(CmdError::Failed("merged run failed".into()))
     }
 }
 
@@ -347,6 +396,7 @@ fn main() -> ExitCode {
             widths: a.widths.widths(),
         }),
         Some(Cmd::Vectors { unit, out }) => vectors_cmd(&unit, &out),
+        Some(Cmd::Merge { out, summaries }) => merge_cmd(&out, &summaries),
         Some(Cmd::Mipmap(a)) => commands::mipmap(&MipmapArgs {
             inputs: a.inputs,
             out: a.out,
@@ -360,7 +410,7 @@ fn main() -> ExitCode {
     };
     match r {
         Ok(msg) => {
-            println!("{msg}");
+            say(&format!("{msg}\n"));
             ExitCode::SUCCESS
         }
         Err(CmdError::Input(e)) => fail(e),

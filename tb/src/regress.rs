@@ -15,6 +15,10 @@ pub struct RegressConfig {
     /// Write a VCD and `.gtkw` per testbench.
     pub vcd: bool,
     pub trace: TraceConfig,
+    /// This run's share of the configurations.
+    pub shard: verif::Shard,
+    /// Random transactions per configuration (`None`: each testbench's default).
+    pub count: Option<usize>,
 }
 
 /// Runs every testbench, checks every waveform it wrote (read back with wellen, `.gtkw`
@@ -28,6 +32,8 @@ pub fn regress(cfg: &RegressConfig) -> Result<Vec<TbResult>, String> {
         seed: cfg.seed.derive(153),
         vcd: cfg.vcd.then(|| cfg.out.join("blend_adjust.vcd")),
         trace: cfg.trace.clone(),
+        shard: cfg.shard,
+        random_per_width: cfg.count.unwrap_or(BaConfig::default().random_per_width),
         ..BaConfig::default()
     };
     results.push(blend_adjust::run_tb(&ba)?);
@@ -35,17 +41,20 @@ pub fn regress(cfg: &RegressConfig) -> Result<Vec<TbResult>, String> {
         cfg.seed.derive(7),
         cfg.vcd.then(|| cfg.out.join("normals.vcd")),
         cfg.trace.clone(),
+        cfg.shard,
+        cfg.count,
     )?);
-
     results.push(crate::mipmap::regress_suite(
         cfg.seed.derive(816),
         cfg.vcd.then(|| cfg.out.join("mipmap.vcd")),
         cfg.trace.clone(),
+        cfg.shard,
     )?);
 
-    // Bit-accuracy vectors of this source tree, when it is there (not for an installed binary).
+    // Bit-accuracy vectors of this source tree, when it is there (not for an installed binary);
+    // checked by the first shard.
     let dir = crate::vectors::vectors_dir();
-    if dir.is_dir() {
+    if dir.is_dir() && cfg.shard.index == 1 {
         let mut r = TbResult::new(
             "vectors",
             "bit-accuracy regression vectors (golden/vectors/)",
@@ -76,10 +85,11 @@ pub fn regress(cfg: &RegressConfig) -> Result<Vec<TbResult>, String> {
     }
     let passed = results.iter().all(|r| r.passed);
     let summary = Summary {
-        texrtl: env!("CARGO_PKG_VERSION"),
+        texrtl: env!("CARGO_PKG_VERSION").to_string(),
         seed: cfg.seed.to_string(),
+        shard: (!cfg.shard.is_all()).then(|| cfg.shard.to_string()),
         passed,
-        testbenches: &results,
+        testbenches: results.clone(),
     };
     let json = serde_json::to_vec_pretty(&summary).map_err(|e| e.to_string())?;
     let path = cfg.out.join("summary.json");
@@ -100,4 +110,75 @@ pub fn render(results: &[TbResult], cfg: &RegressConfig) -> String {
         cfg.out.display()
     ));
     s
+}
+
+/// `texrtl merge`: combines the `summary.json` of every shard of one run into one: counts and
+/// error statistics add up, coverage is merged bin by bin (a hole fails only if no shard hit
+/// it). Errors name the file and the problem.
+pub fn merge(paths: &[PathBuf]) -> Result<Summary, String> {
+    let mut shards: Vec<(PathBuf, Summary)> = Vec::new();
+    for p in paths {
+        let b = std::fs::read(p).map_err(|e| format!("{}: {e}", p.display()))?;
+        let s: Summary = serde_json::from_slice(&b)
+            .map_err(|e| format!("{}: not a texrtl summary.json: {e}", p.display()))?;
+        shards.push((p.clone(), s));
+    }
+    let (first_path, first) = shards.first().ok_or("merge: no summary.json given")?;
+    let parse = |p: &PathBuf, s: &Summary| -> Result<verif::Shard, String> {
+        match &s.shard {
+            Some(x) => verif::Shard::parse(x).map_err(|e| format!("{}: {e}", p.display())),
+            None => Err(format!(
+                "{}: not a shard (run with --shard I/N)",
+                p.display()
+            )),
+        }
+    };
+    let n = parse(first_path, first)?.count;
+    let mut seen = vec![false; n as usize];
+    for (p, s) in &shards {
+        let sh = parse(p, s)?;
+        if s.seed != first.seed || sh.count != n {
+            return Err(format!(
+                "{}: shard {sh} of seed {} does not belong with {}/{n} of seed {}",
+                p.display(),
+                s.seed,
+                1,
+                first.seed
+            ));
+        }
+        if std::mem::replace(&mut seen[sh.index as usize - 1], true) {
+            return Err(format!("{}: shard {sh} given twice", p.display()));
+        }
+    }
+    if let Some(i) = seen.iter().position(|s| !s) {
+        return Err(format!("merge: shard {}/{n} is missing", i + 1));
+    }
+    let mut merged: Vec<TbResult> = Vec::new();
+    for (_, s) in &shards {
+        for r in &s.testbenches {
+            match merged.iter_mut().find(|m| m.name == r.name) {
+                Some(m) => m.absorb(r),
+                None => {
+                    let mut m = r.clone();
+                    m.failures.retain(|f| !f.starts_with("coverage holes"));
+                    merged.push(m);
+                }
+            }
+        }
+    }
+    for m in &mut merged {
+        if let Some(c) = m.coverage.take() {
+            m.set_coverage(c);
+        }
+        m.failures.retain(|f| !f.starts_with("coverage holes"));
+        let holes = m.coverage.is_some();
+        m.finish_with(holes);
+    }
+    Ok(Summary {
+        texrtl: first.texrtl.clone(),
+        seed: first.seed.clone(),
+        shard: None,
+        passed: merged.iter().all(|m| m.passed),
+        testbenches: merged,
+    })
 }

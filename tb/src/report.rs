@@ -1,12 +1,12 @@
 //! Results of testbenches, the summary table and `summary.json`.
 
-use serde::Serialize;
+use serde::{Deserialize, Serialize};
 use std::fmt::Write;
 use std::path::{Path, PathBuf};
 use verif::ErrorStats;
 
 /// What one testbench found.
-#[derive(Clone, Debug, Serialize)]
+#[derive(Clone, Debug, Serialize, Deserialize)]
 pub struct TbResult {
     pub name: String,
     /// The hardware unit and where the source document describes it.
@@ -20,7 +20,7 @@ pub struct TbResult {
     pub failures: Vec<String>,
     pub coverage_percent: f64,
     pub unhit: Vec<String>,
-    #[serde(skip)]
+    #[serde(skip, default)]
     pub coverage_report: String,
     /// Error against the golden model, in output LSBs.
     pub stats: ErrorStats,
@@ -29,6 +29,8 @@ pub struct TbResult {
     pub notes: Vec<String>,
     pub seed: Option<String>,
     pub vcd: Option<PathBuf>,
+    /// The coverage model with its hits, so shards can be merged.
+    pub coverage: Option<verif::Coverage>,
     pub passed: bool,
 }
 
@@ -50,6 +52,7 @@ impl TbResult {
             notes: Vec::new(),
             seed: None,
             vcd: None,
+            coverage: None,
             passed: false,
         }
     }
@@ -115,13 +118,52 @@ pub fn table(results: &[TbResult]) -> String {
     s
 }
 
-/// `summary.json`: every result, the seed and the tool version.
-#[derive(Serialize)]
-pub struct Summary<'a> {
-    pub texrtl: &'static str,
+/// `summary.json`: every result, the seed, the shard and the tool version.
+#[derive(Serialize, Deserialize)]
+pub struct Summary {
+    pub texrtl: String,
     pub seed: String,
+    /// `I/N` when the run was one shard of N.
+    pub shard: Option<String>,
     pub passed: bool,
-    pub testbenches: &'a [TbResult],
+    pub testbenches: Vec<TbResult>,
+}
+
+impl TbResult {
+    /// Sets coverage figures from a model (kept for merging shards).
+    pub fn set_coverage(&mut self, cov: verif::Coverage) {
+        self.coverage_percent = cov.percent();
+        self.unhit = cov.unhit();
+        self.coverage_report = cov.report();
+        self.coverage = Some(cov);
+    }
+
+    /// Adds another shard's result of the same testbench.
+    pub fn absorb(&mut self, o: &TbResult) {
+        self.transactions += o.transactions;
+        self.cycles += o.cycles;
+        self.mismatches += o.mismatches;
+        self.mismatch_log.extend(o.mismatch_log.iter().cloned());
+        self.mismatch_log.truncate(20);
+        self.failures.extend(
+            o.failures
+                .iter()
+                .filter(|f| !f.starts_with("coverage holes"))
+                .cloned(),
+        );
+        self.stats.merge(&o.stats);
+        self.latency = match (self.latency, o.latency) {
+            (Some(a), Some(b)) => Some(a.max(b)),
+            (a, b) => a.or(b),
+        };
+        self.notes.extend(o.notes.iter().cloned());
+        self.vcd = self.vcd.take().or_else(|| o.vcd.clone());
+        match (&mut self.coverage, &o.coverage) {
+            (Some(a), Some(b)) => a.merge(b),
+            (None, Some(b)) => self.coverage = Some(b.clone()),
+            _ => {}
+        }
+    }
 }
 
 /// Writes `contents` to `path` through a temporary file, so no partial file is ever left.

@@ -280,3 +280,89 @@ fn normals_bad_input_is_one_line_exit_2_and_no_output() {
     assert_eq!(o.status.code(), Some(2));
     assert!(!d.join("r.png").exists());
 }
+
+#[test]
+fn shards_merge_into_the_whole_run() {
+    let d = tmp("shards");
+    let run = |args: &[&str], out: &Path| {
+        let mut a = vec![
+            "regress",
+            "--no-vcd",
+            "--count",
+            "40",
+            "--out",
+            out.to_str().unwrap(),
+        ];
+        a.extend(args);
+        let o = texrtl(&a);
+        assert!(
+            o.status.success(),
+            "{args:?}: {}",
+            String::from_utf8_lossy(&o.stderr)
+        );
+        let s: serde_json::Value =
+            serde_json::from_slice(&std::fs::read(out.join("summary.json")).unwrap()).unwrap();
+        s
+    };
+    let full = run(&[], &d.join("full"));
+    let s1 = d.join("s1");
+    let s2 = d.join("s2");
+    run(&["--shard", "1/2"], &s1);
+    run(&["--shard", "2/2"], &s2);
+    let merged = d.join("merged.json");
+    let o = texrtl(&[
+        "merge",
+        "--out",
+        merged.to_str().unwrap(),
+        s1.join("summary.json").to_str().unwrap(),
+        s2.join("summary.json").to_str().unwrap(),
+    ]);
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    let m: serde_json::Value = serde_json::from_slice(&std::fs::read(&merged).unwrap()).unwrap();
+    assert_eq!(m["passed"], true);
+    for (a, b) in full["testbenches"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .zip(m["testbenches"].as_array().unwrap())
+    {
+        assert_eq!(a["name"], b["name"]);
+        for k in ["transactions", "cycles", "mismatches", "coverage_percent"] {
+            assert_eq!(a[k], b[k], "{} {k}", a["name"]);
+        }
+        assert_eq!(
+            a["stats"]["max_abs_lsb"], b["stats"]["max_abs_lsb"],
+            "{}",
+            a["name"]
+        );
+    }
+    // One shard alone is not a whole run; garbage is refused.
+    let o = texrtl(&[
+        "merge",
+        "--out",
+        merged.to_str().unwrap(),
+        s1.join("summary.json").to_str().unwrap(),
+    ]);
+    assert_eq!(o.status.code(), Some(2));
+    assert!(String::from_utf8_lossy(&o.stderr).contains("shard 2/2 is missing"));
+    let junk = d.join("junk.json");
+    std::fs::write(&junk, "{").unwrap();
+    let o = texrtl(&[
+        "merge",
+        "--out",
+        merged.to_str().unwrap(),
+        junk.to_str().unwrap(),
+    ]);
+    assert_eq!(o.status.code(), Some(2));
+    assert_eq!(
+        String::from_utf8_lossy(&o.stderr)
+            .trim_end()
+            .lines()
+            .count(),
+        1
+    );
+    assert_eq!(
+        texrtl(&["regress", "--shard", "3/2"]).status.code(),
+        Some(2)
+    );
+}

@@ -1,11 +1,11 @@
 //! Functional coverage: coverpoints with bins, crosses of two coverpoints, and a report that
 //! lists every bin never hit.
 
-use serde::Serialize;
+use serde::{Deserialize, Serialize};
 use std::fmt::Write;
 
 /// A bin: an inclusive range of sampled values, with a name and a hit count.
-#[derive(Clone, Debug, Serialize)]
+#[derive(Clone, Debug, Serialize, Deserialize)]
 pub struct Bin {
     pub name: String,
     pub lo: i64,
@@ -14,7 +14,7 @@ pub struct Bin {
 }
 
 /// A coverpoint: named bins over one sampled value.
-#[derive(Clone, Debug, Serialize)]
+#[derive(Clone, Debug, Serialize, Deserialize)]
 pub struct Coverpoint {
     pub name: String,
     pub bins: Vec<Bin>,
@@ -83,7 +83,7 @@ impl Coverpoint {
 }
 
 /// The cross of two coverpoints: one bin per pair of their bins.
-#[derive(Clone, Debug, Serialize)]
+#[derive(Clone, Debug, Serialize, Deserialize)]
 pub struct Cross {
     pub name: String,
     pub a: usize,
@@ -93,7 +93,7 @@ pub struct Cross {
 }
 
 /// A coverage model: coverpoints and crosses, sampled together.
-#[derive(Clone, Debug, Default, Serialize)]
+#[derive(Clone, Debug, Default, Serialize, Deserialize)]
 pub struct Coverage {
     pub points: Vec<Coverpoint>,
     pub crosses: Vec<Cross>,

@@ -18,7 +18,7 @@ mod scoreboard;
 mod stats;
 
 pub use coverage::{Coverage, Coverpoint, Cross};
-pub use random::{seeded_runner, seeded_stimulus, Seed, Stimulus, SEED_ENV};
+pub use random::{seeded_runner, seeded_stimulus, Seed, Shard, Stimulus, SEED_ENV};
 pub use run::{run, Driver, Event, Monitor, Pacing, RunStats, Timeout, Watchdog};
 pub use scoreboard::{Mismatch, Outcome, Scoreboard};
 pub use stats::ErrorStats;

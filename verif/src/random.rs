@@ -85,6 +85,53 @@ pub fn seeded_runner(test: &str, cases: u32) -> TestRunner {
     TestRunner::new_with_rng(cfg, seed.rng())
 }
 
+/// One of `count` shards of a regression (`index` from 1): configurations are dealt out
+/// round-robin, so the shards together run exactly what one unsharded run does, each
+/// configuration with the same seed.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub struct Shard {
+    pub index: u32,
+    pub count: u32,
+}
+
+impl Default for Shard {
+    fn default() -> Self {
+        Shard { index: 1, count: 1 }
+    }
+}
+
+impl std::fmt::Display for Shard {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        write!(f, "{}/{}", self.index, self.count)
+    }
+}
+
+impl Shard {
+    /// Parses `I/N` with `1 <= I <= N`.
+    pub fn parse(s: &str) -> Result<Shard, String> {
+        let bad = || format!("'{s}' is not a shard I/N with 1 <= I <= N");
+        let (i, n) = s.split_once('/').ok_or_else(bad)?;
+        let (index, count): (u32, u32) = (
+            i.trim().parse().map_err(|_| bad())?,
+            n.trim().parse().map_err(|_| bad())?,
+        );
+        if count == 0 || index == 0 || index > count {
+            return Err(bad());
+        }
+        Ok(Shard { index, count })
+    }
+
+    /// Whether configuration number `c` (from 0) belongs to this shard.
+    pub fn owns(&self, c: u64) -> bool {
+        c % u64::from(self.count) == u64::from(self.index - 1)
+    }
+
+    /// The whole run (one shard of one).
+    pub fn is_all(&self) -> bool {
+        self.count == 1
+    }
+}
+
 /// A [`Stimulus`] seeded from `TEXRTL_SEED` or a fresh seed, printed like [`seeded_runner`]'s.
 pub fn seeded_stimulus(test: &str) -> Stimulus {
     let seed = Seed::from_env_or_fresh().unwrap_or_else(|e| panic!("{e}"));
@@ -138,6 +185,20 @@ mod tests {
         assert_eq!(a, b);
         assert_ne!(a, c);
         assert!(a.iter().all(|v| *v < 1000));
+    }
+
+    #[test]
+    fn shards_partition() {
+        let shards: Vec<Shard> = (1..=3)
+            .map(|i| Shard::parse(&format!("{i}/3")).unwrap())
+            .collect();
+        for c in 0..30 {
+            assert_eq!(shards.iter().filter(|s| s.owns(c)).count(), 1);
+        }
+        for bad in ["0/2", "3/2", "1/0", "1", "a/b"] {
+            assert!(Shard::parse(bad).is_err(), "{bad}");
+        }
+        assert_eq!(Shard::parse("2/5").unwrap().to_string(), "2/5");
     }
 
     #[test]

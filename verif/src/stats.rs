@@ -1,6 +1,6 @@
 //! Error statistics of a DUT against its golden model, in LSBs of the DUT's output format.
 
-use serde::Serialize;
+use serde::{Deserialize, Serialize};
 use std::collections::BTreeMap;
 
 /// Error of fixed-point results against real-valued golden results, in output LSBs.
@@ -9,7 +9,7 @@ use std::collections::BTreeMap;
 /// error, counts of exact results (error 0) and of results within +-1 LSB, a histogram of
 /// the error rounded to the nearest whole LSB, and the SQNR in dB (golden power over error
 /// power).
-#[derive(Clone, Debug, Default, Serialize)]
+#[derive(Clone, Debug, Default, Serialize, Deserialize)]
 pub struct ErrorStats {
     pub count: u64,
     pub max_abs_lsb: f64,
