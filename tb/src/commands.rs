@@ -260,25 +260,42 @@ pub fn render(a: &RenderArgs) -> Result<String, CmdError> {
             a.out.display()
         )));
     }
+    let (png, worst) = render_png(&map, &p, a.light, a.scale, a.zoom).map_err(CmdError::Input)?;
+    write_atomic(&a.out, &png).map_err(|e| CmdError::Input(format!("{}: {e}", a.out.display())))?;
+    Ok(format!(
+        "{}: {w}x{h} per panel: Blinn | B-spline (bit-exact) | golden | heat map of |B-spline - golden| (log scale 2^-24..2^-8); worst intensity error {worst:.3e}",
+        a.out.display()
+    ))
+}
+
+/// The four-panel Dot3 picture as PNG bytes, and the worst intensity error of the B-spline
+/// panel against golden.
+pub fn render_png(
+    map: &HeightMap,
+    p: &BumpParams,
+    light: [f64; 3],
+    scale: f64,
+    zoom: u32,
+) -> Result<(Vec<u8>, f64), String> {
+    let (w, h) = (map.width() * zoom, map.height() * zoom);
     let l = {
-        let n =
-            (a.light[0] * a.light[0] + a.light[1] * a.light[1] + a.light[2] * a.light[2]).sqrt();
-        a.light.map(|x| x / n)
+        let n = (light[0] * light[0] + light[1] * light[1] + light[2] * light[2]).sqrt();
+        light.map(|x| x / n)
     };
-    let z = f64::from(a.zoom);
+    let z = f64::from(zoom);
     let samples: Vec<Sample> = (0..h)
         .flat_map(|y| (0..w).map(move |x| (x, y)))
         .map(|(x, y)| Sample {
             u: (f64::from(x) + 0.5) / z,
             v: (f64::from(y) + 0.5) / z,
-            scale: a.scale,
+            scale,
             lod: 0.0,
         })
         .collect();
     let run = |filter: Filter| {
         run_normals(&NormalsRun {
             name: format!("render {filter}"),
-            params: BumpParams { filter, ..p },
+            params: BumpParams { filter, ..*p },
             map: map.clone(),
             samples: samples.clone(),
             idle_per_mille: 0,
@@ -288,13 +305,13 @@ pub fn render(a: &RenderArgs) -> Result<String, CmdError> {
             seed: Seed(0),
         })
     };
-    let blinn = run(Filter::Blinn).map_err(CmdError::Input)?;
-    let bspline = run(Filter::BSpline).map_err(CmdError::Input)?;
+    let blinn = run(Filter::Blinn)?;
+    let bspline = run(Filter::BSpline)?;
     let nf = p.normal_fmt();
     let intensity = |n: &RawNormal| dot3(n.n.map(|x| crate::normals::real(x, nf)), l);
     let mut img = image::RgbImage::new(4 * w + 3 * 4, h);
     let mut worst = 0.0f64;
-    for (k, _) in samples.iter().enumerate() {
+    for k in 0..samples.len() {
         let (x, y) = (k as u32 % w, k as u32 / w);
         let ib = intensity(&blinn.outputs[k]);
         let is = intensity(&bspline.outputs[k]);
@@ -310,14 +327,15 @@ pub fn render(a: &RenderArgs) -> Result<String, CmdError> {
         worst = worst.max(e);
         img.put_pixel(3 * (w + 4) + x, y, heat(e));
     }
+    Ok((encode_png(&img)?, worst))
+}
+
+/// PNG bytes of an RGB image.
+pub fn encode_png(img: &image::RgbImage) -> Result<Vec<u8>, String> {
     let mut png = Vec::new();
     img.write_to(&mut std::io::Cursor::new(&mut png), image::ImageFormat::Png)
-        .map_err(|e| CmdError::Failed(e.to_string()))?;
-    write_atomic(&a.out, &png).map_err(|e| CmdError::Input(format!("{}: {e}", a.out.display())))?;
-    Ok(format!(
-        "{}: {w}x{h} per panel: Blinn | B-spline (bit-exact) | golden | heat map of |B-spline - golden| (log scale 2^-24..2^-8); worst intensity error {worst:.3e}",
-        a.out.display()
-    ))
+        .map_err(|e| e.to_string())?;
+    Ok(png)
 }
 
 /// Log-scale heat colour: black below 2^-24, through blue, red and yellow to white at 2^-8.

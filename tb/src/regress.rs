@@ -27,6 +27,13 @@ pub struct RegressConfig {
 pub fn regress(cfg: &RegressConfig) -> Result<Vec<TbResult>, String> {
     std::fs::create_dir_all(&cfg.out).map_err(|e| format!("{}: {e}", cfg.out.display()))?;
     let mut results = Vec::new();
+    // A progress bar on stderr (hidden when stderr is not a terminal).
+    let bar = indicatif::ProgressBar::new(5);
+    bar.set_style(
+        indicatif::ProgressStyle::with_template("{bar:30} {pos}/{len} {msg}")
+            .unwrap_or_else(|_| indicatif::ProgressStyle::default_bar()),
+    );
+    bar.set_message("blend_adjust");
 
     let ba = BaConfig {
         seed: cfg.seed.derive(153),
@@ -37,6 +44,8 @@ pub fn regress(cfg: &RegressConfig) -> Result<Vec<TbResult>, String> {
         ..BaConfig::default()
     };
     results.push(blend_adjust::run_tb(&ba)?);
+    bar.inc(1);
+    bar.set_message("normals");
     results.push(crate::normals::regress_suite(
         cfg.seed.derive(7),
         cfg.vcd.then(|| cfg.out.join("normals.vcd")),
@@ -44,6 +53,8 @@ pub fn regress(cfg: &RegressConfig) -> Result<Vec<TbResult>, String> {
         cfg.shard,
         cfg.count,
     )?);
+    bar.inc(1);
+    bar.set_message("mipmap");
     results.push(crate::mipmap::regress_suite(
         cfg.seed.derive(816),
         cfg.vcd.then(|| cfg.out.join("mipmap.vcd")),
@@ -51,6 +62,8 @@ pub fn regress(cfg: &RegressConfig) -> Result<Vec<TbResult>, String> {
         cfg.shard,
     )?);
 
+    bar.inc(1);
+    bar.set_message("vectors, waveforms, report");
     // Bit-accuracy vectors of this source tree, when it is there (not for an installed binary);
     // checked by the first shard.
     let dir = crate::vectors::vectors_dir();
@@ -94,7 +107,62 @@ pub fn regress(cfg: &RegressConfig) -> Result<Vec<TbResult>, String> {
     let json = serde_json::to_vec_pretty(&summary).map_err(|e| e.to_string())?;
     let path = cfg.out.join("summary.json");
     write_atomic(&path, &json).map_err(|e| format!("{}: {e}", path.display()))?;
+    let pictures = pictures(&cfg.out)?;
+    let refs: Vec<(&str, &str)> = pictures
+        .iter()
+        .map(|(a, b)| (a.as_str(), b.as_str()))
+        .collect();
+    let report = cfg.out.join("report.md");
+    write_atomic(&report, crate::report::markdown(&summary, &refs).as_bytes())
+        .map_err(|e| format!("{}: {e}", report.display()))?;
+    bar.finish_and_clear();
     Ok(results)
+}
+
+/// The pictures of the report: the bump-map comparison (FIG. 8a against 8b) and the mipmap
+/// levels of a synthetic video frame. Returns `(file, caption)`.
+fn pictures(out: &std::path::Path) -> Result<Vec<(String, String)>, String> {
+    use hdl::bump_params::BumpParams;
+    let mut v = Vec::new();
+    let p = BumpParams::default();
+    let map = crate::maps::builtin("bumps", 48, 48, p.texel_fmt())?;
+    let (png, worst) = crate::commands::render_png(&map, &p, [1.0, 1.0, 2.0], 0.5, 4)?;
+    let f = "normals_render.png";
+    write_atomic(&out.join(f), &png).map_err(|e| format!("{}: {e}", out.join(f).display()))?;
+    v.push((
+        f.to_string(),
+        format!(
+            "Dot3 lighting of the built-in bumps map, scale 0.5: Blinn | B-spline (bit-exact) | golden | log heat map of the B-spline's intensity error (worst {worst:.2e})"
+        ),
+    ));
+    let mp = hdl::mipmap::MipmapParams {
+        width: 64,
+        height: 32,
+        scan: hdl::mipmap::Scan::InterlacedTop,
+        rounding: hdl::mipmap::Rounding::Round,
+    };
+    let frame = crate::mipmap::synthetic_video(64, 32, 1, Seed(3));
+    let o = crate::mipmap::run_mipmap(mp, &frame, None)?;
+    let dims = mp.levels();
+    let mut img = image::RgbImage::new(dims.len() as u32 * 68, 32);
+    for (k, level) in o.frames[0].iter().enumerate() {
+        let (lw, _) = dims[k];
+        let s = 1u32 << k;
+        for y in 0..32u32 {
+            for x in 0..64u32 {
+                let t = level[((y / s.min(32)) * lw + (x / s).min(lw - 1)) as usize];
+                img.put_pixel(k as u32 * 68 + x, y, image::Rgb([t, t, t]));
+            }
+        }
+    }
+    let f = "mipmap_levels.png";
+    write_atomic(&out.join(f), &crate::commands::encode_png(&img)?)
+        .map_err(|e| format!("{}: {e}", out.join(f).display()))?;
+    v.push((
+        f.to_string(),
+        "Mipmap levels 0-6 of a 64x32 interlaced synthetic frame from the cycle-accurate generator, each scaled to the size of level 0".to_string(),
+    ));
+    Ok(v)
 }
 
 /// The table and a closing line, as `texrtl regress` prints them.

@@ -67,6 +67,25 @@ fn regress_writes_valid_waveforms_and_summary() {
     assert_eq!(s["passed"], true);
     assert_eq!(s["testbenches"][0]["mismatches"], 0);
     assert!(no_partials(&out));
+    let report = std::fs::read_to_string(out.join("report.md")).unwrap();
+    for link in [
+        "normals_render.png",
+        "mipmap_levels.png",
+        "blend_adjust.gtkw",
+        "| normals |",
+        "| mipmap |",
+    ] {
+        assert!(report.contains(link), "report lacks {link}");
+    }
+    for png in ["normals_render.png", "mipmap_levels.png"] {
+        assert!(std::fs::read(out.join(png))
+            .unwrap()
+            .starts_with(b"\x89PNG"));
+    }
+    for vcd in ["normals.vcd", "mipmap.vcd"] {
+        let p = out.join(vcd);
+        check_gtkw(&p, &read_vcd(&p).unwrap()).unwrap();
+    }
 }
 
 #[test]
