@@ -8,6 +8,7 @@ pub mod maps;
 pub mod mipmap;
 pub mod normals;
 pub mod pgm;
+pub mod plots;
 pub mod regress;
 pub mod report;
 pub mod vectors;

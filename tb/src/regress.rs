@@ -107,7 +107,23 @@ pub fn regress(cfg: &RegressConfig) -> Result<Vec<TbResult>, String> {
     let json = serde_json::to_vec_pretty(&summary).map_err(|e| e.to_string())?;
     let path = cfg.out.join("summary.json");
     write_atomic(&path, &json).map_err(|e| format!("{}: {e}", path.display()))?;
-    let pictures = pictures(&cfg.out)?;
+    let mut pictures = pictures(&cfg.out)?;
+    for r in results.iter().filter(|r| r.stats.count > 0) {
+        let f = format!("{}_error_histogram.png", r.name);
+        let png = crate::plots::histogram_png(
+            &format!("{}: error against golden", r.name),
+            &r.stats.histogram,
+        )?;
+        write_atomic(&cfg.out.join(&f), &png)
+            .map_err(|e| format!("{}: {e}", cfg.out.join(&f).display()))?;
+        pictures.push((
+            f,
+            format!(
+                "{}: histogram of the error against the golden model, in output LSBs (log scale)",
+                r.name
+            ),
+        ));
+    }
     let refs: Vec<(&str, &str)> = pictures
         .iter()
         .map(|(a, b)| (a.as_str(), b.as_str()))

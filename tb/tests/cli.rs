@@ -77,7 +77,12 @@ fn regress_writes_valid_waveforms_and_summary() {
     ] {
         assert!(report.contains(link), "report lacks {link}");
     }
-    for png in ["normals_render.png", "mipmap_levels.png"] {
+    for png in [
+        "normals_render.png",
+        "mipmap_levels.png",
+        "normals_error_histogram.png",
+        "mipmap_error_histogram.png",
+    ] {
         assert!(std::fs::read(out.join(png))
             .unwrap()
             .starts_with(b"\x89PNG"));
