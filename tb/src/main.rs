@@ -235,6 +235,9 @@ struct RegressArgs {
     /// Random transactions per configuration (default: each testbench's own).
     #[arg(long)]
     count: Option<usize>,
+    /// Also write every waveform as FST (compact; open with `gtkwave X.fst X.gtkw`).
+    #[arg(long)]
+    fst: bool,
 }
 
 fn parse_window(s: &str) -> Result<(u64, u64), String> {
@@ -280,6 +283,7 @@ fn run_regress(a: RegressArgs) -> ExitCode {
         },
         shard: a.shard,
         count: a.count,
+        fst: a.fst,
     };
     if let Err(e) = cfg.trace.validate() {
         return fail(format!("--period-ps/--trace-window: {e}"));

@@ -19,6 +19,8 @@ pub struct RegressConfig {
     pub shard: verif::Shard,
     /// Random transactions per configuration (`None`: each testbench's default).
     pub count: Option<usize>,
+    /// Also write each waveform as FST (made from the VCD, checked against it).
+    pub fst: bool,
 }
 
 /// Runs every testbench, checks every waveform it wrote (read back with wellen, `.gtkw`
@@ -87,7 +89,20 @@ pub fn regress(cfg: &RegressConfig) -> Result<Vec<TbResult>, String> {
 
     for r in &mut results {
         if let Some(vcd) = &r.vcd {
-            match read_vcd(vcd).and_then(|rb| check_gtkw(vcd, &rb)) {
+            let checked = read_vcd(vcd).and_then(|rb| check_gtkw(vcd, &rb).map(|_| rb));
+            let checked = match (checked, cfg.fst) {
+                (Ok(rb), true) => {
+                    let fst = vcd.with_extension("fst");
+                    waves::fst::vcd_to_fst(vcd, &fst).and_then(|_| {
+                        let f = waves::check::read_fst(&fst)?;
+                        waves::fst::same_values(&rb, &f).map_err(|e| {
+                            format!("{}: differs from {}: {e}", fst.display(), vcd.display())
+                        })
+                    })
+                }
+                (r, _) => r.map(|_| ()),
+            };
+            match checked {
                 Ok(_) => {}
                 Err(e) => {
                     r.failures.push(format!("waveform: {e}"));

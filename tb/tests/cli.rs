@@ -97,6 +97,7 @@ fn regress_writes_valid_waveforms_and_summary() {
 fn trace_options_apply() {
     let out = tmp("filter");
     let o = texrtl(&[
+        "--fst",
         "--out",
         out.to_str().unwrap(),
         "--trace-filter",
@@ -110,6 +111,8 @@ fn trace_options_apply() {
     assert!(!rb.vars.contains_key("tb.ba.v0"));
     assert_eq!(rb.times.first(), Some(&100_000));
     assert_eq!(rb.times.last(), Some(&500_000));
+    let fst = waves::check::read_fst(&out.join("blend_adjust.fst")).unwrap();
+    waves::fst::same_values(&rb, &fst).unwrap();
 }
 
 fn no_partials(dir: &Path) -> bool {

@@ -67,6 +67,16 @@ impl Readback {
     }
 }
 
+/// Reads an FST with wellen and applies the same checks as [`read_vcd`] but the textual ones
+/// (strictly increasing time is checked on wellen's time table).
+pub fn read_fst(path: &Path) -> Result<Readback, String> {
+    let rb = read_waves(path)?;
+    if rb.times.windows(2).any(|w| w[1] <= w[0]) {
+        return Err(format!("{}: time does not increase", path.display()));
+    }
+    Ok(rb)
+}
+
 /// Reads `path` with wellen and checks it (see the module docs). The error names the file.
 pub fn read_vcd(path: &Path) -> Result<Readback, String> {
     let err = |m: String| format!("{}: {m}", path.display());
@@ -91,6 +101,12 @@ pub fn read_vcd(path: &Path) -> Result<Readback, String> {
     if !saw_dumpvars {
         return Err(err("no $dumpvars block".into()));
     }
+    read_waves(path)
+}
+
+/// The format-independent part: hierarchy, widths, initial values, every change.
+fn read_waves(path: &Path) -> Result<Readback, String> {
+    let err = |m: String| format!("{}: {m}", path.display());
     let mut w = simple::read(path).map_err(|e| err(format!("wellen: {e}")))?;
     let h = w.hierarchy();
     let timescale_exp = h.timescale().and_then(|t| {

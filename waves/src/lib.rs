@@ -13,3 +13,4 @@ mod vcd_trace;
 
 pub use vcd_trace::{ProbeId, TraceConfig, VcdTracer, ROOT};
 pub mod check;
+pub mod fst;

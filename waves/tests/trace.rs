@@ -164,3 +164,45 @@ fn bad_configs_are_refused() {
     assert!(e.to_string().contains("x.vcd"), "{e}");
     assert!(VcdTracer::create(dir.join("no/such/dir/x.vcd"), "x", TraceConfig::default()).is_err());
 }
+
+#[test]
+fn fst_holds_what_the_vcd_holds() {
+    let path = run("fst", TraceConfig::default(), true);
+    let fst = path.with_extension("fst");
+    waves::fst::vcd_to_fst(&path, &fst).unwrap();
+    let a = read_vcd(&path).unwrap();
+    let b = waves::check::read_fst(&fst).unwrap();
+    assert_eq!(
+        a.vars.keys().collect::<Vec<_>>(),
+        b.vars.keys().collect::<Vec<_>>()
+    );
+    for (name, va) in &a.vars {
+        let vb = &b.vars[name];
+        assert_eq!(va.width, vb.width, "{name}");
+        assert_eq!(va.changes, vb.changes, "{name}");
+    }
+    assert_eq!(a.times, b.times);
+}
+
+#[test]
+fn fst_of_a_windowed_trace() {
+    let path = run(
+        "fstw",
+        TraceConfig {
+            window: Some((5, 9)),
+            ..Default::default()
+        },
+        true,
+    );
+    let fst = path.with_extension("fst");
+    waves::fst::vcd_to_fst(&path, &fst).unwrap();
+    let a = read_vcd(&path).unwrap();
+    let b = waves::check::read_fst(&fst).unwrap();
+    // fst-writer always starts its time table at 0: the FST has one extra leading timestamp
+    // before the window, and from the window on every value is the VCD's.
+    assert!(
+        waves::fst::same_values(&a, &b).is_ok(),
+        "{:?}",
+        waves::fst::same_values(&a, &b)
+    );
+}
