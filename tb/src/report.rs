@@ -99,10 +99,8 @@ pub fn table(results: &[TbResult]) -> String {
             r.coverage_percent,
             r.stats.max_abs_lsb,
             r.stats.mean_abs_lsb(),
-            r.latency
-                .map(|l| l.to_string())
-                .unwrap_or_else(|| "-".into()),
-            if r.passed { "PASS" } else { "FAIL" }
+            r.latency_text(),
+            r.verdict()
         );
     }
     for r in results {
@@ -130,6 +128,22 @@ pub struct Summary {
 }
 
 impl TbResult {
+    /// The latency column: cycles, or `-`.
+    pub fn latency_text(&self) -> String {
+        self.latency
+            .map(|l| l.to_string())
+            .unwrap_or_else(|| "-".into())
+    }
+
+    /// `PASS` or `FAIL`.
+    pub fn verdict(&self) -> &'static str {
+        if self.passed {
+            "PASS"
+        } else {
+            "FAIL"
+        }
+    }
+
     /// Sets coverage figures from a model (kept for merging shards).
     pub fn set_coverage(&mut self, cov: verif::Coverage) {
         self.coverage_percent = cov.percent();
@@ -205,10 +219,8 @@ pub fn markdown(s: &Summary, pictures: &[(&str, &str)]) -> String {
             r.coverage_percent,
             r.stats.max_abs_lsb,
             r.stats.mean_abs_lsb(),
-            r.latency
-                .map(|l| l.to_string())
-                .unwrap_or_else(|| "-".into()),
-            if r.passed { "PASS" } else { "FAIL" }
+            r.latency_text(),
+            r.verdict()
         );
     }
     let _ = writeln!(
