@@ -254,16 +254,10 @@ fn write_bits<W: Write>(
     if width == 1 {
         w.change_scalar(id, if bits & 1 == 1 { Value::V1 } else { Value::V0 })
     } else {
-        w.change_vector(
-            id,
-            (0..width).rev().map(|i| {
-                if (bits >> i) & 1 == 1 {
-                    Value::V1
-                } else {
-                    Value::V0
-                }
-            }),
-        )
+        // The same `b<bits> <id>` line the crate's `change_vector` writes, formatted in one go
+        // (the crate writes every bit with its own `write!`, the slowest part of tracing).
+        let width = width as usize;
+        writeln!(w.writer(), "b{bits:0width$b} {id}")
     }
 }
 
