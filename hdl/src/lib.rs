@@ -23,3 +23,6 @@ pub mod texel_fetch;
 // Real-time mipmap generation for interlaced video (Schilling & Knittel, section 12, FIG. 14).
 pub mod fifo;
 pub mod mipmap;
+
+// The texture memory path (Schilling & Knittel, Figure 6): DRAM 604 and control unit 607.
+pub mod dram;

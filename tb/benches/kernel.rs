@@ -184,5 +184,18 @@ fn mipmap(c: &mut Criterion) {
     g.finish();
 }
 
-criterion_group!(benches, kernel, fixed_point, normal_pipeline, mipmap);
+fn dram(c: &mut Criterion) {
+    let mut g = c.benchmark_group("dram");
+    let p = hdl::dram::DramParams::default();
+    // A scanline-like trace: runs of 8 reads, a page change every 4.
+    let trace: Vec<u64> = (0..4096u64).map(|k| (k / 4 % 512) * 512 + k % 4).collect();
+    let cycles = tb::dram::run_trace(p, &trace, None).unwrap().cycles;
+    g.throughput(Throughput::Elements(cycles));
+    g.bench_function("simulated_cycles_untraced", |b| {
+        b.iter(|| black_box(tb::dram::run_trace(p, &trace, None).unwrap().reads))
+    });
+    g.finish();
+}
+
+criterion_group!(benches, kernel, fixed_point, normal_pipeline, mipmap, dram);
 criterion_main!(benches);

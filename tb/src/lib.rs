@@ -4,6 +4,7 @@
 
 pub mod blend_adjust;
 pub mod commands;
+pub mod dram;
 pub mod maps;
 pub mod mipmap;
 pub mod normals;

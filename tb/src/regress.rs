@@ -30,7 +30,7 @@ pub fn regress(cfg: &RegressConfig) -> Result<Vec<TbResult>, String> {
     std::fs::create_dir_all(&cfg.out).map_err(|e| format!("{}: {e}", cfg.out.display()))?;
     let mut results = Vec::new();
     // A progress bar on stderr (hidden when stderr is not a terminal).
-    let bar = indicatif::ProgressBar::new(5);
+    let bar = indicatif::ProgressBar::new(6);
     bar.set_style(
         indicatif::ProgressStyle::with_template("{bar:30} {pos}/{len} {msg}")
             .unwrap_or_else(|_| indicatif::ProgressStyle::default_bar()),
@@ -65,6 +65,13 @@ pub fn regress(cfg: &RegressConfig) -> Result<Vec<TbResult>, String> {
     )?);
 
     bar.inc(1);
+    bar.set_message("dram");
+    if cfg.shard.owns(0) {
+        results.push(crate::dram::regress_suite(
+            cfg.seed.derive(604),
+            cfg.vcd.then(|| cfg.out.join("dram.vcd")),
+        )?);
+    }
     bar.set_message("vectors, waveforms, report");
     // Bit-accuracy vectors of this source tree, when it is there (not for an installed binary);
     // checked by the first shard.

@@ -1,0 +1,471 @@
+//! Page-mode DRAM 604 and its control unit 607 (Schilling & Knittel, Figure 6, section 5),
+//! at pin level, for word reads. (The CCC decode, the cache 614 and the bilinear path of the
+//! memory-path issue are not modelled yet.)
+//!
+//! # The DRAM (like a vendor's behavioural model)
+//! `rows x cols` words of 16 bits behind RAS#, CAS#, WE#, OE# and an 11-pin multiplexed
+//! address. The falling edge of RAS# latches the row into the page register (the open row);
+//! each falling edge of CAS# latches a column; `t_cas` cycles after it the word is driven on
+//! DQ (with OE# low) until CAS# rises. The model checks the timing it is driven with and counts
+//! every violation (with the first ones described): RAS# precharge `t_rp`, RAS#-to-CAS# delay
+//! `t_rcd`, CAS# low `t_cas`, CAS# precharge `t_cp`, an address beyond the array, CAS# without
+//! an open row, a write (WE# low: this model is read-only).
+//!
+//! # Timing
+//! All times in controller cycles of `cycle_ns` (default 5 ns). Defaults reproduce the
+//! document's figures: a page-mode access `t_cas + t_cp` = 3 + 3 cycles = 30 ns, a page fault
+//! `t_rp + t_rcd` = 3 + 3 cycles = another 30 ns.
+//!
+//! # The control unit 607
+//! Takes word-read requests (valid + address), keeps the open page, and drives the pins: on a
+//! page hit straight to the CAS# cycle; on a fault RAS# high for `t_rp`, RAS# low with the new
+//! row for `t_rcd`, then the CAS# cycle. Counts reads, page hits and page faults. One request is
+//! accepted when the previous one completes (`ready`).
+
+use crate::fx::Format;
+use crate::kernel::{Module, Reg, Signal, Visitor};
+use crate::signals;
+
+/// Geometry and timing.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct DramParams {
+    pub rows: u32,
+    /// Words per row (the page).
+    pub cols: u32,
+    pub cycle_ns: u32,
+    pub t_rp: u32,
+    pub t_rcd: u32,
+    pub t_cas: u32,
+    pub t_cp: u32,
+}
+
+impl Default for DramParams {
+    /// 256K x 16 with 512-word pages.
+    fn default() -> Self {
+        DramParams {
+            rows: 512,
+            cols: 512,
+            cycle_ns: 5,
+            t_rp: 3,
+            t_rcd: 3,
+            t_cas: 3,
+            t_cp: 3,
+        }
+    }
+}
+
+impl DramParams {
+    /// 1M x 16 with 1024-word pages.
+    pub fn one_meg() -> DramParams {
+        DramParams {
+            rows: 1024,
+            cols: 1024,
+            ..DramParams::default()
+        }
+    }
+
+    /// Words in the array.
+    pub fn words(&self) -> u64 {
+        u64::from(self.rows) * u64::from(self.cols)
+    }
+
+    pub fn validate(&self) -> Result<(), String> {
+        for (n, v) in [("rows", self.rows), ("page words", self.cols)] {
+            if !v.is_power_of_two() || !(2..=2048).contains(&v) {
+                return Err(format!(
+                    "{n} {v}: a power of two in 2..=2048 (11 address pins)"
+                ));
+            }
+        }
+        for (n, v) in [
+            ("t_rp", self.t_rp),
+            ("t_rcd", self.t_rcd),
+            ("t_cp", self.t_cp),
+            ("cycle_ns", self.cycle_ns),
+        ] {
+            if v == 0 || v > 1000 {
+                return Err(format!("{n} {v}: 1..=1000"));
+            }
+        }
+        if !(2..=1000).contains(&self.t_cas) {
+            return Err(format!(
+                "t_cas {}: 2..=1000 (the column is latched at CAS# falling)",
+                self.t_cas
+            ));
+        }
+        Ok(())
+    }
+
+    /// The contents the model powers up with: a fixed function of the address (so reads can
+    /// be checked without loading anything).
+    pub fn pattern(addr: u64) -> u16 {
+        let x = addr.wrapping_mul(0x9e37_79b9_7f4a_7c15) >> 48;
+        x as u16
+    }
+}
+
+/// A timing or protocol violation seen by the DRAM model.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub struct Violation {
+    pub cycle: u64,
+    pub what: String,
+}
+
+/// DRAM 604.
+#[derive(Clone, Debug)]
+pub struct Dram {
+    name: String,
+    p: DramParams,
+    mem: Vec<u16>,
+    pub ras_n: Signal,
+    pub cas_n: Signal,
+    pub we_n: Signal,
+    pub oe_n: Signal,
+    pub addr: Signal,
+    pub dq: Signal,
+    pub dq_valid: Signal,
+    /// The page register: the open row (valid while RAS# is low).
+    pub page_row: Reg,
+    col: Reg,
+    /// Cycles RAS#/CAS# have held their level, and cycles since RAS# fell.
+    ras_level_for: u32,
+    cas_level_for: u32,
+    since_ras_fall: u32,
+    last: (bool, bool),
+    cycle: u64,
+    /// Violations counted, and the first ones described.
+    pub violations: u64,
+    pub log: Vec<Violation>,
+}
+
+impl Dram {
+    pub fn new(name: &str, p: DramParams) -> Result<Dram, String> {
+        p.validate()?;
+        let rb = 32 - (p.rows - 1).leading_zeros().min(31);
+        let cb = 32 - (p.cols - 1).leading_zeros().min(31);
+        let mut ras_n = Signal::bit("ras_n");
+        ras_n.set_bool(true);
+        let mut cas_n = Signal::bit("cas_n");
+        cas_n.set_bool(true);
+        let mut we_n = Signal::bit("we_n");
+        we_n.set_bool(true);
+        let mut oe_n = Signal::bit("oe_n");
+        oe_n.set_bool(true);
+        Ok(Dram {
+            name: name.into(),
+            mem: (0..p.words()).map(DramParams::pattern).collect(),
+            p,
+            ras_n,
+            cas_n,
+            we_n,
+            oe_n,
+            addr: Signal::new("addr", Format::uint(11)),
+            dq: Signal::new("dq", Format::uint(16)),
+            dq_valid: Signal::bit("dq_valid"),
+            page_row: Reg::new("page_row", Format::uint(rb.max(1))),
+            col: Reg::new("col", Format::uint(cb.max(1))),
+            ras_level_for: 1000,
+            cas_level_for: 1000,
+            since_ras_fall: 0,
+            last: (true, true),
+            cycle: 0,
+            violations: 0,
+            log: Vec::new(),
+        })
+    }
+
+    fn violate(&mut self, what: String) {
+        self.violations += 1;
+        if self.log.len() < 20 {
+            self.log.push(Violation {
+                cycle: self.cycle,
+                what,
+            });
+        }
+    }
+}
+
+impl Module for Dram {
+    fn instance(&self) -> &str {
+        &self.name
+    }
+    fn kind(&self) -> &'static str {
+        "dram_604"
+    }
+    fn eval(&mut self) {
+        // Data out: CAS# low for at least t_cas cycles, OE# low.
+        let (ras_n, cas_n) = (self.ras_n.is_high(), self.cas_n.is_high());
+        // Low for `cas_level_for` earlier cycles plus this one; the column was latched at the
+        // falling edge, so data can come from the second low cycle on (t_cas >= 2).
+        let valid = !ras_n
+            && !cas_n
+            && !self.oe_n.is_high()
+            && !self.last.1
+            && self.cas_level_for + 1 >= self.p.t_cas;
+        self.dq_valid.set_bool(valid);
+        if valid {
+            let a = u64::from(self.page_row.q().bits() as u32) * u64::from(self.p.cols)
+                + self.col.q().bits();
+            self.dq.set_bits(u64::from(self.mem[a as usize]));
+        }
+    }
+    fn tick(&mut self, reset: bool) {
+        self.cycle += 1;
+        if reset {
+            self.last = (true, true);
+            self.ras_level_for = 1000;
+            self.cas_level_for = 1000;
+            return;
+        }
+        let (ras_n, cas_n) = (self.ras_n.is_high(), self.cas_n.is_high());
+        let a = self.addr.bits() as u32;
+        if !self.we_n.is_high() {
+            self.violate("WE# low: the texture DRAM is read here, never written".into());
+        }
+        // RAS# edges.
+        if self.last.0 && !ras_n {
+            if self.ras_level_for < self.p.t_rp {
+                self.violate(format!(
+                    "RAS# precharge {} cycles < t_rp {}",
+                    self.ras_level_for, self.p.t_rp
+                ));
+            }
+            if a >= self.p.rows {
+                self.violate(format!("row {a} beyond {} rows", self.p.rows));
+            }
+            self.page_row.set_next_bits(u64::from(a % self.p.rows));
+            self.page_row.tick(false);
+            self.since_ras_fall = 0;
+        }
+        // CAS# edges.
+        if self.last.1 && !cas_n {
+            if ras_n {
+                self.violate("CAS# fell with no open row (RAS# high)".into());
+            }
+            if self.since_ras_fall < self.p.t_rcd {
+                self.violate(format!(
+                    "RAS#-to-CAS# {} cycles < t_rcd {}",
+                    self.since_ras_fall, self.p.t_rcd
+                ));
+            }
+            if self.cas_level_for < self.p.t_cp {
+                self.violate(format!(
+                    "CAS# precharge {} cycles < t_cp {}",
+                    self.cas_level_for, self.p.t_cp
+                ));
+            }
+            if a >= self.p.cols {
+                self.violate(format!("column {a} beyond {} words per page", self.p.cols));
+            }
+            self.col.set_next_bits(u64::from(a % self.p.cols));
+            self.col.tick(false);
+        }
+        if !self.last.1 && cas_n && self.cas_level_for < self.p.t_cas {
+            self.violate(format!(
+                "CAS# low {} cycles < t_cas {}",
+                self.cas_level_for, self.p.t_cas
+            ));
+        }
+        self.ras_level_for = if self.last.0 == ras_n {
+            self.ras_level_for.saturating_add(1)
+        } else {
+            1
+        };
+        self.cas_level_for = if self.last.1 == cas_n {
+            self.cas_level_for.saturating_add(1)
+        } else {
+            1
+        };
+        self.since_ras_fall = self.since_ras_fall.saturating_add(1);
+        self.last = (ras_n, cas_n);
+    }
+    fn visit(&self, v: &mut dyn Visitor) {
+        v.enter(&self.name, self.kind());
+        signals!(v;
+            Input: self.ras_n, self.cas_n, self.we_n, self.oe_n, self.addr;
+            Output: self.dq, self.dq_valid;
+            Reg: self.page_row, self.col);
+        v.leave();
+    }
+}
+
+/// Controller states.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+enum State {
+    Idle = 0,
+    Precharge = 1,
+    RowOpen = 2,
+    CasLow = 3,
+    CasHigh = 4,
+}
+
+/// DRAM control unit 607 (word reads), with the DRAM 604 it drives.
+#[derive(Clone, Debug)]
+pub struct DramCtrl {
+    name: String,
+    p: DramParams,
+    pub req_valid: Signal,
+    pub req_addr: Signal,
+    pub ready: Signal,
+    pub resp_valid: Signal,
+    pub resp_data: Signal,
+    pub state: Reg,
+    count: Reg,
+    open_row: Reg,
+    row_open: Reg,
+    addr_r: Reg,
+    pub dram: Dram,
+    pub reads: u64,
+    pub page_hits: u64,
+    pub page_faults: u64,
+    accept: bool,
+}
+
+impl DramCtrl {
+    pub fn new(name: &str, p: DramParams) -> Result<DramCtrl, String> {
+        let dram = Dram::new("dram", p)?;
+        let ab = 64 - (p.words() - 1).leading_zeros();
+        Ok(DramCtrl {
+            name: name.into(),
+            p,
+            req_valid: Signal::bit("req_valid"),
+            req_addr: Signal::new("req_addr", Format::uint(ab.max(1))),
+            ready: Signal::bit("ready"),
+            resp_valid: Signal::bit("resp_valid"),
+            resp_data: Signal::new("resp_data", Format::uint(16)),
+            state: Reg::new("state", Format::uint(3)),
+            count: Reg::new("count", Format::uint(11)),
+            open_row: Reg::new("open_row", Format::uint(11)),
+            row_open: Reg::new("row_open", Format::uint(1)),
+            addr_r: Reg::new("addr_r", Format::uint(ab.max(1))),
+            dram,
+            reads: 0,
+            page_hits: 0,
+            page_faults: 0,
+            accept: false,
+        })
+    }
+
+    pub fn params(&self) -> &DramParams {
+        &self.p
+    }
+}
+
+impl Module for DramCtrl {
+    fn instance(&self) -> &str {
+        &self.name
+    }
+    fn kind(&self) -> &'static str {
+        "dram_control_607"
+    }
+    fn eval(&mut self) {
+        let st = self.state.q().bits();
+        let n = self.count.q().bits() as u32;
+        let cols = u64::from(self.p.cols);
+        // A new request is taken when idle, or in the last cycle of CAS# precharge, so page-mode
+        // reads follow each other every t_cas + t_cp cycles.
+        let last_cp = st == State::CasHigh as u64 && n >= self.p.t_cp;
+        let free = st == State::Idle as u64 || last_cp;
+        self.ready.set_bool(free);
+        self.accept = free && self.req_valid.is_high();
+        let addr = if self.accept {
+            self.req_addr.bits()
+        } else {
+            self.addr_r.q().bits()
+        };
+        let (row, col) = (addr / cols, addr % cols);
+        let open = self.row_open.q().is_high() && self.open_row.q().bits() == row;
+        // Pins from the current state (Moore outputs).
+        let (ras_n, cas_n, a) = match st {
+            s if s == State::Precharge as u64 => (true, true, row),
+            s if s == State::RowOpen as u64 => (false, true, row),
+            s if s == State::CasLow as u64 => (false, false, col),
+            _ => (!self.row_open.q().is_high(), true, col),
+        };
+        let d = &mut self.dram;
+        d.ras_n.set_bool(ras_n);
+        d.cas_n.set_bool(cas_n);
+        d.oe_n.set_bool(cas_n);
+        d.addr.set_bits(a);
+        d.eval();
+        self.resp_valid.set_bool(false);
+        // Next state.
+        let (next, cnt) = match st {
+            _ if self.accept => {
+                if open {
+                    (State::CasLow, 1)
+                } else {
+                    (State::Precharge, 1)
+                }
+            }
+            s if s == State::Idle as u64 => (State::Idle, 0),
+            s if s == State::Precharge as u64 => {
+                if n >= self.p.t_rp {
+                    (State::RowOpen, 1)
+                } else {
+                    (State::Precharge, n + 1)
+                }
+            }
+            s if s == State::RowOpen as u64 => {
+                if n >= self.p.t_rcd {
+                    (State::CasLow, 1)
+                } else {
+                    (State::RowOpen, n + 1)
+                }
+            }
+            s if s == State::CasLow as u64 => {
+                if n >= self.p.t_cas {
+                    self.resp_valid.set_bool(self.dram.dq_valid.is_high());
+                    self.resp_data.follow(&self.dram.dq);
+                    (State::CasHigh, 1)
+                } else {
+                    (State::CasLow, n + 1)
+                }
+            }
+            _ => {
+                if last_cp {
+                    (State::Idle, 0)
+                } else {
+                    (State::CasHigh, n + 1)
+                }
+            }
+        };
+        self.state.set_next_raw(next as i64);
+        self.count.set_next_raw(i64::from(cnt));
+        if self.accept {
+            self.addr_r.set_next_bits(addr);
+            self.open_row.set_next_bits(row);
+            self.row_open.set_next_bool(true);
+        }
+    }
+    fn tick(&mut self, reset: bool) {
+        if self.accept && !reset {
+            self.reads += 1;
+            let row = self.req_addr.bits() / u64::from(self.p.cols);
+            if self.row_open.q().is_high() && self.open_row.q().bits() == row {
+                self.page_hits += 1;
+            } else {
+                self.page_faults += 1;
+            }
+        }
+        for r in [
+            &mut self.state,
+            &mut self.count,
+            &mut self.open_row,
+            &mut self.row_open,
+            &mut self.addr_r,
+        ] {
+            r.tick(reset);
+        }
+        self.dram.tick(reset);
+    }
+    fn visit(&self, v: &mut dyn Visitor) {
+        v.enter(&self.name, self.kind());
+        signals!(v;
+            Input: self.req_valid, self.req_addr;
+            Output: self.ready, self.resp_valid, self.resp_data;
+            Reg: self.state, self.count, self.open_row, self.row_open);
+        self.dram.visit(v);
+        v.leave();
+    }
+}

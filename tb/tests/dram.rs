@@ -1,0 +1,168 @@
+//! DRAM 604 and control unit 607: the document's timing figures, data integrity, the timing
+//! checks of the DRAM model, and `texrtl dram`.
+
+use hdl::dram::{Dram, DramParams};
+use hdl::kernel::Sim;
+use tb::dram::run_trace;
+
+#[test]
+fn page_mode_and_fault_timing_reproduce_the_document() {
+    let p = DramParams::default();
+    // Peak: every read a page hit after the first: 30 ns each -> 33.3 M texels/s.
+    let n = 1000u64;
+    let hits: Vec<u64> = (0..n).map(|k| k % 512).collect();
+    let s = run_trace(p, &hits, None).unwrap();
+    assert_eq!((s.reads, s.page_faults, s.page_hits), (n, 1, n - 1));
+    assert_eq!(
+        s.ns,
+        30 * n + 30,
+        "30 ns per access, 30 ns more for the one fault"
+    );
+    assert_eq!((s.violations, s.data_errors), (0, 0));
+    assert!(
+        (s.reads_per_second / 1e6 - 33.3).abs() < 0.05,
+        "{}",
+        s.reads_per_second
+    );
+    // Scanlines of 8 texels with 2 page faults each: 300 ns per scanline -> 26.7 M texels/s.
+    let mut trace = Vec::new();
+    for line in 0..200u64 {
+        let (a, b) = (2 * line % 512, (2 * line + 1) % 512);
+        for k in 0..4 {
+            trace.push(a * 512 + k);
+        }
+        for k in 0..4 {
+            trace.push(b * 512 + k);
+        }
+    }
+    let s = run_trace(p, &trace, None).unwrap();
+    assert_eq!(s.page_faults, 400);
+    assert_eq!(s.ns, 200 * 300);
+    assert!(
+        (s.reads_per_second / 1e6 - 26.67).abs() < 0.01,
+        "{}",
+        s.reads_per_second
+    );
+    assert_eq!((s.violations, s.data_errors), (0, 0));
+}
+
+#[test]
+fn random_traces_read_the_right_words_without_violations() {
+    let mut stim = verif::seeded_stimulus("dram random");
+    for p in [
+        DramParams::default(),
+        DramParams::one_meg(),
+        DramParams {
+            t_rp: 1,
+            t_rcd: 2,
+            t_cas: 2,
+            t_cp: 1,
+            ..DramParams::default()
+        },
+    ] {
+        let addrs = stim.draw_n(&(0..p.words()), 500);
+        let s = run_trace(p, &addrs, None).unwrap();
+        assert_eq!(s.reads, 500);
+        assert_eq!(s.page_hits + s.page_faults, 500);
+        assert_eq!((s.violations, s.data_errors), (0, 0), "{p:?}");
+        let per = u64::from(p.t_cas + p.t_cp);
+        let fault = u64::from(p.t_rp + p.t_rcd);
+        assert_eq!(s.cycles, 500 * per + s.page_faults * fault);
+    }
+}
+
+#[test]
+fn the_dram_model_flags_timing_violations() {
+    let p = DramParams::default();
+    let mut sim = Sim::new(Dram::new("dram", p).unwrap());
+    // RAS# low, then CAS# low only one cycle later (t_rcd = 3), held one cycle (t_cas = 3).
+    let pins = [
+        (true, true),
+        (false, true),
+        (false, false),
+        (false, true),
+        (true, true),
+        (false, true),
+    ];
+    for (ras, cas) in pins {
+        sim.dut.ras_n.set_bool(ras);
+        sim.dut.cas_n.set_bool(cas);
+        sim.dut.oe_n.set_bool(true);
+        sim.step();
+    }
+    let d = &sim.dut;
+    let text: Vec<String> = d.log.iter().map(|v| v.what.clone()).collect();
+    assert!(text.iter().any(|t| t.contains("t_rcd")), "{text:?}");
+    assert!(text.iter().any(|t| t.contains("t_cas")), "{text:?}");
+    assert!(text.iter().any(|t| t.contains("t_rp")), "{text:?}");
+    assert_eq!(d.violations, 3);
+}
+
+#[test]
+fn dram_command() {
+    let d = std::env::temp_dir().join(format!("texrtl-dram-{}", std::process::id()));
+    std::fs::create_dir_all(&d).unwrap();
+    let t = d.join("t.csv");
+    std::fs::write(&t, "addr\n0\n1\n2\n600\n601\n3\n").unwrap();
+    let vcd = d.join("d.vcd");
+    let exe = env!("CARGO_BIN_EXE_texrtl");
+    let o = std::process::Command::new(exe)
+        .args([
+            "dram",
+            "--trace",
+            t.to_str().unwrap(),
+            "--vcd",
+            vcd.to_str().unwrap(),
+        ])
+        .output()
+        .unwrap();
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    let j: serde_json::Value = serde_json::from_slice(&o.stdout).unwrap();
+    assert_eq!(j["reads"], 6);
+    assert_eq!(j["page_faults"], 3);
+    assert_eq!(j["page_hits"], 3);
+    assert_eq!(j["ns"], 6 * 30 + 3 * 30);
+    let rb = waves::check::read_vcd(&vcd).unwrap();
+    for v in [
+        "tb.mem.dram.ras_n",
+        "tb.mem.dram.cas_n",
+        "tb.mem.dram.page_row",
+        "tb.mem.state",
+    ] {
+        assert!(rb.vars.contains_key(v), "{v}");
+    }
+    waves::check::check_gtkw(&vcd, &rb).unwrap();
+    let o = std::process::Command::new(exe)
+        .args(["dram", "--trace", t.to_str().unwrap(), "--t-fault-ns", "60"])
+        .output()
+        .unwrap();
+    let j: serde_json::Value = serde_json::from_slice(&o.stdout).unwrap();
+    assert_eq!(j["ns"], 6 * 30 + 3 * 60);
+    // Bad input: one line, exit 2, no output file.
+    for (body, args, needle) in [
+        ("addr\n999999999\n", vec![], "beyond"),
+        ("address\n1\n", vec![], "header"),
+        ("addr\n1x\n", vec![], "not a word address"),
+        ("addr\n1\n", vec!["--t-fault-ns", "7"], "multiple"),
+        ("addr\n1\n", vec!["--page-words", "3"], "page-words"),
+    ] {
+        std::fs::write(&t, body).unwrap();
+        let out = d.join("bad.vcd");
+        let mut a = vec![
+            "dram",
+            "--trace",
+            t.to_str().unwrap(),
+            "--vcd",
+            out.to_str().unwrap(),
+        ];
+        a.extend(args);
+        let o = std::process::Command::new(exe).args(&a).output().unwrap();
+        let err = String::from_utf8_lossy(&o.stderr);
+        assert_eq!(o.status.code(), Some(2), "{needle}: {err}");
+        assert!(
+            err.contains(needle) && err.trim_end().lines().count() == 1,
+            "{needle}: {err}"
+        );
+        assert!(!out.exists());
+    }
+}
