@@ -64,6 +64,19 @@ fn level<T: Word>(
     (du, dv, fb + f - 1, h, fb + 2 * f)
 }
 
+/// Raw inputs of one evaluation: R, G, B, A of level 0 (and of level 1 in `rgba[4..]` when
+/// trilinear), the blend factors of both levels, the MIP weight and the height scale.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub struct TangentIn {
+    pub rgba: [i64; 8],
+    pub tu: i64,
+    pub tv: i64,
+    pub tu1: i64,
+    pub tv1: i64,
+    pub lod: i64,
+    pub scale: i64,
+}
+
 /// Tangent unit 155.
 #[derive(Clone, Debug)]
 pub struct Tangent {
@@ -129,38 +142,27 @@ impl Tangent {
         }
     }
 
-    /// Raw `(du, dv, height)` for raw inputs: `rgba` of one or two levels.
-    #[allow(clippy::too_many_arguments)]
+    /// Raw `(du, dv, height)` for raw inputs.
     #[inline]
-    pub fn compute(
-        &self,
-        rgba: &[i64],
-        tu: i64,
-        tv: i64,
-        tu1: i64,
-        tv1: i64,
-        lod: i64,
-        scale: i64,
-    ) -> (i64, i64, i64) {
+    pub fn compute(&self, x: &TangentIn) -> (i64, i64, i64) {
         if self.narrow {
-            self.compute_in::<i64>(rgba, tu, tv, tu1, tv1, lod, scale)
+            self.compute_in::<i64>(x)
         } else {
-            self.compute_in::<i128>(rgba, tu, tv, tu1, tv1, lod, scale)
+            self.compute_in::<i128>(x)
         }
     }
 
-    #[allow(clippy::too_many_arguments)]
     #[inline]
-    fn compute_in<T: Word>(
-        &self,
-        rgba: &[i64],
-        tu: i64,
-        tv: i64,
-        tu1: i64,
-        tv1: i64,
-        lod: i64,
-        scale: i64,
-    ) -> (i64, i64, i64) {
+    fn compute_in<T: Word>(&self, x: &TangentIn) -> (i64, i64, i64) {
+        let TangentIn {
+            rgba,
+            tu,
+            tv,
+            tu1,
+            tv1,
+            lod,
+            scale,
+        } = *x;
         let (f, fb) = (self.f, self.fb);
         let l0 = [rgba[0], rgba[1], rgba[2], rgba[3]];
         let (mut du, mut dv, mut fd, mut h, mut fh) = level::<T>(l0, tu, tv, f, fb, self.blinn);
@@ -201,15 +203,15 @@ impl Module for Tangent {
         for (k, s) in self.rgba.iter().enumerate() {
             rgba[k] = s.raw();
         }
-        let (du, dv, h) = self.compute(
-            &rgba,
-            self.tu.raw(),
-            self.tv.raw(),
-            self.tu1.raw(),
-            self.tv1.raw(),
-            self.lod.raw(),
-            self.scale.raw(),
-        );
+        let (du, dv, h) = self.compute(&TangentIn {
+            rgba,
+            tu: self.tu.raw(),
+            tv: self.tv.raw(),
+            tu1: self.tu1.raw(),
+            tv1: self.tv1.raw(),
+            lod: self.lod.raw(),
+            scale: self.scale.raw(),
+        });
         self.r[0].set_next_raw(du);
         self.r[1].set_next_raw(dv);
         self.r[2].set_next_raw(h);

@@ -30,7 +30,14 @@ fn tangent_formulas() {
                 ..BumpParams::default()
             };
             let t = Tangent::new("tan", &p);
-            let (du, dv, h) = t.compute(&rgba, tu, tv, 0, 0, 0, scale);
+            let mut x = hdl::tangent::TangentIn {
+                tu,
+                tv,
+                scale,
+                ..Default::default()
+            };
+            x.rgba[..4].copy_from_slice(&rgba);
+            let (du, dv, h) = t.compute(&x);
             let fb = p.bilinear_fmt().frac();
             let [r, g, b, a] = rgba.map(|x| x as f64 / (fb as f64).exp2());
             let (su, sv, k) = (tu as f64 / 256.0, tv as f64 / 256.0, scale as f64 / 256.0);
