@@ -6,3 +6,4 @@ pub mod blend_adjust;
 pub mod bump;
 pub mod mipmap;
 pub mod rsqrt;
+pub mod texture;

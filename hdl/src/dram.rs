@@ -1,6 +1,6 @@
 //! Page-mode DRAM 604 and its control unit 607 (Schilling & Knittel, Figure 6, section 5),
-//! at pin level, for word reads. (The CCC decode, the cache 614 and the bilinear path of the
-//! memory-path issue are not modelled yet.)
+//! at pin level, for word reads. The rest of the memory path (CCC decode, cache 614, colour
+//! extract and bilinear) is in [`crate::texture_unit`].
 //!
 //! # The DRAM (like a vendor's behavioural model)
 //! `rows x cols` words of 16 bits behind RAS#, CAS#, WE#, OE# and an 11-pin multiplexed
@@ -172,6 +172,26 @@ impl Dram {
             violations: 0,
             log: Vec::new(),
         })
+    }
+
+    /// Writes `words` into the array from word `base` (a back-door load, as a testbench
+    /// preloads a vendor model; not a pin-level write).
+    pub fn load(&mut self, base: u64, words: &[u16]) -> Result<(), String> {
+        let end = base + words.len() as u64;
+        if end > self.p.words() {
+            return Err(format!(
+                "{} words from {base} do not fit the DRAM's {} words",
+                words.len(),
+                self.p.words()
+            ));
+        }
+        self.mem[base as usize..end as usize].copy_from_slice(words);
+        Ok(())
+    }
+
+    /// The word at `addr` (back door).
+    pub fn peek(&self, addr: u64) -> u16 {
+        self.mem[addr as usize]
     }
 
     fn violate(&mut self, what: String) {

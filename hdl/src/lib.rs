@@ -24,5 +24,12 @@ pub mod texel_fetch;
 pub mod fifo;
 pub mod mipmap;
 
-// The texture memory path (Schilling & Knittel, Figure 6): DRAM 604 and control unit 607.
+// The texture memory path (Schilling & Knittel, Figure 6): DRAM 604 and control unit 607,
+// CCC decode 608/610/612, cache 614, colour extract 618, bilinear 622, and the unit 602.
+pub mod ccc_decode;
+pub mod color_bilinear;
+pub mod color_extract;
 pub mod dram;
+pub mod texture_cache;
+pub mod texture_layout;
+pub mod texture_unit;

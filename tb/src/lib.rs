@@ -3,6 +3,7 @@
 //! One module per testbench, named after the unit it verifies; `regress` runs them all.
 
 pub mod blend_adjust;
+pub mod ccc;
 pub mod commands;
 pub mod dram;
 pub mod maps;
@@ -12,4 +13,6 @@ pub mod pgm;
 pub mod plots;
 pub mod regress;
 pub mod report;
+pub mod texcmd;
+pub mod texture;
 pub mod vectors;

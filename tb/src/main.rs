@@ -25,6 +25,24 @@ struct Cli {
 }
 
 #[derive(Subcommand)]
+enum CccCmd {
+    /// PPM (P6/P3, sides multiples of 4) to .ccc.
+    Encode {
+        #[arg(long = "in")]
+        input: PathBuf,
+        #[arg(long)]
+        out: PathBuf,
+    },
+    /// .ccc to a binary PPM.
+    Decode {
+        #[arg(long = "in")]
+        input: PathBuf,
+        #[arg(long)]
+        out: PathBuf,
+    },
+}
+
+#[derive(Subcommand)]
 enum Cmd {
     /// Run every testbench on built-in stimulus (the default command).
     Regress(RegressArgs),
@@ -50,6 +68,44 @@ enum Cmd {
         #[arg(long, default_value = "256k")]
         size: String,
         /// Waveform of the pins, page register and controller state.
+        #[arg(long)]
+        vcd: Option<PathBuf>,
+    },
+    /// CCC texture compression (Schilling & Knittel, section 3): encode a PPM, decode a .ccc.
+    #[command(subcommand)]
+    Ccc(CccCmd),
+    /// Texture requests through the cycle-accurate memory path of Figure 6 (DRAM 604,
+    /// control 607, CCC decode, cache 614 with lookahead, bilinear 622).
+    Texread {
+        /// The texture: a .ccc file, or a PPM (P6/P3) that is CCC-encoded first.
+        #[arg(long)]
+        texture: PathBuf,
+        /// CSV with header u,v or u,v,newline: texel coordinates (texel (x, y) at integer
+        /// x, y), newline 1 at a scanline change.
+        #[arg(long)]
+        requests: PathBuf,
+        /// CSV u,v,r,g,b, one row per request in order (u, v as quantised).
+        #[arg(long)]
+        out: PathBuf,
+        /// Disable cache 614 (every request fetches its blocks).
+        #[arg(long)]
+        no_cache: bool,
+        /// Disable the lookahead prefetch.
+        #[arg(long)]
+        no_lookahead: bool,
+        /// Blocks in DRAM: row-major or tiled (one page per tile).
+        #[arg(long, default_value = "row-major")]
+        layout: String,
+        /// Cycles between requests the rasterizer can offer.
+        #[arg(long, default_value_t = 1)]
+        interval: u32,
+        /// Fraction bits of u, v and the blend weights (1..=8).
+        #[arg(long, default_value_t = 4)]
+        frac_bits: u32,
+        /// JSON with the counts, cycles, ns and pixels per second.
+        #[arg(long)]
+        stats: Option<PathBuf>,
+        /// Waveform of the unit, the DRAM pins, page register, cache tags and FSMs.
         #[arg(long)]
         vcd: Option<PathBuf>,
     },
@@ -478,6 +534,31 @@ fn main() -> ExitCode {
             size,
             vcd,
         }) => dram_cmd(&trace, page_words, t_fault_ns, &size, vcd),
+        Some(Cmd::Ccc(CccCmd::Encode { input, out })) => tb::texcmd::ccc_encode(&input, &out),
+        Some(Cmd::Ccc(CccCmd::Decode { input, out })) => tb::texcmd::ccc_decode(&input, &out),
+        Some(Cmd::Texread {
+            texture,
+            requests,
+            out,
+            no_cache,
+            no_lookahead,
+            layout,
+            interval,
+            frac_bits,
+            stats,
+            vcd,
+        }) => tb::texcmd::texread(&tb::texcmd::TexreadArgs {
+            texture,
+            requests,
+            out,
+            no_cache,
+            no_lookahead,
+            layout,
+            interval,
+            frac_bits,
+            stats,
+            vcd,
+        }),
         Some(Cmd::Mipmap(a)) => commands::mipmap(&MipmapArgs {
             inputs: a.inputs,
             out: a.out,

@@ -1,4 +1,5 @@
-//! 8-bit PGM images (binary P5 and ASCII P2), read strictly, written atomically.
+//! 8-bit PGM images (binary P5 and ASCII P2) and PPM images (binary P6 and ASCII P3), read
+//! strictly.
 
 use std::path::Path;
 
@@ -19,35 +20,77 @@ pub fn read(path: &Path) -> Result<Pgm, String> {
 
 /// Parses a P5 or P2 PGM with `maxval <= 255`.
 pub fn parse(b: &[u8]) -> Result<Pgm, String> {
+    netpbm(b, 1)
+}
+
+/// An RGB image of 8-bit samples (`pixels` holds r, g, b per pixel, rows top to bottom).
+pub type Ppm = Pgm;
+
+/// Reads a PPM; the error names the file and the problem.
+pub fn read_ppm(path: &Path) -> Result<Ppm, String> {
+    let bytes = std::fs::read(path).map_err(|e| format!("{}: {e}", path.display()))?;
+    parse_ppm(&bytes).map_err(|e| format!("{}: {e}", path.display()))
+}
+
+/// Parses a P6 or P3 PPM with `maxval <= 255` (samples are not rescaled).
+pub fn parse_ppm(b: &[u8]) -> Result<Ppm, String> {
+    netpbm(b, 3)
+}
+
+/// The P6 encoding of an RGB image.
+pub fn encode_ppm(width: u32, height: u32, rgb: &[u8]) -> Vec<u8> {
+    let mut v = format!("P6\n{width} {height}\n255\n").into_bytes();
+    v.extend_from_slice(rgb);
+    v
+}
+
+fn netpbm(b: &[u8], channels: usize) -> Result<Pgm, String> {
+    let (kind, bin, asc) = if channels == 1 {
+        ("PGM", b"P5", b"P2")
+    } else {
+        ("PPM", b"P6", b"P3")
+    };
     let ascii = match b.get(..2) {
-        Some(b"P5") => false,
-        Some(b"P2") => true,
-        _ => return Err("not a PGM (expected magic P5 or P2)".into()),
+        Some(m) if m == bin => false,
+        Some(m) if m == asc => true,
+        _ => {
+            return Err(format!(
+                "not a {kind} (expected magic {} or {})",
+                String::from_utf8_lossy(bin),
+                String::from_utf8_lossy(asc)
+            ))
+        }
     };
     let mut pos = 2;
     let mut header = [0u32; 3];
     for (k, name) in ["width", "height", "maxval"].iter().enumerate() {
-        header[k] = token(b, &mut pos)?.ok_or_else(|| format!("PGM header ends before {name}"))?;
+        header[k] =
+            token(b, &mut pos)?.ok_or_else(|| format!("{kind} header ends before {name}"))?;
     }
     let [w, h, maxval] = header;
     if w == 0 || h == 0 {
-        return Err(format!("PGM size {w}x{h} is empty"));
+        return Err(format!("{kind} size {w}x{h} is empty"));
+    }
+    if w > 65535 || h > 65535 {
+        return Err(format!(
+            "{kind} size {w}x{h} is too large (at most 65535 a side)"
+        ));
     }
     if maxval == 0 || maxval > 255 {
-        return Err(format!("maxval {maxval}: not an 8-bit PGM (1..=255)"));
+        return Err(format!("maxval {maxval}: not an 8-bit {kind} (1..=255)"));
     }
-    let n = w as usize * h as usize;
+    let n = w as usize * h as usize * channels;
     let pixels: Vec<u8> = if ascii {
         let mut v = Vec::with_capacity(n);
         for k in 0..n {
-            let x = token(b, &mut pos)?.ok_or_else(|| format!("PGM has {k} of {n} samples"))?;
+            let x = token(b, &mut pos)?.ok_or_else(|| format!("{kind} has {k} of {n} samples"))?;
             if x > maxval {
                 return Err(format!("sample {k} is {x}, above maxval {maxval}"));
             }
             v.push(x as u8);
         }
         if token(b, &mut pos)?.is_some() {
-            return Err(format!("PGM has more than {n} samples"));
+            return Err(format!("{kind} has more than {n} samples"));
         }
         v
     } else {
@@ -89,7 +132,7 @@ fn token(b: &[u8], pos: &mut usize) -> Result<Option<u32>, String> {
             Some(c) if c.is_ascii_digit() => break,
             Some(c) => {
                 return Err(format!(
-                    "unexpected byte {:?} in PGM header or samples",
+                    "unexpected byte {:?} in the header or samples",
                     *c as char
                 ))
             }
@@ -136,6 +179,25 @@ mod tests {
             b"",
         ] {
             assert!(parse(bad).is_err(), "{:?}", String::from_utf8_lossy(bad));
+        }
+    }
+
+    #[test]
+    fn ppm_both_encodings_and_errors() {
+        let p = parse_ppm(b"P3\n2 1\n255\n1 2 3 4 5 6\n").unwrap();
+        assert_eq!(p.pixels, vec![1, 2, 3, 4, 5, 6]);
+        assert_eq!(parse_ppm(&encode_ppm(2, 1, &p.pixels)).unwrap(), p);
+        for bad in [
+            &b"P5\n1 1\n255\n\0"[..],
+            b"P6\n1 1\n255\n\0\0",
+            b"P3\n1 1\n255\n1 2",
+            b"P6\n70000 1\n255\n",
+        ] {
+            assert!(
+                parse_ppm(bad).is_err(),
+                "{:?}",
+                String::from_utf8_lossy(bad)
+            );
         }
     }
 }

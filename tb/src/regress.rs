@@ -30,7 +30,7 @@ pub fn regress(cfg: &RegressConfig) -> Result<Vec<TbResult>, String> {
     std::fs::create_dir_all(&cfg.out).map_err(|e| format!("{}: {e}", cfg.out.display()))?;
     let mut results = Vec::new();
     // A progress bar on stderr (hidden when stderr is not a terminal).
-    let bar = indicatif::ProgressBar::new(6);
+    let bar = indicatif::ProgressBar::new(7);
     bar.set_style(
         indicatif::ProgressStyle::with_template("{bar:30} {pos}/{len} {msg}")
             .unwrap_or_else(|_| indicatif::ProgressStyle::default_bar()),
@@ -72,6 +72,18 @@ pub fn regress(cfg: &RegressConfig) -> Result<Vec<TbResult>, String> {
             cfg.vcd.then(|| cfg.out.join("dram.vcd")),
         )?);
     }
+    bar.set_message("texture");
+    let mut memory_rows = Vec::new();
+    if cfg.shard.owns(1) {
+        let (r, rows) = crate::texture::regress_suite(
+            cfg.seed.derive(602),
+            cfg.vcd.then(|| cfg.out.join("texture.vcd")),
+            cfg.trace.clone(),
+        )?;
+        results.push(r);
+        memory_rows = rows;
+    }
+    bar.inc(1);
     bar.set_message("vectors, waveforms, report");
     // Bit-accuracy vectors of this source tree, when it is there (not for an installed binary);
     // checked by the first shard.
@@ -130,6 +142,9 @@ pub fn regress(cfg: &RegressConfig) -> Result<Vec<TbResult>, String> {
     let path = cfg.out.join("summary.json");
     write_atomic(&path, &json).map_err(|e| format!("{}: {e}", path.display()))?;
     let mut pictures = pictures(&cfg.out)?;
+    if !memory_rows.is_empty() {
+        pictures.extend(crate::texture::memory_plots(&cfg.out, &memory_rows)?);
+    }
     for r in results.iter().filter(|r| r.stats.count > 0) {
         let f = format!("{}_error_histogram.png", r.name);
         let png = crate::plots::histogram_png(

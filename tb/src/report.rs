@@ -27,6 +27,9 @@ pub struct TbResult {
     pub latency: Option<u64>,
     /// Measured figures worth a line in the report.
     pub notes: Vec<String>,
+    /// Markdown tables for `report.md` only (not the console).
+    #[serde(default)]
+    pub tables: Vec<String>,
     pub seed: Option<String>,
     pub vcd: Option<PathBuf>,
     /// The coverage model with its hits, so shards can be merged.
@@ -50,6 +53,7 @@ impl TbResult {
             stats: ErrorStats::new(),
             latency: None,
             notes: Vec::new(),
+            tables: Vec::new(),
             seed: None,
             vcd: None,
             coverage: None,
@@ -171,6 +175,7 @@ impl TbResult {
             (a, b) => a.or(b),
         };
         self.notes.extend(o.notes.iter().cloned());
+        self.tables.extend(o.tables.iter().cloned());
         self.vcd = self.vcd.take().or_else(|| o.vcd.clone());
         match (&mut self.coverage, &o.coverage) {
             (Some(a), Some(b)) => a.merge(b),
@@ -259,6 +264,9 @@ pub fn markdown(s: &Summary, pictures: &[(&str, &str)]) -> String {
         }
         for n in &r.notes {
             let _ = writeln!(m, "- {n}");
+        }
+        for t in &r.tables {
+            let _ = writeln!(m, "\n{t}");
         }
         if let Some(v) = &r.vcd {
             let name = v

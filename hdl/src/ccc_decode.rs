@@ -1,0 +1,240 @@
+//! CCC decode for the texture memory path (Schilling & Knittel, Figures 4-6): register 608,
+//! multiplexer 610 and colour look-up table 612. It turns the two DRAM words of one 4x4 block
+//! into a 64-bit line of cache 614.
+//!
+//! # Formats
+//! * DRAM word 0 (16 bits): CLUT index of colour a in bits 15..8, of colour b in bits 7..0.
+//! * DRAM word 1 (16 bits): decision bits; bit `4 y + x` belongs to texel `(x, y)` of the block,
+//!   0 selects colour a, 1 colour b (Figure 4).
+//! * Register 608 (32 bits): word 0 in bits 31..16, word 1 in bits 15..0 (filled in that order,
+//!   one word per DRAM response).
+//! * CLUT 612: 256 entries of 24-bit RGB (`r << 16 | g << 8 | b`, 8 bits unsigned each).
+//! * Cache line (64 bits, [`Line`]): colour a in bits 63..40, colour b in 39..16, decision bits
+//!   in 15..0 (written from register 608 over line 624).
+//!
+//! No arithmetic, so no rounding or overflow: every field is a bit-field copy.
+//!
+//! # Timing
+//! After the second word is in register 608: one cycle with multiplexer 610 on colour a (the
+//! CLUT output is registered), one with it on colour b; in that second cycle `line_valid` is
+//! high and `line` carries the whole entry to the cache (write enable, line 616).
+
+use crate::fx::Format;
+use crate::kernel::{Module, Reg, Signal, Visitor};
+use crate::signals;
+
+/// One encoded block as stored in DRAM.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Default)]
+pub struct CccBlock {
+    pub a: u8,
+    pub b: u8,
+    pub bits: u16,
+}
+
+impl CccBlock {
+    /// The two DRAM words, word 0 first.
+    pub fn words(self) -> [u16; 2] {
+        [u16::from(self.a) << 8 | u16::from(self.b), self.bits]
+    }
+}
+
+/// Fields of a 64-bit cache line.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct Line(pub u64);
+
+impl Line {
+    pub fn new(a: u32, b: u32, bits: u16) -> Line {
+        Line(u64::from(a) << 40 | u64::from(b) << 16 | u64::from(bits))
+    }
+    pub fn color_a(self) -> u32 {
+        (self.0 >> 40) as u32 & 0xff_ffff
+    }
+    pub fn color_b(self) -> u32 {
+        (self.0 >> 16) as u32 & 0xff_ffff
+    }
+    pub fn bits(self) -> u16 {
+        self.0 as u16
+    }
+    /// The colour of texel `(x, y)` of the block, `x, y < 4`.
+    #[inline]
+    pub fn texel(self, x: u32, y: u32) -> u32 {
+        if self.bits() >> (4 * y + x) & 1 == 1 {
+            self.color_b()
+        } else {
+            self.color_a()
+        }
+    }
+}
+
+/// States of the decoder.
+const LOAD: u64 = 0;
+const LUT_A: u64 = 1;
+const LUT_B: u64 = 2;
+
+/// Register 608, multiplexer 610, CLUT 612.
+#[derive(Clone, Debug)]
+pub struct CccDecode {
+    name: String,
+    clut: Vec<u32>,
+    /// A DRAM word arrives (from control unit 607).
+    pub word_valid: Signal,
+    pub word: Signal,
+    /// Multiplexer 610's select: 0 colour a, 1 colour b.
+    pub mux_sel: Signal,
+    /// CLUT 612's address and data.
+    pub clut_addr: Signal,
+    pub clut_data: Signal,
+    /// The finished cache line (write enable and data).
+    pub line_valid: Signal,
+    pub line: Signal,
+    pub reg_608: Reg,
+    /// Words held (0, 1) while loading.
+    words_in: Reg,
+    pub state: Reg,
+    color_a: Reg,
+}
+
+impl CccDecode {
+    /// `clut`: 256 RGB entries of 24 bits.
+    pub fn new(name: &str, clut: &[u32]) -> Result<CccDecode, String> {
+        if clut.len() != 256 {
+            return Err(format!("CLUT 612 has 256 entries, got {}", clut.len()));
+        }
+        if let Some(c) = clut.iter().find(|&&c| c > 0xff_ffff) {
+            return Err(format!("CLUT entry {c:#x} wider than 24 bits"));
+        }
+        Ok(CccDecode {
+            name: name.into(),
+            clut: clut.to_vec(),
+            word_valid: Signal::bit("word_valid"),
+            word: Signal::new("word", Format::uint(16)),
+            mux_sel: Signal::bit("mux_610_sel"),
+            clut_addr: Signal::new("clut_612_addr", Format::uint(8)),
+            clut_data: Signal::new("clut_612_data", Format::uint(24)),
+            line_valid: Signal::bit("line_valid"),
+            line: Signal::new("line", Format::uint(64)),
+            reg_608: Reg::new("reg_608", Format::uint(32)),
+            words_in: Reg::new("words_in", Format::uint(1)),
+            state: Reg::new("state", Format::uint(2)),
+            color_a: Reg::new("color_a", Format::uint(24)),
+        })
+    }
+
+    /// True while a block is being decoded (second word received, line not yet written).
+    pub fn busy(&self) -> bool {
+        self.state.q().bits() != LOAD
+    }
+}
+
+impl Module for CccDecode {
+    fn instance(&self) -> &str {
+        &self.name
+    }
+    fn kind(&self) -> &'static str {
+        "ccc_decode_608_610_612"
+    }
+    fn eval(&mut self) {
+        let st = self.state.q().bits();
+        let r = self.reg_608.q().bits();
+        let sel = st == LUT_B;
+        self.mux_sel.set_bool(sel);
+        // Multiplexer 610: colour a is bits 31..24, colour b bits 23..16.
+        let idx = if sel { (r >> 16) & 0xff } else { r >> 24 };
+        self.clut_addr.set_bits(idx);
+        let c = self.clut[idx as usize];
+        self.clut_data.set_bits(u64::from(c));
+        self.line_valid.set_bool(sel);
+        if sel {
+            let line = Line::new(self.color_a.q().bits() as u32, c, r as u16);
+            self.line.set_bits(line.0);
+        }
+        match st {
+            LUT_A => {
+                self.color_a.set_next_bits(u64::from(c));
+                self.state.set_next_bits(LUT_B);
+            }
+            LUT_B => self.state.set_next_bits(LOAD),
+            _ => {
+                if self.word_valid.is_high() {
+                    let w = self.word.bits();
+                    if self.words_in.q().is_high() {
+                        self.reg_608.set_next_bits(r & 0xffff_0000 | w);
+                        self.words_in.set_next_bool(false);
+                        self.state.set_next_bits(LUT_A);
+                    } else {
+                        self.reg_608.set_next_bits(w << 16 | r & 0xffff);
+                        self.words_in.set_next_bool(true);
+                    }
+                }
+            }
+        }
+    }
+    fn tick(&mut self, reset: bool) {
+        self.reg_608.tick(reset);
+        self.words_in.tick(reset);
+        self.state.tick(reset);
+        self.color_a.tick(reset);
+    }
+    fn visit(&self, v: &mut dyn Visitor) {
+        v.enter(&self.name, self.kind());
+        signals!(v;
+            Input: self.word_valid, self.word;
+            Wire: self.mux_sel, self.clut_addr, self.clut_data;
+            Output: self.line_valid, self.line;
+            Reg: self.reg_608, self.words_in, self.state, self.color_a);
+        v.leave();
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::kernel::Sim;
+
+    #[test]
+    fn two_words_make_one_line() {
+        let clut: Vec<u32> = (0..256u32).map(|i| (i * 0x010203) & 0xff_ffff).collect();
+        let blk = CccBlock {
+            a: 7,
+            b: 200,
+            bits: 0b1010_0000_1111_0001,
+        };
+        let mut sim = Sim::new(CccDecode::new("dec", &clut).unwrap());
+        sim.reset(1);
+        let mut got = None;
+        let mut cycles = 0;
+        for (k, w) in blk
+            .words()
+            .into_iter()
+            .map(Some)
+            .chain([None; 4])
+            .enumerate()
+        {
+            sim.dut.word_valid.set_bool(w.is_some());
+            sim.dut.word.set_bits(u64::from(w.unwrap_or(0)));
+            sim.eval();
+            if sim.dut.line_valid.is_high() {
+                got = Some(Line(sim.dut.line.bits()));
+                cycles = k;
+            }
+            sim.tick();
+        }
+        let l = got.expect("no line");
+        assert_eq!(cycles, 3, "line two cycles after the second word");
+        assert_eq!(l.color_a(), clut[7]);
+        assert_eq!(l.color_b(), clut[200]);
+        assert_eq!(l.bits(), blk.bits);
+        assert_eq!(l.texel(0, 0), clut[200]);
+        assert_eq!(l.texel(1, 0), clut[7]);
+        assert_eq!(l.texel(3, 3), clut[200]);
+        assert_eq!(l.texel(2, 3), clut[7]);
+    }
+
+    #[test]
+    fn bad_cluts_are_refused() {
+        assert!(CccDecode::new("d", &[0; 255]).is_err());
+        let mut c = vec![0; 256];
+        c[3] = 1 << 24;
+        assert!(CccDecode::new("d", &c).is_err());
+    }
+}

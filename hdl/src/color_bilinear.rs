@@ -1,0 +1,111 @@
+//! Bilinear interpolator 622 (Schilling & Knittel, Figure 6): one 24-bit RGB result from the
+//! four texels colour extract 618 registered.
+//!
+//! # Arithmetic (per channel, all unsigned, exact until the one rounding)
+//! With `F = frac_bits`, `W = 2^F`, channel values `c00, c10, c01, c11` (8 bits) and fractions
+//! `fu, fv` (F bits):
+//! * `top = c00 (W - fu) + c10 fu`, `bot = c01 (W - fu) + c11 fu`: `8 + F` bits, exact;
+//! * `sum = top (W - fv) + bot fv`: `8 + 2F` bits, exact;
+//! * `out = (sum + 2^(2F-1)) >> 2F`: round half up to 8 bits. No overflow is possible
+//!   (`sum <= 255 * 2^(2F)`, so `out <= 255`): the overflow mode is "cannot happen", asserted.
+//!
+//! The result is registered: one cycle from 618's registers to `rgb` / `valid`.
+
+use crate::fx::Format;
+use crate::kernel::{Module, Reg, Signal, Visitor};
+use crate::signals;
+
+/// The arithmetic of one channel (exposed for the unit's exhaustive test).
+#[inline]
+pub fn lerp2(c00: u32, c10: u32, c01: u32, c11: u32, fu: u32, fv: u32, frac_bits: u32) -> u32 {
+    let w = 1u32 << frac_bits;
+    let top = c00 * (w - fu) + c10 * fu;
+    let bot = c01 * (w - fu) + c11 * fu;
+    let sum = u64::from(top) * u64::from(w - fv) + u64::from(bot) * u64::from(fv);
+    let out = (sum + (1u64 << (2 * frac_bits - 1))) >> (2 * frac_bits);
+    debug_assert!(out <= 255);
+    out as u32
+}
+
+#[derive(Clone, Debug)]
+pub struct ColorBilinear {
+    name: String,
+    frac_bits: u32,
+    pub in_valid: Signal,
+    pub c: [Signal; 4],
+    pub fu: Signal,
+    pub fv: Signal,
+    pub valid: Reg,
+    pub rgb: Reg,
+}
+
+impl ColorBilinear {
+    /// `frac_bits` in 1..=12.
+    pub fn new(name: &str, frac_bits: u32) -> ColorBilinear {
+        assert!((1..=12).contains(&frac_bits), "frac_bits {frac_bits}");
+        let c = |n| Signal::new(n, Format::uint(24));
+        ColorBilinear {
+            name: name.into(),
+            frac_bits,
+            in_valid: Signal::bit("in_valid"),
+            c: [c("c00"), c("c10"), c("c01"), c("c11")],
+            fu: Signal::new("fu", Format::uint(frac_bits)),
+            fv: Signal::new("fv", Format::uint(frac_bits)),
+            valid: Reg::new("valid", Format::uint(1)),
+            rgb: Reg::new("rgb", Format::uint(24)),
+        }
+    }
+}
+
+impl Module for ColorBilinear {
+    fn instance(&self) -> &str {
+        &self.name
+    }
+    fn kind(&self) -> &'static str {
+        "bilinear_622"
+    }
+    fn eval(&mut self) {
+        let v = self.in_valid.is_high();
+        self.valid.set_next_bool(v);
+        if v {
+            let c = [0, 1, 2, 3].map(|k| self.c[k].bits() as u32);
+            let (fu, fv) = (self.fu.bits() as u32, self.fv.bits() as u32);
+            let mut rgb = 0;
+            for shift in [16, 8, 0] {
+                let ch = c.map(|x| x >> shift & 0xff);
+                rgb |= lerp2(ch[0], ch[1], ch[2], ch[3], fu, fv, self.frac_bits) << shift;
+            }
+            self.rgb.set_next_bits(u64::from(rgb));
+        }
+    }
+    fn tick(&mut self, reset: bool) {
+        self.valid.tick(reset);
+        self.rgb.tick(reset);
+    }
+    fn visit(&self, v: &mut dyn Visitor) {
+        v.enter(&self.name, self.kind());
+        signals!(v;
+            Input: self.in_valid, self.c[0], self.c[1], self.c[2], self.c[3], self.fu, self.fv;
+            Reg: self.valid, self.rgb);
+        v.leave();
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn corners_are_exact_and_the_centre_rounds_half_up() {
+        for f in 1..=8 {
+            assert_eq!(lerp2(10, 20, 30, 40, 0, 0, f), 10);
+            assert_eq!(
+                lerp2(255, 255, 255, 255, (1 << f) - 1, (1 << f) - 1, f),
+                255
+            );
+        }
+        // (0 + 1 + 0 + 0) / 4 = 0.25 -> 0; (1 + 1 + 0 + 0) / 4 = 0.5 -> 1 (half up).
+        assert_eq!(lerp2(0, 1, 0, 0, 8, 8, 4), 0);
+        assert_eq!(lerp2(1, 1, 0, 0, 8, 8, 4), 1);
+    }
+}

@@ -1,0 +1,117 @@
+//! Colour extract unit 618 (Schilling & Knittel, Figure 6): from the four 64-bit cache lines
+//! it picks the 2x2 texels of the bilinear footprint, and registers them with the blend
+//! weights for interpolator 622.
+//!
+//! # Formats
+//! * Inputs: the four cache lines (64 bits, [`Line`]) indexed by entry (Figure 7), the
+//!   footprint's texel positions `x0, x1, y0, y1` (unsigned, `coord_bits` bits; `x1` is `x0 + 1`
+//!   clamped to the texture), and the fractions `fu`, `fv` (unsigned, `frac_bits` bits, the
+//!   weight of `x1` / `y1` in units of `2^-frac_bits`).
+//! * Outputs (registered, one cycle): `c00, c10, c01, c11` (24-bit RGB of texels `(x0, y0)`,
+//!   `(x1, y0)`, `(x0, y1)`, `(x1, y1)`), `fu`, `fv`, `valid`.
+//!
+//! Pure selection: no arithmetic, no rounding.
+
+use crate::ccc_decode::Line;
+use crate::fx::Format;
+use crate::kernel::{Module, Reg, Signal, Visitor};
+use crate::signals;
+use crate::texture_cache::entry_of;
+
+#[derive(Clone, Debug)]
+pub struct ColorExtract {
+    name: String,
+    pub in_valid: Signal,
+    pub x0: Signal,
+    pub x1: Signal,
+    pub y0: Signal,
+    pub y1: Signal,
+    pub in_fu: Signal,
+    pub in_fv: Signal,
+    /// The four 64-bit lines from cache 614 (entries A-D).
+    pub lines: [u64; 4],
+    pub valid: Reg,
+    pub c00: Reg,
+    pub c10: Reg,
+    pub c01: Reg,
+    pub c11: Reg,
+    pub fu: Reg,
+    pub fv: Reg,
+}
+
+impl ColorExtract {
+    pub fn new(name: &str, coord_bits: u32, frac_bits: u32) -> ColorExtract {
+        let c = |n| Reg::new(n, Format::uint(24));
+        ColorExtract {
+            name: name.into(),
+            in_valid: Signal::bit("in_valid"),
+            x0: Signal::new("x0", Format::uint(coord_bits)),
+            x1: Signal::new("x1", Format::uint(coord_bits)),
+            y0: Signal::new("y0", Format::uint(coord_bits)),
+            y1: Signal::new("y1", Format::uint(coord_bits)),
+            in_fu: Signal::new("in_fu", Format::uint(frac_bits)),
+            in_fv: Signal::new("in_fv", Format::uint(frac_bits)),
+            lines: [0; 4],
+            valid: Reg::new("valid", Format::uint(1)),
+            c00: c("c00"),
+            c10: c("c10"),
+            c01: c("c01"),
+            c11: c("c11"),
+            fu: Reg::new("fu", Format::uint(frac_bits)),
+            fv: Reg::new("fv", Format::uint(frac_bits)),
+        }
+    }
+
+    #[inline]
+    fn texel(&self, x: u64, y: u64) -> u64 {
+        let (x, y) = (x as u32, y as u32);
+        u64::from(Line(self.lines[entry_of(x >> 2, y >> 2)]).texel(x & 3, y & 3))
+    }
+}
+
+impl Module for ColorExtract {
+    fn instance(&self) -> &str {
+        &self.name
+    }
+    fn kind(&self) -> &'static str {
+        "color_extract_618"
+    }
+    fn eval(&mut self) {
+        let v = self.in_valid.is_high();
+        self.valid.set_next_bool(v);
+        if v {
+            let (x0, x1, y0, y1) = (
+                self.x0.bits(),
+                self.x1.bits(),
+                self.y0.bits(),
+                self.y1.bits(),
+            );
+            self.c00.set_next_bits(self.texel(x0, y0));
+            self.c10.set_next_bits(self.texel(x1, y0));
+            self.c01.set_next_bits(self.texel(x0, y1));
+            self.c11.set_next_bits(self.texel(x1, y1));
+            self.fu.set_next_bits(self.in_fu.bits());
+            self.fv.set_next_bits(self.in_fv.bits());
+        }
+    }
+    fn tick(&mut self, reset: bool) {
+        for r in [
+            &mut self.valid,
+            &mut self.c00,
+            &mut self.c10,
+            &mut self.c01,
+            &mut self.c11,
+            &mut self.fu,
+            &mut self.fv,
+        ] {
+            r.tick(reset);
+        }
+    }
+    fn visit(&self, v: &mut dyn Visitor) {
+        v.enter(&self.name, self.kind());
+        signals!(v;
+            Input: self.in_valid, self.x0, self.x1, self.y0, self.y1, self.in_fu, self.in_fv;
+            Reg: self.valid, self.c00, self.c10, self.c01, self.c11, self.fu, self.fv);
+        v.leave();
+    }
+}

@@ -1,0 +1,200 @@
+//! `texrtl ccc encode|decode` and `texrtl texread`: the texture memory path from the command
+//! line. Bad input is a [`CmdError::Input`] naming the file; nothing is written then.
+
+use crate::ccc::{self, Ccc};
+use crate::commands::CmdError;
+use crate::report::write_atomic;
+use crate::texture::{run_texread, TexRequest};
+use hdl::texture_layout::Layout;
+use hdl::texture_unit::TexParams;
+use std::fmt::Write;
+use std::path::{Path, PathBuf};
+
+fn input(e: String) -> CmdError {
+    CmdError::Input(e)
+}
+
+fn write_out(path: &Path, bytes: &[u8]) -> Result<(), CmdError> {
+    if path.is_dir() {
+        return Err(input(format!("{}: is a directory", path.display())));
+    }
+    write_atomic(path, bytes).map_err(|e| input(format!("{}: {e}", path.display())))
+}
+
+/// `texrtl ccc encode`: PPM to `.ccc`; reports the PSNR of the decoded texture.
+pub fn ccc_encode(inp: &Path, out: &Path) -> Result<String, CmdError> {
+    let img = crate::pgm::read_ppm(inp).map_err(input)?;
+    let c = ccc::encode(&img).map_err(|e| input(format!("{}: {e}", inp.display())))?;
+    write_out(out, &c.to_bytes())?;
+    let (db, worst) = ccc::psnr(&img.pixels, &c.decode());
+    Ok(format!(
+        "{}: {}x{} texels, {} blocks, {} bytes; decoded PSNR {db:.2} dB, worst texel error {worst} levels",
+        out.display(),
+        c.width,
+        c.height,
+        c.blocks.len(),
+        c.to_bytes().len()
+    ))
+}
+
+/// `texrtl ccc decode`: `.ccc` to a binary PPM (the reference decoder).
+pub fn ccc_decode(inp: &Path, out: &Path) -> Result<String, CmdError> {
+    let c = Ccc::read(inp).map_err(input)?;
+    write_out(out, &crate::pgm::encode_ppm(c.width, c.height, &c.decode()))?;
+    Ok(format!("{}: {}x{}", out.display(), c.width, c.height))
+}
+
+/// A texture from a `.ccc` file (by its magic) or a PPM (encoded on the fly).
+pub fn read_texture(path: &Path) -> Result<(Ccc, Option<crate::pgm::Ppm>), String> {
+    let b = std::fs::read(path).map_err(|e| format!("{}: {e}", path.display()))?;
+    if b.starts_with(ccc::MAGIC) {
+        Ok((
+            Ccc::parse(&b).map_err(|e| format!("{}: {e}", path.display()))?,
+            None,
+        ))
+    } else if b.starts_with(b"P6") || b.starts_with(b"P3") {
+        let img = crate::pgm::parse_ppm(&b).map_err(|e| format!("{}: {e}", path.display()))?;
+        let c = ccc::encode(&img).map_err(|e| format!("{}: {e}", path.display()))?;
+        Ok((c, Some(img)))
+    } else {
+        Err(format!(
+            "{}: neither a .ccc file (magic TEXRTLCC) nor a PPM (P6 or P3)",
+            path.display()
+        ))
+    }
+}
+
+/// Reads requests: header `u,v` or `u,v,newline`; `u`, `v` decimal texel coordinates, rounded
+/// to the nearest multiple of `2^-frac_bits` (ties to even), inside `width x height`;
+/// `newline` 0 or 1.
+pub fn read_requests(path: &Path, p: &TexParams) -> Result<Vec<TexRequest>, String> {
+    let text = std::fs::read_to_string(path).map_err(|e| format!("{}: {e}", path.display()))?;
+    let mut lines = text.lines().enumerate();
+    let cols = match lines.next().map(|(_, h)| h.trim().replace(' ', "")) {
+        Some(h) if h == "u,v" => 2,
+        Some(h) if h == "u,v,newline" => 3,
+        _ => {
+            return Err(format!(
+                "{}:1: header is not 'u,v' or 'u,v,newline'",
+                path.display()
+            ))
+        }
+    };
+    let one = f64::from(1u32 << p.frac_bits);
+    let mut v = Vec::new();
+    for (i, l) in lines {
+        let l = l.trim();
+        if l.is_empty() {
+            continue;
+        }
+        let at = |what: String| format!("{}:{}: {what}", path.display(), i + 1);
+        let f: Vec<&str> = l.split(',').map(str::trim).collect();
+        if f.len() != cols {
+            return Err(at(format!("{} fields, the header has {cols}", f.len())));
+        }
+        let coord = |k: usize, size: u32, name: &str| -> Result<u32, String> {
+            let x: f64 = f[k]
+                .parse()
+                .map_err(|_| at(format!("{name} '{}' is not a number", f[k])))?;
+            if !x.is_finite() {
+                return Err(at(format!("{name} is {x}")));
+            }
+            let raw = (x * one).round_ties_even();
+            if raw < 0.0 || raw >= f64::from(size) * one {
+                return Err(at(format!(
+                    "{name} {x} outside the texture (0 <= {name} < {size})"
+                )));
+            }
+            Ok(raw as u32)
+        };
+        let u = coord(0, p.width, "u")?;
+        let vv = coord(1, p.height, "v")?;
+        let newline = match f.get(2) {
+            None | Some(&"0") => false,
+            Some(&"1") => true,
+            Some(x) => return Err(at(format!("newline '{x}' is not 0 or 1"))),
+        };
+        v.push(TexRequest { u, v: vv, newline });
+    }
+    Ok(v)
+}
+
+/// Options of `texrtl texread`.
+#[derive(Clone, Debug)]
+pub struct TexreadArgs {
+    pub texture: PathBuf,
+    pub requests: PathBuf,
+    pub out: PathBuf,
+    pub no_cache: bool,
+    pub no_lookahead: bool,
+    pub layout: String,
+    pub interval: u32,
+    pub frac_bits: u32,
+    pub stats: Option<PathBuf>,
+    pub vcd: Option<PathBuf>,
+}
+
+/// `texrtl texread`: requests through the cycle-accurate unit; CSV of results, JSON stats.
+pub fn texread(a: &TexreadArgs) -> Result<String, CmdError> {
+    let layout = Layout::parse(&a.layout)
+        .ok_or_else(|| input(format!("--layout {}: row-major or tiled", a.layout)))?;
+    let (tex, _) = read_texture(&a.texture).map_err(input)?;
+    let mut p = TexParams::new(tex.width, tex.height);
+    p.layout = layout;
+    p.cache = !a.no_cache;
+    p.lookahead = !a.no_lookahead;
+    p.frac_bits = a.frac_bits;
+    p.validate()
+        .map_err(|e| input(format!("{}: {e}", a.texture.display())))?;
+    if !(1..=1000).contains(&a.interval) {
+        return Err(input(format!("--interval {}: 1..=1000 cycles", a.interval)));
+    }
+    let reqs = read_requests(&a.requests, &p).map_err(input)?;
+    for o in [Some(&a.out), a.stats.as_ref(), a.vcd.as_ref()]
+        .into_iter()
+        .flatten()
+    {
+        if o.is_dir() {
+            return Err(input(format!("{}: is a directory", o.display())));
+        }
+    }
+    let vcd = a.vcd.clone().map(|v| (v, waves::TraceConfig::default()));
+    let run = run_texread(&tex, p, &reqs, a.interval, vcd).map_err(CmdError::Failed)?;
+    if run.stats.violations != 0 {
+        return Err(CmdError::Failed(format!(
+            "{} DRAM timing violations",
+            run.stats.violations
+        )));
+    }
+    let one = f64::from(1u32 << p.frac_bits);
+    let mut csv = String::from("u,v,r,g,b\n");
+    for (r, c) in reqs.iter().zip(&run.rgb) {
+        let _ = writeln!(
+            csv,
+            "{},{},{},{},{}",
+            f64::from(r.u) / one,
+            f64::from(r.v) / one,
+            c >> 16,
+            c >> 8 & 0xff,
+            c & 0xff
+        );
+    }
+    let json =
+        serde_json::to_vec_pretty(&run.stats).map_err(|e| CmdError::Failed(e.to_string()))?;
+    write_out(&a.out, csv.as_bytes())?;
+    if let Some(s) = &a.stats {
+        write_out(s, &json)?;
+    }
+    let s = &run.stats;
+    Ok(format!(
+        "{}: {} results; {} cycles ({} ns), {:.2} M pixels/s; hit rate {:.1} %; {} DRAM reads, {} page faults",
+        a.out.display(),
+        run.rgb.len(),
+        s.cycles,
+        s.ns,
+        s.pixels_per_second / 1e6,
+        100.0 * s.hit_rate,
+        s.dram_reads,
+        s.page_faults
+    ))
+}

@@ -1,0 +1,845 @@
+//! The texture memory path testbench (Schilling & Knittel, Figure 6): texture unit 602 with
+//! DRAM 604, control unit 607, CCC decode, cache 614 and bilinear 622, on scanline traces;
+//! `texrtl texread` and the `texture` testbench of `texrtl regress`.
+//!
+//! Every result is compared with the integer reference ([`crate::ccc::reference_filter`]) and
+//! with the `f64` golden model of the decoded texture (bound [`golden::texture::ERROR_BOUND_LSB`]);
+//! the golden model of the original (uncompressed) texture measures the compression error,
+//! reported separately. Misses are split into cold, capacity and conflict misses by a
+//! fully-associative LRU shadow cache of the same four blocks, fed the same block references
+//! (Hakura and Gupta's method).
+
+use crate::ccc::{reference_filter, Ccc};
+use crate::report::TbResult;
+use hdl::kernel::{NoTrace, Sim, Trace};
+use hdl::texture_layout::Layout;
+use hdl::texture_unit::{TexParams, TextureUnit};
+use serde::Serialize;
+use std::collections::HashSet;
+use std::path::PathBuf;
+use verif::{Coverage, Coverpoint, Seed};
+use waves::{TraceConfig, VcdTracer};
+
+/// One rasterizer request: raw `uQ12.F` coordinates and the scanline-change flag.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct TexRequest {
+    pub u: u32,
+    pub v: u32,
+    pub newline: bool,
+}
+
+/// What a run measured (`--stats` JSON). Units in the names; counts are of blocks (4x4
+/// texels, two DRAM words) unless they say otherwise.
+#[derive(Clone, Debug, Serialize, PartialEq)]
+pub struct TexReadStats {
+    pub requests: u64,
+    /// Cycles between requests the rasterizer can offer (1: one per cycle).
+    pub interval: u32,
+    /// Cycles from the first request presented to the last result out, inclusive.
+    pub cycles: u64,
+    pub cycle_ns: u32,
+    pub ns: u64,
+    /// `requests / ns` in pixels per second.
+    pub pixels_per_second: f64,
+    pub layout: String,
+    pub cache: bool,
+    pub lookahead: bool,
+    pub page_words: u32,
+    /// Blocks referenced (1, 2 or 4 per request), found at the first lookup, and `hits/refs`.
+    pub block_refs: u64,
+    pub hits: u64,
+    pub hit_rate: f64,
+    /// `block_refs - hits`, split by the shadow cache.
+    pub misses: u64,
+    pub misses_cold: u64,
+    pub misses_capacity: u64,
+    pub misses_conflict: u64,
+    pub demand_fills: u64,
+    pub prefetch_fills: u64,
+    /// Hits on blocks a prefetch brought in (first use).
+    pub prefetch_hits: u64,
+    /// Misses whose block a prefetch was already fetching.
+    pub late_prefetches: u64,
+    pub prefetch_dropped: u64,
+    /// Cycles a request waited in stage 0.
+    pub stall_cycles: u64,
+    pub dram_reads: u64,
+    pub page_hits: u64,
+    pub page_faults: u64,
+    /// Scanlines (the first request and each one flagged `newline`), and page faults per one.
+    pub scanlines: u64,
+    pub page_faults_per_scanline: f64,
+    /// Timing or protocol violations the DRAM model saw.
+    pub violations: u64,
+}
+
+/// Results (24-bit RGB, in request order), statistics and per-scanline page faults.
+#[derive(Clone, Debug)]
+pub struct TexRun {
+    pub rgb: Vec<u32>,
+    /// Per request: blocks of its footprint and how many hit at its first lookup.
+    pub lookups: Vec<(u8, u8)>,
+    pub stats: TexReadStats,
+    pub faults_per_line: Vec<u64>,
+}
+
+/// A fully-associative LRU cache of block tags (the shadow cache).
+#[derive(Clone, Debug, Default)]
+pub struct Shadow {
+    lru: Vec<(u32, u32)>,
+    cap: usize,
+    seen: HashSet<(u32, u32)>,
+}
+
+/// How the shadow classified a reference.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum MissKind {
+    Cold,
+    Capacity,
+    Conflict,
+}
+
+impl Shadow {
+    pub fn new(cap: usize) -> Shadow {
+        Shadow {
+            cap,
+            ..Shadow::default()
+        }
+    }
+
+    /// References `blk`; for a miss of the real cache, says which kind it was.
+    pub fn reference(&mut self, blk: (u32, u32), real_hit: bool) -> Option<MissKind> {
+        let pos = self.lru.iter().position(|&b| b == blk);
+        let kind = if real_hit {
+            None
+        } else if !self.seen.contains(&blk) {
+            Some(MissKind::Cold)
+        } else if pos.is_none() {
+            Some(MissKind::Capacity)
+        } else {
+            Some(MissKind::Conflict)
+        };
+        self.seen.insert(blk);
+        if let Some(p) = pos {
+            self.lru.remove(p);
+        }
+        self.lru.insert(0, blk);
+        self.lru.truncate(self.cap);
+        kind
+    }
+}
+
+/// Runs `reqs` through a texture unit holding `tex`, the rasterizer presenting the next
+/// request `interval` cycles after the previous one was taken (1: every cycle). `vcd`: trace
+/// the run.
+pub fn run_texread(
+    tex: &Ccc,
+    p: TexParams,
+    reqs: &[TexRequest],
+    interval: u32,
+    vcd: Option<(PathBuf, TraceConfig)>,
+) -> Result<TexRun, String> {
+    if !(1..=1000).contains(&interval) {
+        return Err(format!("rasterizer interval {interval}: 1..=1000 cycles"));
+    }
+    if (tex.width, tex.height) != (p.width, p.height) {
+        return Err(format!(
+            "texture is {}x{}, the unit is set up for {}x{}",
+            tex.width, tex.height, p.width, p.height
+        ));
+    }
+    p.validate()?;
+    if let Some((i, r)) = reqs.iter().enumerate().find(|(_, r)| !p.in_range(r.u, r.v)) {
+        return Err(format!(
+            "request {i}: ({}, {}) outside the {}x{} texture",
+            r.u, r.v, p.width, p.height
+        ));
+    }
+    let words = tex.dram_words(&p.block_map());
+    let unit = TextureUnit::new("texture_unit", p, &tex.clut, &words)?;
+    match vcd {
+        Some((path, cfg)) => {
+            let t = VcdTracer::create(
+                &path,
+                "texread",
+                TraceConfig {
+                    period_ps: u64::from(p.dram.cycle_ns) * 1000,
+                    ..cfg
+                },
+            )
+            .map_err(|e| format!("{}: {e}", path.display()))?;
+            let sim = Sim::traced(unit, t).map_err(|e| e.to_string())?;
+            let (sim, run) = drive(sim, reqs, interval)?;
+            sim.finish()
+                .map_err(|e| format!("{}: {e}", path.display()))?;
+            Ok(run)
+        }
+        None => drive(Sim::<TextureUnit, NoTrace>::new(unit), reqs, interval).map(|x| x.1),
+    }
+}
+
+fn drive<T: Trace>(
+    mut sim: Sim<TextureUnit, T>,
+    reqs: &[TexRequest],
+    interval: u32,
+) -> Result<(Sim<TextureUnit, T>, TexRun), String> {
+    let mut wait: u32 = 0;
+    sim.reset(1);
+    let start = sim.cycle();
+    let mut next = 0;
+    let mut rgb = Vec::with_capacity(reqs.len());
+    let mut lookups = Vec::with_capacity(reqs.len());
+    let mut shadow = Shadow::new(4);
+    let (mut cold, mut cap, mut conf) = (0, 0, 0);
+    let mut faults_per_line: Vec<u64> = Vec::new();
+    let mut line_start_faults = 0;
+    // Worst case per request: four blocks, each two reads with a page fault, plus decode.
+    let p = *sim.dut.params();
+    let per_req = 4 * (2 * u64::from(p.dram.t_rp + p.dram.t_rcd + p.dram.t_cas + p.dram.t_cp) + 8);
+    let limit = start + 100 + (per_req + u64::from(interval)) * (reqs.len() as u64 + 4);
+    while rgb.len() < reqs.len() {
+        let want = next < reqs.len() && wait == 0;
+        wait = wait.saturating_sub(1);
+        let d = &mut sim.dut;
+        d.in_valid.set_bool(want);
+        if want {
+            d.in_u.set_bits(u64::from(reqs[next].u));
+            d.in_v.set_bits(u64::from(reqs[next].v));
+            d.in_newline.set_bool(reqs[next].newline);
+        }
+        sim.eval();
+        let d = &sim.dut;
+        if want && d.in_ready.is_high() {
+            if next == 0 || reqs[next].newline {
+                let f = d.mem.page_faults;
+                if next > 0 {
+                    faults_per_line.push(f - line_start_faults);
+                }
+                line_start_faults = f;
+            }
+            next += 1;
+            wait = interval - 1;
+        }
+        if d.lookup.first {
+            let lk = d.lookup;
+            lookups.push((
+                lk.n as u8,
+                lk.hit[..lk.n].iter().filter(|&&h| h).count() as u8,
+            ));
+            for k in 0..lk.n {
+                match shadow.reference(lk.blocks[k], lk.hit[k]) {
+                    Some(MissKind::Cold) => cold += 1,
+                    Some(MissKind::Capacity) => cap += 1,
+                    Some(MissKind::Conflict) => conf += 1,
+                    None => {}
+                }
+            }
+        }
+        if d.out_valid.is_high() {
+            rgb.push(d.out_rgb.bits() as u32);
+        }
+        sim.tick();
+        if sim.cycle() > limit {
+            return Err(format!(
+                "watchdog: {} of {} results after {} cycles",
+                rgb.len(),
+                reqs.len(),
+                sim.cycle() - start
+            ));
+        }
+    }
+    let cycles = sim.cycle() - start;
+    // Let prefetches still in flight or queued finish, so the counts add up (the time above
+    // ends with the last result).
+    while !sim.dut.idle() {
+        sim.dut.in_valid.set_bool(false);
+        sim.step();
+        if sim.cycle() > limit {
+            return Err("watchdog: the unit did not go idle".into());
+        }
+    }
+    // The last page faults belong to the last scanline.
+    let d = &sim.dut;
+    faults_per_line.push(d.mem.page_faults - line_start_faults);
+    let s = d.stats;
+    let ns = cycles * u64::from(p.dram.cycle_ns);
+    let scanlines = faults_per_line.len() as u64;
+    let stats = TexReadStats {
+        requests: s.requests,
+        interval,
+        cycles,
+        cycle_ns: p.dram.cycle_ns,
+        ns,
+        pixels_per_second: s.requests as f64 / (ns.max(1) as f64 * 1e-9),
+        layout: p.layout.name().into(),
+        cache: p.cache,
+        lookahead: p.cache && p.lookahead,
+        page_words: p.dram.cols,
+        block_refs: s.block_refs,
+        hits: s.hits,
+        hit_rate: s.hits as f64 / s.block_refs.max(1) as f64,
+        misses: s.block_refs - s.hits,
+        misses_cold: cold,
+        misses_capacity: cap,
+        misses_conflict: conf,
+        demand_fills: s.demand_fills,
+        prefetch_fills: s.prefetch_fills,
+        prefetch_hits: s.prefetch_hits,
+        late_prefetches: s.late_prefetches,
+        prefetch_dropped: s.prefetch_dropped,
+        stall_cycles: s.stall_cycles,
+        dram_reads: d.mem.reads,
+        page_hits: d.mem.page_hits,
+        page_faults: d.mem.page_faults,
+        scanlines,
+        page_faults_per_scanline: d.mem.page_faults as f64 / scanlines.max(1) as f64,
+        violations: d.mem.dram.violations,
+    };
+    Ok((
+        sim,
+        TexRun {
+            rgb,
+            lookups,
+            stats,
+            faults_per_line,
+        },
+    ))
+}
+
+/// Scanline traces of the hit-rate table.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum TraceKind {
+    /// Horizontal scanlines of 32 pixels, 0.75 texel per pixel.
+    Horizontal,
+    /// The same texture rotated by 30 degrees.
+    Diagonal,
+    /// Uniformly random positions, a `newline` every 32 requests.
+    Random,
+    /// Horizontal scanlines of 8 pixels (the document's pessimistic example), 2.5 texels
+    /// apart in v.
+    Short,
+}
+
+impl TraceKind {
+    pub const ALL: [TraceKind; 4] = [
+        TraceKind::Horizontal,
+        TraceKind::Diagonal,
+        TraceKind::Random,
+        TraceKind::Short,
+    ];
+    pub fn name(self) -> &'static str {
+        match self {
+            TraceKind::Horizontal => "horizontal",
+            TraceKind::Diagonal => "diagonal",
+            TraceKind::Random => "random",
+            TraceKind::Short => "short (8 px)",
+        }
+    }
+}
+
+/// About `n` requests of `kind` on a `w x h` texture, coordinates rounded to `uQ12.F`.
+pub fn trace(
+    kind: TraceKind,
+    w: u32,
+    h: u32,
+    frac_bits: u32,
+    n: usize,
+    seed: Seed,
+) -> Vec<TexRequest> {
+    let one = f64::from(1u32 << frac_bits);
+    let q = |x: f64, size: u32| {
+        let max = f64::from((size << frac_bits) - 1);
+        (x * one).round().clamp(0.0, max) as u32
+    };
+    let mut out = Vec::with_capacity(n);
+    match kind {
+        TraceKind::Random => {
+            let mut st = verif::Stimulus::new(seed);
+            let us = st.draw_n(&(0..w << frac_bits), n);
+            let vs = st.draw_n(&(0..h << frac_bits), n);
+            for (i, (u, v)) in us.into_iter().zip(vs).enumerate() {
+                out.push(TexRequest {
+                    u,
+                    v,
+                    newline: i % 32 == 0,
+                });
+            }
+        }
+        _ => {
+            let (len, s, dv, angle) = match kind {
+                TraceKind::Short => (8, 0.75, 2.5, 0.0f64),
+                TraceKind::Diagonal => (32, 0.75, 0.75, 30f64.to_radians()),
+                _ => (32, 0.75, 0.75, 0.0),
+            };
+            // Pixel `i` of scanline `j` is at `s i` along the scanline's direction and `dv j`
+            // across it, both in texels; the direction is `angle` from the u axis. Positions
+            // wrap around the texture when there are many scanlines.
+            let (c, sn) = (angle.cos(), angle.sin());
+            let (w_f, h_f) = (f64::from(w), f64::from(h));
+            let mut j = 0.0;
+            while out.len() < n {
+                for i in 0..len {
+                    let along = s * i as f64;
+                    let u = 2.37 + along * c - j * dv * sn;
+                    let v = 1.61 + along * sn + j * dv * c;
+                    out.push(TexRequest {
+                        u: q(u.rem_euclid(w_f - 1.0), w),
+                        v: q(v.rem_euclid(h_f - 1.0), h),
+                        newline: i == 0,
+                    });
+                }
+                j += 1.0;
+            }
+            out.truncate(n);
+        }
+    }
+    out
+}
+
+/// A synthetic RGB test texture: smooth gradients, coloured discs and hashed noise, so that
+/// blocks with one, two and many colours all occur.
+pub fn synthetic_texture(w: u32, h: u32, seed: Seed) -> crate::pgm::Ppm {
+    let mut pixels = Vec::with_capacity((w * h * 3) as usize);
+    let salt = seed.0;
+    for y in 0..h {
+        for x in 0..w {
+            let hash = ((u64::from(x) * 0x9e37_79b9) ^ (u64::from(y) * 0x85eb_ca6b) ^ salt)
+                .wrapping_mul(0xc2b2_ae35)
+                >> 40;
+            let noise = (hash % 24) as i32 - 12;
+            let fx = f64::from(x) / f64::from(w);
+            let fy = f64::from(y) / f64::from(h);
+            let mut c = [
+                (255.0 * fx) as i32,
+                (255.0 * fy) as i32,
+                (128.0 + 100.0 * (6.0 * fx + 4.0 * fy).sin()) as i32,
+            ];
+            let (dx, dy) = (fx - 0.6, fy - 0.4);
+            if dx * dx + dy * dy < 0.04 {
+                c = [230, 40, 60];
+            }
+            if (x / 8 + y / 8) % 5 == 0 {
+                c = c.map(|v| v + noise);
+            }
+            pixels.extend(c.map(|v| v.clamp(0, 255) as u8));
+        }
+    }
+    crate::pgm::Ppm {
+        width: w,
+        height: h,
+        maxval: 255,
+        pixels,
+    }
+}
+
+fn coverage_model() -> Coverage {
+    let mut c = Coverage::new();
+    let blocks = c.add(
+        Coverpoint::new("footprint_blocks")
+            .value("one", 1)
+            .value("two", 2)
+            .value("four", 4),
+    );
+    c.add(
+        Coverpoint::new("first_lookup")
+            .value("all_miss", 0)
+            .value("partial", 1)
+            .value("all_hit", 2),
+    );
+    let any = c.add(Coverpoint::new("missed").value("no", 0).value("yes", 1));
+    c.add(
+        Coverpoint::new("mode")
+            .value("cache_lookahead", 0)
+            .value("cache_only", 1)
+            .value("no_cache", 2),
+    );
+    c.add(
+        Coverpoint::new("layout")
+            .value("row_major", 0)
+            .value("tiled", 1),
+    );
+    c.add(
+        Coverpoint::new("edge")
+            .value("inside", 0)
+            .value("clamped", 1),
+    );
+    c.cross("blocks_x_missed", blocks, any);
+    c
+}
+
+/// One configuration of the suite, checked; returns its statistics.
+#[allow(clippy::too_many_arguments)]
+fn check_run(
+    res: &mut TbResult,
+    cov: &mut Coverage,
+    tex: &Ccc,
+    orig: &crate::pgm::Ppm,
+    p: TexParams,
+    reqs: &[TexRequest],
+    interval: u32,
+    vcd: Option<(PathBuf, TraceConfig)>,
+    compression: &mut verif::ErrorStats,
+) -> Result<TexRun, String> {
+    let run = run_texread(tex, p, reqs, interval, vcd)?;
+    let s = &run.stats;
+    let f = p.frac_bits;
+    let one = f64::from(1u32 << f);
+    let mode = if !p.cache {
+        2
+    } else if p.lookahead {
+        0
+    } else {
+        1
+    };
+    let tag = format!(
+        "{} {} interval {interval}",
+        p.layout.name(),
+        ["cache+lookahead", "cache", "no cache"][mode]
+    );
+    for (i, r) in reqs.iter().enumerate() {
+        let got = run.rgb[i];
+        let want = reference_filter(tex, r.u, r.v, f);
+        res.transactions += 1;
+        if got != want {
+            res.mismatches += 1;
+            if res.mismatch_log.len() < 10 {
+                res.mismatch_log.push(format!(
+                    "{tag}: request {i} (u {}, v {}): rgb {got:06x}, integer reference {want:06x}",
+                    r.u, r.v
+                ));
+            }
+        }
+        let (u, v) = (f64::from(r.u) / one, f64::from(r.v) / one);
+        let dec = |x: u32, y: u32| {
+            let c = tex.texel(x, y);
+            [16, 8, 0].map(|s| f64::from(c >> s & 0xff))
+        };
+        let g = golden::texture::bilinear(dec, p.width, p.height, u, v);
+        let org = |x: u32, y: u32| {
+            let k = 3 * (y * orig.width + x) as usize;
+            [0, 1, 2].map(|c| f64::from(orig.pixels[k + c]))
+        };
+        let go = golden::texture::bilinear(org, p.width, p.height, u, v);
+        for (c, sh) in [16, 8, 0].into_iter().enumerate() {
+            let dut = f64::from(got >> sh & 0xff);
+            res.stats.record(dut, g[c], 1.0);
+            compression.record(dut, go[c], 1.0);
+        }
+        let edge = (r.u >> f) + 1 >= p.width || (r.v >> f) + 1 >= p.height;
+        let (nb, hits) = run.lookups[i];
+        let outcome = if hits == nb { 2 } else { i64::from(hits > 0) };
+        cov.sample(&[
+            i64::from(nb),
+            outcome,
+            i64::from(hits < nb),
+            mode as i64,
+            i64::from(p.layout == Layout::Tiled),
+            i64::from(edge),
+        ]);
+    }
+    if res.stats.max_abs_lsb > golden::texture::ERROR_BOUND_LSB {
+        res.failures.push(format!(
+            "{tag}: error {:.3} LSB against the golden model of the decoded texture, bound 0.5",
+            res.stats.max_abs_lsb
+        ));
+    }
+    let fail = |res: &mut TbResult, what: String| res.failures.push(format!("{tag}: {what}"));
+    if s.violations != 0 {
+        fail(res, format!("{} DRAM timing violations", s.violations));
+    }
+    if s.requests != reqs.len() as u64 {
+        fail(
+            res,
+            format!("{} requests accepted of {}", s.requests, reqs.len()),
+        );
+    }
+    if s.misses != s.misses_cold + s.misses_capacity + s.misses_conflict {
+        fail(
+            res,
+            format!("misses {} != cold + capacity + conflict", s.misses),
+        );
+    }
+    if s.dram_reads != 2 * (s.demand_fills + s.prefetch_fills) {
+        fail(
+            res,
+            format!(
+                "{} DRAM reads for {} fills",
+                s.dram_reads,
+                s.demand_fills + s.prefetch_fills
+            ),
+        );
+    }
+    if !p.cache && (s.hits != 0 || s.demand_fills != s.block_refs) {
+        fail(
+            res,
+            format!(
+                "cache off: {} hits, {} fills for {} blocks",
+                s.hits, s.demand_fills, s.block_refs
+            ),
+        );
+    }
+    if !(p.cache && p.lookahead) && (s.prefetch_fills != 0 || s.demand_fills != s.misses) {
+        fail(
+            res,
+            format!(
+                "no lookahead: {} prefetches, {} fills for {} misses",
+                s.prefetch_fills, s.demand_fills, s.misses
+            ),
+        );
+    }
+    if s.demand_fills + s.late_prefetches < s.misses {
+        fail(
+            res,
+            format!(
+                "{} misses but {} fills + {} late prefetches",
+                s.misses, s.demand_fills, s.late_prefetches
+            ),
+        );
+    }
+    res.cycles += s.cycles;
+    Ok(run)
+}
+
+/// Texture size of the testbench.
+pub const TB_SIZE: u32 = 256;
+/// Requests per trace.
+pub const TB_REQUESTS: usize = 2048;
+
+/// The configurations every trace runs in: layout, cache, lookahead, rasterizer interval.
+pub const TB_CONFIGS: [(Layout, bool, bool, u32); 8] = [
+    (Layout::RowMajor, true, true, 1),
+    (Layout::RowMajor, true, false, 1),
+    (Layout::RowMajor, false, false, 1),
+    (Layout::Tiled, true, true, 1),
+    (Layout::Tiled, true, false, 1),
+    (Layout::Tiled, false, false, 1),
+    (Layout::RowMajor, true, true, 4),
+    (Layout::RowMajor, true, false, 4),
+];
+
+/// The texture testbench: a 256x256 synthetic texture, CCC-encoded, read through the unit on
+/// every trace in every configuration of [`TB_CONFIGS`]; every result checked against the
+/// integer reference and the golden model, the configurations bit-identical, the hit-rate
+/// table in the notes and in the returned rows. The VCD (when asked) is a short separate run
+/// of the horizontal trace.
+pub fn regress_suite(
+    seed: Seed,
+    vcd: Option<PathBuf>,
+    trace_cfg: TraceConfig,
+) -> Result<(TbResult, Vec<TableRow>), String> {
+    let mut res = TbResult::new(
+        "texture",
+        "texture unit 602: DRAM 604, control 607, CCC 608-612, cache 614, extract 618, bilinear 622 (Figures 4-7)",
+    );
+    res.seed = Some(seed.to_string());
+    let (w, h) = (TB_SIZE, TB_SIZE);
+    let orig = synthetic_texture(w, h, seed);
+    let tex = crate::ccc::encode(&orig)?;
+    let (db, worst) = crate::ccc::psnr(&orig.pixels, &tex.decode());
+    res.notes.push(format!(
+        "CCC of the {w}x{h} test texture: {db:.2} dB PSNR, worst texel error {worst} levels"
+    ));
+    let mut cov = coverage_model();
+    let mut compression = verif::ErrorStats::new();
+    let mut rows = Vec::new();
+    for kind in TraceKind::ALL {
+        let reqs = trace(kind, w, h, 4, TB_REQUESTS, seed.derive(kind as u64));
+        let mut first: Option<Vec<u32>> = None;
+        for (layout, cache, look, interval) in TB_CONFIGS {
+            let mut p = TexParams::new(w, h);
+            p.layout = layout;
+            p.cache = cache;
+            p.lookahead = look;
+            let run = check_run(
+                &mut res,
+                &mut cov,
+                &tex,
+                &orig,
+                p,
+                &reqs,
+                interval,
+                None,
+                &mut compression,
+            )?;
+            match &first {
+                None => first = Some(run.rgb.clone()),
+                Some(r) if *r != run.rgb => res.failures.push(format!(
+                    "{}: results differ from the first configuration in {} cache {cache} lookahead {look} interval {interval}",
+                    kind.name(),
+                    layout.name()
+                )),
+                _ => {}
+            }
+            rows.push(TableRow {
+                trace: kind.name().into(),
+                stats: run.stats,
+                faults_per_line: run.faults_per_line,
+            });
+        }
+    }
+    if let Some(path) = vcd {
+        let reqs = trace(TraceKind::Horizontal, w, h, 4, 96, seed);
+        check_run(
+            &mut res,
+            &mut cov,
+            &tex,
+            &orig,
+            TexParams::new(w, h),
+            &reqs,
+            1,
+            Some((path.clone(), trace_cfg)),
+            &mut compression,
+        )?;
+        res.vcd = Some(path);
+    }
+    res.notes.push(format!(
+        "compression error (hardware against the golden model of the original texture): worst {:.2} levels, mean {:.2}",
+        compression.max_abs_lsb,
+        compression.mean_abs_lsb()
+    ));
+    for r in rows
+        .iter()
+        .filter(|r| r.stats.layout == "row-major" && r.stats.interval == 1)
+    {
+        if r.stats.cache {
+            res.notes.push(format!(
+                "{} trace, {}: hit rate {:.1} %, {:.1} M pixels/s, {:.2} page faults per scanline",
+                r.trace,
+                if r.stats.lookahead {
+                    "cache + lookahead"
+                } else {
+                    "cache"
+                },
+                100.0 * r.stats.hit_rate,
+                r.stats.pixels_per_second / 1e6,
+                r.stats.page_faults_per_scanline
+            ));
+        }
+    }
+    res.tables.push(format!(
+        "Hit rate and speed (texture {TB_SIZE}x{TB_SIZE}, {TB_REQUESTS} requests per trace, 512-word pages, 5 ns cycle; interval = cycles between requests the rasterizer offers; misses split by a 4-block fully-associative LRU shadow cache; with the cache off, every reference is a miss and the split says which a 4-block fully-associative cache would have caught):\n\n{}",
+        table(&rows)
+    ));
+    res.set_coverage(cov);
+    res.finish_with(false);
+    Ok((res, rows))
+}
+
+/// One line of the hit-rate table.
+#[derive(Clone, Debug, Serialize)]
+pub struct TableRow {
+    pub trace: String,
+    pub stats: TexReadStats,
+    pub faults_per_line: Vec<u64>,
+}
+
+/// The hit-rate table in markdown.
+pub fn table(rows: &[TableRow]) -> String {
+    use std::fmt::Write;
+    let mut t = String::from(
+        "| trace | layout | mode | interval | hit rate | misses cold / capacity / conflict | prefetches (used, late) | page faults / scanline | M pixels/s |\n|---|---|---|---|---|---|---|---|---|\n",
+    );
+    for r in rows {
+        let s = &r.stats;
+        let mode = match (s.cache, s.lookahead) {
+            (true, true) => "cache + lookahead",
+            (true, false) => "cache",
+            _ => "no cache",
+        };
+        let _ = writeln!(
+            t,
+            "| {} | {} | {mode} | {} | {:.1} % | {} / {} / {} | {} ({}, {}) | {:.2} | {:.1} |",
+            r.trace,
+            s.layout,
+            s.interval,
+            100.0 * s.hit_rate,
+            s.misses_cold,
+            s.misses_capacity,
+            s.misses_conflict,
+            s.prefetch_fills,
+            s.prefetch_hits,
+            s.late_prefetches,
+            s.page_faults_per_scanline,
+            s.pixels_per_second / 1e6
+        );
+    }
+    t
+}
+
+/// The memory-path pictures of the report (hit rate, pixels per second with and without
+/// lookahead, page faults per scanline by layout), from the testbench's rows. Returns
+/// `(file, caption)`.
+pub fn memory_plots(
+    out: &std::path::Path,
+    rows: &[TableRow],
+) -> Result<Vec<(String, String)>, String> {
+    let traces: Vec<String> = TraceKind::ALL
+        .iter()
+        .map(|k| k.name().to_string())
+        .collect();
+    let pick =
+        |layout: &str, cache: bool, look: bool, interval: u32, f: &dyn Fn(&TexReadStats) -> f64| {
+            traces
+                .iter()
+                .map(|t| {
+                    rows.iter()
+                        .find(|r| {
+                            r.trace == *t
+                                && r.stats.layout == layout
+                                && r.stats.cache == cache
+                                && r.stats.lookahead == (cache && look)
+                                && r.stats.interval == interval
+                        })
+                        .map_or(0.0, |r| f(&r.stats))
+                })
+                .collect::<Vec<f64>>()
+        };
+    let hit = |s: &TexReadStats| 100.0 * s.hit_rate;
+    let mpx = |s: &TexReadStats| s.pixels_per_second / 1e6;
+    let pf = |s: &TexReadStats| s.page_faults_per_scanline;
+    let plots = [
+        (
+            "texture_hit_rate.png",
+            "Cache 614: block hit rate (row-major, 256x256 texture)",
+            "hit rate (%)",
+            vec![
+                ("cache + lookahead, 1 req/cycle".to_string(), pick("row-major", true, true, 1, &hit)),
+                ("cache, 1 req/cycle".to_string(), pick("row-major", true, false, 1, &hit)),
+                ("cache + lookahead, 1 req/4 cycles".to_string(), pick("row-major", true, true, 4, &hit)),
+                ("cache, 1 req/4 cycles".to_string(), pick("row-major", true, false, 4, &hit)),
+            ],
+            "block hit rate of cache 614 per trace, with and without lookahead, rasterizer offering a request every cycle or every 4 cycles",
+        ),
+        (
+            "texture_pixels_per_second.png",
+            "Texture unit 602: pixels per second (5 ns cycle, row-major)",
+            "M pixels/s",
+            vec![
+                ("cache + lookahead".to_string(), pick("row-major", true, true, 1, &mpx)),
+                ("cache".to_string(), pick("row-major", true, false, 1, &mpx)),
+                ("no cache".to_string(), pick("row-major", false, false, 1, &mpx)),
+            ],
+            "textured pixels per second per trace with lookahead, without it, and without the cache (rasterizer offering one request per cycle)",
+        ),
+        (
+            "texture_page_faults.png",
+            "DRAM 604: page faults per scanline (512-word pages)",
+            "page faults / scanline",
+            vec![
+                ("row-major, cache".to_string(), pick("row-major", true, false, 1, &pf)),
+                ("tiled, cache".to_string(), pick("tiled", true, false, 1, &pf)),
+                ("row-major, no cache".to_string(), pick("row-major", false, false, 1, &pf)),
+                ("tiled, no cache".to_string(), pick("tiled", false, false, 1, &pf)),
+            ],
+            "DRAM page faults per scanline per trace, row-major against tiled layout, 512-word pages",
+        ),
+    ];
+    let mut v = Vec::new();
+    for (file, title, ydesc, series, caption) in plots {
+        let png = crate::plots::grouped_bars_png(title, ydesc, &traces, &series)?;
+        let path = out.join(file);
+        crate::report::write_atomic(&path, &png).map_err(|e| format!("{}: {e}", path.display()))?;
+        v.push((file.to_string(), caption.to_string()));
+    }
+    Ok(v)
+}
