@@ -197,5 +197,43 @@ fn dram(c: &mut Criterion) {
     g.finish();
 }
 
-criterion_group!(benches, kernel, fixed_point, normal_pipeline, mipmap, dram);
+/// Texture unit 602 with DRAM, cache and bilinear, tracing off: simulated cycles per second
+/// and texture requests per second on a scanline trace (mostly hits) and a random one (mostly
+/// DRAM cycles). The texture is encoded once, outside the timing; each iteration builds the
+/// unit (loading the DRAM image) and runs the trace.
+fn texture(c: &mut Criterion) {
+    use tb::texture::{run_texread, synthetic_texture, trace, TraceKind};
+    let orig = synthetic_texture(256, 256, verif::Seed(1));
+    let tex = tb::ccc::encode(&orig).unwrap();
+    let p = hdl::texture_unit::TexParams::new(256, 256);
+    let mut g = c.benchmark_group("texture");
+    for kind in [TraceKind::Horizontal, TraceKind::Random] {
+        let reqs = trace(kind, 256, 256, 4, 20_000, verif::Seed(2));
+        let cycles = run_texread(&tex, p, &reqs, 1, None).unwrap().stats.cycles;
+        let name = if kind == TraceKind::Random {
+            "random"
+        } else {
+            "horizontal"
+        };
+        g.throughput(Throughput::Elements(cycles));
+        g.bench_function(format!("{name}_simulated_cycles"), |b| {
+            b.iter(|| black_box(run_texread(&tex, p, &reqs, 1, None).unwrap().stats.cycles))
+        });
+        g.throughput(Throughput::Elements(reqs.len() as u64));
+        g.bench_function(format!("{name}_requests"), |b| {
+            b.iter(|| black_box(run_texread(&tex, p, &reqs, 1, None).unwrap().stats.cycles))
+        });
+    }
+    g.finish();
+}
+
+criterion_group!(
+    benches,
+    kernel,
+    fixed_point,
+    normal_pipeline,
+    mipmap,
+    dram,
+    texture
+);
 criterion_main!(benches);

@@ -56,7 +56,11 @@ pub struct Ccc {
 
 /// Checks a texture size.
 pub fn check_size(w: u32, h: u32) -> Result<(), String> {
-    if !w.is_multiple_of(4) || !h.is_multiple_of(4) || !(4..=4096).contains(&w) || !(4..=4096).contains(&h) {
+    if !w.is_multiple_of(4)
+        || !h.is_multiple_of(4)
+        || !(4..=4096).contains(&w)
+        || !(4..=4096).contains(&h)
+    {
         return Err(format!(
             "texture size {w}x{h}: width and height must be multiples of 4 in 4..=4096"
         ));

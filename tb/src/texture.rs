@@ -178,7 +178,9 @@ pub fn run_texread(
     }
 }
 
-fn drive<T: Trace>(
+/// Drives `reqs` into a unit already in `sim` (see [`run_texread`]); for testbenches that set
+/// the simulator up themselves (e.g. with the schedule check on).
+pub fn drive<T: Trace>(
     mut sim: Sim<TextureUnit, T>,
     reqs: &[TexRequest],
     interval: u32,

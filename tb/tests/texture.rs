@@ -1,0 +1,523 @@
+//! The texture memory path (Schilling & Knittel, Figures 4-7): random textures and requests
+//! through texture unit 602 in every mode and layout, bit-identical and equal to the integer
+//! reference and within half an LSB of the golden model; the cache's timing; the document's
+//! CCC format; and `texrtl ccc` / `texrtl texread`, bad input included.
+
+use hdl::ccc_decode::CccBlock;
+use hdl::color_bilinear::lerp2;
+use hdl::kernel::Sim;
+use hdl::texture_layout::Layout;
+use hdl::texture_unit::{TexParams, TextureUnit};
+use proptest::prelude::*;
+use tb::ccc::{reference_filter, Ccc};
+use tb::texture::{drive, run_texread, TexRequest};
+
+fn modes() -> Vec<(Layout, bool, bool, u32)> {
+    let mut v = Vec::new();
+    for layout in [Layout::RowMajor, Layout::Tiled] {
+        for (cache, look) in [(true, true), (true, false), (false, false)] {
+            for interval in [1, 3] {
+                v.push((layout, cache, look, interval));
+            }
+        }
+    }
+    v
+}
+
+fn random_texture() -> impl Strategy<Value = Ccc> {
+    (1u32..=6, 1u32..=6).prop_flat_map(|(bw, bh)| {
+        (
+            prop::collection::vec(0u32..=0xff_ffff, 256),
+            prop::collection::vec((any::<u8>(), any::<u8>(), any::<u16>()), (bw * bh) as usize),
+        )
+            .prop_map(move |(clut, blocks)| Ccc {
+                width: 4 * bw,
+                height: 4 * bh,
+                clut,
+                blocks: blocks
+                    .into_iter()
+                    .map(|(a, b, bits)| CccBlock { a, b, bits })
+                    .collect(),
+            })
+    })
+}
+
+#[test]
+fn every_mode_is_bit_identical_and_equals_the_reference() {
+    let mut runner = verif::seeded_runner("texture_modes", 48);
+    let strat = (
+        random_texture(),
+        prop::collection::vec((0.0f64..1.0, 0.0f64..1.0, prop::bool::weighted(0.1)), 1..60),
+        1u32..=6,
+    );
+    runner
+        .run(&strat, |(tex, pts, frac)| {
+            let one = 1u32 << frac;
+            let reqs: Vec<TexRequest> = pts
+                .iter()
+                .map(|&(x, y, nl)| TexRequest {
+                    u: ((x * f64::from(tex.width * one)) as u32).min(tex.width * one - 1),
+                    v: ((y * f64::from(tex.height * one)) as u32).min(tex.height * one - 1),
+                    newline: nl,
+                })
+                .collect();
+            let want: Vec<u32> = reqs
+                .iter()
+                .map(|r| reference_filter(&tex, r.u, r.v, frac))
+                .collect();
+            for (layout, cache, look, interval) in modes() {
+                let mut p = TexParams::new(tex.width, tex.height);
+                p.layout = layout;
+                p.cache = cache;
+                p.lookahead = look;
+                p.frac_bits = frac;
+                // Small pages, so page faults and tiles happen on small textures.
+                p.dram.cols = 16;
+                p.dram.rows = 64;
+                let unit = TextureUnit::new("t", p, &tex.clut, &tex.dram_words(&p.block_map()))
+                    .map_err(TestCaseError::fail)?;
+                let sim = Sim::new(unit).check_schedule(true);
+                let (_, run) = drive(sim, &reqs, interval).map_err(TestCaseError::fail)?;
+                prop_assert_eq!(
+                    &run.rgb,
+                    &want,
+                    "{:?} cache {} lookahead {}",
+                    layout,
+                    cache,
+                    look
+                );
+                let s = &run.stats;
+                prop_assert_eq!(s.violations, 0);
+                prop_assert_eq!(s.dram_reads, 2 * (s.demand_fills + s.prefetch_fills));
+                prop_assert_eq!(
+                    s.misses,
+                    s.misses_cold + s.misses_capacity + s.misses_conflict
+                );
+                if !cache {
+                    prop_assert_eq!(s.demand_fills, s.block_refs);
+                }
+                // Golden: f64 bilinear of the decoded texture, at most half an LSB away.
+                for (r, &got) in reqs.iter().zip(&run.rgb) {
+                    let g = golden::texture::bilinear(
+                        |x, y| {
+                            let c = tex.texel(x, y);
+                            [16, 8, 0].map(|s| f64::from(c >> s & 0xff))
+                        },
+                        tex.width,
+                        tex.height,
+                        f64::from(r.u) / f64::from(one),
+                        f64::from(r.v) / f64::from(one),
+                    );
+                    for (c, sh) in [16, 8, 0].into_iter().enumerate() {
+                        let e = (f64::from(got >> sh & 0xff) - g[c]).abs();
+                        prop_assert!(e <= golden::texture::ERROR_BOUND_LSB, "error {} LSB", e);
+                    }
+                }
+            }
+            Ok(())
+        })
+        .unwrap();
+}
+
+#[test]
+fn bilinear_622_arithmetic_exhaustive_over_weights() {
+    // Every weight pair for F = 1..=6 with extreme and middle channel values: the two-lerp
+    // datapath equals the four-weight sum rounded half up.
+    let vals = [0u32, 1, 127, 128, 254, 255];
+    for f in 1..=6u32 {
+        let w = 1u64 << f;
+        for fu in 0..w {
+            for fv in 0..w {
+                for &a in &vals {
+                    for &b in &vals {
+                        for &c in &vals {
+                            for &d in &vals {
+                                let s = u64::from(a) * (w - fu) * (w - fv)
+                                    + u64::from(b) * fu * (w - fv)
+                                    + u64::from(c) * (w - fu) * fv
+                                    + u64::from(d) * fu * fv;
+                                let want = (s + (1 << (2 * f - 1))) >> (2 * f);
+                                assert_eq!(
+                                    u64::from(lerp2(a, b, c, d, fu as u32, fv as u32, f)),
+                                    want
+                                );
+                            }
+                        }
+                    }
+                }
+            }
+        }
+    }
+}
+
+fn flat(w: u32, h: u32) -> Ccc {
+    Ccc {
+        width: w,
+        height: h,
+        clut: (0..256).map(|i| i * 0x010101).collect(),
+        blocks: (0..(w / 4) * (h / 4))
+            .map(|i| CccBlock {
+                a: i as u8,
+                b: 255 - i as u8,
+                bits: 0x5a5a,
+            })
+            .collect(),
+    }
+}
+
+fn cycles(tex: &Ccc, p: TexParams, pts: &[(u32, u32)]) -> tb::texture::TexRun {
+    let reqs: Vec<TexRequest> = pts
+        .iter()
+        .map(|&(x, y)| TexRequest {
+            u: x << p.frac_bits,
+            v: y << p.frac_bits,
+            newline: false,
+        })
+        .collect();
+    run_texread(tex, p, &reqs, 1, None).unwrap()
+}
+
+#[test]
+fn miss_penalty_hit_throughput_and_page_faults() {
+    // 256x256, row-major, 512-word pages: a page holds 4 block rows (16 texel rows).
+    let tex = flat(256, 256);
+    let mut p = TexParams::new(256, 256);
+    p.lookahead = false;
+    let one = cycles(&tex, p, &[(1, 1)]).stats.cycles;
+    // Cold start, cycle by cycle: request taken (1), lookup misses (1), 607 takes word 0 (1),
+    // page fault t_rp + t_rcd (6), CAS# low t_cas (3), CAS# high t_cp (3, word 1 taken in its
+    // last cycle), CAS# low (3), CLUT a and b (2), lookup hits (1), extract 618 (1), the
+    // result out of 622 (1): 23 cycles.
+    assert_eq!(one, 23);
+    // Hits stream at one request per cycle.
+    let many = cycles(&tex, p, &[(1, 1); 50]).stats.cycles;
+    assert_eq!(many, one + 49);
+    // A second block in the open page: its request enters stage 0 the cycle after the first
+    // one's hit, misses (1), 607 takes word 0 (1), t_cas + t_cp + t_cas (9), CLUT (2), lookup,
+    // extract, result (3): 14 cycles after the first result.
+    let two = cycles(&tex, p, &[(1, 1), (9, 1)]).stats;
+    assert_eq!(two.cycles, one + 14);
+    assert_eq!((two.page_faults, two.page_hits), (1, 3));
+    // A block in another page adds the page fault's 6 cycles.
+    let far = cycles(&tex, p, &[(1, 1), (1, 20)]).stats;
+    assert_eq!(far.cycles, one + 14 + 6);
+    assert_eq!((far.page_faults, far.page_hits), (2, 2));
+    // Four blocks (a footprint across a block corner) cost four fills, one after the other:
+    // each further fill is the lookup that misses, word 0 taken, 9 cycles of reads, 2 of
+    // CLUT = 13 cycles. (Block (1, 0) is in the same page; blocks (0, 1), (1, 1) too.)
+    let corner = cycles(&tex, p, &[(3, 3)]).stats;
+    assert_eq!(corner.demand_fills, 4);
+    assert_eq!(corner.cycles, one + 3 * 13);
+}
+
+#[test]
+fn lookahead_preloads_the_quadrant_neighbours_when_the_dram_is_idle() {
+    let tex = flat(64, 64);
+    let mut p = TexParams::new(64, 64);
+    // A point in the lower-right quadrant of block (2, 2), offered once every 80 cycles so the
+    // DRAM goes idle; then points in the three neighbours, each in the quadrant facing the
+    // others (so their own lookahead finds everything present): all hits thanks to the
+    // first request's prefetch.
+    let reqs = [(10, 10), (13, 10), (10, 13), (13, 13)];
+    let run = |p: TexParams| {
+        let r: Vec<TexRequest> = reqs
+            .iter()
+            .map(|&(x, y)| TexRequest {
+                u: x << 4,
+                v: y << 4,
+                newline: false,
+            })
+            .collect();
+        run_texread(&tex, p, &r, 80, None).unwrap().stats
+    };
+    let with = run(p);
+    assert_eq!(with.demand_fills, 1);
+    assert_eq!(with.prefetch_fills, 3);
+    assert_eq!(with.hits, 3);
+    assert_eq!(with.prefetch_hits, 3);
+    assert_eq!(
+        with.prefetch_dropped, 9,
+        "later requests' neighbours were all present"
+    );
+    p.lookahead = false;
+    let without = run(p);
+    assert_eq!((without.prefetch_fills, without.hits), (0, 0));
+    assert_eq!(without.demand_fills, 4);
+}
+
+#[test]
+fn a_newline_request_does_not_prefetch() {
+    let tex = flat(64, 64);
+    let p = TexParams::new(64, 64);
+    let r = [TexRequest {
+        u: 10 << 4,
+        v: 10 << 4,
+        newline: true,
+    }];
+    let s = run_texread(&tex, p, &r, 1, None).unwrap().stats;
+    assert_eq!(s.prefetch_fills, 0);
+    let r = [TexRequest {
+        newline: false,
+        ..r[0]
+    }];
+    let s = run_texread(&tex, p, &r, 1, None).unwrap().stats;
+    assert_eq!(s.prefetch_fills, 3);
+}
+
+#[test]
+fn the_shadow_cache_splits_misses() {
+    use tb::texture::{MissKind, Shadow};
+    let mut s = Shadow::new(4);
+    assert_eq!(s.reference((0, 0), false), Some(MissKind::Cold));
+    assert_eq!(s.reference((2, 0), false), Some(MissKind::Cold));
+    // (0, 0) is still in the fully-associative cache: a conflict miss of the real one.
+    assert_eq!(s.reference((0, 0), false), Some(MissKind::Conflict));
+    for b in 1..=4 {
+        s.reference((b, 7), false);
+    }
+    // Four other blocks since: evicted from the shadow too, a capacity miss.
+    assert_eq!(s.reference((2, 0), false), Some(MissKind::Capacity));
+    assert_eq!(s.reference((2, 0), true), None);
+}
+
+#[test]
+fn textures_that_do_not_fit_are_refused() {
+    let mut p = TexParams::new(4096, 4096);
+    assert!(p.validate().unwrap_err().contains("needs DRAM words"));
+    p.dram = hdl::dram::DramParams::one_meg();
+    assert!(p.validate().is_err(), "4096^2 needs 2M words");
+    let p = TexParams::new(2048, 1024);
+    assert!(
+        p.validate().is_ok(),
+        "2M texels in 256K x 16 (the document's figure)"
+    );
+    assert!(TexParams::new(6, 8).validate().is_err());
+    assert!(TexParams::new(0, 8).validate().is_err());
+}
+
+// ---- the command line ----
+
+fn texrtl(args: &[&str]) -> std::process::Output {
+    std::process::Command::new(env!("CARGO_BIN_EXE_texrtl"))
+        .args(args)
+        .output()
+        .expect("runs")
+}
+
+fn dir(name: &str) -> std::path::PathBuf {
+    let d = std::env::temp_dir().join(format!("texrtl-tex-{}-{name}", std::process::id()));
+    let _ = std::fs::remove_dir_all(&d);
+    std::fs::create_dir_all(&d).unwrap();
+    d
+}
+
+fn ppm(w: u32, h: u32) -> Vec<u8> {
+    let mut px = Vec::new();
+    for y in 0..h {
+        for x in 0..w {
+            px.extend_from_slice(&[(x * 8) as u8, (y * 8) as u8, ((x ^ y) * 4) as u8]);
+        }
+    }
+    tb::pgm::encode_ppm(w, h, &px)
+}
+
+#[test]
+fn ccc_and_texread_commands() {
+    let d = dir("cmd");
+    let (t, c, dec) = (d.join("t.ppm"), d.join("t.ccc"), d.join("d.ppm"));
+    std::fs::write(&t, ppm(32, 16)).unwrap();
+    let s = |p: &std::path::Path| p.to_str().unwrap().to_string();
+    let o = texrtl(&["ccc", "encode", "--in", &s(&t), "--out", &s(&c)]);
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    assert!(String::from_utf8_lossy(&o.stdout).contains("PSNR"));
+    let o = texrtl(&["ccc", "decode", "--in", &s(&c), "--out", &s(&dec)]);
+    assert!(o.status.success());
+    let tex = Ccc::read(&c).unwrap();
+    let img = tb::pgm::read_ppm(&dec).unwrap();
+    assert_eq!(img.pixels, tex.decode());
+
+    let r = d.join("r.csv");
+    std::fs::write(
+        &r,
+        "u,v,newline\n0,0,1\n1.5,2.25,0\n31.9375,15.5,0\n3.03,3.97,1\n",
+    )
+    .unwrap();
+    let (out, stats, vcd) = (d.join("o.csv"), d.join("s.json"), d.join("w.vcd"));
+    let mut outs = Vec::new();
+    for extra in [
+        vec![],
+        vec!["--no-cache"],
+        vec!["--no-lookahead", "--layout", "tiled"],
+        vec!["--interval", "5"],
+    ] {
+        let mut a = vec![
+            "texread".to_string(),
+            "--texture".into(),
+            s(&c),
+            "--requests".into(),
+            s(&r),
+            "--out".into(),
+            s(&out),
+            "--stats".into(),
+            s(&stats),
+            "--vcd".into(),
+            s(&vcd),
+        ];
+        a.extend(extra.iter().map(|x| x.to_string()));
+        let a: Vec<&str> = a.iter().map(String::as_str).collect();
+        let o = texrtl(&a);
+        assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+        outs.push(std::fs::read_to_string(&out).unwrap());
+        let j: serde_json::Value = serde_json::from_slice(&std::fs::read(&stats).unwrap()).unwrap();
+        for k in [
+            "hits",
+            "page_faults",
+            "cycles",
+            "ns",
+            "pixels_per_second",
+            "dram_reads",
+        ] {
+            assert!(j.get(k).is_some(), "{k}");
+        }
+        assert_eq!(j["requests"], 4);
+    }
+    assert!(outs.iter().all(|o| *o == outs[0]), "modes differ");
+    let rows: Vec<&str> = outs[0].lines().collect();
+    assert_eq!(rows[0], "u,v,r,g,b");
+    assert_eq!(rows.len(), 5);
+    // 3.03 and 3.97 are rounded to sixteenths; the results equal the integer reference.
+    assert!(
+        rows[4].starts_with("3,4,") || rows[4].starts_with("3.0625,3.9375,"),
+        "{}",
+        rows[4]
+    );
+    for (row, (u, v)) in rows[1..]
+        .iter()
+        .zip([(0, 0), (24, 36), (511, 248), (48, 64)])
+    {
+        let f: Vec<u32> = row.split(',').skip(2).map(|x| x.parse().unwrap()).collect();
+        let want = reference_filter(&tex, u, v, 4);
+        assert_eq!(f, vec![want >> 16, want >> 8 & 0xff, want & 0xff], "{row}");
+    }
+    // The waveform: DRAM pins, page register, cache tags and valid bits, controller states.
+    let rb = waves::check::read_vcd(&vcd).unwrap();
+    for v in [
+        "tb.texture_unit.control_607.dram.ras_n",
+        "tb.texture_unit.control_607.dram.cas_n",
+        "tb.texture_unit.control_607.dram.addr",
+        "tb.texture_unit.control_607.dram.page_row",
+        "tb.texture_unit.control_607.state",
+        "tb.texture_unit.fill_state",
+        "tb.texture_unit.cache_614.entry_a.tag_x",
+        "tb.texture_unit.cache_614.entry_d.valid",
+        "tb.texture_unit.ccc_decode.reg_608",
+        "tb.texture_unit.bilinear_622.rgb",
+    ] {
+        assert!(
+            rb.vars.contains_key(v),
+            "{v}: {:?}",
+            rb.vars.keys().take(60).collect::<Vec<_>>()
+        );
+    }
+    assert_eq!(
+        rb.vars["tb.texture_unit.ccc_decode.reg_608"].width,
+        Some(32)
+    );
+    waves::check::check_gtkw(&vcd, &rb).unwrap();
+    // A PPM texture is encoded on the fly: the same results as its .ccc.
+    let mut a: Vec<String> = [
+        "texread",
+        "--texture",
+        &s(&t),
+        "--requests",
+        &s(&r),
+        "--out",
+        &s(&out),
+    ]
+    .iter()
+    .map(|x| x.to_string())
+    .collect();
+    let o = texrtl(&a.iter().map(String::as_str).collect::<Vec<_>>());
+    assert!(o.status.success());
+    assert_eq!(std::fs::read_to_string(&out).unwrap(), outs[0]);
+
+    // Bad input: one line naming the file, exit 2, nothing written.
+    let bad_out = d.join("bad.csv");
+    let good = std::fs::read(&c).unwrap();
+    let cases: Vec<(&str, Vec<u8>, &str, &str)> = vec![
+        (
+            "trunc.ccc",
+            good[..good.len() - 3].to_vec(),
+            "u,v\n1,1\n",
+            "truncated",
+        ),
+        (
+            "magic.ccc",
+            b"XEXRTLCC0000000000000000".to_vec(),
+            "u,v\n1,1\n",
+            "neither",
+        ),
+        (
+            "odd.ppm",
+            {
+                let mut b = b"P6\n6 4\n255\n".to_vec();
+                b.extend(vec![0u8; 72]);
+                b
+            },
+            "u,v\n1,1\n",
+            "multiples of 4",
+        ),
+        (
+            "short.ppm",
+            b"P6\n8 4\n255\n\0\0".to_vec(),
+            "u,v\n1,1\n",
+            "raster",
+        ),
+        ("t.ccc", good.clone(), "u,v\n32,1\n", "outside"),
+        ("t.ccc", good.clone(), "u,v\nNaN,1\n", "NaN"),
+        ("t.ccc", good.clone(), "x,y\n1,1\n", "header"),
+        ("t.ccc", good.clone(), "u,v,newline\n1,1,2\n", "newline"),
+        ("t.ccc", good.clone(), "u,v\n1\n", "fields"),
+    ];
+    for (name, bytes, req, needle) in cases {
+        let tp = d.join(format!("bad-{name}"));
+        std::fs::write(&tp, &bytes).unwrap();
+        std::fs::write(&r, req).unwrap();
+        a = [
+            "texread",
+            "--texture",
+            &s(&tp),
+            "--requests",
+            &s(&r),
+            "--out",
+            &s(&bad_out),
+        ]
+        .iter()
+        .map(|x| x.to_string())
+        .collect();
+        let o = texrtl(&a.iter().map(String::as_str).collect::<Vec<_>>());
+        let err = String::from_utf8_lossy(&o.stderr);
+        assert_eq!(o.status.code(), Some(2), "{name}: {err}");
+        assert!(
+            err.contains(needle) && err.trim_end().lines().count() == 1,
+            "{needle}: {err}"
+        );
+        assert!(!bad_out.exists(), "{name}");
+    }
+    let o = texrtl(&["ccc", "decode", "--in", &s(&t), "--out", &s(&bad_out)]);
+    assert_eq!(o.status.code(), Some(2));
+    assert!(String::from_utf8_lossy(&o.stderr).contains("magic"));
+    let o = texrtl(&[
+        "texread",
+        "--texture",
+        &s(&c),
+        "--requests",
+        &s(&r),
+        "--out",
+        &s(&bad_out),
+        "--layout",
+        "zigzag",
+    ]);
+    assert_eq!(o.status.code(), Some(2));
+    assert!(!bad_out.exists());
+}
