@@ -49,8 +49,8 @@ impl ColorBilinear {
             frac_bits,
             in_valid: Signal::bit("in_valid"),
             c: [c("c00"), c("c10"), c("c01"), c("c11")],
-            fu: Signal::new("fu", Format::uint(frac_bits)),
-            fv: Signal::new("fv", Format::uint(frac_bits)),
+            fu: Signal::new("fu", Format::unsigned(frac_bits, frac_bits as i32)),
+            fv: Signal::new("fv", Format::unsigned(frac_bits, frac_bits as i32)),
             valid: Reg::new("valid", Format::uint(1)),
             rgb: Reg::new("rgb", Format::uint(24)),
         }

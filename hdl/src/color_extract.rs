@@ -49,16 +49,16 @@ impl ColorExtract {
             x1: Signal::new("x1", Format::uint(coord_bits)),
             y0: Signal::new("y0", Format::uint(coord_bits)),
             y1: Signal::new("y1", Format::uint(coord_bits)),
-            in_fu: Signal::new("in_fu", Format::uint(frac_bits)),
-            in_fv: Signal::new("in_fv", Format::uint(frac_bits)),
+            in_fu: Signal::new("in_fu", Format::unsigned(frac_bits, frac_bits as i32)),
+            in_fv: Signal::new("in_fv", Format::unsigned(frac_bits, frac_bits as i32)),
             lines: [0; 4],
             valid: Reg::new("valid", Format::uint(1)),
             c00: c("c00"),
             c10: c("c10"),
             c01: c("c01"),
             c11: c("c11"),
-            fu: Reg::new("fu", Format::uint(frac_bits)),
-            fv: Reg::new("fv", Format::uint(frac_bits)),
+            fu: Reg::new("fu", Format::unsigned(frac_bits, frac_bits as i32)),
+            fv: Reg::new("fv", Format::unsigned(frac_bits, frac_bits as i32)),
         }
     }
 

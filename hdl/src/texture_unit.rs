@@ -221,21 +221,23 @@ impl TextureUnit {
         let mut mem = DramCtrl::new("control_607", p.dram)?;
         mem.dram.load(p.base, words)?;
         let ub = COORD_BITS + p.frac_bits;
+        // uQ12.F: the waveform shows u and v as texel coordinates beside the bits.
+        let uq = Format::unsigned(ub, p.frac_bits as i32);
         let bb = COORD_BITS - 2;
         Ok(TextureUnit {
             name: name.into(),
             p,
             map,
             in_valid: Signal::bit("in_valid"),
-            in_u: Signal::new("in_u", Format::uint(ub)),
-            in_v: Signal::new("in_v", Format::uint(ub)),
+            in_u: Signal::new("in_u", uq),
+            in_v: Signal::new("in_v", uq),
             in_newline: Signal::bit("in_newline"),
             in_ready: Signal::bit("in_ready"),
             out_valid: Signal::bit("out_valid"),
             out_rgb: Signal::new("out_rgb", Format::uint(24)),
             req_valid: Reg::new("req_valid", Format::uint(1)),
-            req_u: Reg::new("req_u", Format::uint(ub)),
-            req_v: Reg::new("req_v", Format::uint(ub)),
+            req_u: Reg::new("req_u", uq),
+            req_v: Reg::new("req_v", uq),
             req_newline: Reg::new("req_newline", Format::uint(1)),
             req_seen: Reg::new("req_seen", Format::uint(1)),
             need_mask: Signal::new("need_mask", Format::uint(4)),

@@ -366,6 +366,7 @@ fn one_width<T: Trace + ProbeSink>(
 pub trait ProbeSink {
     fn probe(&mut self, p: ProbeId, v: f64);
     fn flag(&mut self, p: ProbeId, v: bool);
+    fn bits(&mut self, p: ProbeId, v: u64);
 }
 
 impl ProbeSink for VcdTracer {
@@ -375,9 +376,13 @@ impl ProbeSink for VcdTracer {
     fn flag(&mut self, p: ProbeId, v: bool) {
         self.set_bits(p, u64::from(v));
     }
+    fn bits(&mut self, p: ProbeId, v: u64) {
+        self.set_bits(p, v);
+    }
 }
 
 impl ProbeSink for NoTrace {
     fn probe(&mut self, _: ProbeId, _: f64) {}
     fn flag(&mut self, _: ProbeId, _: bool) {}
+    fn bits(&mut self, _: ProbeId, _: u64) {}
 }

@@ -9,6 +9,7 @@
 //! fully-associative LRU shadow cache of the same four blocks, fed the same block references
 //! (Hakura and Gupta's method).
 
+use crate::blend_adjust::ProbeSink;
 use crate::ccc::{reference_filter, Ccc};
 use crate::report::TbResult;
 use hdl::kernel::{NoTrace, Sim, Trace};
@@ -18,7 +19,7 @@ use serde::Serialize;
 use std::collections::HashSet;
 use std::path::PathBuf;
 use verif::{Coverage, Coverpoint, Seed};
-use waves::{TraceConfig, VcdTracer};
+use waves::{ProbeId, TraceConfig, VcdTracer};
 
 /// One rasterizer request: raw `uQ12.F` coordinates and the scanline-change flag.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -77,6 +78,8 @@ pub struct TexReadStats {
 #[derive(Clone, Debug)]
 pub struct TexRun {
     pub rgb: Vec<u32>,
+    /// Per result: the cycle it left 622, counted from the cycle the first request was offered.
+    pub out_cycles: Vec<u64>,
     /// Per request: blocks of its footprint and how many hit at its first lookup.
     pub lookups: Vec<(u8, u8)>,
     pub stats: TexReadStats,
@@ -168,22 +171,34 @@ pub fn run_texread(
                 },
             )
             .map_err(|e| format!("{}: {e}", path.display()))?;
+            let mut t = t;
+            // The integer reference beside the unit's output, and a flag where they differ.
+            let probes = (
+                t.probe_bits("rgb_reference", 24, Some("tb.texture_unit.out_rgb")),
+                t.probe_bits("mismatch", 1, Some("tb.texture_unit.out_valid")),
+            );
             let sim = Sim::traced(unit, t).map_err(|e| e.to_string())?;
-            let (sim, run) = drive(sim, reqs, interval)?;
+            let (sim, run) = drive(sim, reqs, interval, Some((tex, probes)))?;
             sim.finish()
                 .map_err(|e| format!("{}: {e}", path.display()))?;
             Ok(run)
         }
-        None => drive(Sim::<TextureUnit, NoTrace>::new(unit), reqs, interval).map(|x| x.1),
+        None => drive(Sim::<TextureUnit, NoTrace>::new(unit), reqs, interval, None).map(|x| x.1),
     }
 }
 
+/// Reference probes of a traced run: the texture, the reference colour's and the mismatch
+/// flag's probes.
+pub type RefProbes<'a> = (&'a Ccc, (ProbeId, ProbeId));
+
 /// Drives `reqs` into a unit already in `sim` (see [`run_texread`]); for testbenches that set
-/// the simulator up themselves (e.g. with the schedule check on).
-pub fn drive<T: Trace>(
+/// the simulator up themselves (e.g. with the schedule check on). With `probes`, each result's
+/// integer reference and a mismatch flag are set on the tracer.
+pub fn drive<T: Trace + ProbeSink>(
     mut sim: Sim<TextureUnit, T>,
     reqs: &[TexRequest],
     interval: u32,
+    probes: Option<RefProbes>,
 ) -> Result<(Sim<TextureUnit, T>, TexRun), String> {
     let mut wait: u32 = 0;
     sim.reset(1);
@@ -191,6 +206,7 @@ pub fn drive<T: Trace>(
     let mut next = 0;
     let mut rgb = Vec::with_capacity(reqs.len());
     let mut lookups = Vec::with_capacity(reqs.len());
+    let mut out_cycles = Vec::with_capacity(reqs.len());
     let mut shadow = Shadow::new(4);
     let (mut cold, mut cap, mut conf) = (0, 0, 0);
     let mut faults_per_line: Vec<u64> = Vec::new();
@@ -238,7 +254,15 @@ pub fn drive<T: Trace>(
             }
         }
         if d.out_valid.is_high() {
-            rgb.push(d.out_rgb.bits() as u32);
+            let got = d.out_rgb.bits() as u32;
+            if let (Some((tex, (pr, pm))), Some(t)) = (probes, sim.trace_mut()) {
+                let r = reqs[rgb.len()];
+                let want = reference_filter(tex, r.u, r.v, p.frac_bits);
+                t.bits(pr, u64::from(want));
+                t.flag(pm, want != got);
+            }
+            rgb.push(got);
+            out_cycles.push(sim.cycle() - start);
         }
         sim.tick();
         if sim.cycle() > limit {
@@ -301,6 +325,7 @@ pub fn drive<T: Trace>(
         sim,
         TexRun {
             rgb,
+            out_cycles,
             lookups,
             stats,
             faults_per_line,

@@ -48,7 +48,7 @@ pub struct VectorFile {
 }
 
 /// Units with vectors.
-pub const UNITS: [&str; 3] = ["blend_adjust", "normals", "mipmap"];
+pub const UNITS: [&str; 4] = ["blend_adjust", "normals", "mipmap", "texture"];
 
 fn f(name: &str, width: u32) -> Field {
     Field {
@@ -71,6 +71,7 @@ pub fn unit_vectors(unit: &str) -> Result<UnitVectors, String> {
         "blend_adjust" => Ok(blend_adjust()),
         "normals" => normals(),
         "mipmap" => mipmap(),
+        "texture" => texture(),
         _ => Err(format!(
             "unknown unit '{unit}' (one of {})",
             UNITS.join(", ")
@@ -215,6 +216,72 @@ fn mipmap() -> Result<UnitVectors, String> {
         description: "FIG. 14 generator, 16x8 synthetic frame (seed 5), round half up, interlaced top-first then progressive: every texel of every level".into(),
         inputs: vec![f("interlaced", 1), f("level", 4), f("index", 8)],
         outputs: vec![f("texel", 8)],
+        rows,
+    })
+}
+
+/// The texture of the `texture` vectors: 32x32 texels, CLUT and blocks from integer formulas
+/// (no encoder, so no floating point is involved).
+pub fn vector_texture() -> crate::ccc::Ccc {
+    let clut = (0..256u32)
+        .map(|i| ((i * 37) & 0xff) << 16 | ((i * 91) & 0xff) << 8 | ((i * 13 + 5) & 0xff))
+        .collect();
+    let blocks = (0..64u32)
+        .map(|n| hdl::ccc_decode::CccBlock {
+            a: (n * 7 + 3) as u8,
+            b: (n * 11 + 100) as u8,
+            bits: (n.wrapping_mul(0x9e37_79b9) >> 16) as u16,
+        })
+        .collect();
+    crate::ccc::Ccc {
+        width: 32,
+        height: 32,
+        clut,
+        blocks,
+    }
+}
+
+fn texture() -> Result<UnitVectors, String> {
+    use crate::texture::TexRequest;
+    use hdl::texture_unit::TexParams;
+    let tex = vector_texture();
+    // Two horizontal scanlines, then positions from an integer hash (a `newline` every 16).
+    let mut reqs = Vec::new();
+    for line in 0..2u32 {
+        for i in 0..40u32 {
+            reqs.push(TexRequest {
+                u: 5 + 12 * i,
+                v: 40 + 20 * line,
+                newline: i == 0,
+            });
+        }
+    }
+    for k in 0..176u32 {
+        let h = k.wrapping_mul(0x9e37_79b9) ^ k.wrapping_mul(0x85eb_ca6b) >> 7;
+        reqs.push(TexRequest {
+            u: h % (32 << 4),
+            v: (h >> 12) % (32 << 4),
+            newline: k % 16 == 0,
+        });
+    }
+    let mut rows = Vec::new();
+    for (mode, cache, look) in [(0u64, true, true), (1, true, false), (2, false, false)] {
+        let mut p = TexParams::new(32, 32);
+        p.cache = cache;
+        p.lookahead = look;
+        let run = crate::texture::run_texread(&tex, p, &reqs, 1, None)?;
+        for (k, r) in reqs.iter().enumerate() {
+            rows.push((
+                vec![mode, u64::from(r.u), u64::from(r.v), u64::from(r.newline)],
+                vec![u64::from(run.rgb[k]), run.out_cycles[k]],
+            ));
+        }
+    }
+    Ok(UnitVectors {
+        unit: "texture".into(),
+        description: "texture unit 602 (Figure 6), 32x32 texture from integer formulas (vectors::vector_texture), 256 requests uQ12.4 offered every cycle, row-major, 512-word pages; mode 0 cache + lookahead, 1 cache, 2 no cache; outputs the colour and the cycle it leaves 622 (from the first request)".into(),
+        inputs: vec![f("mode", 2), f("u", 16), f("v", 16), f("newline", 1)],
+        outputs: vec![f("rgb", 24), f("cycle", 20)],
         rows,
     })
 }

@@ -77,7 +77,7 @@ fn every_mode_is_bit_identical_and_equals_the_reference() {
                 let unit = TextureUnit::new("t", p, &tex.clut, &tex.dram_words(&p.block_map()))
                     .map_err(TestCaseError::fail)?;
                 let sim = Sim::new(unit).check_schedule(true);
-                let (_, run) = drive(sim, &reqs, interval).map_err(TestCaseError::fail)?;
+                let (_, run) = drive(sim, &reqs, interval, None).map_err(TestCaseError::fail)?;
                 prop_assert_eq!(
                     &run.rgb,
                     &want,
