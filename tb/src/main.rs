@@ -102,6 +102,9 @@ enum Cmd {
         /// Fraction bits of u, v and the blend weights (1..=8).
         #[arg(long, default_value_t = 4)]
         frac_bits: u32,
+        /// DRAM 604: 256k (256K x 16, 512-word pages) or 1m (1M x 16, 1024-word pages).
+        #[arg(long, default_value = "256k")]
+        dram: String,
         /// JSON with the counts, cycles, ns and pixels per second.
         #[arg(long)]
         stats: Option<PathBuf>,
@@ -545,6 +548,7 @@ fn main() -> ExitCode {
             layout,
             interval,
             frac_bits,
+            dram,
             stats,
             vcd,
         }) => tb::texcmd::texread(&tb::texcmd::TexreadArgs {
@@ -556,6 +560,7 @@ fn main() -> ExitCode {
             layout,
             interval,
             frac_bits,
+            dram,
             stats,
             vcd,
         }),

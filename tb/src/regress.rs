@@ -7,6 +7,16 @@ use verif::Seed;
 use waves::check::{check_gtkw, read_vcd};
 use waves::TraceConfig;
 
+/// The testbenches in the order `texrtl regress` runs and reports them.
+pub const ORDER: [&str; 6] = [
+    "blend_adjust",
+    "normals",
+    "mipmap",
+    "dram",
+    "texture",
+    "vectors",
+];
+
 /// What `texrtl regress` runs with.
 #[derive(Clone, Debug)]
 pub struct RegressConfig {
@@ -287,6 +297,13 @@ pub fn merge(paths: &[PathBuf]) -> Result<Summary, String> {
             }
         }
     }
+    // The order of an unsharded run (shards see different subsets).
+    merged.sort_by_key(|m| {
+        ORDER
+            .iter()
+            .position(|n| *n == m.name)
+            .unwrap_or(ORDER.len())
+    });
     for m in &mut merged {
         if let Some(c) = m.coverage.take() {
             m.set_coverage(c);

@@ -130,6 +130,8 @@ pub struct TexreadArgs {
     pub layout: String,
     pub interval: u32,
     pub frac_bits: u32,
+    /// `256k` or `1m`.
+    pub dram: String,
     pub stats: Option<PathBuf>,
     pub vcd: Option<PathBuf>,
 }
@@ -144,6 +146,11 @@ pub fn texread(a: &TexreadArgs) -> Result<String, CmdError> {
     p.cache = !a.no_cache;
     p.lookahead = !a.no_lookahead;
     p.frac_bits = a.frac_bits;
+    p.dram = match a.dram.as_str() {
+        "256k" => hdl::dram::DramParams::default(),
+        "1m" => hdl::dram::DramParams::one_meg(),
+        d => return Err(input(format!("--dram {d}: 256k or 1m"))),
+    };
     p.validate()
         .map_err(|e| input(format!("{}: {e}", a.texture.display())))?;
     if !(1..=1000).contains(&a.interval) {
