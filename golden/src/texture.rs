@@ -43,7 +43,7 @@ mod tests {
     fn corners_and_midpoints() {
         let t = |x: u32, y: u32| [f64::from(x * 10 + y), 0.0, 255.0];
         assert_eq!(bilinear(t, 4, 4, 1.0, 2.0), [12.0, 0.0, 255.0]);
-        assert_eq!(bilinear(t, 4, 4, 1.5, 2.5), [15.5, 0.0, 255.0]);
+        assert_eq!(bilinear(t, 4, 4, 1.5, 2.5), [17.5, 0.0, 255.0]);
         // Clamped at the right edge: x0 = x1 = 3.
         assert_eq!(bilinear(t, 4, 4, 3.5, 0.0), [30.0, 0.0, 255.0]);
     }

@@ -10,12 +10,19 @@
 //! never compete for an entry (with clamp-to-edge addressing; a wrapped texture with an odd
 //! number of blocks would break this, which is why the unit clamps).
 //!
-//! # Lookahead
-//! For the current point `(x, y)` (integer texel position) in block `(bx, by)`, the quadrant is
-//! bit 1 of `x` and bit 1 of `y` (two bits, as the document says); the three neighbours are
-//! `(bx + dx, by)`, `(bx, by + dy)` and `(bx + dx, by + dy)` with `dx = +1` in the right half
-//! and -1 in the left, likewise `dy`. Neighbours outside the texture are not fetched. They go
-//! to the three entries other than the current block's.
+//! # Lookahead ([`Lookahead`])
+//! * Quadrant (the document's scheme): for the current point `(x, y)` (integer texel
+//!   position) in block `(bx, by)`, the quadrant is bit 1 of `x` and bit 1 of `y` (two bits);
+//!   the three neighbours are `(bx + dx, by)`, `(bx, by + dy)` and `(bx + dx, by + dy)` with
+//!   `dx = +1` in the right half and -1 in the left, likewise `dy` ([`lookahead`]).
+//! * Direction (the document's "more sophisticated lookahead"): `dx`, `dy` are the signs of
+//!   the motion from the previous point of the scanline to this one (`u`, `v` with their
+//!   fractions); the neighbours are `(bx + dx, by)` if `dx != 0`, `(bx, by + dy)` if `dy != 0`
+//!   and the diagonal if both ([`lookahead_direction`]). It preloads the next block as soon as
+//!   a scanline enters a block, not only in its second half.
+//!
+//! Neighbours outside the texture are not fetched. They go to entries other than the current
+//! block's.
 //!
 //! # Per-entry state (all registers, traced)
 //! `valid` (1), `tag_x`, `tag_y` (`tag_bits`), `data` (64), `prefetched` (1: filled by a
@@ -31,19 +38,61 @@ pub fn entry_of(bx: u32, by: u32) -> usize {
     (bx & 1 | (by & 1) << 1) as usize
 }
 
-/// The three neighbours to preload for point `(x, y)` of a texture of `bw x bh` blocks.
+/// Which blocks the unit preloads.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Default)]
+pub enum Lookahead {
+    Off,
+    #[default]
+    Quadrant,
+    Direction,
+}
+
+impl Lookahead {
+    pub fn name(self) -> &'static str {
+        match self {
+            Lookahead::Off => "off",
+            Lookahead::Quadrant => "quadrant",
+            Lookahead::Direction => "direction",
+        }
+    }
+
+    pub fn parse(s: &str) -> Option<Lookahead> {
+        [Lookahead::Off, Lookahead::Quadrant, Lookahead::Direction]
+            .into_iter()
+            .find(|l| l.name() == s)
+    }
+}
+
+/// Block `b + d` (`d` in -1..=1) if inside `0..n`.
+#[inline]
+fn step(b: u32, d: i32, n: u32) -> Option<u32> {
+    match d {
+        1 => (b + 1 < n).then_some(b + 1),
+        -1 => b.checked_sub(1),
+        _ => None,
+    }
+}
+
+/// The three neighbours to preload for point `(x, y)` of a texture of `bw x bh` blocks
+/// (quadrant lookahead).
 pub fn lookahead(x: u32, y: u32, bw: u32, bh: u32) -> impl Iterator<Item = (u32, u32)> {
-    let (bx, by) = (x >> 2, y >> 2);
-    let nx = if x >> 1 & 1 == 1 {
-        (bx + 1 < bw).then_some(bx + 1)
-    } else {
-        bx.checked_sub(1)
-    };
-    let ny = if y >> 1 & 1 == 1 {
-        (by + 1 < bh).then_some(by + 1)
-    } else {
-        by.checked_sub(1)
-    };
+    let dx = if x >> 1 & 1 == 1 { 1 } else { -1 };
+    let dy = if y >> 1 & 1 == 1 { 1 } else { -1 };
+    lookahead_direction(x >> 2, y >> 2, dx, dy, bw, bh)
+}
+
+/// The neighbours of block `(bx, by)` in direction `(dx, dy)` (each -1, 0 or 1): along x,
+/// along y, diagonal; those outside the texture or with a zero step left out.
+pub fn lookahead_direction(
+    bx: u32,
+    by: u32,
+    dx: i32,
+    dy: i32,
+    bw: u32,
+    bh: u32,
+) -> impl Iterator<Item = (u32, u32)> {
+    let nx = step(bx, dx, bw);
+    let ny = step(by, dy, bh);
     [nx.map(|nx| (nx, by)), ny.map(|ny| (bx, ny)), nx.zip(ny)]
         .into_iter()
         .flatten()
@@ -218,6 +267,19 @@ mod tests {
             e.push(entry_of(x >> 2, y >> 2));
             e.sort();
             assert_eq!(e, vec![0, 1, 2, 3]);
+        }
+    }
+
+    #[test]
+    fn direction_lookahead_follows_the_motion() {
+        let n: Vec<_> = lookahead_direction(2, 2, 1, 0, 8, 8).collect();
+        assert_eq!(n, vec![(3, 2)]);
+        let n: Vec<_> = lookahead_direction(2, 2, -1, 1, 8, 8).collect();
+        assert_eq!(n, vec![(1, 2), (2, 3), (1, 3)]);
+        assert_eq!(lookahead_direction(2, 2, 0, 0, 8, 8).count(), 0);
+        assert_eq!(lookahead_direction(7, 0, 1, -1, 8, 8).count(), 0);
+        for l in [Lookahead::Off, Lookahead::Quadrant, Lookahead::Direction] {
+            assert_eq!(Lookahead::parse(l.name()), Some(l));
         }
     }
 

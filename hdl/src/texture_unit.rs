@@ -20,11 +20,13 @@
 //!   each; a page fault adds `t_rp + t_rcd` = 30 ns), into register 608, two CLUT cycles, the
 //!   line written to the cache. The request is looked up again every cycle until all its
 //!   blocks are present. One fill at a time; a fill in progress is never abandoned.
-//! * Lookahead (cache on, lookahead on): when a request completes and it was not flagged
-//!   `newline`, the three neighbours of its quadrant (see [`crate::texture_cache::lookahead`])
-//!   are queued; the fill engine preloads them one at a time whenever it is free and the
-//!   request in stage 0 (if any) needs nothing. A demand miss, or a request flagged `newline`,
-//!   empties the queue. Candidates already in the cache are dropped without a fill.
+//! * Lookahead (cache on, [`Lookahead`] not off): when a request completes and it was not
+//!   flagged `newline`, up to three neighbours of its block are queued: those of its quadrant,
+//!   or those in the direction of motion from the previous point of the scanline (registers
+//!   `prev_u`, `prev_v`; see [`crate::texture_cache`]). The fill engine preloads them one at a
+//!   time whenever it is free and the request in stage 0 (if any) needs nothing. A demand miss,
+//!   or a request flagged `newline`, empties the queue. Candidates already in the cache are
+//!   dropped without a fill.
 //! * Cache off: all entries are invalidated when a request completes, so every request fetches
 //!   all its blocks; lookahead is off too. The results are bit-identical in every mode.
 //! * 618 registers the texels (1 cycle), 622 registers the colour (1 cycle): a request that
@@ -40,7 +42,7 @@ use crate::dram::{DramCtrl, DramParams};
 use crate::fx::Format;
 use crate::kernel::{Module, Reg, Signal, Visitor};
 use crate::signals;
-use crate::texture_cache::{entry_of, lookahead, TextureCache};
+use crate::texture_cache::{entry_of, lookahead, lookahead_direction, Lookahead, TextureCache};
 use crate::texture_layout::{BlockMap, Layout};
 
 /// Bits of the integer part of `u` and `v`.
@@ -58,7 +60,7 @@ pub struct TexParams {
     /// First DRAM word of the texture.
     pub base: u64,
     pub cache: bool,
-    pub lookahead: bool,
+    pub lookahead: Lookahead,
     pub dram: DramParams,
 }
 
@@ -71,7 +73,7 @@ impl TexParams {
             layout: Layout::RowMajor,
             base: 0,
             cache: true,
-            lookahead: true,
+            lookahead: Lookahead::Quadrant,
             dram: DramParams::default(),
         }
     }
@@ -201,6 +203,10 @@ pub struct TextureUnit {
     pub pf_mask: Reg,
     pf_bx: [Reg; 3],
     pf_by: [Reg; 3],
+    /// The previous completed point of this scanline (direction lookahead).
+    pub prev_valid: Reg,
+    pub prev_u: Reg,
+    pub prev_v: Reg,
     pub mem: DramCtrl,
     pub decode: CccDecode,
     pub cache: TextureCache,
@@ -250,6 +256,9 @@ impl TextureUnit {
             pf_mask: Reg::new("pf_mask", Format::uint(3)),
             pf_bx: [0, 1, 2].map(|_| Reg::new("pf_bx", Format::uint(bb))),
             pf_by: [0, 1, 2].map(|_| Reg::new("pf_by", Format::uint(bb))),
+            prev_valid: Reg::new("prev_valid", Format::uint(1)),
+            prev_u: Reg::new("prev_u", uq),
+            prev_v: Reg::new("prev_v", uq),
             mem,
             decode: CccDecode::new("ccc_decode", clut)?,
             cache: TextureCache::new("cache_614", bb - 1),
@@ -369,12 +378,34 @@ impl Module for TextureUnit {
                 }
                 if !self.p.cache {
                     self.cache.invalidate();
-                } else if self.p.lookahead && !self.req_newline.q().is_high() {
+                } else if self.p.lookahead != Lookahead::Off {
+                    let newline = self.req_newline.q().is_high();
+                    if self.p.lookahead == Lookahead::Direction {
+                        self.prev_valid.set_next_bool(true);
+                        self.prev_u.set_next_bits(u);
+                        self.prev_v.set_next_bits(v);
+                    }
                     let (bw, bh) = self.p.blocks();
                     let (mut q, mut m) = ([(0, 0); 3], 0);
-                    for (k, blk) in lookahead(x0, y0, bw, bh).enumerate() {
+                    let mut put = |k: usize, blk: (u32, u32)| {
                         q[k] = blk;
                         m |= 1 << k;
+                    };
+                    if newline {
+                        // No lookahead for the first point of a scanline.
+                    } else if self.p.lookahead == Lookahead::Quadrant {
+                        for (k, blk) in lookahead(x0, y0, bw, bh).enumerate() {
+                            put(k, blk);
+                        }
+                    } else if self.prev_valid.q().is_high() {
+                        let sign = |a: u64, b: u64| (a > b) as i32 - (a < b) as i32;
+                        let dx = sign(u, self.prev_u.q().bits());
+                        let dy = sign(v, self.prev_v.q().bits());
+                        for (k, blk) in
+                            lookahead_direction(x0 >> 2, y0 >> 2, dx, dy, bw, bh).enumerate()
+                        {
+                            put(k, blk);
+                        }
                     }
                     new_queue = Some((q, m));
                 }
@@ -523,6 +554,9 @@ impl Module for TextureUnit {
             &mut self.fill_prefetch,
             &mut self.words_issued,
             &mut self.pf_mask,
+            &mut self.prev_valid,
+            &mut self.prev_u,
+            &mut self.prev_v,
         ] {
             r.tick(reset);
         }
@@ -544,7 +578,7 @@ impl Module for TextureUnit {
             Reg: self.req_valid, self.req_u, self.req_v, self.req_newline, self.req_seen;
             Wire: self.need_mask, self.hit_mask;
             Reg: self.fill_state, self.fill_bx, self.fill_by, self.fill_prefetch,
-                 self.words_issued, self.pf_mask);
+                 self.words_issued, self.pf_mask, self.prev_valid, self.prev_u, self.prev_v);
         self.mem.visit(v);
         self.decode.visit(v);
         self.cache.visit(v);

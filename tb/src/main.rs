@@ -90,9 +90,13 @@ enum Cmd {
         /// Disable cache 614 (every request fetches its blocks).
         #[arg(long)]
         no_cache: bool,
-        /// Disable the lookahead prefetch.
+        /// Disable the lookahead prefetch (same as --lookahead off).
         #[arg(long)]
         no_lookahead: bool,
+        /// Which neighbours to preload: quadrant (the document's: from one bit of u and v),
+        /// direction (from the motion between the last two points of the scanline), off.
+        #[arg(long, default_value = "quadrant")]
+        lookahead: String,
         /// Blocks in DRAM: row-major or tiled (one page per tile).
         #[arg(long, default_value = "row-major")]
         layout: String,
@@ -545,6 +549,7 @@ fn main() -> ExitCode {
             out,
             no_cache,
             no_lookahead,
+            lookahead,
             layout,
             interval,
             frac_bits,
@@ -557,6 +562,7 @@ fn main() -> ExitCode {
             out,
             no_cache,
             no_lookahead,
+            lookahead,
             layout,
             interval,
             frac_bits,

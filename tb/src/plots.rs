@@ -81,6 +81,8 @@ pub fn grouped_bars_png(
         RGBColor(220, 120, 30),
         RGBColor(60, 150, 80),
         RGBColor(150, 60, 150),
+        RGBColor(120, 170, 220),
+        RGBColor(240, 190, 120),
     ];
     {
         let root = BitMapBackend::with_buffer(&mut buf, (w, h)).into_drawing_area();

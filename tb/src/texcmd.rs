@@ -5,6 +5,7 @@ use crate::ccc::{self, Ccc};
 use crate::commands::CmdError;
 use crate::report::write_atomic;
 use crate::texture::{run_texread, TexRequest};
+use hdl::texture_cache::Lookahead;
 use hdl::texture_layout::Layout;
 use hdl::texture_unit::TexParams;
 use std::fmt::Write;
@@ -127,6 +128,8 @@ pub struct TexreadArgs {
     pub out: PathBuf,
     pub no_cache: bool,
     pub no_lookahead: bool,
+    /// `quadrant` (the document's), `direction` or `off`.
+    pub lookahead: String,
     pub layout: String,
     pub interval: u32,
     pub frac_bits: u32,
@@ -144,7 +147,16 @@ pub fn texread(a: &TexreadArgs) -> Result<String, CmdError> {
     let mut p = TexParams::new(tex.width, tex.height);
     p.layout = layout;
     p.cache = !a.no_cache;
-    p.lookahead = !a.no_lookahead;
+    p.lookahead = match (a.no_lookahead, Lookahead::parse(&a.lookahead)) {
+        (true, _) => Lookahead::Off,
+        (false, Some(l)) => l,
+        (false, None) => {
+            return Err(input(format!(
+                "--lookahead {}: quadrant, direction or off",
+                a.lookahead
+            )))
+        }
+    };
     p.frac_bits = a.frac_bits;
     p.dram = match a.dram.as_str() {
         "256k" => hdl::dram::DramParams::default(),

@@ -13,6 +13,7 @@ use crate::blend_adjust::ProbeSink;
 use crate::ccc::{reference_filter, Ccc};
 use crate::report::TbResult;
 use hdl::kernel::{NoTrace, Sim, Trace};
+use hdl::texture_cache::Lookahead;
 use hdl::texture_layout::Layout;
 use hdl::texture_unit::{TexParams, TextureUnit};
 use serde::Serialize;
@@ -44,7 +45,8 @@ pub struct TexReadStats {
     pub pixels_per_second: f64,
     pub layout: String,
     pub cache: bool,
-    pub lookahead: bool,
+    /// `off`, `quadrant` or `direction` (`off` whenever the cache is).
+    pub lookahead: String,
     pub page_words: u32,
     /// Blocks referenced (1, 2 or 4 per request), found at the first lookup, and `hits/refs`.
     pub block_refs: u64,
@@ -299,7 +301,7 @@ pub fn drive<T: Trace + ProbeSink>(
         pixels_per_second: s.requests as f64 / (ns.max(1) as f64 * 1e-9),
         layout: p.layout.name().into(),
         cache: p.cache,
-        lookahead: p.cache && p.lookahead,
+        lookahead: if p.cache { p.lookahead.name() } else { "off" }.into(),
         page_words: p.dram.cols,
         block_refs: s.block_refs,
         hits: s.hits,
@@ -476,9 +478,10 @@ fn coverage_model() -> Coverage {
     let any = c.add(Coverpoint::new("missed").value("no", 0).value("yes", 1));
     c.add(
         Coverpoint::new("mode")
-            .value("cache_lookahead", 0)
+            .value("cache_quadrant", 0)
             .value("cache_only", 1)
-            .value("no_cache", 2),
+            .value("no_cache", 2)
+            .value("cache_direction", 3),
     );
     c.add(
         Coverpoint::new("layout")
@@ -511,17 +514,16 @@ fn check_run(
     let s = &run.stats;
     let f = p.frac_bits;
     let one = f64::from(1u32 << f);
-    let mode = if !p.cache {
-        2
-    } else if p.lookahead {
-        0
-    } else {
-        1
+    let mode = match (p.cache, p.lookahead) {
+        (false, _) => 2,
+        (true, Lookahead::Quadrant) => 0,
+        (true, Lookahead::Off) => 1,
+        (true, Lookahead::Direction) => 3,
     };
     let tag = format!(
         "{} {} interval {interval}",
         p.layout.name(),
-        ["cache+lookahead", "cache", "no cache"][mode]
+        ["cache+quadrant", "cache", "no cache", "cache+direction"][mode]
     );
     for (i, r) in reqs.iter().enumerate() {
         let got = run.rgb[i];
@@ -605,7 +607,7 @@ fn check_run(
             ),
         );
     }
-    if !(p.cache && p.lookahead) && (s.prefetch_fills != 0 || s.demand_fills != s.misses) {
+    if s.lookahead == "off" && (s.prefetch_fills != 0 || s.demand_fills != s.misses) {
         fail(
             res,
             format!(
@@ -633,15 +635,18 @@ pub const TB_SIZE: u32 = 256;
 pub const TB_REQUESTS: usize = 2048;
 
 /// The configurations every trace runs in: layout, cache, lookahead, rasterizer interval.
-pub const TB_CONFIGS: [(Layout, bool, bool, u32); 8] = [
-    (Layout::RowMajor, true, true, 1),
-    (Layout::RowMajor, true, false, 1),
-    (Layout::RowMajor, false, false, 1),
-    (Layout::Tiled, true, true, 1),
-    (Layout::Tiled, true, false, 1),
-    (Layout::Tiled, false, false, 1),
-    (Layout::RowMajor, true, true, 4),
-    (Layout::RowMajor, true, false, 4),
+pub const TB_CONFIGS: [(Layout, bool, Lookahead, u32); 11] = [
+    (Layout::RowMajor, true, Lookahead::Quadrant, 1),
+    (Layout::RowMajor, true, Lookahead::Direction, 1),
+    (Layout::RowMajor, true, Lookahead::Off, 1),
+    (Layout::RowMajor, false, Lookahead::Off, 1),
+    (Layout::Tiled, true, Lookahead::Quadrant, 1),
+    (Layout::Tiled, true, Lookahead::Direction, 1),
+    (Layout::Tiled, true, Lookahead::Off, 1),
+    (Layout::Tiled, false, Lookahead::Off, 1),
+    (Layout::RowMajor, true, Lookahead::Quadrant, 4),
+    (Layout::RowMajor, true, Lookahead::Direction, 4),
+    (Layout::RowMajor, true, Lookahead::Off, 4),
 ];
 
 /// The texture testbench: a 256x256 synthetic texture, CCC-encoded, read through the unit on
@@ -691,9 +696,10 @@ pub fn regress_suite(
             match &first {
                 None => first = Some(run.rgb.clone()),
                 Some(r) if *r != run.rgb => res.failures.push(format!(
-                    "{}: results differ from the first configuration in {} cache {cache} lookahead {look} interval {interval}",
+                    "{}: results differ from the first configuration in {} cache {cache} lookahead {} interval {interval}",
                     kind.name(),
-                    layout.name()
+                    layout.name(),
+                    look.name()
                 )),
                 _ => {}
             }
@@ -730,13 +736,9 @@ pub fn regress_suite(
     {
         if r.stats.cache {
             res.notes.push(format!(
-                "{} trace, {}: hit rate {:.1} %, {:.1} M pixels/s, {:.2} page faults per scanline",
+                "{} trace, cache, lookahead {}: hit rate {:.1} %, {:.1} M pixels/s, {:.2} page faults per scanline",
                 r.trace,
-                if r.stats.lookahead {
-                    "cache + lookahead"
-                } else {
-                    "cache"
-                },
+                r.stats.lookahead,
                 100.0 * r.stats.hit_rate,
                 r.stats.pixels_per_second / 1e6,
                 r.stats.page_faults_per_scanline
@@ -768,10 +770,10 @@ pub fn table(rows: &[TableRow]) -> String {
     );
     for r in rows {
         let s = &r.stats;
-        let mode = match (s.cache, s.lookahead) {
-            (true, true) => "cache + lookahead",
-            (true, false) => "cache",
-            _ => "no cache",
+        let mode = match (s.cache, s.lookahead.as_str()) {
+            (false, _) => "no cache".to_string(),
+            (true, "off") => "cache".to_string(),
+            (true, l) => format!("cache + {l} lookahead"),
         };
         let _ = writeln!(
             t,
@@ -805,7 +807,7 @@ pub fn memory_plots(
         .map(|k| k.name().to_string())
         .collect();
     let pick =
-        |layout: &str, cache: bool, look: bool, interval: u32, f: &dyn Fn(&TexReadStats) -> f64| {
+        |layout: &str, cache: bool, look: &str, interval: u32, f: &dyn Fn(&TexReadStats) -> f64| {
             traces
                 .iter()
                 .map(|t| {
@@ -814,7 +816,7 @@ pub fn memory_plots(
                             r.trace == *t
                                 && r.stats.layout == layout
                                 && r.stats.cache == cache
-                                && r.stats.lookahead == (cache && look)
+                                && r.stats.lookahead == look
                                 && r.stats.interval == interval
                         })
                         .map_or(0.0, |r| f(&r.stats))
@@ -830,33 +832,36 @@ pub fn memory_plots(
             "Cache 614: block hit rate (row-major, 256x256 texture)",
             "hit rate (%)",
             vec![
-                ("cache + lookahead, 1 req/cycle".to_string(), pick("row-major", true, true, 1, &hit)),
-                ("cache, 1 req/cycle".to_string(), pick("row-major", true, false, 1, &hit)),
-                ("cache + lookahead, 1 req/4 cycles".to_string(), pick("row-major", true, true, 4, &hit)),
-                ("cache, 1 req/4 cycles".to_string(), pick("row-major", true, false, 4, &hit)),
+                ("quadrant, 1 req/cycle".to_string(), pick("row-major", true, "quadrant", 1, &hit)),
+                ("direction, 1 req/cycle".to_string(), pick("row-major", true, "direction", 1, &hit)),
+                ("no lookahead, 1 req/cycle".to_string(), pick("row-major", true, "off", 1, &hit)),
+                ("quadrant, 1 req/4 cycles".to_string(), pick("row-major", true, "quadrant", 4, &hit)),
+                ("direction, 1 req/4 cycles".to_string(), pick("row-major", true, "direction", 4, &hit)),
+                ("no lookahead, 1 req/4 cycles".to_string(), pick("row-major", true, "off", 4, &hit)),
             ],
-            "block hit rate of cache 614 per trace, with and without lookahead, rasterizer offering a request every cycle or every 4 cycles",
+            "block hit rate of cache 614 per trace, quadrant lookahead, direction lookahead and none, rasterizer offering a request every cycle or every 4 cycles",
         ),
         (
             "texture_pixels_per_second.png",
             "Texture unit 602: pixels per second (5 ns cycle, row-major)",
             "M pixels/s",
             vec![
-                ("cache + lookahead".to_string(), pick("row-major", true, true, 1, &mpx)),
-                ("cache".to_string(), pick("row-major", true, false, 1, &mpx)),
-                ("no cache".to_string(), pick("row-major", false, false, 1, &mpx)),
+                ("cache + quadrant lookahead".to_string(), pick("row-major", true, "quadrant", 1, &mpx)),
+                ("cache + direction lookahead".to_string(), pick("row-major", true, "direction", 1, &mpx)),
+                ("cache".to_string(), pick("row-major", true, "off", 1, &mpx)),
+                ("no cache".to_string(), pick("row-major", false, "off", 1, &mpx)),
             ],
-            "textured pixels per second per trace with lookahead, without it, and without the cache (rasterizer offering one request per cycle)",
+            "textured pixels per second per trace with quadrant or direction lookahead, without it, and without the cache (rasterizer offering one request per cycle)",
         ),
         (
             "texture_page_faults.png",
             "DRAM 604: page faults per scanline (512-word pages)",
             "page faults / scanline",
             vec![
-                ("row-major, cache".to_string(), pick("row-major", true, false, 1, &pf)),
-                ("tiled, cache".to_string(), pick("tiled", true, false, 1, &pf)),
-                ("row-major, no cache".to_string(), pick("row-major", false, false, 1, &pf)),
-                ("tiled, no cache".to_string(), pick("tiled", false, false, 1, &pf)),
+                ("row-major, cache".to_string(), pick("row-major", true, "off", 1, &pf)),
+                ("tiled, cache".to_string(), pick("tiled", true, "off", 1, &pf)),
+                ("row-major, no cache".to_string(), pick("row-major", false, "off", 1, &pf)),
+                ("tiled, no cache".to_string(), pick("tiled", false, "off", 1, &pf)),
             ],
             "DRAM page faults per scanline per trace, row-major against tiled layout, 512-word pages",
         ),

@@ -265,7 +265,13 @@ fn texture() -> Result<UnitVectors, String> {
         });
     }
     let mut rows = Vec::new();
-    for (mode, cache, look) in [(0u64, true, true), (1, true, false), (2, false, false)] {
+    use hdl::texture_cache::Lookahead;
+    for (mode, cache, look) in [
+        (0u64, true, Lookahead::Quadrant),
+        (1, true, Lookahead::Off),
+        (2, false, Lookahead::Off),
+        (3, true, Lookahead::Direction),
+    ] {
         let mut p = TexParams::new(32, 32);
         p.cache = cache;
         p.lookahead = look;
@@ -279,7 +285,7 @@ fn texture() -> Result<UnitVectors, String> {
     }
     Ok(UnitVectors {
         unit: "texture".into(),
-        description: "texture unit 602 (Figure 6), 32x32 texture from integer formulas (vectors::vector_texture), 256 requests uQ12.4 offered every cycle, row-major, 512-word pages; mode 0 cache + lookahead, 1 cache, 2 no cache; outputs the colour and the cycle it leaves 622 (from the first request)".into(),
+        description: "texture unit 602 (Figure 6), 32x32 texture from integer formulas (vectors::vector_texture), 256 requests uQ12.4 offered every cycle, row-major, 512-word pages; mode 0 cache + quadrant lookahead, 1 cache, 2 no cache, 3 cache + direction lookahead; outputs the colour and the cycle it leaves 622 (from the first request)".into(),
         inputs: vec![f("mode", 2), f("u", 16), f("v", 16), f("newline", 1)],
         outputs: vec![f("rgb", 24), f("cycle", 20)],
         rows,

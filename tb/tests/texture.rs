@@ -6,16 +6,22 @@
 use hdl::ccc_decode::CccBlock;
 use hdl::color_bilinear::lerp2;
 use hdl::kernel::Sim;
+use hdl::texture_cache::Lookahead;
 use hdl::texture_layout::Layout;
 use hdl::texture_unit::{TexParams, TextureUnit};
 use proptest::prelude::*;
 use tb::ccc::{reference_filter, Ccc};
 use tb::texture::{drive, run_texread, TexRequest};
 
-fn modes() -> Vec<(Layout, bool, bool, u32)> {
+fn modes() -> Vec<(Layout, bool, Lookahead, u32)> {
     let mut v = Vec::new();
     for layout in [Layout::RowMajor, Layout::Tiled] {
-        for (cache, look) in [(true, true), (true, false), (false, false)] {
+        for (cache, look) in [
+            (true, Lookahead::Quadrant),
+            (true, Lookahead::Direction),
+            (true, Lookahead::Off),
+            (false, Lookahead::Off),
+        ] {
             for interval in [1, 3] {
                 v.push((layout, cache, look, interval));
             }
@@ -84,7 +90,7 @@ fn every_mode_is_bit_identical_and_equals_the_reference() {
                     "{:?} cache {} lookahead {}",
                     layout,
                     cache,
-                    look
+                    look.name()
                 );
                 let s = &run.stats;
                 prop_assert_eq!(s.violations, 0);
@@ -182,7 +188,7 @@ fn miss_penalty_hit_throughput_and_page_faults() {
     // 256x256, row-major, 512-word pages: a page holds 4 block rows (16 texel rows).
     let tex = flat(256, 256);
     let mut p = TexParams::new(256, 256);
-    p.lookahead = false;
+    p.lookahead = Lookahead::Off;
     let one = cycles(&tex, p, &[(1, 1)]).stats.cycles;
     // Cold start, cycle by cycle: request taken (1), lookup misses (1), 607 takes word 0 (1),
     // page fault t_rp + t_rcd (6), CAS# low t_cas (3), CAS# high t_cp (3, word 1 taken in its
@@ -239,10 +245,40 @@ fn lookahead_preloads_the_quadrant_neighbours_when_the_dram_is_idle() {
         with.prefetch_dropped, 9,
         "later requests' neighbours were all present"
     );
-    p.lookahead = false;
+    p.lookahead = Lookahead::Off;
     let without = run(p);
     assert_eq!((without.prefetch_fills, without.hits), (0, 0));
     assert_eq!(without.demand_fills, 4);
+}
+
+#[test]
+fn direction_lookahead_preloads_ahead_of_the_motion() {
+    // A scanline moving right through block row 2, one request every 40 cycles: with the
+    // direction lookahead every block after the first is preloaded (one block ahead, from the
+    // second point on); with the quadrant lookahead too, but it also preloads the row above
+    // (the points are in the top half of their blocks), which the scanline never uses.
+    let tex = flat(64, 64);
+    let reqs: Vec<TexRequest> = (0..12u32)
+        .map(|i| TexRequest {
+            u: (1 + 2 * i) << 4,
+            v: 9 << 4,
+            newline: i == 0,
+        })
+        .collect();
+    let mut p = TexParams::new(64, 64);
+    p.lookahead = Lookahead::Direction;
+    let d = run_texread(&tex, p, &reqs, 40, None).unwrap().stats;
+    // Blocks 0..=5 of row 2 (x up to 24, footprint to 24); the first two are demand fills:
+    // block 0 (cold) and block 1 (the second point, x = 3, is the first with a direction and
+    // already needs block 1).
+    assert_eq!(d.demand_fills, 2, "{d:?}");
+    assert_eq!(d.prefetch_fills, 5, "{d:?}");
+    p.lookahead = Lookahead::Quadrant;
+    let q = run_texread(&tex, p, &reqs, 40, None).unwrap().stats;
+    assert!(q.prefetch_fills > d.prefetch_fills, "{q:?}");
+    p.lookahead = Lookahead::Off;
+    let o = run_texread(&tex, p, &reqs, 40, None).unwrap().stats;
+    assert_eq!(o.demand_fills, 7);
 }
 
 #[test]
