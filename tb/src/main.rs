@@ -76,46 +76,7 @@ enum Cmd {
     Ccc(CccCmd),
     /// Texture requests through the cycle-accurate memory path of Figure 6 (DRAM 604,
     /// control 607, CCC decode, cache 614 with lookahead, bilinear 622).
-    Texread {
-        /// The texture: a .ccc file, or a PPM (P6/P3) that is CCC-encoded first.
-        #[arg(long)]
-        texture: PathBuf,
-        /// CSV with header u,v or u,v,newline: texel coordinates (texel (x, y) at integer
-        /// x, y), newline 1 at a scanline change.
-        #[arg(long)]
-        requests: PathBuf,
-        /// CSV u,v,r,g,b, one row per request in order (u, v as quantised).
-        #[arg(long)]
-        out: PathBuf,
-        /// Disable cache 614 (every request fetches its blocks).
-        #[arg(long)]
-        no_cache: bool,
-        /// Disable the lookahead prefetch (same as --lookahead off).
-        #[arg(long)]
-        no_lookahead: bool,
-        /// Which neighbours to preload: quadrant (the document's: from one bit of u and v),
-        /// direction (from the motion between the last two points of the scanline), off.
-        #[arg(long, default_value = "quadrant")]
-        lookahead: String,
-        /// Blocks in DRAM: row-major or tiled (one page per tile).
-        #[arg(long, default_value = "row-major")]
-        layout: String,
-        /// Cycles between requests the rasterizer can offer.
-        #[arg(long, default_value_t = 1)]
-        interval: u32,
-        /// Fraction bits of u, v and the blend weights (1..=8).
-        #[arg(long, default_value_t = 4)]
-        frac_bits: u32,
-        /// DRAM 604: 256k (256K x 16, 512-word pages) or 1m (1M x 16, 1024-word pages).
-        #[arg(long, default_value = "256k")]
-        dram: String,
-        /// JSON with the counts, cycles, ns and pixels per second.
-        #[arg(long)]
-        stats: Option<PathBuf>,
-        /// Waveform of the unit, the DRAM pins, page register, cache tags and FSMs.
-        #[arg(long)]
-        vcd: Option<PathBuf>,
-    },
+    Texread(tb::texcmd::TexreadArgs),
     /// Combine the summary.json files of all shards of a run into one.
     Merge {
         /// Where to write the merged summary.json.
@@ -543,33 +504,7 @@ fn main() -> ExitCode {
         }) => dram_cmd(&trace, page_words, t_fault_ns, &size, vcd),
         Some(Cmd::Ccc(CccCmd::Encode { input, out })) => tb::texcmd::ccc_encode(&input, &out),
         Some(Cmd::Ccc(CccCmd::Decode { input, out })) => tb::texcmd::ccc_decode(&input, &out),
-        Some(Cmd::Texread {
-            texture,
-            requests,
-            out,
-            no_cache,
-            no_lookahead,
-            lookahead,
-            layout,
-            interval,
-            frac_bits,
-            dram,
-            stats,
-            vcd,
-        }) => tb::texcmd::texread(&tb::texcmd::TexreadArgs {
-            texture,
-            requests,
-            out,
-            no_cache,
-            no_lookahead,
-            lookahead,
-            layout,
-            interval,
-            frac_bits,
-            dram,
-            stats,
-            vcd,
-        }),
+        Some(Cmd::Texread(a)) => tb::texcmd::texread(&a),
         Some(Cmd::Mipmap(a)) => commands::mipmap(&MipmapArgs {
             inputs: a.inputs,
             out: a.out,

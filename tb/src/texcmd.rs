@@ -121,21 +121,45 @@ pub fn read_requests(path: &Path, p: &TexParams) -> Result<Vec<TexRequest>, Stri
 }
 
 /// Options of `texrtl texread`.
-#[derive(Clone, Debug)]
+#[derive(Clone, Debug, clap::Args)]
 pub struct TexreadArgs {
+    /// The texture: a .ccc file, or a PPM (P6/P3) that is CCC-encoded first.
+    #[arg(long)]
     pub texture: PathBuf,
+    /// CSV with header u,v or u,v,newline: texel coordinates (texel (x, y) at integer x, y),
+    /// newline 1 at a scanline change.
+    #[arg(long)]
     pub requests: PathBuf,
+    /// CSV u,v,r,g,b, one row per request in order (u, v as quantised).
+    #[arg(long)]
     pub out: PathBuf,
+    /// Disable cache 614 (every request fetches its blocks).
+    #[arg(long)]
     pub no_cache: bool,
+    /// Disable the lookahead prefetch (same as --lookahead off).
+    #[arg(long)]
     pub no_lookahead: bool,
-    /// `quadrant` (the document's), `direction` or `off`.
+    /// Which neighbours to preload: quadrant (the document's: from one bit of u and of v),
+    /// direction (from the motion between the scanline's last two points), off.
+    #[arg(long, default_value = "quadrant")]
     pub lookahead: String,
+    /// Blocks in DRAM: row-major or tiled (one page per tile).
+    #[arg(long, default_value = "row-major")]
     pub layout: String,
+    /// Cycles between requests the rasterizer can offer.
+    #[arg(long, default_value_t = 1)]
     pub interval: u32,
+    /// Fraction bits of u, v and the blend weights (1..=8).
+    #[arg(long, default_value_t = 4)]
     pub frac_bits: u32,
-    /// `256k` or `1m`.
+    /// DRAM 604: 256k (256K x 16, 512-word pages) or 1m (1M x 16, 1024-word pages).
+    #[arg(long, default_value = "256k")]
     pub dram: String,
+    /// JSON with the counts, cycles, ns and pixels per second.
+    #[arg(long)]
     pub stats: Option<PathBuf>,
+    /// Waveform of the unit, the DRAM pins, page register, cache tags and FSMs.
+    #[arg(long)]
     pub vcd: Option<PathBuf>,
 }
 

@@ -540,6 +540,46 @@ fn ccc_and_texread_commands() {
         );
         assert!(!bad_out.exists(), "{name}");
     }
+    // A texture beyond the DRAM: 2048 x 2048 needs 512K words; the 1M x 16 part holds it.
+    let big = d.join("big.ccc");
+    std::fs::write(&big, flat(2048, 2048).to_bytes()).unwrap();
+    std::fs::write(&r, "u,v\n2047.5,1\n").unwrap();
+    let args = |extra: &[&str]| {
+        let mut a: Vec<String> = ["texread", "--texture", &s(&big), "--requests", &s(&r)]
+            .iter()
+            .map(|x| x.to_string())
+            .collect();
+        a.extend(["--out".to_string(), s(&bad_out)]);
+        a.extend(extra.iter().map(|x| x.to_string()));
+        a
+    };
+    let o = texrtl(&args(&[]).iter().map(String::as_str).collect::<Vec<_>>());
+    let err = String::from_utf8_lossy(&o.stderr);
+    assert_eq!(o.status.code(), Some(2), "{err}");
+    assert!(
+        err.contains("big.ccc") && err.contains("the DRAM has 262144"),
+        "{err}"
+    );
+    assert!(!bad_out.exists());
+    for bad in [
+        &["--frac-bits", "9"][..],
+        &["--interval", "0"],
+        &["--lookahead", "sideways"],
+        &["--dram", "2m"],
+    ] {
+        let o = texrtl(&args(bad).iter().map(String::as_str).collect::<Vec<_>>());
+        assert_eq!(o.status.code(), Some(2), "{bad:?}");
+        assert!(!bad_out.exists());
+    }
+    let o = texrtl(
+        &args(&["--dram", "1m"])
+            .iter()
+            .map(String::as_str)
+            .collect::<Vec<_>>(),
+    );
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    std::fs::remove_file(&bad_out).unwrap();
+
     let o = texrtl(&["ccc", "decode", "--in", &s(&t), "--out", &s(&bad_out)]);
     assert_eq!(o.status.code(), Some(2));
     assert!(String::from_utf8_lossy(&o.stderr).contains("magic"));
