@@ -15,15 +15,29 @@ fn input(e: String) -> CmdError {
     CmdError::Input(e)
 }
 
-fn write_out(path: &Path, bytes: &[u8]) -> Result<(), CmdError> {
+/// An output path must not be a directory and its directory must exist.
+fn check_out(path: &Path) -> Result<(), CmdError> {
     if path.is_dir() {
         return Err(input(format!("{}: is a directory", path.display())));
     }
+    match path.parent() {
+        Some(d) if !d.as_os_str().is_empty() && !d.is_dir() => Err(input(format!(
+            "{}: directory {} does not exist",
+            path.display(),
+            d.display()
+        ))),
+        _ => Ok(()),
+    }
+}
+
+fn write_out(path: &Path, bytes: &[u8]) -> Result<(), CmdError> {
+    check_out(path)?;
     write_atomic(path, bytes).map_err(|e| input(format!("{}: {e}", path.display())))
 }
 
 /// `texrtl ccc encode`: PPM to `.ccc`; reports the PSNR of the decoded texture.
 pub fn ccc_encode(inp: &Path, out: &Path) -> Result<String, CmdError> {
+    check_out(out)?;
     let img = crate::pgm::read_ppm(inp).map_err(input)?;
     let c = ccc::encode(&img).map_err(|e| input(format!("{}: {e}", inp.display())))?;
     write_out(out, &c.to_bytes())?;
@@ -40,6 +54,7 @@ pub fn ccc_encode(inp: &Path, out: &Path) -> Result<String, CmdError> {
 
 /// `texrtl ccc decode`: `.ccc` to a binary PPM (the reference decoder).
 pub fn ccc_decode(inp: &Path, out: &Path) -> Result<String, CmdError> {
+    check_out(out)?;
     let c = Ccc::read(inp).map_err(input)?;
     write_out(out, &crate::pgm::encode_ppm(c.width, c.height, &c.decode()))?;
     Ok(format!("{}: {}x{}", out.display(), c.width, c.height))
