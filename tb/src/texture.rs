@@ -401,15 +401,17 @@ pub fn trace(
                 _ => (32, 0.75, 0.75, 0.0),
             };
             // Pixel `i` of scanline `j` is at `s i` along the scanline's direction and `dv j`
-            // across it, both in texels; the direction is `angle` from the u axis. Positions
+            // across it, both in texels; the direction is `angle` from the u axis. A rotated
+            // trace starts mid-texture, as the scanlines step left as they go down. Positions
             // wrap around the texture when there are many scanlines.
             let (c, sn) = (angle.cos(), angle.sin());
             let (w_f, h_f) = (f64::from(w), f64::from(h));
+            let u0 = if angle == 0.0 { 2.37 } else { w_f / 2.0 + 0.37 };
             let mut j = 0.0;
             while out.len() < n {
                 for i in 0..len {
                     let along = s * i as f64;
-                    let u = 2.37 + along * c - j * dv * sn;
+                    let u = u0 + along * c - j * dv * sn;
                     let v = 1.61 + along * sn + j * dv * c;
                     out.push(TexRequest {
                         u: q(u.rem_euclid(w_f - 1.0), w),
