@@ -92,7 +92,8 @@ pub fn grouped_bars_png(
             .flat_map(|s| s.1.iter().copied())
             .fold(0.0f64, f64::max)
             .max(1e-9)
-            * 1.15;
+            // Headroom for the legend above the bars.
+            * (1.25 + 0.06 * series.len() as f64);
         let n = groups.len().max(1);
         let mut chart = ChartBuilder::on(&root)
             .caption(title, (FONT, 18))

@@ -597,3 +597,44 @@ fn ccc_and_texread_commands() {
     assert_eq!(o.status.code(), Some(2));
     assert!(!bad_out.exists());
 }
+
+#[test]
+fn ccc_is_lossless_on_two_colour_blocks_from_few_colours() {
+    // Every block holds at most two colours out of a palette of at most 256: the split
+    // separates them exactly, median cut gives every colour its own entry, so decoding gives
+    // the image back bit for bit; and the file round-trips.
+    let mut runner = verif::seeded_runner("ccc_lossless", 32);
+    let strat = (1u32..=5, 1u32..=5).prop_flat_map(|(bw, bh)| {
+        (
+            prop::collection::vec(any::<[u8; 3]>(), 1..=40),
+            prop::collection::vec((any::<u8>(), any::<u8>(), any::<u16>()), (bw * bh) as usize),
+            Just((bw, bh)),
+        )
+    });
+    runner
+        .run(&strat, |(palette, blocks, (bw, bh))| {
+            let (w, h) = (4 * bw, 4 * bh);
+            let mut px = vec![0u8; (3 * w * h) as usize];
+            for (n, &(a, b, bits)) in blocks.iter().enumerate() {
+                let (bx, by) = (n as u32 % bw, n as u32 / bw);
+                for j in 0..16u32 {
+                    let c = if bits >> j & 1 == 1 { b } else { a };
+                    let c = palette[usize::from(c) % palette.len()];
+                    let (x, y) = (4 * bx + j % 4, 4 * by + j / 4);
+                    let k = (3 * (y * w + x)) as usize;
+                    px[k..k + 3].copy_from_slice(&c);
+                }
+            }
+            let img = tb::pgm::Ppm {
+                width: w,
+                height: h,
+                maxval: 255,
+                pixels: px,
+            };
+            let c = tb::ccc::encode(&img).map_err(TestCaseError::fail)?;
+            prop_assert_eq!(&c.decode(), &img.pixels);
+            prop_assert_eq!(&Ccc::parse(&c.to_bytes()).map_err(TestCaseError::fail)?, &c);
+            Ok(())
+        })
+        .unwrap();
+}
