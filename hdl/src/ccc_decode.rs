@@ -119,11 +119,6 @@ impl CccDecode {
             color_a: Reg::new("color_a", Format::uint(24)),
         })
     }
-
-    /// True while a block is being decoded (second word received, line not yet written).
-    pub fn busy(&self) -> bool {
-        self.state.q().bits() != LOAD
-    }
 }
 
 impl Module for CccDecode {

@@ -122,9 +122,8 @@ impl TexParams {
 /// Counts, at clock edges.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
 pub struct TexStats {
-    /// Requests accepted and results produced.
+    /// Requests accepted.
     pub requests: u64,
-    pub results: u64,
     /// Blocks referenced by requests (1, 2 or 4 each), at their first lookup.
     pub block_refs: u64,
     /// Of those, found in the cache at the first lookup.
@@ -531,7 +530,6 @@ impl Module for TextureUnit {
                 }
             };
             add(&mut s.requests, ev.accept);
-            add(&mut s.results, u64::from(self.bilinear.valid.q().is_high()));
             add(&mut s.block_refs, ev.refs);
             add(&mut s.hits, ev.hits);
             add(&mut s.prefetch_hits, ev.pf_hits);

@@ -61,17 +61,13 @@ pub fn ccc_decode(inp: &Path, out: &Path) -> Result<String, CmdError> {
 }
 
 /// A texture from a `.ccc` file (by its magic) or a PPM (encoded on the fly).
-pub fn read_texture(path: &Path) -> Result<(Ccc, Option<crate::pgm::Ppm>), String> {
+pub fn read_texture(path: &Path) -> Result<Ccc, String> {
     let b = std::fs::read(path).map_err(|e| format!("{}: {e}", path.display()))?;
     if b.starts_with(ccc::MAGIC) {
-        Ok((
-            Ccc::parse(&b).map_err(|e| format!("{}: {e}", path.display()))?,
-            None,
-        ))
+        Ccc::parse(&b).map_err(|e| format!("{}: {e}", path.display()))
     } else if b.starts_with(b"P6") || b.starts_with(b"P3") {
         let img = crate::pgm::parse_ppm(&b).map_err(|e| format!("{}: {e}", path.display()))?;
-        let c = ccc::encode(&img).map_err(|e| format!("{}: {e}", path.display()))?;
-        Ok((c, Some(img)))
+        ccc::encode(&img).map_err(|e| format!("{}: {e}", path.display()))
     } else {
         Err(format!(
             "{}: neither a .ccc file (magic TEXRTLCC) nor a PPM (P6 or P3)",
@@ -182,7 +178,7 @@ pub struct TexreadArgs {
 pub fn texread(a: &TexreadArgs) -> Result<String, CmdError> {
     let layout = Layout::parse(&a.layout)
         .ok_or_else(|| input(format!("--layout {}: row-major or tiled", a.layout)))?;
-    let (tex, _) = read_texture(&a.texture).map_err(input)?;
+    let tex = read_texture(&a.texture).map_err(input)?;
     let mut p = TexParams::new(tex.width, tex.height);
     p.layout = layout;
     p.cache = !a.no_cache;

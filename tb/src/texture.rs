@@ -76,7 +76,7 @@ pub struct TexReadStats {
     pub violations: u64,
 }
 
-/// Results (24-bit RGB, in request order), statistics and per-scanline page faults.
+/// Results (24-bit RGB, in request order), their output cycles, first-lookup outcomes and statistics.
 #[derive(Clone, Debug)]
 pub struct TexRun {
     pub rgb: Vec<u32>,
@@ -85,7 +85,6 @@ pub struct TexRun {
     /// Per request: blocks of its footprint and how many hit at its first lookup.
     pub lookups: Vec<(u8, u8)>,
     pub stats: TexReadStats,
-    pub faults_per_line: Vec<u64>,
 }
 
 /// A fully-associative LRU cache of block tags (the shadow cache).
@@ -211,8 +210,7 @@ pub fn drive<T: Trace + ProbeSink>(
     let mut out_cycles = Vec::with_capacity(reqs.len());
     let mut shadow = Shadow::new(4);
     let (mut cold, mut cap, mut conf) = (0, 0, 0);
-    let mut faults_per_line: Vec<u64> = Vec::new();
-    let mut line_start_faults = 0;
+    let mut scanlines = 0u64;
     // Worst case per request: four blocks, each two reads with a page fault, plus decode.
     let p = *sim.dut.params();
     let per_req = 4 * (2 * u64::from(p.dram.t_rp + p.dram.t_rcd + p.dram.t_cas + p.dram.t_cp) + 8);
@@ -230,13 +228,7 @@ pub fn drive<T: Trace + ProbeSink>(
         sim.eval();
         let d = &sim.dut;
         if want && d.in_ready.is_high() {
-            if next == 0 || reqs[next].newline {
-                let f = d.mem.page_faults;
-                if next > 0 {
-                    faults_per_line.push(f - line_start_faults);
-                }
-                line_start_faults = f;
-            }
+            scanlines += u64::from(next == 0 || reqs[next].newline);
             next += 1;
             wait = interval - 1;
         }
@@ -286,12 +278,9 @@ pub fn drive<T: Trace + ProbeSink>(
             return Err("watchdog: the unit did not go idle".into());
         }
     }
-    // The last page faults belong to the last scanline.
     let d = &sim.dut;
-    faults_per_line.push(d.mem.page_faults - line_start_faults);
     let s = d.stats;
     let ns = cycles * u64::from(p.dram.cycle_ns);
-    let scanlines = faults_per_line.len() as u64;
     let stats = TexReadStats {
         requests: s.requests,
         interval,
@@ -330,7 +319,6 @@ pub fn drive<T: Trace + ProbeSink>(
             out_cycles,
             lookups,
             stats,
-            faults_per_line,
         },
     ))
 }
@@ -708,7 +696,6 @@ pub fn regress_suite(
             rows.push(TableRow {
                 trace: kind.name().into(),
                 stats: run.stats,
-                faults_per_line: run.faults_per_line,
             });
         }
     }
@@ -761,7 +748,6 @@ pub fn regress_suite(
 pub struct TableRow {
     pub trace: String,
     pub stats: TexReadStats,
-    pub faults_per_line: Vec<u64>,
 }
 
 /// The hit-rate table in markdown.
