@@ -12,16 +12,14 @@
 //! `u`/`v` classes (zero, max, interior ranges) crossed with the mode. The run at the traced
 //! width (default F = 8) writes `blend_adjust.vcd` with the golden values beside the outputs.
 
-use crate::report::TbResult;
 use hdl::blend_adjust::{BlendAdjust, BlendAdjustParams};
-use hdl::kernel::{NoTrace, Sim, Trace};
+use hdl::kernel::{Sim, Trace};
 use proptest::prelude::*;
-use std::path::PathBuf;
 use verif::{
-    run, Coverage, Coverpoint, Driver, ErrorStats, Event, Monitor, Pacing, Scoreboard, Seed,
-    Stimulus, Watchdog,
+    run, Coverage, Coverpoint, Ctx, Driver, Event, Monitor, Pacing, ProbeSink, RunSpec, Scoreboard,
+    Stimulus, TbResult, Testbench,
 };
-use waves::{ProbeId, TraceConfig, VcdTracer};
+use waves::{ProbeId, VcdTracer};
 
 /// An input transaction: one pair of blend factors (raw `uQ0.F` bits) and the mode.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -93,40 +91,74 @@ pub fn golden(t: &BaIn, frac_bits: u32) -> [f64; 4] {
     [u0, u1, v0, v1]
 }
 
-/// What to run.
+/// The testbench of unit 153: one configuration per blend-factor width F.
 #[derive(Clone, Debug)]
-pub struct BaConfig {
-    pub frac_range: std::ops::RangeInclusive<u32>,
+pub struct BlendAdjustTb {
+    /// The widths to run (every one the unit takes, by default; fewer leave coverage holes).
+    pub widths: std::ops::RangeInclusive<u32>,
     pub registered: bool,
-    /// Random transactions per width.
-    pub random_per_width: usize,
-    pub seed: Seed,
-    /// Trace the run of this width into `vcd` (with `trace`).
-    pub trace_frac: u32,
-    pub vcd: Option<PathBuf>,
-    pub trace: TraceConfig,
     /// Corrupt one output transaction (see [`BaMonitor`]).
     pub fault: Option<u64>,
-    /// Run the kernel's schedule check on every cycle.
-    pub check_schedule: bool,
-    /// Run only the widths of this shard (width F is configuration F - 4).
-    pub shard: verif::Shard,
 }
 
-impl Default for BaConfig {
+impl Default for BlendAdjustTb {
     fn default() -> Self {
-        BaConfig {
-            frac_range: BlendAdjustParams::FRAC_RANGE,
+        BlendAdjustTb {
+            widths: BlendAdjustParams::FRAC_RANGE,
             registered: true,
-            random_per_width: 2000,
-            seed: Seed(0x7e47_1153),
-            trace_frac: 8,
-            vcd: None,
-            trace: TraceConfig::default(),
             fault: None,
-            check_schedule: false,
-            shard: verif::Shard::default(),
         }
+    }
+}
+
+/// The width whose run is traced.
+const TRACED_FRAC: u32 = 8;
+
+impl Testbench for BlendAdjustTb {
+    fn name(&self) -> &'static str {
+        "blend_adjust"
+    }
+    fn unit(&self) -> &'static str {
+        "unit 153 (FIG. 7, para. 0058-0061, 0085)"
+    }
+    fn configurations(&self) -> Vec<String> {
+        self.widths.clone().map(|f| format!("F={f}")).collect()
+    }
+    fn default_count(&self) -> usize {
+        2000
+    }
+    fn traced(&self) -> usize {
+        TRACED_FRAC.saturating_sub(*self.widths.start()) as usize
+    }
+    fn coverage(&self) -> Coverage {
+        coverage_model()
+    }
+    fn run(&self, ctx: &Ctx) -> Result<TbResult, String> {
+        let f = self.widths.start() + ctx.index as u32;
+        let params = BlendAdjustParams {
+            frac_bits: f,
+            registered: self.registered,
+        };
+        params.validate()?;
+        let dut = BlendAdjust::new("ba", params);
+        let Some(w) = &ctx.waves else {
+            return Ok(one_width(Sim::new(dut), self, ctx, f, None).1);
+        };
+        let mut t = VcdTracer::create(&w.vcd, &format!("blend_adjust F={f}"), w.config(10_000))
+            .map_err(|e| format!("{}: {e}", w.vcd.display()))?;
+        let probes = [
+            t.probe_real("u0_golden", Some("tb.ba.u0")),
+            t.probe_real("u1_golden", Some("tb.ba.u1")),
+            t.probe_real("v0_golden", Some("tb.ba.v0")),
+            t.probe_real("v1_golden", Some("tb.ba.v1")),
+        ];
+        let miss = t.probe_bits("mismatch", 1, Some("tb.ba.valid"));
+        let sim = Sim::traced(dut, t).map_err(|e| e.to_string())?;
+        let (sim, mut res) = one_width(sim, self, ctx, f, Some((probes, miss)));
+        sim.finish()
+            .map_err(|e| format!("{}: {e}", w.vcd.display()))?;
+        res.vcd = Some(w.vcd.clone());
+        Ok(res)
     }
 }
 
@@ -190,149 +222,78 @@ fn class(x: u32, f: u32) -> i64 {
     }
 }
 
-/// Runs the testbench; `Err` only for I/O errors of the trace.
-pub fn run_tb(cfg: &BaConfig) -> Result<TbResult, String> {
-    let mut res = TbResult::new("blend_adjust", "unit 153 (FIG. 7, para. 0058-0061, 0085)");
-    let mut cov = coverage_model();
-    let mut stats = ErrorStats::new();
-    res.seed = Some(cfg.seed.to_string());
-    for f in cfg.frac_range.clone() {
-        if !cfg.shard.owns(u64::from(f - 4)) {
-            continue;
-        }
-        // Each width draws from its own stream: shards reproduce an unsharded run exactly.
-        let mut stim = Stimulus::new(cfg.seed.derive(u64::from(f)));
-        let stim = &mut stim;
-        let params = BlendAdjustParams {
-            frac_bits: f,
-            registered: cfg.registered,
-        };
-        params.validate()?;
-        let dut = BlendAdjust::new("ba", params);
-        let traced = f == cfg.trace_frac && cfg.vcd.is_some();
-        if traced {
-            let path = cfg.vcd.clone().unwrap();
-            let mut t = VcdTracer::create(&path, &format!("blend_adjust F={f}"), cfg.trace.clone())
-                .map_err(|e| e.to_string())?;
-            let probes = [
-                t.probe_real("u0_golden", Some("tb.ba.u0")),
-                t.probe_real("u1_golden", Some("tb.ba.u1")),
-                t.probe_real("v0_golden", Some("tb.ba.v0")),
-                t.probe_real("v1_golden", Some("tb.ba.v1")),
-            ];
-            let miss = t.probe_bits("mismatch", 1, Some("tb.ba.valid"));
-            let sim = Sim::traced(dut, t).map_err(|e| e.to_string())?;
-            let sim = one_width(
-                sim,
-                cfg,
-                f,
-                stim,
-                &mut cov,
-                &mut stats,
-                &mut res,
-                Some((probes, miss)),
-            );
-            sim.finish().map_err(|e| e.to_string())?;
-            res.vcd = Some(path);
-        } else {
-            let sim: Sim<BlendAdjust, NoTrace> = Sim::new(dut);
-            one_width(sim, cfg, f, stim, &mut cov, &mut stats, &mut res, None);
-        }
-    }
-    res.set_coverage(cov);
-    res.stats = stats;
-    res.finish_with(cfg.shard.is_all());
-    Ok(res)
-}
-
 type Probes = ([ProbeId; 4], ProbeId);
 
 /// Resets the unit, runs the full-rate sweep and the randomly paced transactions of one width.
-#[allow(clippy::too_many_arguments)]
 fn one_width<T: Trace + ProbeSink>(
     sim: Sim<BlendAdjust, T>,
-    cfg: &BaConfig,
+    tb: &BlendAdjustTb,
+    ctx: &Ctx,
     f: u32,
-    stim: &mut Stimulus,
-    cov: &mut Coverage,
-    stats: &mut ErrorStats,
-    res: &mut TbResult,
     probes: Option<Probes>,
-) -> Sim<BlendAdjust, T> {
-    let mut sim = sim.check_schedule(cfg.check_schedule);
+) -> (Sim<BlendAdjust, T>, TbResult) {
+    let mut res = TbResult::new("blend_adjust", "");
+    let mut cov = coverage_model();
+    let mut stim = Stimulus::new(ctx.seed);
+    let mut sim = sim.check_schedule(ctx.check_schedule);
     sim.reset(2);
     let lsb = (-(f as f64 + 1.0)).exp2();
     let latency = u64::from(sim.dut.params().latency());
     let mut monitor = BaMonitor {
-        fault: cfg.fault,
+        fault: tb.fault,
         seen: 0,
     };
     for (phase, stimulus) in [
         ("sweep", sweep(f)),
-        ("random", random(f, cfg.random_per_width, stim)),
+        ("random", random(f, ctx.count, &mut stim)),
     ] {
         let n = stimulus.len() as u64;
-        let mut pacing = if phase == "sweep" {
+        let pacing = if phase == "sweep" {
             Pacing::full()
         } else {
             Pacing::random(250, stim.seed().derive(u64::from(f)))
         };
-        let mut sb: Scoreboard<(BaIn, [f64; 4]), BaOut> =
-            Scoreboard::new(move |(_, g): &(BaIn, [f64; 4]), a: &BaOut| {
-                let got = [a.u0, a.u1, a.v0, a.v1].map(|x| f64::from(x) * lsb);
-                let names = ["u0", "u1", "v0", "v1"];
-                let bad: Vec<String> = (0..4)
-                    .filter(|&k| got[k] != g[k])
-                    .map(|k| format!("{}={} want {}", names[k], got[k], g[k]))
-                    .collect();
-                if bad.is_empty() {
-                    Ok(())
-                } else {
-                    Err(bad.join(", "))
-                }
-            });
-        let watchdog = Watchdog::cycles(8 * n + 100);
+        let mut sb = scoreboard(lsb);
+        let mut spec = RunSpec::new(n, 8 * n + 100).pacing(pacing);
         let r = run(
             &mut sim,
             &mut BaDriver,
             &mut monitor,
             stimulus,
-            n,
-            &mut pacing,
-            watchdog,
+            &mut spec,
             |sim, ev| match ev {
                 Event::Sent { txn, .. } => {
-                    let g = golden(txn, f);
                     cov.sample(&[
                         f as i64,
                         i64::from(txn.bypass),
                         class(txn.u, f),
                         class(txn.v, f),
                     ]);
-                    sb.expect((*txn, g));
+                    sb.expect((*txn, golden(txn, f)));
                 }
                 Event::Received { cycle, txn } => {
                     let out = sb.observe(cycle, txn);
                     let got = [txn.u0, txn.u1, txn.v0, txn.v1].map(|x| f64::from(x) * lsb);
                     if let Some((_, g)) = out.expected {
                         for k in 0..4 {
-                            stats.record(got[k], g[k], lsb);
+                            res.stats.record(got[k], g[k], lsb);
                         }
                         if let (Some((p, miss)), Some(t)) = (probes, sim.trace_mut()) {
                             for k in 0..4 {
-                                t.probe(p[k], g[k]);
+                                t.real(p[k], g[k]);
                             }
                             t.flag(miss, !out.ok);
                         }
                     }
                 }
+                Event::Settled { .. } => {}
             },
         );
         res.transactions += n;
         res.mismatches += sb.mismatch_count();
         for m in sb.mismatches().iter().take(10) {
             res.mismatch_log.push(format!(
-                "F={f} {phase}: {} (cycle {:?}): {}",
+                "{phase}: {} (cycle {:?}): {}",
                 m.index, m.cycle, m.detail
             ));
         }
@@ -346,7 +307,7 @@ fn one_width<T: Trace + ProbeSink>(
                         || st.max_latency != Some(latency)
                     {
                         res.failures.push(format!(
-                            "F={f}: {} cycles for {n} transactions, latency {:?}..{:?}, want {} and {latency}",
+                            "{} cycles for {n} transactions, latency {:?}..{:?}, want {} and {latency}",
                             st.cycles,
                             st.min_latency,
                             st.max_latency,
@@ -356,33 +317,28 @@ fn one_width<T: Trace + ProbeSink>(
                     res.latency = Some(latency);
                 }
             }
-            Err(t) => res.failures.push(format!("F={f} {phase}: {t}")),
+            Err(t) => res.failures.push(format!("{phase}: {t}")),
         }
     }
-    sim
+    res.coverage = Some(cov);
+    (sim, res)
 }
 
-/// Lets the testbench set probes on whichever tracer it runs with.
-pub trait ProbeSink {
-    fn probe(&mut self, p: ProbeId, v: f64);
-    fn flag(&mut self, p: ProbeId, v: bool);
-    fn bits(&mut self, p: ProbeId, v: u64);
-}
+type BaScoreboard = Scoreboard<(BaIn, [f64; 4]), BaOut>;
 
-impl ProbeSink for VcdTracer {
-    fn probe(&mut self, p: ProbeId, v: f64) {
-        self.set_real(p, v);
-    }
-    fn flag(&mut self, p: ProbeId, v: bool) {
-        self.set_bits(p, u64::from(v));
-    }
-    fn bits(&mut self, p: ProbeId, v: u64) {
-        self.set_bits(p, v);
-    }
-}
-
-impl ProbeSink for NoTrace {
-    fn probe(&mut self, _: ProbeId, _: f64) {}
-    fn flag(&mut self, _: ProbeId, _: bool) {}
-    fn bits(&mut self, _: ProbeId, _: u64) {}
+/// Exact comparison of the four factors against golden, in units of `lsb`.
+fn scoreboard(lsb: f64) -> BaScoreboard {
+    Scoreboard::new(move |(_, g): &(BaIn, [f64; 4]), a: &BaOut| {
+        let got = [a.u0, a.u1, a.v0, a.v1].map(|x| f64::from(x) * lsb);
+        let names = ["u0", "u1", "v0", "v1"];
+        let bad: Vec<String> = (0..4)
+            .filter(|&k| got[k] != g[k])
+            .map(|k| format!("{}={} want {}", names[k], got[k], g[k]))
+            .collect();
+        if bad.is_empty() {
+            Ok(())
+        } else {
+            Err(bad.join(", "))
+        }
+    })
 }

@@ -171,6 +171,7 @@ pub fn normals(a: &NormalsArgs) -> Result<String, CmdError> {
         vcd: a.vcd.clone(),
         trace: TraceConfig::default(),
         check_accuracy: false,
+        check_schedule: false,
         seed: Seed(0),
     })
     .map_err(CmdError::Failed)?;
@@ -302,6 +303,7 @@ pub fn render_png(
             vcd: None,
             trace: TraceConfig::default(),
             check_accuracy: false,
+            check_schedule: false,
             seed: Seed(0),
         })
     };
@@ -410,6 +412,7 @@ pub fn sweep_normals(map_name: &str, samples: usize, seed: Seed) -> Result<Strin
                 vcd: None,
                 trace: TraceConfig::default(),
                 check_accuracy: false,
+                check_schedule: false,
                 seed,
             })
             .map_err(CmdError::Failed)?;

@@ -5,6 +5,9 @@ use hdl::dram::{DramCtrl, DramParams};
 use hdl::kernel::{NoTrace, Sim, Trace};
 use serde::Serialize;
 use std::path::{Path, PathBuf};
+use verif::{
+    run, Coverage, Coverpoint, Ctx, Driver, Event, Monitor, Pacing, RunSpec, TbResult, Testbench,
+};
 use waves::{TraceConfig, VcdTracer};
 
 /// What a trace run measured.
@@ -57,73 +60,198 @@ pub fn read_trace(path: &Path, words: u64) -> Result<Vec<u64>, String> {
     Ok(v)
 }
 
+/// One read request: a word address, and whether the requester leaves the bus idle for a
+/// while before it (`gap` cycles of the driver's pacing are set by the configuration).
+pub type Addr = u64;
+
+/// Presents word-read requests to control unit 607 (`req_valid`, `req_addr`); a request is
+/// taken in a cycle with `ready` high.
+pub struct DramDriver;
+
+impl Driver<DramCtrl> for DramDriver {
+    type Txn = Addr;
+    fn drive(&mut self, dut: &mut DramCtrl, a: Option<&Addr>) {
+        dut.req_valid.set_bool(a.is_some());
+        if let Some(&a) = a {
+            dut.req_addr.set_bits(a);
+        }
+    }
+    fn accepted(&self, dut: &DramCtrl) -> bool {
+        dut.ready.is_high()
+    }
+}
+
+/// Collects each read's data word when `resp_valid` is high.
+pub struct DramMonitor;
+
+impl Monitor<DramCtrl> for DramMonitor {
+    type Txn = u16;
+    fn sample(&mut self, dut: &DramCtrl) -> Option<u16> {
+        dut.resp_valid
+            .is_high()
+            .then(|| dut.resp_data.bits() as u16)
+    }
+}
+
+/// The coverage model of DRAM 604 + 607: each read's page outcome (hit or fault) and what it
+/// followed (hit after hit, fault after hit, ...), where in the array it falls (row and
+/// column regions), and whether it came back to back with the previous request or after idle
+/// cycles, crossed with the outcome.
+pub fn coverage_model() -> Coverage {
+    let mut c = Coverage::new();
+    let page = c.add(Coverpoint::new("page").value("hit", 1).value("fault", 2));
+    c.add(
+        Coverpoint::new("after")
+            .value("first_read", 0)
+            .value("hit_after_hit", 1)
+            .value("fault_after_hit", 2)
+            .value("hit_after_fault", 3)
+            .value("fault_after_fault", 4),
+    );
+    let rows = c.add(
+        Coverpoint::new("row")
+            .value("first", 0)
+            .ranges("inner", 1, 14, 2)
+            .value("last", 15),
+    );
+    let cols = c.add(
+        Coverpoint::new("column")
+            .value("first", 0)
+            .ranges("inner", 1, 14, 2)
+            .value("last", 15),
+    );
+    let spacing = c.add(
+        Coverpoint::new("spacing")
+            .value("back_to_back", 0)
+            .value("after_idle", 1),
+    );
+    c.cross("page_x_spacing", page, spacing);
+    c.cross("row_x_column", rows, cols);
+    c
+}
+
+/// A position in 16ths of a range of `n`: 0 first, 15 last, 1..=14 inside.
+fn region(x: u64, n: u64) -> i64 {
+    match x {
+        0 => 0,
+        _ if x + 1 == n => 15,
+        _ => (1 + x * 14 / n) as i64,
+    }
+}
+
 /// Runs `addrs` through the controller, one request as soon as it is ready.
 pub fn run_trace(p: DramParams, addrs: &[u64], vcd: Option<PathBuf>) -> Result<DramStats, String> {
+    let wave = vcd.map(|path| {
+        let period_ps = u64::from(p.cycle_ns) * 1000;
+        (
+            path,
+            TraceConfig {
+                period_ps,
+                ..TraceConfig::default()
+            },
+        )
+    });
+    run_paced(p, addrs, Pacing::full(), wave).map(|(s, _)| s)
+}
+
+/// Runs `addrs` through the controller with the requester paced by `pacing`; returns the
+/// statistics and a coverage model sampled with every read.
+pub fn run_paced(
+    p: DramParams,
+    addrs: &[u64],
+    pacing: Pacing,
+    wave: Option<(PathBuf, TraceConfig)>,
+) -> Result<(DramStats, Coverage), String> {
     let ctrl = DramCtrl::new("mem", p)?;
-    match vcd {
-        Some(path) => {
-            let t = VcdTracer::create(
-                &path,
-                "dram",
-                TraceConfig {
-                    period_ps: u64::from(p.cycle_ns) * 1000,
-                    ..TraceConfig::default()
-                },
-            )
-            .map_err(|e| e.to_string())?;
-            let (sim, st) = drive(Sim::traced(ctrl, t).map_err(|e| e.to_string())?, addrs)?;
-            sim.finish().map_err(|e| e.to_string())?;
-            Ok(st)
+    match wave {
+        Some((path, cfg)) => {
+            let t = VcdTracer::create(&path, "dram", cfg)
+                .map_err(|e| format!("{}: {e}", path.display()))?;
+            let sim = Sim::traced(ctrl, t).map_err(|e| e.to_string())?;
+            let (sim, st, cov) = drive(sim, addrs, pacing)?;
+            sim.finish()
+                .map_err(|e| format!("{}: {e}", path.display()))?;
+            Ok((st, cov))
         }
-        None => drive(Sim::<DramCtrl, NoTrace>::new(ctrl), addrs).map(|x| x.1),
+        None => drive(Sim::<DramCtrl, NoTrace>::new(ctrl), addrs, pacing).map(|x| (x.1, x.2)),
     }
 }
 
 fn drive<T: Trace>(
     mut sim: Sim<DramCtrl, T>,
     addrs: &[u64],
-) -> Result<(Sim<DramCtrl, T>, DramStats), String> {
+    pacing: Pacing,
+) -> Result<(Sim<DramCtrl, T>, DramStats, Coverage), String> {
     sim.reset(1);
     let start = sim.cycle();
     let p = *sim.dut.params();
-    let mut next = 0;
-    let mut pending: std::collections::VecDeque<u64> = Default::default();
-    let mut data_errors = 0;
-    let limit =
-        start + 20 * (addrs.len() as u64 + 1) * u64::from(p.t_rp + p.t_rcd + p.t_cas + p.t_cp);
-    loop {
-        let d = &mut sim.dut;
-        let want = next < addrs.len();
-        d.req_valid.set_bool(want);
-        if want {
-            d.req_addr.set_bits(addrs[next]);
-        }
+    let mut cov = coverage_model();
+    let mut sent: std::collections::VecDeque<u64> = Default::default();
+    let (mut data_errors, mut received) = (0, 0usize);
+    let (mut open_row, mut previous, mut idle) = (None::<u64>, 0i64, false);
+    let mut done_at = None;
+    let worst = u64::from(p.t_rp + p.t_rcd + p.t_cas + p.t_cp);
+    let mut spec = RunSpec::new(
+        addrs.len() as u64,
+        100 + 20 * (addrs.len() as u64 + 1) * worst,
+    )
+    .pacing(pacing);
+    let n = addrs.len();
+    let r = run(
+        &mut sim,
+        &mut DramDriver,
+        &mut DramMonitor,
+        addrs.iter().copied(),
+        &mut spec,
+        |sim, ev| match ev {
+            Event::Sent { txn, .. } => {
+                let (row, col) = (txn / u64::from(p.cols), txn % u64::from(p.cols));
+                // 1 hit, 2 fault (the first read opens a row: a fault).
+                let page = if open_row == Some(row) { 1 } else { 2 };
+                let after = if previous == 0 {
+                    0
+                } else {
+                    1 + 2 * (previous - 1) + (page - 1)
+                };
+                cov.sample(&[
+                    page,
+                    after,
+                    region(row, u64::from(p.rows)),
+                    region(col, u64::from(p.cols)),
+                    i64::from(idle),
+                ]);
+                (open_row, previous, idle) = (Some(row), page, false);
+                sent.push_back(*txn);
+            }
+            Event::Received { txn, .. } => {
+                let a = sent.pop_front().expect("a response follows a request");
+                data_errors += u64::from(txn != DramParams::pattern(a));
+                received += 1;
+            }
+            // The cycle in which the controller is ready again ends the last access's CAS#
+            // precharge: the run's time ends there.
+            Event::Settled { cycle } => {
+                // A cycle in which 607 was ready and nothing was asked of it.
+                idle |= sim.dut.ready.is_high() && !sim.dut.req_valid.is_high();
+                if received == n && sim.dut.ready.is_high() && done_at.is_none() {
+                    done_at = Some(cycle);
+                }
+            }
+        },
+    )
+    .map_err(|t| t.to_string())?;
+    while done_at.is_none() {
         sim.eval();
-        if sim.dut.ready.is_high() && want {
-            pending.push_back(addrs[next]);
-            next += 1;
-        }
-        if sim.dut.resp_valid.is_high() {
-            let a = pending.pop_front().ok_or("response without a request")?;
-            data_errors += u64::from(sim.dut.resp_data.bits() as u16 != DramParams::pattern(a));
-        }
-        let done = next == addrs.len() && pending.is_empty() && sim.dut.ready.is_high();
-        if done {
-            break;
-        }
-        sim.tick();
-        if sim.cycle() > limit {
-            return Err(format!(
-                "watchdog: {} of {} reads after {} cycles",
-                next,
-                addrs.len(),
-                sim.cycle() - start
-            ));
+        if sim.dut.ready.is_high() {
+            done_at = Some(sim.cycle());
+        } else if sim.cycle() > start + r.cycles + worst {
+            return Err("watchdog: control unit 607 did not become ready".into());
+        } else {
+            sim.tick();
         }
     }
     let c = &sim.dut;
-    // The cycle in which the controller is ready again ends the last access's CAS# precharge.
-    let cycles = sim.cycle() - start;
+    let cycles = done_at.expect("set above") - start;
     let ns = cycles * u64::from(p.cycle_ns);
     let st = DramStats {
         reads: c.reads,
@@ -141,74 +269,154 @@ fn drive<T: Trace>(
         violations: c.dram.violations,
         data_errors,
     };
-    Ok((sim, st))
+    Ok((sim, st, cov))
 }
 
-/// The DRAM testbench of `texrtl regress`: the document's figures (33 M texels/s peak, about
-/// 27 M with 8 texels and 2 page faults per scanline), seeded random traces on both sizes,
-/// every word checked, no timing violation, and a waveform of a short trace.
-pub fn regress_suite(
-    seed: verif::Seed,
-    vcd: Option<PathBuf>,
-) -> Result<crate::report::TbResult, String> {
-    let mut res =
-        crate::report::TbResult::new("dram", "DRAM 604 + control unit 607 (Figure 6, section 5)");
-    res.seed = Some(seed.to_string());
-    res.coverage_percent = 100.0;
-    let p = DramParams::default();
-    let add = |res: &mut crate::report::TbResult, st: &DramStats| {
-        res.transactions += st.reads;
-        res.cycles += st.cycles;
-        res.mismatches += st.data_errors;
+/// The configurations of the dram testbench: directed traces for the document's figures and
+/// the waveform, random traces with page locality on both sizes, with and without idle gaps.
+const CONFIGS: [&str; 6] = [
+    "directed: hits, faults, a return to an old row (traced)",
+    "peak: one page (document: 33.3 M texels/s)",
+    "8 texels + 2 page faults per scanline (document: 26.7 M texels/s)",
+    "random, 256K x 16, back to back",
+    "random, 1M x 16, back to back",
+    "random, 256K x 16, idle gaps",
+];
+
+/// The DRAM testbench of `texrtl regress`.
+pub struct DramTb;
+
+/// `n` random addresses: half stay in the previous row (a random column), half anywhere, so
+/// that every page outcome follows every other; then 32 directed ones covering the row and
+/// column regions.
+fn random_trace(p: &DramParams, n: usize, seed: verif::Seed) -> Vec<u64> {
+    let mut stim = verif::Stimulus::new(seed);
+    let words = p.words();
+    let cols = u64::from(p.cols);
+    let mut v: Vec<u64> = Vec::with_capacity(n);
+    for _ in 0..n {
+        let (same_row, a) = stim.draw(&(proptest::bool::ANY, 0..words));
+        let a = match v.last() {
+            Some(prev) if same_row => prev / cols * cols + a % cols,
+            _ => a,
+        };
+        v.push(a);
+    }
+    // Every row region with every column region (first, inner, last), whatever the count:
+    // row by row (hits after hits), then column by column (faults after faults).
+    let rows = u64::from(p.rows);
+    let rs = [0, rows / 4, 3 * rows / 4, rows - 1];
+    let cs = [0, cols / 4, 3 * cols / 4, cols - 1];
+    for r in rs {
+        v.extend(cs.map(|c| r * cols + c));
+    }
+    for c in cs {
+        v.extend(rs.map(|r| r * cols + c));
+    }
+    v
+}
+
+impl Testbench for DramTb {
+    fn name(&self) -> &'static str {
+        "dram"
+    }
+    fn unit(&self) -> &'static str {
+        "DRAM 604 + control unit 607 (Figure 6, section 5)"
+    }
+    fn configurations(&self) -> Vec<String> {
+        CONFIGS.iter().map(|s| s.to_string()).collect()
+    }
+    fn default_count(&self) -> usize {
+        2000
+    }
+    fn count_unit(&self) -> &'static str {
+        "random reads per random configuration"
+    }
+    fn coverage(&self) -> Coverage {
+        coverage_model()
+    }
+    fn run(&self, ctx: &Ctx) -> Result<TbResult, String> {
+        let p = if ctx.index == 4 {
+            DramParams::one_meg()
+        } else {
+            DramParams::default()
+        };
+        let addrs: Vec<u64> = match ctx.index {
+            0 => vec![0, 1, 2, 700, 701, 3, 4, 511, 512],
+            1 => (0..2000u64).map(|k| k % 512).collect(),
+            2 => (0..500u64)
+                .flat_map(|line| {
+                    let (a, b) = (2 * line % 512, (2 * line + 1) % 512);
+                    (0..4)
+                        .map(move |k| a * 512 + k)
+                        .chain((0..4).map(move |k| b * 512 + k))
+                })
+                .collect(),
+            _ => random_trace(&p, ctx.count, ctx.seed),
+        };
+        let pacing = if ctx.index == 5 {
+            // Longer than a page fault's access: 607 waits idle before every request.
+            Pacing::every(16)
+        } else {
+            Pacing::full()
+        };
+        let wave = ctx
+            .waves
+            .as_ref()
+            .map(|w| (w.vcd.clone(), w.config(u64::from(p.cycle_ns) * 1000)));
+        let (st, cov) = run_paced(p, &addrs, pacing, wave)?;
+        let mut res = TbResult::new(self.name(), self.unit());
+        res.transactions = st.reads;
+        res.cycles = st.cycles;
+        res.mismatches = st.data_errors;
+        res.coverage = Some(cov);
+        res.vcd = ctx.waves.as_ref().map(|w| w.vcd.clone());
         if st.violations != 0 {
             res.failures
                 .push(format!("{} DRAM timing violations", st.violations));
         }
-    };
-    let peak: Vec<u64> = (0..2000u64).map(|k| k % 512).collect();
-    let s = run_trace(p, &peak, None)?;
-    add(&mut res, &s);
-    let mut lines = Vec::new();
-    for line in 0..500u64 {
-        let (a, b) = (2 * line % 512, (2 * line + 1) % 512);
-        lines.extend((0..4).map(|k| a * 512 + k));
-        lines.extend((0..4).map(|k| b * 512 + k));
-    }
-    let l = run_trace(p, &lines, None)?;
-    add(&mut res, &l);
-    for (name, got, want) in [
-        ("peak", s.reads_per_second, 33.3e6),
-        (
-            "8 texels + 2 faults per scanline",
-            l.reads_per_second,
-            26.7e6,
-        ),
-    ] {
-        if (got - want).abs() > 0.05e6 {
-            res.failures.push(format!(
-                "{name}: {:.2} M reads/s, the document says {:.1} M",
-                got / 1e6,
-                want / 1e6
-            ));
+        check_counts(&mut res, &p, &addrs, &st);
+        let figure = [(1, 33.3e6), (2, 26.7e6)]
+            .into_iter()
+            .find(|f| f.0 == ctx.index);
+        if let Some((_, want)) = figure {
+            let got = st.reads_per_second;
+            if (got - want).abs() > 0.05e6 {
+                res.failures.push(format!(
+                    "{:.2} M reads/s, the document says {:.1} M",
+                    got / 1e6,
+                    want / 1e6
+                ));
+            }
+            res.notes
+                .push(format!("{}: {:.2} M texels/s", ctx.label, got / 1e6));
         }
-        res.notes.push(format!(
-            "{name}: {:.2} M texels/s (document: {:.1} M)",
-            got / 1e6,
-            want / 1e6
+        Ok(res)
+    }
+}
+
+/// The controller's page counts against the trace's own (a page hit is a read in the row the
+/// previous read opened), and its time against the timing parameters.
+fn check_counts(res: &mut TbResult, p: &DramParams, addrs: &[u64], st: &DramStats) {
+    let cols = u64::from(p.cols);
+    let faults = addrs
+        .iter()
+        .enumerate()
+        .filter(|&(i, a)| i == 0 || addrs[i - 1] / cols != a / cols)
+        .count() as u64;
+    if (st.page_faults, st.page_hits) != (faults, addrs.len() as u64 - faults) {
+        res.failures.push(format!(
+            "page faults / hits {} / {}, the trace has {faults} / {}",
+            st.page_faults,
+            st.page_hits,
+            addrs.len() as u64 - faults
         ));
     }
-    let mut stim = verif::Stimulus::new(seed);
-    for p in [DramParams::default(), DramParams::one_meg()] {
-        let addrs = stim.draw_n(&(0..p.words()), 2000);
-        let st = run_trace(p, &addrs, None)?;
-        add(&mut res, &st);
+    let (per, fault) = (u64::from(p.t_cas + p.t_cp), u64::from(p.t_rp + p.t_rcd));
+    if st.cycles < st.reads * per + st.page_faults * fault {
+        res.failures.push(format!(
+            "{} cycles for {} reads and {} faults: faster than the DRAM's timing allows",
+            st.cycles, st.reads, st.page_faults
+        ));
     }
-    if let Some(path) = vcd {
-        let short: Vec<u64> = vec![0, 1, 2, 700, 701, 3, 4];
-        let st = run_trace(p, &short, Some(path.clone()))?;
-        add(&mut res, &st);
-        res.vcd = Some(path);
-    }
-    res.finish_with(false);
-    Ok(res)
 }

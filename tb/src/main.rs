@@ -264,9 +264,10 @@ struct RegressArgs {
     /// Trace only cycles START..END.
     #[arg(long, value_parser = parse_window)]
     trace_window: Option<(u64, u64)>,
-    /// Clock period in picoseconds shown in the waveforms (even, >= 2).
-    #[arg(long, default_value_t = 10_000)]
-    period_ps: u64,
+    /// Clock period in picoseconds shown in every waveform (even, >= 2; default: each
+    /// testbench's own clock, 10 ns for the FIG. 7 and FIG. 14 units, 5 ns for the memory path).
+    #[arg(long)]
+    period_ps: Option<u64>,
     /// Rewrite the bit-accuracy vectors under golden/vectors/ after a deliberate change, and
     /// print what changed.
     #[arg(long)]
@@ -281,6 +282,47 @@ struct RegressArgs {
     /// Also write every waveform as FST (compact; open with `gtkwave X.fst X.gtkw`).
     #[arg(long)]
     fst: bool,
+    /// Run only this testbench (repeatable; `vectors` is the bit-accuracy check).
+    #[arg(long)]
+    only: Vec<String>,
+    /// List the testbenches with their configurations and what --count counts, and exit.
+    #[arg(long)]
+    list: bool,
+    /// Run the kernel's schedule check (every cycle evaluated twice) in every testbench.
+    #[arg(long)]
+    check_schedule: bool,
+}
+
+/// `texrtl regress --list`.
+fn list_testbenches() -> String {
+    let mut s = String::new();
+    for tb in tb::regress::registry().iter() {
+        let c = tb.configurations();
+        s.push_str(&format!(
+            "{}: {}
+  --count: {} (default {})
+  {} configurations; traced: {}
+",
+            tb.name(),
+            tb.unit(),
+            tb.count_unit(),
+            tb.default_count(),
+            c.len(),
+            c.get(tb.traced()).map_or("none", String::as_str)
+        ));
+        for (i, l) in c.iter().enumerate() {
+            s.push_str(&format!(
+                "    {i:>3}  {l}
+"
+            ));
+        }
+    }
+    s.push_str(&format!(
+        "{}: the bit-accuracy vectors under golden/vectors/ (fixed stimuli)
+",
+        tb::regress::VECTORS
+    ));
+    s
 }
 
 fn parse_window(s: &str) -> Result<(u64, u64), String> {
@@ -306,6 +348,10 @@ fn fail(msg: impl std::fmt::Display) -> ExitCode {
 }
 
 fn run_regress(a: RegressArgs) -> ExitCode {
+    if a.list {
+        say(&list_testbenches());
+        return ExitCode::SUCCESS;
+    }
     if a.out.exists() && !a.out.is_dir() {
         return fail(format!(
             "--out {}: exists and is not a directory",
@@ -318,18 +364,24 @@ fn run_regress(a: RegressArgs) -> ExitCode {
         seed: a.seed,
         vcd: !a.no_vcd,
         trace: TraceConfig {
-            period_ps: a.period_ps,
+            period_ps: a.period_ps.unwrap_or(10_000),
             max_depth: a.trace_depth,
             filters: a.trace_filter,
             window: a.trace_window,
             companions: true,
         },
+        period_ps: a.period_ps,
         shard: a.shard,
         count: a.count,
         fst: a.fst,
+        only: a.only,
+        check_schedule: a.check_schedule,
     };
     if let Err(e) = cfg.trace.validate() {
         return fail(format!("--period-ps/--trace-window: {e}"));
+    }
+    if let Err(e) = cfg.validate(&tb::regress::registry()) {
+        return fail(e);
     }
     eprintln!(
         "texrtl regress: seed {} (replay with --seed {})",

@@ -7,12 +7,14 @@
 //! loop over the whole frame that shares nothing with the hardware's structure, and with the
 //! real-valued block averages of `golden::mipmap` against the analytic bound.
 
-use crate::report::TbResult;
 use hdl::kernel::{NoTrace, Sim, Trace};
 use hdl::mipmap::{FrameBuffer, MipmapGen, MipmapParams, Rounding, Scan};
-use serde::Serialize;
+use serde::{Deserialize, Serialize};
 use std::path::PathBuf;
-use verif::{Coverage, Coverpoint, ErrorStats, Scoreboard, Seed, Stimulus};
+use verif::{
+    run, Coverage, Coverpoint, Ctx, Driver, ErrorStats, Event, Monitor, RunSpec, Scoreboard, Seed,
+    Stimulus, TbResult, Testbench,
+};
 use waves::{TraceConfig, VcdTracer};
 
 /// The integer reference: every level from the one before, `(a+b+c+d+2)>>2` (or `>>2`), pairs
@@ -123,6 +125,61 @@ pub fn run_mipmap(
     }
 }
 
+/// One level-0 texel of the video stream, with its start-of-frame flag.
+#[derive(Clone, Copy, Debug)]
+pub struct VideoTexel {
+    pub sof: bool,
+    pub texel: u8,
+}
+
+/// Drives the video port (`valid`, `sof`, `texel`); the generator takes a texel every cycle.
+pub struct VideoDriver;
+
+impl Driver<MipmapGen> for VideoDriver {
+    type Txn = VideoTexel;
+    fn drive(&mut self, dut: &mut MipmapGen, t: Option<&VideoTexel>) {
+        dut.valid.set_bool(t.is_some());
+        dut.sof.set_bool(t.is_some_and(|t| t.sof));
+        dut.texel.set_bits(u64::from(t.map_or(0, |t| t.texel)));
+    }
+}
+
+/// Reports each completed frame (`frame_done`) with its mipmap, read from the frame store.
+pub struct FrameMonitor {
+    seen: usize,
+}
+
+impl Monitor<MipmapGen> for FrameMonitor {
+    type Txn = (u64, FrameBuffer);
+    fn sample(&mut self, dut: &MipmapGen) -> Option<(u64, FrameBuffer)> {
+        let &(f, _) = dut.completed.get(self.seen)?;
+        self.seen += 1;
+        Some((f, dut.buffers[(f % 2) as usize].clone()))
+    }
+}
+
+/// The texels of `frames` in the order the video port delivers them (lines in scan order).
+fn video_stream(p: &MipmapParams, frames: &[Vec<u8>]) -> Vec<VideoTexel> {
+    let (w, h) = (p.width as usize, p.height as usize);
+    let order: Vec<usize> = match p.scan {
+        Scan::Progressive => (0..h).collect(),
+        Scan::InterlacedTop => (0..h).step_by(2).chain((1..h).step_by(2)).collect(),
+        Scan::InterlacedBottom => (1..h).step_by(2).chain((0..h).step_by(2)).collect(),
+    };
+    let mut v = Vec::with_capacity(frames.len() * w * h);
+    for frame in frames {
+        for (li, &y) in order.iter().enumerate() {
+            for x in 0..w {
+                v.push(VideoTexel {
+                    sof: li == 0 && x == 0,
+                    texel: frame[y * w + x],
+                });
+            }
+        }
+    }
+    v
+}
+
 fn drive<T: Trace>(
     mut sim: Sim<MipmapGen, T>,
     frames: &[Vec<u8>],
@@ -130,50 +187,29 @@ fn drive<T: Trace>(
     sim.reset(2);
     let start = sim.cycle();
     let p = *sim.dut.params();
-    let (w, h) = (p.width as usize, p.height as usize);
-    let order: Vec<usize> = match p.scan {
-        Scan::Progressive => (0..h).collect(),
-        Scan::InterlacedTop => (0..h).step_by(2).chain((1..h).step_by(2)).collect(),
-        Scan::InterlacedBottom => (1..h).step_by(2).chain((0..h).step_by(2)).collect(),
-    };
+    let stream = video_stream(&p, frames);
+    let texels = stream.len() as u64;
     let mut out: Vec<Option<FrameBuffer>> = vec![None; frames.len()];
-    let mut seen = 0;
-    let mut collect = |sim: &Sim<MipmapGen, T>, out: &mut Vec<Option<FrameBuffer>>| {
-        while seen < sim.dut.completed.len() {
-            let (f, _) = sim.dut.completed[seen];
-            if let Some(slot) = out.get_mut(f as usize) {
-                *slot = Some(sim.dut.buffers[(f % 2) as usize].clone());
+    let mut last_texel = start;
+    let limit = texels + 64 + 4 * u64::from(p.width) + 8;
+    let mut spec = RunSpec::new(frames.len() as u64, limit);
+    run(
+        &mut sim,
+        &mut VideoDriver,
+        &mut FrameMonitor { seen: 0 },
+        stream,
+        &mut spec,
+        |_, ev| match ev {
+            Event::Sent { cycle, .. } => last_texel = cycle + 1,
+            Event::Received { txn: (f, buf), .. } => {
+                if let Some(slot) = out.get_mut(f as usize) {
+                    *slot = Some(buf);
+                }
             }
-            seen += 1;
-        }
-    };
-    for frame in frames {
-        for (li, &y) in order.iter().enumerate() {
-            for x in 0..w {
-                let d = &mut sim.dut;
-                d.valid.set_bool(true);
-                d.sof.set_bool(li == 0 && x == 0);
-                d.texel.set_bits(u64::from(frame[y * w + x]));
-                sim.step();
-                collect(&sim, &mut out);
-            }
-        }
-    }
-    let last_texel = sim.cycle();
-    let texels = (frames.len() * w * h) as u64;
-    sim.dut.valid.set_bool(false);
-    sim.dut.sof.set_bool(false);
-    let limit = last_texel + 64 + 4 * w as u64;
-    while out.iter().any(Option::is_none) {
-        if sim.cycle() > limit {
-            return Err(format!(
-                "watchdog: mipmap incomplete {} cycles after the last texel",
-                sim.cycle() - last_texel
-            ));
-        }
-        sim.step();
-        collect(&sim, &mut out);
-    }
+            Event::Settled { .. } => {}
+        },
+    )
+    .map_err(|t| format!("mipmap incomplete: {t}"))?;
     sim.eval();
     let error = sim.dut.err_code.bits();
     let done_cycle = sim.dut.completed.last().map(|c| c.1).unwrap_or(last_texel);
@@ -191,7 +227,10 @@ fn drive<T: Trace>(
         texels_per_clock: texels as f64 / (last_texel - start) as f64,
         page_activations: sim.dut.activations,
     };
-    let frames = out.into_iter().map(|f| f.expect("collected")).collect();
+    let frames = out
+        .into_iter()
+        .collect::<Option<Vec<_>>>()
+        .ok_or("a frame was reported twice and another never")?;
     Ok((
         sim,
         MipmapOutcome {
@@ -326,12 +365,14 @@ fn check_one(
         Scan::InterlacedTop => 1,
         Scan::InterlacedBottom => 2,
     };
-    cov.sample(&[
-        scan,
-        i64::from(p.rounding == Rounding::Truncate),
-        shape,
-        i64::from(frames.len() > 1),
-    ]);
+    for f in 0..frames.len() {
+        cov.sample(&[
+            scan,
+            i64::from(p.rounding == Rounding::Truncate),
+            shape,
+            i64::from(f > 0),
+        ]);
+    }
     Ok(())
 }
 
@@ -356,81 +397,131 @@ fn coverage_model() -> Coverage {
             .value("one_texel_side", 3),
     );
     c.add(
-        Coverpoint::new("back_to_back")
-            .value("single", 0)
-            .value("several", 1),
+        Coverpoint::new("frame")
+            .value("first", 0)
+            .value("back_to_back", 1),
     );
     c.cross("scan_x_rounding", s, r);
     c
 }
 
-/// The mipmap testbench of `texrtl regress`: a synthetic interlaced video sequence and
-/// rectangular and degenerate sizes, in every scan order and both roundings.
-pub fn regress_suite(
-    seed: Seed,
-    vcd: Option<PathBuf>,
-    trace: TraceConfig,
-    shard: verif::Shard,
-) -> Result<TbResult, String> {
-    let mut res = TbResult::new("mipmap", "mipmap generator 816 (section 12, FIG. 14a-b)");
-    res.seed = Some(seed.to_string());
-    let mut cov = coverage_model();
-    let mut worst = Vec::new();
-    let scans = [
-        Scan::Progressive,
-        Scan::InterlacedTop,
-        Scan::InterlacedBottom,
-    ];
-    let sizes = [
-        (64, 32, 3),
-        (32, 32, 2),
-        (16, 64, 2),
-        (128, 8, 1),
-        (8, 2, 2),
-        (1, 16, 2),
-        (16, 1, 1),
-        (1, 1, 2),
-        (256, 256, 1),
-    ];
-    let mut first = true;
-    let mut config = 0u64;
-    for &(w, h, n) in &sizes {
-        for scan in scans {
-            if h < 2 && scan != Scan::Progressive {
-                continue;
-            }
-            for rounding in [Rounding::Round, Rounding::Truncate] {
-                config += 1;
-                let traced_config =
-                    first && scan == Scan::InterlacedTop && rounding == Rounding::Round;
-                if traced_config {
-                    first = false;
-                }
-                if !shard.owns(config - 1) {
+/// The frame sizes of the mipmap testbench: square, wide, tall, one texel wide or high, 1x1.
+const SIZES: [(u32, u32); 9] = [
+    (64, 32),
+    (32, 32),
+    (16, 64),
+    (128, 8),
+    (8, 2),
+    (1, 16),
+    (16, 1),
+    (1, 1),
+    (256, 256),
+];
+
+/// The mipmap testbench of `texrtl regress`: a synthetic video sequence in every size of
+/// [`SIZES`], every scan order (interlaced needs two lines) and both roundings, one
+/// configuration each; the traced one is 64x32 interlaced, top field first, rounding.
+pub struct MipmapTb;
+
+/// A level's worst error against the block averages in one configuration.
+#[derive(Serialize, Deserialize)]
+struct LevelError {
+    level: String,
+    error: f64,
+    bound: f64,
+}
+
+impl MipmapTb {
+    fn params() -> Vec<MipmapParams> {
+        let scans = [
+            Scan::Progressive,
+            Scan::InterlacedTop,
+            Scan::InterlacedBottom,
+        ];
+        let mut v = Vec::new();
+        for (width, height) in SIZES {
+            for scan in scans {
+                if height < 2 && scan != Scan::Progressive {
                     continue;
                 }
-                let p = MipmapParams {
-                    width: w,
-                    height: h,
-                    scan,
-                    rounding,
-                };
-                let frames = synthetic_video(w, h, n, seed.derive(u64::from(w * 1000 + h)));
-                let v = match (&vcd, traced_config) {
-                    (Some(path), true) => Some((path.clone(), trace.clone())),
-                    _ => None,
-                };
-                check_one(&mut res, &mut cov, p, &frames, v, &mut worst)?;
+                for rounding in [Rounding::Round, Rounding::Truncate] {
+                    v.push(MipmapParams {
+                        width,
+                        height,
+                        scan,
+                        rounding,
+                    });
+                }
             }
         }
+        v
     }
-    worst.sort_by(|a, b| a.0.cmp(&b.0));
-    for (name, e, b) in &worst {
-        res.notes.push(format!(
-            "{name}: worst error {e:.3} LSB against the block average (bound {b})"
-        ));
+}
+
+impl Testbench for MipmapTb {
+    fn name(&self) -> &'static str {
+        "mipmap"
     }
-    res.set_coverage(cov);
-    res.finish_with(shard.is_all());
-    Ok(res)
+    fn unit(&self) -> &'static str {
+        "mipmap generator 816 (section 12, FIG. 14a-b)"
+    }
+    fn configurations(&self) -> Vec<String> {
+        MipmapTb::params()
+            .iter()
+            .map(|p| format!("{}x{} {:?} {:?}", p.width, p.height, p.scan, p.rounding))
+            .collect()
+    }
+    fn default_count(&self) -> usize {
+        2
+    }
+    fn count_unit(&self) -> &'static str {
+        "frames per configuration"
+    }
+    fn traced(&self) -> usize {
+        // 64x32, interlaced top field first, rounding.
+        2
+    }
+    fn coverage(&self) -> Coverage {
+        coverage_model()
+    }
+    fn run(&self, ctx: &Ctx) -> Result<TbResult, String> {
+        let p = MipmapTb::params()[ctx.index];
+        let mut res = TbResult::new(self.name(), self.unit());
+        let mut cov = coverage_model();
+        let frames = synthetic_video(p.width, p.height, ctx.count, ctx.seed);
+        let vcd = ctx
+            .waves
+            .as_ref()
+            .map(|w| (w.vcd.clone(), w.config(10_000)));
+        let mut worst = Vec::new();
+        check_one(&mut res, &mut cov, p, &frames, vcd, &mut worst)?;
+        for (level, error, bound) in worst {
+            res.record(&LevelError {
+                level,
+                error,
+                bound,
+            });
+        }
+        res.coverage = Some(cov);
+        Ok(res)
+    }
+    fn conclude(&self, merged: &mut TbResult) {
+        let mut worst: Vec<LevelError> = Vec::new();
+        for e in merged.records_of::<LevelError>() {
+            match worst.iter_mut().find(|w| w.level == e.level) {
+                Some(w) => {
+                    w.error = w.error.max(e.error);
+                    w.bound = w.bound.max(e.bound);
+                }
+                None => worst.push(e),
+            }
+        }
+        worst.sort_by(|a, b| a.level.cmp(&b.level));
+        for w in worst {
+            merged.notes.push(format!(
+                "{}: worst error {:.3} LSB against the block average (bound {})",
+                w.level, w.error, w.bound
+            ));
+        }
+    }
 }

@@ -9,16 +9,17 @@
 //! Accuracy criterion (issue: default widths, positions exact in the blend-factor format): every
 //! component within `2^-13` of the golden normal and every normal within 0.01 degrees of it.
 
-use crate::report::TbResult;
 use golden::bump::{self as g, Heights};
 use hdl::bump_params::{Border, BumpParams, Filter};
 use hdl::fx::{Format, Fx, Overflow, Quant};
 use hdl::height_map::HeightMap;
 use hdl::kernel::{NoTrace, Sim, Trace};
 use hdl::normal_pipeline::NormalPipeline;
+use serde::{Deserialize, Serialize};
 use std::path::PathBuf;
 use verif::{
-    run, Coverage, Coverpoint, Driver, ErrorStats, Event, Monitor, Pacing, Scoreboard, Watchdog,
+    run, Coverage, Coverpoint, Ctx, Driver, ErrorStats, Event, Monitor, Pacing, ProbeSink, RunSpec,
+    Scoreboard, TbResult, Testbench,
 };
 use waves::{ProbeId, TraceConfig, VcdTracer};
 
@@ -158,6 +159,8 @@ pub struct NormalsRun {
     /// Check the accuracy criterion (default widths, representable positions).
     pub check_accuracy: bool,
     pub seed: verif::Seed,
+    /// Run the kernel's schedule check on every cycle.
+    pub check_schedule: bool,
 }
 
 /// Results of a run: per-sample outputs and a testbench result.
@@ -214,21 +217,6 @@ pub fn run_normals(cfg: &NormalsRun) -> Result<NormalsOutcome, String> {
             Ok(drive(sim, cfg, raws, &fine, coarse.as_ref(), None).1)
         }
     }
-}
-
-/// Sets golden values beside the DUT's in a trace.
-pub trait GoldenProbe {
-    fn golden(&mut self, p: &[ProbeId; 4], v: [f64; 4]);
-}
-impl GoldenProbe for VcdTracer {
-    fn golden(&mut self, p: &[ProbeId; 4], v: [f64; 4]) {
-        for k in 0..4 {
-            self.set_real(p[k], v[k]);
-        }
-    }
-}
-impl GoldenProbe for NoTrace {
-    fn golden(&mut self, _: &[ProbeId; 4], _: [f64; 4]) {}
 }
 
 /// The coverage model: border mode x variant, blend factors at 0 / interior / max, samples
@@ -294,7 +282,7 @@ fn border_id(p: &BumpParams) -> i64 {
     }
 }
 
-fn drive<T: Trace + GoldenProbe>(
+fn drive<T: Trace + ProbeSink>(
     sim: Sim<NormalPipeline, T>,
     cfg: &NormalsRun,
     raws: Vec<RawSample>,
@@ -303,7 +291,7 @@ fn drive<T: Trace + GoldenProbe>(
     probes: Option<[ProbeId; 4]>,
 ) -> (Sim<NormalPipeline, T>, NormalsOutcome) {
     let p = cfg.params;
-    let mut sim = sim.check_schedule(false);
+    let mut sim = sim.check_schedule(cfg.check_schedule);
     sim.reset(2);
     let latency = sim.dut.latency();
     let lsb = (-(p.out_frac as f64)).exp2();
@@ -336,7 +324,7 @@ fn drive<T: Trace + GoldenProbe>(
         Vec::with_capacity(raws.len()),
     );
     let (mut max_angle, mut max_comp) = (0.0f64, 0.0f64);
-    let mut pacing = if cfg.idle_per_mille == 0 {
+    let pacing = if cfg.idle_per_mille == 0 {
         Pacing::full()
     } else {
         Pacing::random(cfg.idle_per_mille, cfg.seed)
@@ -351,9 +339,7 @@ fn drive<T: Trace + GoldenProbe>(
         &mut Drv,
         &mut Mon,
         raws,
-        n,
-        &mut pacing,
-        Watchdog::cycles(4 * n + 100),
+        &mut RunSpec::new(n, 4 * n + 100).pacing(pacing),
         |sim, ev| match ev {
             Event::Sent { txn, .. } => {
                 sb.expect(golden_normal(&p, fine, coarse, txn));
@@ -398,12 +384,15 @@ fn drive<T: Trace + GoldenProbe>(
                     let a = g::angle_deg(gn, d);
                     max_angle = max_angle.max(a);
                     if let (Some(pr), Some(t)) = (probes.as_ref(), sim.trace_mut()) {
-                        t.golden(pr, [gn[0], gn[1], gn[2], a]);
+                        for (p, v) in pr.iter().zip([gn[0], gn[1], gn[2], a]) {
+                            t.real(*p, v);
+                        }
                     }
                     goldens.push(gn);
                 }
                 outputs.push(txn);
             }
+            Event::Settled { .. } => {}
         },
     );
     res.transactions = n;
@@ -438,9 +427,8 @@ fn drive<T: Trace + GoldenProbe>(
             ));
         }
     }
-    res.coverage_percent = cov.percent();
-    res.unhit = cov.unhit();
-    res.coverage_report = cov.report();
+    res.set_coverage(cov.clone());
+    res.coverage = None;
     res.stats = stats;
     res.finish_with(false);
     (
@@ -528,104 +516,117 @@ pub fn stimulus(
     s
 }
 
-/// The normals testbench of `texrtl regress`: every built-in map (flat, steep, steps, noise,
-/// smooth, extremes) in every variant (B-spline, Bezier, Blinn, trilinear) and border mode,
-/// default widths, against the accuracy criterion; one traced run (noise, B-spline, wrap).
-pub fn regress_suite(
-    seed: verif::Seed,
-    vcd: Option<PathBuf>,
-    trace: TraceConfig,
-    shard: verif::Shard,
-    count: Option<usize>,
-) -> Result<TbResult, String> {
-    let mut res = TbResult::new(
-        "normals",
-        "FIG. 7 pipeline (units 150-156, para. 0050-0087)",
-    );
-    res.seed = Some(seed.to_string());
-    let mut cov = coverage_model();
-    let (w, h) = (16, 16);
-    let mut config = 0u64;
-    let mut worst = (0.0f64, 0.0f64, 0.0f64);
-    let variants = [
-        (Filter::BSpline, false),
-        (Filter::Bezier, false),
-        (Filter::Blinn, false),
-        (Filter::BSpline, true),
-    ];
-    let borders = [
-        Border::Wrap,
-        Border::Clamp,
-        Border::Mirror,
-        Border::Constant(255),
-    ];
-    for map in ["flat", "steep", "steps", "noise", "smooth", "extremes"] {
-        for (filter, trilinear) in variants {
-            for border in borders {
-                config += 1;
-                if !shard.owns(config - 1) {
-                    continue;
-                }
-                // Each configuration draws from its own stream: shards reproduce an unsharded run.
-                let mut stim = verif::Stimulus::new(seed.derive(config));
-                let p = BumpParams {
-                    filter,
-                    trilinear,
-                    border,
-                    ..BumpParams::default()
-                };
-                let m = crate::maps::builtin(map, w, h, p.texel_fmt())?;
-                let traced = map == "noise"
-                    && filter == Filter::BSpline
-                    && !trilinear
-                    && border == Border::Wrap;
-                // Trilinear positions are exact in the coarser level's blend format too.
-                let bits = if trilinear {
-                    p.blend_bits - 1
-                } else {
-                    p.blend_bits
-                };
-                let n = count.unwrap_or(if traced { 400 } else { 150 });
-                let o = run_normals(&NormalsRun {
-                    name: format!("normals {map} {filter} trilinear={trilinear} {border}"),
-                    params: p,
-                    map: m,
-                    samples: stimulus(w, h, bits, n, &mut stim, trilinear),
-                    idle_per_mille: if traced { 0 } else { 100 },
-                    vcd: if traced { vcd.clone() } else { None },
-                    trace: trace.clone(),
-                    check_accuracy: true,
-                    seed: seed.derive(config).derive(0x9ace),
-                })?;
-                let r = &o.result;
-                res.transactions += r.transactions;
-                res.cycles += r.cycles;
-                res.mismatches += r.mismatches;
-                res.mismatch_log.extend(
-                    r.mismatch_log
-                        .iter()
-                        .take(3)
-                        .map(|m| format!("{}: {m}", r.name)),
-                );
-                res.failures
-                    .extend(r.failures.iter().map(|f| format!("{}: {f}", r.name)));
-                res.stats.merge(&r.stats);
-                res.latency = r.latency.or(res.latency);
-                if r.vcd.is_some() {
-                    res.vcd = r.vcd.clone();
-                }
-                cov.merge(&o.coverage);
-                worst.0 = worst.0.max(o.max_component_err);
-                worst.1 = worst.1.max(o.max_angle_deg);
-                worst.2 = worst.2.max(o.max_height_err);
-            }
-        }
+/// The maps, variants and border modes the normals testbench crosses.
+const MAPS: [&str; 6] = ["flat", "steep", "steps", "noise", "smooth", "extremes"];
+const VARIANTS: [(Filter, bool); 4] = [
+    (Filter::BSpline, false),
+    (Filter::Bezier, false),
+    (Filter::Blinn, false),
+    (Filter::BSpline, true),
+];
+const BORDERS: [Border; 4] = [
+    Border::Wrap,
+    Border::Clamp,
+    Border::Mirror,
+    Border::Constant(255),
+];
+
+/// The normals testbench: every built-in map (flat, steep, steps, noise, smooth, extremes) in
+/// every variant (B-spline, Bezier, Blinn, trilinear) and border mode, one configuration each,
+/// default widths, against the accuracy criterion; the traced one is noise, B-spline, wrap.
+pub struct NormalsTb;
+
+/// A configuration's worst errors, as recorded for the notes.
+#[derive(Serialize, Deserialize)]
+struct Worst {
+    component: f64,
+    angle_deg: f64,
+    height: f64,
+}
+
+impl NormalsTb {
+    fn config(index: usize) -> (&'static str, Filter, bool, Border) {
+        let (m, rest) = (index / 16, index % 16);
+        let (filter, trilinear) = VARIANTS[rest / 4];
+        (MAPS[m], filter, trilinear, BORDERS[rest % 4])
     }
-    res.notes.push(format!(
-        "worst component error {:.3e} (tolerance {COMPONENT_TOL:.3e}), worst angle {:.3e} deg (tolerance {ANGLE_TOL_DEG}), worst height error {:.3e}",
-        worst.0, worst.1, worst.2
-    ));
-    res.set_coverage(cov);
-    res.finish_with(shard.is_all());
-    Ok(res)
+}
+
+impl Testbench for NormalsTb {
+    fn name(&self) -> &'static str {
+        "normals"
+    }
+    fn unit(&self) -> &'static str {
+        "FIG. 7 pipeline (units 150-156, para. 0050-0087)"
+    }
+    fn configurations(&self) -> Vec<String> {
+        (0..MAPS.len() * 16)
+            .map(|i| {
+                let (map, filter, trilinear, border) = NormalsTb::config(i);
+                format!("{map} {filter} trilinear={trilinear} {border}")
+            })
+            .collect()
+    }
+    fn default_count(&self) -> usize {
+        150
+    }
+    fn count_unit(&self) -> &'static str {
+        "random positions (plus the directed blend and border positions)"
+    }
+    fn traced(&self) -> usize {
+        // noise, B-spline, wrap.
+        3 * 16
+    }
+    fn coverage(&self) -> Coverage {
+        coverage_model()
+    }
+    fn run(&self, ctx: &Ctx) -> Result<TbResult, String> {
+        let (map, filter, trilinear, border) = NormalsTb::config(ctx.index);
+        let (w, h) = (16, 16);
+        let mut stim = verif::Stimulus::new(ctx.seed);
+        let p = BumpParams {
+            filter,
+            trilinear,
+            border,
+            ..BumpParams::default()
+        };
+        let m = crate::maps::builtin(map, w, h, p.texel_fmt())?;
+        // Trilinear positions are exact in the coarser level's blend format too.
+        let bits = p.blend_bits - u32::from(trilinear);
+        let traced = ctx.waves.is_some();
+        let o = run_normals(&NormalsRun {
+            name: ctx.label.clone(),
+            params: p,
+            map: m,
+            samples: stimulus(w, h, bits, ctx.count, &mut stim, trilinear),
+            idle_per_mille: if traced { 0 } else { 100 },
+            vcd: ctx.waves.as_ref().map(|w| w.vcd.clone()),
+            trace: ctx
+                .waves
+                .as_ref()
+                .map(|w| w.config(10_000))
+                .unwrap_or_default(),
+            check_accuracy: true,
+            seed: ctx.seed.derive(0x9ace),
+            check_schedule: ctx.check_schedule,
+        })?;
+        let mut r = o.result;
+        r.coverage = Some(o.coverage);
+        r.record(&Worst {
+            component: o.max_component_err,
+            angle_deg: o.max_angle_deg,
+            height: o.max_height_err,
+        });
+        Ok(r)
+    }
+    fn conclude(&self, merged: &mut TbResult) {
+        let w = merged.records_of::<Worst>();
+        let max = |f: fn(&Worst) -> f64| w.iter().map(f).fold(0.0, f64::max);
+        merged.notes.push(format!(
+            "worst component error {:.3e} (tolerance {COMPONENT_TOL:.3e}), worst angle {:.3e} deg (tolerance {ANGLE_TOL_DEG}), worst height error {:.3e}",
+            max(|x| x.component),
+            max(|x| x.angle_deg),
+            max(|x| x.height)
+        ));
+    }
 }

@@ -3,86 +3,7 @@
 use serde::{Deserialize, Serialize};
 use std::fmt::Write;
 use std::path::{Path, PathBuf};
-use verif::ErrorStats;
-
-/// What one testbench found.
-#[derive(Clone, Debug, Serialize, Deserialize)]
-pub struct TbResult {
-    pub name: String,
-    /// The hardware unit and where the source document describes it.
-    pub unit: String,
-    pub transactions: u64,
-    pub cycles: u64,
-    pub mismatches: u64,
-    /// The first mismatches in detail.
-    pub mismatch_log: Vec<String>,
-    /// Anything else that failed: latency, throughput, watchdog, coverage holes, waveforms.
-    pub failures: Vec<String>,
-    pub coverage_percent: f64,
-    pub unhit: Vec<String>,
-    #[serde(skip, default)]
-    pub coverage_report: String,
-    /// Error against the golden model, in output LSBs.
-    pub stats: ErrorStats,
-    pub latency: Option<u64>,
-    /// Measured figures worth a line in the report.
-    pub notes: Vec<String>,
-    /// Markdown tables for `report.md` only (not the console).
-    #[serde(default)]
-    pub tables: Vec<String>,
-    pub seed: Option<String>,
-    pub vcd: Option<PathBuf>,
-    /// The coverage model with its hits, so shards can be merged.
-    pub coverage: Option<verif::Coverage>,
-    pub passed: bool,
-}
-
-impl TbResult {
-    pub fn new(name: &str, unit: &str) -> TbResult {
-        TbResult {
-            name: name.into(),
-            unit: unit.into(),
-            transactions: 0,
-            cycles: 0,
-            mismatches: 0,
-            mismatch_log: Vec::new(),
-            failures: Vec::new(),
-            coverage_percent: 0.0,
-            unhit: Vec::new(),
-            coverage_report: String::new(),
-            stats: ErrorStats::new(),
-            latency: None,
-            notes: Vec::new(),
-            tables: Vec::new(),
-            seed: None,
-            vcd: None,
-            coverage: None,
-            passed: false,
-        }
-    }
-
-    /// Decides pass/fail: no mismatch, no other failure, every coverage bin hit.
-    pub fn finish(&mut self) {
-        self.finish_with(true)
-    }
-
-    /// Decides pass/fail; coverage holes fail it only when `require_coverage`.
-    pub fn finish_with(&mut self, require_coverage: bool) {
-        if require_coverage && !self.unhit.is_empty() {
-            self.failures.push(format!(
-                "coverage holes ({} bins): {}",
-                self.unhit.len(),
-                self.unhit
-                    .iter()
-                    .take(8)
-                    .cloned()
-                    .collect::<Vec<_>>()
-                    .join(", ")
-            ));
-        }
-        self.passed = self.mismatches == 0 && self.failures.is_empty();
-    }
-}
+pub use verif::TbResult;
 
 /// The summary table printed by `texrtl regress`.
 pub fn table(results: &[TbResult]) -> String {
@@ -129,60 +50,6 @@ pub struct Summary {
     pub shard: Option<String>,
     pub passed: bool,
     pub testbenches: Vec<TbResult>,
-}
-
-impl TbResult {
-    /// The latency column: cycles, or `-`.
-    pub fn latency_text(&self) -> String {
-        self.latency
-            .map(|l| l.to_string())
-            .unwrap_or_else(|| "-".into())
-    }
-
-    /// `PASS` or `FAIL`.
-    pub fn verdict(&self) -> &'static str {
-        if self.passed {
-            "PASS"
-        } else {
-            "FAIL"
-        }
-    }
-
-    /// Sets coverage figures from a model (kept for merging shards).
-    pub fn set_coverage(&mut self, cov: verif::Coverage) {
-        self.coverage_percent = cov.percent();
-        self.unhit = cov.unhit();
-        self.coverage_report = cov.report();
-        self.coverage = Some(cov);
-    }
-
-    /// Adds another shard's result of the same testbench.
-    pub fn absorb(&mut self, o: &TbResult) {
-        self.transactions += o.transactions;
-        self.cycles += o.cycles;
-        self.mismatches += o.mismatches;
-        self.mismatch_log.extend(o.mismatch_log.iter().cloned());
-        self.mismatch_log.truncate(20);
-        self.failures.extend(
-            o.failures
-                .iter()
-                .filter(|f| !f.starts_with("coverage holes"))
-                .cloned(),
-        );
-        self.stats.merge(&o.stats);
-        self.latency = match (self.latency, o.latency) {
-            (Some(a), Some(b)) => Some(a.max(b)),
-            (a, b) => a.or(b),
-        };
-        self.notes.extend(o.notes.iter().cloned());
-        self.tables.extend(o.tables.iter().cloned());
-        self.vcd = self.vcd.take().or_else(|| o.vcd.clone());
-        match (&mut self.coverage, &o.coverage) {
-            (Some(a), Some(b)) => a.merge(b),
-            (None, Some(b)) => self.coverage = Some(b.clone()),
-            _ => {}
-        }
-    }
 }
 
 /// Writes `contents` to `path` through a temporary file, so no partial file is ever left.

@@ -143,6 +143,7 @@ fn normals() -> Result<UnitVectors, String> {
             vcd: None,
             trace: Default::default(),
             check_accuracy: false,
+            check_schedule: false,
             seed: verif::Seed(0),
         })?;
         let (pw, sw, nw, hw) = (

@@ -4,16 +4,23 @@
 use hdl::blend_adjust::{BlendAdjust, BlendAdjustParams};
 use hdl::kernel::Sim;
 use proptest::prelude::*;
-use tb::blend_adjust::{golden, run_tb, BaConfig, BaIn};
-use verif::{seeded_runner, Seed};
+use tb::blend_adjust::{golden, BaIn, BlendAdjustTb};
+use verif::{run_testbench, seeded_runner, RunOptions, Seed, TbResult};
+
+/// Runs the testbench through the framework, as `texrtl regress` does.
+fn run_tb(tb: BlendAdjustTb, count: usize, seed: Seed, check_schedule: bool) -> TbResult {
+    let opts = RunOptions {
+        seed,
+        count: Some(count),
+        check_schedule,
+        ..RunOptions::default()
+    };
+    run_testbench(&tb, &opts, &mut |_| {}).unwrap()
+}
 
 #[test]
 fn every_input_of_every_width_matches_golden_exactly() {
-    let r = run_tb(&BaConfig {
-        check_schedule: true,
-        ..BaConfig::default()
-    })
-    .unwrap();
+    let r = run_tb(BlendAdjustTb::default(), 2000, Seed(1), true);
     assert!(r.passed, "{:?} {:?}", r.mismatch_log, r.failures);
     // 2 * 2^F sweep transactions per width plus the random ones.
     let sweep: u64 = (4..=16).map(|f| 2u64 << f).sum();
@@ -27,13 +34,12 @@ fn every_input_of_every_width_matches_golden_exactly() {
 
 #[test]
 fn combinational_variant_has_latency_zero() {
-    let r = run_tb(&BaConfig {
+    let tb = BlendAdjustTb {
         registered: false,
-        frac_range: 4..=10,
-        random_per_width: 300,
-        ..BaConfig::default()
-    })
-    .unwrap();
+        widths: 4..=10,
+        ..BlendAdjustTb::default()
+    };
+    let r = run_tb(tb, 300, Seed(1), false);
     assert_eq!(r.latency, Some(0));
     assert_eq!(r.mismatches, 0);
     // Widths 11..=16 were not run: their coverage bins must be reported as holes.
@@ -43,13 +49,12 @@ fn combinational_variant_has_latency_zero() {
 
 #[test]
 fn a_one_bit_error_is_caught_with_its_cycle() {
-    let r = run_tb(&BaConfig {
-        frac_range: 4..=4,
-        random_per_width: 0,
+    let tb = BlendAdjustTb {
+        widths: 4..=4,
         fault: Some(5),
-        ..BaConfig::default()
-    })
-    .unwrap();
+        ..BlendAdjustTb::default()
+    };
+    let r = run_tb(tb, 0, Seed(1), false);
     assert!(!r.passed);
     assert_eq!(r.mismatches, 1);
     // Reset takes cycles 0-1; transaction 5 enters in cycle 7 and leaves in cycle 8.
@@ -94,18 +99,12 @@ fn random_single_evaluations_match_golden() {
 
 #[test]
 fn seeds_replay() {
-    let a = run_tb(&BaConfig {
-        frac_range: 5..=5,
-        seed: Seed(99),
-        ..BaConfig::default()
-    })
-    .unwrap();
-    let b = run_tb(&BaConfig {
-        frac_range: 5..=5,
-        seed: Seed(99),
-        ..BaConfig::default()
-    })
-    .unwrap();
+    let tb = || BlendAdjustTb {
+        widths: 5..=5,
+        ..BlendAdjustTb::default()
+    };
+    let a = run_tb(tb(), 2000, Seed(99), false);
+    let b = run_tb(tb(), 2000, Seed(99), false);
     assert_eq!(a.cycles, b.cycles, "same seed, same idle pattern");
     assert_eq!(a.stats.histogram, b.stats.histogram);
 }

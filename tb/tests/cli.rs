@@ -393,3 +393,80 @@ fn shards_merge_into_the_whole_run() {
         Some(2)
     );
 }
+
+/// The framework applies `--count` to every testbench, `--only` selects, `--list` lists, and
+/// an unknown testbench name is refused.
+#[test]
+fn count_only_and_list_apply_to_every_testbench() {
+    let d = tmp("count");
+    let summary = |count: &str| {
+        let out = d.join(count);
+        let o = texrtl(&[
+            "regress",
+            "--no-vcd",
+            "--count",
+            count,
+            "--only",
+            "blend_adjust",
+            "--only",
+            "normals",
+            "--only",
+            "mipmap",
+            "--only",
+            "dram",
+            "--only",
+            "texture",
+            "--out",
+            out.to_str().unwrap(),
+        ]);
+        assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stdout));
+        let s: serde_json::Value =
+            serde_json::from_slice(&std::fs::read(out.join("summary.json")).unwrap()).unwrap();
+        s["testbenches"]
+            .as_array()
+            .unwrap()
+            .iter()
+            .map(|t| {
+                (
+                    t["name"].as_str().unwrap().to_string(),
+                    t["transactions"].as_u64().unwrap(),
+                )
+            })
+            .collect::<Vec<_>>()
+    };
+    let (a, b) = (summary("3"), summary("6"));
+    assert_eq!(
+        a.len(),
+        5,
+        "--only ran the five testbenches and no vectors row: {a:?}"
+    );
+    for ((name, x), (_, y)) in a.iter().zip(&b) {
+        assert!(
+            y > x,
+            "{name}: --count 6 ran {y} transactions, --count 3 ran {x}"
+        );
+    }
+    let o = texrtl(&["regress", "--list"]);
+    let list = String::from_utf8_lossy(&o.stdout);
+    for name in [
+        "blend_adjust",
+        "normals",
+        "mipmap",
+        "dram",
+        "texture",
+        "--count",
+    ] {
+        assert!(list.contains(name), "{list}");
+    }
+    let o = texrtl(&[
+        "regress",
+        "--only",
+        "nonesuch",
+        "--out",
+        d.join("x").to_str().unwrap(),
+    ]);
+    assert_eq!(o.status.code(), Some(2));
+    let err = String::from_utf8_lossy(&o.stderr);
+    assert!(err.contains("--only") && err.contains("nonesuch"), "{err}");
+    assert!(!d.join("x").exists());
+}

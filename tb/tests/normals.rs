@@ -71,6 +71,7 @@ fn run(name: &str, p: BumpParams, map: &str, samples: Vec<Sample>) -> tb::normal
         vcd: None,
         trace: Default::default(),
         check_accuracy: true,
+        check_schedule: true,
         seed: Seed(1),
     })
     .unwrap()
@@ -114,6 +115,7 @@ fn cfg(p: BumpParams, map: hdl::height_map::HeightMap, samples: Vec<Sample>) -> 
         vcd: None,
         trace: Default::default(),
         check_accuracy: true,
+        check_schedule: true,
         seed: Seed(2),
     }
 }

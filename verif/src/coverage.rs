@@ -143,23 +143,62 @@ impl Coverage {
         }
     }
 
-    /// Adds the hits of `o`, a model of the same shape (a run of the same testbench).
-    pub fn merge(&mut self, o: &Coverage) {
-        assert_eq!(self.points.len(), o.points.len(), "coverage models differ");
-        for (a, b) in self.points.iter_mut().zip(&o.points) {
-            assert_eq!(a.bins.len(), b.bins.len(), "coverpoint {} differs", a.name);
-            for (x, y) in a.bins.iter_mut().zip(&b.bins) {
-                x.hits += y.hits;
-            }
-            a.unbinned += b.unbinned;
+    /// Whether `o` is a model of the same shape: the same coverpoints with the same bins, the
+    /// same crosses. `Err` says the first difference.
+    pub fn same_model(&self, o: &Coverage) -> Result<(), String> {
+        if self.points.len() != o.points.len() || self.crosses.len() != o.crosses.len() {
+            return Err("coverage models differ in their coverpoints or crosses".into());
         }
-        for (a, b) in self.crosses.iter_mut().zip(&o.crosses) {
+        for (a, b) in self.points.iter().zip(&o.points) {
+            let same = a.name == b.name
+                && a.bins.len() == b.bins.len()
+                && a.bins
+                    .iter()
+                    .zip(&b.bins)
+                    .all(|(x, y)| (x.name.as_str(), x.lo, x.hi) == (y.name.as_str(), y.lo, y.hi));
+            if !same {
+                return Err(format!(
+                    "coverpoint '{}' differs between the models",
+                    a.name
+                ));
+            }
+        }
+        for (a, b) in self.crosses.iter().zip(&o.crosses) {
+            let shape = |c: &Cross| (c.a, c.b, c.hits.len(), c.hits.iter().map(Vec::len).max());
+            if a.name != b.name
+                || shape(a) != shape(b)
+                || a.hits.iter().zip(&b.hits).any(|(x, y)| x.len() != y.len())
+            {
+                return Err(format!("cross '{}' differs between the models", a.name));
+            }
+        }
+        Ok(())
+    }
+
+    /// Adds the hits of `o`, a model of the same shape (a run of the same testbench). A model
+    /// of another shape, or a count that would overflow, is an error and changes nothing.
+    pub fn merge(&mut self, o: &Coverage) -> Result<(), String> {
+        self.same_model(o)?;
+        let mut m = self.clone();
+        let add = |x: &mut u64, y: u64| -> Result<(), String> {
+            *x = x.checked_add(y).ok_or("coverage hit count overflows u64")?;
+            Ok(())
+        };
+        for (a, b) in m.points.iter_mut().zip(&o.points) {
+            for (x, y) in a.bins.iter_mut().zip(&b.bins) {
+                add(&mut x.hits, y.hits)?;
+            }
+            add(&mut a.unbinned, b.unbinned)?;
+        }
+        for (a, b) in m.crosses.iter_mut().zip(&o.crosses) {
             for (ra, rb) in a.hits.iter_mut().zip(&b.hits) {
                 for (x, y) in ra.iter_mut().zip(rb) {
-                    *x += y;
+                    add(x, *y)?;
                 }
             }
         }
+        *self = m;
+        Ok(())
     }
 
     /// Bins (coverpoint bins and cross bins) in all, and how many were hit.

@@ -9,19 +9,33 @@
 //!   exact and +-1 LSB counts, SQNR.
 //! * [`Stimulus`]: constrained-random values from proptest strategies, from a printed seed
 //!   that replays the run (`TEXRTL_SEED=0x...`).
-//! * [`run`]: the cycle loop that ties them together, under a [`Watchdog`].
+//! * [`run`]: the cycle loop that ties them together, with ready/valid backpressure on both
+//!   sides ([`Pacing`]), under a [`Watchdog`].
+//! * [`Testbench`]: named configurations, a coverage model and a run of one configuration;
+//!   [`run_testbench`] runs the configurations a [`Shard`] owns, each with its own seed, merges
+//!   the [`TbResult`]s and decides pass/fail the same way for every testbench; a [`Registry`]
+//!   lists a project's testbenches for regress, merge, the report and the progress bar.
+//! * [`ProbeSink`]: golden values and mismatch flags shown beside the design in a waveform.
 
 pub mod coverage;
+mod probe;
 mod random;
+mod result;
 mod run;
 mod scoreboard;
 mod stats;
+mod testbench;
 
 pub use coverage::{Coverage, Coverpoint, Cross};
+pub use probe::ProbeSink;
 pub use random::{seeded_runner, seeded_stimulus, Seed, Shard, Stimulus, SEED_ENV};
-pub use run::{run, Driver, Event, Monitor, Pacing, RunStats, Timeout, Watchdog};
+pub use result::TbResult;
+pub use run::{run, Driver, Event, Monitor, Pacing, RunSpec, RunStats, Timeout, Watchdog};
 pub use scoreboard::{Mismatch, Outcome, Scoreboard};
 pub use stats::ErrorStats;
+pub use testbench::{
+    conclude, config_seed, run_testbench, Ctx, Registry, RunOptions, Testbench, WaveOut,
+};
 
 #[cfg(test)]
 mod tests;

@@ -6,59 +6,95 @@ use serde::Serialize;
 use std::collections::VecDeque;
 use std::time::{Duration, Instant};
 
-/// Turns transactions into pin activity on the DUT's inputs, one cycle at a time.
+/// Turns transactions into pin activity on the DUT's inputs, one cycle at a time, with a
+/// ready/valid handshake: a transaction stays presented (valid held, data unchanged) until the
+/// cycle in which the DUT accepts it.
 pub trait Driver<M> {
     type Txn;
     /// Drives one cycle: `Some(t)` presents transaction `t`, `None` drives the idle pattern
     /// (valid low).
     fn drive(&mut self, dut: &mut M, txn: Option<&Self::Txn>);
+    /// After the design settled: whether the DUT takes the presented transaction in this
+    /// cycle (its `ready`). A DUT without backpressure always does.
+    fn accepted(&self, _dut: &M) -> bool {
+        true
+    }
 }
 
-/// Turns pin activity on the DUT's outputs back into transactions.
+/// Turns pin activity on the DUT's outputs back into transactions. A monitor only reports a
+/// transfer (valid, and ready where the DUT has an output handshake), so stalls in either
+/// direction are tolerated.
 pub trait Monitor<M> {
     type Txn;
+    /// Drives the DUT's output `ready` for this cycle, before the design settles (output
+    /// backpressure). A DUT without an output handshake ignores it.
+    fn ready(&mut self, _dut: &mut M, _ready: bool) {}
     /// Looks at the settled outputs of the current cycle.
     fn sample(&mut self, dut: &M) -> Option<Self::Txn>;
 }
 
 /// What the cycle loop reports to the testbench.
 pub enum Event<'a, I, O> {
-    /// Transaction `txn` was driven in `cycle` (compute its golden result now).
+    /// Transaction `txn` was accepted by the DUT in `cycle` (compute its golden result now).
     Sent { cycle: u64, txn: &'a I },
     /// The monitor saw `txn` in `cycle` (score it now).
     Received { cycle: u64, txn: O },
+    /// Every cycle, after the design settled and the above were reported (to sample internal
+    /// state: cache lookups, completed frames).
+    Settled { cycle: u64 },
 }
 
-/// How often the driver presents a transaction: every cycle (full throughput), or with idle
-/// cycles drawn from a seeded RNG to exercise the valid handshake.
+/// When a side of the handshake is willing: every cycle, at a fixed interval after each
+/// transfer, or with random idle cycles drawn from a seeded RNG.
 pub struct Pacing {
     idle_per_mille: u32,
     rng: Option<Stimulus>,
+    /// Cycles between the transfers (1: back to back).
+    interval: u32,
+    wait: u32,
 }
 
 impl Pacing {
-    /// A transaction every cycle the stimulus has one.
+    /// Willing every cycle (full throughput).
     pub fn full() -> Pacing {
+        Pacing::every(1)
+    }
+
+    /// Willing again `interval` cycles after each transfer (1: every cycle); `interval` >= 1.
+    pub fn every(interval: u32) -> Pacing {
         Pacing {
             idle_per_mille: 0,
             rng: None,
+            interval: interval.max(1),
+            wait: 0,
         }
     }
 
-    /// An idle cycle instead of a transaction with probability `idle_per_mille / 1000`.
+    /// Unwilling in a cycle with probability `idle_per_mille / 1000` (at most 999).
     pub fn random(idle_per_mille: u32, seed: Seed) -> Pacing {
-        assert!(idle_per_mille < 1000, "pacing would never send");
         Pacing {
-            idle_per_mille,
+            idle_per_mille: idle_per_mille.min(999),
             rng: Some(Stimulus::new(seed)),
+            interval: 1,
+            wait: 0,
         }
     }
 
-    fn send(&mut self) -> bool {
+    /// Whether this side is willing in the current cycle.
+    fn willing(&mut self) -> bool {
+        if self.wait > 0 {
+            self.wait -= 1;
+            return false;
+        }
         match self.rng.as_mut() {
             None => true,
             Some(r) => r.draw(&(0u32..1000)) >= self.idle_per_mille,
         }
+    }
+
+    /// A transfer happened: wait out the interval.
+    fn transferred(&mut self) {
+        self.wait = self.interval - 1;
     }
 }
 
@@ -77,6 +113,18 @@ impl Watchdog {
             max_cycles,
             max_wall: Duration::from_secs(600),
         }
+    }
+
+    /// `Err` with the reason once `elapsed` cycles or the wall time since `t0` are used up
+    /// (the clock is read every 1024 cycles).
+    pub fn check(&self, elapsed: u64, t0: &Instant) -> Result<(), String> {
+        if elapsed >= self.max_cycles {
+            return Err(format!("{} cycles elapsed", self.max_cycles));
+        }
+        if elapsed.is_multiple_of(1024) && t0.elapsed() > self.max_wall {
+            return Err(format!("{:?} of wall time elapsed", self.max_wall));
+        }
+        Ok(())
     }
 }
 
@@ -125,20 +173,50 @@ impl RunStats {
     }
 }
 
-/// Runs a testbench: each cycle the driver presents the next transaction of `stimulus` (as
-/// `pacing` allows), the design settles, the monitor samples the outputs, the design is
-/// clocked. `on` sees every sent and received transaction (to compute golden results, score,
-/// collect coverage and set trace probes). The run ends when all stimulus is sent and
-/// `expected` transactions were received, or the watchdog fires.
-#[allow(clippy::too_many_arguments)]
+/// How a run is paced and when it ends.
+pub struct RunSpec {
+    /// Output transactions to wait for after all stimulus is sent.
+    pub expected: u64,
+    /// When the driver offers a transaction.
+    pub pacing: Pacing,
+    /// When the monitor is ready for one (output backpressure).
+    pub sink: Pacing,
+    pub watchdog: Watchdog,
+}
+
+impl RunSpec {
+    /// `expected` outputs, full rate on both sides, at most `max_cycles` cycles.
+    pub fn new(expected: u64, max_cycles: u64) -> RunSpec {
+        RunSpec {
+            expected,
+            pacing: Pacing::full(),
+            sink: Pacing::full(),
+            watchdog: Watchdog::cycles(max_cycles),
+        }
+    }
+
+    pub fn pacing(mut self, p: Pacing) -> RunSpec {
+        self.pacing = p;
+        self
+    }
+
+    pub fn sink(mut self, p: Pacing) -> RunSpec {
+        self.sink = p;
+        self
+    }
+}
+
+/// Runs a testbench: each cycle the driver presents the current transaction of `stimulus` (as
+/// the pacing allows; a transaction not accepted stays presented), the monitor sets the output
+/// `ready` (as the sink pacing allows), the design settles, accepted and received
+/// transactions are reported to `on`, the design is clocked. The run ends when all stimulus is
+/// accepted and `spec.expected` transactions were received, or the watchdog fires.
 pub fn run<M, T, D, Mo, F>(
     sim: &mut Sim<M, T>,
     driver: &mut D,
     monitor: &mut Mo,
     stimulus: impl IntoIterator<Item = D::Txn>,
-    expected: u64,
-    pacing: &mut Pacing,
-    watchdog: Watchdog,
+    spec: &mut RunSpec,
     mut on: F,
 ) -> Result<RunStats, Timeout>
 where
@@ -149,52 +227,46 @@ where
     F: FnMut(&mut Sim<M, T>, Event<'_, D::Txn, Mo::Txn>),
 {
     let mut it = stimulus.into_iter().peekable();
+    let mut current: Option<D::Txn> = None;
     let start = sim.cycle();
     let t0 = Instant::now();
     let mut st = RunStats::default();
     let mut inflight: VecDeque<u64> = VecDeque::new();
     loop {
-        if it.peek().is_none() && st.received >= expected {
+        if current.is_none() && it.peek().is_some() && spec.pacing.willing() {
+            current = it.next();
+        }
+        if current.is_none() && it.peek().is_none() && st.received >= spec.expected {
             break;
         }
         let c = sim.cycle();
-        let elapsed = c - start;
-        let timeout = |reason: String, st: &RunStats| Timeout {
-            cycle: c,
-            sent: st.sent,
-            received: st.received,
-            expected,
-            reason,
-        };
-        if elapsed >= watchdog.max_cycles {
+        if let Err(reason) = spec.watchdog.check(c - start, &t0) {
             driver.drive(&mut sim.dut, None);
-            return Err(timeout(
-                format!("{} cycles elapsed", watchdog.max_cycles),
-                &st,
-            ));
+            return Err(Timeout {
+                cycle: c,
+                sent: st.sent,
+                received: st.received,
+                expected: spec.expected,
+                reason,
+            });
         }
-        if elapsed.is_multiple_of(1024) && t0.elapsed() > watchdog.max_wall {
-            driver.drive(&mut sim.dut, None);
-            return Err(timeout(
-                format!("{:?} of wall time elapsed", watchdog.max_wall),
-                &st,
-            ));
-        }
-        let txn = if it.peek().is_some() && pacing.send() {
-            it.next()
-        } else {
-            None
-        };
-        driver.drive(&mut sim.dut, txn.as_ref());
+        driver.drive(&mut sim.dut, current.as_ref());
+        let ready = spec.sink.willing();
+        monitor.ready(&mut sim.dut, ready);
         sim.eval();
-        if let Some(t) = &txn {
-            st.sent += 1;
+        if current.is_some() {
             st.busy_cycles += 1;
-            inflight.push_back(c);
-            on(sim, Event::Sent { cycle: c, txn: t });
+            if driver.accepted(&sim.dut) {
+                let t = current.take().expect("presented");
+                st.sent += 1;
+                inflight.push_back(c);
+                spec.pacing.transferred();
+                on(sim, Event::Sent { cycle: c, txn: &t });
+            }
         }
         if let Some(o) = monitor.sample(&sim.dut) {
             st.received += 1;
+            spec.sink.transferred();
             if let Some(s) = inflight.pop_front() {
                 let l = c - s;
                 st.min_latency = Some(st.min_latency.map_or(l, |m| m.min(l)));
@@ -202,6 +274,7 @@ where
             }
             on(sim, Event::Received { cycle: c, txn: o });
         }
+        on(sim, Event::Settled { cycle: c });
         sim.tick();
     }
     driver.drive(&mut sim.dut, None);

@@ -80,7 +80,7 @@ impl Monitor<Plus1> for Mon {
 
 fn bench(
     stall: bool,
-    pacing: &mut Pacing,
+    pacing: Pacing,
     n: usize,
 ) -> (Result<RunStats, Timeout>, Scoreboard<u16, u16>) {
     let mut sim = Sim::new(Plus1::new(stall)).check_schedule(true);
@@ -98,14 +98,13 @@ fn bench(
         &mut Drv,
         &mut Mon,
         stim,
-        n as u64,
-        pacing,
-        Watchdog::cycles(1000),
+        &mut RunSpec::new(n as u64, 1000).pacing(pacing),
         |_, ev| match ev {
             Event::Sent { txn, .. } => sb.expect(u16::from(*txn) + 1),
             Event::Received { cycle, txn } => {
                 sb.observe(cycle, txn);
             }
+            Event::Settled { .. } => {}
         },
     );
     (r, sb)
@@ -113,7 +112,7 @@ fn bench(
 
 #[test]
 fn full_rate_latency_two() {
-    let (r, sb) = bench(false, &mut Pacing::full(), 100);
+    let (r, sb) = bench(false, Pacing::full(), 100);
     let st = r.unwrap();
     assert!(sb.passed());
     assert_eq!((st.sent, st.received), (100, 100));
@@ -123,7 +122,7 @@ fn full_rate_latency_two() {
 
 #[test]
 fn random_pacing_keeps_order() {
-    let (r, sb) = bench(false, &mut Pacing::random(300, Seed(3)), 200);
+    let (r, sb) = bench(false, Pacing::random(300, Seed(3)), 200);
     let st = r.unwrap();
     assert!(sb.passed());
     assert!(st.cycles > 250, "idle cycles were inserted: {}", st.cycles);
@@ -132,9 +131,154 @@ fn random_pacing_keeps_order() {
 
 #[test]
 fn watchdog_stops_a_hung_design() {
-    let (r, _) = bench(true, &mut Pacing::full(), 10);
+    let (r, _) = bench(true, Pacing::full(), 10);
     let t = r.unwrap_err();
     assert_eq!(t.received, 0);
     assert_eq!(t.sent, 10);
     assert!(t.to_string().contains("1000 cycles"), "{t}");
+}
+
+/// A two-entry elastic buffer that adds 1, with ready/valid on both sides: `in_ready` while
+/// it has room, `out_valid` while it holds an entry, an entry leaves when `out_ready`.
+struct Elastic {
+    in_valid: Signal,
+    in_ready: Signal,
+    x: Signal,
+    out_valid: Signal,
+    out_ready: Signal,
+    y: Signal,
+    count: Reg,
+    slot: [Reg; 2],
+}
+
+impl Elastic {
+    fn new() -> Elastic {
+        let w = Format::uint(9);
+        Elastic {
+            in_valid: Signal::bit("in_valid"),
+            in_ready: Signal::bit("in_ready"),
+            x: Signal::new("x", Format::uint(8)),
+            out_valid: Signal::bit("out_valid"),
+            out_ready: Signal::bit("out_ready"),
+            y: Signal::new("y", w),
+            count: Reg::new("count", Format::uint(2)),
+            slot: [Reg::new("slot0", w), Reg::new("slot1", w)],
+        }
+    }
+}
+
+impl Module for Elastic {
+    fn instance(&self) -> &str {
+        "e"
+    }
+    fn kind(&self) -> &'static str {
+        "elastic"
+    }
+    fn eval(&mut self) {
+        let n = self.count.q().uint();
+        self.in_ready.set_bool(n < 2);
+        self.out_valid.set_bool(n > 0);
+        self.y.set_bits(self.slot[0].q().bits());
+        let pop = n > 0 && self.out_ready.is_high();
+        let push = n < 2 && self.in_valid.is_high();
+        let (s0, s1) = (self.slot[0].q().bits(), self.slot[1].q().bits());
+        let new = self.x.bits() + 1;
+        // After a pop the second entry moves up; a push fills the first free slot.
+        let (mut a, mut b, mut m) = if pop { (s1, 0, n - 1) } else { (s0, s1, n) };
+        if push {
+            if m == 0 {
+                a = new;
+            } else {
+                b = new;
+            }
+            m += 1;
+        }
+        self.slot[0].set_next_bits(a);
+        self.slot[1].set_next_bits(b);
+        self.count.set_next_bits(m);
+    }
+    fn tick(&mut self, reset: bool) {
+        self.count.tick(reset);
+        for r in &mut self.slot {
+            r.tick(reset);
+        }
+    }
+    fn visit(&self, v: &mut dyn Visitor) {
+        v.enter("e", "elastic");
+        hdl::signals!(v; Input: self.in_valid, self.x, self.out_ready;
+            Output: self.in_ready, self.out_valid, self.y; Reg: self.count, self.slot[0], self.slot[1]);
+        v.leave();
+    }
+}
+
+struct EDrv;
+impl Driver<Elastic> for EDrv {
+    type Txn = u8;
+    fn drive(&mut self, dut: &mut Elastic, t: Option<&u8>) {
+        dut.in_valid.set_bool(t.is_some());
+        dut.x.set_bits(u64::from(t.copied().unwrap_or(0)));
+    }
+    fn accepted(&self, dut: &Elastic) -> bool {
+        dut.in_ready.is_high()
+    }
+}
+struct EMon;
+impl Monitor<Elastic> for EMon {
+    type Txn = u16;
+    fn ready(&mut self, dut: &mut Elastic, ready: bool) {
+        dut.out_ready.set_bool(ready);
+    }
+    fn sample(&mut self, dut: &Elastic) -> Option<u16> {
+        (dut.out_valid.is_high() && dut.out_ready.is_high()).then(|| dut.y.bits() as u16)
+    }
+}
+
+fn elastic(pacing: Pacing, sink: Pacing, n: usize) -> (RunStats, Vec<u16>, Vec<u16>) {
+    let mut sim = Sim::new(Elastic::new()).check_schedule(true);
+    sim.reset(1);
+    let stim = Stimulus::new(Seed(11)).draw_n(&proptest::num::u8::ANY, n);
+    let want: Vec<u16> = stim.iter().map(|&x| u16::from(x) + 1).collect();
+    let mut got = Vec::new();
+    let mut spec = RunSpec::new(n as u64, 100 * n as u64)
+        .pacing(pacing)
+        .sink(sink);
+    let st = run(&mut sim, &mut EDrv, &mut EMon, stim, &mut spec, |_, ev| {
+        if let Event::Received { txn, .. } = ev {
+            got.push(txn);
+        }
+    })
+    .unwrap();
+    (st, want, got)
+}
+
+#[test]
+fn backpressure_on_both_sides_loses_and_duplicates_nothing() {
+    for (idle_in, idle_out) in [(0, 0), (0, 600), (600, 0), (400, 700)] {
+        let (st, want, got) = elastic(
+            Pacing::random(idle_in, Seed(5)),
+            Pacing::random(idle_out, Seed(6)),
+            500,
+        );
+        assert_eq!(got, want, "idle {idle_in}/{idle_out} per mille");
+        assert_eq!((st.sent, st.received), (500, 500));
+        if idle_out > 0 {
+            // The sink stalled the buffer, so the driver had to hold transactions.
+            assert!(st.busy_cycles > st.sent, "{st:?}");
+        }
+    }
+}
+
+#[test]
+fn full_rate_through_the_elastic_buffer() {
+    let (st, want, got) = elastic(Pacing::full(), Pacing::full(), 300);
+    assert_eq!(got, want);
+    assert_eq!(st.cycles, 301, "one per clock, latency 1");
+    assert_eq!(st.busy_cycles, 300, "never stalled");
+}
+
+#[test]
+fn interval_pacing_spaces_transfers() {
+    let (st, want, got) = elastic(Pacing::every(4), Pacing::full(), 50);
+    assert_eq!(got, want);
+    assert_eq!(st.cycles, 4 * 49 + 2);
 }

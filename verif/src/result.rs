@@ -1,0 +1,183 @@
+//! What a testbench found: counts, error statistics, coverage, failures, notes and
+//! machine-readable records, in the form `summary.json` keeps and `texrtl merge` adds up.
+
+use crate::coverage::Coverage;
+use crate::stats::ErrorStats;
+use serde::{Deserialize, Serialize};
+use std::path::PathBuf;
+
+/// Coverage-hole failures start with this text (so merged shards can drop their own).
+const HOLES: &str = "coverage holes";
+
+/// What one testbench (or one of its configurations) found.
+#[derive(Clone, Debug, Serialize, Deserialize)]
+pub struct TbResult {
+    pub name: String,
+    /// The hardware unit and where the source document describes it.
+    pub unit: String,
+    /// Configurations run (of this shard).
+    #[serde(default)]
+    pub configurations: u64,
+    pub transactions: u64,
+    pub cycles: u64,
+    pub mismatches: u64,
+    /// The first mismatches in detail.
+    pub mismatch_log: Vec<String>,
+    /// Anything else that failed: latency, throughput, watchdog, coverage holes, waveforms.
+    pub failures: Vec<String>,
+    pub coverage_percent: f64,
+    pub unhit: Vec<String>,
+    #[serde(skip, default)]
+    pub coverage_report: String,
+    /// Error against the golden model, in output LSBs.
+    pub stats: ErrorStats,
+    pub latency: Option<u64>,
+    /// Measured figures worth a line in the report.
+    pub notes: Vec<String>,
+    /// Markdown tables for `report.md` only (not the console).
+    #[serde(default)]
+    pub tables: Vec<String>,
+    /// Per-configuration measurements in the testbench's own row type (as JSON), concatenated
+    /// when shards merge; the testbench's [`conclude`](crate::Testbench::conclude) turns them
+    /// into notes, tables and plots.
+    #[serde(default)]
+    pub records: Vec<serde_json::Value>,
+    pub seed: Option<String>,
+    pub vcd: Option<PathBuf>,
+    /// The coverage model with its hits, so shards can be merged.
+    pub coverage: Option<Coverage>,
+    /// How many notes and tables the configurations wrote before the testbench's conclusions
+    /// were added (so merged shards can conclude again from the records).
+    #[serde(default)]
+    pub own: Option<(usize, usize)>,
+    pub passed: bool,
+}
+
+impl TbResult {
+    pub fn new(name: &str, unit: &str) -> TbResult {
+        TbResult {
+            name: name.into(),
+            unit: unit.into(),
+            configurations: 0,
+            transactions: 0,
+            cycles: 0,
+            mismatches: 0,
+            mismatch_log: Vec::new(),
+            failures: Vec::new(),
+            coverage_percent: 0.0,
+            unhit: Vec::new(),
+            coverage_report: String::new(),
+            stats: ErrorStats::new(),
+            latency: None,
+            notes: Vec::new(),
+            tables: Vec::new(),
+            records: Vec::new(),
+            seed: None,
+            vcd: None,
+            coverage: None,
+            own: None,
+            passed: false,
+        }
+    }
+
+    /// Decides pass/fail: no mismatch, no other failure, every coverage bin hit.
+    pub fn finish(&mut self) {
+        self.finish_with(true)
+    }
+
+    /// Decides pass/fail; coverage holes fail it only when `require_coverage` (a shard cannot
+    /// know whether another shard hits its holes: `texrtl merge` decides for the whole run).
+    pub fn finish_with(&mut self, require_coverage: bool) {
+        self.failures.retain(|f| !f.starts_with(HOLES));
+        if require_coverage && !self.unhit.is_empty() {
+            let first: Vec<&str> = self.unhit.iter().take(8).map(String::as_str).collect();
+            self.failures.push(format!(
+                "{HOLES} ({} bins): {}",
+                self.unhit.len(),
+                first.join(", ")
+            ));
+        }
+        self.passed = self.mismatches == 0 && self.failures.is_empty();
+    }
+
+    /// Sets coverage figures from a model (kept for merging shards).
+    pub fn set_coverage(&mut self, cov: Coverage) {
+        self.coverage_percent = cov.percent();
+        self.unhit = cov.unhit();
+        self.coverage_report = cov.report();
+        self.coverage = Some(cov);
+    }
+
+    /// Adds another configuration's or shard's result of the same testbench. Messages of a
+    /// configuration are prefixed with `label` when one is given. Coverage of another model
+    /// is an error, and then nothing is added.
+    pub fn absorb(&mut self, o: &TbResult, label: Option<&str>) -> Result<(), String> {
+        match (&mut self.coverage, &o.coverage) {
+            (Some(a), Some(b)) => a.merge(b)?,
+            (None, Some(b)) => self.coverage = Some(b.clone()),
+            _ => {}
+        }
+        let tag = |m: &String| match label {
+            Some(l) => format!("[{l}] {m}"),
+            None => m.clone(),
+        };
+        self.configurations += o.configurations.max(u64::from(label.is_some()));
+        self.transactions += o.transactions;
+        self.cycles += o.cycles;
+        self.mismatches += o.mismatches;
+        self.mismatch_log.extend(o.mismatch_log.iter().map(tag));
+        self.mismatch_log.truncate(20);
+        let failures = o.failures.iter().filter(|f| !f.starts_with(HOLES));
+        self.failures.extend(failures.map(tag));
+        self.stats.merge(&o.stats);
+        self.latency = match (self.latency, o.latency) {
+            (Some(a), Some(b)) => Some(a.max(b)),
+            (a, b) => a.or(b),
+        };
+        self.notes.extend(o.notes.iter().cloned());
+        self.tables.extend(o.tables.iter().cloned());
+        self.records.extend(o.records.iter().cloned());
+        self.vcd = self.vcd.take().or_else(|| o.vcd.clone());
+        Ok(())
+    }
+
+    /// Drops the testbench's conclusions (notes and tables added after the configurations
+    /// ran), to conclude again over merged records.
+    pub fn strip_conclusions(&mut self) {
+        if let Some((n, t)) = self.own.take() {
+            self.notes.truncate(n);
+            self.tables.truncate(t);
+        }
+    }
+
+    /// The records of one row type (those that do not parse as `T` are skipped).
+    pub fn records_of<T: serde::de::DeserializeOwned>(&self) -> Vec<T> {
+        self.records
+            .iter()
+            .filter_map(|v| serde_json::from_value(v.clone()).ok())
+            .collect()
+    }
+
+    /// Adds a record (any serialisable row).
+    pub fn record<T: Serialize>(&mut self, row: &T) {
+        if let Ok(v) = serde_json::to_value(row) {
+            self.records.push(v);
+        }
+    }
+
+    /// The latency column: cycles, or `-`.
+    pub fn latency_text(&self) -> String {
+        self.latency
+            .map(|l| l.to_string())
+            .unwrap_or_else(|| "-".into())
+    }
+
+    /// `PASS` or `FAIL`.
+    pub fn verdict(&self) -> &'static str {
+        if self.passed {
+            "PASS"
+        } else {
+            "FAIL"
+        }
+    }
+}
