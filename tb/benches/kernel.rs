@@ -204,7 +204,7 @@ fn dram(c: &mut Criterion) {
 fn texture(c: &mut Criterion) {
     use tb::texture::{run_texread, synthetic_texture, trace, TraceKind};
     let orig = synthetic_texture(256, 256, verif::Seed(1));
-    let tex = tb::ccc::encode(&orig).unwrap();
+    let tex = formats::ccc::encode(&orig).unwrap();
     let p = hdl::texture_unit::TexParams::new(256, 256);
     let mut g = c.benchmark_group("texture");
     for kind in [TraceKind::Horizontal, TraceKind::Random] {

@@ -1,18 +1,13 @@
-//! texrtl's testbenches and the machinery of the `texrtl` program.
-//!
-//! One module per testbench, named after the unit it verifies; `regress` runs them all.
+//! texrtl's testbenches: one module per testbench, named after the unit it verifies, each a
+//! [`verif::Testbench`] with its driver, monitor, golden comparison, integer reference and
+//! coverage model; [`regress`] holds the registry and runs them all; [`vectors`] keeps the
+//! bit-accuracy vectors.
 
 pub mod blend_adjust;
-pub mod ccc;
-pub mod commands;
 pub mod dram;
 pub mod maps;
 pub mod mipmap;
 pub mod normals;
-pub mod pgm;
-pub mod plots;
 pub mod regress;
-pub mod report;
-pub mod texcmd;
 pub mod texture;
 pub mod vectors;

@@ -1,8 +1,10 @@
 //! `texrtl regress`: every registered testbench on built-in stimulus, with waveforms and a
 //! summary.
 
-use crate::report::{table, write_atomic, Summary, TbResult};
+use formats::output::write_atomic;
+use serde::{Deserialize, Serialize};
 use std::path::PathBuf;
+use verif::TbResult;
 use verif::{Registry, RunOptions, Seed};
 use waves::check::{check_gtkw, read_vcd};
 use waves::TraceConfig;
@@ -20,6 +22,17 @@ pub fn registry() -> Registry {
 
 /// The name of the bit-accuracy vectors row (a check of fixed stimuli, not a testbench).
 pub const VECTORS: &str = "vectors";
+
+/// `summary.json`: every result, the seed, the shard and the tool version.
+#[derive(Clone, Serialize, Deserialize)]
+pub struct Summary {
+    pub texrtl: String,
+    pub seed: String,
+    /// `I/N` when the run was one shard of N.
+    pub shard: Option<String>,
+    pub passed: bool,
+    pub testbenches: Vec<TbResult>,
+}
 
 /// What `texrtl regress` runs with.
 #[derive(Clone, Debug)]
@@ -63,9 +76,14 @@ impl RegressConfig {
 }
 
 /// Runs every selected testbench, checks every waveform it wrote (read back with wellen,
-/// `.gtkw` checked against it), writes `summary.json`, the pictures and `report.md`. `Err`
-/// is for bad options and I/O failures; mismatches are in the results.
-pub fn regress(cfg: &RegressConfig) -> Result<Vec<TbResult>, String> {
+/// `.gtkw` checked against it), writes `summary.json`. `progress` is called before each
+/// configuration with the testbench's name and the configuration's label (and once with
+/// `("", "vectors and waveforms")`). `Err` is for bad options and I/O failures; mismatches
+/// are in the results.
+pub fn regress(
+    cfg: &RegressConfig,
+    progress: &mut dyn FnMut(&str, &str),
+) -> Result<Summary, String> {
     let reg = registry();
     cfg.validate(&reg)?;
     std::fs::create_dir_all(&cfg.out).map_err(|e| format!("{}: {e}", cfg.out.display()))?;
@@ -78,23 +96,13 @@ pub fn regress(cfg: &RegressConfig) -> Result<Vec<TbResult>, String> {
             .then(|| (cfg.out.clone(), cfg.trace.clone(), cfg.period_ps)),
         check_schedule: cfg.check_schedule,
     };
-    // A progress bar on stderr, one step per configuration (hidden when stderr is not a
-    // terminal).
-    let bar = indicatif::ProgressBar::new(reg.owned_configurations(cfg.shard, &cfg.only));
-    bar.set_style(
-        indicatif::ProgressStyle::with_template("{bar:30} {pos}/{len} {msg}")
-            .unwrap_or_else(|_| indicatif::ProgressStyle::default_bar()),
-    );
     let mut results = Vec::new();
     for tb in reg.iter().filter(|t| cfg.selected(t.name())) {
         let name = tb.name();
-        let r = verif::run_testbench(tb, &opts, &mut |label| {
-            bar.set_message(format!("{name}: {label}"));
-            bar.inc(1);
-        })?;
+        let r = verif::run_testbench(tb, &opts, &mut |label| progress(name, label))?;
         results.push(r);
     }
-    bar.set_message("vectors, waveforms, report");
+    progress("", "vectors and waveforms");
     // Bit-accuracy vectors of this source tree, when it is there (not for an installed binary);
     // checked by the first shard.
     let dir = crate::vectors::vectors_dir();
@@ -111,9 +119,10 @@ pub fn regress(cfg: &RegressConfig) -> Result<Vec<TbResult>, String> {
         passed: results.iter().all(|r| r.passed),
         testbenches: results.clone(),
     };
-    write_report(&cfg.out, &summary)?;
-    bar.finish_and_clear();
-    Ok(results)
+    let path = cfg.out.join("summary.json");
+    let json = serde_json::to_vec_pretty(&summary).map_err(|e| e.to_string())?;
+    write_atomic(&path, &json).map_err(|e| format!("{}: {e}", path.display()))?;
+    Ok(summary)
 }
 
 /// The vectors check as a row of the table.
@@ -156,116 +165,6 @@ fn check_waveform(r: &mut TbResult, fst: bool) {
 fn fail_waveform(r: &mut TbResult, e: String) {
     r.failures.push(format!("waveform: {e}"));
     r.passed = false;
-}
-
-/// `summary.json`, the pictures and `report.md`.
-fn write_report(out: &std::path::Path, summary: &Summary) -> Result<(), String> {
-    let write = |f: &str, b: &[u8]| {
-        write_atomic(&out.join(f), b).map_err(|e| format!("{}: {e}", out.join(f).display()))
-    };
-    write(
-        "summary.json",
-        &serde_json::to_vec_pretty(summary).map_err(|e| e.to_string())?,
-    )?;
-    let results = &summary.testbenches;
-    let mut pictures = Vec::new();
-    if results.iter().any(|r| r.name == "normals") {
-        pictures.push(normals_picture(out)?);
-    }
-    if results.iter().any(|r| r.name == "mipmap") {
-        pictures.push(mipmap_picture(out)?);
-    }
-    if let Some(t) = results.iter().find(|r| r.name == "texture") {
-        let rows = t.records_of::<crate::texture::TableRow>();
-        if !rows.is_empty() {
-            pictures.extend(crate::texture::memory_plots(out, &rows)?);
-        }
-    }
-    for r in results.iter().filter(|r| r.stats.count > 0) {
-        let f = format!("{}_error_histogram.png", r.name);
-        let title = format!("{}: error against golden", r.name);
-        write(
-            &f,
-            &crate::plots::histogram_png(&title, &r.stats.histogram)?,
-        )?;
-        pictures.push((
-            f,
-            format!(
-                "{}: histogram of the error against the golden model, in output LSBs (log scale)",
-                r.name
-            ),
-        ));
-    }
-    let refs: Vec<(&str, &str)> = pictures
-        .iter()
-        .map(|(a, b)| (a.as_str(), b.as_str()))
-        .collect();
-    write(
-        "report.md",
-        crate::report::markdown(summary, &refs).as_bytes(),
-    )
-}
-
-/// The bump-map comparison of the report (FIG. 8a against 8b). Returns `(file, caption)`.
-fn normals_picture(out: &std::path::Path) -> Result<(String, String), String> {
-    use hdl::bump_params::BumpParams;
-    let p = BumpParams::default();
-    let map = crate::maps::builtin("bumps", 48, 48, p.texel_fmt())?;
-    let (png, worst) = crate::commands::render_png(&map, &p, [1.0, 1.0, 2.0], 0.5, 4)?;
-    let f = "normals_render.png";
-    write_atomic(&out.join(f), &png).map_err(|e| format!("{}: {e}", out.join(f).display()))?;
-    Ok((
-        f.to_string(),
-        format!(
-            "Dot3 lighting of the built-in bumps map, scale 0.5: Blinn | B-spline (bit-exact) | golden | log heat map of the B-spline's intensity error (worst {worst:.2e})"
-        ),
-    ))
-}
-
-/// The mipmap levels of a synthetic video frame, for the report. Returns `(file, caption)`.
-fn mipmap_picture(out: &std::path::Path) -> Result<(String, String), String> {
-    let mp = hdl::mipmap::MipmapParams {
-        width: 64,
-        height: 32,
-        scan: hdl::mipmap::Scan::InterlacedTop,
-        rounding: hdl::mipmap::Rounding::Round,
-    };
-    let frame = crate::mipmap::synthetic_video(64, 32, 1, Seed(3));
-    let o = crate::mipmap::run_mipmap(mp, &frame, None)?;
-    let dims = mp.levels();
-    let mut img = image::RgbImage::new(dims.len() as u32 * 68, 32);
-    for (k, level) in o.frames[0].iter().enumerate() {
-        let (lw, _) = dims[k];
-        let s = 1u32 << k;
-        for y in 0..32u32 {
-            for x in 0..64u32 {
-                let t = level[((y / s.min(32)) * lw + (x / s).min(lw - 1)) as usize];
-                img.put_pixel(k as u32 * 68 + x, y, image::Rgb([t, t, t]));
-            }
-        }
-    }
-    let f = "mipmap_levels.png";
-    write_atomic(&out.join(f), &crate::commands::encode_png(&img)?)
-        .map_err(|e| format!("{}: {e}", out.join(f).display()))?;
-    Ok((
-        f.to_string(),
-        "Mipmap levels 0-6 of a 64x32 interlaced synthetic frame from the cycle-accurate generator, each scaled to the size of level 0".to_string(),
-    ))
-}
-
-/// The table and a closing line, as `texrtl regress` prints them.
-pub fn render(results: &[TbResult], cfg: &RegressConfig) -> String {
-    let mut s = table(results);
-    let failed = results.iter().filter(|r| !r.passed).count();
-    s.push_str(&format!(
-        "{} testbenches: {} passed, {} failed (seed {}; outputs in {})\n",
-        results.len(),
-        results.len() - failed,
-        failed,
-        cfg.seed,
-        cfg.out.display()
-    ));
-    s
 }
 
 /// `texrtl merge`: combines the `summary.json` of every shard of one run into one: counts and

@@ -2,14 +2,15 @@
 //! DRAM 604, control unit 607, CCC decode, cache 614 and bilinear 622, on scanline traces;
 //! `texrtl texread` and the `texture` testbench of `texrtl regress`.
 //!
-//! Every result is compared with the integer reference ([`crate::ccc::reference_filter`]) and
+//! Every result is compared with the integer reference ([`formats::ccc::reference_filter`]) and
 //! with the `f64` golden model of the decoded texture (bound [`golden::texture::ERROR_BOUND_LSB`]);
 //! the golden model of the original (uncompressed) texture measures the compression error,
 //! reported separately. Misses are split into cold, capacity and conflict misses by a
 //! fully-associative LRU shadow cache of the same four blocks, fed the same block references
 //! (Hakura and Gupta's method).
 
-use crate::ccc::{reference_filter, Ccc};
+use formats::ccc::Ccc;
+use formats::netpbm::Ppm;
 use hdl::kernel::{NoTrace, Sim, Trace};
 use hdl::texture_cache::Lookahead;
 use hdl::texture_layout::Layout;
@@ -86,6 +87,38 @@ pub struct TexRun {
     /// Per request: blocks of its footprint and how many hit at its first lookup.
     pub lookups: Vec<(u8, u8)>,
     pub stats: TexReadStats,
+}
+
+/// Integer reference of unit 622 on the reference decode: clamp-to-edge footprint of raw
+/// `uQ12.F` position `(u, v)`, the four-weight sum per channel, round half up. (The hardware
+/// does two lerps; the sum is the same exact integer.)
+pub fn reference_filter(t: &Ccc, u: u32, v: u32, frac_bits: u32) -> u32 {
+    let f = frac_bits;
+    let one = 1u64 << f;
+    let (x0, y0) = (u >> f, v >> f);
+    let (fu, fv) = (u64::from(u) & (one - 1), u64::from(v) & (one - 1));
+    let x1 = (x0 + 1).min(t.width - 1);
+    let y1 = (y0 + 1).min(t.height - 1);
+    let tex = [
+        t.texel(x0, y0),
+        t.texel(x1, y0),
+        t.texel(x0, y1),
+        t.texel(x1, y1),
+    ];
+    let w = [
+        (one - fu) * (one - fv),
+        fu * (one - fv),
+        (one - fu) * fv,
+        fu * fv,
+    ];
+    let mut out = 0;
+    for shift in [16, 8, 0] {
+        let s: u64 = (0..4)
+            .map(|k| w[k] * u64::from(tex[k] >> shift & 0xff))
+            .sum();
+        out |= (((s + (1 << (2 * f - 1))) >> (2 * f)) as u32) << shift;
+    }
+    out
 }
 
 /// A fully-associative LRU cache of block tags (the shadow cache).
@@ -454,7 +487,7 @@ pub fn trace(
 
 /// A synthetic RGB test texture: smooth gradients, coloured discs and hashed noise, so that
 /// blocks with one, two and many colours all occur.
-pub fn synthetic_texture(w: u32, h: u32, seed: Seed) -> crate::pgm::Ppm {
+pub fn synthetic_texture(w: u32, h: u32, seed: Seed) -> Ppm {
     let mut pixels = Vec::with_capacity((w * h * 3) as usize);
     let salt = seed.0;
     for y in 0..h {
@@ -480,7 +513,7 @@ pub fn synthetic_texture(w: u32, h: u32, seed: Seed) -> crate::pgm::Ppm {
             pixels.extend(c.map(|v| v.clamp(0, 255) as u8));
         }
     }
-    crate::pgm::Ppm {
+    Ppm {
         width: w,
         height: h,
         maxval: 255,
@@ -530,7 +563,7 @@ fn check_run(
     res: &mut TbResult,
     cov: &mut Coverage,
     tex: &Ccc,
-    orig: &crate::pgm::Ppm,
+    orig: &Ppm,
     p: TexParams,
     reqs: &[TexRequest],
     interval: u32,
@@ -687,13 +720,12 @@ pub struct TextureTb;
 const TEXTURE_SEED: Seed = Seed(0x602);
 
 /// The fixture: the synthetic texture and its CCC encoding, made once per process.
-fn fixture() -> Result<&'static (crate::pgm::Ppm, Ccc), String> {
-    static FIXTURE: std::sync::OnceLock<Result<(crate::pgm::Ppm, Ccc), String>> =
-        std::sync::OnceLock::new();
+fn fixture() -> Result<&'static (Ppm, Ccc), String> {
+    static FIXTURE: std::sync::OnceLock<Result<(Ppm, Ccc), String>> = std::sync::OnceLock::new();
     FIXTURE
         .get_or_init(|| {
             let orig = synthetic_texture(TB_SIZE, TB_SIZE, TEXTURE_SEED);
-            crate::ccc::encode(&orig).map(|c| (orig, c))
+            formats::ccc::encode(&orig).map(|c| (orig, c))
         })
         .as_ref()
         .map_err(Clone::clone)
@@ -731,7 +763,7 @@ impl Testbench for TextureTb {
         let mut compression = verif::ErrorStats::new();
         let (w, h) = (TB_SIZE, TB_SIZE);
         if ctx.index == 0 {
-            let (db, worst) = crate::ccc::psnr(&orig.pixels, &tex.decode());
+            let (db, worst) = formats::ccc::psnr(&orig.pixels, &tex.decode());
             res.notes.push(format!(
                 "CCC of the {w}x{h} test texture: {db:.2} dB PSNR, worst texel error {worst} levels"
             ));
@@ -872,83 +904,24 @@ pub fn table(rows: &[TableRow]) -> String {
     t
 }
 
-/// The memory-path pictures of the report (hit rate, pixels per second with and without
-/// lookahead, page faults per scanline by layout), from the testbench's rows. Returns
-/// `(file, caption)`.
-pub fn memory_plots(
-    out: &std::path::Path,
-    rows: &[TableRow],
-) -> Result<Vec<(String, String)>, String> {
-    let traces: Vec<String> = TraceKind::ALL
-        .iter()
-        .map(|k| k.name().to_string())
-        .collect();
-    let pick =
-        |layout: &str, cache: bool, look: &str, interval: u32, f: &dyn Fn(&TexReadStats) -> f64| {
-            traces
-                .iter()
-                .map(|t| {
-                    rows.iter()
-                        .find(|r| {
-                            r.trace == *t
-                                && r.stats.layout == layout
-                                && r.stats.cache == cache
-                                && r.stats.lookahead == look
-                                && r.stats.interval == interval
-                        })
-                        .map_or(0.0, |r| f(&r.stats))
-                })
-                .collect::<Vec<f64>>()
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn reference_filter_hits_texels_at_integers() {
+        let px = (0..64u32)
+            .flat_map(|i| [(i % 8 * 30) as u8, (i / 8 * 30) as u8, 7])
+            .collect();
+        let p = Ppm {
+            width: 8,
+            height: 8,
+            maxval: 255,
+            pixels: px,
         };
-    let hit = |s: &TexReadStats| 100.0 * s.hit_rate;
-    let mpx = |s: &TexReadStats| s.pixels_per_second / 1e6;
-    let pf = |s: &TexReadStats| s.page_faults_per_scanline;
-    let plots = [
-        (
-            "texture_hit_rate.png",
-            "Cache 614: block hit rate (row-major, 256x256 texture)",
-            "hit rate (%)",
-            vec![
-                ("quadrant, 1 req/cycle".to_string(), pick("row-major", true, "quadrant", 1, &hit)),
-                ("direction, 1 req/cycle".to_string(), pick("row-major", true, "direction", 1, &hit)),
-                ("no lookahead, 1 req/cycle".to_string(), pick("row-major", true, "off", 1, &hit)),
-                ("quadrant, 1 req/4 cycles".to_string(), pick("row-major", true, "quadrant", 4, &hit)),
-                ("direction, 1 req/4 cycles".to_string(), pick("row-major", true, "direction", 4, &hit)),
-                ("no lookahead, 1 req/4 cycles".to_string(), pick("row-major", true, "off", 4, &hit)),
-            ],
-            "block hit rate of cache 614 per trace, quadrant lookahead, direction lookahead and none, rasterizer offering a request every cycle or every 4 cycles",
-        ),
-        (
-            "texture_pixels_per_second.png",
-            "Texture unit 602: pixels per second (5 ns cycle, row-major)",
-            "M pixels/s",
-            vec![
-                ("cache + quadrant lookahead".to_string(), pick("row-major", true, "quadrant", 1, &mpx)),
-                ("cache + direction lookahead".to_string(), pick("row-major", true, "direction", 1, &mpx)),
-                ("cache".to_string(), pick("row-major", true, "off", 1, &mpx)),
-                ("no cache".to_string(), pick("row-major", false, "off", 1, &mpx)),
-            ],
-            "textured pixels per second per trace with quadrant or direction lookahead, without it, and without the cache (rasterizer offering one request per cycle)",
-        ),
-        (
-            "texture_page_faults.png",
-            "DRAM 604: page faults per scanline (512-word pages)",
-            "page faults / scanline",
-            vec![
-                ("row-major, cache".to_string(), pick("row-major", true, "off", 1, &pf)),
-                ("tiled, cache".to_string(), pick("tiled", true, "off", 1, &pf)),
-                ("row-major, no cache".to_string(), pick("row-major", false, "off", 1, &pf)),
-                ("tiled, no cache".to_string(), pick("tiled", false, "off", 1, &pf)),
-            ],
-            "DRAM page faults per scanline per trace, row-major against tiled layout, 512-word pages",
-        ),
-    ];
-    let mut v = Vec::new();
-    for (file, title, ydesc, series, caption) in plots {
-        let png = crate::plots::grouped_bars_png(title, ydesc, &traces, &series)?;
-        let path = out.join(file);
-        crate::report::write_atomic(&path, &png).map_err(|e| format!("{}: {e}", path.display()))?;
-        v.push((file.to_string(), caption.to_string()));
+        let c = formats::ccc::encode(&p).unwrap();
+        for (x, y) in [(0, 0), (3, 5), (7, 7)] {
+            assert_eq!(reference_filter(&c, x << 4, y << 4, 4), c.texel(x, y));
+        }
     }
-    Ok(v)
 }

@@ -223,7 +223,7 @@ fn mipmap() -> Result<UnitVectors, String> {
 
 /// The texture of the `texture` vectors: 32x32 texels, CLUT and blocks from integer formulas
 /// (no encoder, so no floating point is involved).
-pub fn vector_texture() -> crate::ccc::Ccc {
+pub fn vector_texture() -> formats::ccc::Ccc {
     let clut = (0..256u32)
         .map(|i| ((i * 37) & 0xff) << 16 | ((i * 91) & 0xff) << 8 | ((i * 13 + 5) & 0xff))
         .collect();
@@ -234,7 +234,7 @@ pub fn vector_texture() -> crate::ccc::Ccc {
             bits: (n.wrapping_mul(0x9e37_79b9) >> 16) as u16,
         })
         .collect();
-    crate::ccc::Ccc {
+    formats::ccc::Ccc {
         width: 32,
         height: 32,
         clut,
@@ -372,7 +372,7 @@ impl UnitVectors {
                 let _ = writeln!(s, "{word:0w$x}", w = (total as usize).div_ceil(4));
             }
             let path = dir.join(format!("{}_{kind}.hex", self.unit));
-            crate::report::write_atomic(&path, s.as_bytes())?;
+            formats::output::write_atomic(&path, s.as_bytes())?;
             out.push(path);
         }
         Ok(out)
@@ -437,7 +437,7 @@ pub fn bless(dir: &Path) -> Result<Vec<String>, String> {
         }
         let mut json = serde_json::to_vec_pretty(&now).map_err(|e| e.to_string())?;
         json.push(b'\n');
-        crate::report::write_atomic(&path, &json)
+        formats::output::write_atomic(&path, &json)
             .map_err(|e| format!("{}: {e}", path.display()))?;
     }
     Ok(changed)

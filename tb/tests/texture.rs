@@ -3,6 +3,7 @@
 //! reference and within half an LSB of the golden model; the cache's timing; the document's
 //! CCC format; and `texrtl ccc` / `texrtl texread`, bad input included.
 
+use formats::ccc::Ccc;
 use hdl::ccc_decode::CccBlock;
 use hdl::color_bilinear::lerp2;
 use hdl::kernel::Sim;
@@ -10,7 +11,7 @@ use hdl::texture_cache::Lookahead;
 use hdl::texture_layout::Layout;
 use hdl::texture_unit::{TexParams, TextureUnit};
 use proptest::prelude::*;
-use tb::ccc::{reference_filter, Ccc};
+use tb::texture::reference_filter;
 use tb::texture::{drive, run_texread, TexRequest};
 
 fn modes() -> Vec<(Layout, bool, Lookahead, u32)> {
@@ -333,271 +334,6 @@ fn textures_that_do_not_fit_are_refused() {
 
 // ---- the command line ----
 
-fn texrtl(args: &[&str]) -> std::process::Output {
-    std::process::Command::new(env!("CARGO_BIN_EXE_texrtl"))
-        .args(args)
-        .output()
-        .expect("runs")
-}
-
-fn dir(name: &str) -> std::path::PathBuf {
-    let d = std::env::temp_dir().join(format!("texrtl-tex-{}-{name}", std::process::id()));
-    let _ = std::fs::remove_dir_all(&d);
-    std::fs::create_dir_all(&d).unwrap();
-    d
-}
-
-fn ppm(w: u32, h: u32) -> Vec<u8> {
-    let mut px = Vec::new();
-    for y in 0..h {
-        for x in 0..w {
-            px.extend_from_slice(&[(x * 8) as u8, (y * 8) as u8, ((x ^ y) * 4) as u8]);
-        }
-    }
-    tb::pgm::encode_ppm(w, h, &px)
-}
-
-#[test]
-fn ccc_and_texread_commands() {
-    let d = dir("cmd");
-    let (t, c, dec) = (d.join("t.ppm"), d.join("t.ccc"), d.join("d.ppm"));
-    std::fs::write(&t, ppm(32, 16)).unwrap();
-    let s = |p: &std::path::Path| p.to_str().unwrap().to_string();
-    let o = texrtl(&["ccc", "encode", "--in", &s(&t), "--out", &s(&c)]);
-    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
-    assert!(String::from_utf8_lossy(&o.stdout).contains("PSNR"));
-    let o = texrtl(&["ccc", "decode", "--in", &s(&c), "--out", &s(&dec)]);
-    assert!(o.status.success());
-    let tex = Ccc::read(&c).unwrap();
-    let img = tb::pgm::read_ppm(&dec).unwrap();
-    assert_eq!(img.pixels, tex.decode());
-
-    let r = d.join("r.csv");
-    std::fs::write(
-        &r,
-        "u,v,newline\n0,0,1\n1.5,2.25,0\n31.9375,15.5,0\n3.03,3.97,1\n",
-    )
-    .unwrap();
-    let (out, stats, vcd) = (d.join("o.csv"), d.join("s.json"), d.join("w.vcd"));
-    let mut outs = Vec::new();
-    for extra in [
-        vec![],
-        vec!["--no-cache"],
-        vec!["--no-lookahead", "--layout", "tiled"],
-        vec!["--interval", "5"],
-    ] {
-        let mut a = vec![
-            "texread".to_string(),
-            "--texture".into(),
-            s(&c),
-            "--requests".into(),
-            s(&r),
-            "--out".into(),
-            s(&out),
-            "--stats".into(),
-            s(&stats),
-            "--vcd".into(),
-            s(&vcd),
-        ];
-        a.extend(extra.iter().map(|x| x.to_string()));
-        let a: Vec<&str> = a.iter().map(String::as_str).collect();
-        let o = texrtl(&a);
-        assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
-        outs.push(std::fs::read_to_string(&out).unwrap());
-        let j: serde_json::Value = serde_json::from_slice(&std::fs::read(&stats).unwrap()).unwrap();
-        for k in [
-            "hits",
-            "page_faults",
-            "cycles",
-            "ns",
-            "pixels_per_second",
-            "dram_reads",
-        ] {
-            assert!(j.get(k).is_some(), "{k}");
-        }
-        assert_eq!(j["requests"], 4);
-    }
-    assert!(outs.iter().all(|o| *o == outs[0]), "modes differ");
-    let rows: Vec<&str> = outs[0].lines().collect();
-    assert_eq!(rows[0], "u,v,r,g,b");
-    assert_eq!(rows.len(), 5);
-    // 3.03 and 3.97 are rounded to sixteenths; the results equal the integer reference.
-    assert!(
-        rows[4].starts_with("3,4,") || rows[4].starts_with("3.0625,3.9375,"),
-        "{}",
-        rows[4]
-    );
-    for (row, (u, v)) in rows[1..]
-        .iter()
-        .zip([(0, 0), (24, 36), (511, 248), (48, 64)])
-    {
-        let f: Vec<u32> = row.split(',').skip(2).map(|x| x.parse().unwrap()).collect();
-        let want = reference_filter(&tex, u, v, 4);
-        assert_eq!(f, vec![want >> 16, want >> 8 & 0xff, want & 0xff], "{row}");
-    }
-    // The waveform: DRAM pins, page register, cache tags and valid bits, controller states.
-    let rb = waves::check::read_vcd(&vcd).unwrap();
-    for v in [
-        "tb.texture_unit.control_607.dram.ras_n",
-        "tb.texture_unit.control_607.dram.cas_n",
-        "tb.texture_unit.control_607.dram.addr",
-        "tb.texture_unit.control_607.dram.page_row",
-        "tb.texture_unit.control_607.state",
-        "tb.texture_unit.fill_state",
-        "tb.texture_unit.cache_614.entry_a.tag_x",
-        "tb.texture_unit.cache_614.entry_d.valid",
-        "tb.texture_unit.ccc_decode.reg_608",
-        "tb.texture_unit.bilinear_622.rgb",
-    ] {
-        assert!(
-            rb.vars.contains_key(v),
-            "{v}: {:?}",
-            rb.vars.keys().take(60).collect::<Vec<_>>()
-        );
-    }
-    assert_eq!(
-        rb.vars["tb.texture_unit.ccc_decode.reg_608"].width,
-        Some(32)
-    );
-    waves::check::check_gtkw(&vcd, &rb).unwrap();
-    // A PPM texture is encoded on the fly: the same results as its .ccc.
-    let mut a: Vec<String> = [
-        "texread",
-        "--texture",
-        &s(&t),
-        "--requests",
-        &s(&r),
-        "--out",
-        &s(&out),
-    ]
-    .iter()
-    .map(|x| x.to_string())
-    .collect();
-    let o = texrtl(&a.iter().map(String::as_str).collect::<Vec<_>>());
-    assert!(o.status.success());
-    assert_eq!(std::fs::read_to_string(&out).unwrap(), outs[0]);
-
-    // Bad input: one line naming the file, exit 2, nothing written.
-    let bad_out = d.join("bad.csv");
-    let good = std::fs::read(&c).unwrap();
-    let cases: Vec<(&str, Vec<u8>, &str, &str)> = vec![
-        (
-            "trunc.ccc",
-            good[..good.len() - 3].to_vec(),
-            "u,v\n1,1\n",
-            "truncated",
-        ),
-        (
-            "magic.ccc",
-            b"XEXRTLCC0000000000000000".to_vec(),
-            "u,v\n1,1\n",
-            "neither",
-        ),
-        (
-            "odd.ppm",
-            {
-                let mut b = b"P6\n6 4\n255\n".to_vec();
-                b.extend(vec![0u8; 72]);
-                b
-            },
-            "u,v\n1,1\n",
-            "multiples of 4",
-        ),
-        (
-            "short.ppm",
-            b"P6\n8 4\n255\n\0\0".to_vec(),
-            "u,v\n1,1\n",
-            "raster",
-        ),
-        ("t.ccc", good.clone(), "u,v\n32,1\n", "outside"),
-        ("t.ccc", good.clone(), "u,v\nNaN,1\n", "NaN"),
-        ("t.ccc", good.clone(), "x,y\n1,1\n", "header"),
-        ("t.ccc", good.clone(), "u,v,newline\n1,1,2\n", "newline"),
-        ("t.ccc", good.clone(), "u,v\n1\n", "fields"),
-    ];
-    for (name, bytes, req, needle) in cases {
-        let tp = d.join(format!("bad-{name}"));
-        std::fs::write(&tp, &bytes).unwrap();
-        std::fs::write(&r, req).unwrap();
-        a = [
-            "texread",
-            "--texture",
-            &s(&tp),
-            "--requests",
-            &s(&r),
-            "--out",
-            &s(&bad_out),
-        ]
-        .iter()
-        .map(|x| x.to_string())
-        .collect();
-        let o = texrtl(&a.iter().map(String::as_str).collect::<Vec<_>>());
-        let err = String::from_utf8_lossy(&o.stderr);
-        assert_eq!(o.status.code(), Some(2), "{name}: {err}");
-        assert!(
-            err.contains(needle) && err.trim_end().lines().count() == 1,
-            "{needle}: {err}"
-        );
-        assert!(!bad_out.exists(), "{name}");
-    }
-    // A texture beyond the DRAM: 2048 x 2048 needs 512K words; the 1M x 16 part holds it.
-    let big = d.join("big.ccc");
-    std::fs::write(&big, flat(2048, 2048).to_bytes()).unwrap();
-    std::fs::write(&r, "u,v\n2047.5,1\n").unwrap();
-    let args = |extra: &[&str]| {
-        let mut a: Vec<String> = ["texread", "--texture", &s(&big), "--requests", &s(&r)]
-            .iter()
-            .map(|x| x.to_string())
-            .collect();
-        a.extend(["--out".to_string(), s(&bad_out)]);
-        a.extend(extra.iter().map(|x| x.to_string()));
-        a
-    };
-    let o = texrtl(&args(&[]).iter().map(String::as_str).collect::<Vec<_>>());
-    let err = String::from_utf8_lossy(&o.stderr);
-    assert_eq!(o.status.code(), Some(2), "{err}");
-    assert!(
-        err.contains("big.ccc") && err.contains("the DRAM has 262144"),
-        "{err}"
-    );
-    assert!(!bad_out.exists());
-    for bad in [
-        &["--frac-bits", "9"][..],
-        &["--interval", "0"],
-        &["--lookahead", "sideways"],
-        &["--dram", "2m"],
-    ] {
-        let o = texrtl(&args(bad).iter().map(String::as_str).collect::<Vec<_>>());
-        assert_eq!(o.status.code(), Some(2), "{bad:?}");
-        assert!(!bad_out.exists());
-    }
-    let o = texrtl(
-        &args(&["--dram", "1m"])
-            .iter()
-            .map(String::as_str)
-            .collect::<Vec<_>>(),
-    );
-    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
-    std::fs::remove_file(&bad_out).unwrap();
-
-    let o = texrtl(&["ccc", "decode", "--in", &s(&t), "--out", &s(&bad_out)]);
-    assert_eq!(o.status.code(), Some(2));
-    assert!(String::from_utf8_lossy(&o.stderr).contains("magic"));
-    let o = texrtl(&[
-        "texread",
-        "--texture",
-        &s(&c),
-        "--requests",
-        &s(&r),
-        "--out",
-        &s(&bad_out),
-        "--layout",
-        "zigzag",
-    ]);
-    assert_eq!(o.status.code(), Some(2));
-    assert!(!bad_out.exists());
-}
-
 #[test]
 fn ccc_is_lossless_on_two_colour_blocks_from_few_colours() {
     // Every block holds at most two colours out of a palette of at most 256: the split
@@ -625,13 +361,13 @@ fn ccc_is_lossless_on_two_colour_blocks_from_few_colours() {
                     px[k..k + 3].copy_from_slice(&c);
                 }
             }
-            let img = tb::pgm::Ppm {
+            let img = formats::netpbm::Ppm {
                 width: w,
                 height: h,
                 maxval: 255,
                 pixels: px,
             };
-            let c = tb::ccc::encode(&img).map_err(TestCaseError::fail)?;
+            let c = formats::ccc::encode(&img).map_err(TestCaseError::fail)?;
             prop_assert_eq!(&c.decode(), &img.pixels);
             prop_assert_eq!(&Ccc::parse(&c.to_bytes()).map_err(TestCaseError::fail)?, &c);
             Ok(())

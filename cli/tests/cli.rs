@@ -245,7 +245,7 @@ fn normals_bad_input_is_one_line_exit_2_and_no_output() {
             good_h.clone(),
             write(&d, "bad.csv", b"u,v\n1;2\n"),
             vec![],
-            "has 1 fields",
+            "1 fields, the header has 2",
         ),
         (
             good_h.clone(),

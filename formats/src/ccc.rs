@@ -1,6 +1,6 @@
 //! Colour cell compression (CCC, Schilling & Knittel, section 3, Figures 4-5): the offline
-//! encoder, the `.ccc` file format, and an integer reference decoder with bilinear filtering
-//! (written independently of `hdl`, for the testbenches).
+//! encoder, the `.ccc` file format, and the reference decode of a texel (written independently
+//! of `hdl`'s decode unit, for the testbenches).
 //!
 //! # Encoder
 //! Per 4x4 block, on the 16 colours `x_j` (RGB, reals):
@@ -34,7 +34,7 @@
 //!
 //! The file must be exactly `784 + 4 (width/4) (height/4)` bytes.
 
-use crate::pgm::Ppm;
+use crate::netpbm::Ppm;
 use hdl::ccc_decode::CccBlock;
 use hdl::texture_layout::BlockMap;
 use std::path::Path;
@@ -178,38 +178,6 @@ impl Ccc {
         let b = std::fs::read(path).map_err(|e| format!("{}: {e}", path.display()))?;
         Ccc::parse(&b).map_err(|e| format!("{}: {e}", path.display()))
     }
-}
-
-/// Integer reference of unit 622 on the reference decode: clamp-to-edge footprint of raw
-/// `uQ12.F` position `(u, v)`, the four-weight sum per channel, round half up. (The hardware
-/// does two lerps; the sum is the same exact integer.)
-pub fn reference_filter(t: &Ccc, u: u32, v: u32, frac_bits: u32) -> u32 {
-    let f = frac_bits;
-    let one = 1u64 << f;
-    let (x0, y0) = (u >> f, v >> f);
-    let (fu, fv) = (u64::from(u) & (one - 1), u64::from(v) & (one - 1));
-    let x1 = (x0 + 1).min(t.width - 1);
-    let y1 = (y0 + 1).min(t.height - 1);
-    let tex = [
-        t.texel(x0, y0),
-        t.texel(x1, y0),
-        t.texel(x0, y1),
-        t.texel(x1, y1),
-    ];
-    let w = [
-        (one - fu) * (one - fv),
-        fu * (one - fv),
-        (one - fu) * fv,
-        fu * fv,
-    ];
-    let mut out = 0;
-    for shift in [16, 8, 0] {
-        let s: u64 = (0..4)
-            .map(|k| w[k] * u64::from(tex[k] >> shift & 0xff))
-            .sum();
-        out |= (((s + (1 << (2 * f - 1))) >> (2 * f)) as u32) << shift;
-    }
-    out
 }
 
 type Rgb = [f64; 3];
@@ -539,15 +507,6 @@ mod tests {
         ] {
             let e = Ccc::parse(b).unwrap_err();
             assert!(e.contains(what), "{e}");
-        }
-    }
-
-    #[test]
-    fn reference_filter_hits_texels_at_integers() {
-        let p = img(8, 8, |x, y| [(x * 30) as u8, (y * 30) as u8, 7]);
-        let c = encode(&p).unwrap();
-        for (x, y) in [(0, 0), (3, 5), (7, 7)] {
-            assert_eq!(reference_filter(&c, x << 4, y << 4, 4), c.texel(x, y));
         }
     }
 }

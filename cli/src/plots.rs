@@ -62,7 +62,7 @@ pub fn histogram_png(title: &str, hist: &BTreeMap<i64, u64>) -> Result<Vec<u8>, 
         root.present().map_err(|e| e.to_string())?;
     }
     let img = image::RgbImage::from_raw(w, h, buf).ok_or("plot buffer")?;
-    crate::commands::encode_png(&img)
+    formats::png::encode(&img)
 }
 
 /// A grouped bar chart as PNG: one group per label on the x axis, one bar per series in each
@@ -144,5 +144,90 @@ pub fn grouped_bars_png(
         root.present().map_err(|e| e.to_string())?;
     }
     let img = image::RgbImage::from_raw(w, h, buf).ok_or("plot buffer")?;
-    crate::commands::encode_png(&img)
+    formats::png::encode(&img)
+}
+
+/// The memory-path pictures of the report (hit rate, pixels per second with and without
+/// lookahead, page faults per scanline by layout), from the testbench's rows. Returns
+/// `(file, caption)`.
+pub fn memory_plots(
+    out: &std::path::Path,
+    rows: &[tb::texture::TableRow],
+) -> Result<Vec<(String, String)>, String> {
+    let traces: Vec<String> = tb::texture::TraceKind::ALL
+        .iter()
+        .map(|k| k.name().to_string())
+        .collect();
+    let pick = |layout: &str,
+                cache: bool,
+                look: &str,
+                interval: u32,
+                f: &dyn Fn(&tb::texture::TexReadStats) -> f64| {
+        traces
+            .iter()
+            .map(|t| {
+                rows.iter()
+                    .find(|r| {
+                        r.trace == *t
+                            && r.stats.layout == layout
+                            && r.stats.cache == cache
+                            && r.stats.lookahead == look
+                            && r.stats.interval == interval
+                    })
+                    .map_or(0.0, |r| f(&r.stats))
+            })
+            .collect::<Vec<f64>>()
+    };
+    let hit = |s: &tb::texture::TexReadStats| 100.0 * s.hit_rate;
+    let mpx = |s: &tb::texture::TexReadStats| s.pixels_per_second / 1e6;
+    let pf = |s: &tb::texture::TexReadStats| s.page_faults_per_scanline;
+    let plots = [
+        (
+            "texture_hit_rate.png",
+            "Cache 614: block hit rate (row-major, 256x256 texture)",
+            "hit rate (%)",
+            vec![
+                ("quadrant, 1 req/cycle".to_string(), pick("row-major", true, "quadrant", 1, &hit)),
+                ("direction, 1 req/cycle".to_string(), pick("row-major", true, "direction", 1, &hit)),
+                ("no lookahead, 1 req/cycle".to_string(), pick("row-major", true, "off", 1, &hit)),
+                ("quadrant, 1 req/4 cycles".to_string(), pick("row-major", true, "quadrant", 4, &hit)),
+                ("direction, 1 req/4 cycles".to_string(), pick("row-major", true, "direction", 4, &hit)),
+                ("no lookahead, 1 req/4 cycles".to_string(), pick("row-major", true, "off", 4, &hit)),
+            ],
+            "block hit rate of cache 614 per trace, quadrant lookahead, direction lookahead and none, rasterizer offering a request every cycle or every 4 cycles",
+        ),
+        (
+            "texture_pixels_per_second.png",
+            "Texture unit 602: pixels per second (5 ns cycle, row-major)",
+            "M pixels/s",
+            vec![
+                ("cache + quadrant lookahead".to_string(), pick("row-major", true, "quadrant", 1, &mpx)),
+                ("cache + direction lookahead".to_string(), pick("row-major", true, "direction", 1, &mpx)),
+                ("cache".to_string(), pick("row-major", true, "off", 1, &mpx)),
+                ("no cache".to_string(), pick("row-major", false, "off", 1, &mpx)),
+            ],
+            "textured pixels per second per trace with quadrant or direction lookahead, without it, and without the cache (rasterizer offering one request per cycle)",
+        ),
+        (
+            "texture_page_faults.png",
+            "DRAM 604: page faults per scanline (512-word pages)",
+            "page faults / scanline",
+            vec![
+                ("row-major, cache".to_string(), pick("row-major", true, "off", 1, &pf)),
+                ("tiled, cache".to_string(), pick("tiled", true, "off", 1, &pf)),
+                ("row-major, no cache".to_string(), pick("row-major", false, "off", 1, &pf)),
+                ("tiled, no cache".to_string(), pick("tiled", false, "off", 1, &pf)),
+            ],
+            "DRAM page faults per scanline per trace, row-major against tiled layout, 512-word pages",
+        ),
+    ];
+    let mut v = Vec::new();
+    for (file, title, ydesc, series, caption) in plots {
+        let png = grouped_bars_png(title, ydesc, &traces, &series)?;
+        let path = out.join(file);
+        formats::output::write_atomic(&path, &png)
+            .map_err(|e| format!("{}: {e}", path.display()))?;
+        v.push((file.to_string(), caption.to_string()));
+    }
+    Ok(v)
 }

@@ -1,64 +1,13 @@
-//! `texrtl ccc encode|decode` and `texrtl texread`: the texture memory path from the command
-//! line. Bad input is a [`CmdError::Input`] naming the file; nothing is written then.
+//! `texrtl texread`: texture requests through the cycle-accurate memory path of Figure 6.
 
-use crate::ccc::{self, Ccc};
-use crate::commands::CmdError;
-use crate::report::write_atomic;
-use crate::texture::{run_texread, TexRequest};
+use super::{input, write_out, CmdError};
+use formats::ccc::{self, Ccc};
 use hdl::texture_cache::Lookahead;
 use hdl::texture_layout::Layout;
 use hdl::texture_unit::TexParams;
 use std::fmt::Write;
 use std::path::{Path, PathBuf};
-
-fn input(e: String) -> CmdError {
-    CmdError::Input(e)
-}
-
-/// An output path must not be a directory and its directory must exist.
-fn check_out(path: &Path) -> Result<(), CmdError> {
-    if path.is_dir() {
-        return Err(input(format!("{}: is a directory", path.display())));
-    }
-    match path.parent() {
-        Some(d) if !d.as_os_str().is_empty() && !d.is_dir() => Err(input(format!(
-            "{}: directory {} does not exist",
-            path.display(),
-            d.display()
-        ))),
-        _ => Ok(()),
-    }
-}
-
-fn write_out(path: &Path, bytes: &[u8]) -> Result<(), CmdError> {
-    check_out(path)?;
-    write_atomic(path, bytes).map_err(|e| input(format!("{}: {e}", path.display())))
-}
-
-/// `texrtl ccc encode`: PPM to `.ccc`; reports the PSNR of the decoded texture.
-pub fn ccc_encode(inp: &Path, out: &Path) -> Result<String, CmdError> {
-    check_out(out)?;
-    let img = crate::pgm::read_ppm(inp).map_err(input)?;
-    let c = ccc::encode(&img).map_err(|e| input(format!("{}: {e}", inp.display())))?;
-    write_out(out, &c.to_bytes())?;
-    let (db, worst) = ccc::psnr(&img.pixels, &c.decode());
-    Ok(format!(
-        "{}: {}x{} texels, {} blocks, {} bytes; decoded PSNR {db:.2} dB, worst texel error {worst} levels",
-        out.display(),
-        c.width,
-        c.height,
-        c.blocks.len(),
-        c.to_bytes().len()
-    ))
-}
-
-/// `texrtl ccc decode`: `.ccc` to a binary PPM (the reference decoder).
-pub fn ccc_decode(inp: &Path, out: &Path) -> Result<String, CmdError> {
-    check_out(out)?;
-    let c = Ccc::read(inp).map_err(input)?;
-    write_out(out, &crate::pgm::encode_ppm(c.width, c.height, &c.decode()))?;
-    Ok(format!("{}: {}x{}", out.display(), c.width, c.height))
-}
+use tb::texture::{run_texread, TexRequest};
 
 /// A texture from a `.ccc` file (by its magic) or a PPM (encoded on the fly).
 pub fn read_texture(path: &Path) -> Result<Ccc, String> {
@@ -66,7 +15,7 @@ pub fn read_texture(path: &Path) -> Result<Ccc, String> {
     if b.starts_with(ccc::MAGIC) {
         Ccc::parse(&b).map_err(|e| format!("{}: {e}", path.display()))
     } else if b.starts_with(b"P6") || b.starts_with(b"P3") {
-        let img = crate::pgm::parse_ppm(&b).map_err(|e| format!("{}: {e}", path.display()))?;
+        let img = formats::netpbm::parse_ppm(&b).map_err(|e| format!("{}: {e}", path.display()))?;
         ccc::encode(&img).map_err(|e| format!("{}: {e}", path.display()))
     } else {
         Err(format!(
@@ -77,56 +26,42 @@ pub fn read_texture(path: &Path) -> Result<Ccc, String> {
 }
 
 /// Reads requests: header `u,v` or `u,v,newline`; `u`, `v` decimal texel coordinates, rounded
-/// to the nearest multiple of `2^-frac_bits` (ties to even), inside `width x height`;
-/// `newline` 0 or 1.
+/// to the nearest multiple of `2^-frac_bits` (ties to even), inside `width x height` after
+/// rounding; `newline` 0 or 1.
 pub fn read_requests(path: &Path, p: &TexParams) -> Result<Vec<TexRequest>, String> {
-    let text = std::fs::read_to_string(path).map_err(|e| format!("{}: {e}", path.display()))?;
-    let mut lines = text.lines().enumerate();
-    let cols = match lines.next().map(|(_, h)| h.trim().replace(' ', "")) {
-        Some(h) if h == "u,v" => 2,
-        Some(h) if h == "u,v,newline" => 3,
-        _ => {
-            return Err(format!(
-                "{}:1: header is not 'u,v' or 'u,v,newline'",
-                path.display()
-            ))
-        }
-    };
+    let t = formats::csv::read(path, &["u,v", "u,v,newline"])?;
     let one = f64::from(1u32 << p.frac_bits);
-    let mut v = Vec::new();
-    for (i, l) in lines {
-        let l = l.trim();
-        if l.is_empty() {
-            continue;
+    let coord = |r: &formats::csv::Row, k: usize, size: u32| -> Result<u32, String> {
+        let x = t.finite(r, k)?;
+        let raw = (x * one).round_ties_even();
+        if raw < 0.0 || raw >= f64::from(size) * one {
+            let name = &t.columns[k];
+            return Err(t.error(
+                r,
+                format!(
+                    "{name} {} (rounded to {}) outside the texture (0 <= {name} < {size})",
+                    formats::shorten(&r.fields[k]),
+                    raw / one
+                ),
+            ));
         }
-        let at = |what: String| format!("{}:{}: {what}", path.display(), i + 1);
-        let f: Vec<&str> = l.split(',').map(str::trim).collect();
-        if f.len() != cols {
-            return Err(at(format!("{} fields, the header has {cols}", f.len())));
-        }
-        let coord = |k: usize, size: u32, name: &str| -> Result<u32, String> {
-            let x: f64 = f[k]
-                .parse()
-                .map_err(|_| at(format!("{name} '{}' is not a number", f[k])))?;
-            if !x.is_finite() {
-                return Err(at(format!("{name} is {x}")));
+        Ok(raw as u32)
+    };
+    let mut v = Vec::with_capacity(t.rows.len());
+    for r in &t.rows {
+        let newline = match r.fields.get(2).map(String::as_str) {
+            None | Some("0") => false,
+            Some("1") => true,
+            Some(x) => {
+                let x = formats::shorten(x);
+                return Err(t.error(r, format!("newline '{x}' is not 0 or 1")));
             }
-            let raw = (x * one).round_ties_even();
-            if raw < 0.0 || raw >= f64::from(size) * one {
-                return Err(at(format!(
-                    "{name} {x} outside the texture (0 <= {name} < {size})"
-                )));
-            }
-            Ok(raw as u32)
         };
-        let u = coord(0, p.width, "u")?;
-        let vv = coord(1, p.height, "v")?;
-        let newline = match f.get(2) {
-            None | Some(&"0") => false,
-            Some(&"1") => true,
-            Some(x) => return Err(at(format!("newline '{x}' is not 0 or 1"))),
-        };
-        v.push(TexRequest { u, v: vv, newline });
+        v.push(TexRequest {
+            u: coord(r, 0, p.width)?,
+            v: coord(r, 1, p.height)?,
+            newline,
+        });
     }
     Ok(v)
 }
@@ -175,7 +110,10 @@ pub struct TexreadArgs {
 }
 
 /// `texrtl texread`: requests through the cycle-accurate unit; CSV of results, JSON stats.
-pub fn texread(a: &TexreadArgs) -> Result<String, CmdError> {
+pub fn run(a: &TexreadArgs) -> Result<String, CmdError> {
+    if !(1..=8).contains(&a.frac_bits) {
+        return Err(input(format!("--frac-bits {}: 1..=8", a.frac_bits)));
+    }
     let layout = Layout::parse(&a.layout)
         .ok_or_else(|| input(format!("--layout {}: row-major or tiled", a.layout)))?;
     let tex = read_texture(&a.texture).map_err(input)?;

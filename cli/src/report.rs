@@ -1,9 +1,10 @@
 //! Results of testbenches, the summary table and `summary.json`.
 
-use serde::{Deserialize, Serialize};
+use formats::output::write_atomic;
 use std::fmt::Write;
-use std::path::{Path, PathBuf};
-pub use verif::TbResult;
+use std::path::Path;
+use tb::regress::{RegressConfig, Summary};
+use verif::{Seed, TbResult};
 
 /// The summary table printed by `texrtl regress`.
 pub fn table(results: &[TbResult]) -> String {
@@ -39,26 +40,6 @@ pub fn table(results: &[TbResult]) -> String {
         }
     }
     s
-}
-
-/// `summary.json`: every result, the seed, the shard and the tool version.
-#[derive(Serialize, Deserialize)]
-pub struct Summary {
-    pub texrtl: String,
-    pub seed: String,
-    /// `I/N` when the run was one shard of N.
-    pub shard: Option<String>,
-    pub passed: bool,
-    pub testbenches: Vec<TbResult>,
-}
-
-/// Writes `contents` to `path` through a temporary file, so no partial file is ever left.
-pub fn write_atomic(path: &Path, contents: &[u8]) -> std::io::Result<()> {
-    let mut tmp = path.as_os_str().to_owned();
-    tmp.push(".partial");
-    let tmp = PathBuf::from(tmp);
-    std::fs::write(&tmp, contents)?;
-    std::fs::rename(&tmp, path)
 }
 
 /// `report.md`: the summary, each testbench's figures, error histogram and coverage, and
@@ -156,4 +137,107 @@ pub fn markdown(s: &Summary, pictures: &[(&str, &str)]) -> String {
         m.push('\n');
     }
     m
+}
+
+/// The pictures and `report.md` of a regression's summary.
+pub fn write_report(out: &Path, summary: &Summary) -> Result<(), String> {
+    let write = |f: &str, b: &[u8]| {
+        write_atomic(&out.join(f), b).map_err(|e| format!("{}: {e}", out.join(f).display()))
+    };
+    let results = &summary.testbenches;
+    let mut pictures = Vec::new();
+    if results.iter().any(|r| r.name == "normals") {
+        pictures.push(normals_picture(out)?);
+    }
+    if results.iter().any(|r| r.name == "mipmap") {
+        pictures.push(mipmap_picture(out)?);
+    }
+    if let Some(t) = results.iter().find(|r| r.name == "texture") {
+        let rows = t.records_of::<tb::texture::TableRow>();
+        if !rows.is_empty() {
+            pictures.extend(crate::plots::memory_plots(out, &rows)?);
+        }
+    }
+    for r in results.iter().filter(|r| r.stats.count > 0) {
+        let f = format!("{}_error_histogram.png", r.name);
+        let title = format!("{}: error against golden", r.name);
+        write(
+            &f,
+            &crate::plots::histogram_png(&title, &r.stats.histogram)?,
+        )?;
+        pictures.push((
+            f,
+            format!(
+                "{}: histogram of the error against the golden model, in output LSBs (log scale)",
+                r.name
+            ),
+        ));
+    }
+    let refs: Vec<(&str, &str)> = pictures
+        .iter()
+        .map(|(a, b)| (a.as_str(), b.as_str()))
+        .collect();
+    write("report.md", markdown(summary, &refs).as_bytes())
+}
+
+/// The bump-map comparison of the report (FIG. 8a against 8b). Returns `(file, caption)`.
+fn normals_picture(out: &std::path::Path) -> Result<(String, String), String> {
+    use hdl::bump_params::BumpParams;
+    let p = BumpParams::default();
+    let map = tb::maps::builtin("bumps", 48, 48, p.texel_fmt())?;
+    let (png, worst) = crate::cmd::render::render_png(&map, &p, [1.0, 1.0, 2.0], 0.5, 4)?;
+    let f = "normals_render.png";
+    write_atomic(&out.join(f), &png).map_err(|e| format!("{}: {e}", out.join(f).display()))?;
+    Ok((
+        f.to_string(),
+        format!(
+            "Dot3 lighting of the built-in bumps map, scale 0.5: Blinn | B-spline (bit-exact) | golden | log heat map of the B-spline's intensity error (worst {worst:.2e})"
+        ),
+    ))
+}
+
+/// The mipmap levels of a synthetic video frame, for the report. Returns `(file, caption)`.
+fn mipmap_picture(out: &std::path::Path) -> Result<(String, String), String> {
+    let mp = hdl::mipmap::MipmapParams {
+        width: 64,
+        height: 32,
+        scan: hdl::mipmap::Scan::InterlacedTop,
+        rounding: hdl::mipmap::Rounding::Round,
+    };
+    let frame = tb::mipmap::synthetic_video(64, 32, 1, Seed(3));
+    let o = tb::mipmap::run_mipmap(mp, &frame, None)?;
+    let dims = mp.levels();
+    let mut img = image::RgbImage::new(dims.len() as u32 * 68, 32);
+    for (k, level) in o.frames[0].iter().enumerate() {
+        let (lw, _) = dims[k];
+        let s = 1u32 << k;
+        for y in 0..32u32 {
+            for x in 0..64u32 {
+                let t = level[((y / s.min(32)) * lw + (x / s).min(lw - 1)) as usize];
+                img.put_pixel(k as u32 * 68 + x, y, image::Rgb([t, t, t]));
+            }
+        }
+    }
+    let f = "mipmap_levels.png";
+    write_atomic(&out.join(f), &formats::png::encode(&img)?)
+        .map_err(|e| format!("{}: {e}", out.join(f).display()))?;
+    Ok((
+        f.to_string(),
+        "Mipmap levels 0-6 of a 64x32 interlaced synthetic frame from the cycle-accurate generator, each scaled to the size of level 0".to_string(),
+    ))
+}
+
+/// The table and a closing line, as `texrtl regress` prints them.
+pub fn render(results: &[TbResult], cfg: &RegressConfig) -> String {
+    let mut s = table(results);
+    let failed = results.iter().filter(|r| !r.passed).count();
+    s.push_str(&format!(
+        "{} testbenches: {} passed, {} failed (seed {}; outputs in {})\n",
+        results.len(),
+        results.len() - failed,
+        failed,
+        cfg.seed,
+        cfg.out.display()
+    ));
+    s
 }

@@ -1,0 +1,184 @@
+//! `texrtl regress` (the default command): every registered testbench on built-in stimulus,
+//! the table, `summary.json`, the pictures and `report.md`.
+
+use clap::Args;
+use std::path::PathBuf;
+use std::process::ExitCode;
+use tb::regress::{regress, RegressConfig};
+use verif::{Seed, Shard};
+use waves::TraceConfig;
+
+/// Run every testbench on built-in stimulus (the default command).
+#[derive(Args, Clone, Debug)]
+pub struct RegressArgs {
+    /// Directory for VCDs, .gtkw files and summary.json.
+    #[arg(long, default_value = "target/texrtl")]
+    out: PathBuf,
+    /// Stimulus seed (hex 0x... or decimal); the run prints it, and the same seed replays it.
+    #[arg(long, value_parser = Seed::parse, default_value = "0x7e47")]
+    seed: Seed,
+    /// Write no waveforms.
+    #[arg(long)]
+    no_vcd: bool,
+    /// Trace scopes down to this depth (0 = clock, reset and golden probes only; 1 = each
+    /// testbench's top unit; ...).
+    #[arg(long)]
+    trace_depth: Option<usize>,
+    /// Trace only signals whose hierarchical name (e.g. tb.ba.u0) matches this glob; repeatable.
+    #[arg(long = "trace-filter")]
+    trace_filter: Vec<String>,
+    /// Trace only cycles START..END.
+    #[arg(long, value_parser = parse_window)]
+    trace_window: Option<(u64, u64)>,
+    /// Clock period in picoseconds shown in every waveform (even, >= 2; default: each
+    /// testbench's own clock, 10 ns for the FIG. 7 and FIG. 14 units, 5 ns for the memory path).
+    #[arg(long)]
+    period_ps: Option<u64>,
+    /// Rewrite the bit-accuracy vectors under golden/vectors/ after a deliberate change, and
+    /// print what changed.
+    #[arg(long)]
+    bless: bool,
+    /// Run only shard I of N (configurations dealt round-robin; merge the summaries with
+    /// `texrtl merge`).
+    #[arg(long, value_parser = Shard::parse, default_value = "1/1")]
+    shard: Shard,
+    /// Random transactions per configuration (default: each testbench's own).
+    #[arg(long)]
+    count: Option<usize>,
+    /// Also write every waveform as FST (compact; open with `gtkwave X.fst X.gtkw`).
+    #[arg(long)]
+    fst: bool,
+    /// Run only this testbench (repeatable; `vectors` is the bit-accuracy check).
+    #[arg(long)]
+    only: Vec<String>,
+    /// List the testbenches with their configurations and what --count counts, and exit.
+    #[arg(long)]
+    list: bool,
+    /// Run the kernel's schedule check (every cycle evaluated twice) in every testbench.
+    #[arg(long)]
+    check_schedule: bool,
+}
+
+fn parse_window(s: &str) -> Result<(u64, u64), String> {
+    let bad = || format!("'{s}' is not a window START..END of cycles");
+    let (a, b) = s.split_once("..").ok_or_else(bad)?;
+    let (a, b): (u64, u64) = (a.parse().map_err(|_| bad())?, b.parse().map_err(|_| bad())?);
+    if a >= b {
+        return Err(format!("window {a}..{b} is empty"));
+    }
+    Ok((a, b))
+}
+
+/// Runs the regression; exit 0 all passed, 1 a testbench failed, 2 bad input.
+pub fn run(a: RegressArgs) -> ExitCode {
+    if a.list {
+        crate::say(&list_testbenches());
+        return ExitCode::SUCCESS;
+    }
+    if a.out.exists() && !a.out.is_dir() {
+        return crate::fail(format!(
+            "--out {}: exists and is not a directory",
+            a.out.display()
+        ));
+    }
+    let bless = a.bless;
+    let cfg = RegressConfig {
+        out: a.out,
+        seed: a.seed,
+        vcd: !a.no_vcd,
+        trace: TraceConfig {
+            period_ps: a.period_ps.unwrap_or(10_000),
+            max_depth: a.trace_depth,
+            filters: a.trace_filter,
+            window: a.trace_window,
+            companions: true,
+        },
+        period_ps: a.period_ps,
+        shard: a.shard,
+        count: a.count,
+        fst: a.fst,
+        only: a.only,
+        check_schedule: a.check_schedule,
+    };
+    if let Err(e) = cfg.trace.validate() {
+        return crate::fail(format!("--period-ps/--trace-window: {e}"));
+    }
+    if let Err(e) = cfg.validate(&tb::regress::registry()) {
+        return crate::fail(e);
+    }
+    eprintln!(
+        "texrtl regress: seed {} (replay with --seed {})",
+        cfg.seed, cfg.seed
+    );
+    // A progress bar on stderr, one step per configuration (hidden when stderr is not a
+    // terminal).
+    let reg = tb::regress::registry();
+    let bar = indicatif::ProgressBar::new(reg.owned_configurations(cfg.shard, &cfg.only));
+    bar.set_style(
+        indicatif::ProgressStyle::with_template("{bar:30} {pos}/{len} {msg}")
+            .unwrap_or_else(|_| indicatif::ProgressStyle::default_bar()),
+    );
+    let done = regress(&cfg, &mut |tb, label| {
+        bar.set_message(format!("{tb}: {label}"));
+        if !tb.is_empty() {
+            bar.inc(1);
+        }
+    })
+    .and_then(|s| crate::report::write_report(&cfg.out, &s).map(|_| s));
+    bar.finish_and_clear();
+    match done {
+        Ok(summary) => {
+            let results = summary.testbenches;
+            crate::say(&crate::report::render(&results, &cfg));
+            if bless {
+                match tb::vectors::bless(&tb::vectors::vectors_dir()) {
+                    Ok(changed) if changed.is_empty() => crate::say("vectors: unchanged\n"),
+                    Ok(changed) => {
+                        for c in changed {
+                            crate::say(&format!("vectors blessed: {c}\n"));
+                        }
+                    }
+                    Err(e) => return crate::fail(e),
+                }
+            }
+            if results.iter().all(|r| r.passed) {
+                ExitCode::SUCCESS
+            } else {
+                ExitCode::from(1)
+            }
+        }
+        Err(e) => crate::fail(e),
+    }
+}
+
+/// `texrtl regress --list`.
+fn list_testbenches() -> String {
+    let mut s = String::new();
+    for tb in tb::regress::registry().iter() {
+        let c = tb.configurations();
+        s.push_str(&format!(
+            "{}: {}
+  --count: {} (default {})
+  {} configurations; traced: {}
+",
+            tb.name(),
+            tb.unit(),
+            tb.count_unit(),
+            tb.default_count(),
+            c.len(),
+            c.get(tb.traced()).map_or("none", String::as_str)
+        ));
+        for (i, l) in c.iter().enumerate() {
+            s.push_str(&format!(
+                "    {i:>3}  {l}
+"
+            ));
+        }
+    }
+    s.push_str(&format!(
+        "{}: the bit-accuracy vectors under golden/vectors/ (fixed stimuli)
+",
+        tb::regress::VECTORS
+    ));
+    s
+}

@@ -1,0 +1,171 @@
+//! `texrtl render`: Dot3-lit pictures of a height map (FIG. 8a against 8b).
+
+use super::normals::read_height;
+use super::widths::Widths;
+use super::{parse_finite, write_out, CmdError};
+use clap::Args;
+use hdl::bump_params::{BumpParams, Filter};
+use hdl::height_map::HeightMap;
+use std::path::PathBuf;
+use tb::normals::{run_normals, NormalsRun, RawNormal, Sample};
+use verif::Seed;
+use waves::TraceConfig;
+
+/// Dot3-lit pictures: Blinn | B-spline (bit-exact) | golden | error heat map.
+#[derive(Args, Debug)]
+pub struct RenderArgs {
+    /// Height map: 8-bit PGM.
+    #[arg(long)]
+    pub height: PathBuf,
+    /// Output PNG.
+    #[arg(long)]
+    pub out: PathBuf,
+    /// Light direction X,Y,Z (normalised).
+    #[arg(long, default_value = "1,1,2", value_parser = parse_light, allow_hyphen_values = true)]
+    pub light: [f64; 3],
+    /// Height scale factor.
+    #[arg(long, default_value_t = 1.0, value_parser = parse_finite)]
+    pub scale: f64,
+    /// Pixels per texel (a power of two up to 64).
+    #[arg(long, default_value_t = 4)]
+    pub zoom: u32,
+    #[command(flatten)]
+    pub widths: Widths,
+}
+
+/// Parses `X,Y,Z` (a non-zero, finite light direction).
+pub fn parse_light(s: &str) -> Result<[f64; 3], String> {
+    let v: Vec<f64> = s
+        .split(',')
+        .map(|x| x.trim().parse::<f64>())
+        .collect::<Result<_, _>>()
+        .map_err(|_| format!("light '{s}' is not X,Y,Z"))?;
+    if v.len() != 3 || v.iter().any(|x| !x.is_finite()) || v.iter().all(|x| *x == 0.0) {
+        return Err(format!(
+            "light '{s}' must be three finite numbers, not all zero"
+        ));
+    }
+    Ok([v[0], v[1], v[2]])
+}
+
+fn dot3(n: [f64; 3], l: [f64; 3]) -> f64 {
+    (n[0] * l[0] + n[1] * l[1] + n[2] * l[2]).max(0.0)
+}
+
+/// `texrtl render`: Dot3-lit pictures of the height map, side by side: Blinn (bit-exact) |
+/// B-spline (bit-exact) | golden B-spline | heat map of |B-spline - golden| in intensity
+/// (log scale, black = below 2^-24, white = 2^-8 or more). Returns a summary.
+pub fn run(a: &RenderArgs) -> Result<String, CmdError> {
+    if !a.zoom.is_power_of_two() || a.zoom > 64 {
+        return Err(CmdError::Input(format!(
+            "--zoom {}: a power of two up to 64",
+            a.zoom
+        )));
+    }
+    let p = a.widths.params()?;
+    let map = read_height(&a.height, &p)?;
+    let (w, h) = (map.width() * a.zoom, map.height() * a.zoom);
+    if u64::from(w) * u64::from(h) > 4 << 20 {
+        return Err(CmdError::Input(format!(
+            "{}: {w}x{h} pixels per panel is too large (4 Mpixel at most)",
+            a.height.display()
+        )));
+    }
+    if a.out.is_dir() {
+        return Err(CmdError::Input(format!(
+            "{}: is a directory",
+            a.out.display()
+        )));
+    }
+    let (png, worst) = render_png(&map, &p, a.light, a.scale, a.zoom).map_err(CmdError::Input)?;
+    write_out(&a.out, &png)?;
+    Ok(format!(
+        "{}: {w}x{h} per panel: Blinn | B-spline (bit-exact) | golden | heat map of |B-spline - golden| (log scale 2^-24..2^-8); worst intensity error {worst:.3e}",
+        a.out.display()
+    ))
+}
+
+/// The four-panel Dot3 picture as PNG bytes, and the worst intensity error of the B-spline
+/// panel against golden.
+pub fn render_png(
+    map: &HeightMap,
+    p: &BumpParams,
+    light: [f64; 3],
+    scale: f64,
+    zoom: u32,
+) -> Result<(Vec<u8>, f64), String> {
+    let (w, h) = (map.width() * zoom, map.height() * zoom);
+    let l = {
+        let n = (light[0] * light[0] + light[1] * light[1] + light[2] * light[2]).sqrt();
+        light.map(|x| x / n)
+    };
+    let z = f64::from(zoom);
+    let samples: Vec<Sample> = (0..h)
+        .flat_map(|y| (0..w).map(move |x| (x, y)))
+        .map(|(x, y)| Sample {
+            u: (f64::from(x) + 0.5) / z,
+            v: (f64::from(y) + 0.5) / z,
+            scale,
+            lod: 0.0,
+        })
+        .collect();
+    let run = |filter: Filter| {
+        run_normals(&NormalsRun {
+            name: format!("render {filter}"),
+            params: BumpParams { filter, ..*p },
+            map: map.clone(),
+            samples: samples.clone(),
+            idle_per_mille: 0,
+            vcd: None,
+            trace: TraceConfig::default(),
+            check_accuracy: false,
+            check_schedule: false,
+            seed: Seed(0),
+        })
+    };
+    let blinn = run(Filter::Blinn)?;
+    let bspline = run(Filter::BSpline)?;
+    let nf = p.normal_fmt();
+    let intensity = |n: &RawNormal| dot3(n.n.map(|x| tb::normals::real(x, nf)), l);
+    let mut img = image::RgbImage::new(4 * w + 3 * 4, h);
+    let mut worst = 0.0f64;
+    for k in 0..samples.len() {
+        let (x, y) = (k as u32 % w, k as u32 / w);
+        let ib = intensity(&blinn.outputs[k]);
+        let is = intensity(&bspline.outputs[k]);
+        let ig = dot3(bspline.golden[k], l);
+        let grey = |i: f64| {
+            let g = (i * 255.0).round().clamp(0.0, 255.0) as u8;
+            image::Rgb([g, g, g])
+        };
+        img.put_pixel(x, y, grey(ib));
+        img.put_pixel(w + 4 + x, y, grey(is));
+        img.put_pixel(2 * (w + 4) + x, y, grey(ig));
+        let e = (is - ig).abs();
+        worst = worst.max(e);
+        img.put_pixel(3 * (w + 4) + x, y, heat(e));
+    }
+    Ok((formats::png::encode(&img)?, worst))
+}
+
+/// Log-scale heat colour: black below 2^-24, through blue, red and yellow to white at 2^-8.
+fn heat(e: f64) -> image::Rgb<u8> {
+    let t = if e <= 0.0 {
+        0.0
+    } else {
+        ((e.log2() + 24.0) / 16.0).clamp(0.0, 1.0)
+    };
+    let stops = [
+        [0.0, 0.0, 0.0],
+        [0.0, 0.0, 1.0],
+        [1.0, 0.0, 0.0],
+        [1.0, 1.0, 0.0],
+        [1.0, 1.0, 1.0],
+    ];
+    let x = t * 4.0;
+    let i = (x.floor() as usize).min(3);
+    let f = x - i as f64;
+    let c =
+        [0, 1, 2].map(|k| ((stops[i][k] * (1.0 - f) + stops[i + 1][k] * f) * 255.0).round() as u8);
+    image::Rgb(c)
+}

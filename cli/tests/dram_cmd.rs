@@ -1,0 +1,70 @@
+//! The `texrtl` commands of the dram path, run as a user runs them.
+
+#[test]
+fn dram_command() {
+    let d = std::env::temp_dir().join(format!("texrtl-dram-{}", std::process::id()));
+    std::fs::create_dir_all(&d).unwrap();
+    let t = d.join("t.csv");
+    std::fs::write(&t, "addr\n0\n1\n2\n600\n601\n3\n").unwrap();
+    let vcd = d.join("d.vcd");
+    let exe = env!("CARGO_BIN_EXE_texrtl");
+    let o = std::process::Command::new(exe)
+        .args([
+            "dram",
+            "--trace",
+            t.to_str().unwrap(),
+            "--vcd",
+            vcd.to_str().unwrap(),
+        ])
+        .output()
+        .unwrap();
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    let j: serde_json::Value = serde_json::from_slice(&o.stdout).unwrap();
+    assert_eq!(j["reads"], 6);
+    assert_eq!(j["page_faults"], 3);
+    assert_eq!(j["page_hits"], 3);
+    assert_eq!(j["ns"], 6 * 30 + 3 * 30);
+    let rb = waves::check::read_vcd(&vcd).unwrap();
+    for v in [
+        "tb.mem.dram.ras_n",
+        "tb.mem.dram.cas_n",
+        "tb.mem.dram.page_row",
+        "tb.mem.state",
+    ] {
+        assert!(rb.vars.contains_key(v), "{v}");
+    }
+    waves::check::check_gtkw(&vcd, &rb).unwrap();
+    let o = std::process::Command::new(exe)
+        .args(["dram", "--trace", t.to_str().unwrap(), "--t-fault-ns", "60"])
+        .output()
+        .unwrap();
+    let j: serde_json::Value = serde_json::from_slice(&o.stdout).unwrap();
+    assert_eq!(j["ns"], 6 * 30 + 3 * 60);
+    // Bad input: one line, exit 2, no output file.
+    for (body, args, needle) in [
+        ("addr\n999999999\n", vec![], "beyond"),
+        ("address\n1\n", vec![], "header"),
+        ("addr\n1x\n", vec![], "not a word address"),
+        ("addr\n1\n", vec!["--t-fault-ns", "7"], "multiple"),
+        ("addr\n1\n", vec!["--page-words", "3"], "page-words"),
+    ] {
+        std::fs::write(&t, body).unwrap();
+        let out = d.join("bad.vcd");
+        let mut a = vec![
+            "dram",
+            "--trace",
+            t.to_str().unwrap(),
+            "--vcd",
+            out.to_str().unwrap(),
+        ];
+        a.extend(args);
+        let o = std::process::Command::new(exe).args(&a).output().unwrap();
+        let err = String::from_utf8_lossy(&o.stderr);
+        assert_eq!(o.status.code(), Some(2), "{needle}: {err}");
+        assert!(
+            err.contains(needle) && err.trim_end().lines().count() == 1,
+            "{needle}: {err}"
+        );
+        assert!(!out.exists());
+    }
+}

@@ -1,0 +1,25 @@
+//! texrtl's file formats, apart from the testbenches and the command line that use them:
+//!
+//! * [`netpbm`]: 8-bit PGM (P5, P2) and PPM (P6, P3) images, read strictly;
+//! * [`csv`]: the request and trace tables the commands read (a header naming the columns,
+//!   one row per line), with errors that name the file, the line and the column;
+//! * [`ccc`]: the `.ccc` colour-cell-compressed texture format and its offline encoder;
+//! * [`png`]: PNG encoding of pictures;
+//! * [`output`]: writing a file so that no partial file is ever left behind.
+
+pub mod ccc;
+pub mod csv;
+pub mod netpbm;
+pub mod output;
+pub mod png;
+
+/// A value shown in a message, cut to at most 40 characters.
+pub fn shorten(s: &str) -> String {
+    const MAX: usize = 40;
+    if s.chars().count() <= MAX {
+        s.to_string()
+    } else {
+        let head: String = s.chars().take(MAX - 3).collect();
+        format!("{head}...")
+    }
+}
