@@ -182,7 +182,7 @@ pub fn write_report(out: &Path, summary: &Summary) -> Result<(), String> {
 
 /// The bump-map comparison of the report (FIG. 8a against 8b). Returns `(file, caption)`.
 fn normals_picture(out: &std::path::Path) -> Result<(String, String), String> {
-    use hdl::bump_params::BumpParams;
+    use hdl::bump::params::BumpParams;
     let p = BumpParams::default();
     let map = tb::maps::builtin("bumps", 48, 48, p.texel_fmt())?;
     let (png, worst) = crate::cmd::render::render_png(&map, &p, [1.0, 1.0, 2.0], 0.5, 4)?;

@@ -41,16 +41,20 @@ fn regress_writes_valid_waveforms_and_summary() {
     assert!(String::from_utf8_lossy(&o.stderr).contains("seed 0x0000000000001234"));
     let vcd = out.join("blend_adjust.vcd");
     let rb = read_vcd(&vcd).unwrap();
-    assert_eq!(rb.vars["tb.ba.u_in"].width, Some(8));
-    assert_eq!(rb.vars["tb.ba.u0"].width, Some(9));
+    assert_eq!(rb.vars["tb.blend_adjust_153.u_in"].width, Some(8));
+    assert_eq!(rb.vars["tb.blend_adjust_153.u0"].width, Some(9));
     assert!(rb.vars.contains_key("tb.golden.u0_golden"));
     assert!(rb.vars.contains_key("tb.golden.mismatch"));
     // The golden value equals the DUT's companion real wherever the output is valid.
-    let valid = &rb.vars["tb.ba.valid"];
+    let valid = &rb.vars["tb.blend_adjust_153.valid"];
     let mut checked = 0;
     for (t, v) in &valid.changes {
         if v.as_u64() == Some(1) {
-            let d = rb.value_at("tb.ba.u0_real", *t).unwrap().as_f64().unwrap();
+            let d = rb
+                .value_at("tb.blend_adjust_153.u0_real", *t)
+                .unwrap()
+                .as_f64()
+                .unwrap();
             let g = rb
                 .value_at("tb.golden.u0_golden", *t)
                 .unwrap()
@@ -101,14 +105,14 @@ fn trace_options_apply() {
         "--out",
         out.to_str().unwrap(),
         "--trace-filter",
-        "tb.ba.u*",
+        "tb.blend_adjust_153.u*",
         "--trace-window",
         "10..50",
     ]);
     assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
     let rb = read_vcd(&out.join("blend_adjust.vcd")).unwrap();
-    assert!(rb.vars.contains_key("tb.ba.u0"));
-    assert!(!rb.vars.contains_key("tb.ba.v0"));
+    assert!(rb.vars.contains_key("tb.blend_adjust_153.u0"));
+    assert!(!rb.vars.contains_key("tb.blend_adjust_153.v0"));
     assert_eq!(rb.times.first(), Some(&100_000));
     assert_eq!(rb.times.last(), Some(&500_000));
     let fst = waves::check::read_fst(&out.join("blend_adjust.fst")).unwrap();
@@ -195,7 +199,9 @@ fn normals_render_and_sweep_commands() {
         assert!((len - 1.0).abs() < 1e-4, "{r}");
     }
     let rb = read_vcd(&vcd).unwrap();
-    assert!(rb.vars.contains_key("tb.pipe.normal.nx"));
+    assert!(rb
+        .vars
+        .contains_key("tb.normal_pipeline_fig7.normal_156.nx"));
     assert!(rb.vars.contains_key("tb.golden.nx_golden"));
     check_gtkw(&vcd, &rb).unwrap();
 

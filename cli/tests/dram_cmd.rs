@@ -26,10 +26,10 @@ fn dram_command() {
     assert_eq!(j["ns"], 6 * 30 + 3 * 30);
     let rb = waves::check::read_vcd(&vcd).unwrap();
     for v in [
-        "tb.mem.dram.ras_n",
-        "tb.mem.dram.cas_n",
-        "tb.mem.dram.page_row",
-        "tb.mem.state",
+        "tb.control_607.dram_604.ras_n",
+        "tb.control_607.dram_604.cas_n",
+        "tb.control_607.dram_604.page_row",
+        "tb.control_607.state",
     ] {
         assert!(rb.vars.contains_key(v), "{v}");
     }

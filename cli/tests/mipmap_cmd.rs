@@ -49,8 +49,10 @@ fn mipmap_command() {
     assert_eq!(s["fifo_max_occupancy"].as_array().unwrap().len(), 4);
     assert!(s["cycles"].as_u64().unwrap() >= 128);
     let rb = waves::check::read_vcd(&vcd).unwrap();
-    assert!(rb.vars.contains_key("tb.mip.level1.fifo1408_occupancy"));
-    assert!(rb.vars.contains_key("tb.mip.page_row_bank0"));
+    assert!(rb
+        .vars
+        .contains_key("tb.mipmap_gen_816.level1.fifo1408_occupancy"));
+    assert!(rb.vars.contains_key("tb.mipmap_gen_816.page_row_bank0"));
     waves::check::check_gtkw(&vcd, &rb).unwrap();
     // Several frames: one directory each.
     let out2 = d.join("out2");

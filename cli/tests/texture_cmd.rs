@@ -1,7 +1,7 @@
 //! The `texrtl` commands of the texture path, run as a user runs them.
 
 use formats::ccc::Ccc;
-use hdl::ccc_decode::CccBlock;
+use hdl::texmem::ccc_decode_608::CccBlock;
 use tb::texture::reference_filter;
 fn flat(w: u32, h: u32) -> Ccc {
     Ccc {
@@ -119,16 +119,16 @@ fn ccc_and_texread_commands() {
     // The waveform: DRAM pins, page register, cache tags and valid bits, controller states.
     let rb = waves::check::read_vcd(&vcd).unwrap();
     for v in [
-        "tb.texture_unit.control_607.dram.ras_n",
-        "tb.texture_unit.control_607.dram.cas_n",
-        "tb.texture_unit.control_607.dram.addr",
-        "tb.texture_unit.control_607.dram.page_row",
-        "tb.texture_unit.control_607.state",
-        "tb.texture_unit.fill_state",
-        "tb.texture_unit.cache_614.entry_a.tag_x",
-        "tb.texture_unit.cache_614.entry_d.valid",
-        "tb.texture_unit.ccc_decode.reg_608",
-        "tb.texture_unit.bilinear_622.rgb",
+        "tb.texture_unit_602.control_607.dram_604.ras_n",
+        "tb.texture_unit_602.control_607.dram_604.cas_n",
+        "tb.texture_unit_602.control_607.dram_604.addr",
+        "tb.texture_unit_602.control_607.dram_604.page_row",
+        "tb.texture_unit_602.control_607.state",
+        "tb.texture_unit_602.fill_state",
+        "tb.texture_unit_602.cache_614.entry_a.tag_x",
+        "tb.texture_unit_602.cache_614.entry_d.valid",
+        "tb.texture_unit_602.ccc_decode_608.reg_608",
+        "tb.texture_unit_602.bilinear_622.rgb",
     ] {
         assert!(
             rb.vars.contains_key(v),
@@ -137,7 +137,7 @@ fn ccc_and_texread_commands() {
         );
     }
     assert_eq!(
-        rb.vars["tb.texture_unit.ccc_decode.reg_608"].width,
+        rb.vars["tb.texture_unit_602.ccc_decode_608.reg_608"].width,
         Some(32)
     );
     waves::check::check_gtkw(&vcd, &rb).unwrap();

@@ -35,8 +35,8 @@
 //! The file must be exactly `784 + 4 (width/4) (height/4)` bytes.
 
 use crate::netpbm::Ppm;
-use hdl::ccc_decode::CccBlock;
-use hdl::texture_layout::BlockMap;
+use hdl::texmem::ccc_decode_608::CccBlock;
+use hdl::texmem::layout::BlockMap;
 use std::path::Path;
 
 pub const MAGIC: &[u8; 8] = b"TEXRTLCC";

@@ -2,12 +2,12 @@
 //! `cargo bench -p texrtl --bench kernel`; figures are recorded in README.md.
 
 use criterion::{criterion_group, criterion_main, BatchSize, Criterion, Throughput};
-use hdl::blend_adjust::{BlendAdjust, BlendAdjustParams};
-use hdl::bump_params::BumpParams;
+use hdl::bump::blend_adjust_153::{BlendAdjust, BlendAdjustParams};
+use hdl::bump::normal_pipeline::NormalPipeline;
+use hdl::bump::params::BumpParams;
 use hdl::fx::{Format, Fx, Overflow, Quant};
 use hdl::kernel::{Sim, Trace};
 use hdl::mipmap::{MipmapGen, MipmapParams, Rounding, Scan};
-use hdl::normal_pipeline::NormalPipeline;
 use std::hint::black_box;
 use tb::maps::builtin;
 use tb::mipmap::synthetic_video;
@@ -34,12 +34,18 @@ fn kernel(c: &mut Criterion) {
     let mut g = c.benchmark_group("kernel");
     g.throughput(Throughput::Elements(CYCLES));
     g.bench_function("blend_adjust_cycles_untraced", |b| {
-        let mut sim = Sim::new(BlendAdjust::new("ba", BlendAdjustParams::default()));
+        let mut sim = Sim::new(BlendAdjust::new(
+            "blend_adjust_153",
+            BlendAdjustParams::default(),
+        ));
         b.iter(|| black_box(drive(&mut sim)))
     });
     g.bench_function("blend_adjust_cycles_schedule_checked", |b| {
-        let mut sim =
-            Sim::new(BlendAdjust::new("ba", BlendAdjustParams::default())).check_schedule(true);
+        let mut sim = Sim::new(BlendAdjust::new(
+            "blend_adjust_153",
+            BlendAdjustParams::default(),
+        ))
+        .check_schedule(true);
         b.iter(|| black_box(drive(&mut sim)))
     });
     let dir = std::env::temp_dir().join(format!("texrtl-bench-{}", std::process::id()));
@@ -49,7 +55,11 @@ fn kernel(c: &mut Criterion) {
         b.iter_batched(
             || {
                 let t = VcdTracer::create(&path, "bench", TraceConfig::default()).unwrap();
-                Sim::traced(BlendAdjust::new("ba", BlendAdjustParams::default()), t).unwrap()
+                Sim::traced(
+                    BlendAdjust::new("blend_adjust_153", BlendAdjustParams::default()),
+                    t,
+                )
+                .unwrap()
             },
             |mut sim| {
                 let a = drive(&mut sim);
@@ -114,7 +124,8 @@ fn normal_pipeline(c: &mut Criterion) {
     let mut g = c.benchmark_group("normal_pipeline");
     g.throughput(Throughput::Elements(CYCLES));
     g.bench_function("cycles_untraced", |b| {
-        let mut sim = Sim::new(NormalPipeline::new("pipe", p, map.clone(), None).unwrap());
+        let mut sim =
+            Sim::new(NormalPipeline::new("normal_pipeline_fig7", p, map.clone(), None).unwrap());
         b.iter(|| black_box(pipeline(&mut sim)))
     });
     let tri = BumpParams {
@@ -123,7 +134,13 @@ fn normal_pipeline(c: &mut Criterion) {
     };
     g.bench_function("cycles_untraced_trilinear", |b| {
         let mut sim = Sim::new(
-            NormalPipeline::new("pipe", tri, map.clone(), Some(map.downsample())).unwrap(),
+            NormalPipeline::new(
+                "normal_pipeline_fig7",
+                tri,
+                map.clone(),
+                Some(map.downsample()),
+            )
+            .unwrap(),
         );
         b.iter(|| black_box(pipeline(&mut sim)))
     });
@@ -135,7 +152,7 @@ fn normal_pipeline(c: &mut Criterion) {
             || {
                 let t = VcdTracer::create(&path, "bench", TraceConfig::default()).unwrap();
                 Sim::traced(
-                    NormalPipeline::new("pipe", p, map.clone(), None).unwrap(),
+                    NormalPipeline::new("normal_pipeline_fig7", p, map.clone(), None).unwrap(),
                     t,
                 )
                 .unwrap()
@@ -168,7 +185,7 @@ fn mipmap(c: &mut Criterion) {
         let frame = synthetic_video(w, h, 1, Seed(1)).remove(0);
         g.throughput(Throughput::Elements(u64::from(w * h)));
         g.bench_function(format!("texels_{w}x{h}_{scan:?}_untraced"), |b| {
-            let mut sim = Sim::new(MipmapGen::new("mip", p).unwrap());
+            let mut sim = Sim::new(MipmapGen::new("mipmap_gen_816", p).unwrap());
             b.iter(|| {
                 for (k, &t) in frame.iter().enumerate() {
                     let d = &mut sim.dut;
@@ -186,7 +203,7 @@ fn mipmap(c: &mut Criterion) {
 
 fn dram(c: &mut Criterion) {
     let mut g = c.benchmark_group("dram");
-    let p = hdl::dram::DramParams::default();
+    let p = hdl::texmem::dram_604::DramParams::default();
     // A scanline-like trace: runs of 8 reads, a page change every 4.
     let trace: Vec<u64> = (0..4096u64).map(|k| (k / 4 % 512) * 512 + k % 4).collect();
     let cycles = tb::dram::run_trace(p, &trace, None).unwrap().cycles;
@@ -205,7 +222,7 @@ fn texture(c: &mut Criterion) {
     use tb::texture::{run_texread, synthetic_texture, trace, TraceKind};
     let orig = synthetic_texture(256, 256, verif::Seed(1));
     let tex = formats::ccc::encode(&orig).unwrap();
-    let p = hdl::texture_unit::TexParams::new(256, 256);
+    let p = hdl::texmem::texture_unit_602::TexParams::new(256, 256);
     let mut g = c.benchmark_group("texture");
     for kind in [TraceKind::Horizontal, TraceKind::Random] {
         let reqs = trace(kind, 256, 256, 4, 20_000, verif::Seed(2));

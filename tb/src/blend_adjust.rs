@@ -1,4 +1,4 @@
-//! Testbench of the blend-factor adjust unit 153 (`hdl::blend_adjust`).
+//! Testbench of the blend-factor adjust unit 153 (`hdl::bump::blend_adjust_153`).
 //!
 //! Stimulus, for every blend-factor width F = 4..=16:
 //! * **sweep**: every value of `u` (all 2^F), in both modes (adjust and Blinn bypass), at one
@@ -12,7 +12,7 @@
 //! `u`/`v` classes (zero, max, interior ranges) crossed with the mode. The run at the traced
 //! width (default F = 8) writes `blend_adjust.vcd` with the golden values beside the outputs.
 
-use hdl::blend_adjust::{BlendAdjust, BlendAdjustParams};
+use hdl::bump::blend_adjust_153::{BlendAdjust, BlendAdjustParams};
 use hdl::kernel::{Sim, Trace};
 use proptest::prelude::*;
 use verif::{
@@ -140,19 +140,19 @@ impl Testbench for BlendAdjustTb {
             registered: self.registered,
         };
         params.validate()?;
-        let dut = BlendAdjust::new("ba", params);
+        let dut = BlendAdjust::new("blend_adjust_153", params);
         let Some(w) = &ctx.waves else {
             return Ok(one_width(Sim::new(dut), self, ctx, f, None).1);
         };
         let mut t = VcdTracer::create(&w.vcd, &format!("blend_adjust F={f}"), w.config(10_000))
             .map_err(|e| format!("{}: {e}", w.vcd.display()))?;
         let probes = [
-            t.probe_real("u0_golden", Some("tb.ba.u0")),
-            t.probe_real("u1_golden", Some("tb.ba.u1")),
-            t.probe_real("v0_golden", Some("tb.ba.v0")),
-            t.probe_real("v1_golden", Some("tb.ba.v1")),
+            t.probe_real("u0_golden", Some("tb.blend_adjust_153.u0")),
+            t.probe_real("u1_golden", Some("tb.blend_adjust_153.u1")),
+            t.probe_real("v0_golden", Some("tb.blend_adjust_153.v0")),
+            t.probe_real("v1_golden", Some("tb.blend_adjust_153.v1")),
         ];
-        let miss = t.probe_bits("mismatch", 1, Some("tb.ba.valid"));
+        let miss = t.probe_bits("mismatch", 1, Some("tb.blend_adjust_153.valid"));
         let sim = Sim::traced(dut, t).map_err(|e| e.to_string())?;
         let (sim, mut res) = one_width(sim, self, ctx, f, Some((probes, miss)));
         sim.finish()

@@ -1,8 +1,9 @@
 //! The DRAM 604 and control unit 607 on an address trace (`texrtl dram`), every word read
 //! checked against the DRAM's power-up contents.
 
-use hdl::dram::{DramCtrl, DramParams};
 use hdl::kernel::{NoTrace, Sim, Trace};
+use hdl::texmem::control_607::DramCtrl;
+use hdl::texmem::dram_604::DramParams;
 use serde::Serialize;
 use std::path::{Path, PathBuf};
 use verif::{
@@ -162,7 +163,7 @@ pub fn run_paced(
     pacing: Pacing,
     wave: Option<(PathBuf, TraceConfig)>,
 ) -> Result<(DramStats, Coverage), String> {
-    let ctrl = DramCtrl::new("mem", p)?;
+    let ctrl = DramCtrl::new("control_607", p)?;
     match wave {
         Some((path, cfg)) => {
             let t = VcdTracer::create(&path, "dram", cfg)

@@ -103,7 +103,7 @@ pub fn run_mipmap(
     frames: &[Vec<u8>],
     vcd: Option<(PathBuf, TraceConfig)>,
 ) -> Result<MipmapOutcome, String> {
-    let dut = MipmapGen::new("mip", p)?;
+    let dut = MipmapGen::new("mipmap_gen_816", p)?;
     let n = (p.width * p.height) as usize;
     if let Some(k) = frames.iter().position(|f| f.len() != n) {
         return Err(format!(

@@ -1,4 +1,4 @@
-//! Testbench of the FIG. 7 normal pipeline (`hdl::normal_pipeline`) against the surfaces of
+//! Testbench of the FIG. 7 normal pipeline (`hdl::bump::normal_pipeline`) against the surfaces of
 //! `golden::bump`, and the machinery the `normals`, `render` and `sweep normals` commands use.
 //!
 //! Stimulus is a list of samples (position, height scale, MIP weight). Inputs are quantised to
@@ -10,11 +10,11 @@
 //! component within `2^-13` of the golden normal and every normal within 0.01 degrees of it.
 
 use golden::bump::{self as g, Heights};
-use hdl::bump_params::{Border, BumpParams, Filter};
+use hdl::bump::height_map::HeightMap;
+use hdl::bump::normal_pipeline::NormalPipeline;
+use hdl::bump::params::{Border, BumpParams, Filter};
 use hdl::fx::{Format, Fx, Overflow, Quant};
-use hdl::height_map::HeightMap;
 use hdl::kernel::{NoTrace, Sim, Trace};
-use hdl::normal_pipeline::NormalPipeline;
 use serde::{Deserialize, Serialize};
 use std::path::PathBuf;
 use verif::{
@@ -187,7 +187,12 @@ pub const ANGLE_TOL_DEG: f64 = 0.01;
 pub fn run_normals(cfg: &NormalsRun) -> Result<NormalsOutcome, String> {
     let p = cfg.params;
     let coarse_map = p.trilinear.then(|| cfg.map.downsample());
-    let dut = NormalPipeline::new("pipe", p, cfg.map.clone(), coarse_map.clone())?;
+    let dut = NormalPipeline::new(
+        "normal_pipeline_fig7",
+        p,
+        cfg.map.clone(),
+        coarse_map.clone(),
+    )?;
     let raws = cfg
         .samples
         .iter()
@@ -200,10 +205,10 @@ pub fn run_normals(cfg: &NormalsRun) -> Result<NormalsOutcome, String> {
             let mut t =
                 VcdTracer::create(path, &cfg.name, cfg.trace.clone()).map_err(|e| e.to_string())?;
             let probes = [
-                t.probe_real("nx_golden", Some("tb.pipe.nx")),
-                t.probe_real("ny_golden", Some("tb.pipe.ny")),
-                t.probe_real("nz_golden", Some("tb.pipe.nz")),
-                t.probe_real("angle_err_deg", Some("tb.pipe.nz")),
+                t.probe_real("nx_golden", Some("tb.normal_pipeline_fig7.nx")),
+                t.probe_real("ny_golden", Some("tb.normal_pipeline_fig7.ny")),
+                t.probe_real("nz_golden", Some("tb.normal_pipeline_fig7.nz")),
+                t.probe_real("angle_err_deg", Some("tb.normal_pipeline_fig7.nz")),
             ];
             let sim = Sim::traced(dut, t).map_err(|e| e.to_string())?;
             let (sim, out) = drive(sim, cfg, raws, &fine, coarse.as_ref(), Some(probes));

@@ -12,9 +12,9 @@
 use formats::ccc::Ccc;
 use formats::netpbm::Ppm;
 use hdl::kernel::{NoTrace, Sim, Trace};
-use hdl::texture_cache::Lookahead;
-use hdl::texture_layout::Layout;
-use hdl::texture_unit::{TexParams, TextureUnit};
+use hdl::texmem::cache_614::Lookahead;
+use hdl::texmem::layout::Layout;
+use hdl::texmem::texture_unit_602::{TexParams, TextureUnit};
 use serde::{Deserialize, Serialize};
 use std::collections::HashSet;
 use std::path::PathBuf;
@@ -194,7 +194,7 @@ pub fn run_texread(
         ));
     }
     let words = tex.dram_words(&p.block_map());
-    let unit = TextureUnit::new("texture_unit", p, &tex.clut, &words)?;
+    let unit = TextureUnit::new("texture_unit_602", p, &tex.clut, &words)?;
     match vcd {
         Some((path, cfg)) => {
             let t = VcdTracer::create(
@@ -209,8 +209,8 @@ pub fn run_texread(
             let mut t = t;
             // The integer reference beside the unit's output, and a flag where they differ.
             let probes = (
-                t.probe_bits("rgb_reference", 24, Some("tb.texture_unit.out_rgb")),
-                t.probe_bits("mismatch", 1, Some("tb.texture_unit.out_valid")),
+                t.probe_bits("rgb_reference", 24, Some("tb.texture_unit_602.out_rgb")),
+                t.probe_bits("mismatch", 1, Some("tb.texture_unit_602.out_valid")),
             );
             let sim = Sim::traced(unit, t).map_err(|e| e.to_string())?;
             let (sim, run) = drive(sim, reqs, interval, Some((tex, probes)))?;

@@ -7,8 +7,8 @@
 //! after a deliberate change and prints what changed.
 
 use crate::normals::{quantise, run_normals, NormalsRun, Sample};
-use hdl::blend_adjust::{BlendAdjust, BlendAdjustParams};
-use hdl::bump_params::{BumpParams, Filter};
+use hdl::bump::blend_adjust_153::{BlendAdjust, BlendAdjustParams};
+use hdl::bump::params::{BumpParams, Filter};
 use hdl::kernel::Sim;
 use hdl::mipmap::{MipmapParams, Rounding, Scan};
 use serde::{Deserialize, Serialize};
@@ -84,7 +84,7 @@ fn blend_adjust() -> UnitVectors {
         frac_bits: 8,
         registered: false,
     };
-    let mut sim = Sim::new(BlendAdjust::new("ba", p));
+    let mut sim = Sim::new(BlendAdjust::new("blend_adjust_153", p));
     let mut rows = Vec::new();
     for bypass in [0u64, 1] {
         for u in 0..256u64 {
@@ -228,7 +228,7 @@ pub fn vector_texture() -> formats::ccc::Ccc {
         .map(|i| ((i * 37) & 0xff) << 16 | ((i * 91) & 0xff) << 8 | ((i * 13 + 5) & 0xff))
         .collect();
     let blocks = (0..64u32)
-        .map(|n| hdl::ccc_decode::CccBlock {
+        .map(|n| hdl::texmem::ccc_decode_608::CccBlock {
             a: (n * 7 + 3) as u8,
             b: (n * 11 + 100) as u8,
             bits: (n.wrapping_mul(0x9e37_79b9) >> 16) as u16,
@@ -244,7 +244,7 @@ pub fn vector_texture() -> formats::ccc::Ccc {
 
 fn texture() -> Result<UnitVectors, String> {
     use crate::texture::TexRequest;
-    use hdl::texture_unit::TexParams;
+    use hdl::texmem::texture_unit_602::TexParams;
     let tex = vector_texture();
     // Two horizontal scanlines, then positions from an integer hash (a `newline` every 16).
     let mut reqs = Vec::new();
@@ -266,7 +266,7 @@ fn texture() -> Result<UnitVectors, String> {
         });
     }
     let mut rows = Vec::new();
-    use hdl::texture_cache::Lookahead;
+    use hdl::texmem::cache_614::Lookahead;
     for (mode, cache, look) in [
         (0u64, true, Lookahead::Quadrant),
         (1, true, Lookahead::Off),

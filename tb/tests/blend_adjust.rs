@@ -1,7 +1,7 @@
 //! The blend-adjust testbench itself: it passes on the model, it fails on a one-bit error,
 //! and random single evaluations match the golden model exactly.
 
-use hdl::blend_adjust::{BlendAdjust, BlendAdjustParams};
+use hdl::bump::blend_adjust_153::{BlendAdjust, BlendAdjustParams};
 use hdl::kernel::Sim;
 use proptest::prelude::*;
 use tb::blend_adjust::{golden, BaIn, BlendAdjustTb};
@@ -83,7 +83,7 @@ fn random_single_evaluations_match_golden() {
                 v: v & mask,
                 bypass,
             };
-            let mut sim = Sim::new(BlendAdjust::new("ba", p));
+            let mut sim = Sim::new(BlendAdjust::new("blend_adjust_153", p));
             sim.dut.i.u_in.set_bits(u64::from(t.u));
             sim.dut.i.v_in.set_bits(u64::from(t.v));
             sim.dut.i.bypass.set_bool(bypass);

@@ -1,8 +1,8 @@
 //! DRAM 604 and control unit 607: the document's timing figures, data integrity, the timing
 //! checks of the DRAM model, and `texrtl dram`.
 
-use hdl::dram::{Dram, DramParams};
 use hdl::kernel::Sim;
+use hdl::texmem::dram_604::{Dram, DramParams};
 use tb::dram::run_trace;
 
 #[test]

@@ -80,7 +80,7 @@ fn sync_errors_are_reported() {
         scan: Scan::InterlacedTop,
         rounding: Rounding::Round,
     };
-    let mut sim = Sim::new(MipmapGen::new("mip", p).unwrap()).check_schedule(true);
+    let mut sim = Sim::new(MipmapGen::new("mipmap_gen_816", p).unwrap()).check_schedule(true);
     sim.reset(1);
     for k in 0..6 {
         sim.dut.valid.set_bool(true);

@@ -4,12 +4,12 @@
 //! CCC format; and `texrtl ccc` / `texrtl texread`, bad input included.
 
 use formats::ccc::Ccc;
-use hdl::ccc_decode::CccBlock;
-use hdl::color_bilinear::lerp2;
 use hdl::kernel::Sim;
-use hdl::texture_cache::Lookahead;
-use hdl::texture_layout::Layout;
-use hdl::texture_unit::{TexParams, TextureUnit};
+use hdl::texmem::bilinear_622::lerp2;
+use hdl::texmem::cache_614::Lookahead;
+use hdl::texmem::ccc_decode_608::CccBlock;
+use hdl::texmem::layout::Layout;
+use hdl::texmem::texture_unit_602::{TexParams, TextureUnit};
 use proptest::prelude::*;
 use tb::texture::reference_filter;
 use tb::texture::{drive, run_texread, TexRequest};
@@ -321,7 +321,7 @@ fn the_shadow_cache_splits_misses() {
 fn textures_that_do_not_fit_are_refused() {
     let mut p = TexParams::new(4096, 4096);
     assert!(p.validate().unwrap_err().contains("needs DRAM words"));
-    p.dram = hdl::dram::DramParams::one_meg();
+    p.dram = hdl::texmem::dram_604::DramParams::one_meg();
     assert!(p.validate().is_err(), "4096^2 needs 2M words");
     let p = TexParams::new(2048, 1024);
     assert!(

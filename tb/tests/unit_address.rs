@@ -1,6 +1,6 @@
 //! Address unit 150: every position of a range, both modes, against floor arithmetic.
 
-use hdl::address::AddressUnit;
+use hdl::bump::address_150::AddressUnit;
 use hdl::fx::Format;
 use hdl::kernel::{Module, Sim};
 

@@ -2,7 +2,7 @@
 //! (the result lies between the smallest and largest texel, and is monotonic in each blend
 //! factor), also with a narrowed output that rounds.
 
-use hdl::bilinear::Bilinear;
+use hdl::bump::bilinear_65_68::Bilinear;
 use hdl::fx::Format;
 use proptest::prelude::*;
 use verif::seeded_runner;

@@ -2,10 +2,10 @@
 //! and normal unit 156 against f64 normalisation, on seeded random inputs.
 
 use golden::rsqrt::error_bound_ulps;
-use hdl::bump_params::{BumpParams, Filter};
+use hdl::bump::normal_156::Normal;
+use hdl::bump::params::{BumpParams, Filter};
+use hdl::bump::tangent_155::Tangent;
 use hdl::kernel::Sim;
-use hdl::normal::Normal;
-use hdl::tangent::Tangent;
 use proptest::prelude::*;
 use verif::{seeded_runner, seeded_stimulus};
 
@@ -30,7 +30,7 @@ fn tangent_formulas() {
                 ..BumpParams::default()
             };
             let t = Tangent::new("tan", &p);
-            let mut x = hdl::tangent::TangentIn {
+            let mut x = hdl::bump::tangent_155::TangentIn {
                 tu,
                 tv,
                 scale,

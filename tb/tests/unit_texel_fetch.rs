@@ -2,11 +2,11 @@
 //! every border mode, against the golden model's border addressing.
 
 use golden::bump::{Border as GB, Heights};
-use hdl::bump_params::Border;
+use hdl::bump::height_map::HeightMap;
+use hdl::bump::params::Border;
+use hdl::bump::texel_fetch_151::TexelFetch;
 use hdl::fx::Format;
-use hdl::height_map::HeightMap;
 use hdl::kernel::Sim;
-use hdl::texel_fetch::TexelFetch;
 
 #[test]
 fn grid_in_every_border_mode() {

@@ -39,7 +39,7 @@ impl Value {
     }
 }
 
-/// What a VCD holds, by full hierarchical name (`tb.ba.u0`).
+/// What a VCD holds, by full hierarchical name (`tb.blend_adjust_153.u0`).
 #[derive(Clone, Debug)]
 pub struct Readback {
     /// Timescale exponent (-12 for 1 ps).

@@ -22,7 +22,7 @@ pub struct TraceConfig {
     /// registers, 2 = its children's, ... `None` = everything.
     pub max_depth: Option<usize>,
     /// Glob patterns (`*` any run, `?` one character) on hierarchical names such as
-    /// `tb.ba.u0`; a signal is traced if any pattern matches. Empty = every signal.
+    /// `tb.blend_adjust_153.u0`; a signal is traced if any pattern matches. Empty = every signal.
     pub filters: Vec<String>,
     /// Cycles `[start, end)` to record; `None` = the whole run.
     pub window: Option<(u64, u64)>,
@@ -158,7 +158,7 @@ impl VcdTracer {
     }
 
     /// Declares a real-valued probe `tb.golden.NAME` (call before the simulation starts). With
-    /// `beside`, the hierarchical name of a DUT signal (e.g. `tb.ba.u0`), the `.gtkw` shows the
+    /// `beside`, the hierarchical name of a DUT signal (e.g. `tb.blend_adjust_153.u0`), the `.gtkw` shows the
     /// probe right under that signal.
     pub fn probe_real(&mut self, name: &str, beside: Option<&str>) -> ProbeId {
         self.add_probe(name, 0, ProbeValue::Real(0.0), beside)
@@ -279,7 +279,14 @@ impl Visitor for Declare<'_> {
         let depth = self.scope.len();
         let path = self.scope.join(".");
         if self.t.cfg.max_depth.is_none_or(|d| depth <= d) {
-            self.t.gtkw.begin_group(&format!("{name} ({kind})"), &path);
+            // The instance name, and its kind where it differs (`bilinear_65_red
+            // (bilinear_65_68)`); the numbered units are named after their kind.
+            let label = if name == kind {
+                name.clone()
+            } else {
+                format!("{name} ({kind})")
+            };
+            self.t.gtkw.begin_group(&label, &path);
         }
         if let Err(e) = self.t.writer().add_module(&name) {
             self.err.get_or_insert(e);

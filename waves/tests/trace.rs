@@ -1,7 +1,7 @@
 //! Traces a real module, reads the VCD back with wellen and checks hierarchy, widths, values,
 //! companions, probes, filters, windows and the save file.
 
-use hdl::blend_adjust::{BlendAdjust, BlendAdjustParams};
+use hdl::bump::blend_adjust_153::{BlendAdjust, BlendAdjustParams};
 use hdl::kernel::Sim;
 use std::path::PathBuf;
 use waves::check::{check_gtkw, read_vcd, Value};
@@ -17,8 +17,8 @@ fn tmpdir(name: &str) -> PathBuf {
 fn run(name: &str, cfg: TraceConfig, finish: bool) -> PathBuf {
     let path = tmpdir(name).join("ba.vcd");
     let mut t = VcdTracer::create(&path, "blend adjust", cfg).unwrap();
-    let gold = t.probe_real("u0", Some("tb.ba.u0"));
-    let dut = BlendAdjust::new("ba", BlendAdjustParams::default());
+    let gold = t.probe_real("u0", Some("tb.blend_adjust_153.u0"));
+    let dut = BlendAdjust::new("blend_adjust_153", BlendAdjustParams::default());
     let mut sim = Sim::traced(dut, t).unwrap();
     sim.reset(2);
     for c in 0..20u64 {
@@ -40,23 +40,34 @@ fn full_trace_reads_back() {
     let path = run("full", TraceConfig::default(), true);
     let rb = read_vcd(&path).unwrap();
     assert_eq!(rb.timescale_exp, Some(-12));
-    assert!(rb.scopes.contains(&"tb.ba".to_string()), "{:?}", rb.scopes);
+    assert!(
+        rb.scopes.contains(&"tb.blend_adjust_153".to_string()),
+        "{:?}",
+        rb.scopes
+    );
     let w = |n: &str| rb.vars[n].width;
     assert_eq!(w("tb.clk"), Some(1));
-    assert_eq!(w("tb.ba.u_in"), Some(8));
-    assert_eq!(w("tb.ba.u0"), Some(9));
-    assert_eq!(w("tb.ba.u0_r"), Some(9));
-    assert_eq!(w("tb.ba.u0_real"), None, "companion is real");
+    assert_eq!(w("tb.blend_adjust_153.u_in"), Some(8));
+    assert_eq!(w("tb.blend_adjust_153.u0"), Some(9));
+    assert_eq!(w("tb.blend_adjust_153.u0_r"), Some(9));
+    assert_eq!(w("tb.blend_adjust_153.u0_real"), None, "companion is real");
     assert_eq!(w("tb.golden.u0"), None);
     // Cycle 2 + c is sampled at (2 + c) * 10 ns; the registered output shows input c - 1.
     let t = |c: u64| (2 + c) * 10_000;
-    assert_eq!(rb.value_at("tb.ba.u_in", t(5)).unwrap().as_u64(), Some(50));
     assert_eq!(
-        rb.value_at("tb.ba.u0", t(5)).unwrap().as_u64(),
+        rb.value_at("tb.blend_adjust_153.u_in", t(5))
+            .unwrap()
+            .as_u64(),
+        Some(50)
+    );
+    assert_eq!(
+        rb.value_at("tb.blend_adjust_153.u0", t(5))
+            .unwrap()
+            .as_u64(),
         Some(0x100 + 40)
     );
     let r = rb
-        .value_at("tb.ba.u0_real", t(5))
+        .value_at("tb.blend_adjust_153.u0_real", t(5))
         .unwrap()
         .as_f64()
         .unwrap();
@@ -69,17 +80,20 @@ fn full_trace_reads_back() {
     assert_eq!(rb.vars["tb.clk"].changes.len(), 44);
     assert_eq!(*rb.times.last().unwrap(), 22 * 10_000);
     // Only changes are written: u_in changes once per cycle after reset, never more.
-    assert_eq!(rb.vars["tb.ba.u_in"].changes.len(), 20);
+    assert_eq!(rb.vars["tb.blend_adjust_153.u_in"].changes.len(), 20);
     let n = check_gtkw(&path, &rb).unwrap();
     assert!(n >= 20, "{n} traces");
     let g = std::fs::read_to_string(path.with_extension("gtkw")).unwrap();
-    let i_u0 = g.find("tb.ba.u0[8:0]").unwrap();
+    let i_u0 = g.find("tb.blend_adjust_153.u0[8:0]").unwrap();
     let i_gold = g.find("tb.golden.u0").unwrap();
     assert!(
-        i_gold > i_u0 && !g[i_u0..i_gold].contains("tb.ba.u1"),
+        i_gold > i_u0 && !g[i_u0..i_gold].contains("tb.blend_adjust_153.u1"),
         "golden beside u0"
     );
-    assert!(g.contains("-ba (blend_adjust)"));
+    assert!(
+        g.contains("-blend_adjust_153\n"),
+        "the group is named after the unit: {g}"
+    );
 }
 
 #[test]
@@ -94,7 +108,9 @@ fn depth_filter_window() {
     );
     let rb = read_vcd(&d0).unwrap();
     assert!(
-        rb.vars.keys().all(|k| !k.starts_with("tb.ba.")),
+        rb.vars
+            .keys()
+            .all(|k| !k.starts_with("tb.blend_adjust_153.")),
         "{:?}",
         rb.vars.keys()
     );
@@ -104,7 +120,7 @@ fn depth_filter_window() {
     let f = run(
         "filter",
         TraceConfig {
-            filters: vec!["tb.ba.u0*".into()],
+            filters: vec!["tb.blend_adjust_153.u0*".into()],
             companions: false,
             ..Default::default()
         },
@@ -114,10 +130,10 @@ fn depth_filter_window() {
     let dut: Vec<_> = rb
         .vars
         .keys()
-        .filter(|k| k.starts_with("tb.ba."))
+        .filter(|k| k.starts_with("tb.blend_adjust_153."))
         .cloned()
         .collect();
-    assert_eq!(dut, ["tb.ba.u0", "tb.ba.u0_r"]);
+    assert_eq!(dut, ["tb.blend_adjust_153.u0", "tb.blend_adjust_153.u0_r"]);
     check_gtkw(&f, &rb).unwrap();
 
     let w = run(
@@ -133,7 +149,9 @@ fn depth_filter_window() {
     assert_eq!(rb.times.last(), Some(&90_000));
     // Initial values at the window's start: cycle 5 is input c = 3.
     assert_eq!(
-        rb.value_at("tb.ba.u_in", 50_000).unwrap().as_u64(),
+        rb.value_at("tb.blend_adjust_153.u_in", 50_000)
+            .unwrap()
+            .as_u64(),
         Some(30)
     );
 }

@@ -24,7 +24,7 @@ pub struct RegressArgs {
     /// testbench's top unit; ...).
     #[arg(long)]
     trace_depth: Option<usize>,
-    /// Trace only signals whose hierarchical name (e.g. tb.ba.u0) matches this glob; repeatable.
+    /// Trace only signals whose hierarchical name (e.g. tb.blend_adjust_153.u0) matches this glob; repeatable.
     #[arg(long = "trace-filter")]
     trace_filter: Vec<String>,
     /// Trace only cycles START..END.

@@ -3,7 +3,7 @@
 use super::widths::Widths;
 use super::CmdError;
 use clap::Subcommand;
-use hdl::bump_params::BumpParams;
+use hdl::bump::params::BumpParams;
 use std::fmt::Write;
 use tb::normals::{run_normals, NormalsRun, Sample};
 use verif::Seed;

@@ -2,9 +2,9 @@
 
 use super::{input, write_out, CmdError};
 use formats::ccc::{self, Ccc};
-use hdl::texture_cache::Lookahead;
-use hdl::texture_layout::Layout;
-use hdl::texture_unit::TexParams;
+use hdl::texmem::cache_614::Lookahead;
+use hdl::texmem::layout::Layout;
+use hdl::texmem::texture_unit_602::TexParams;
 use std::fmt::Write;
 use std::path::{Path, PathBuf};
 use tb::texture::{run_texread, TexRequest};
@@ -132,8 +132,8 @@ pub fn run(a: &TexreadArgs) -> Result<String, CmdError> {
     };
     p.frac_bits = a.frac_bits;
     p.dram = match a.dram.as_str() {
-        "256k" => hdl::dram::DramParams::default(),
-        "1m" => hdl::dram::DramParams::one_meg(),
+        "256k" => hdl::texmem::dram_604::DramParams::default(),
+        "1m" => hdl::texmem::dram_604::DramParams::one_meg(),
         d => return Err(input(format!("--dram {d}: 256k or 1m"))),
     };
     p.validate()

@@ -23,7 +23,7 @@
 //! * Lookahead (cache on, [`Lookahead`] not off): when a request completes and it was not
 //!   flagged `newline`, up to three neighbours of its block are queued: those of its quadrant,
 //!   or those in the direction of motion from the previous point of the scanline (registers
-//!   `prev_u`, `prev_v`; see [`crate::texture_cache`]). The fill engine preloads them one at a
+//!   `prev_u`, `prev_v`; see [`crate::texmem::cache_614`]). The fill engine preloads them one at a
 //!   time whenever it is free and the request in stage 0 (if any) needs nothing. A demand miss,
 //!   or a request flagged `newline`, empties the queue. Candidates already in the cache are
 //!   dropped without a fill.
@@ -35,15 +35,16 @@
 //! # Statistics ([`TexStats`])
 //! Counted at clock edges (so a schedule check evaluating twice does not count twice).
 
-use crate::ccc_decode::CccDecode;
-use crate::color_bilinear::ColorBilinear;
-use crate::color_extract::ColorExtract;
-use crate::dram::{DramCtrl, DramParams};
 use crate::fx::Format;
 use crate::kernel::{Module, Reg, Signal, Visitor};
 use crate::signals;
-use crate::texture_cache::{entry_of, lookahead, lookahead_direction, Lookahead, TextureCache};
-use crate::texture_layout::{BlockMap, Layout};
+use crate::texmem::bilinear_622::ColorBilinear;
+use crate::texmem::cache_614::{entry_of, lookahead, lookahead_direction, Lookahead, TextureCache};
+use crate::texmem::ccc_decode_608::CccDecode;
+use crate::texmem::control_607::DramCtrl;
+use crate::texmem::dram_604::DramParams;
+use crate::texmem::extract_618::ColorExtract;
+use crate::texmem::layout::{BlockMap, Layout};
 
 /// Bits of the integer part of `u` and `v`.
 pub const COORD_BITS: u32 = 12;
@@ -219,7 +220,7 @@ pub struct TextureUnit {
 
 impl TextureUnit {
     /// A unit with the DRAM loaded from `words` at `p.base` (see
-    /// [`crate::texture_layout`]) and CLUT 612 from `clut`.
+    /// [`crate::texmem::layout`]) and CLUT 612 from `clut`.
     pub fn new(name: &str, p: TexParams, clut: &[u32], words: &[u16]) -> Result<Self, String> {
         p.validate()?;
         let map = p.block_map();
@@ -259,7 +260,7 @@ impl TextureUnit {
             prev_u: Reg::new("prev_u", uq),
             prev_v: Reg::new("prev_v", uq),
             mem,
-            decode: CccDecode::new("ccc_decode", clut)?,
+            decode: CccDecode::new("ccc_decode_608", clut)?,
             cache: TextureCache::new("cache_614", bb - 1),
             extract: ColorExtract::new("extract_618", COORD_BITS, p.frac_bits),
             bilinear: ColorBilinear::new("bilinear_622", p.frac_bits),

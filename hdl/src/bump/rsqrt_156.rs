@@ -21,7 +21,7 @@
 //! Pipeline: the table lookup is one register stage, each iteration one more: latency
 //! `1 + iterations`.
 
-use crate::bump_params::{RsqrtParams, ROUND, SAT};
+use crate::bump::params::{RsqrtParams, ROUND, SAT};
 use crate::fx::{quantise, Format};
 use crate::kernel::{Dir, Module, Reg, Signal, Visitor};
 
@@ -156,7 +156,7 @@ impl Module for Rsqrt {
         &self.name
     }
     fn kind(&self) -> &'static str {
-        "rsqrt"
+        "rsqrt_156"
     }
     fn eval(&mut self) {
         let m = self.m.bits();

@@ -31,7 +31,7 @@
 //!
 //! One register stage: latency 1.
 
-use crate::bump_params::{BumpParams, Filter, ROUND};
+use crate::bump::params::{BumpParams, Filter, ROUND};
 use crate::fx::{quantise, Format, Overflow};
 use crate::kernel::{Dir, Module, Reg, Signal, Visitor};
 

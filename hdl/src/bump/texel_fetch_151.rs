@@ -15,9 +15,9 @@
 //! the height texel format, `uQ6.2` (8-bit) or `uQ3.1` (4-bit) (para. 0050). The memory is a
 //! behavioural ROM holding the [`HeightMap`]. One register stage: latency 1.
 
-use crate::bump_params::Border;
+use crate::bump::height_map::HeightMap;
+use crate::bump::params::Border;
 use crate::fx::Format;
-use crate::height_map::HeightMap;
 use crate::kernel::{Dir, Module, Reg, Signal, Visitor};
 use crate::signals;
 

@@ -12,11 +12,11 @@
 //!
 //! Pure selection: no arithmetic, no rounding.
 
-use crate::ccc_decode::Line;
 use crate::fx::Format;
 use crate::kernel::{Module, Reg, Signal, Visitor};
 use crate::signals;
-use crate::texture_cache::entry_of;
+use crate::texmem::cache_614::entry_of;
+use crate::texmem::ccc_decode_608::Line;
 
 #[derive(Clone, Debug)]
 pub struct ColorExtract {
@@ -74,7 +74,7 @@ impl Module for ColorExtract {
         &self.name
     }
     fn kind(&self) -> &'static str {
-        "color_extract_618"
+        "extract_618"
     }
     fn eval(&mut self) {
         let v = self.in_valid.is_high();

@@ -3,7 +3,7 @@
 //!
 //! A `width x height` texture (both multiples of 4) is `bw x bh` blocks of 4x4 texels,
 //! `bw = width / 4`, `bh = height / 4`. Each block takes two consecutive words, word 0 the two
-//! CLUT indices and word 1 the 16 decision bits (see [`crate::ccc_decode`]); a block never
+//! CLUT indices and word 1 the 16 decision bits (see [`crate::texmem::ccc_decode_608`]); a block never
 //! straddles a page because pages hold an even number of words.
 //!
 //! * [`Layout::RowMajor`] (default): block `(bx, by)` at `base + 2 (by * bw + bx)`. With

@@ -126,7 +126,7 @@ impl Module for CccDecode {
         &self.name
     }
     fn kind(&self) -> &'static str {
-        "ccc_decode_608_610_612"
+        "ccc_decode_608"
     }
     fn eval(&mut self) {
         let st = self.state.q().bits();

@@ -164,7 +164,7 @@ impl Module for BlendAdjust {
         &self.name
     }
     fn kind(&self) -> &'static str {
-        "blend_adjust"
+        "blend_adjust_153"
     }
 
     fn eval(&mut self) {
@@ -225,7 +225,7 @@ mod tests {
                 registered: false,
             };
             let half = Fx::from_raw(Format::unsigned(1, 1), 1);
-            let mut sim = Sim::new(BlendAdjust::new("ba", p)).check_schedule(f < 6);
+            let mut sim = Sim::new(BlendAdjust::new("blend_adjust_153", p)).check_schedule(f < 6);
             for b in 0..(1u64 << f) {
                 sim.dut.i.u_in.set_bits(b);
                 sim.dut.i.v_in.set_bits((1 << f) - 1 - b);
@@ -244,7 +244,7 @@ mod tests {
     #[test]
     fn registered_has_latency_one_and_resets() {
         let p = BlendAdjustParams::default();
-        let mut sim = Sim::new(BlendAdjust::new("ba", p)).check_schedule(true);
+        let mut sim = Sim::new(BlendAdjust::new("blend_adjust_153", p)).check_schedule(true);
         sim.dut.i.valid_in.set_bool(true);
         sim.dut.i.u_in.set_bits(0x80);
         sim.eval();
@@ -266,7 +266,7 @@ mod tests {
     #[test]
     #[should_panic(expected = "does not fit")]
     fn out_of_range_input_is_caught() {
-        let mut ba = BlendAdjust::new("ba", BlendAdjustParams::default());
+        let mut ba = BlendAdjust::new("blend_adjust_153", BlendAdjustParams::default());
         ba.i.u_in.set_bits(0x100);
     }
 

@@ -32,9 +32,9 @@
 //! Errors (sticky `error`, `err_code`): 1 FIFO overflow, 2 FIFO underflow, 3 video sync
 //! (`sof` high other than with a frame's first texel, or low with it).
 
-use crate::fifo::{Fifo, FifoError};
 use crate::fx::Format;
 use crate::kernel::{Dir, Module, Reg, Signal, Visitor};
+use crate::mipmap::fifo::{Fifo, FifoError};
 use crate::signals;
 
 /// Arrival order of a frame's lines.

@@ -16,7 +16,7 @@
 //!
 //! One register stage: latency 1.
 
-use crate::bump_params::{ROUND, SAT};
+use crate::bump::params::{ROUND, SAT};
 use crate::fx::{quantise, Format};
 use crate::kernel::{Module, Reg, Signal, Visitor};
 use crate::signals;
@@ -83,7 +83,7 @@ impl Module for Bilinear {
         &self.name
     }
     fn kind(&self) -> &'static str {
-        "bilinear"
+        "bilinear_65_68"
     }
     fn eval(&mut self) {
         let p = [

@@ -1,5 +1,5 @@
 //! Cache 614 of the texture memory path (Schilling & Knittel, Figures 6 and 7): four entries,
-//! each one decoded 4x4 block (a 64-bit [`Line`](crate::ccc_decode::Line)), direct mapped with
+//! each one decoded 4x4 block (a 64-bit [`Line`](crate::texmem::ccc_decode_608::Line)), direct mapped with
 //! the interleaved assignment of Figure 7, and the lookahead that chooses which neighbours to
 //! preload.
 //!
@@ -114,7 +114,7 @@ impl Module for Entry {
         &self.name
     }
     fn kind(&self) -> &'static str {
-        "cache_entry"
+        "cache_614_entry"
     }
     fn eval(&mut self) {}
     fn tick(&mut self, reset: bool) {

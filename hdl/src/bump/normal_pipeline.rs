@@ -27,18 +27,18 @@
 //! | `nx`, `ny`, `nz` | `sQ2.<out_frac>` |
 //! | `height` | `uQ14.<tangent_frac>` |
 
-use crate::address::AddressUnit;
-use crate::bilinear::Bilinear;
-use crate::blend_adjust::{BlendAdjust, BlendAdjustParams};
-use crate::bump_params::{BumpParams, Filter};
+use crate::bump::address_150::AddressUnit;
+use crate::bump::bilinear_65_68::Bilinear;
+use crate::bump::blend_adjust_153::{BlendAdjust, BlendAdjustParams};
+use crate::bump::height_map::HeightMap;
+use crate::bump::normal_156::Normal;
+use crate::bump::params::{BumpParams, Filter};
+use crate::bump::replicate_152::Replicate;
+use crate::bump::tangent_155::Tangent;
+use crate::bump::texel_fetch_151::TexelFetch;
 use crate::fx::Format;
-use crate::height_map::HeightMap;
 use crate::kernel::{Delay, Module, Signal, Visitor};
-use crate::normal::Normal;
-use crate::replicate::Replicate;
 use crate::signals;
-use crate::tangent::Tangent;
-use crate::texel_fetch::TexelFetch;
 
 /// Per MIP level: address, fetch, adjust, replicate and four bilinear units.
 #[derive(Clone, Debug)]
@@ -50,13 +50,36 @@ struct Level {
     bil: [Bilinear; 4],
 }
 
-const LEVEL_NAMES: [[&str; 5]; 2] = [
-    ["address", "fetch", "adjust", "replicate", "bl"],
-    ["address1", "fetch1", "adjust1", "replicate1", "bl1"],
+/// Instance names per MIP level: every unit carries its number; level 1 (the coarser MIP
+/// level of the trilinear variant) adds `_l1`.
+const LEVEL_NAMES: [[&str; 4]; 2] = [
+    [
+        "address_150",
+        "texel_fetch_151",
+        "blend_adjust_153",
+        "replicate_152",
+    ],
+    [
+        "address_150_l1",
+        "texel_fetch_151_l1",
+        "blend_adjust_153_l1",
+        "replicate_152_l1",
+    ],
 ];
+/// Bilinear units 65 (red), 66 (green), 67 (blue), 68 (alpha) of para. 0060.
 const BIL_NAMES: [[&str; 4]; 2] = [
-    ["red", "green", "blue", "alpha"],
-    ["red1", "green1", "blue1", "alpha1"],
+    [
+        "bilinear_65_red",
+        "bilinear_66_green",
+        "bilinear_67_blue",
+        "bilinear_68_alpha",
+    ],
+    [
+        "bilinear_65_red_l1",
+        "bilinear_66_green_l1",
+        "bilinear_67_blue_l1",
+        "bilinear_68_alpha_l1",
+    ],
 ];
 
 impl Level {
@@ -196,7 +219,7 @@ impl NormalPipeline {
             (false, _) => {}
         }
         let blend = p.blend_fmt();
-        let normal = Normal::new("normal", &p);
+        let normal = Normal::new("normal_156", &p);
         let latency = 4 + normal.latency();
         Ok(NormalPipeline {
             name: name.into(),
@@ -224,7 +247,7 @@ impl NormalPipeline {
                 3,
                 &["scale_d", "lod_d"],
             ),
-            tangent: Tangent::new("tangent", &p),
+            tangent: Tangent::new("tangent_155", &p),
             height_d: Delay::new(
                 "height_carry",
                 &[("height", p.height_out_fmt())],

@@ -23,10 +23,10 @@
 //! Pipeline: square/normalise stage, the rsqrt stages, multiply stage: latency
 //! `3 + iterations`.
 
-use crate::bump_params::{BumpParams, ROUND, SAT};
+use crate::bump::params::{BumpParams, ROUND, SAT};
+use crate::bump::rsqrt_156::{m_fmt, Rsqrt};
 use crate::fx::{quantise, Format};
 use crate::kernel::{Delay, Dir, Module, Reg, Signal, Visitor};
-use crate::rsqrt::{m_fmt, Rsqrt};
 
 /// `(k, m)` with `s * 2^-s_frac = m * 4^k`, `m` truncated to `mant_frac` fraction bits.
 #[inline]
@@ -70,7 +70,7 @@ impl Normal {
     pub fn new(name: &str, p: &BumpParams) -> Normal {
         let tan = p.tangent_fmt();
         let out = p.normal_fmt();
-        let rsqrt = Rsqrt::new("rsqrt", p.rsqrt);
+        let rsqrt = Rsqrt::new("rsqrt_156", p.rsqrt);
         let carry = Delay::new(
             "carry",
             &[("nx_in", tan), ("ny_in", tan), ("k_in", K_FMT)],
