@@ -11,13 +11,13 @@ pub fn table(results: &[TbResult]) -> String {
     let mut s = String::new();
     let _ = writeln!(
         s,
-        "{:<14} {:>9} {:>9} {:>6} {:>7} {:>9} {:>10} {:>7}  result",
+        "{:<20} {:>9} {:>9} {:>6} {:>7} {:>9} {:>10} {:>7}  result",
         "testbench", "txns", "cycles", "mism", "cover", "max LSB", "mean LSB", "latency"
     );
     for r in results {
         let _ = writeln!(
             s,
-            "{:<14} {:>9} {:>9} {:>6} {:>6.1}% {:>9.3} {:>10.4} {:>7}  {}",
+            "{:<20} {:>9} {:>9} {:>6} {:>6.1}% {:>9.3} {:>10.4} {:>7}  {}",
             r.name,
             r.transactions,
             r.cycles,
@@ -146,13 +146,13 @@ pub fn write_report(out: &Path, summary: &Summary) -> Result<(), String> {
     };
     let results = &summary.testbenches;
     let mut pictures = Vec::new();
-    if results.iter().any(|r| r.name == "normals") {
+    if results.iter().any(|r| r.name == tb::normals::NAME) {
         pictures.push(normals_picture(out)?);
     }
-    if results.iter().any(|r| r.name == "mipmap") {
+    if results.iter().any(|r| r.name == tb::mipmap::NAME) {
         pictures.push(mipmap_picture(out)?);
     }
-    if let Some(t) = results.iter().find(|r| r.name == "texture") {
+    if let Some(t) = results.iter().find(|r| r.name == tb::texture::NAME) {
         let rows = t.records_of::<tb::texture::TableRow>();
         if !rows.is_empty() {
             pictures.extend(crate::plots::memory_plots(out, &rows)?);

@@ -39,7 +39,7 @@ fn regress_writes_valid_waveforms_and_summary() {
         "{stdout}"
     );
     assert!(String::from_utf8_lossy(&o.stderr).contains("seed 0x0000000000001234"));
-    let vcd = out.join("blend_adjust.vcd");
+    let vcd = out.join("blend_adjust_153.vcd");
     let rb = read_vcd(&vcd).unwrap();
     assert_eq!(rb.vars["tb.blend_adjust_153.u_in"].width, Some(8));
     assert_eq!(rb.vars["tb.blend_adjust_153.u0"].width, Some(9));
@@ -75,23 +75,23 @@ fn regress_writes_valid_waveforms_and_summary() {
     for link in [
         "normals_render.png",
         "mipmap_levels.png",
-        "blend_adjust.gtkw",
-        "| normals |",
-        "| mipmap |",
+        "blend_adjust_153.gtkw",
+        "| normal_pipeline_fig7 |",
+        "| mipmap_gen_816 |",
     ] {
         assert!(report.contains(link), "report lacks {link}");
     }
     for png in [
         "normals_render.png",
         "mipmap_levels.png",
-        "normals_error_histogram.png",
-        "mipmap_error_histogram.png",
+        "normal_pipeline_fig7_error_histogram.png",
+        "mipmap_gen_816_error_histogram.png",
     ] {
         assert!(std::fs::read(out.join(png))
             .unwrap()
             .starts_with(b"\x89PNG"));
     }
-    for vcd in ["normals.vcd", "mipmap.vcd"] {
+    for vcd in ["normal_pipeline_fig7.vcd", "mipmap_gen_816.vcd"] {
         let p = out.join(vcd);
         check_gtkw(&p, &read_vcd(&p).unwrap()).unwrap();
     }
@@ -110,12 +110,12 @@ fn trace_options_apply() {
         "10..50",
     ]);
     assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
-    let rb = read_vcd(&out.join("blend_adjust.vcd")).unwrap();
+    let rb = read_vcd(&out.join("blend_adjust_153.vcd")).unwrap();
     assert!(rb.vars.contains_key("tb.blend_adjust_153.u0"));
     assert!(!rb.vars.contains_key("tb.blend_adjust_153.v0"));
     assert_eq!(rb.times.first(), Some(&100_000));
     assert_eq!(rb.times.last(), Some(&500_000));
-    let fst = waves::check::read_fst(&out.join("blend_adjust.fst")).unwrap();
+    let fst = waves::check::read_fst(&out.join("blend_adjust_153.fst")).unwrap();
     waves::fst::same_values(&rb, &fst).unwrap();
 }
 
@@ -413,15 +413,15 @@ fn count_only_and_list_apply_to_every_testbench() {
             "--count",
             count,
             "--only",
-            "blend_adjust",
+            "blend_adjust_153",
             "--only",
-            "normals",
+            "normal_pipeline_fig7",
             "--only",
-            "mipmap",
+            "mipmap_gen_816",
             "--only",
-            "dram",
+            "control_607",
             "--only",
-            "texture",
+            "texture_unit_602",
             "--out",
             out.to_str().unwrap(),
         ]);
@@ -455,11 +455,11 @@ fn count_only_and_list_apply_to_every_testbench() {
     let o = texrtl(&["regress", "--list"]);
     let list = String::from_utf8_lossy(&o.stdout);
     for name in [
-        "blend_adjust",
-        "normals",
-        "mipmap",
-        "dram",
-        "texture",
+        "blend_adjust_153",
+        "normal_pipeline_fig7",
+        "mipmap_gen_816",
+        "control_607",
+        "texture_unit_602",
         "--count",
     ] {
         assert!(list.contains(name), "{list}");

@@ -10,7 +10,7 @@
 //! Every output is scored against `golden::blend_adjust` with zero tolerance: the adjustment is
 //! exact in `F + 1` fraction bits, so any error at all is a bug. Coverage: width x mode,
 //! `u`/`v` classes (zero, max, interior ranges) crossed with the mode. The run at the traced
-//! width (default F = 8) writes `blend_adjust.vcd` with the golden values beside the outputs.
+//! width (default F = 8) writes `blend_adjust_153.vcd` with the golden values beside the outputs.
 
 use hdl::bump::blend_adjust_153::{BlendAdjust, BlendAdjustParams};
 use hdl::kernel::{Sim, Trace};
@@ -111,12 +111,15 @@ impl Default for BlendAdjustTb {
     }
 }
 
+/// The testbench's name: the unit's (its waveform is `blend_adjust_153.vcd`).
+pub const NAME: &str = "blend_adjust_153";
+
 /// The width whose run is traced.
 const TRACED_FRAC: u32 = 8;
 
 impl Testbench for BlendAdjustTb {
     fn name(&self) -> &'static str {
-        "blend_adjust"
+        NAME
     }
     fn unit(&self) -> &'static str {
         "unit 153 (FIG. 7, para. 0058-0061, 0085)"
@@ -232,7 +235,7 @@ fn one_width<T: Trace + ProbeSink>(
     f: u32,
     probes: Option<Probes>,
 ) -> (Sim<BlendAdjust, T>, TbResult) {
-    let mut res = TbResult::new("blend_adjust", "");
+    let mut res = TbResult::new(NAME, "");
     let mut cov = coverage_model();
     let mut stim = Stimulus::new(ctx.seed);
     let mut sim = sim.check_schedule(ctx.check_schedule);

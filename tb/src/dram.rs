@@ -166,7 +166,7 @@ pub fn run_paced(
     let ctrl = DramCtrl::new("control_607", p)?;
     match wave {
         Some((path, cfg)) => {
-            let t = VcdTracer::create(&path, "dram", cfg)
+            let t = VcdTracer::create(&path, NAME, cfg)
                 .map_err(|e| format!("{}: {e}", path.display()))?;
             let sim = Sim::traced(ctrl, t).map_err(|e| e.to_string())?;
             let (sim, st, cov) = drive(sim, addrs, pacing)?;
@@ -284,6 +284,9 @@ const CONFIGS: [&str; 6] = [
     "random, 256K x 16, idle gaps",
 ];
 
+/// The testbench's name: the top it drives, control unit 607 with its DRAM 604.
+pub const NAME: &str = "control_607";
+
 /// The DRAM testbench of `texrtl regress`.
 pub struct DramTb;
 
@@ -319,7 +322,7 @@ fn random_trace(p: &DramParams, n: usize, seed: verif::Seed) -> Vec<u64> {
 
 impl Testbench for DramTb {
     fn name(&self) -> &'static str {
-        "dram"
+        NAME
     }
     fn unit(&self) -> &'static str {
         "DRAM 604 + control unit 607 (Figure 6, section 5)"

@@ -115,7 +115,7 @@ pub fn run_mipmap(
     }
     match vcd {
         Some((path, cfg)) => {
-            let t = VcdTracer::create(&path, "mipmap", cfg).map_err(|e| e.to_string())?;
+            let t = VcdTracer::create(&path, NAME, cfg).map_err(|e| e.to_string())?;
             let sim = Sim::traced(dut, t).map_err(|e| e.to_string())?;
             let (sim, o) = drive(sim, frames)?;
             sim.finish().map_err(|e| e.to_string())?;
@@ -405,6 +405,9 @@ fn coverage_model() -> Coverage {
     c
 }
 
+/// The testbench's name: the unit's.
+pub const NAME: &str = "mipmap_gen_816";
+
 /// The frame sizes of the mipmap testbench: square, wide, tall, one texel wide or high, 1x1.
 const SIZES: [(u32, u32); 9] = [
     (64, 32),
@@ -460,7 +463,7 @@ impl MipmapTb {
 
 impl Testbench for MipmapTb {
     fn name(&self) -> &'static str {
-        "mipmap"
+        NAME
     }
     fn unit(&self) -> &'static str {
         "mipmap generator 816 (section 12, FIG. 14a-b)"

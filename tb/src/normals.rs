@@ -521,6 +521,9 @@ pub fn stimulus(
     s
 }
 
+/// The testbench's name: the pipeline's.
+pub const NAME: &str = "normal_pipeline_fig7";
+
 /// The maps, variants and border modes the normals testbench crosses.
 const MAPS: [&str; 6] = ["flat", "steep", "steps", "noise", "smooth", "extremes"];
 const VARIANTS: [(Filter, bool); 4] = [
@@ -559,7 +562,7 @@ impl NormalsTb {
 
 impl Testbench for NormalsTb {
     fn name(&self) -> &'static str {
-        "normals"
+        NAME
     }
     fn unit(&self) -> &'static str {
         "FIG. 7 pipeline (units 150-156, para. 0050-0087)"

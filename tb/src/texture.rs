@@ -716,6 +716,9 @@ pub const TB_CONFIGS: [(Layout, bool, Lookahead, u32); 11] = [
 /// the modes bit-identical, one record per mode for the hit-rate table and the plots.
 pub struct TextureTb;
 
+/// The testbench's name: the unit's.
+pub const NAME: &str = "texture_unit_602";
+
 /// The seed of the testbench's texture (the traces are what the run's seed varies).
 const TEXTURE_SEED: Seed = Seed(0x602);
 
@@ -733,7 +736,7 @@ fn fixture() -> Result<&'static (Ppm, Ccc), String> {
 
 impl Testbench for TextureTb {
     fn name(&self) -> &'static str {
-        "texture"
+        NAME
     }
     fn unit(&self) -> &'static str {
         "texture unit 602: DRAM 604, control 607, CCC 608-612, cache 614, extract 618, bilinear 622 (Figures 4-7)"

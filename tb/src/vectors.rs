@@ -48,7 +48,12 @@ pub struct VectorFile {
 }
 
 /// Units with vectors.
-pub const UNITS: [&str; 4] = ["blend_adjust", "normals", "mipmap", "texture"];
+pub const UNITS: [&str; 4] = [
+    crate::blend_adjust::NAME,
+    crate::normals::NAME,
+    crate::mipmap::NAME,
+    crate::texture::NAME,
+];
 
 fn f(name: &str, width: u32) -> Field {
     Field {
@@ -68,10 +73,10 @@ fn mask(v: i64, w: u32) -> u64 {
 /// The vectors of `unit` (one of [`UNITS`]).
 pub fn unit_vectors(unit: &str) -> Result<UnitVectors, String> {
     match unit {
-        "blend_adjust" => Ok(blend_adjust()),
-        "normals" => normals(),
-        "mipmap" => mipmap(),
-        "texture" => texture(),
+        crate::blend_adjust::NAME => Ok(blend_adjust()),
+        crate::normals::NAME => normals(),
+        crate::mipmap::NAME => mipmap(),
+        crate::texture::NAME => texture(),
         _ => Err(format!(
             "unknown unit '{unit}' (one of {})",
             UNITS.join(", ")
@@ -103,7 +108,7 @@ fn blend_adjust() -> UnitVectors {
         }
     }
     UnitVectors {
-        unit: "blend_adjust".into(),
+        unit: crate::blend_adjust::NAME.into(),
         description:
             "unit 153, F = 8, combinational: every u in both modes, v = (u * 0x9e5 + 7) mod 256"
                 .into(),
@@ -173,7 +178,7 @@ fn normals() -> Result<UnitVectors, String> {
     }
     let p = BumpParams::default();
     Ok(UnitVectors {
-        unit: "normals".into(),
+        unit: crate::normals::NAME.into(),
         description: format!(
             "FIG. 7 pipeline, default widths, 16x16 built-in maps, wrap: 128 samples each of {}",
             desc.join(", ")
@@ -213,7 +218,7 @@ fn mipmap() -> Result<UnitVectors, String> {
         }
     }
     Ok(UnitVectors {
-        unit: "mipmap".into(),
+        unit: crate::mipmap::NAME.into(),
         description: "FIG. 14 generator, 16x8 synthetic frame (seed 5), round half up, interlaced top-first then progressive: every texel of every level".into(),
         inputs: vec![f("interlaced", 1), f("level", 4), f("index", 8)],
         outputs: vec![f("texel", 8)],
@@ -285,7 +290,7 @@ fn texture() -> Result<UnitVectors, String> {
         }
     }
     Ok(UnitVectors {
-        unit: "texture".into(),
+        unit: crate::texture::NAME.into(),
         description: "texture unit 602 (Figure 6), 32x32 texture from integer formulas (vectors::vector_texture), 256 requests uQ12.4 offered every cycle, row-major, 512-word pages; mode 0 cache + quadrant lookahead, 1 cache, 2 no cache, 3 cache + direction lookahead; outputs the colour and the cycle it leaves 622 (from the first request)".into(),
         inputs: vec![f("mode", 2), f("u", 16), f("v", 16), f("newline", 1)],
         outputs: vec![f("rgb", 24), f("cycle", 20)],

@@ -34,7 +34,7 @@ fn a_single_flipped_bit_changes_the_hash() {
 #[test]
 fn readmemh_export() {
     let d = std::env::temp_dir().join(format!("texrtl-vec-{}", std::process::id()));
-    let v = unit_vectors("blend_adjust").unwrap();
+    let v = unit_vectors("blend_adjust_153").unwrap();
     let files = v.write_readmemh(&d).unwrap();
     let text = std::fs::read_to_string(&files[1]).unwrap();
     let lines: Vec<&str> = text.lines().filter(|l| !l.starts_with("//")).collect();
@@ -65,14 +65,14 @@ fn bless_writes_and_reports_changes() {
         "nothing changed"
     );
     // Tamper with a kept hash: check reports it, bless restores it and says what changed.
-    let p = d.join("mipmap.json");
+    let p = d.join("mipmap_gen_816.json");
     let text = std::fs::read_to_string(&p).unwrap();
-    let h = hash(&unit_vectors("mipmap").unwrap());
+    let h = hash(&unit_vectors("mipmap_gen_816").unwrap());
     std::fs::write(&p, text.replace(&h, "0000000000000000")).unwrap();
     let diffs = check(&d).unwrap();
     assert_eq!(diffs.len(), 1);
     assert!(
-        diffs[0].starts_with("mipmap: hash 0000000000000000 ->"),
+        diffs[0].starts_with("mipmap_gen_816: hash 0000000000000000 ->"),
         "{}",
         diffs[0]
     );
