@@ -51,7 +51,7 @@ fn mipmap_command() {
     let rb = waves::check::read_vcd(&vcd).unwrap();
     assert!(rb
         .vars
-        .contains_key("tb.mipmap_gen_816.level1.fifo1408_occupancy"));
+        .contains_key("tb.mipmap_gen_816.level1.fifo_1408.occupancy"));
     assert!(rb.vars.contains_key("tb.mipmap_gen_816.page_row_bank0"));
     waves::check::check_gtkw(&vcd, &rb).unwrap();
     // Several frames: one directory each.

@@ -213,16 +213,16 @@ fn drive<T: Trace>(
     sim.eval();
     let error = sim.dut.err_code.bits();
     let done_cycle = sim.dut.completed.last().map(|c| c.1).unwrap_or(last_texel);
-    let r = &sim.dut.reducers;
-    let m1408: Vec<usize> = r.iter().map(|r| r.fifo1408.max_occupancy()).collect();
-    let m1412: Vec<usize> = r.iter().map(|r| r.fifo1412.max_occupancy()).collect();
+    let r = &sim.dut.levels;
+    let m1408: Vec<usize> = r.iter().map(|r| r.fifo_1408.max_occupancy()).collect();
+    let m1412: Vec<usize> = r.iter().map(|r| r.fifo_1412.max_occupancy()).collect();
     let stats = MipmapStats {
         cycles: sim.cycle() - start,
         latency_after_last_texel: done_cycle.saturating_sub(last_texel),
         fifo_max_occupancy: m1408.iter().zip(&m1412).map(|(a, b)| *a.max(b)).collect(),
         fifo1408_max: m1408,
         fifo1412_max: m1412,
-        fifo_depth: r.iter().map(|r| r.fifo1408.depth()).collect(),
+        fifo_depth: r.iter().map(|r| r.fifo_1408.depth()).collect(),
         texels,
         texels_per_clock: texels as f64 / (last_texel - start) as f64,
         page_activations: sim.dut.activations,

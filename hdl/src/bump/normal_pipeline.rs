@@ -346,8 +346,12 @@ impl Module for NormalPipeline {
         for l in &self.levels {
             l.visit(v);
         }
+        self.blend_d.visit(v);
+        self.side_d.visit(v);
         self.tangent.visit(v);
         self.normal.visit(v);
+        self.height_d.visit(v);
+        self.valid_d.visit(v);
         v.leave();
     }
 }

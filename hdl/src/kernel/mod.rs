@@ -14,7 +14,7 @@ mod sim;
 pub use delay::Delay;
 pub use module::{Dir, Module, Visitor};
 pub use signal::{Reg, Signal};
-pub use sim::{signal_paths, NoTrace, Sim, Trace};
+pub use sim::{instances, signal_dirs, signal_paths, NoTrace, Sim, Trace};
 
 #[cfg(test)]
 mod tests;

@@ -128,8 +128,31 @@ impl<M: Module, T: Trace> Sim<M, T> {
                 self.trace_error.get_or_insert(e);
             }
         }
-        self.dut.tick(self.reset);
+        if self.check {
+            self.checked_edge();
+        } else {
+            self.dut.tick(self.reset);
+        }
         self.cycle += 1;
+    }
+
+    /// The clock edge, with the check that it changes registers only.
+    fn checked_edge(&mut self) {
+        let (mut a, mut b) = std::mem::take(&mut self.snap);
+        snapshot(&self.dut, &mut a);
+        self.dut.tick(self.reset);
+        snapshot(&self.dut, &mut b);
+        let dirs = signal_dirs(&self.dut);
+        let bad = (0..a.len()).find(|&i| a[i] != b[i] && dirs[i] != Dir::Reg);
+        if let Some(i) = bad {
+            let path = signal_paths(&self.dut).swap_remove(i);
+            panic!(
+                "two-process error at cycle {}: '{path}' ({:?}) changed from {:#x} to {:#x} at \
+                 the clock edge (only registers change in tick; drive signals in eval)",
+                self.cycle, dirs[i], a[i], b[i]
+            );
+        }
+        self.snap = (a, b);
     }
 
     /// One whole cycle: `eval` then `tick`.
@@ -183,6 +206,44 @@ fn snapshot(top: &dyn Module, out: &mut Vec<u64>) {
     }
     out.clear();
     top.visit(&mut Snap(out));
+}
+
+/// What every signal is to its module, in visit order.
+pub fn signal_dirs(top: &dyn Module) -> Vec<Dir> {
+    struct Dirs(Vec<Dir>);
+    impl Visitor for Dirs {
+        fn enter(&mut self, _: &str, _: &str) {}
+        fn leave(&mut self) {}
+        fn signal(&mut self, d: Dir, _: &Signal) {
+            self.0.push(d);
+        }
+    }
+    let mut d = Dirs(Vec::new());
+    top.visit(&mut d);
+    d.0
+}
+
+/// Every instance in the hierarchy as `(path, kind)`, in visit order (for tests that every
+/// module's `visit` reaches every child).
+pub fn instances(top: &dyn Module) -> Vec<(String, String)> {
+    #[derive(Default)]
+    struct Inst {
+        scope: Vec<String>,
+        out: Vec<(String, String)>,
+    }
+    impl Visitor for Inst {
+        fn enter(&mut self, instance: &str, kind: &str) {
+            self.scope.push(instance.to_string());
+            self.out.push((self.scope.join("."), kind.to_string()));
+        }
+        fn leave(&mut self) {
+            self.scope.pop();
+        }
+        fn signal(&mut self, _: Dir, _: &Signal) {}
+    }
+    let mut i = Inst::default();
+    top.visit(&mut i);
+    i.out
 }
 
 /// Hierarchical names (`top.child.signal`) of every signal, in visit order.

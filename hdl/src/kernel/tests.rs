@@ -174,3 +174,56 @@ fn signals_check_every_write() {
     assert!(e.is_err());
     assert!(std::panic::catch_unwind(|| Signal::new("w", Format::uint(65))).is_err());
 }
+
+/// A counter whose `tick` also writes its output port: the two-process rule broken at the
+/// edge.
+struct EdgeWriter {
+    count: Reg,
+    out: Signal,
+}
+impl Module for EdgeWriter {
+    fn instance(&self) -> &str {
+        "edge_writer"
+    }
+    fn kind(&self) -> &'static str {
+        "edge_writer"
+    }
+    fn eval(&mut self) {
+        let n = (self.count.q().bits() + 1) & 0xf;
+        self.count.set_next_bits(n);
+    }
+    fn tick(&mut self, reset: bool) {
+        self.count.tick(reset);
+        // Wrong: a port driven at the clock edge instead of in eval.
+        self.out.set_bits(self.count.q().bits());
+    }
+    fn visit(&self, v: &mut dyn Visitor) {
+        v.enter("edge_writer", "edge_writer");
+        signals!(v; Output: self.out; Reg: self.count);
+        v.leave();
+    }
+}
+
+#[test]
+#[should_panic(expected = "two-process error at cycle 0: 'edge_writer.out' (Output)")]
+fn a_tick_that_writes_a_signal_is_caught() {
+    let mut sim = Sim::new(EdgeWriter {
+        count: Reg::new("count", Format::uint(4)),
+        out: Signal::new("out", Format::uint(4)),
+    })
+    .check_schedule(true);
+    for _ in 0..3 {
+        sim.step();
+    }
+}
+
+#[test]
+fn registers_may_change_at_the_edge() {
+    // The same counter without the port write passes both checks.
+    let mut sim = Sim::new(Top::new(true)).check_schedule(true);
+    sim.reset(1);
+    for _ in 0..5 {
+        sim.step();
+    }
+    assert_eq!(instances(&sim.dut).len(), 2);
+}

@@ -1,0 +1,312 @@
+//! One level of Figure 14 (Schilling & Knittel): level `k` of the mipmap from the texel stream
+//! of level `k-1`, with adder 1402, register 1404, FIFO 1408, adder 1410 and FIFO 1412. See
+//! [`super::mipmap_gen_816`] for how the levels are chained and what each does.
+
+use super::fifo::Fifo;
+use super::mipmap_gen_816::Rounding;
+use crate::fx::Format;
+use crate::kernel::{Dir, Module, Reg, Signal, Visitor};
+use crate::signals;
+
+/// `sum / n` with the chosen rounding (n = 2 or 4).
+#[inline]
+fn divide(sum: u32, n: u32, r: Rounding) -> u32 {
+    match r {
+        Rounding::Round => (sum + n / 2) / n,
+        Rounding::Truncate => sum / n,
+    }
+}
+
+/// What a texel does to the level's FIFOs this cycle.
+#[derive(Clone, Copy, Debug, Default)]
+struct Ops {
+    push_1408: Option<u32>,
+    pop_1408: bool,
+    push_1412: Option<u32>,
+}
+
+/// One level of Figure 14: level `k` from the texel stream of level `k-1`.
+#[derive(Clone, Debug)]
+pub struct Level {
+    name: &'static str,
+    k: usize,
+    /// Size of the level read.
+    wp: u32,
+    hp: u32,
+    pair_x: bool,
+    pair_y: bool,
+    rounding: Rounding,
+    /// Level 1 of interlaced video: vertical pairs from the shift register.
+    interlaced: bool,
+    pub in_valid: Signal,
+    pub in_texel: Signal,
+    /// Interlaced level 1: the partner line's texel from shift register 826.
+    pub sr_texel: Signal,
+    pub sum1402: Signal,
+    pub sum1410: Signal,
+    pub out_valid: Signal,
+    pub out_texel: Signal,
+    x: Reg,
+    y: Reg,
+    r1404: Reg,
+    out_v: Reg,
+    out_t: Reg,
+    /// Sticky FIFO error: 0 none, 1 overflow, 2 underflow.
+    err: Reg,
+    pub fifo_1408: Fifo,
+    pub fifo_1412: Fifo,
+    /// Frame and row (of this level) of the next line FIFO 1412 writes to the frame store.
+    frame: u64,
+    rows_out: u32,
+    /// Whether this cycle changes anything (an idle level skips its edge).
+    busy: bool,
+}
+
+const NAMES: [&str; 11] = [
+    "level0", "level1", "level2", "level3", "level4", "level5", "level6", "level7", "level8",
+    "level9", "level10",
+];
+
+impl Level {
+    /// Level `k` (1..=10) reading a level of `prev = (width, height)`.
+    pub fn new(
+        k: usize,
+        prev: (u32, u32),
+        rounding: Rounding,
+        interlaced: bool,
+    ) -> Result<Level, String> {
+        let (wp, hp) = prev;
+        let wk = (wp / 2).max(1) as usize;
+        let c = |b: u32| Format::uint(b);
+        Ok(Level {
+            name: NAMES.get(k).ok_or(format!("level {k}: at most 10"))?,
+            k,
+            wp,
+            hp,
+            pair_x: wp > 1,
+            pair_y: hp > 1,
+            rounding,
+            interlaced,
+            in_valid: Signal::bit("in_valid"),
+            in_texel: Signal::new("in_texel", c(8)),
+            sr_texel: Signal::new("sr826", c(8)),
+            sum1402: Signal::new("sum1402", c(9)),
+            sum1410: Signal::new("sum1410", c(10)),
+            out_valid: Signal::bit("out_valid"),
+            out_texel: Signal::new("out_texel", c(8)),
+            x: Reg::new("x", c(11)),
+            y: Reg::new("y", c(11)),
+            r1404: Reg::new("r1404", c(8)),
+            out_v: Reg::new("out_valid_r", c(1)),
+            out_t: Reg::new("out_texel_r", c(8)),
+            err: Reg::new("fifo_error", c(2)),
+            fifo_1408: Fifo::new("fifo_1408", wk, 9)?,
+            fifo_1412: Fifo::new("fifo_1412", wk, 8)?,
+            frame: 0,
+            rows_out: 0,
+            busy: true,
+        })
+    }
+
+    /// Width of the level this one writes.
+    pub fn out_width(&self) -> u32 {
+        (self.wp / 2).max(1)
+    }
+
+    /// Level number.
+    pub fn level(&self) -> usize {
+        self.k
+    }
+
+    /// The sticky FIFO error: 0 none, 1 overflow, 2 underflow.
+    pub fn error_code(&self) -> u64 {
+        self.err.q().bits()
+    }
+
+    /// When FIFO 1412's line goes to the frame store at the coming edge (decided by `eval`):
+    /// the frame and the row of this level it belongs to.
+    pub fn line_write(&self) -> Option<(u64, u32)> {
+        self.fifo_1412
+            .clear
+            .is_high()
+            .then_some((self.frame, self.rows_out))
+    }
+
+    /// FIFO 1408's oldest entry for adder 1410 (0 when empty: the FIFO reports the underflow).
+    fn front_1408(&self) -> u32 {
+        self.fifo_1408.front().map_or(0, u32::from)
+    }
+
+    /// Interlaced level 1: the vertical pair from the shift register, then the odd column
+    /// through FIFO 1408 (a one-entry register).
+    fn reduce_interlaced(&mut self, t: u32, x: u32) -> (Ops, Option<u32>) {
+        let r = self.rounding;
+        let s = t + self.sr_texel.bits() as u32;
+        self.sum1402.set_bits(u64::from(s));
+        let mut ops = Ops::default();
+        let out = if !self.pair_x {
+            Some(divide(s, 2, r))
+        } else if x % 2 == 0 {
+            ops.push_1408 = Some(s);
+            None
+        } else {
+            let a = self.front_1408();
+            ops.pop_1408 = true;
+            self.sum1410.set_bits(u64::from(a + s));
+            Some(divide(a + s, 4, r))
+        };
+        (ops, out)
+    }
+
+    /// Figure 14a/b: horizontal pairs through register 1404 and adder 1402, even lines into
+    /// FIFO 1408, odd lines added to its output in adder 1410.
+    fn reduce_progressive(&mut self, t: u32, x: u32, y: u32) -> (Ops, Option<u32>) {
+        let r = self.rounding;
+        let mut ops = Ops::default();
+        let out = match (self.pair_x, self.pair_y) {
+            (true, _) if x % 2 == 0 => {
+                self.r1404.set_next_bits(u64::from(t));
+                None
+            }
+            (true, pair_y) => {
+                let s = self.r1404.q().bits() as u32 + t;
+                self.sum1402.set_bits(u64::from(s));
+                if !pair_y {
+                    Some(divide(s, 2, r))
+                } else if y % 2 == 0 {
+                    ops.push_1408 = Some(s);
+                    None
+                } else {
+                    let a = self.front_1408();
+                    ops.pop_1408 = true;
+                    self.sum1410.set_bits(u64::from(a + s));
+                    Some(divide(a + s, 4, r))
+                }
+            }
+            (false, _) if y % 2 == 0 => {
+                ops.push_1408 = Some(t);
+                None
+            }
+            (false, _) => {
+                let a = self.front_1408();
+                ops.pop_1408 = true;
+                self.sum1402.set_bits(u64::from(a + t));
+                Some(divide(a + t, 2, r))
+            }
+        };
+        (ops, out)
+    }
+
+    /// The level's datapath for one valid input texel: sums, register and counter updates,
+    /// the output texel; returns what it does to the FIFOs.
+    fn reduce(&mut self) -> Ops {
+        let t = self.in_texel.bits() as u32;
+        let (x, y) = (self.x.q().bits() as u32, self.y.q().bits() as u32);
+        let (mut ops, out) = if self.interlaced {
+            self.reduce_interlaced(t, x)
+        } else {
+            self.reduce_progressive(t, x, y)
+        };
+        // Counters over the level read (for interlaced level 1, x only: lines come from the top).
+        let nx = if x + 1 == self.wp { 0 } else { x + 1 };
+        self.x.set_next_bits(u64::from(nx));
+        if nx == 0 && !self.interlaced {
+            let ny = if y + 1 == self.hp { 0 } else { y + 1 };
+            self.y.set_next_bits(u64::from(ny));
+        }
+        if let Some(o) = out {
+            self.out_v.set_next_bool(true);
+            self.out_t.set_next_bits(u64::from(o));
+            ops.push_1412 = Some(o);
+        }
+        ops
+    }
+
+    /// Drives the FIFOs' inputs and evaluates them; a FIFO error is kept (sticky).
+    fn drive_fifos(&mut self, ops: Ops, drain: bool) {
+        let f = &mut self.fifo_1408;
+        f.push.set_bool(ops.push_1408.is_some());
+        f.push_data.set_bits(u64::from(ops.push_1408.unwrap_or(0)));
+        f.pop.set_bool(ops.pop_1408);
+        f.eval();
+        let f = &mut self.fifo_1412;
+        f.push.set_bool(ops.push_1412.is_some());
+        f.push_data.set_bits(u64::from(ops.push_1412.unwrap_or(0)));
+        f.clear.set_bool(drain);
+        f.eval();
+        let e = self.fifo_1408.error.bits().max(self.fifo_1412.error.bits());
+        if e != 0 && self.err.q().bits() == 0 {
+            self.err.set_next_bits(e);
+        }
+    }
+}
+
+impl Module for Level {
+    fn instance(&self) -> &str {
+        self.name
+    }
+    fn kind(&self) -> &'static str {
+        "mipmap_level_fig14"
+    }
+    fn eval(&mut self) {
+        self.out_valid.follow(self.out_v.q());
+        self.out_texel.follow(self.out_t.q());
+        let valid = self.in_valid.is_high();
+        // A full FIFO 1412 holds a line: it goes to the frame store at this edge.
+        let drain = self.fifo_1412.is_full();
+        // Idle: no texel in, none out, no line to write: nothing can change at the edge.
+        let was_busy = self.busy;
+        self.busy = valid || drain || self.out_v.q().is_high();
+        if !self.busy && !was_busy {
+            return;
+        }
+        let ops = if valid {
+            self.out_v.set_next_bool(false);
+            self.reduce()
+        } else {
+            self.out_v.set_next_bool(false);
+            Ops::default()
+        };
+        self.drive_fifos(ops, drain);
+    }
+    fn tick(&mut self, reset: bool) {
+        if !self.busy && !reset {
+            return;
+        }
+        for r in [
+            &mut self.x,
+            &mut self.y,
+            &mut self.r1404,
+            &mut self.out_v,
+            &mut self.out_t,
+            &mut self.err,
+        ] {
+            r.tick(reset);
+        }
+        if reset {
+            (self.frame, self.rows_out) = (0, 0);
+        } else if self.fifo_1412.clear.is_high() {
+            self.rows_out += 1;
+            if self.rows_out == (self.hp / 2).max(1) {
+                self.rows_out = 0;
+                self.frame += 1;
+            }
+        }
+        self.fifo_1408.tick(reset);
+        self.fifo_1412.tick(reset);
+    }
+    fn visit(&self, v: &mut dyn Visitor) {
+        v.enter(self.name, self.kind());
+        signals!(v;
+            Input: self.in_valid, self.in_texel;
+            Wire: self.sum1402, self.sum1410;
+            Output: self.out_valid, self.out_texel;
+            Reg: self.r1404, self.x, self.y, self.err);
+        if self.interlaced {
+            v.signal(Dir::Input, &self.sr_texel);
+        }
+        self.fifo_1408.visit(v);
+        self.fifo_1412.visit(v);
+        v.leave();
+    }
+}

@@ -1,0 +1,102 @@
+//! Every module's `visit` reaches every child: the instance tree of each top, against the
+//! units its figure says it holds (a module count and the kinds, by hand from the figures).
+
+use hdl::bump::normal_pipeline::NormalPipeline;
+use hdl::bump::params::BumpParams;
+use hdl::kernel::{instances, Module};
+use hdl::mipmap::{MipmapGen, MipmapParams, Rounding, Scan};
+use hdl::texmem::texture_unit_602::{TexParams, TextureUnit};
+
+/// `(kind, count)` of every instance under `top`, sorted by kind.
+fn kinds(top: &dyn Module) -> Vec<(String, usize)> {
+    let mut m = std::collections::BTreeMap::new();
+    for (_, k) in instances(top) {
+        *m.entry(k).or_insert(0) += 1;
+    }
+    m.into_iter().collect()
+}
+
+fn own(v: &[(&str, usize)]) -> Vec<(String, usize)> {
+    let mut v: Vec<(String, usize)> = v.iter().map(|(k, n)| (k.to_string(), *n)).collect();
+    v.sort();
+    v
+}
+
+#[test]
+fn fig7_pipeline_visits_every_unit_and_delay_line() {
+    let p = BumpParams::default();
+    let map = tb::maps::builtin("noise", 8, 8, p.texel_fmt()).unwrap();
+    let top = NormalPipeline::new("normal_pipeline_fig7", p, map.clone(), None).unwrap();
+    // 150, 151, 153, 152, four bilinear units, 155, 156 with its rsqrt; four delay lines of
+    // the pipeline and one inside 156.
+    let want = [
+        ("normal_pipeline_fig7", 1),
+        ("address_150", 1),
+        ("texel_fetch_151", 1),
+        ("blend_adjust_153", 1),
+        ("replicate_152", 1),
+        ("bilinear_65_68", 4),
+        ("tangent_155", 1),
+        ("normal_156", 1),
+        ("rsqrt_156", 1),
+        ("delay", 5),
+    ];
+    assert_eq!(kinds(&top), own(&want));
+    assert_eq!(instances(&top).len(), 17);
+    // Trilinear: a second address, fetch, adjust, replicate and four bilinear units.
+    let tri = BumpParams {
+        trilinear: true,
+        ..p
+    };
+    let top = NormalPipeline::new(
+        "normal_pipeline_fig7",
+        tri,
+        map.clone(),
+        Some(map.downsample()),
+    )
+    .unwrap();
+    assert_eq!(instances(&top).len(), 17 + 8);
+}
+
+#[test]
+fn figure6_texture_unit_visits_every_unit() {
+    let p = TexParams::new(16, 16);
+    let clut = vec![0u32; 256];
+    let words = vec![0u16; 2 * 16];
+    let top = TextureUnit::new("texture_unit_602", p, &clut, &words).unwrap();
+    let names: Vec<String> = instances(&top).into_iter().map(|(p, _)| p).collect();
+    for unit in [
+        "texture_unit_602.control_607",
+        "texture_unit_602.control_607.dram_604",
+        "texture_unit_602.ccc_decode_608",
+        "texture_unit_602.cache_614",
+        "texture_unit_602.cache_614.entry_a",
+        "texture_unit_602.cache_614.entry_d",
+        "texture_unit_602.extract_618",
+        "texture_unit_602.bilinear_622",
+    ] {
+        assert!(
+            names.iter().any(|n| n == unit),
+            "{unit} not visited: {names:?}"
+        );
+    }
+}
+
+#[test]
+fn fig14_generator_visits_every_level_and_fifo() {
+    let p = MipmapParams {
+        width: 16,
+        height: 8,
+        scan: Scan::InterlacedTop,
+        rounding: Rounding::Round,
+    };
+    let top = MipmapGen::new("mipmap_gen_816", p).unwrap();
+    // 16x8 has levels 1..4 (8x4, 4x2, 2x1, 1x1), each with FIFOs 1408 and 1412.
+    let want = [
+        ("mipmap_gen_816", 1),
+        ("mipmap_level_fig14", 4),
+        ("fifo_1408", 4),
+        ("fifo_1412", 4),
+    ];
+    assert_eq!(kinds(&top), own(&want));
+}
