@@ -146,7 +146,7 @@ impl Level {
         let mut ops = Ops::default();
         let out = if !self.pair_x {
             Some(divide(s, 2, r))
-        } else if x % 2 == 0 {
+        } else if x.is_multiple_of(2) {
             ops.push_1408 = Some(s);
             None
         } else {
@@ -164,7 +164,7 @@ impl Level {
         let r = self.rounding;
         let mut ops = Ops::default();
         let out = match (self.pair_x, self.pair_y) {
-            (true, _) if x % 2 == 0 => {
+            (true, _) if x.is_multiple_of(2) => {
                 self.r1404.set_next_bits(u64::from(t));
                 None
             }
@@ -173,7 +173,7 @@ impl Level {
                 self.sum1402.set_bits(u64::from(s));
                 if !pair_y {
                     Some(divide(s, 2, r))
-                } else if y % 2 == 0 {
+                } else if y.is_multiple_of(2) {
                     ops.push_1408 = Some(s);
                     None
                 } else {
@@ -183,7 +183,7 @@ impl Level {
                     Some(divide(a + s, 4, r))
                 }
             }
-            (false, _) if y % 2 == 0 => {
+            (false, _) if y.is_multiple_of(2) => {
                 ops.push_1408 = Some(t);
                 None
             }
