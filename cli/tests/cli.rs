@@ -95,6 +95,23 @@ fn regress_writes_valid_waveforms_and_summary() {
         let p = out.join(vcd);
         check_gtkw(&p, &read_vcd(&p).unwrap()).unwrap();
     }
+    // FSM states by name: a translate filter file per state register, referenced from the
+    // .gtkw just before the trace it names.
+    let filter = out.join("texture_unit_602.fill_engine_607.state.txt");
+    let names = std::fs::read_to_string(&filter).unwrap();
+    assert!(names.contains("0 IDLE\n1 FETCH\n2 DECODE\n"), "{names}");
+    let g = std::fs::read_to_string(out.join("texture_unit_602.gtkw")).unwrap();
+    let abs = std::path::absolute(&filter).unwrap();
+    let line = format!(
+        "{}\ntb.texture_unit_602.fill_engine_607.state[1:0]",
+        abs.display()
+    );
+    assert!(
+        g.contains(&line),
+        "the .gtkw does not name the state filter: {g}"
+    );
+    let p = out.join("texture_unit_602.vcd");
+    check_gtkw(&p, &read_vcd(&p).unwrap()).unwrap();
 }
 
 #[test]

@@ -124,7 +124,7 @@ fn ccc_and_texread_commands() {
         "tb.texture_unit_602.control_607.dram_604.addr",
         "tb.texture_unit_602.control_607.dram_604.page_row",
         "tb.texture_unit_602.control_607.state",
-        "tb.texture_unit_602.fill_state",
+        "tb.texture_unit_602.fill_engine_607.state",
         "tb.texture_unit_602.cache_614.entry_a.tag_x",
         "tb.texture_unit_602.cache_614.entry_d.valid",
         "tb.texture_unit_602.ccc_decode_608.reg_608",

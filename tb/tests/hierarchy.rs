@@ -66,6 +66,8 @@ fn figure6_texture_unit_visits_every_unit() {
     let top = TextureUnit::new("texture_unit_602", p, &clut, &words).unwrap();
     let names: Vec<String> = instances(&top).into_iter().map(|(p, _)| p).collect();
     for unit in [
+        "texture_unit_602.fill_engine_607",
+        "texture_unit_602.lookahead_queue_607",
         "texture_unit_602.control_607",
         "texture_unit_602.control_607.dram_604",
         "texture_unit_602.ccc_decode_608",

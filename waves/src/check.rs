@@ -173,8 +173,35 @@ fn read_waves(path: &Path) -> Result<Readback, String> {
     })
 }
 
-/// Checks the `.gtkw` beside `vcd`: it exists, names this dump, and every trace it lists
-/// exists in `rb` with the width in its `[msb:lsb]` suffix. Returns the number of traces.
+/// Checks a `^N /path` translate-filter line: a slot number and a readable file of
+/// `value name` lines (comments `#`).
+fn check_filter(line: &str) -> Result<(), String> {
+    let (slot, path) = line
+        .split_once(' ')
+        .ok_or_else(|| format!("bad filter line ^{line}"))?;
+    slot.parse::<u32>()
+        .map_err(|_| format!("bad filter slot in ^{line}"))?;
+    let text = std::fs::read_to_string(path).map_err(|e| format!("filter file {path}: {e}"))?;
+    for l in text
+        .lines()
+        .filter(|l| !l.trim().is_empty() && !l.starts_with('#'))
+    {
+        let (v, name) = l
+            .trim()
+            .split_once(' ')
+            .ok_or_else(|| format!("filter file {path}: '{l}' is not 'value name'"))?;
+        v.parse::<u64>()
+            .map_err(|_| format!("filter file {path}: '{v}' is not a decimal value"))?;
+        if name.trim().is_empty() {
+            return Err(format!("filter file {path}: value {v} has no name"));
+        }
+    }
+    Ok(())
+}
+
+/// Checks the `.gtkw` beside `vcd`: it exists, names this dump, every trace it lists exists
+/// in `rb` with the width in its `[msb:lsb]` suffix, and every translate filter file it
+/// names is there and well formed. Returns the number of traces.
 pub fn check_gtkw(vcd: &Path, rb: &Readback) -> Result<usize, String> {
     let g = vcd.with_extension("gtkw");
     let err = |m: String| format!("{}: {m}", g.display());
@@ -194,6 +221,10 @@ pub fn check_gtkw(vcd: &Path, rb: &Readback) -> Result<usize, String> {
     for line in text.lines() {
         if let Some(f) = line.strip_prefix('@') {
             last_flags = f;
+            continue;
+        }
+        if let Some(f) = line.strip_prefix('^') {
+            check_filter(f).map_err(err)?;
             continue;
         }
         if line.starts_with('-') {

@@ -1,8 +1,10 @@
 //! GTKWave save files (`.gtkw`) that open a trace with the signals grouped per unit.
 //!
 //! Trace flags (hex, from GTKWave's save-file format): binary 0x8, hex 0x2, decimal 0x4,
-//! signed 0x400, right-justify 0x20, analog step 0x8000, real 0x40000, blank/comment 0x200,
-//! group begin 0x800000, group end 0x1000000.
+//! signed 0x400, right-justify 0x20, translate filter file 0x2000, analog step 0x8000, real
+//! 0x40000, blank/comment 0x200, group begin 0x800000, group end 0x1000000. A trace shown
+//! through a translate filter file (the names of an FSM's states) is preceded by a line
+//! `^N /path/to/filter`, which loads that file into GTKWave's filter slot N.
 
 use std::io::{self, Write};
 use std::path::{Path, PathBuf};
@@ -18,6 +20,8 @@ pub enum Style {
     SignedDec,
     /// Real values (fixed-point companions, golden values): analog step waveform.
     Analog,
+    /// Enumerated values (FSM states): decimal, translated to names by a filter file.
+    Named,
 }
 
 impl Style {
@@ -29,6 +33,7 @@ impl Style {
             Style::Hex => 0x2 | RJUSTIFY,
             Style::SignedDec => 0x4 | 0x400 | RJUSTIFY,
             Style::Analog => 0x8000 | 0x40000 | RJUSTIFY,
+            Style::Named => 0x2000 | 0x4 | RJUSTIFY,
         }
     }
 }
@@ -36,7 +41,12 @@ impl Style {
 /// One line group of a save file.
 #[derive(Clone, Debug, PartialEq)]
 pub enum Item {
-    Trace { name: String, style: Style },
+    /// A signal; `filter` is the translate filter file of a [`Style::Named`] one.
+    Trace {
+        name: String,
+        style: Style,
+        filter: Option<PathBuf>,
+    },
     GroupBegin(String),
     GroupEnd(String),
 }
@@ -151,12 +161,29 @@ impl Gtkw {
             s.push_str(&format!("[treeopen] {t}.\n"));
         }
         let mut flags = None;
-        for it in &self.items {
+        let mut filters: Vec<&PathBuf> = Vec::new();
+        for it in self.without_empty_groups() {
             match it {
-                Item::Trace { name, style } => {
+                Item::Trace {
+                    name,
+                    style,
+                    filter,
+                } => {
                     if flags != Some(style.flags()) {
                         s.push_str(&format!("@{:x}\n", style.flags()));
                         flags = Some(style.flags());
+                    }
+                    if let Some(f) = filter {
+                        // Slots 1.. in order of first use; the same file keeps its slot.
+                        let slot = match filters.iter().position(|g| *g == f) {
+                            Some(i) => i + 1,
+                            None => {
+                                filters.push(f);
+                                filters.len()
+                            }
+                        };
+                        let abs = std::path::absolute(f).unwrap_or_else(|_| f.clone());
+                        s.push_str(&format!("^{slot} {}\n", abs.display()));
                     }
                     s.push_str(name);
                     s.push('\n');
@@ -184,6 +211,33 @@ impl Gtkw {
         f.write_all(self.render(title).as_bytes())?;
         f.sync_all().ok();
         std::fs::rename(&tmp, &self.path)
+    }
+
+    /// The items without the groups that hold no trace (a filtered trace leaves them): a
+    /// group is kept when a trace follows its begin before its end.
+    fn without_empty_groups(&self) -> Vec<&Item> {
+        let mut out: Vec<&Item> = Vec::new();
+        // Per open group: its index in `out` and whether a trace was seen inside it.
+        let mut open: Vec<(usize, bool)> = Vec::new();
+        for it in &self.items {
+            match it {
+                Item::GroupBegin(_) => {
+                    open.push((out.len(), false));
+                    out.push(it);
+                }
+                Item::GroupEnd(_) => match open.pop() {
+                    Some((i, false)) => out.truncate(i),
+                    _ => out.push(it),
+                },
+                Item::Trace { .. } => {
+                    for g in &mut open {
+                        g.1 = true;
+                    }
+                    out.push(it);
+                }
+            }
+        }
+        out
     }
 
     /// The traces in order (for tests and tools).

@@ -107,6 +107,8 @@ pub struct VcdTracer {
     dumped: bool,
     last_time: Option<u64>,
     gtkw: Gtkw,
+    /// Translate filter files (FSM state names) the `.gtkw` refers to.
+    filters: Vec<(PathBuf, &'static [&'static str])>,
     finished: bool,
     changes: u64,
 }
@@ -152,6 +154,7 @@ impl VcdTracer {
             rst_last: None,
             dumped: false,
             last_time: None,
+            filters: Vec::new(),
             finished: false,
             changes: 0,
         })
@@ -269,12 +272,38 @@ fn real_of(bits: u64, fmt: Format) -> f64 {
 struct Declare<'a> {
     t: &'a mut VcdTracer,
     scope: Vec<String>,
+    /// The kinds of the modules entered.
+    kinds: Vec<String>,
     err: Option<io::Error>,
+}
+
+impl Declare<'_> {
+    /// The translate filter file for enumerated signal `signal` of the current module:
+    /// `<dump stem>.<kind>.<signal>.txt` beside the dump (one per kind and signal, since a kind
+    /// has one set of state names).
+    fn filter(&mut self, signal: &str, names: &'static [&'static str]) -> PathBuf {
+        let kind = self.kinds.last().map_or("tb", String::as_str);
+        let stem = self
+            .t
+            .path
+            .file_stem()
+            .unwrap_or_default()
+            .to_string_lossy();
+        let path = self
+            .t
+            .path
+            .with_file_name(format!("{stem}.{kind}.{signal}.txt"));
+        if !self.t.filters.iter().any(|(p, _)| *p == path) {
+            self.t.filters.push((path.clone(), names));
+        }
+        path
+    }
 }
 
 impl Visitor for Declare<'_> {
     fn enter(&mut self, instance: &str, kind: &str) {
         let name = escape(instance);
+        self.kinds.push(escape(kind));
         self.scope.push(name.clone());
         let depth = self.scope.len();
         let path = self.scope.join(".");
@@ -295,6 +324,7 @@ impl Visitor for Declare<'_> {
     fn leave(&mut self) {
         let depth = self.scope.len();
         self.scope.pop();
+        self.kinds.pop();
         if self.t.cfg.max_depth.is_none_or(|d| depth <= d) {
             self.t.gtkw.end_group();
         }
@@ -350,11 +380,22 @@ impl Visitor for Declare<'_> {
             } else {
                 full.clone()
             };
-            self.t.gtkw.push(Item::Trace { name: vname, style });
+            let filter = s.states().map(|names| self.filter(s.name(), names));
+            let style = if filter.is_some() {
+                Style::Named
+            } else {
+                style
+            };
+            self.t.gtkw.push(Item::Trace {
+                name: vname,
+                style,
+                filter,
+            });
             if e.real.is_some() {
                 self.t.gtkw.push(Item::Trace {
                     name: format!("{full}_real"),
                     style: Style::Analog,
+                    filter: None,
                 });
             }
         }
@@ -397,6 +438,19 @@ impl Visitor for Sample<'_> {
     }
 }
 
+/// A GTKWave translate filter file: one `value name` line per state, values in decimal (the
+/// traces that use it are shown in decimal).
+fn write_filter(path: &Path, names: &[&str]) -> io::Result<()> {
+    let mut text = String::from("# texrtl: state names, value in decimal\n");
+    for (v, n) in names.iter().enumerate() {
+        text.push_str(&format!("{v} {n}\n"));
+    }
+    let mut tmp = path.as_os_str().to_owned();
+    tmp.push(".partial");
+    std::fs::write(&tmp, text)?;
+    std::fs::rename(&tmp, path)
+}
+
 impl Trace for VcdTracer {
     fn start(&mut self, top: &dyn Module) -> io::Result<()> {
         let title = self.title.clone();
@@ -413,14 +467,17 @@ impl Trace for VcdTracer {
         self.gtkw.push(Item::Trace {
             name: format!("{ROOT}.clk"),
             style: Style::Bin,
+            filter: None,
         });
         self.gtkw.push(Item::Trace {
             name: format!("{ROOT}.rst"),
             style: Style::Bin,
+            filter: None,
         });
         let mut d = Declare {
             t: self,
             scope: vec![ROOT.to_string()],
+            kinds: Vec::new(),
             err: None,
         };
         top.visit(&mut d);
@@ -453,6 +510,7 @@ impl Trace for VcdTracer {
                         full
                     },
                     style: if real { Style::Analog } else { Style::Hex },
+                    filter: None,
                 };
                 let beside = self.probes[i].beside.clone();
                 self.gtkw.place(trace, beside.as_deref());
@@ -530,6 +588,9 @@ impl Trace for VcdTracer {
         drop(w);
         std::fs::rename(&self.tmp, &self.path)?;
         self.gtkw.set_end_time(self.last_time.unwrap_or(0));
+        for (path, names) in &self.filters {
+            write_filter(path, names)?;
+        }
         self.gtkw.write(&self.title)?;
         self.finished = true;
         Ok(())

@@ -17,6 +17,8 @@ pub struct Signal {
     hi: i64,
     fmt: Format,
     name: &'static str,
+    /// Names of the values of an enumerated signal (a state register), by value.
+    states: Option<&'static [&'static str]>,
 }
 
 impl Signal {
@@ -35,7 +37,33 @@ impl Signal {
             hi: fmt.max_raw().min(i128::from(i64::MAX)) as i64,
             fmt,
             name,
+            states: None,
         }
+    }
+
+    /// The same signal with named values (an FSM state: `states[v]` names value `v`), shown
+    /// by name in GTKWave. Every name must fit the width: at most `2^width` of them.
+    #[track_caller]
+    pub fn with_states(mut self, states: &'static [&'static str]) -> Signal {
+        assert!(
+            self.fmt.width() < 16 && states.len() <= 1 << self.fmt.width(),
+            "signal '{}': {} state names for {} bits",
+            self.name,
+            states.len(),
+            self.fmt.width()
+        );
+        self.states = Some(states);
+        self
+    }
+
+    /// The names of the values, for an enumerated signal.
+    pub fn states(&self) -> Option<&'static [&'static str]> {
+        self.states
+    }
+
+    /// The name of the current value, for an enumerated signal.
+    pub fn state_name(&self) -> Option<&'static str> {
+        self.states?.get(self.bits as usize).copied()
     }
 
     /// A one-bit unsigned signal.
@@ -197,6 +225,14 @@ impl Reg {
             d: bits,
             reset: bits,
         }
+    }
+
+    /// The same register with named values (an FSM state register; see
+    /// [`Signal::with_states`]).
+    #[track_caller]
+    pub fn with_states(mut self, states: &'static [&'static str]) -> Reg {
+        self.q = self.q.with_states(states);
+        self
     }
 
     /// The current (registered) value.

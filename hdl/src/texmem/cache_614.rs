@@ -29,7 +29,7 @@
 //! prefetch and not yet used by a request; for the statistics only).
 
 use crate::fx::Format;
-use crate::kernel::{Module, Reg, Visitor};
+use crate::kernel::{Module, Reg, Signal, Visitor};
 use crate::signals;
 
 /// Entry of block `(bx, by)` (Figure 7).
@@ -134,14 +134,28 @@ impl Module for Entry {
 /// Cache 614. Reads are combinational ([`TextureCache::holds`], [`TextureCache::line`]: the
 /// four 64-bit lines to colour extract 618); a write ([`TextureCache::write`]) or an
 /// invalidation takes effect at the clock edge.
+/// Cache 614: four entries A-D (Figure 7).
+///
+/// Ports, driven by the unit in its `eval` and applied by [`TextureCache::eval`] in this
+/// order: `touch` (entries a request used: their `prefetched` bits clear), `invalidate` (every
+/// entry, for the cache-off mode), `write` with `write_bx`, `write_by`, `write_data`,
+/// `write_prefetched` (a filled line; it wins over the others for its entry). Lookups read
+/// the registered state ([`TextureCache::holds`], [`TextureCache::line`]).
 #[derive(Clone, Debug)]
 pub struct TextureCache {
     name: String,
+    pub touch: Signal,
+    pub invalidate: Signal,
+    pub write: Signal,
+    pub write_bx: Signal,
+    pub write_by: Signal,
+    pub write_data: Signal,
+    pub write_prefetched: Signal,
     pub entries: [Entry; 4],
 }
 
 impl TextureCache {
-    /// `tag_bits`: width of each tag half (enough for `blocks_per_side / 2`).
+    /// A cache with tags of `tag_bits` bits per coordinate (block coordinates have one more).
     pub fn new(name: &str, tag_bits: u32) -> TextureCache {
         let e = |n: &str| Entry {
             name: n.into(),
@@ -151,13 +165,21 @@ impl TextureCache {
             data: Reg::new("data", Format::uint(64)),
             prefetched: Reg::new("prefetched", Format::uint(1)),
         };
+        let b = Format::uint(tag_bits + 1);
         TextureCache {
             name: name.into(),
+            touch: Signal::new("touch", Format::uint(4)),
+            invalidate: Signal::bit("invalidate"),
+            write: Signal::bit("write"),
+            write_bx: Signal::new("write_bx", b),
+            write_by: Signal::new("write_by", b),
+            write_data: Signal::new("write_data", Format::uint(64)),
+            write_prefetched: Signal::bit("write_prefetched"),
             entries: [e("entry_a"), e("entry_b"), e("entry_c"), e("entry_d")],
         }
     }
 
-    /// Does entry `entry_of(bx, by)` hold block `(bx, by)`?
+    /// Whether block `(bx, by)` is in its entry.
     #[inline]
     pub fn holds(&self, bx: u32, by: u32) -> bool {
         let e = &self.entries[entry_of(bx, by)];
@@ -166,38 +188,16 @@ impl TextureCache {
             && e.tag_y.q().bits() == u64::from(by >> 1)
     }
 
+    /// The line in entry `entry` (0..4).
     #[inline]
     pub fn line(&self, entry: usize) -> u64 {
         self.entries[entry].data.q().bits()
     }
 
-    /// Writes block `(bx, by)` into its entry at the next edge.
-    pub fn write(&mut self, bx: u32, by: u32, data: u64, prefetched: bool) {
-        let e = &mut self.entries[entry_of(bx, by)];
-        e.valid.set_next_bool(true);
-        e.tag_x.set_next_bits(u64::from(bx >> 1));
-        e.tag_y.set_next_bits(u64::from(by >> 1));
-        e.data.set_next_bits(data);
-        e.prefetched.set_next_bool(prefetched);
-    }
-
-    /// Marks the entry of `(bx, by)` used (clears `prefetched`) at the next edge; returns
-    /// whether it had been prefetched and not used before. Call before a
-    /// [`write`](TextureCache::write) in the same cycle, which then wins.
-    pub fn touch(&mut self, bx: u32, by: u32) -> bool {
-        let e = &mut self.entries[entry_of(bx, by)];
-        let was = e.prefetched.q().is_high();
-        if was {
-            e.prefetched.set_next_bool(false);
-        }
-        was
-    }
-
-    /// Invalidates every entry at the next edge (the cache-disabled mode).
-    pub fn invalidate(&mut self) {
-        for e in &mut self.entries {
-            e.valid.set_next_bool(false);
-        }
+    /// Whether entry `entry` holds a prefetched line no request has used yet.
+    #[inline]
+    pub fn prefetched(&self, entry: usize) -> bool {
+        self.entries[entry].prefetched.q().is_high()
     }
 }
 
@@ -208,7 +208,27 @@ impl Module for TextureCache {
     fn kind(&self) -> &'static str {
         "cache_614"
     }
-    fn eval(&mut self) {}
+    fn eval(&mut self) {
+        let touch = self.touch.bits();
+        let inval = self.invalidate.is_high();
+        for (k, e) in self.entries.iter_mut().enumerate() {
+            if touch >> k & 1 == 1 {
+                e.prefetched.set_next_bool(false);
+            }
+            if inval {
+                e.valid.set_next_bool(false);
+            }
+        }
+        if self.write.is_high() {
+            let (bx, by) = (self.write_bx.bits() as u32, self.write_by.bits() as u32);
+            let e = &mut self.entries[entry_of(bx, by)];
+            e.valid.set_next_bool(true);
+            e.tag_x.set_next_bits(u64::from(bx >> 1));
+            e.tag_y.set_next_bits(u64::from(by >> 1));
+            e.data.set_next_bits(self.write_data.bits());
+            e.prefetched.set_next_bool(self.write_prefetched.is_high());
+        }
+    }
     fn tick(&mut self, reset: bool) {
         for e in &mut self.entries {
             e.tick(reset);
@@ -216,6 +236,9 @@ impl Module for TextureCache {
     }
     fn visit(&self, v: &mut dyn Visitor) {
         v.enter(&self.name, self.kind());
+        signals!(v;
+            Input: self.touch, self.invalidate, self.write, self.write_bx, self.write_by,
+                   self.write_data, self.write_prefetched);
         for e in &self.entries {
             e.visit(v);
         }
@@ -283,20 +306,42 @@ mod tests {
         }
     }
 
+    /// One cycle of the cache with its ports driven (none: all ports idle).
+    fn cycle(
+        sim: &mut crate::kernel::Sim<TextureCache>,
+        write: Option<(u32, u32, u64)>,
+        touch: u64,
+        inval: bool,
+    ) {
+        let c = &mut sim.dut;
+        c.write.set_bool(write.is_some());
+        let (bx, by, data) = write.unwrap_or((0, 0, 0));
+        c.write_bx.set_bits(u64::from(bx));
+        c.write_by.set_bits(u64::from(by));
+        c.write_data.set_bits(data);
+        c.write_prefetched.set_bool(true);
+        c.touch.set_bits(touch);
+        c.invalidate.set_bool(inval);
+        sim.step();
+    }
+
     #[test]
     fn write_then_hold_then_invalidate() {
-        let mut c = TextureCache::new("c", 9);
-        assert!(!c.holds(3, 5));
-        c.write(3, 5, 0xdead_beef, true);
-        c.tick(false);
-        assert!(c.holds(3, 5));
-        assert!(!c.holds(5, 5), "same entry, other tag");
-        assert_eq!(c.line(entry_of(3, 5)), 0xdead_beef);
-        assert!(c.touch(3, 5));
-        c.tick(false);
-        assert!(!c.touch(3, 5));
-        c.invalidate();
-        c.tick(false);
-        assert!(!c.holds(3, 5));
+        let mut sim = crate::kernel::Sim::new(TextureCache::new("c", 9)).check_schedule(true);
+        assert!(!sim.dut.holds(3, 5));
+        cycle(&mut sim, Some((3, 5, 0xdead_beef)), 0, false);
+        let e = entry_of(3, 5);
+        assert!(sim.dut.holds(3, 5));
+        assert!(!sim.dut.holds(5, 5), "same entry, other tag");
+        assert_eq!(sim.dut.line(e), 0xdead_beef);
+        assert!(sim.dut.prefetched(e));
+        cycle(&mut sim, None, 1 << e, false);
+        assert!(!sim.dut.prefetched(e), "touched");
+        cycle(&mut sim, None, 0, false);
+        assert!(sim.dut.holds(3, 5), "holds when the ports are idle");
+        // A write wins over an invalidation of the same cycle for its entry.
+        cycle(&mut sim, Some((1, 0, 7)), 0, true);
+        assert!(!sim.dut.holds(3, 5));
+        assert!(sim.dut.holds(1, 0));
     }
 }

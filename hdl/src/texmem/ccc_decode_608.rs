@@ -66,10 +66,11 @@ impl Line {
     }
 }
 
-/// States of the decoder.
+/// States of the decoder, and their names in the waveform.
 const LOAD: u64 = 0;
 const LUT_A: u64 = 1;
 const LUT_B: u64 = 2;
+const STATES: &[&str] = &["LOAD", "LUT_A", "LUT_B"];
 
 /// Register 608, multiplexer 610, CLUT 612.
 #[derive(Clone, Debug)]
@@ -115,7 +116,7 @@ impl CccDecode {
             line: Signal::new("line", Format::uint(64)),
             reg_608: Reg::new("reg_608", Format::uint(32)),
             words_in: Reg::new("words_in", Format::uint(1)),
-            state: Reg::new("state", Format::uint(2)),
+            state: Reg::new("state", Format::uint(2)).with_states(STATES),
             color_a: Reg::new("color_a", Format::uint(24)),
         })
     }

@@ -1,7 +1,9 @@
-//! DRAM control unit 607 (Schilling & Knittel, Figure 6, section 5): the word-read
-//! controller that drives DRAM 604's pins.
+//! DRAM control unit 607 (Schilling & Knittel, Figure 6, section 5), as three modules: the
+//! word-read controller that drives DRAM 604's pins ([`DramCtrl`]), the block fetch that reads
+//! a CCC block's two words into register 608 ([`FillEngine`]), and the lookahead queue of
+//! blocks to preload ([`LookaheadQueue`]).
 //!
-//! # The control unit 607
+//! # The word-read controller
 //! Takes word-read requests (valid + address), keeps the open page, and drives the pins: on a
 //! page hit straight to the CAS# cycle; on a fault RAS# high for `t_rp`, RAS# low with the new
 //! row for `t_rcd`, then the CAS# cycle. Counts reads, page hits and page faults. One request is
@@ -9,7 +11,9 @@
 //!
 //! Timing parameters and the DRAM are in [`super::dram_604`].
 
+use super::cache_614::{lookahead, lookahead_direction, Lookahead};
 use super::dram_604::{Dram, DramParams};
+use super::layout::BlockMap;
 use crate::fx::Format;
 use crate::kernel::{Module, Reg, Signal, Visitor};
 use crate::signals;
@@ -23,6 +27,9 @@ enum State {
     CasLow = 3,
     CasHigh = 4,
 }
+
+/// The states' names in the waveform, by value.
+const STATES: &[&str] = &["IDLE", "PRECHARGE", "ROW_OPEN", "CAS_LOW", "CAS_HIGH"];
 
 /// DRAM control unit 607 (word reads), with the DRAM 604 it drives.
 #[derive(Clone, Debug)]
@@ -58,7 +65,7 @@ impl DramCtrl {
             ready: Signal::bit("ready"),
             resp_valid: Signal::bit("resp_valid"),
             resp_data: Signal::new("resp_data", Format::uint(16)),
-            state: Reg::new("state", Format::uint(3)),
+            state: Reg::new("state", Format::uint(3)).with_states(STATES),
             count: Reg::new("count", Format::uint(11)),
             open_row: Reg::new("open_row", Format::uint(11)),
             row_open: Reg::new("row_open", Format::uint(1)),
@@ -191,6 +198,311 @@ impl Module for DramCtrl {
             Output: self.ready, self.resp_valid, self.resp_data;
             Reg: self.state, self.count, self.open_row, self.row_open);
         self.dram.visit(v);
+        v.leave();
+    }
+}
+
+/// States of the fill engine, and their names in the waveform.
+const FILL_IDLE: u64 = 0;
+const FILL_FETCH: u64 = 1;
+const FILL_DECODE: u64 = 2;
+const FILL_STATES: &[&str] = &["IDLE", "FETCH", "DECODE"];
+
+/// The block fetch of control unit 607: reads a CCC block's two DRAM words (word 0, then
+/// word 1, in page mode when the row is open) through the word controller [`DramCtrl`] into
+/// register 608, then waits while 610/612 decode it until the line is written to cache 614.
+/// One fill at a time; a fill in progress is never abandoned.
+///
+/// Ports: `start` with `start_bx`, `start_by`, `start_prefetch` (taken only when idle);
+/// `word_ready`, `word_resp` from the word controller; `line_done` from the decoder;
+/// `word_req`, `word_addr` to the word controller (Moore outputs, also readable before `eval`
+/// through [`FillEngine::word_request`]).
+#[derive(Clone, Debug)]
+pub struct FillEngine {
+    name: &'static str,
+    map: BlockMap,
+    pub start: Signal,
+    pub start_bx: Signal,
+    pub start_by: Signal,
+    pub start_prefetch: Signal,
+    pub word_ready: Signal,
+    pub word_resp: Signal,
+    pub line_done: Signal,
+    pub word_req: Signal,
+    pub word_addr: Signal,
+    pub state: Reg,
+    pub bx: Reg,
+    pub by: Reg,
+    pub prefetch: Reg,
+    words_issued: Reg,
+}
+
+impl FillEngine {
+    /// An engine for blocks laid out by `map`, block coordinates of `block_bits`, DRAM word
+    /// addresses of format `addr`.
+    pub fn new(map: BlockMap, block_bits: u32, addr: Format) -> FillEngine {
+        let b = Format::uint(block_bits);
+        FillEngine {
+            name: "fill_engine_607",
+            map,
+            start: Signal::bit("start"),
+            start_bx: Signal::new("start_bx", b),
+            start_by: Signal::new("start_by", b),
+            start_prefetch: Signal::bit("start_prefetch"),
+            word_ready: Signal::bit("word_ready"),
+            word_resp: Signal::bit("word_resp"),
+            line_done: Signal::bit("line_done"),
+            word_req: Signal::bit("word_req"),
+            word_addr: Signal::new("word_addr", addr),
+            state: Reg::new("state", Format::uint(2)).with_states(FILL_STATES),
+            bx: Reg::new("bx", b),
+            by: Reg::new("by", b),
+            prefetch: Reg::new("prefetch", Format::uint(1)),
+            words_issued: Reg::new("words_issued", Format::uint(2)),
+        }
+    }
+
+    /// No fill in progress (registered state).
+    #[inline]
+    pub fn is_idle(&self) -> bool {
+        self.state.q().bits() == FILL_IDLE
+    }
+
+    /// The block being filled and whether it is a prefetch (registered state).
+    #[inline]
+    pub fn block(&self) -> (u32, u32, bool) {
+        (
+            self.bx.q().bits() as u32,
+            self.by.q().bits() as u32,
+            self.prefetch.q().is_high(),
+        )
+    }
+
+    /// The DRAM word the engine asks for this cycle (from its state).
+    #[inline]
+    pub fn word_request(&self) -> Option<u64> {
+        let issued = self.words_issued.q().bits();
+        (self.state.q().bits() == FILL_FETCH && issued < 2).then(|| {
+            let (bx, by, _) = self.block();
+            self.map.block_addr(bx, by) + issued
+        })
+    }
+}
+
+impl Module for FillEngine {
+    fn instance(&self) -> &str {
+        self.name
+    }
+    fn kind(&self) -> &'static str {
+        "fill_engine_607"
+    }
+    fn eval(&mut self) {
+        let req = self.word_request();
+        self.word_req.set_bool(req.is_some());
+        self.word_addr.set_bits(req.unwrap_or(0));
+        let (st, issued) = (self.state.q().bits(), self.words_issued.q().bits());
+        if req.is_some() && self.word_ready.is_high() {
+            self.words_issued.set_next_bits(issued + 1);
+        }
+        if self.word_resp.is_high() && issued == 2 && st == FILL_FETCH {
+            self.state.set_next_bits(FILL_DECODE);
+        }
+        if self.line_done.is_high() {
+            self.state.set_next_bits(FILL_IDLE);
+        }
+        if self.start.is_high() && st == FILL_IDLE {
+            self.state.set_next_bits(FILL_FETCH);
+            self.bx.set_next_bits(self.start_bx.bits());
+            self.by.set_next_bits(self.start_by.bits());
+            self.prefetch.set_next_bool(self.start_prefetch.is_high());
+            self.words_issued.set_next_bits(0);
+        }
+    }
+    fn tick(&mut self, reset: bool) {
+        for r in [
+            &mut self.state,
+            &mut self.bx,
+            &mut self.by,
+            &mut self.prefetch,
+            &mut self.words_issued,
+        ] {
+            r.tick(reset);
+        }
+    }
+    fn visit(&self, v: &mut dyn Visitor) {
+        v.enter(self.name, self.kind());
+        signals!(v;
+            Input: self.start, self.start_bx, self.start_by, self.start_prefetch,
+                   self.word_ready, self.word_resp, self.line_done;
+            Output: self.word_req, self.word_addr;
+            Reg: self.state, self.bx, self.by, self.prefetch, self.words_issued);
+        v.leave();
+    }
+}
+
+/// The lookahead queue of control unit 607: up to three neighbouring blocks to preload,
+/// chosen when a request completes (by quadrant or by direction of motion; see
+/// [`crate::texmem::cache_614`]), offered to the fill engine one at a time.
+///
+/// Each cycle: when `complete` (a request leaves stage 0 with the cache and lookahead on),
+/// its candidates replace the queue; `flush` (a demand fill starts, or a `newline` request is
+/// looked up) empties it; otherwise, when the engine is free and stage 0 misses nothing, the
+/// first live candidate is taken (`take`, `take_bx`, `take_by`: the unit drops it without a
+/// fill when the cache already holds it). A request's candidates can be taken the cycle it
+/// completes.
+#[derive(Clone, Debug)]
+pub struct LookaheadQueue {
+    name: &'static str,
+    mode: Lookahead,
+    /// Texture size in blocks, and fraction bits of `u`, `v`.
+    blocks: (u32, u32),
+    frac_bits: u32,
+    pub complete: Signal,
+    pub u: Signal,
+    pub v: Signal,
+    pub newline: Signal,
+    pub flush: Signal,
+    pub engine_free: Signal,
+    pub stage0_missing: Signal,
+    pub take: Signal,
+    pub take_bx: Signal,
+    pub take_by: Signal,
+    /// Live slots, and the blocks in them.
+    pub mask: Reg,
+    bx: [Reg; 3],
+    by: [Reg; 3],
+    /// The previous completed point of this scanline (direction lookahead).
+    pub prev_valid: Reg,
+    pub prev_u: Reg,
+    pub prev_v: Reg,
+}
+
+impl LookaheadQueue {
+    /// A queue for a texture of `blocks` (width, height) blocks, coordinates of format `uq`
+    /// (`uQ12.F`), block coordinates of `block_bits`.
+    pub fn new(mode: Lookahead, blocks: (u32, u32), uq: Format, block_bits: u32) -> Self {
+        let b = Format::uint(block_bits);
+        LookaheadQueue {
+            name: "lookahead_queue_607",
+            mode,
+            blocks,
+            frac_bits: uq.frac() as u32,
+            complete: Signal::bit("complete"),
+            u: Signal::new("u", uq),
+            v: Signal::new("v", uq),
+            newline: Signal::bit("newline"),
+            flush: Signal::bit("flush"),
+            engine_free: Signal::bit("engine_free"),
+            stage0_missing: Signal::bit("stage0_missing"),
+            take: Signal::bit("take"),
+            take_bx: Signal::new("take_bx", b),
+            take_by: Signal::new("take_by", b),
+            mask: Reg::new("mask", Format::uint(3)),
+            bx: [0, 1, 2].map(|_| Reg::new("slot_bx", b)),
+            by: [0, 1, 2].map(|_| Reg::new("slot_by", b)),
+            prev_valid: Reg::new("prev_valid", Format::uint(1)),
+            prev_u: Reg::new("prev_u", uq),
+            prev_v: Reg::new("prev_v", uq),
+        }
+    }
+
+    /// Queued candidates (registered state): live slots and their blocks.
+    pub fn queued(&self) -> (u64, [(u32, u32); 3]) {
+        let q = [0, 1, 2].map(|k| (self.bx[k].q().bits() as u32, self.by[k].q().bits() as u32));
+        (self.mask.q().bits(), q)
+    }
+
+    /// The neighbours of the completing request at `(u, v)`: none for the first point of a
+    /// scanline; those of its quadrant, or those in the direction of motion from the previous
+    /// point of the scanline.
+    fn candidates(&self, u: u64, v: u64, newline: bool) -> (u64, [(u32, u32); 3]) {
+        let f = self.frac_bits;
+        let (x0, y0) = ((u >> f) as u32, (v >> f) as u32);
+        let (bw, bh) = self.blocks;
+        let (mut q, mut m) = ([(0, 0); 3], 0);
+        let mut put = |k: usize, blk: (u32, u32)| {
+            q[k] = blk;
+            m |= 1 << k;
+        };
+        if newline {
+            // No lookahead for the first point of a scanline.
+        } else if self.mode == Lookahead::Quadrant {
+            for (k, blk) in lookahead(x0, y0, bw, bh).enumerate() {
+                put(k, blk);
+            }
+        } else if self.prev_valid.q().is_high() {
+            let sign = |a: u64, b: u64| (a > b) as i32 - (a < b) as i32;
+            let dx = sign(u, self.prev_u.q().bits());
+            let dy = sign(v, self.prev_v.q().bits());
+            for (k, blk) in lookahead_direction(x0 >> 2, y0 >> 2, dx, dy, bw, bh).enumerate() {
+                put(k, blk);
+            }
+        }
+        (m, q)
+    }
+}
+
+impl Module for LookaheadQueue {
+    fn instance(&self) -> &str {
+        self.name
+    }
+    fn kind(&self) -> &'static str {
+        "lookahead_queue_607"
+    }
+    fn eval(&mut self) {
+        let complete = self.complete.is_high();
+        let (u, v) = (self.u.bits(), self.v.bits());
+        let (mut m, q) = if complete {
+            self.candidates(u, v, self.newline.is_high())
+        } else {
+            self.queued()
+        };
+        if complete && self.mode == Lookahead::Direction {
+            self.prev_valid.set_next_bool(true);
+            self.prev_u.set_next_bits(u);
+            self.prev_v.set_next_bits(v);
+        }
+        let mut take = None;
+        if self.flush.is_high() {
+            m = 0;
+        } else if self.engine_free.is_high() && m != 0 && !self.stage0_missing.is_high() {
+            let k = m.trailing_zeros() as usize;
+            take = Some(q[k]);
+            m &= !(1 << k);
+        }
+        if complete {
+            for (k, &(bx, by)) in q.iter().enumerate() {
+                self.bx[k].set_next_bits(u64::from(bx));
+                self.by[k].set_next_bits(u64::from(by));
+            }
+        }
+        self.mask.set_next_bits(m);
+        self.take.set_bool(take.is_some());
+        let (tx, ty) = take.unwrap_or((0, 0));
+        self.take_bx.set_bits(u64::from(tx));
+        self.take_by.set_bits(u64::from(ty));
+    }
+    fn tick(&mut self, reset: bool) {
+        let regs = self.bx.iter_mut().chain(self.by.iter_mut());
+        for r in regs.chain([
+            &mut self.mask,
+            &mut self.prev_valid,
+            &mut self.prev_u,
+            &mut self.prev_v,
+        ]) {
+            r.tick(reset);
+        }
+    }
+    fn visit(&self, v: &mut dyn Visitor) {
+        v.enter(self.name, self.kind());
+        signals!(v;
+            Input: self.complete, self.u, self.v, self.newline, self.flush, self.engine_free,
+                   self.stage0_missing;
+            Output: self.take, self.take_bx, self.take_by;
+            Reg: self.mask, self.prev_valid, self.prev_u, self.prev_v);
+        for r in self.bx.iter().chain(&self.by) {
+            v.reg(r);
+        }
         v.leave();
     }
 }

@@ -39,9 +39,9 @@ use crate::fx::Format;
 use crate::kernel::{Module, Reg, Signal, Visitor};
 use crate::signals;
 use crate::texmem::bilinear_622::ColorBilinear;
-use crate::texmem::cache_614::{entry_of, lookahead, lookahead_direction, Lookahead, TextureCache};
+use crate::texmem::cache_614::{entry_of, Lookahead, TextureCache};
 use crate::texmem::ccc_decode_608::CccDecode;
-use crate::texmem::control_607::DramCtrl;
+use crate::texmem::control_607::{DramCtrl, FillEngine, LookaheadQueue};
 use crate::texmem::dram_604::DramParams;
 use crate::texmem::extract_618::ColorExtract;
 use crate::texmem::layout::{BlockMap, Layout};
@@ -166,16 +166,23 @@ pub struct Lookup {
     pub hit: [bool; 4],
 }
 
-const FILL_IDLE: u64 = 0;
-const FILL_FETCH: u64 = 1;
-const FILL_DECODE: u64 = 2;
+/// Stage 0's view of its request this cycle.
+#[derive(Clone, Copy, Debug, Default)]
+struct Stage0 {
+    /// A request is in stage 0, and all its blocks are present (it leaves this cycle).
+    busy: bool,
+    done: bool,
+    /// Its first missing block (lowest entry first).
+    missing: Option<(u32, u32)>,
+    /// Its first lookup, and it is flagged `newline`.
+    newline_now: bool,
+}
 
 /// Texture mapping unit 602.
 #[derive(Clone, Debug)]
 pub struct TextureUnit {
     name: String,
     p: TexParams,
-    map: BlockMap,
     // Rasterizer side.
     pub in_valid: Signal,
     pub in_u: Signal,
@@ -193,20 +200,9 @@ pub struct TextureUnit {
     /// Entries the request needs and entries that hit (this cycle).
     pub need_mask: Signal,
     pub hit_mask: Signal,
-    // Fill engine (part of 607).
-    pub fill_state: Reg,
-    pub fill_bx: Reg,
-    pub fill_by: Reg,
-    pub fill_prefetch: Reg,
-    words_issued: Reg,
-    /// Lookahead queue: up to three blocks, `pf_mask` says which slots are live.
-    pub pf_mask: Reg,
-    pf_bx: [Reg; 3],
-    pf_by: [Reg; 3],
-    /// The previous completed point of this scanline (direction lookahead).
-    pub prev_valid: Reg,
-    pub prev_u: Reg,
-    pub prev_v: Reg,
+    /// Control unit 607: block fetch, lookahead queue, word reads (with DRAM 604).
+    pub fill: FillEngine,
+    pub queue: LookaheadQueue,
     pub mem: DramCtrl,
     pub decode: CccDecode,
     pub cache: TextureCache,
@@ -223,17 +219,16 @@ impl TextureUnit {
     /// [`crate::texmem::layout`]) and CLUT 612 from `clut`.
     pub fn new(name: &str, p: TexParams, clut: &[u32], words: &[u16]) -> Result<Self, String> {
         p.validate()?;
-        let map = p.block_map();
         let mut mem = DramCtrl::new("control_607", p.dram)?;
         mem.dram.load(p.base, words)?;
         let ub = COORD_BITS + p.frac_bits;
         // uQ12.F: the waveform shows u and v as texel coordinates beside the bits.
         let uq = Format::unsigned(ub, p.frac_bits as i32);
         let bb = COORD_BITS - 2;
+        let look = if p.cache { p.lookahead } else { Lookahead::Off };
         Ok(TextureUnit {
             name: name.into(),
             p,
-            map,
             in_valid: Signal::bit("in_valid"),
             in_u: Signal::new("in_u", uq),
             in_v: Signal::new("in_v", uq),
@@ -248,17 +243,8 @@ impl TextureUnit {
             req_seen: Reg::new("req_seen", Format::uint(1)),
             need_mask: Signal::new("need_mask", Format::uint(4)),
             hit_mask: Signal::new("hit_mask", Format::uint(4)),
-            fill_state: Reg::new("fill_state", Format::uint(2)),
-            fill_bx: Reg::new("fill_bx", Format::uint(bb)),
-            fill_by: Reg::new("fill_by", Format::uint(bb)),
-            fill_prefetch: Reg::new("fill_prefetch", Format::uint(1)),
-            words_issued: Reg::new("words_issued", Format::uint(2)),
-            pf_mask: Reg::new("pf_mask", Format::uint(3)),
-            pf_bx: [0, 1, 2].map(|_| Reg::new("pf_bx", Format::uint(bb))),
-            pf_by: [0, 1, 2].map(|_| Reg::new("pf_by", Format::uint(bb))),
-            prev_valid: Reg::new("prev_valid", Format::uint(1)),
-            prev_u: Reg::new("prev_u", uq),
-            prev_v: Reg::new("prev_v", uq),
+            fill: FillEngine::new(p.block_map(), bb, mem.req_addr.fmt()),
+            queue: LookaheadQueue::new(look, p.blocks(), uq, bb),
             mem,
             decode: CccDecode::new("ccc_decode_608", clut)?,
             cache: TextureCache::new("cache_614", bb - 1),
@@ -280,229 +266,194 @@ impl TextureUnit {
         !self.req_valid.q().is_high()
             && !self.extract.valid.q().is_high()
             && !self.bilinear.valid.q().is_high()
-            && self.fill_state.q().bits() == FILL_IDLE
-            && self.pf_mask.q().bits() == 0
+            && self.fill.is_idle()
+            && self.queue.mask.q().bits() == 0
     }
 
-    fn start_fill(&mut self, bx: u32, by: u32, prefetch: bool) {
-        self.fill_state.set_next_bits(FILL_FETCH);
-        self.fill_bx.set_next_bits(u64::from(bx));
-        self.fill_by.set_next_bits(u64::from(by));
-        self.fill_prefetch.set_next_bool(prefetch);
-        self.words_issued.set_next_bits(0);
-    }
-}
-
-impl Module for TextureUnit {
-    fn instance(&self) -> &str {
-        &self.name
-    }
-    fn kind(&self) -> &'static str {
-        "texture_unit_602"
-    }
-    fn eval(&mut self) {
-        let mut ev = Events::default();
-        let f = self.p.frac_bits;
-        let fmask = (1u64 << f) - 1;
-        let fill = self.fill_state.q().bits();
-        let (fbx, fby) = (
-            self.fill_bx.q().bits() as u32,
-            self.fill_by.q().bits() as u32,
-        );
-        let fill_pf = self.fill_prefetch.q().is_high();
-
-        // Stage 0: look the request's blocks up.
-        let busy = self.req_valid.q().is_high();
-        let mut done = false;
-        let mut missing = None;
-        let mut newline_now = false;
-        let mut new_queue = None;
+    /// Stage 0: looks the request's 1, 2 or 4 blocks up in cache 614 (the monitor port and the
+    /// statistics see the first lookup); when all are present, hands the footprint to colour
+    /// extract 618 and (cache off) invalidates the cache or (lookahead on) offers the request's
+    /// neighbours to the lookahead queue.
+    fn stage0(&mut self) -> Stage0 {
         self.lookup.first = false;
-        if busy {
-            let (u, v) = (self.req_u.q().bits(), self.req_v.q().bits());
-            let (x0, y0) = ((u >> f) as u32, (v >> f) as u32);
-            let x1 = (x0 + 1).min(self.p.width - 1);
-            let y1 = (y0 + 1).min(self.p.height - 1);
-            let bxs = [x0 >> 2, x1 >> 2];
-            let bys = [y0 >> 2, y1 >> 2];
-            let nx = if bxs[0] == bxs[1] { 1 } else { 2 };
-            let ny = if bys[0] == bys[1] { 1 } else { 2 };
-            let first = !self.req_seen.q().is_high();
-            let (mut need, mut hit) = (0u64, 0u64);
-            // Written in place (a local copy made this the hottest line: a 56-byte store
-            // forwarded from narrow writes).
-            let lk = &mut self.lookup;
-            lk.first = first;
-            lk.n = 0;
-            for &by in &bys[..ny] {
-                for &bx in &bxs[..nx] {
-                    let e = entry_of(bx, by);
-                    let h = self.cache.holds(bx, by);
-                    need |= 1 << e;
-                    hit |= u64::from(h) << e;
-                    lk.blocks[lk.n] = (bx, by);
-                    lk.hit[lk.n] = h;
-                    lk.n += 1;
-                    if !h && missing.is_none() {
-                        missing = Some((bx, by));
-                    }
-                    // A prefetched block counts as used by the first request that finds it;
-                    // as a prefetch hit only if that was the request's first lookup.
-                    if h && self.cache.touch(bx, by) && first {
-                        ev.pf_hits += 1;
-                    }
-                    if first && !h && fill != FILL_IDLE && fill_pf && (fbx, fby) == (bx, by) {
-                        ev.late += 1;
-                    }
-                }
-            }
-            self.need_mask.set_bits(need);
-            self.hit_mask.set_bits(hit);
-            if first {
-                ev.refs = self.lookup.n as u64;
-                ev.hits = u64::from(hit.count_ones());
-                self.req_seen.set_next_bool(true);
-                newline_now = self.req_newline.q().is_high();
-            }
-            done = missing.is_none();
-            self.extract.in_valid.set_bool(done);
-            if done {
-                self.extract.x0.set_bits(u64::from(x0));
-                self.extract.x1.set_bits(u64::from(x1));
-                self.extract.y0.set_bits(u64::from(y0));
-                self.extract.y1.set_bits(u64::from(y1));
-                self.extract.in_fu.set_bits(u & fmask);
-                self.extract.in_fv.set_bits(v & fmask);
-                for e in 0..4 {
-                    self.extract.lines[e] = self.cache.line(e);
-                }
-                if !self.p.cache {
-                    self.cache.invalidate();
-                } else if self.p.lookahead != Lookahead::Off {
-                    let newline = self.req_newline.q().is_high();
-                    if self.p.lookahead == Lookahead::Direction {
-                        self.prev_valid.set_next_bool(true);
-                        self.prev_u.set_next_bits(u);
-                        self.prev_v.set_next_bits(v);
-                    }
-                    let (bw, bh) = self.p.blocks();
-                    let (mut q, mut m) = ([(0, 0); 3], 0);
-                    let mut put = |k: usize, blk: (u32, u32)| {
-                        q[k] = blk;
-                        m |= 1 << k;
-                    };
-                    if newline {
-                        // No lookahead for the first point of a scanline.
-                    } else if self.p.lookahead == Lookahead::Quadrant {
-                        for (k, blk) in lookahead(x0, y0, bw, bh).enumerate() {
-                            put(k, blk);
-                        }
-                    } else if self.prev_valid.q().is_high() {
-                        let sign = |a: u64, b: u64| (a > b) as i32 - (a < b) as i32;
-                        let dx = sign(u, self.prev_u.q().bits());
-                        let dy = sign(v, self.prev_v.q().bits());
-                        for (k, blk) in
-                            lookahead_direction(x0 >> 2, y0 >> 2, dx, dy, bw, bh).enumerate()
-                        {
-                            put(k, blk);
-                        }
-                    }
-                    new_queue = Some((q, m));
-                }
-            } else {
-                ev.stall = 1;
-            }
-        } else {
+        self.queue.complete.set_bool(false);
+        self.cache.touch.set_bits(0);
+        self.cache.invalidate.set_bool(false);
+        let busy = self.req_valid.q().is_high();
+        if !busy {
             self.need_mask.set_bits(0);
             self.hit_mask.set_bits(0);
             self.extract.in_valid.set_bool(false);
+            return Stage0::default();
         }
+        let f = self.p.frac_bits;
+        let (u, v) = (self.req_u.q().bits(), self.req_v.q().bits());
+        let (x0, y0) = ((u >> f) as u32, (v >> f) as u32);
+        let x1 = (x0 + 1).min(self.p.width - 1);
+        let y1 = (y0 + 1).min(self.p.height - 1);
+        let first = !self.req_seen.q().is_high();
+        let missing = self.lookup_blocks([x0 >> 2, x1 >> 2], [y0 >> 2, y1 >> 2], first);
+        let newline = self.req_newline.q().is_high();
+        if first {
+            self.req_seen.set_next_bool(true);
+        }
+        let done = missing.is_none();
+        self.ev.stall = u64::from(!done);
+        let ex = &mut self.extract;
+        ex.in_valid.set_bool(done);
+        if done {
+            let fmask = (1u64 << f) - 1;
+            ex.x0.set_bits(u64::from(x0));
+            ex.x1.set_bits(u64::from(x1));
+            ex.y0.set_bits(u64::from(y0));
+            ex.y1.set_bits(u64::from(y1));
+            ex.in_fu.set_bits(u & fmask);
+            ex.in_fv.set_bits(v & fmask);
+            for e in 0..4 {
+                ex.lines[e] = self.cache.line(e);
+            }
+            self.cache.invalidate.set_bool(!self.p.cache);
+            let q = &mut self.queue;
+            q.complete
+                .set_bool(self.p.cache && self.p.lookahead != Lookahead::Off);
+            q.u.set_bits(u);
+            q.v.set_bits(v);
+            q.newline.set_bool(newline);
+        }
+        Stage0 {
+            busy,
+            done,
+            missing,
+            newline_now: first && newline,
+        }
+    }
 
-        // Fill engine: word reads through 607.
-        let issued = self.words_issued.q().bits();
-        let want = fill == FILL_FETCH && issued < 2;
-        self.mem.req_valid.set_bool(want);
-        if want {
-            self.mem
-                .req_addr
-                .set_bits(self.map.block_addr(fbx, fby) + issued);
+    /// The lookup of blocks `bxs x bys` (deduplicated): need and hit masks, the monitor port,
+    /// the entries to touch, the first lookup's statistics. Returns the first missing block.
+    fn lookup_blocks(&mut self, bxs: [u32; 2], bys: [u32; 2], first: bool) -> Option<(u32, u32)> {
+        let nx = if bxs[0] == bxs[1] { 1 } else { 2 };
+        let ny = if bys[0] == bys[1] { 1 } else { 2 };
+        let (fbx, fby, fill_pf) = self.fill.block();
+        let filling = !self.fill.is_idle();
+        let (mut need, mut hit, mut missing) = (0u64, 0u64, None);
+        // Written in place (a local copy made this the hottest line: a 56-byte store
+        // forwarded from narrow writes).
+        let lk = &mut self.lookup;
+        lk.first = first;
+        lk.n = 0;
+        for &by in &bys[..ny] {
+            for &bx in &bxs[..nx] {
+                let e = entry_of(bx, by);
+                let h = self.cache.holds(bx, by);
+                need |= 1 << e;
+                hit |= u64::from(h) << e;
+                lk.blocks[lk.n] = (bx, by);
+                lk.hit[lk.n] = h;
+                lk.n += 1;
+                if !h && missing.is_none() {
+                    missing = Some((bx, by));
+                }
+                // A prefetched block counts as used by the first request that finds it; as a
+                // prefetch hit only if that was the request's first lookup.
+                if h && first && self.cache.prefetched(e) {
+                    self.ev.pf_hits += 1;
+                }
+                if first && !h && filling && fill_pf && (fbx, fby) == (bx, by) {
+                    self.ev.late += 1;
+                }
+            }
+        }
+        self.cache.touch.set_bits(hit);
+        self.need_mask.set_bits(need);
+        self.hit_mask.set_bits(hit);
+        if first {
+            self.ev.refs = lk.n as u64;
+            self.ev.hits = u64::from(hit.count_ones());
+        }
+        missing
+    }
+
+    /// The fill path of 607: the fill engine's word request to the word controller (and DRAM
+    /// 604), words into register 608, multiplexer 610 and CLUT 612, the line into cache 614.
+    fn fill_path(&mut self) {
+        let req = self.fill.word_request();
+        self.mem.req_valid.set_bool(req.is_some());
+        if let Some(a) = req {
+            self.mem.req_addr.set_bits(a);
         }
         self.mem.eval();
-        if want && self.mem.ready.is_high() {
-            self.words_issued.set_next_bits(issued + 1);
-        }
-        let resp = self.mem.resp_valid.is_high();
-        self.decode.word_valid.set_bool(resp);
-        if resp {
-            self.decode.word.follow(&self.mem.resp_data);
-            if issued == 2 && fill == FILL_FETCH {
-                self.fill_state.set_next_bits(FILL_DECODE);
-            }
-        }
+        self.decode.word_valid.follow(&self.mem.resp_valid);
+        self.decode.word.follow(&self.mem.resp_data);
         self.decode.eval();
-        let fill_free = fill == FILL_IDLE;
-        if self.decode.line_valid.is_high() {
-            self.cache.write(fbx, fby, self.decode.line.bits(), fill_pf);
-            self.fill_state.set_next_bits(FILL_IDLE);
-        }
+        let (bx, by, prefetch) = self.fill.block();
+        let c = &mut self.cache;
+        c.write.follow(&self.decode.line_valid);
+        c.write_bx.set_bits(u64::from(bx));
+        c.write_by.set_bits(u64::from(by));
+        c.write_data.follow(&self.decode.line);
+        c.write_prefetched.set_bool(prefetch);
+        c.eval();
+    }
 
-        // Start a fill: demand first, then the lookahead queue. The queue: emptied by a demand
-        // fill or a `newline` request, replaced by the neighbours of a request that completes,
-        // and its first live candidate taken whenever the engine is free and stage 0 needs
-        // nothing (the same cycle a request completes, from its new candidates).
-        let (queue, mut qmask) = match new_queue {
-            Some((q, m)) => (q, m),
-            None => {
-                let mut q = [(0, 0); 3];
-                for (k, c) in q.iter_mut().enumerate() {
-                    *c = (
-                        self.pf_bx[k].q().bits() as u32,
-                        self.pf_by[k].q().bits() as u32,
-                    );
-                }
-                (q, self.pf_mask.q().bits())
-            }
-        };
-        if let (true, Some((bx, by))) = (fill_free, missing) {
-            self.start_fill(bx, by, false);
-            ev.demand = 1;
-            qmask = 0;
-        } else if newline_now {
-            qmask = 0;
-        } else if fill_free && qmask != 0 && missing.is_none() {
-            let k = qmask.trailing_zeros() as usize;
-            let (bx, by) = queue[k];
-            qmask &= !(1 << k);
-            if self.cache.holds(bx, by) {
-                ev.dropped = 1;
+    /// Starts a fill when the engine is free: a demand miss of stage 0 first (it empties the
+    /// lookahead queue, as a `newline` request does), else the queue's first candidate (dropped
+    /// when the cache already holds it).
+    fn start_fills(&mut self, s0: &Stage0) {
+        let free = self.fill.is_idle();
+        let demand = s0.missing.filter(|_| free);
+        let q = &mut self.queue;
+        q.flush.set_bool(demand.is_some() || s0.newline_now);
+        q.engine_free.set_bool(free);
+        q.stage0_missing.set_bool(s0.missing.is_some());
+        q.eval();
+        let mut start = demand.map(|b| (b, false));
+        if start.is_some() {
+            self.ev.demand = 1;
+        } else if self.queue.take.is_high() {
+            let b = (
+                self.queue.take_bx.bits() as u32,
+                self.queue.take_by.bits() as u32,
+            );
+            if self.cache.holds(b.0, b.1) {
+                self.ev.dropped = 1;
             } else {
-                self.start_fill(bx, by, true);
-                ev.prefetch = 1;
+                start = Some((b, true));
+                self.ev.prefetch = 1;
             }
         }
-        if new_queue.is_some() {
-            for (k, &(bx, by)) in queue.iter().enumerate() {
-                self.pf_bx[k].set_next_bits(u64::from(bx));
-                self.pf_by[k].set_next_bits(u64::from(by));
-            }
-        }
-        self.pf_mask.set_next_bits(qmask);
+        let f = &mut self.fill;
+        f.start.set_bool(start.is_some());
+        let ((bx, by), pf) = start.unwrap_or(((0, 0), false));
+        f.start_bx.set_bits(u64::from(bx));
+        f.start_by.set_bits(u64::from(by));
+        f.start_prefetch.set_bool(pf);
+        f.word_ready.follow(&self.mem.ready);
+        f.word_resp.follow(&self.mem.resp_valid);
+        f.line_done.follow(&self.decode.line_valid);
+        f.eval();
+    }
 
-        // Request handshake.
-        let ready = !busy || done;
+    /// The rasterizer handshake: a new request is taken when stage 0 is empty or its request
+    /// leaves this cycle.
+    fn handshake(&mut self, s0: &Stage0) {
+        let ready = !s0.busy || s0.done;
         self.in_ready.set_bool(ready);
         let accept = ready && self.in_valid.is_high();
-        ev.accept = u64::from(accept);
+        self.ev.accept = u64::from(accept);
         if accept {
             self.req_valid.set_next_bool(true);
             self.req_u.set_next_bits(self.in_u.bits());
             self.req_v.set_next_bits(self.in_v.bits());
             self.req_newline.set_next_bool(self.in_newline.is_high());
             self.req_seen.set_next_bool(false);
-        } else if done {
+        } else if s0.done {
             self.req_valid.set_next_bool(false);
         }
+    }
 
+    /// Colour extract 618 (registered texels) and bilinear interpolator 622 (registered
+    /// colour), and the unit's output.
+    fn output_stages(&mut self) {
         self.extract.eval();
         let ex = &self.extract;
         let bl = &mut self.bilinear;
@@ -516,52 +467,43 @@ impl Module for TextureUnit {
         bl.eval();
         self.out_valid.follow(self.bilinear.valid.q());
         self.out_rgb.follow(self.bilinear.rgb.q());
-        self.ev = ev;
+    }
+}
+
+impl Module for TextureUnit {
+    fn instance(&self) -> &str {
+        &self.name
+    }
+    fn kind(&self) -> &'static str {
+        "texture_unit_602"
+    }
+    /// Figure 6 from left to right: stage 0 looks the footprint up in cache 614; 607 fetches
+    /// the missing block or a lookahead candidate through DRAM 604 into 608/610/612 and the
+    /// cache; the rasterizer handshake; extract 618 and bilinear 622.
+    fn eval(&mut self) {
+        self.ev = Events::default();
+        let s0 = self.stage0();
+        self.fill_path();
+        self.start_fills(&s0);
+        self.handshake(&s0);
+        self.output_stages();
     }
 
     fn tick(&mut self, reset: bool) {
         if !reset {
-            let ev = self.ev;
-            let s = &mut self.stats;
-            // One branch per counter: adjacent counters updated together got vectorised into
-            // 16-byte loads of 8-byte stores, a store-forwarding stall every cycle.
-            let add = |c: &mut u64, x: u64| {
-                if x != 0 {
-                    *c += x;
-                }
-            };
-            add(&mut s.requests, ev.accept);
-            add(&mut s.block_refs, ev.refs);
-            add(&mut s.hits, ev.hits);
-            add(&mut s.prefetch_hits, ev.pf_hits);
-            add(&mut s.late_prefetches, ev.late);
-            add(&mut s.demand_fills, ev.demand);
-            add(&mut s.prefetch_fills, ev.prefetch);
-            add(&mut s.prefetch_dropped, ev.dropped);
-            add(&mut s.stall_cycles, ev.stall);
+            self.count_events();
         }
-        self.ev = Events::default();
         for r in [
             &mut self.req_valid,
             &mut self.req_u,
             &mut self.req_v,
             &mut self.req_newline,
             &mut self.req_seen,
-            &mut self.fill_state,
-            &mut self.fill_bx,
-            &mut self.fill_by,
-            &mut self.fill_prefetch,
-            &mut self.words_issued,
-            &mut self.pf_mask,
-            &mut self.prev_valid,
-            &mut self.prev_u,
-            &mut self.prev_v,
         ] {
             r.tick(reset);
         }
-        for r in self.pf_bx.iter_mut().chain(self.pf_by.iter_mut()) {
-            r.tick(reset);
-        }
+        self.fill.tick(reset);
+        self.queue.tick(reset);
         self.mem.tick(reset);
         self.decode.tick(reset);
         self.cache.tick(reset);
@@ -575,14 +517,39 @@ impl Module for TextureUnit {
             Input: self.in_valid, self.in_u, self.in_v, self.in_newline;
             Output: self.in_ready, self.out_valid, self.out_rgb;
             Reg: self.req_valid, self.req_u, self.req_v, self.req_newline, self.req_seen;
-            Wire: self.need_mask, self.hit_mask;
-            Reg: self.fill_state, self.fill_bx, self.fill_by, self.fill_prefetch,
-                 self.words_issued, self.pf_mask, self.prev_valid, self.prev_u, self.prev_v);
+            Wire: self.need_mask, self.hit_mask);
+        self.fill.visit(v);
+        self.queue.visit(v);
         self.mem.visit(v);
         self.decode.visit(v);
         self.cache.visit(v);
         self.extract.visit(v);
         self.bilinear.visit(v);
         v.leave();
+    }
+}
+
+impl TextureUnit {
+    /// This cycle's events into the statistics (at the edge, so a schedule check that
+    /// evaluates twice does not count twice).
+    fn count_events(&mut self) {
+        let ev = self.ev;
+        let s = &mut self.stats;
+        // One branch per counter: adjacent counters updated together got vectorised into
+        // 16-byte loads of 8-byte stores, a store-forwarding stall every cycle.
+        let add = |c: &mut u64, x: u64| {
+            if x != 0 {
+                *c += x;
+            }
+        };
+        add(&mut s.requests, ev.accept);
+        add(&mut s.block_refs, ev.refs);
+        add(&mut s.hits, ev.hits);
+        add(&mut s.prefetch_hits, ev.pf_hits);
+        add(&mut s.late_prefetches, ev.late);
+        add(&mut s.demand_fills, ev.demand);
+        add(&mut s.prefetch_fills, ev.prefetch);
+        add(&mut s.prefetch_dropped, ev.dropped);
+        add(&mut s.stall_cycles, ev.stall);
     }
 }
