@@ -241,119 +241,27 @@ fn drive<T: Trace>(
     ))
 }
 
-/// One configuration of the regression.
+/// One configuration of the regression: runs the frames, scores every level, checks the
+/// generator's timing and FIFOs, samples coverage.
 fn check_one(
     res: &mut TbResult,
     cov: &mut Coverage,
     p: MipmapParams,
     frames: &[Vec<u8>],
     vcd: Option<(PathBuf, TraceConfig)>,
-    worst: &mut Vec<(String, f64, f64)>,
 ) -> Result<(), String> {
-    let traced = vcd.is_some();
-    let o = run_mipmap(p, frames, vcd.clone())?;
-    if traced {
-        res.vcd = vcd.map(|v| v.0);
-    }
+    let traced = vcd.as_ref().map(|v| v.0.clone());
+    let o = run_mipmap(p, frames, vcd)?;
+    res.vcd = traced;
     let tag = format!("{}x{} {:?} {:?}", p.width, p.height, p.scan, p.rounding);
-    let n_levels = p.levels().len();
-    let mut sb: Scoreboard<Vec<u8>, Vec<u8>> =
-        Scoreboard::new(|e: &Vec<u8>, a: &Vec<u8>| {
-            match e.iter().zip(a).position(|(x, y)| x != y) {
-                None => Ok(()),
-                Some(i) => Err(format!("texel {i}: {} want {}", a[i], e[i])),
-            }
-        });
-    sb.keep = 5;
-    for (f, frame) in frames.iter().enumerate() {
-        let want = reference(frame, p.width, p.height, p.rounding);
-        for (k, want_k) in want.into_iter().enumerate() {
-            sb.expect(want_k);
-            sb.observe(f as u64, o.frames[f][k].clone());
-            // Against the real-valued averages.
-            let avg =
-                golden::mipmap::box_average(frame, p.width as usize, p.height as usize, k as u32);
-            let mut st = ErrorStats::new();
-            for (d, g) in o.frames[f][k].iter().zip(&avg) {
-                st.record(f64::from(*d), *g, 1.0);
-            }
-            let bound = golden::mipmap::error_bound(
-                p.width as usize,
-                p.height as usize,
-                k as u32,
-                p.rounding == Rounding::Round,
-            );
-            if st.max_abs_lsb > bound + 1e-9 {
-                res.failures.push(format!(
-                    "{tag} frame {f} level {k}: error {} LSB above the bound {bound}",
-                    st.max_abs_lsb
-                ));
-            }
-            let name = format!(
-                "level {k} {}",
-                if p.rounding == Rounding::Round {
-                    "round"
-                } else {
-                    "truncate"
-                }
-            );
-            match worst.iter_mut().find(|w| w.0 == name) {
-                Some(w) => {
-                    w.1 = w.1.max(st.max_abs_lsb);
-                    w.2 = w.2.max(bound);
-                }
-                None => worst.push((name, st.max_abs_lsb, bound)),
-            }
-            res.stats.merge(&st);
-        }
-    }
-    for m in sb.mismatches() {
-        res.mismatch_log.push(format!(
-            "{tag}: frame {:?} level {}: {}",
-            m.cycle,
-            m.index % n_levels as u64,
-            m.detail
-        ));
-    }
-    res.mismatches += sb.mismatch_count();
+    score_levels(res, p, frames, &o, &tag);
     res.transactions += frames.len() as u64;
     res.cycles += o.stats.cycles;
     if o.error != 0 {
         res.failures
             .push(format!("{tag}: generator error code {}", o.error));
     }
-    for (k, (&m, &d)) in o
-        .stats
-        .fifo_max_occupancy
-        .iter()
-        .zip(&o.stats.fifo_depth)
-        .enumerate()
-    {
-        if m > d {
-            res.failures.push(format!(
-                "{tag}: level {} FIFO occupancy {m} above depth {d}",
-                k + 1
-            ));
-        }
-    }
-    if o.stats.texels_per_clock != 1.0 {
-        res.failures.push(format!(
-            "{tag}: {} texels per clock, not 1",
-            o.stats.texels_per_clock
-        ));
-    }
-    let max_latency = n_levels as u64 + 2;
-    if o.stats.latency_after_last_texel > max_latency {
-        res.failures.push(format!(
-            "{tag}: latency {} after the last texel, above {max_latency}",
-            o.stats.latency_after_last_texel
-        ));
-    }
-    res.latency = Some(
-        res.latency
-            .unwrap_or(0)
-            .max(o.stats.latency_after_last_texel),
-    );
+    check_timing(res, &o.stats, p.levels().len() as u64, &tag);
     let shape = match (p.width, p.height) {
         (1, _) | (_, 1) => 3,
         (w, h) if w == h => 0,
@@ -366,14 +274,94 @@ fn check_one(
         Scan::InterlacedBottom => 2,
     };
     for f in 0..frames.len() {
-        cov.sample(&[
-            scan,
-            i64::from(p.rounding == Rounding::Truncate),
-            shape,
-            i64::from(f > 0),
-        ]);
+        let truncate = i64::from(p.rounding == Rounding::Truncate);
+        cov.sample(&[scan, truncate, shape, i64::from(f > 0)]);
     }
     Ok(())
+}
+
+/// Every level of every frame against the integer reference (bit-exact) and the real-valued
+/// block averages (within the analytic bound); one record per level with its worst error.
+fn score_levels(
+    res: &mut TbResult,
+    p: MipmapParams,
+    frames: &[Vec<u8>],
+    o: &MipmapOutcome,
+    tag: &str,
+) {
+    let mut sb: Scoreboard<Vec<u8>, Vec<u8>> =
+        Scoreboard::new(|e: &Vec<u8>, a: &Vec<u8>| {
+            match e.iter().zip(a).position(|(x, y)| x != y) {
+                None => Ok(()),
+                Some(i) => Err(format!("texel {i}: {} want {}", a[i], e[i])),
+            }
+        });
+    sb.keep = 5;
+    let (w, h) = (p.width as usize, p.height as usize);
+    let round = p.rounding == Rounding::Round;
+    for (f, frame) in frames.iter().enumerate() {
+        let want = reference(frame, p.width, p.height, p.rounding);
+        for (k, want_k) in want.into_iter().enumerate() {
+            sb.expect(want_k);
+            sb.observe(f as u64, o.frames[f][k].clone());
+            let avg = golden::mipmap::box_average(frame, w, h, k as u32);
+            let mut st = ErrorStats::new();
+            for (d, g) in o.frames[f][k].iter().zip(&avg) {
+                st.record(f64::from(*d), *g, 1.0);
+            }
+            let bound = golden::mipmap::error_bound(w, h, k as u32, round);
+            if st.max_abs_lsb > bound + 1e-9 {
+                res.failures.push(format!(
+                    "{tag} frame {f} level {k}: error {} LSB above the bound {bound}",
+                    st.max_abs_lsb
+                ));
+            }
+            let mode = if round { "round" } else { "truncate" };
+            res.record(&LevelError {
+                level: format!("level {k} {mode}"),
+                error: st.max_abs_lsb,
+                bound,
+            });
+            res.stats.merge(&st);
+        }
+    }
+    let n_levels = p.levels().len() as u64;
+    for m in sb.mismatches() {
+        res.mismatch_log.push(format!(
+            "{tag}: frame {:?} level {}: {}",
+            m.cycle,
+            m.index % n_levels,
+            m.detail
+        ));
+    }
+    res.mismatches += sb.mismatch_count();
+}
+
+/// FIFO occupancies within their depths, one texel per clock, the mipmap complete at most
+/// `levels + 2` cycles after the last texel.
+fn check_timing(res: &mut TbResult, s: &MipmapStats, levels: u64, tag: &str) {
+    for (k, (&m, &d)) in s.fifo_max_occupancy.iter().zip(&s.fifo_depth).enumerate() {
+        if m > d {
+            res.failures.push(format!(
+                "{tag}: level {} FIFO occupancy {m} above depth {d}",
+                k + 1
+            ));
+        }
+    }
+    if s.texels_per_clock != 1.0 {
+        res.failures.push(format!(
+            "{tag}: {} texels per clock, not 1",
+            s.texels_per_clock
+        ));
+    }
+    let max_latency = levels + 2;
+    if s.latency_after_last_texel > max_latency {
+        res.failures.push(format!(
+            "{tag}: latency {} after the last texel, above {max_latency}",
+            s.latency_after_last_texel
+        ));
+    }
+    res.latency = Some(res.latency.unwrap_or(0).max(s.latency_after_last_texel));
 }
 
 fn coverage_model() -> Coverage {
@@ -496,15 +484,7 @@ impl Testbench for MipmapTb {
             .waves
             .as_ref()
             .map(|w| (w.vcd.clone(), w.config(10_000)));
-        let mut worst = Vec::new();
-        check_one(&mut res, &mut cov, p, &frames, vcd, &mut worst)?;
-        for (level, error, bound) in worst {
-            res.record(&LevelError {
-                level,
-                error,
-                bound,
-            });
-        }
+        check_one(&mut res, &mut cov, p, &frames, vcd)?;
         res.coverage = Some(cov);
         Ok(res)
     }

@@ -632,14 +632,23 @@ fn check_run(
             res.stats.max_abs_lsb
         ));
     }
+    check_counts(res, s, p.cache, reqs.len() as u64, &tag);
+    res.cycles += s.cycles;
+    Ok(run)
+}
+
+/// The unit's counters against each other: every request accepted, misses split completely,
+/// two DRAM reads per fill, no hit with the cache off, no prefetch without lookahead, every
+/// miss served by a fill or a late prefetch, no DRAM timing violation.
+fn check_counts(res: &mut TbResult, s: &TexReadStats, cache: bool, requests: u64, tag: &str) {
     let fail = |res: &mut TbResult, what: String| res.failures.push(format!("{tag}: {what}"));
     if s.violations != 0 {
         fail(res, format!("{} DRAM timing violations", s.violations));
     }
-    if s.requests != reqs.len() as u64 {
+    if s.requests != requests {
         fail(
             res,
-            format!("{} requests accepted of {}", s.requests, reqs.len()),
+            format!("{} requests accepted of {}", s.requests, requests),
         );
     }
     if s.misses != s.misses_cold + s.misses_capacity + s.misses_conflict {
@@ -658,7 +667,7 @@ fn check_run(
             ),
         );
     }
-    if !p.cache && (s.hits != 0 || s.demand_fills != s.block_refs) {
+    if !cache && (s.hits != 0 || s.demand_fills != s.block_refs) {
         fail(
             res,
             format!(
@@ -685,8 +694,6 @@ fn check_run(
             ),
         );
     }
-    res.cycles += s.cycles;
-    Ok(run)
 }
 
 /// Texture size of the testbench.
