@@ -1,22 +1,7 @@
 //! The `texrtl` commands of the texture path, run as a user runs them.
 
 use formats::ccc::Ccc;
-use hdl::texmem::ccc_decode_608::CccBlock;
 use tb::texture::reference_filter;
-fn flat(w: u32, h: u32) -> Ccc {
-    Ccc {
-        width: w,
-        height: h,
-        clut: (0..256).map(|i| i * 0x010101).collect(),
-        blocks: (0..(w / 4) * (h / 4))
-            .map(|i| CccBlock {
-                a: i as u8,
-                b: 255 - i as u8,
-                bits: 0x5a5a,
-            })
-            .collect(),
-    }
-}
 fn dir(name: &str) -> std::path::PathBuf {
     let d = std::env::temp_dir().join(format!("texrtl-tex-{}-{name}", std::process::id()));
     let _ = std::fs::remove_dir_all(&d);
@@ -223,7 +208,7 @@ fn ccc_and_texread_commands() {
     }
     // A texture beyond the DRAM: 2048 x 2048 needs 512K words; the 1M x 16 part holds it.
     let big = d.join("big.ccc");
-    std::fs::write(&big, flat(2048, 2048).to_bytes()).unwrap();
+    std::fs::write(&big, tb::texture::test_pattern(2048, 2048).to_bytes()).unwrap();
     std::fs::write(&r, "u,v\n2047.5,1\n").unwrap();
     let args = |extra: &[&str]| {
         let mut a: Vec<String> = ["texread", "--texture", &s(&big), "--requests", &s(&r)]

@@ -121,6 +121,24 @@ pub fn reference_filter(t: &Ccc, u: u32, v: u32, frac_bits: u32) -> u32 {
     out
 }
 
+/// A CCC texture for tests of any size (multiples of 4): a grey-ramp CLUT, block `i` with
+/// colours `i` and `255 - i` (mod 256) and a checker of decision bits, so neighbouring blocks
+/// and texels differ.
+pub fn test_pattern(w: u32, h: u32) -> Ccc {
+    Ccc {
+        width: w,
+        height: h,
+        clut: (0..256).map(|i| i * 0x010101).collect(),
+        blocks: (0..(w / 4) * (h / 4))
+            .map(|i| hdl::texmem::ccc_decode_608::CccBlock {
+                a: i as u8,
+                b: 255 - i as u8,
+                bits: 0x5a5a,
+            })
+            .collect(),
+    }
+}
+
 /// A fully-associative LRU cache of block tags (the shadow cache).
 #[derive(Clone, Debug, Default)]
 pub struct Shadow {

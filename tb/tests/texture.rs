@@ -157,21 +157,6 @@ fn bilinear_622_arithmetic_exhaustive_over_weights() {
     }
 }
 
-fn flat(w: u32, h: u32) -> Ccc {
-    Ccc {
-        width: w,
-        height: h,
-        clut: (0..256).map(|i| i * 0x010101).collect(),
-        blocks: (0..(w / 4) * (h / 4))
-            .map(|i| CccBlock {
-                a: i as u8,
-                b: 255 - i as u8,
-                bits: 0x5a5a,
-            })
-            .collect(),
-    }
-}
-
 fn cycles(tex: &Ccc, p: TexParams, pts: &[(u32, u32)]) -> tb::texture::TexRun {
     let reqs: Vec<TexRequest> = pts
         .iter()
@@ -187,7 +172,7 @@ fn cycles(tex: &Ccc, p: TexParams, pts: &[(u32, u32)]) -> tb::texture::TexRun {
 #[test]
 fn miss_penalty_hit_throughput_and_page_faults() {
     // 256x256, row-major, 512-word pages: a page holds 4 block rows (16 texel rows).
-    let tex = flat(256, 256);
+    let tex = tb::texture::test_pattern(256, 256);
     let mut p = TexParams::new(256, 256);
     p.lookahead = Lookahead::Off;
     let one = cycles(&tex, p, &[(1, 1)]).stats.cycles;
@@ -219,7 +204,7 @@ fn miss_penalty_hit_throughput_and_page_faults() {
 
 #[test]
 fn lookahead_preloads_the_quadrant_neighbours_when_the_dram_is_idle() {
-    let tex = flat(64, 64);
+    let tex = tb::texture::test_pattern(64, 64);
     let mut p = TexParams::new(64, 64);
     // A point in the lower-right quadrant of block (2, 2), offered once every 80 cycles so the
     // DRAM goes idle; then points in the three neighbours, each in the quadrant facing the
@@ -258,7 +243,7 @@ fn direction_lookahead_preloads_ahead_of_the_motion() {
     // direction lookahead every block after the first is preloaded (one block ahead, from the
     // second point on); with the quadrant lookahead too, but it also preloads the row above
     // (the points are in the top half of their blocks), which the scanline never uses.
-    let tex = flat(64, 64);
+    let tex = tb::texture::test_pattern(64, 64);
     let reqs: Vec<TexRequest> = (0..12u32)
         .map(|i| TexRequest {
             u: (1 + 2 * i) << 4,
@@ -284,7 +269,7 @@ fn direction_lookahead_preloads_ahead_of_the_motion() {
 
 #[test]
 fn a_newline_request_does_not_prefetch() {
-    let tex = flat(64, 64);
+    let tex = tb::texture::test_pattern(64, 64);
     let p = TexParams::new(64, 64);
     let r = [TexRequest {
         u: 10 << 4,

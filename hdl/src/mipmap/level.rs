@@ -137,6 +137,14 @@ impl Level {
         self.fifo_1408.front().map_or(0, u32::from)
     }
 
+    /// Adder 1410: `s` plus FIFO 1408's oldest entry (popped), divided by four.
+    fn add_1410(&mut self, s: u32, ops: &mut Ops) -> u32 {
+        let sum = self.front_1408() + s;
+        ops.pop_1408 = true;
+        self.sum1410.set_bits(u64::from(sum));
+        divide(sum, 4, self.rounding)
+    }
+
     /// Interlaced level 1: the vertical pair from the shift register, then the odd column
     /// through FIFO 1408 (a one-entry register).
     fn reduce_interlaced(&mut self, t: u32, x: u32) -> (Ops, Option<u32>) {
@@ -150,10 +158,7 @@ impl Level {
             ops.push_1408 = Some(s);
             None
         } else {
-            let a = self.front_1408();
-            ops.pop_1408 = true;
-            self.sum1410.set_bits(u64::from(a + s));
-            Some(divide(a + s, 4, r))
+            Some(self.add_1410(s, &mut ops))
         };
         (ops, out)
     }
@@ -177,10 +182,7 @@ impl Level {
                     ops.push_1408 = Some(s);
                     None
                 } else {
-                    let a = self.front_1408();
-                    ops.pop_1408 = true;
-                    self.sum1410.set_bits(u64::from(a + s));
-                    Some(divide(a + s, 4, r))
+                    Some(self.add_1410(s, &mut ops))
                 }
             }
             (false, _) if y.is_multiple_of(2) => {
