@@ -34,18 +34,14 @@ fn kernel(c: &mut Criterion) {
     let mut g = c.benchmark_group("kernel");
     g.throughput(Throughput::Elements(CYCLES));
     g.bench_function("blend_adjust_cycles_untraced", |b| {
-        let mut sim = Sim::new(BlendAdjust::new(
-            "blend_adjust_153",
-            BlendAdjustParams::default(),
-        ));
+        let mut sim =
+            Sim::new(BlendAdjust::new("blend_adjust_153", BlendAdjustParams::default()).unwrap());
         b.iter(|| black_box(drive(&mut sim)))
     });
     g.bench_function("blend_adjust_cycles_schedule_checked", |b| {
-        let mut sim = Sim::new(BlendAdjust::new(
-            "blend_adjust_153",
-            BlendAdjustParams::default(),
-        ))
-        .check_schedule(true);
+        let mut sim =
+            Sim::new(BlendAdjust::new("blend_adjust_153", BlendAdjustParams::default()).unwrap())
+                .check_schedule(true);
         b.iter(|| black_box(drive(&mut sim)))
     });
     let dir = std::env::temp_dir().join(format!("texrtl-bench-{}", std::process::id()));
@@ -56,7 +52,7 @@ fn kernel(c: &mut Criterion) {
             || {
                 let t = VcdTracer::create(&path, "bench", TraceConfig::default()).unwrap();
                 Sim::traced(
-                    BlendAdjust::new("blend_adjust_153", BlendAdjustParams::default()),
+                    BlendAdjust::new("blend_adjust_153", BlendAdjustParams::default()).unwrap(),
                     t,
                 )
                 .unwrap()

@@ -143,7 +143,7 @@ impl Testbench for BlendAdjustTb {
             registered: self.registered,
         };
         params.validate()?;
-        let dut = BlendAdjust::new("blend_adjust_153", params);
+        let dut = BlendAdjust::new("blend_adjust_153", params)?;
         let Some(w) = &ctx.waves else {
             return Ok(one_width(Sim::new(dut), self, ctx, f, None).1);
         };

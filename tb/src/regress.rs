@@ -57,8 +57,17 @@ pub struct RegressConfig {
 }
 
 impl RegressConfig {
-    /// Checks the names in `only` against the registry.
+    /// Random transactions per configuration at most (`--count`).
+    pub const MAX_COUNT: usize = 1_000_000;
+
+    /// Checks the options: the names in `only` against the registry, `--count` in range.
     pub fn validate(&self, reg: &Registry) -> Result<(), String> {
+        if let Some(n) = self.count.filter(|&n| n > Self::MAX_COUNT) {
+            return Err(format!(
+                "--count {n}: 0..={} random transactions per configuration",
+                Self::MAX_COUNT
+            ));
+        }
         for o in &self.only {
             if reg.get(o).is_none() && o != VECTORS {
                 return Err(format!(

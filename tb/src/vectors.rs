@@ -89,7 +89,7 @@ fn blend_adjust() -> UnitVectors {
         frac_bits: 8,
         registered: false,
     };
-    let mut sim = Sim::new(BlendAdjust::new("blend_adjust_153", p));
+    let mut sim = Sim::new(BlendAdjust::new("blend_adjust_153", p).expect("valid parameters"));
     let mut rows = Vec::new();
     for bypass in [0u64, 1] {
         for u in 0..256u64 {

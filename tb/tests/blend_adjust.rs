@@ -83,7 +83,7 @@ fn random_single_evaluations_match_golden() {
                 v: v & mask,
                 bypass,
             };
-            let mut sim = Sim::new(BlendAdjust::new("blend_adjust_153", p));
+            let mut sim = Sim::new(BlendAdjust::new("blend_adjust_153", p).unwrap());
             sim.dut.i.u_in.set_bits(u64::from(t.u));
             sim.dut.i.v_in.set_bits(u64::from(t.v));
             sim.dut.i.bypass.set_bool(bypass);

@@ -8,7 +8,7 @@ use hdl::kernel::{Module, Sim};
 fn every_position_both_modes() {
     for (pos_frac, f) in [(8u32, 8u32), (10, 8), (4, 4), (16, 16)] {
         let pos = Format::signed(16 + pos_frac, pos_frac as i32);
-        let mut sim = Sim::new(AddressUnit::new("addr", pos, f)).check_schedule(true);
+        let mut sim = Sim::new(AddressUnit::new("addr", pos, f).unwrap()).check_schedule(true);
         let scale = f64::from(1u32 << pos_frac);
         let lim = 5i64 << pos_frac;
         let mut prev = None;
@@ -39,7 +39,7 @@ fn every_position_both_modes() {
 #[test]
 fn latency_one() {
     let pos = Format::signed(24, 8);
-    let mut a = AddressUnit::new("addr", pos, 8);
+    let mut a = AddressUnit::new("addr", pos, 8).unwrap();
     a.u.set_raw(0x180);
     a.eval();
     assert_eq!(a.ui.raw(), 0, "registered: nothing before the edge");

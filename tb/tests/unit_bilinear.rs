@@ -11,7 +11,7 @@ fn unit(out_frac: Option<u32>) -> Bilinear {
     let texel = Format::unsigned(10, 4);
     let blend = Format::unsigned(9, 9);
     let f = out_frac.unwrap_or(4 + 18);
-    Bilinear::new("bl", texel, blend, Format::unsigned(6 + f, f as i32))
+    Bilinear::new("bl", texel, blend, Format::unsigned(6 + f, f as i32)).unwrap()
 }
 
 fn eval(b: &Bilinear, p: [i64; 4], s: i64, t: i64, out_frac: u32) -> f64 {

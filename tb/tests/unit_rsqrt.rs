@@ -11,7 +11,7 @@ use hdl::kernel::Sim;
 /// Worst |y - 1/sqrt(m)| in ULPs over every mantissa, measured to 1/256 ULP, and the count of
 /// inputs whose result is the correctly rounded one.
 fn sweep(p: RsqrtParams) -> (f64, u64, u64) {
-    let t = RsqrtTable::new(p);
+    let t = RsqrtTable::new(p).unwrap();
     let (m, y) = (p.mant_frac, p.y_frac);
     let mut worst = 0i128;
     let mut correct = 0u64;
@@ -78,10 +78,10 @@ fn exhaustive_other_parameters() {
 #[test]
 fn module_matches_function_with_latency() {
     let p = RsqrtParams::default();
-    let mut sim = Sim::new(Rsqrt::new("rsqrt", p)).check_schedule(true);
+    let mut sim = Sim::new(Rsqrt::new("rsqrt", p).unwrap()).check_schedule(true);
     let lat = sim.dut.latency();
     assert_eq!(lat, 2);
-    let t = RsqrtTable::new(p);
+    let t = RsqrtTable::new(p).unwrap();
     let inputs: Vec<u64> = (0..500u64).map(|k| (1u64 << 22) + k * 25_123).collect();
     let mut outs = Vec::new();
     for k in 0..inputs.len() + lat {

@@ -70,7 +70,7 @@ fn tangent_formulas() {
 #[test]
 fn normal_unit_normalises() {
     let p = BumpParams::default();
-    let mut sim = Sim::new(Normal::new("normal", &p)).check_schedule(true);
+    let mut sim = Sim::new(Normal::new("normal", &p).unwrap()).check_schedule(true);
     let lat = sim.dut.latency();
     assert_eq!(lat, 4);
     let mut stim = seeded_stimulus("normal 156");

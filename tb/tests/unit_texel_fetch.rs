@@ -21,8 +21,9 @@ fn grid_in_every_border_mode() {
             (Border::Mirror, GB::Mirror),
             (Border::Constant(77), GB::Constant(77.0)),
         ] {
-            let mut sim = Sim::new(TexelFetch::new("fetch", map.clone(), b, Format::sint(17)))
-                .check_schedule(true);
+            let mut sim =
+                Sim::new(TexelFetch::new("fetch", map.clone(), b, Format::sint(17)).unwrap())
+                    .check_schedule(true);
             for j in -13i64..13 {
                 for i in -13i64..13 {
                     sim.dut.ui.set_raw(i);

@@ -85,6 +85,15 @@ pub fn seeded_runner(test: &str, cases: u32) -> TestRunner {
     TestRunner::new_with_rng(cfg, seed.rng())
 }
 
+/// `s` cut to at most 40 characters for a message.
+fn formats_short(s: &str) -> String {
+    if s.chars().count() <= 40 {
+        s.to_string()
+    } else {
+        format!("{}...", s.chars().take(37).collect::<String>())
+    }
+}
+
 /// One of `count` shards of a regression (`index` from 1): configurations are dealt out
 /// round-robin, so the shards together run exactly what one unsharded run does, each
 /// configuration with the same seed.
@@ -107,15 +116,25 @@ impl std::fmt::Display for Shard {
 }
 
 impl Shard {
-    /// Parses `I/N` with `1 <= I <= N`.
+    /// Shards of a run at most (each is a machine or a CI job).
+    pub const MAX_COUNT: u32 = 4096;
+
+    /// Parses `I/N` with `1 <= I <= N <= 4096`.
     pub fn parse(s: &str) -> Result<Shard, String> {
-        let bad = || format!("'{s}' is not a shard I/N with 1 <= I <= N");
+        let s = s.trim();
+        let bad = || {
+            format!(
+                "'{}' is not a shard I/N with 1 <= I <= N <= {}",
+                formats_short(s),
+                Shard::MAX_COUNT
+            )
+        };
         let (i, n) = s.split_once('/').ok_or_else(bad)?;
         let (index, count): (u32, u32) = (
             i.trim().parse().map_err(|_| bad())?,
             n.trim().parse().map_err(|_| bad())?,
         );
-        if count == 0 || index == 0 || index > count {
+        if count == 0 || index == 0 || index > count || count > Shard::MAX_COUNT {
             return Err(bad());
         }
         Ok(Shard { index, count })

@@ -31,12 +31,20 @@ pub struct TraceConfig {
 }
 
 impl TraceConfig {
-    /// Checks the period (even, at least 2 ps, so the clock can fall half-way) and the window.
+    /// The longest clock period: 1 ms (so that cycle times stay far inside the VCD's 64-bit
+    /// time for any run that fits in memory).
+    pub const MAX_PERIOD_PS: u64 = 1_000_000_000;
+
+    /// Checks the period (even, 2 ps ..= 1 ms, so the clock can fall half-way) and the window.
     pub fn validate(&self) -> Result<(), String> {
-        if self.period_ps < 2 || !self.period_ps.is_multiple_of(2) {
+        if self.period_ps < 2
+            || !self.period_ps.is_multiple_of(2)
+            || self.period_ps > Self::MAX_PERIOD_PS
+        {
             return Err(format!(
-                "clock period {} ps must be even and at least 2",
-                self.period_ps
+                "clock period {} ps must be even, in 2..={}",
+                self.period_ps,
+                Self::MAX_PERIOD_PS
             ));
         }
         if let Some((a, b)) = self.window {
@@ -438,6 +446,44 @@ impl Visitor for Sample<'_> {
     }
 }
 
+impl VcdTracer {
+    /// `$dumpvars` with every variable unknown (`x`; reals 0) at the window's start, for a
+    /// window that no cycle of the run reached: the dump stays valid and says so.
+    fn dump_unknown(&mut self) -> io::Result<()> {
+        let t = self.cfg.window.map_or(0, |(a, _)| a) * self.cfg.period_ps;
+        self.timestamp(t)?;
+        let w = self.w.as_mut().expect("tracer already finished");
+        w.begin(vcd::SimulationCommand::Dumpvars)?;
+        let ids = [self.clk, self.rst].into_iter().flatten().map(|id| (id, 1));
+        let vars = self
+            .entries
+            .iter()
+            .filter_map(|e| e.id.map(|id| (id, e.fmt.width())));
+        let probes = self
+            .probes
+            .iter()
+            .filter(|p| matches!(p.value, ProbeValue::Bits(_)));
+        for (id, width) in ids.chain(vars).chain(probes.map(|p| (p.id, p.width))) {
+            if width == 1 {
+                w.change_scalar(id, Value::X)?;
+            } else {
+                writeln!(w.writer(), "b{} {id}", "x".repeat(width as usize))?;
+            }
+        }
+        let reals = self.entries.iter().filter_map(|e| e.real);
+        let real_probes = self
+            .probes
+            .iter()
+            .filter(|p| matches!(p.value, ProbeValue::Real(_)));
+        for id in reals.chain(real_probes.map(|p| p.id)) {
+            w.change_real(id, 0.0)?;
+        }
+        w.end()?;
+        self.dumped = true;
+        Ok(())
+    }
+}
+
 /// A GTKWave translate filter file: one `value name` line per state, values in decimal (the
 /// traces that use it are shown in decimal).
 fn write_filter(path: &Path, names: &[&str]) -> io::Result<()> {
@@ -575,8 +621,12 @@ impl Trace for VcdTracer {
     }
 
     fn finish(&mut self, cycles: u64) -> io::Result<()> {
+        if !self.dumped {
+            // The run ended before the trace window began: every value is unknown in it.
+            self.dump_unknown()?;
+        }
         let end = match self.cfg.window {
-            Some((_, b)) => cycles.min(b),
+            Some((a, b)) => cycles.min(b).max(a),
             None => cycles,
         };
         let t_end = end * self.cfg.period_ps;

@@ -18,7 +18,7 @@ fn run(name: &str, cfg: TraceConfig, finish: bool) -> PathBuf {
     let path = tmpdir(name).join("ba.vcd");
     let mut t = VcdTracer::create(&path, "blend adjust", cfg).unwrap();
     let gold = t.probe_real("u0", Some("tb.blend_adjust_153.u0"));
-    let dut = BlendAdjust::new("blend_adjust_153", BlendAdjustParams::default());
+    let dut = BlendAdjust::new("blend_adjust_153", BlendAdjustParams::default()).unwrap();
     let mut sim = Sim::traced(dut, t).unwrap();
     sim.reset(2);
     for c in 0..20u64 {

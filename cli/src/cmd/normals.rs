@@ -72,6 +72,11 @@ pub fn read_coords(path: &Path) -> Result<Vec<(f64, f64)>, String> {
 /// `texrtl normals`: one CSV row per coordinate, each component the exact decimal value of
 /// its fixed-point result. Returns a summary line.
 pub fn run(a: &NormalsArgs) -> Result<String, CmdError> {
+    if a.lod != 0.0 && !a.trilinear {
+        return Err(CmdError::Input(
+            "--lod: the weight of the coarser MIP level needs --trilinear".into(),
+        ));
+    }
     let mut p = a.widths.params()?;
     p.filter = a.filter;
     p.border = a.border;

@@ -96,8 +96,11 @@ pub fn render_png(
 ) -> Result<(Vec<u8>, f64), String> {
     let (w, h) = (map.width() * zoom, map.height() * zoom);
     let l = {
-        let n = (light[0] * light[0] + light[1] * light[1] + light[2] * light[2]).sqrt();
-        light.map(|x| x / n)
+        // Scaled by the largest component first, so no square overflows (1e200,0,0 is +x).
+        let m = light.iter().fold(0.0f64, |m, x| m.max(x.abs()));
+        let d = light.map(|x| x / m);
+        let n = (d[0] * d[0] + d[1] * d[1] + d[2] * d[2]).sqrt();
+        d.map(|x| x / n)
     };
     let z = f64::from(zoom);
     let samples: Vec<Sample> = (0..h)

@@ -25,10 +25,20 @@ pub enum SweepCmd {
     },
 }
 
+/// Positions per configuration at most (35 configurations are run).
+const MAX_SAMPLES: usize = 1_000_000;
+
 /// Runs a sweep.
 pub fn run(c: &SweepCmd) -> Result<String, CmdError> {
     match c {
-        SweepCmd::Normals { map, samples, seed } => sweep_normals(map, *samples, *seed),
+        SweepCmd::Normals { map, samples, seed } => {
+            if !(1..=MAX_SAMPLES).contains(samples) {
+                return Err(CmdError::Input(format!(
+                    "--samples {samples}: 1..={MAX_SAMPLES} positions"
+                )));
+            }
+            sweep_normals(map, *samples, *seed)
+        }
     }
 }
 

@@ -38,14 +38,16 @@ pub struct AddressUnit {
 
 impl AddressUnit {
     /// Positions in `pos` (signed, `pos_frac >= blend_bits`), blend factors of `blend_bits`.
-    pub fn new(name: &str, pos: Format, blend_bits: u32) -> AddressUnit {
-        assert!(
-            pos.is_signed() && pos.frac() >= blend_bits as i32,
-            "address unit: {pos} vs F={blend_bits}"
-        );
+    pub fn new(name: &str, pos: Format, blend_bits: u32) -> Result<AddressUnit, String> {
+        if !pos.is_signed() || pos.frac() < blend_bits as i32 {
+            return Err(format!(
+                "address unit 150: positions {pos} need to be signed with at least \
+                 F = {blend_bits} fraction bits"
+            ));
+        }
         let coord = Format::sint(pos.int_bits() as u32 + 1);
         let blend = Format::unsigned(blend_bits, blend_bits as i32);
-        AddressUnit {
+        Ok(AddressUnit {
             name: name.into(),
             blend_bits,
             pos_frac: pos.frac() as u32,
@@ -62,7 +64,7 @@ impl AddressUnit {
                 Reg::new("ub_r", blend),
                 Reg::new("vb_r", blend),
             ],
-        }
+        })
     }
 
     /// `(floor(p'), blend)` for one raw position `p` (fraction bits `pos_frac`).

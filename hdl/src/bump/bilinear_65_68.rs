@@ -37,12 +37,13 @@ pub struct Bilinear {
 }
 
 impl Bilinear {
-    pub fn new(name: &str, texel: Format, blend: Format, out: Format) -> Bilinear {
-        assert!(
-            texel.width() + 2 * blend.width() + 2 <= 62,
-            "bilinear: {texel} texels and {blend} factors exceed the 62-bit datapath"
-        );
-        Bilinear {
+    pub fn new(name: &str, texel: Format, blend: Format, out: Format) -> Result<Bilinear, String> {
+        if texel.width() + 2 * blend.width() + 2 > 62 {
+            return Err(format!(
+                "bilinear unit: {texel} texels and {blend} factors exceed the 62-bit datapath"
+            ));
+        }
+        Ok(Bilinear {
             name: name.into(),
             sf: blend.frac() as u32,
             pf: texel.frac() as u32,
@@ -52,7 +53,7 @@ impl Bilinear {
             t: Signal::new("t", blend),
             q: Signal::new("q", out),
             r: Reg::new("q_r", out),
-        }
+        })
     }
 
     /// The exact blend, raw with `pf + 2 sf` fraction bits. Texels of up to 12 bits and

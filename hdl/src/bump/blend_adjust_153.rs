@@ -110,14 +110,12 @@ pub struct BlendAdjust {
 }
 
 impl BlendAdjust {
-    /// An instance named `name`; panics on invalid parameters (see
+    /// An instance named `name`; invalid parameters are an error (see
     /// [`BlendAdjustParams::validate`]).
-    pub fn new(name: &str, params: BlendAdjustParams) -> BlendAdjust {
-        if let Err(e) = params.validate() {
-            panic!("{e}");
-        }
+    pub fn new(name: &str, params: BlendAdjustParams) -> Result<BlendAdjust, String> {
+        params.validate()?;
         let (fi, fo) = (params.in_fmt(), params.out_fmt());
-        BlendAdjust {
+        Ok(BlendAdjust {
             name: name.to_string(),
             params,
             i: BlendAdjustIn {
@@ -140,7 +138,7 @@ impl BlendAdjust {
                 Reg::new("v0_r", fo),
                 Reg::new("v1_r", fo),
             ],
-        }
+        })
     }
 
     pub fn params(&self) -> BlendAdjustParams {
@@ -225,7 +223,8 @@ mod tests {
                 registered: false,
             };
             let half = Fx::from_raw(Format::unsigned(1, 1), 1);
-            let mut sim = Sim::new(BlendAdjust::new("blend_adjust_153", p)).check_schedule(f < 6);
+            let mut sim =
+                Sim::new(BlendAdjust::new("blend_adjust_153", p).unwrap()).check_schedule(f < 6);
             for b in 0..(1u64 << f) {
                 sim.dut.i.u_in.set_bits(b);
                 sim.dut.i.v_in.set_bits((1 << f) - 1 - b);
@@ -244,7 +243,8 @@ mod tests {
     #[test]
     fn registered_has_latency_one_and_resets() {
         let p = BlendAdjustParams::default();
-        let mut sim = Sim::new(BlendAdjust::new("blend_adjust_153", p)).check_schedule(true);
+        let mut sim =
+            Sim::new(BlendAdjust::new("blend_adjust_153", p).unwrap()).check_schedule(true);
         sim.dut.i.valid_in.set_bool(true);
         sim.dut.i.u_in.set_bits(0x80);
         sim.eval();
@@ -266,19 +266,19 @@ mod tests {
     #[test]
     #[should_panic(expected = "does not fit")]
     fn out_of_range_input_is_caught() {
-        let mut ba = BlendAdjust::new("blend_adjust_153", BlendAdjustParams::default());
+        let mut ba = BlendAdjust::new("blend_adjust_153", BlendAdjustParams::default()).unwrap();
         ba.i.u_in.set_bits(0x100);
     }
 
     #[test]
-    #[should_panic(expected = "frac_bits 3")]
     fn bad_params_rejected() {
-        BlendAdjust::new(
-            "ba",
-            BlendAdjustParams {
-                frac_bits: 3,
-                registered: true,
-            },
-        );
+        let p = BlendAdjustParams {
+            frac_bits: 3,
+            registered: true,
+        };
+        let Err(e) = BlendAdjust::new("blend_adjust_153", p) else {
+            panic!("F = 3 is refused");
+        };
+        assert!(e.contains("frac_bits 3"), "{e}");
     }
 }

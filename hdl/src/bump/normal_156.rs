@@ -67,17 +67,17 @@ pub struct Normal {
 const K_FMT: Format = Format::uint(6);
 
 impl Normal {
-    pub fn new(name: &str, p: &BumpParams) -> Normal {
+    pub fn new(name: &str, p: &BumpParams) -> Result<Normal, String> {
         let tan = p.tangent_fmt();
         let out = p.normal_fmt();
-        let rsqrt = Rsqrt::new("rsqrt_156", p.rsqrt);
+        let rsqrt = Rsqrt::new("rsqrt_156", p.rsqrt)?;
         let carry = Delay::new(
             "carry",
             &[("nx_in", tan), ("ny_in", tan), ("k_in", K_FMT)],
             rsqrt.latency(),
             &["nx_d", "ny_d", "k_d"],
         );
-        Normal {
+        Ok(Normal {
             name: name.into(),
             tf: p.tangent_frac,
             mf: p.rsqrt.mant_frac,
@@ -101,7 +101,7 @@ impl Normal {
                 Reg::new("ny_r", out),
                 Reg::new("nz_r", out),
             ],
-        }
+        })
     }
 
     pub fn latency(&self) -> usize {

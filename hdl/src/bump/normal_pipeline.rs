@@ -82,30 +82,36 @@ const BIL_NAMES: [[&str; 4]; 2] = [
     ],
 ];
 
+/// The four bilinear units 65-68 of one level.
+fn bilinears(names: [&str; 4], p: &BumpParams) -> Result<[Bilinear; 4], String> {
+    let [r, g, b, a] =
+        names.map(|n| Bilinear::new(n, p.replicate_fmt(), p.adj_fmt(), p.bilinear_fmt()));
+    Ok([r?, g?, b?, a?])
+}
+
 impl Level {
-    fn new(k: usize, p: &BumpParams, map: HeightMap) -> Level {
+    fn new(k: usize, p: &BumpParams, map: HeightMap) -> Result<Level, String> {
         let n = LEVEL_NAMES[k];
         // The coarser level sees (u/2, v/2): the same bits with one more fraction bit.
         let pos = Format::signed(
             p.pos_int + p.pos_frac + k as u32,
             p.pos_frac as i32 + k as i32,
         );
-        let addr = AddressUnit::new(n[0], pos, p.blend_bits);
+        let addr = AddressUnit::new(n[0], pos, p.blend_bits)?;
         let coord = addr.ui.fmt();
-        Level {
+        Ok(Level {
             addr,
-            fetch: TexelFetch::new(n[1], map, p.border, coord),
+            fetch: TexelFetch::new(n[1], map, p.border, coord)?,
             adjust: BlendAdjust::new(
                 n[2],
                 BlendAdjustParams {
                     frac_bits: p.blend_bits,
                     registered: true,
                 },
-            ),
+            )?,
             rep: Replicate::new(n[3], p.texel_fmt(), p.filter == Filter::Bezier),
-            bil: BIL_NAMES[k]
-                .map(|b| Bilinear::new(b, p.replicate_fmt(), p.adj_fmt(), p.bilinear_fmt())),
-        }
+            bil: bilinears(BIL_NAMES[k], p)?,
+        })
     }
 
     /// Address, fetch/adjust, replicate and bilinear stages for position `(u, v)` raw.
@@ -212,14 +218,14 @@ impl NormalPipeline {
         if p.rsqrt.table_bits > p.rsqrt.mant_frac {
             return Err("rsqrt.table_bits must not exceed rsqrt.mant_frac".into());
         }
-        let mut levels = vec![Level::new(0, &p, map)];
+        let mut levels = vec![Level::new(0, &p, map)?];
         match (p.trilinear, coarse) {
-            (true, Some(c)) => levels.push(Level::new(1, &p, c)),
+            (true, Some(c)) => levels.push(Level::new(1, &p, c)?),
             (true, None) => return Err("trilinear needs the coarser MIP level".into()),
             (false, _) => {}
         }
         let blend = p.blend_fmt();
-        let normal = Normal::new("normal_156", &p);
+        let normal = Normal::new("normal_156", &p)?;
         let latency = 4 + normal.latency();
         Ok(NormalPipeline {
             name: name.into(),

@@ -214,6 +214,16 @@ impl BumpParams {
         chk("rsqrt.mant_frac", self.rsqrt.mant_frac, 8, 40)?;
         chk("rsqrt.y_frac", self.rsqrt.y_frac, 8, 40)?;
         chk("out_frac", self.out_frac, 8, 24)?;
+        if let Border::Constant(c) = self.border {
+            let t = self.texel_fmt();
+            if !t.contains_raw(i128::from(c)) {
+                return Err(format!(
+                    "border constant:{c} does not fit the {}-bit texels (0..={})",
+                    t.width(),
+                    t.max_raw()
+                ));
+            }
+        }
         Ok(())
     }
 

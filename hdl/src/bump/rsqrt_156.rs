@@ -33,13 +33,13 @@ pub struct RsqrtTable {
 }
 
 impl RsqrtTable {
-    pub fn new(p: RsqrtParams) -> RsqrtTable {
-        assert!(
-            p.table_bits - 1 < p.mant_frac,
-            "rsqrt: table_bits {} too large for mant_frac {}",
-            p.table_bits,
-            p.mant_frac
-        );
+    pub fn new(p: RsqrtParams) -> Result<RsqrtTable, String> {
+        if !(1..=p.mant_frac).contains(&p.table_bits) {
+            return Err(format!(
+                "rsqrt: table_bits {} outside 1..=mant_frac ({})",
+                p.table_bits, p.mant_frac
+            ));
+        }
         let lo_bits = p.table_bits - 1;
         let mut entries = Vec::with_capacity(1 << p.table_bits);
         for hi in 0..2u32 {
@@ -53,7 +53,7 @@ impl RsqrtTable {
                 entries.push(((z + 1) >> 1) as u64);
             }
         }
-        RsqrtTable { p, entries }
+        Ok(RsqrtTable { p, entries })
     }
 
     /// The table index of mantissa `m` (raw `uQ2.M`, in [2^M, 2^(M+2))).
@@ -124,11 +124,11 @@ pub struct Rsqrt {
 }
 
 impl Rsqrt {
-    pub fn new(name: &str, p: RsqrtParams) -> Rsqrt {
+    pub fn new(name: &str, p: RsqrtParams) -> Result<Rsqrt, String> {
         let n = 1 + p.iterations as usize;
-        Rsqrt {
+        Ok(Rsqrt {
             name: name.into(),
-            table: RsqrtTable::new(p),
+            table: RsqrtTable::new(p)?,
             m: Signal::new("m", m_fmt(&p)),
             y: Signal::new("y", y_fmt(&p)),
             m_r: M_NAMES[..n]
@@ -139,7 +139,7 @@ impl Rsqrt {
                 .iter()
                 .map(|nm| Reg::new(nm, y_fmt(&p)))
                 .collect(),
-        }
+        })
     }
 
     pub fn latency(&self) -> usize {

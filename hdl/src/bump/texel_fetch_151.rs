@@ -56,15 +56,20 @@ pub struct TexelFetch {
 }
 
 impl TexelFetch {
-    pub fn new(name: &str, map: HeightMap, border: Border, coord: Format) -> TexelFetch {
+    /// A fetch unit on `map`; a constant border value must fit the texel format.
+    pub fn new(
+        name: &str,
+        map: HeightMap,
+        border: Border,
+        coord: Format,
+    ) -> Result<TexelFetch, String> {
         let t = map.fmt();
         if let Border::Constant(c) = border {
-            assert!(
-                t.contains_raw(i128::from(c)),
-                "border value {c} does not fit {t}"
-            );
+            if !t.contains_raw(i128::from(c)) {
+                return Err(format!("border value {c} does not fit the texels' {t}"));
+            }
         }
-        TexelFetch {
+        Ok(TexelFetch {
             name: name.into(),
             map,
             border,
@@ -72,7 +77,7 @@ impl TexelFetch {
             vj: Signal::new("vj", coord),
             h: NAMES.map(|n| Signal::new(n, t)),
             r: REG_NAMES.map(|n| Reg::new(n, t)),
-        }
+        })
     }
 
     pub fn map(&self) -> &HeightMap {

@@ -41,10 +41,14 @@ pub struct ColorBilinear {
 
 impl ColorBilinear {
     /// `frac_bits` in 1..=12.
-    pub fn new(name: &str, frac_bits: u32) -> ColorBilinear {
-        assert!((1..=12).contains(&frac_bits), "frac_bits {frac_bits}");
+    pub fn new(name: &str, frac_bits: u32) -> Result<ColorBilinear, String> {
+        if !(1..=12).contains(&frac_bits) {
+            return Err(format!(
+                "bilinear 622: frac_bits {frac_bits} outside 1..=12"
+            ));
+        }
         let c = |n| Signal::new(n, Format::uint(24));
-        ColorBilinear {
+        Ok(ColorBilinear {
             name: name.into(),
             frac_bits,
             in_valid: Signal::bit("in_valid"),
@@ -53,7 +57,7 @@ impl ColorBilinear {
             fv: Signal::new("fv", Format::unsigned(frac_bits, frac_bits as i32)),
             valid: Reg::new("valid", Format::uint(1)),
             rgb: Reg::new("rgb", Format::uint(24)),
-        }
+        })
     }
 }
 

@@ -249,7 +249,7 @@ impl TextureUnit {
             decode: CccDecode::new("ccc_decode_608", clut)?,
             cache: TextureCache::new("cache_614", bb - 1),
             extract: ColorExtract::new("extract_618", COORD_BITS, p.frac_bits),
-            bilinear: ColorBilinear::new("bilinear_622", p.frac_bits),
+            bilinear: ColorBilinear::new("bilinear_622", p.frac_bits)?,
             stats: TexStats::default(),
             lookup: Lookup::default(),
             ev: Events::default(),
