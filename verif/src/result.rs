@@ -150,6 +150,19 @@ impl TbResult {
         }
     }
 
+    /// Adds a scoreboard's comparisons: transactions, mismatches and the first of them in
+    /// detail (with the cycle each was seen in).
+    pub fn score<E: std::fmt::Debug, A: std::fmt::Debug>(&mut self, sb: &crate::Scoreboard<E, A>) {
+        self.transactions += sb.compared();
+        self.mismatches += sb.mismatch_count();
+        for m in sb.mismatches().iter().take(10) {
+            self.mismatch_log.push(format!(
+                "transaction {} (cycle {:?}): {}",
+                m.index, m.cycle, m.detail
+            ));
+        }
+    }
+
     /// The records of one row type (those that do not parse as `T` are skipped).
     pub fn records_of<T: serde::de::DeserializeOwned>(&self) -> Vec<T> {
         self.records
@@ -163,6 +176,19 @@ impl TbResult {
         if let Ok(v) = serde_json::to_value(row) {
             self.records.push(v);
         }
+    }
+
+    /// One line: name, transactions, mismatches, coverage, worst error, verdict.
+    pub fn summary(&self) -> String {
+        format!(
+            "{}: {} transactions, {} mismatches, coverage {:.1} %, max error {} LSB: {}",
+            self.name,
+            self.transactions,
+            self.mismatches,
+            self.coverage_percent,
+            self.stats.max_abs_lsb,
+            self.verdict()
+        )
     }
 
     /// The latency column: cycles, or `-`.

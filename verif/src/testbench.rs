@@ -10,8 +10,9 @@
 use crate::coverage::Coverage;
 use crate::random::{Seed, Shard};
 use crate::result::TbResult;
+use hdl::kernel::{Module, Sim};
 use std::path::PathBuf;
-use waves::TraceConfig;
+use waves::{TraceConfig, VcdTracer};
 
 /// What a configuration is run with; built by [`run_testbench`].
 #[derive(Clone, Debug)]
@@ -28,6 +29,48 @@ pub struct Ctx {
     pub waves: Option<WaveOut>,
     /// Run the kernel's schedule check on every cycle.
     pub check_schedule: bool,
+}
+
+impl Ctx {
+    /// The VCD tracer of this configuration when it writes the waveform (titled `title`,
+    /// clocked at `own_period_ps` unless the user chose a period), else `None`. Pass it to
+    /// [`Sim::maybe_traced`]: an untraced run then costs one branch per cycle.
+    pub fn tracer(&self, title: &str, own_period_ps: u64) -> Result<Option<VcdTracer>, String> {
+        let Some(w) = &self.waves else {
+            return Ok(None);
+        };
+        VcdTracer::create(&w.vcd, title, w.config(own_period_ps))
+            .map(Some)
+            .map_err(|e| format!("{}: {e}", w.vcd.display()))
+    }
+
+    /// A simulation of `dut` for this configuration: traced when it writes the waveform, with
+    /// the schedule check when asked. `probes` declares the golden values and flags shown
+    /// beside the design (called only when traced).
+    pub fn sim<M: Module, P>(
+        &self,
+        dut: M,
+        title: &str,
+        own_period_ps: u64,
+        probes: impl FnOnce(&mut VcdTracer) -> P,
+    ) -> Result<(Sim<M, VcdTracer>, Option<P>), String> {
+        let mut t = self.tracer(title, own_period_ps)?;
+        let p = t.as_mut().map(probes);
+        let sim = Sim::maybe_traced(dut, t).map_err(|e| e.to_string())?;
+        Ok((sim.check_schedule(self.check_schedule), p))
+    }
+
+    /// Ends a simulation made by [`Ctx::sim`]: the waveform is closed (and its `.gtkw`
+    /// written) and named in `res`.
+    pub fn finish<M: Module>(
+        &self,
+        sim: Sim<M, VcdTracer>,
+        res: &mut TbResult,
+    ) -> Result<M, String> {
+        let dut = sim.finish().map_err(|e| e.to_string())?;
+        res.vcd = self.waves.as_ref().map(|w| w.vcd.clone());
+        Ok(dut)
+    }
 }
 
 /// A waveform to write: the VCD's path and what to trace.
@@ -55,10 +98,15 @@ pub trait Testbench: Sync {
     fn name(&self) -> &'static str;
     /// The unit it verifies, with its number and where the document describes it.
     fn unit(&self) -> &'static str;
-    /// The labels of its configurations, in run order.
-    fn configurations(&self) -> Vec<String>;
-    /// Random transactions per configuration when `--count` is not given, and what one is.
-    fn default_count(&self) -> usize;
+    /// The labels of its configurations, in run order (by default one, `default`).
+    fn configurations(&self) -> Vec<String> {
+        vec!["default".into()]
+    }
+    /// Random transactions per configuration when `--count` is not given (by default 1000),
+    /// and what one is.
+    fn default_count(&self) -> usize {
+        1000
+    }
     fn count_unit(&self) -> &'static str {
         "random transactions"
     }
@@ -100,6 +148,17 @@ impl Default for RunOptions {
     }
 }
 
+impl RunOptions {
+    /// The defaults, writing each testbench's waveform (every signal, its own clock) into `dir`
+    /// as `<name>.vcd` and `<name>.gtkw`.
+    pub fn with_waves(dir: impl Into<PathBuf>) -> RunOptions {
+        RunOptions {
+            waves: Some((dir.into(), TraceConfig::default(), None)),
+            ..RunOptions::default()
+        }
+    }
+}
+
 /// The seed of configuration `index` of testbench `name` in a run seeded `seed`.
 pub fn config_seed(seed: Seed, name: &str, index: usize) -> Seed {
     // FNV-1a of the name: stable across builds and platforms.
@@ -110,12 +169,16 @@ pub fn config_seed(seed: Seed, name: &str, index: usize) -> Seed {
 }
 
 /// Runs every configuration of `tb` that the shard owns, calling `progress` with each label
-/// before it runs, and merges the results; pass/fail as the module says.
+/// before it runs, and merges the results; pass/fail as the module says. The waveform folder
+/// is made if it is not there.
 pub fn run_testbench(
     tb: &dyn Testbench,
     opts: &RunOptions,
     progress: &mut dyn FnMut(&str),
 ) -> Result<TbResult, String> {
+    if let Some((dir, _, _)) = &opts.waves {
+        std::fs::create_dir_all(dir).map_err(|e| format!("{}: {e}", dir.display()))?;
+    }
     let mut merged = TbResult::new(tb.name(), tb.unit());
     merged.seed = Some(opts.seed.to_string());
     merged.coverage = Some(tb.coverage());

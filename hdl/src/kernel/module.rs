@@ -43,8 +43,11 @@ pub trait Visitor {
 /// the children's inputs and evaluates them in dataflow order, each exactly once. Everything is
 /// static dispatch, so the compiler inlines across module boundaries.
 pub trait Module {
-    /// The instance name (unique among its siblings).
-    fn instance(&self) -> &str;
+    /// The instance name (unique among its siblings); by default the kind's (a numbered unit
+    /// is named after its kind: `blend_adjust_153`).
+    fn instance(&self) -> &str {
+        self.kind()
+    }
     /// The module type's name, e.g. `blend_adjust`.
     fn kind(&self) -> &'static str;
     /// Combinational process.
