@@ -397,7 +397,7 @@ fn coverage_model() -> Coverage {
 pub const NAME: &str = "mipmap_gen_816";
 
 /// The frame sizes of the mipmap testbench: square, wide, tall, one texel wide or high, 1x1.
-const SIZES: [(u32, u32); 9] = [
+pub const SIZES: [(u32, u32); 9] = [
     (64, 32),
     (32, 32),
     (16, 64),

@@ -2,7 +2,7 @@
 //! DRAM 604, control unit 607, CCC decode, cache 614 and bilinear 622, on scanline traces;
 //! `texrtl texread` and the `texture` testbench of `texrtl regress`.
 //!
-//! Every result is compared with the integer reference ([`formats::ccc::reference_filter`]) and
+//! Every result is compared with the integer reference ([`reference_filter`]) and
 //! with the `f64` golden model of the decoded texture (bound [`golden::texture::ERROR_BOUND_LSB`]);
 //! the golden model of the original (uncompressed) texture measures the compression error,
 //! reported separately. Misses are split into cold, capacity and conflict misses by a

@@ -88,7 +88,7 @@ pub struct Cross {
     pub name: String,
     pub a: usize,
     pub b: usize,
-    /// hits[i][j]: bin i of `a` with bin j of `b`.
+    /// `hits[i][j]`: bin i of `a` with bin j of `b`.
     pub hits: Vec<Vec<u64>>,
 }
 

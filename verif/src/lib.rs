@@ -9,7 +9,7 @@
 //!   exact and +-1 LSB counts, SQNR.
 //! * [`Stimulus`]: constrained-random values from proptest strategies, from a printed seed
 //!   that replays the run (`TEXRTL_SEED=0x...`).
-//! * [`run`]: the cycle loop that ties them together, with ready/valid backpressure on both
+//! * [`run()`]: the cycle loop that ties them together, with ready/valid backpressure on both
 //!   sides ([`Pacing`]), under a [`Watchdog`].
 //! * [`Testbench`]: named configurations, a coverage model and a run of one configuration;
 //!   [`run_testbench`] runs the configurations a [`Shard`] owns, each with its own seed, merges

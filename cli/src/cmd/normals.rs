@@ -30,7 +30,7 @@ pub struct NormalsArgs {
     /// Height scale factor (quantised to uQ8.8).
     #[arg(long, default_value_t = 1.0, value_parser = parse_finite)]
     pub scale: f64,
-    /// wrap, clamp, mirror or constant[:N].
+    /// wrap, clamp, mirror, constant (0) or constant:N.
     #[arg(long, default_value = "wrap", value_parser = parse_border)]
     pub border: Border,
     /// Waveform of the run (with its .gtkw beside it).

@@ -10,7 +10,7 @@ pub struct VectorsArgs {
     /// The unit (see golden/vectors/).
     #[arg(long)]
     pub unit: String,
-    /// Directory for <unit>_stimulus.hex and <unit>_expected.hex.
+    /// Directory for UNIT_stimulus.hex and UNIT_expected.hex.
     #[arg(long)]
     pub out: PathBuf,
 }

@@ -15,7 +15,7 @@
 //!   `base + page_words (ty * tiles_x + tx) + 2 ((by % th) tw + bx % tw)`, `tx = bx / tw`,
 //!   `ty = by / th`. Partial tiles at the right and bottom edges waste the rest of their page.
 //!
-//! Addresses are word addresses into the DRAM (`rows * page_words` words); [`Layout::words`]
+//! Addresses are word addresses into the DRAM (`rows * page_words` words); [`BlockMap::words`]
 //! says how many words a texture needs, so a caller can check it fits before loading.
 
 /// How blocks are placed in DRAM words.
