@@ -2,6 +2,32 @@
 //!
 //! No floating point is used inside a model: values are integers with a declared
 //! [`fx::Format`]; conversions to `f64` exist only at the edges (tracing, golden comparison).
+//!
+//! # From unit number to waveform, in one hop
+//! Every numbered unit is one file named after it and its number; its module's kind and
+//! instance carry the same name, its testbench (a `verif::Testbench` in `tb/src`)
+//! and its scope in the waveform too:
+//!
+//! | unit (document) | module (`hdl/src/…`) | kind = instance | testbench | waveform scope |
+//! |---|---|---|---|---|
+//! | address unit 150 (Fenney FIG. 7) | `bump/address_150.rs` | `address_150` | `normal_pipeline_fig7`; `tb/tests/unit_address.rs` | `tb.normal_pipeline_fig7.address_150` |
+//! | texel fetch 151 | `bump/texel_fetch_151.rs` | `texel_fetch_151` | `normal_pipeline_fig7`; `tb/tests/unit_texel_fetch.rs` | `tb.normal_pipeline_fig7.texel_fetch_151` |
+//! | replicate 152 | `bump/replicate_152.rs` | `replicate_152` | `normal_pipeline_fig7`; `tb/tests/unit_replicate.rs` | `tb.normal_pipeline_fig7.replicate_152` |
+//! | blend-factor adjust 153 | `bump/blend_adjust_153.rs` | `blend_adjust_153` | `blend_adjust_153` | `tb.blend_adjust_153` |
+//! | bilinear units 65, 66, 67, 68 | `bump/bilinear_65_68.rs` | `bilinear_65_68` = `bilinear_65_red`, `bilinear_66_green`, `bilinear_67_blue`, `bilinear_68_alpha` | `normal_pipeline_fig7`; `tb/tests/unit_bilinear.rs` | `tb.normal_pipeline_fig7.bilinear_65_red` … |
+//! | tangent unit 155 | `bump/tangent_155.rs` | `tangent_155` | `normal_pipeline_fig7`; `tb/tests/unit_tangent_normal.rs` | `tb.normal_pipeline_fig7.tangent_155` |
+//! | normal unit 156 and its inverse square root | `bump/normal_156.rs`, `bump/rsqrt_156.rs` | `normal_156`, `rsqrt_156` | `normal_pipeline_fig7`; `tb/tests/unit_rsqrt.rs` | `tb.normal_pipeline_fig7.normal_156.rsqrt_156` |
+//! | the FIG. 7 pipeline | `bump/normal_pipeline_fig7.rs` | `normal_pipeline_fig7` | `normal_pipeline_fig7` | `tb.normal_pipeline_fig7` |
+//! | texture mapping unit 602 (Schilling & Knittel Figure 6) | `texmem/texture_unit_602.rs` | `texture_unit_602` | `texture_unit_602` | `tb.texture_unit_602` |
+//! | DRAM 604 | `texmem/dram_604.rs` | `dram_604` | `control_607` | `tb.control_607.dram_604` |
+//! | DRAM control unit 607: word reads, block fetch, lookahead queue | `texmem/control_607.rs` | `control_607`, `fill_engine_607`, `lookahead_queue_607` | `control_607` (word reads), `texture_unit_602` | `tb.control_607`, `tb.texture_unit_602.fill_engine_607` |
+//! | register 608, multiplexer 610, CLUT 612 | `texmem/ccc_decode_608.rs` | `ccc_decode_608` | `texture_unit_602` | `tb.texture_unit_602.ccc_decode_608` |
+//! | cache 614 (four entries, Figure 7) | `texmem/cache_614.rs` | `cache_614`, entries `cache_614_entry` | `texture_unit_602` | `tb.texture_unit_602.cache_614.entry_a` … |
+//! | colour extract 618 | `texmem/extract_618.rs` | `extract_618` | `texture_unit_602` | `tb.texture_unit_602.extract_618` |
+//! | bilinear interpolator 622 | `texmem/bilinear_622.rs` | `bilinear_622` | `texture_unit_602` | `tb.texture_unit_602.bilinear_622` |
+//! | mipmap generation unit 816 (FIG. 14) with page registers 824 and shift register 826 | `mipmap/mipmap_gen_816.rs` | `mipmap_gen_816` | `mipmap_gen_816` | `tb.mipmap_gen_816` |
+//! | a level of FIG. 14a/b: adders 1402, 1410, register 1404 | `mipmap/level_fig14.rs` | `mipmap_level_fig14` = `level1` … | `mipmap_gen_816` | `tb.mipmap_gen_816.level1` |
+//! | FIFOs 1408 and 1412 | `mipmap/fifo.rs` | `fifo_1408`, `fifo_1412` | `mipmap_gen_816` | `tb.mipmap_gen_816.level1.fifo_1408` |
 
 pub mod fx;
 pub mod kernel;

@@ -3,7 +3,7 @@
 
 use criterion::{criterion_group, criterion_main, BatchSize, Criterion, Throughput};
 use hdl::bump::blend_adjust_153::{BlendAdjust, BlendAdjustParams};
-use hdl::bump::normal_pipeline::NormalPipeline;
+use hdl::bump::normal_pipeline_fig7::NormalPipeline;
 use hdl::bump::params::BumpParams;
 use hdl::fx::{Format, Fx, Overflow, Quant};
 use hdl::kernel::{Sim, Trace};

@@ -11,7 +11,7 @@
 
 use golden::bump::{self as g, Heights};
 use hdl::bump::height_map::HeightMap;
-use hdl::bump::normal_pipeline::NormalPipeline;
+use hdl::bump::normal_pipeline_fig7::NormalPipeline;
 use hdl::bump::params::{Border, BumpParams, Filter};
 use hdl::fx::{Format, Fx, Overflow, Quant};
 use hdl::kernel::{NoTrace, Sim, Trace};

@@ -1,7 +1,7 @@
 //! Every module's `visit` reaches every child: the instance tree of each top, against the
 //! units its figure says it holds (a module count and the kinds, by hand from the figures).
 
-use hdl::bump::normal_pipeline::NormalPipeline;
+use hdl::bump::normal_pipeline_fig7::NormalPipeline;
 use hdl::bump::params::BumpParams;
 use hdl::kernel::{instances, Module};
 use hdl::mipmap::{MipmapGen, MipmapParams, Rounding, Scan};

@@ -9,7 +9,7 @@ pub mod bilinear_65_68;
 pub mod blend_adjust_153;
 pub mod height_map;
 pub mod normal_156;
-pub mod normal_pipeline;
+pub mod normal_pipeline_fig7;
 pub mod params;
 pub mod replicate_152;
 pub mod rsqrt_156;

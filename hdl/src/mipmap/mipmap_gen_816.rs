@@ -34,7 +34,7 @@
 
 use crate::fx::Format;
 use crate::kernel::{Module, Reg, Signal, Visitor};
-use crate::mipmap::level::Level;
+use crate::mipmap::level_fig14::Level;
 use crate::signals;
 
 /// Arrival order of a frame's lines.

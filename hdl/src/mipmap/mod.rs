@@ -3,7 +3,7 @@
 //! FIFOs 1408 and 1412) and frame store.
 
 pub mod fifo;
-pub mod level;
+pub mod level_fig14;
 pub mod mipmap_gen_816;
 
 pub use mipmap_gen_816::{FrameBuffer, MipmapGen, MipmapParams, Rounding, Scan};
