@@ -71,12 +71,14 @@ pub struct DramDriver;
 
 impl Driver<DramCtrl> for DramDriver {
     type Txn = Addr;
+    #[inline]
     fn drive(&mut self, dut: &mut DramCtrl, a: Option<&Addr>) {
         dut.req_valid.set_bool(a.is_some());
         if let Some(&a) = a {
             dut.req_addr.set_bits(a);
         }
     }
+    #[inline]
     fn accepted(&self, dut: &DramCtrl) -> bool {
         dut.ready.is_high()
     }
@@ -142,39 +144,63 @@ fn region(x: u64, n: u64) -> i64 {
 
 /// Runs `addrs` through the controller, one request as soon as it is ready.
 pub fn run_trace(p: DramParams, addrs: &[u64], vcd: Option<PathBuf>) -> Result<DramStats, String> {
-    let wave = vcd.map(|path| {
-        let period_ps = u64::from(p.cycle_ns) * 1000;
-        (
-            path,
-            TraceConfig {
-                period_ps,
-                ..TraceConfig::default()
-            },
-        )
-    });
-    run_paced(p, addrs, Pacing::full(), wave).map(|(s, _)| s)
+    let period_ps = u64::from(p.cycle_ns) * 1000;
+    let trace = TraceConfig {
+        period_ps,
+        ..TraceConfig::default()
+    };
+    let setup = DramRun {
+        wave: vcd.map(|path| (path, trace)),
+        ..DramRun::default()
+    };
+    run_paced(p, addrs, setup).map(|(s, _)| s)
 }
 
-/// Runs `addrs` through the controller with the requester paced by `pacing`; returns the
-/// statistics and a coverage model sampled with every read.
+/// How a trace is run.
+pub struct DramRun {
+    /// When the requester offers its next read.
+    pub pacing: Pacing,
+    pub wave: Option<(PathBuf, TraceConfig)>,
+    /// Sample the coverage model with every read.
+    pub coverage: bool,
+    pub check_schedule: bool,
+}
+
+impl Default for DramRun {
+    fn default() -> Self {
+        DramRun {
+            pacing: Pacing::full(),
+            wave: None,
+            coverage: false,
+            check_schedule: false,
+        }
+    }
+}
+
+/// Runs `addrs` through the controller as `setup` says; returns the statistics and (with
+/// `setup.coverage`) the coverage model sampled with every read.
 pub fn run_paced(
     p: DramParams,
     addrs: &[u64],
-    pacing: Pacing,
-    wave: Option<(PathBuf, TraceConfig)>,
-) -> Result<(DramStats, Coverage), String> {
+    setup: DramRun,
+) -> Result<(DramStats, Option<Coverage>), String> {
     let ctrl = DramCtrl::new("control_607", p)?;
-    match wave {
+    let cov = setup.coverage.then(coverage_model);
+    let check = setup.check_schedule;
+    match setup.wave {
         Some((path, cfg)) => {
             let t = VcdTracer::create(&path, NAME, cfg)
                 .map_err(|e| format!("{}: {e}", path.display()))?;
             let sim = Sim::traced(ctrl, t).map_err(|e| e.to_string())?;
-            let (sim, st, cov) = drive(sim, addrs, pacing)?;
+            let (sim, st, cov) = drive(sim.check_schedule(check), addrs, setup.pacing, cov)?;
             sim.finish()
                 .map_err(|e| format!("{}: {e}", path.display()))?;
             Ok((st, cov))
         }
-        None => drive(Sim::<DramCtrl, NoTrace>::new(ctrl), addrs, pacing).map(|x| (x.1, x.2)),
+        None => {
+            let sim = Sim::<DramCtrl, NoTrace>::new(ctrl).check_schedule(check);
+            drive(sim, addrs, setup.pacing, cov).map(|x| (x.1, x.2))
+        }
     }
 }
 
@@ -182,11 +208,11 @@ fn drive<T: Trace>(
     mut sim: Sim<DramCtrl, T>,
     addrs: &[u64],
     pacing: Pacing,
-) -> Result<(Sim<DramCtrl, T>, DramStats, Coverage), String> {
+    mut cov: Option<Coverage>,
+) -> Result<(Sim<DramCtrl, T>, DramStats, Option<Coverage>), String> {
     sim.reset(1);
     let start = sim.cycle();
     let p = *sim.dut.params();
-    let mut cov = coverage_model();
     let mut sent: std::collections::VecDeque<u64> = Default::default();
     let (mut data_errors, mut received) = (0, 0usize);
     let (mut open_row, mut previous, mut idle) = (None::<u64>, 0i64, false);
@@ -214,13 +240,13 @@ fn drive<T: Trace>(
                 } else {
                     1 + 2 * (previous - 1) + (page - 1)
                 };
-                cov.sample(&[
-                    page,
-                    after,
-                    region(row, u64::from(p.rows)),
-                    region(col, u64::from(p.cols)),
-                    i64::from(idle),
-                ]);
+                if let Some(c) = cov.as_mut() {
+                    let (r, k) = (
+                        region(row, u64::from(p.rows)),
+                        region(col, u64::from(p.cols)),
+                    );
+                    c.sample(&[page, after, r, k, i64::from(idle)]);
+                }
                 (open_row, previous, idle) = (Some(row), page, false);
                 sent.push_back(*txn);
             }
@@ -368,12 +394,18 @@ impl Testbench for DramTb {
             .waves
             .as_ref()
             .map(|w| (w.vcd.clone(), w.config(u64::from(p.cycle_ns) * 1000)));
-        let (st, cov) = run_paced(p, &addrs, pacing, wave)?;
+        let setup = DramRun {
+            pacing,
+            wave,
+            coverage: true,
+            check_schedule: ctx.check_schedule,
+        };
+        let (st, cov) = run_paced(p, &addrs, setup)?;
         let mut res = TbResult::new(self.name(), self.unit());
         res.transactions = st.reads;
         res.cycles = st.cycles;
         res.mismatches = st.data_errors;
-        res.coverage = Some(cov);
+        res.coverage = cov;
         res.vcd = ctx.waves.as_ref().map(|w| w.vcd.clone());
         if st.violations != 0 {
             res.failures

@@ -81,6 +81,7 @@ impl Pacing {
     }
 
     /// Whether this side is willing in the current cycle.
+    #[inline]
     fn willing(&mut self) -> bool {
         if self.wait > 0 {
             self.wait -= 1;
@@ -93,6 +94,7 @@ impl Pacing {
     }
 
     /// A transfer happened: wait out the interval.
+    #[inline]
     fn transferred(&mut self) {
         self.wait = self.interval - 1;
     }
@@ -117,14 +119,24 @@ impl Watchdog {
 
     /// `Err` with the reason once `elapsed` cycles or the wall time since `t0` are used up
     /// (the clock is read every 1024 cycles).
+    #[inline]
     pub fn check(&self, elapsed: u64, t0: &Instant) -> Result<(), String> {
         if elapsed >= self.max_cycles {
-            return Err(format!("{} cycles elapsed", self.max_cycles));
+            return Err(self.expired(false));
         }
         if elapsed.is_multiple_of(1024) && t0.elapsed() > self.max_wall {
-            return Err(format!("{:?} of wall time elapsed", self.max_wall));
+            return Err(self.expired(true));
         }
         Ok(())
+    }
+
+    #[cold]
+    fn expired(&self, wall: bool) -> String {
+        if wall {
+            format!("{:?} of wall time elapsed", self.max_wall)
+        } else {
+            format!("{} cycles elapsed", self.max_cycles)
+        }
     }
 }
 

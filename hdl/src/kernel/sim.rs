@@ -44,6 +44,8 @@ pub struct Sim<M: Module, T: Trace = NoTrace> {
     reset: bool,
     check: bool,
     snap: (Vec<u64>, Vec<u64>),
+    /// Whether each signal (in visit order) is a register's value, for the edge check.
+    is_reg: Vec<bool>,
     trace_error: Option<std::io::Error>,
 }
 
@@ -63,6 +65,7 @@ impl<M: Module, T: Trace> Sim<M, T> {
             reset: false,
             check: false,
             snap: (Vec::new(), Vec::new()),
+            is_reg: Vec::new(),
             trace_error: None,
         }
     }
@@ -142,14 +145,22 @@ impl<M: Module, T: Trace> Sim<M, T> {
         snapshot(&self.dut, &mut a);
         self.dut.tick(self.reset);
         snapshot(&self.dut, &mut b);
-        let dirs = signal_dirs(&self.dut);
-        let bad = (0..a.len()).find(|&i| a[i] != b[i] && dirs[i] != Dir::Reg);
+        if self.is_reg.len() != a.len() {
+            // The hierarchy is fixed: which signals are registers is found once.
+            self.is_reg = signal_dirs(&self.dut)
+                .iter()
+                .map(|&d| d == Dir::Reg)
+                .collect();
+        }
+        let is_reg = &self.is_reg;
+        let bad = (0..a.len()).find(|&i| a[i] != b[i] && !is_reg[i]);
         if let Some(i) = bad {
             let path = signal_paths(&self.dut).swap_remove(i);
+            let dir = signal_dirs(&self.dut)[i];
             panic!(
-                "two-process error at cycle {}: '{path}' ({:?}) changed from {:#x} to {:#x} at \
+                "two-process error at cycle {}: '{path}' ({dir:?}) changed from {:#x} to {:#x} at \
                  the clock edge (only registers change in tick; drive signals in eval)",
-                self.cycle, dirs[i], a[i], b[i]
+                self.cycle, a[i], b[i]
             );
         }
         self.snap = (a, b);

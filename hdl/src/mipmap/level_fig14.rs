@@ -123,6 +123,18 @@ impl Level {
         self.err.q().bits()
     }
 
+    /// Nothing in, nothing out, no line to write, and its ports already showing that: its
+    /// `eval` would change nothing and its edge would be skipped, so a parent may leave it
+    /// unevaluated this cycle (it stays idle: its own `busy` is already false).
+    #[inline]
+    pub fn quiescent(&self) -> bool {
+        !self.in_valid.is_high()
+            && !self.out_valid.is_high()
+            && !self.out_v.q().is_high()
+            && !self.fifo_1412.is_full()
+            && !self.busy
+    }
+
     /// When FIFO 1412's line goes to the frame store at the coming edge (decided by `eval`):
     /// the frame and the row of this level it belongs to.
     pub fn line_write(&self) -> Option<(u64, u32)> {
@@ -250,6 +262,7 @@ impl Module for Level {
     fn kind(&self) -> &'static str {
         "mipmap_level_fig14"
     }
+    #[inline]
     fn eval(&mut self) {
         self.out_valid.follow(self.out_v.q());
         self.out_texel.follow(self.out_t.q());
@@ -271,6 +284,7 @@ impl Module for Level {
         };
         self.drive_fifos(ops, drain);
     }
+    #[inline]
     fn tick(&mut self, reset: bool) {
         if !self.busy && !reset {
             return;

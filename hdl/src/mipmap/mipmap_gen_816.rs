@@ -162,6 +162,9 @@ pub struct MipmapGen {
     pub completed: Vec<(u64, u64)>,
     cycle: u64,
     pending_store: Option<(u32, u32, u8)>,
+    /// Levels whose FIFO 1412 line goes to the frame store at the coming edge, bit `k` for
+    /// level `k + 1` (decided by `eval`).
+    drains: u32,
 }
 
 impl MipmapGen {
@@ -203,6 +206,7 @@ impl MipmapGen {
             completed: Vec::new(),
             cycle: 0,
             pending_store: None,
+            drains: 0,
             dims,
         })
     }
@@ -234,7 +238,11 @@ impl MipmapGen {
     /// buffer (bank 2); the last level's line completes the frame's mipmap.
     fn store_lines(&mut self) {
         let n = self.dims.len();
-        for (k, l) in self.levels.iter().enumerate() {
+        let mut d = self.drains;
+        while d != 0 {
+            let k = d.trailing_zeros() as usize;
+            d &= d - 1;
+            let l = &self.levels[k];
             let Some((frame, row)) = l.line_write() else {
                 continue;
             };
@@ -298,8 +306,11 @@ impl MipmapGen {
         if let Some(row) = self.sr_load {
             open((row % 2) as usize, row / 2);
         }
-        for (k, l) in self.levels.iter().enumerate() {
-            if let Some((_, row)) = l.line_write() {
+        let mut d = self.drains;
+        while d != 0 {
+            let k = d.trailing_zeros() as usize;
+            d &= d - 1;
+            if let Some((_, row)) = self.levels[k].line_write() {
                 open(2, (k as u32) << 10 | row);
             }
         }
@@ -359,19 +370,26 @@ impl Module for MipmapGen {
         }
         // Level 1 reads the video port (and, interlaced, the shift register in the second field).
         let second_field = self.p.scan == Scan::Progressive || f == 1;
+        self.drains = 0;
         if let Some(l1) = self.levels.first_mut() {
             l1.in_valid.set_bool(valid && second_field);
             l1.in_texel.follow(&self.texel);
             l1.sr_texel.set_bits(u64::from(self.sr[x as usize]));
             l1.eval();
+            self.drains |= u32::from(l1.line_write().is_some());
         }
-        // Each level reads the one before (an idle level's eval returns at once).
+        // Each level reads the one before; an idle level with nothing arriving is not
+        // evaluated (most cycles, for the upper levels).
         for k in 1..self.levels.len() {
             let (a, b) = self.levels.split_at_mut(k);
             let (prev, l) = (&a[k - 1], &mut b[0]);
+            if !prev.out_valid.is_high() && l.quiescent() {
+                continue;
+            }
             l.in_valid.follow(&prev.out_valid);
             l.in_texel.follow(&prev.out_texel);
             l.eval();
+            self.drains |= u32::from(l.line_write().is_some()) << k;
         }
         self.page_registers();
         // A FIFO error of any level takes precedence over a sync error.
@@ -385,16 +403,12 @@ impl Module for MipmapGen {
     }
     fn tick(&mut self, reset: bool) {
         self.done = false;
-        for r in [
-            &mut self.x,
-            &mut self.line,
-            &mut self.field,
-            &mut self.err,
-            &mut self.code,
-        ]
-        .into_iter()
-        .chain(&mut self.page_row)
-        {
+        self.x.tick(reset);
+        self.line.tick(reset);
+        self.field.tick(reset);
+        self.err.tick(reset);
+        self.code.tick(reset);
+        for r in &mut self.page_row {
             r.tick(reset);
         }
         self.cycle += 1;

@@ -208,6 +208,7 @@ impl Module for TextureCache {
     fn kind(&self) -> &'static str {
         "cache_614"
     }
+    #[inline]
     fn eval(&mut self) {
         let touch = self.touch.bits();
         let inval = self.invalidate.is_high();

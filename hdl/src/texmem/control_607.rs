@@ -296,6 +296,7 @@ impl Module for FillEngine {
     fn kind(&self) -> &'static str {
         "fill_engine_607"
     }
+    #[inline]
     fn eval(&mut self) {
         let req = self.word_request();
         self.word_req.set_bool(req.is_some());
@@ -318,16 +319,13 @@ impl Module for FillEngine {
             self.words_issued.set_next_bits(0);
         }
     }
+    #[inline]
     fn tick(&mut self, reset: bool) {
-        for r in [
-            &mut self.state,
-            &mut self.bx,
-            &mut self.by,
-            &mut self.prefetch,
-            &mut self.words_issued,
-        ] {
-            r.tick(reset);
-        }
+        self.state.tick(reset);
+        self.bx.tick(reset);
+        self.by.tick(reset);
+        self.prefetch.tick(reset);
+        self.words_issued.tick(reset);
     }
     fn visit(&self, v: &mut dyn Visitor) {
         v.enter(self.name, self.kind());
@@ -449,6 +447,7 @@ impl Module for LookaheadQueue {
     fn kind(&self) -> &'static str {
         "lookahead_queue_607"
     }
+    #[inline]
     fn eval(&mut self) {
         let complete = self.complete.is_high();
         let (u, v) = (self.u.bits(), self.v.bits());
@@ -482,16 +481,16 @@ impl Module for LookaheadQueue {
         self.take_bx.set_bits(u64::from(tx));
         self.take_by.set_bits(u64::from(ty));
     }
+    #[inline]
     fn tick(&mut self, reset: bool) {
-        let regs = self.bx.iter_mut().chain(self.by.iter_mut());
-        for r in regs.chain([
-            &mut self.mask,
-            &mut self.prev_valid,
-            &mut self.prev_u,
-            &mut self.prev_v,
-        ]) {
-            r.tick(reset);
+        for k in 0..3 {
+            self.bx[k].tick(reset);
+            self.by[k].tick(reset);
         }
+        self.mask.tick(reset);
+        self.prev_valid.tick(reset);
+        self.prev_u.tick(reset);
+        self.prev_v.tick(reset);
     }
     fn visit(&self, v: &mut dyn Visitor) {
         v.enter(self.name, self.kind());
