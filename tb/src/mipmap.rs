@@ -103,6 +103,16 @@ pub fn run_mipmap(
     frames: &[Vec<u8>],
     vcd: Option<(PathBuf, TraceConfig)>,
 ) -> Result<MipmapOutcome, String> {
+    run_mipmap_checked(p, frames, vcd, false)
+}
+
+/// [`run_mipmap`], with the kernel's schedule and edge checks on every cycle when `check`.
+pub fn run_mipmap_checked(
+    p: MipmapParams,
+    frames: &[Vec<u8>],
+    vcd: Option<(PathBuf, TraceConfig)>,
+    check: bool,
+) -> Result<MipmapOutcome, String> {
     let dut = MipmapGen::new("mipmap_gen_816", p)?;
     let n = (p.width * p.height) as usize;
     if let Some(k) = frames.iter().position(|f| f.len() != n) {
@@ -117,11 +127,14 @@ pub fn run_mipmap(
         Some((path, cfg)) => {
             let t = VcdTracer::create(&path, NAME, cfg).map_err(|e| e.to_string())?;
             let sim = Sim::traced(dut, t).map_err(|e| e.to_string())?;
-            let (sim, o) = drive(sim, frames)?;
+            let (sim, o) = drive(sim.check_schedule(check), frames)?;
             sim.finish().map_err(|e| e.to_string())?;
             Ok(o)
         }
-        None => drive(Sim::<MipmapGen, NoTrace>::new(dut), frames).map(|x| x.1),
+        None => {
+            let sim = Sim::<MipmapGen, NoTrace>::new(dut).check_schedule(check);
+            drive(sim, frames).map(|x| x.1)
+        }
     }
 }
 
@@ -248,10 +261,14 @@ fn check_one(
     cov: &mut Coverage,
     p: MipmapParams,
     frames: &[Vec<u8>],
-    vcd: Option<(PathBuf, TraceConfig)>,
+    ctx: &Ctx,
 ) -> Result<(), String> {
+    let vcd = ctx
+        .waves
+        .as_ref()
+        .map(|w| (w.vcd.clone(), w.config(10_000)));
     let traced = vcd.as_ref().map(|v| v.0.clone());
-    let o = run_mipmap(p, frames, vcd)?;
+    let o = run_mipmap_checked(p, frames, vcd, ctx.check_schedule)?;
     res.vcd = traced;
     let tag = format!("{}x{} {:?} {:?}", p.width, p.height, p.scan, p.rounding);
     score_levels(res, p, frames, &o, &tag);
@@ -480,11 +497,7 @@ impl Testbench for MipmapTb {
         let mut res = TbResult::new(self.name(), self.unit());
         let mut cov = coverage_model();
         let frames = synthetic_video(p.width, p.height, ctx.count, ctx.seed);
-        let vcd = ctx
-            .waves
-            .as_ref()
-            .map(|w| (w.vcd.clone(), w.config(10_000)));
-        check_one(&mut res, &mut cov, p, &frames, vcd)?;
+        check_one(&mut res, &mut cov, p, &frames, ctx)?;
         res.coverage = Some(cov);
         Ok(res)
     }

@@ -195,6 +195,18 @@ pub fn run_texread(
     interval: u32,
     vcd: Option<(PathBuf, TraceConfig)>,
 ) -> Result<TexRun, String> {
+    run_texread_checked(tex, p, reqs, interval, vcd, false)
+}
+
+/// [`run_texread`], with the kernel's schedule and edge checks on every cycle when `check`.
+pub fn run_texread_checked(
+    tex: &Ccc,
+    p: TexParams,
+    reqs: &[TexRequest],
+    interval: u32,
+    vcd: Option<(PathBuf, TraceConfig)>,
+    check: bool,
+) -> Result<TexRun, String> {
     if !(1..=1000).contains(&interval) {
         return Err(format!("rasterizer interval {interval}: 1..=1000 cycles"));
     }
@@ -231,12 +243,16 @@ pub fn run_texread(
                 t.probe_bits("mismatch", 1, Some("tb.texture_unit_602.out_valid")),
             );
             let sim = Sim::traced(unit, t).map_err(|e| e.to_string())?;
+            let sim = sim.check_schedule(check);
             let (sim, run) = drive(sim, reqs, interval, Some((tex, probes)))?;
             sim.finish()
                 .map_err(|e| format!("{}: {e}", path.display()))?;
             Ok(run)
         }
-        None => drive(Sim::<TextureUnit, NoTrace>::new(unit), reqs, interval, None).map(|x| x.1),
+        None => {
+            let sim = Sim::<TextureUnit, NoTrace>::new(unit).check_schedule(check);
+            drive(sim, reqs, interval, None).map(|x| x.1)
+        }
     }
 }
 
@@ -587,8 +603,9 @@ fn check_run(
     interval: u32,
     vcd: Option<(PathBuf, TraceConfig)>,
     compression: &mut verif::ErrorStats,
+    check: bool,
 ) -> Result<TexRun, String> {
-    let run = run_texread(tex, p, reqs, interval, vcd)?;
+    let run = run_texread_checked(tex, p, reqs, interval, vcd, check)?;
     let s = &run.stats;
     let f = p.frac_bits;
     let one = f64::from(1u32 << f);
@@ -812,12 +829,20 @@ impl Testbench for TextureTb {
                 1,
                 wave,
                 &mut compression,
+                ctx.check_schedule,
             )?;
             res.vcd = ctx.waves.as_ref().map(|x| x.vcd.clone());
         } else {
             let kind = TraceKind::ALL[ctx.index - 1];
             let reqs = trace(kind, w, h, 4, ctx.count, ctx.seed);
-            every_mode(&mut res, &mut cov, kind, &reqs, &mut compression)?;
+            every_mode(
+                &mut res,
+                &mut cov,
+                kind,
+                &reqs,
+                &mut compression,
+                ctx.check_schedule,
+            )?;
         }
         res.record(&compression);
         res.coverage = Some(cov);
@@ -865,6 +890,7 @@ fn every_mode(
     kind: TraceKind,
     reqs: &[TexRequest],
     compression: &mut verif::ErrorStats,
+    check: bool,
 ) -> Result<(), String> {
     let (orig, tex) = fixture()?;
     let mut first: Option<Vec<u32>> = None;
@@ -873,7 +899,18 @@ fn every_mode(
         p.layout = layout;
         p.cache = cache;
         p.lookahead = look;
-        let run = check_run(res, cov, tex, orig, p, reqs, interval, None, compression)?;
+        let run = check_run(
+            res,
+            cov,
+            tex,
+            orig,
+            p,
+            reqs,
+            interval,
+            None,
+            compression,
+            check,
+        )?;
         match &first {
             None => first = Some(run.rgb.clone()),
             Some(r) if *r != run.rgb => res.failures.push(format!(
