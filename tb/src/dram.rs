@@ -204,12 +204,15 @@ pub fn run_paced(
     }
 }
 
+/// A finished run: the simulation (to close its trace), the statistics, the coverage.
+type Driven<T> = (Sim<DramCtrl, T>, DramStats, Option<Coverage>);
+
 fn drive<T: Trace>(
     mut sim: Sim<DramCtrl, T>,
     addrs: &[u64],
     pacing: Pacing,
     mut cov: Option<Coverage>,
-) -> Result<(Sim<DramCtrl, T>, DramStats, Option<Coverage>), String> {
+) -> Result<Driven<T>, String> {
     sim.reset(1);
     let start = sim.cycle();
     let p = *sim.dut.params();
