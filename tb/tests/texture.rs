@@ -359,3 +359,52 @@ fn ccc_is_lossless_on_two_colour_blocks_from_few_colours() {
         })
         .unwrap();
 }
+
+/// Misses of a scanline trace on a 64x16 texture: `u` from `u0` in steps of `du` (texel
+/// units, either sign), or `v` likewise when `vertical`, one request every 64 cycles (the
+/// DRAM is idle between requests, so every lookahead fill arrives in time).
+fn scan_misses(look: Lookahead, vertical: bool) -> (u64, u64) {
+    let (w, h) = (64, 16);
+    let tex = tb::texture::test_pattern(w, h);
+    let mut p = TexParams::new(w, h);
+    p.lookahead = look;
+    // Leftward: u = 15.75, 15.5, ..., 4.0 at v = 1; upward: v = 15.75 ... 4.0 at u = 1.
+    let reqs: Vec<TexRequest> = (0..48u32)
+        .map(|k| {
+            let along = (63 - k) * 4; // 15.75 down to 4.0 in uQ12.4
+            let (u, v) = if vertical { (16, along) } else { (along, 16) };
+            TexRequest {
+                u,
+                v,
+                newline: k == 0,
+            }
+        })
+        .collect();
+    let s = run_texread(&tex, p, &reqs, 64, None).unwrap().stats;
+    (s.misses, s.prefetch_fills)
+}
+
+/// The defect of issue 18: on leftward or upward scanlines the direction lookahead preloaded
+/// block bx-1 into the entry of bx+1 (same parity) while the footprint still spanned bx and
+/// bx+1, so it missed more often than no lookahead at all. A preload never evicts a block the
+/// current footprint uses: direction lookahead now misses less than none, never more.
+#[test]
+fn direction_lookahead_never_evicts_a_block_of_the_footprint() {
+    for vertical in [false, true] {
+        let (off, _) = scan_misses(Lookahead::Off, vertical);
+        let (dir, fills) = scan_misses(Lookahead::Direction, vertical);
+        let (quad, _) = scan_misses(Lookahead::Quadrant, vertical);
+        assert!(
+            fills > 0,
+            "vertical {vertical}: direction lookahead preloads"
+        );
+        assert!(
+            dir < off,
+            "vertical {vertical}: direction lookahead {dir} misses, none {off}"
+        );
+        assert!(
+            quad <= off,
+            "vertical {vertical}: quadrant {quad}, none {off}"
+        );
+    }
+}

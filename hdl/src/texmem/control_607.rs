@@ -11,7 +11,7 @@
 //!
 //! Timing parameters and the DRAM are in [`super::dram_604`].
 
-use super::cache_614::{lookahead, lookahead_direction, Lookahead};
+use super::cache_614::{entry_of, lookahead, lookahead_direction, Lookahead};
 use super::dram_604::{Dram, DramParams};
 use super::layout::BlockMap;
 use crate::fx::Format;
@@ -343,7 +343,10 @@ impl Module for FillEngine {
 /// [`crate::texmem::cache_614`]), offered to the fill engine one at a time.
 ///
 /// Each cycle: when `complete` (a request leaves stage 0 with the cache and lookahead on),
-/// its candidates replace the queue; `flush` (a demand fill starts, or a `newline` request is
+/// its candidates replace the queue, except one that would go into the entry of another block
+/// of the request's footprint: a preload never evicts a block the current footprint uses,
+/// which the next point of the scanline needs too (with the Figure 7 interleave, block
+/// `bx - 1` shares its entry with `bx + 1`, which a footprint across `bx` and `bx + 1` holds); `flush` (a demand fill starts, or a `newline` request is
 /// looked up) empties it; otherwise, when the engine is free and stage 0 misses nothing, the
 /// first live candidate is taken (`take`, `take_bx`, `take_by`: the unit drops it without a
 /// fill when the cache already holds it). A request's candidates can be taken the cycle it
@@ -418,9 +421,18 @@ impl LookaheadQueue {
         let (x0, y0) = ((u >> f) as u32, (v >> f) as u32);
         let (bw, bh) = self.blocks;
         let (mut q, mut m) = ([(0, 0); 3], 0);
+        // The footprint's blocks (clamped at the edge, as stage 0 reads them).
+        let (x1, y1) = ((x0 + 1).min(4 * bw - 1), (y0 + 1).min(4 * bh - 1));
+        let foot = [(x0, y0), (x1, y0), (x0, y1), (x1, y1)].map(|(x, y)| (x >> 2, y >> 2));
+        let evicts = |b: (u32, u32)| {
+            let e = entry_of(b.0, b.1);
+            foot.iter().any(|&f| f != b && entry_of(f.0, f.1) == e)
+        };
         let mut put = |k: usize, blk: (u32, u32)| {
-            q[k] = blk;
-            m |= 1 << k;
+            if !evicts(blk) {
+                q[k] = blk;
+                m |= 1 << k;
+            }
         };
         if newline {
             // No lookahead for the first point of a scanline.
