@@ -40,6 +40,7 @@ enum Cmd {
     Ccc(cmd::ccc::CccCmd),
     /// Texture requests through the cycle-accurate memory path of Figure 6 (DRAM 604,
     /// control 607, CCC decode, cache 614 with lookahead, bilinear 622).
+    #[command(after_help = cmd::texread::STATS_HELP)]
     Texread(cmd::texread::TexreadArgs),
     /// Combine the summary.json files of all shards of a run into one.
     Merge(cmd::merge::MergeArgs),

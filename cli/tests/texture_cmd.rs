@@ -263,3 +263,56 @@ fn ccc_and_texread_commands() {
     assert_eq!(o.status.code(), Some(2));
     assert!(!bad_out.exists());
 }
+
+/// Every field of `texread --stats` is documented in `texrtl texread --help` and in the
+/// README's table (issue 18), and `--frac-bits 0` names the option.
+#[test]
+fn every_stats_field_is_documented() {
+    let s = serde_json::to_value(
+        tb::texture::run_texread(
+            &tb::texture::test_pattern(16, 16),
+            hdl::texmem::texture_unit_602::TexParams::new(16, 16),
+            &[],
+            1,
+            None,
+        )
+        .unwrap()
+        .stats,
+    )
+    .unwrap();
+    let help = texrtl(&["texread", "--help"]);
+    let help = String::from_utf8_lossy(&help.stdout);
+    let readme =
+        std::fs::read_to_string(concat!(env!("CARGO_MANIFEST_DIR"), "/../README.md")).unwrap();
+    let fields = s.as_object().unwrap();
+    assert_eq!(fields.len(), 29);
+    for k in fields.keys() {
+        assert!(
+            help.lines().any(|l| l.trim_start().starts_with(k.as_str())),
+            "--help lacks {k}"
+        );
+        assert!(readme.contains(&format!("`{k}`")), "README lacks {k}");
+    }
+    let d = dir("frac-bits-message");
+    let t = d.join("t.ccc");
+    std::fs::write(&t, tb::texture::test_pattern(16, 16).to_bytes()).unwrap();
+    let r = d.join("r.csv");
+    std::fs::write(&r, "u,v\n1,1\n").unwrap();
+    let s = |p: &std::path::Path| p.to_string_lossy().into_owned();
+    let o = texrtl(&[
+        "texread",
+        "--texture",
+        &s(&t),
+        "--requests",
+        &s(&r),
+        "--out",
+        &s(&d.join("o.csv")),
+        "--frac-bits",
+        "0",
+    ]);
+    assert_eq!(o.status.code(), Some(2));
+    assert_eq!(
+        String::from_utf8_lossy(&o.stderr).trim(),
+        "texrtl: --frac-bits 0: 1..=8"
+    );
+}

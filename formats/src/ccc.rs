@@ -9,9 +9,10 @@
 //!    puts the mean in the cutting plane, so the tensor is taken about the mean.)
 //! 2. Its eigenvector `e` of the smallest eigenvalue (cyclic Jacobi rotations): the axis the
 //!    colours spread along.
-//! 3. The plane through `m` perpendicular to `e` splits the block: `d_j · e < 0` gives cluster a
-//!    (decision bit 0), else cluster b (bit 1). The cluster means are colours a and b. A block
-//!    of one colour has an empty cluster: both colours are its mean and every bit is 0.
+//! 3. The plane through `m` perpendicular to `e` splits the block: `d_j · e > 10^-6` gives
+//!    cluster b (decision bit 1), else cluster a (bit 0, so a texel on the plane goes to a).
+//!    The cluster means are colours a and b. A block of one colour has an empty cluster: both
+//!    colours are its mean and every bit is 0.
 //! 4. Global quantisation of all blocks' colours (two per block, weighted by their texel
 //!    counts) to a 256-entry CLUT by median cut (Heckbert 1982) with one refinement: the box
 //!    to split next is the one with the largest weighted squared error (not the largest

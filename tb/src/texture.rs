@@ -439,14 +439,20 @@ pub enum TraceKind {
     /// Horizontal scanlines of 8 pixels (the document's pessimistic example), 2.5 texels
     /// apart in v.
     Short,
+    /// Scanlines of 32 pixels drawn right to left (the texture mirrored).
+    Leftward,
+    /// Scanlines of 32 pixels drawn bottom to top (the texture rotated by 90 degrees).
+    Upward,
 }
 
 impl TraceKind {
-    pub const ALL: [TraceKind; 4] = [
+    pub const ALL: [TraceKind; 6] = [
         TraceKind::Horizontal,
         TraceKind::Diagonal,
         TraceKind::Random,
         TraceKind::Short,
+        TraceKind::Leftward,
+        TraceKind::Upward,
     ];
     pub fn name(self) -> &'static str {
         match self {
@@ -454,6 +460,8 @@ impl TraceKind {
             TraceKind::Diagonal => "diagonal",
             TraceKind::Random => "random",
             TraceKind::Short => "short (8 px)",
+            TraceKind::Leftward => "leftward",
+            TraceKind::Upward => "upward",
         }
     }
 }
@@ -490,6 +498,8 @@ pub fn trace(
             let (len, s, dv, angle) = match kind {
                 TraceKind::Short => (8, 0.75, 2.5, 0.0f64),
                 TraceKind::Diagonal => (32, 0.75, 0.75, 30f64.to_radians()),
+                TraceKind::Leftward => (32, 0.75, 0.75, 180f64.to_radians()),
+                TraceKind::Upward => (32, 0.75, 0.75, -90f64.to_radians()),
                 _ => (32, 0.75, 0.75, 0.0),
             };
             // Pixel `i` of scanline `j` is at `s i` along the scanline's direction and `dv j`

@@ -9,6 +9,39 @@ use std::fmt::Write;
 use std::path::{Path, PathBuf};
 use tb::texture::{run_texread, TexRequest};
 
+/// The `--stats` fields, shown by `texrtl texread --help` (the README has the same table).
+pub const STATS_HELP: &str = "\
+--stats JSON fields (blocks are 4x4-texel CCC blocks, two DRAM words each):
+  requests                 requests accepted from the rasterizer
+  interval                 cycles between requests the rasterizer offers (--interval)
+  cycles                   controller cycles from the first request offered to the last result
+  cycle_ns                 ns per controller cycle (5)
+  ns                       cycles * cycle_ns
+  pixels_per_second        requests / ns, per second
+  layout                   row-major or tiled
+  cache                    cache 614 on (true/false)
+  lookahead                quadrant, direction or off (off whenever the cache is)
+  page_words               DRAM page (row) size in words
+  block_refs               blocks referenced (1, 2 or 4 per request) at each first lookup
+  hits                     of those, blocks found in the cache
+  hit_rate                 hits / block_refs
+  misses                   block_refs - hits
+  misses_cold              misses a 4-block fully-associative LRU cache would have had (never seen)
+  misses_capacity          misses that cache would also have had (evicted there too)
+  misses_conflict          misses that cache would not have had (held there)
+  demand_fills             blocks fetched because a request needed them
+  prefetch_fills           blocks fetched from the lookahead queue
+  prefetch_hits            first-lookup hits on a prefetched block no request had used
+  late_prefetches          first-lookup misses on the block a prefetch was fetching
+  prefetch_dropped         lookahead candidates dropped because the cache held them
+  stall_cycles             cycles a request waited in stage 0
+  dram_reads               DRAM word reads (two per fill)
+  page_hits                reads in the open DRAM row
+  page_faults              reads that opened another row
+  scanlines                accepted requests that are the first or flagged newline
+  page_faults_per_scanline page_faults / scanlines (divided by 1 when there are none)
+  violations               DRAM timing or protocol violations (0)";
+
 /// A texture from a `.ccc` file (by its magic) or a PPM (encoded on the fly).
 pub fn read_texture(path: &Path) -> Result<Ccc, String> {
     let b = std::fs::read(path).map_err(|e| format!("{}: {e}", path.display()))?;

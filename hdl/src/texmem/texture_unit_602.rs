@@ -23,8 +23,10 @@
 //! * Lookahead (cache on, [`Lookahead`] not off): when a request completes and it was not
 //!   flagged `newline`, up to three neighbours of its block are queued: those of its quadrant,
 //!   or those in the direction of motion from the previous point of the scanline (registers
-//!   `prev_u`, `prev_v`; see [`crate::texmem::cache_614`]). The fill engine preloads them one at a
-//!   time whenever it is free and the request in stage 0 (if any) needs nothing. A demand miss,
+//!   `prev_u`, `prev_v`; see [`crate::texmem::cache_614`]), except one that would go into the
+//!   entry of another block of its footprint (a preload never evicts a block the footprint
+//!   uses). The fill engine preloads them one at a time whenever it is free and the request in
+//!   stage 0 (if any) needs nothing. A demand miss,
 //!   or a request flagged `newline`, empties the queue. Candidates already in the cache are
 //!   dropped without a fill.
 //! * Cache off: all entries are invalidated when a request completes, so every request fetches
