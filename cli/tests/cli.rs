@@ -493,3 +493,45 @@ fn count_only_and_list_apply_to_every_testbench() {
     assert!(err.contains("--only") && err.contains("nonesuch"), "{err}");
     assert!(!d.join("x").exists());
 }
+
+/// `--trace-filter` shapes every testbench's waveform: with a filter on state registers, every
+/// VCD holds only the clock, the reset, the golden probes and the signals it matches.
+#[test]
+fn trace_filter_applies_to_every_waveform() {
+    let out = tmp("every-filter");
+    let o = texrtl(&[
+        "regress",
+        "--count",
+        "2",
+        "--out",
+        out.to_str().unwrap(),
+        "--trace-filter",
+        "*.state",
+        "--trace-filter",
+        "*valid*",
+    ]);
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stdout));
+    let names = [
+        "blend_adjust_153",
+        "normal_pipeline_fig7",
+        "mipmap_gen_816",
+        "control_607",
+        "texture_unit_602",
+    ];
+    for n in names {
+        let rb = read_vcd(&out.join(format!("{n}.vcd"))).unwrap();
+        let design: Vec<&String> = rb
+            .vars
+            .keys()
+            .filter(|k| !k.starts_with("tb.golden.") && *k != "tb.clk" && *k != "tb.rst")
+            .collect();
+        assert!(!design.is_empty(), "{n}: nothing traced");
+        for k in design {
+            let leaf = k.rsplit('.').next().unwrap();
+            assert!(
+                leaf == "state" || leaf.contains("valid"),
+                "{n}: {k} is not matched by the filters"
+            );
+        }
+    }
+}
