@@ -42,6 +42,9 @@ enum Cmd {
     /// control 607, CCC decode, cache 614 with lookahead, bilinear 622).
     #[command(after_help = cmd::texread::STATS_HELP)]
     Texread(cmd::texread::TexreadArgs),
+    /// Co-simulate a unit's model and Verilog (its twin in rtl/, or --rtl FILE.v of yours):
+    /// every output port compared on every cycle.
+    Cosim(cmd::cosim::CosimArgs),
     /// Combine the summary.json files of all shards of a run into one.
     Merge(cmd::merge::MergeArgs),
     /// Export a unit's bit-accuracy vectors as $readmemh files for a Verilog testbench.
@@ -87,6 +90,7 @@ fn main() -> ExitCode {
         Some(Cmd::Dram(a)) => cmd::dram::run(&a),
         Some(Cmd::Ccc(c)) => cmd::ccc::run(&c),
         Some(Cmd::Texread(a)) => cmd::texread::run(&a),
+        Some(Cmd::Cosim(a)) => cmd::cosim::run(&a),
         Some(Cmd::Merge(a)) => cmd::merge::run(&a),
         Some(Cmd::Vectors(a)) => cmd::vectors::run(&a),
         Some(Cmd::Sweep(c)) => cmd::sweep::run(&c),

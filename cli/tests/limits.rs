@@ -308,6 +308,15 @@ fn mipmap_sweep_and_vectors_options_at_their_limits() {
         false,
     );
     sweep(&base, "--map", &[("flat", 0), ("bogus", 2)], false);
+    let base = s(&["cosim", "--unit", "blend_adjust_153"]);
+    sweep(
+        &base,
+        "--count",
+        &[("0", 2), ("10000001", 2), ("-1", 2)],
+        false,
+    );
+    sweep(&base, "--sim", &[("bogus", 2)], false);
+    sweep(&s(&["cosim"]), "--unit", &[("bogus", 2)], false);
     let v = d.join("v").to_string_lossy().into_owned();
     let base = s(&["vectors", "--out", &v]);
     sweep(

@@ -4,6 +4,7 @@
 //! bit-accuracy vectors.
 
 pub mod blend_adjust;
+pub mod cosim;
 pub mod dram;
 pub mod maps;
 pub mod mipmap;

@@ -1,6 +1,7 @@
 //! One file per subcommand, each owning its clap arguments and its `run`.
 
 pub mod ccc;
+pub mod cosim;
 pub mod dram;
 pub mod merge;
 pub mod mipmap;

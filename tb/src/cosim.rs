@@ -1,0 +1,522 @@
+//! Co-simulation: a unit's Rust model and a Verilog implementation with the same ports (its
+//! twin in `rtl/`, or the user's own) driven with the same inputs on every cycle, every output
+//! port compared on every cycle, the first difference reported with its cycle, port, both
+//! values and the inputs that led to it, and one waveform holding both.
+//!
+//! The RTL runs in a generated SystemVerilog testbench that replays the stimulus with
+//! `$readmemh` and writes every output port every cycle with `$fwrite` (Verilator `--binary
+//! --timing` or Icarus `iverilog -g2012`); the Rust side then compares. This costs a file per
+//! run but needs no C++ glue or FFI, runs unchanged in both simulators, and leaves the
+//! testbench, stimulus and outputs in the run's folder for the RTL engineer to rerun by hand.
+
+use hdl::fx::{Format, Fx};
+use hdl::kernel::{Dir, Module, Signal, Sim, Visitor};
+use std::fmt::Write as _;
+use std::path::{Path, PathBuf};
+use std::process::Command;
+
+/// A port of the unit's top: its name and format.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Port {
+    pub name: String,
+    pub fmt: Format,
+}
+
+/// The model's side of a co-simulation: the top's ports and one cycle at a time.
+pub trait CosimModel {
+    /// Input and output ports of the top, in declaration (visit) order.
+    fn ports(&self) -> (Vec<Port>, Vec<Port>);
+    /// One cycle: reset, inputs (raw bits in input-port order), settle, the outputs' bits in
+    /// output-port order, then the clock edge.
+    fn cycle(&mut self, rst: bool, inputs: &[u64]) -> Vec<u64>;
+}
+
+/// A co-simulation model of a [`Module`] whose inputs `drive` sets from raw bits.
+pub struct ModelSim<M: Module> {
+    sim: Sim<M>,
+    drive: fn(&mut M, &[u64]),
+}
+
+impl<M: Module> ModelSim<M> {
+    pub fn new(dut: M, drive: fn(&mut M, &[u64])) -> Self {
+        ModelSim {
+            sim: Sim::new(dut).check_schedule(true),
+            drive,
+        }
+    }
+}
+
+/// The top's own ports (depth 1 of the hierarchy), by direction.
+struct TopPorts {
+    depth: usize,
+    inputs: Vec<Port>,
+    outputs: Vec<Port>,
+    out_bits: Vec<u64>,
+}
+
+impl Visitor for TopPorts {
+    fn enter(&mut self, _: &str, _: &str) {
+        self.depth += 1;
+    }
+    fn leave(&mut self) {
+        self.depth -= 1;
+    }
+    fn signal(&mut self, d: Dir, s: &Signal) {
+        if self.depth != 1 {
+            return;
+        }
+        let p = Port {
+            name: s.name().to_string(),
+            fmt: s.fmt(),
+        };
+        match d {
+            Dir::Input => self.inputs.push(p),
+            Dir::Output => {
+                self.outputs.push(p);
+                self.out_bits.push(s.bits());
+            }
+            _ => {}
+        }
+    }
+}
+
+fn top_ports(m: &dyn Module) -> TopPorts {
+    let mut t = TopPorts {
+        depth: 0,
+        inputs: Vec::new(),
+        outputs: Vec::new(),
+        out_bits: Vec::new(),
+    };
+    m.visit(&mut t);
+    t
+}
+
+impl<M: Module> CosimModel for ModelSim<M> {
+    fn ports(&self) -> (Vec<Port>, Vec<Port>) {
+        let t = top_ports(&self.sim.dut);
+        (t.inputs, t.outputs)
+    }
+    fn cycle(&mut self, rst: bool, inputs: &[u64]) -> Vec<u64> {
+        self.sim.set_reset(rst);
+        (self.drive)(&mut self.sim.dut, inputs);
+        self.sim.eval();
+        let out = top_ports(&self.sim.dut).out_bits;
+        self.sim.tick();
+        out
+    }
+}
+
+/// A unit that has a Verilog twin.
+pub trait CosimUnit {
+    /// The unit's name: its module in Verilog, its kind in the model.
+    fn name(&self) -> &'static str;
+    /// The twin's sources, relative to the repository's `rtl/`.
+    fn rtl(&self) -> Vec<&'static str>;
+    /// The Verilog parameters of this configuration (the model's parameters).
+    fn parameters(&self) -> Vec<(&'static str, i64)>;
+    fn model(&self) -> Result<Box<dyn CosimModel>, String>;
+    /// Inputs of `cycles` cycles (raw bits in input-port order), seeded.
+    fn stimulus(&self, seed: verif::Seed, cycles: usize) -> Vec<Vec<u64>>;
+}
+
+/// Cycles of reset at the start of every run.
+pub const RESET_CYCLES: usize = 2;
+
+/// The first cycle compared: cycle 0 shows the registers' power-up values, which Verilog
+/// leaves unknown (`x`) and the model sets to their reset values; from cycle 1 on, the first
+/// reset edge has defined them.
+pub const FIRST_COMPARED: usize = 1;
+
+/// The simulators.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Simulator {
+    Verilator,
+    Icarus,
+}
+
+impl Simulator {
+    pub fn parse(s: &str) -> Option<Simulator> {
+        match s {
+            "verilator" => Some(Simulator::Verilator),
+            "icarus" => Some(Simulator::Icarus),
+            _ => None,
+        }
+    }
+    pub fn name(self) -> &'static str {
+        match self {
+            Simulator::Verilator => "verilator",
+            Simulator::Icarus => "icarus",
+        }
+    }
+    /// `Err` names what to install when the simulator is not on the PATH.
+    pub fn check_installed(self) -> Result<(), String> {
+        let (exe, pkg) = match self {
+            Simulator::Verilator => ("verilator", "verilator"),
+            Simulator::Icarus => ("iverilog", "iverilog"),
+        };
+        match Command::new(exe).arg("-V").output() {
+            Ok(_) => Ok(()),
+            Err(_) => Err(format!(
+                "{exe} not found: install it (Debian: apt-get install {pkg})"
+            )),
+        }
+    }
+}
+
+/// The repository's `rtl/` folder (the twins).
+pub fn rtl_dir() -> PathBuf {
+    Path::new(env!("CARGO_MANIFEST_DIR")).join("../rtl")
+}
+
+/// What a co-simulation found.
+#[derive(Clone, Debug)]
+pub struct CosimResult {
+    pub cycles: usize,
+    /// The first difference, if any.
+    pub mismatch: Option<Difference>,
+    /// Differences counted over all cycles and ports.
+    pub differences: u64,
+    pub vcd: PathBuf,
+}
+
+/// The first cycle and port where the RTL and the model part.
+#[derive(Clone, Debug)]
+pub struct Difference {
+    pub cycle: usize,
+    pub port: String,
+    pub fmt: Format,
+    pub model: u64,
+    /// `None`: the RTL drove `x` or `z`.
+    pub rtl: Option<u64>,
+    /// The inputs of the cycles up to this one (the transaction in flight), oldest first.
+    pub inputs: Vec<(usize, String)>,
+}
+
+fn show(bits: u64, fmt: Format) -> String {
+    let w = (fmt.width() as usize).div_ceil(4);
+    format!("0x{bits:0w$x} ({})", Fx::from_bits(fmt, u128::from(bits)))
+}
+
+impl std::fmt::Display for Difference {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        let rtl = self
+            .rtl
+            .map_or("x (unknown)".to_string(), |r| show(r, self.fmt));
+        write!(
+            f,
+            "cycle {}: port {} ({}): model {}, RTL {rtl}",
+            self.cycle,
+            self.port,
+            self.fmt,
+            show(self.model, self.fmt)
+        )?;
+        for (c, i) in &self.inputs {
+            write!(f, "\n  inputs at cycle {c}: {i}")?;
+        }
+        Ok(())
+    }
+}
+
+/// Blend-factor adjust unit 153 against `rtl/bump/blend_adjust_153.v`.
+pub struct BlendAdjustCosim(pub hdl::bump::blend_adjust_153::BlendAdjustParams);
+
+impl CosimUnit for BlendAdjustCosim {
+    fn name(&self) -> &'static str {
+        "blend_adjust_153"
+    }
+    fn rtl(&self) -> Vec<&'static str> {
+        vec!["bump/blend_adjust_153.v"]
+    }
+    fn parameters(&self) -> Vec<(&'static str, i64)> {
+        vec![
+            ("FRAC_BITS", i64::from(self.0.frac_bits)),
+            ("REGISTERED", i64::from(self.0.registered)),
+        ]
+    }
+    fn model(&self) -> Result<Box<dyn CosimModel>, String> {
+        use hdl::bump::blend_adjust_153::BlendAdjust;
+        let dut = BlendAdjust::new(self.name(), self.0)?;
+        Ok(Box::new(ModelSim::new(
+            dut,
+            |d: &mut BlendAdjust, v: &[u64]| {
+                d.i.valid_in.set_bits(v[0]);
+                d.i.bypass.set_bits(v[1]);
+                d.i.u_in.set_bits(v[2]);
+                d.i.v_in.set_bits(v[3]);
+            },
+        )))
+    }
+    fn stimulus(&self, seed: verif::Seed, cycles: usize) -> Vec<Vec<u64>> {
+        let mut st = verif::Stimulus::new(seed);
+        let max = (1u64 << self.0.frac_bits) - 1;
+        let bits = st.draw_n(&(0u64..4, 0..=max, 0..=max), cycles);
+        bits.into_iter()
+            .map(|(vb, u, v)| vec![vb & 1, vb >> 1, u, v])
+            .collect()
+    }
+}
+
+/// The units with a Verilog twin, by name, in a configuration given by `params` (the
+/// defaults when empty).
+pub fn unit(name: &str) -> Result<Box<dyn CosimUnit>, String> {
+    match name {
+        "blend_adjust_153" => Ok(Box::new(BlendAdjustCosim(Default::default()))),
+        _ => Err(format!(
+            "--unit {}: no Verilog twin (there is: blend_adjust_153)",
+            formats::shorten(name)
+        )),
+    }
+}
+
+/// Runs `unit` in `sim` against `rtl` (its twin when empty) for `cycles` cycles in `dir`.
+/// `Err` is for what stops the run (a simulator missing or failing, bad sources); a difference
+/// is in the result.
+pub fn run(
+    unit: &dyn CosimUnit,
+    sim: Simulator,
+    rtl: &[PathBuf],
+    cycles: usize,
+    seed: verif::Seed,
+    dir: &Path,
+) -> Result<CosimResult, String> {
+    sim.check_installed()?;
+    std::fs::create_dir_all(dir).map_err(|e| format!("{}: {e}", dir.display()))?;
+    // The simulator runs inside `dir`: every path it is given is absolute.
+    let dir = &std::path::absolute(dir).map_err(|e| format!("{}: {e}", dir.display()))?;
+    let mut model = unit.model()?;
+    let (ins, outs) = model.ports();
+    let stim = unit.stimulus(seed, cycles);
+    let rst = |c: usize| c < RESET_CYCLES;
+    let expected: Vec<Vec<u64>> = (0..cycles).map(|c| model.cycle(rst(c), &stim[c])).collect();
+    let sources: Vec<PathBuf> = if rtl.is_empty() {
+        unit.rtl().iter().map(|f| rtl_dir().join(f)).collect()
+    } else {
+        rtl.to_vec()
+    };
+    let sources: Vec<PathBuf> = sources
+        .iter()
+        .map(|s| std::path::absolute(s).unwrap_or_else(|_| s.clone()))
+        .collect();
+    for s in &sources {
+        if !s.is_file() {
+            return Err(format!("{}: no such Verilog file", s.display()));
+        }
+    }
+    write_stimulus(&dir.join("stim.hex"), &ins, &stim)?;
+    let tb = testbench(unit, &ins, &outs, cycles, dir);
+    std::fs::write(dir.join("tb.sv"), tb).map_err(|e| format!("{}: {e}", dir.display()))?;
+    let got = simulate(sim, dir, &sources, &outs)?;
+    if got.len() != cycles {
+        return Err(format!(
+            "{}: the RTL wrote {} cycles of outputs, {cycles} expected",
+            sim.name(),
+            got.len()
+        ));
+    }
+    let (mismatch, differences) = compare(&ins, &outs, &stim, &expected, &got);
+    let vcd = dir.join(format!("{}_cosim.vcd", unit.name()));
+    let defs: Vec<(&str, u32)> = outs
+        .iter()
+        .map(|p| (p.name.as_str(), p.fmt.width()))
+        .collect();
+    waves::compare::write(&vcd, unit.name(), &defs, &expected, &got)?;
+    Ok(CosimResult {
+        cycles,
+        mismatch,
+        differences,
+        vcd,
+    })
+}
+
+/// Every output port on every cycle from [`FIRST_COMPARED`]; the first difference with the
+/// inputs of the cycles before it (up to four).
+fn compare(
+    ins: &[Port],
+    outs: &[Port],
+    stim: &[Vec<u64>],
+    expected: &[Vec<u64>],
+    got: &[Vec<Option<u64>>],
+) -> (Option<Difference>, u64) {
+    let mut first = None;
+    let mut n = 0;
+    for (c, (e, g)) in expected.iter().zip(got).enumerate().skip(FIRST_COMPARED) {
+        for (k, p) in outs.iter().enumerate() {
+            if g[k] == Some(e[k]) {
+                continue;
+            }
+            n += 1;
+            if first.is_none() {
+                let inputs = (c.saturating_sub(3)..=c)
+                    .map(|i| (i, describe_inputs(ins, &stim[i], i < RESET_CYCLES)))
+                    .collect();
+                first = Some(Difference {
+                    cycle: c,
+                    port: p.name.clone(),
+                    fmt: p.fmt,
+                    model: e[k],
+                    rtl: g[k],
+                    inputs,
+                });
+            }
+        }
+    }
+    (first, n)
+}
+
+fn describe_inputs(ins: &[Port], v: &[u64], rst: bool) -> String {
+    let mut s = format!("rst={}", u8::from(rst));
+    for (p, x) in ins.iter().zip(v) {
+        let _ = write!(s, " {}={}", p.name, show(*x, p.fmt));
+    }
+    s
+}
+
+/// One line per cycle: `{rst, inputs...}` packed MSB first, in hex.
+fn write_stimulus(path: &Path, ins: &[Port], stim: &[Vec<u64>]) -> Result<(), String> {
+    let width: u32 = 1 + ins.iter().map(|p| p.fmt.width()).sum::<u32>();
+    let digits = width.div_ceil(4) as usize;
+    let mut text = String::with_capacity(stim.len() * (digits + 1));
+    for (c, v) in stim.iter().enumerate() {
+        let mut word = u128::from(c < RESET_CYCLES);
+        for (p, x) in ins.iter().zip(v) {
+            word = (word << p.fmt.width()) | u128::from(*x);
+        }
+        let _ = writeln!(text, "{word:0digits$x}");
+    }
+    std::fs::write(path, text).map_err(|e| format!("{}: {e}", path.display()))
+}
+
+/// `[msb:0] ` for a port.
+fn range(p: &Port) -> String {
+    match p.fmt.width() {
+        1 => String::new(),
+        w => format!("[{}:0] ", w - 1),
+    }
+}
+
+/// The generated SystemVerilog testbench: replays the stimulus, writes every output port every
+/// cycle (after the inputs settle, before the clock edge, as the model is sampled).
+fn testbench(
+    unit: &dyn CosimUnit,
+    ins: &[Port],
+    outs: &[Port],
+    cycles: usize,
+    dir: &Path,
+) -> String {
+    let abs = |f: &str| std::path::absolute(dir.join(f)).unwrap_or_else(|_| dir.join(f));
+    let width: u32 = 1 + ins.iter().map(|p| p.fmt.width()).sum::<u32>();
+    let mut s = String::from("`timescale 1ns/1ps\n// Generated by texrtl cosim.\nmodule tb;\n");
+    let _ = writeln!(s, "    reg clk = 1'b0;\n    reg rst;");
+    for p in ins {
+        let _ = writeln!(s, "    reg {}{};", range(p), p.name);
+    }
+    for p in outs {
+        let _ = writeln!(s, "    wire {}{};", range(p), p.name);
+    }
+    let _ = writeln!(s, "    reg [{}:0] stim [0:{}];", width - 1, cycles - 1);
+    let params: Vec<String> = unit
+        .parameters()
+        .iter()
+        .map(|(n, v)| format!(".{n}({v})"))
+        .collect();
+    let conns: Vec<String> = ["clk", "rst"]
+        .iter()
+        .map(|n| n.to_string())
+        .chain(ins.iter().chain(outs).map(|p| p.name.clone()))
+        .map(|n| format!(".{n}({n})"))
+        .collect();
+    let _ = writeln!(
+        s,
+        "    {} #({}) dut ({});",
+        unit.name(),
+        params.join(", "),
+        conns.join(", ")
+    );
+    let names: Vec<&str> = ins.iter().map(|p| p.name.as_str()).collect();
+    let fmt: Vec<&str> = outs.iter().map(|_| "%h").collect();
+    let onames: Vec<&str> = outs.iter().map(|p| p.name.as_str()).collect();
+    let _ = write!(
+        s,
+        "    integer c, fd;\n    initial begin\n        $readmemh(\"{}\", stim);\n        fd = $fopen(\"{}\", \"w\");\n        for (c = 0; c < {cycles}; c = c + 1) begin\n            {{rst, {}}} = stim[c];\n            #1;\n            $fwrite(fd, \"{}\\n\", {});\n            clk = 1'b1;\n            #1;\n            clk = 1'b0;\n            #1;\n        end\n        $fclose(fd);\n        $finish;\n    end\nendmodule\n",
+        abs("stim.hex").display(),
+        abs("rtl_out.hex").display(),
+        names.join(", "),
+        fmt.join(" "),
+        onames.join(", ")
+    );
+    s
+}
+
+/// Builds and runs the testbench; reads the outputs back (`None` where the RTL drove x/z).
+fn simulate(
+    sim: Simulator,
+    dir: &Path,
+    sources: &[PathBuf],
+    outs: &[Port],
+) -> Result<Vec<Vec<Option<u64>>>, String> {
+    let tb = dir.join("tb.sv");
+    let run = |cmd: &mut Command, what: &str| -> Result<(), String> {
+        let o = cmd.output().map_err(|e| format!("{what}: {e}"))?;
+        if o.status.success() {
+            return Ok(());
+        }
+        let err = String::from_utf8_lossy(&o.stderr);
+        let first = err
+            .lines()
+            .find(|l| !l.trim().is_empty())
+            .unwrap_or("failed");
+        Err(format!("{what}: {}", formats::shorten(first)))
+    };
+    match sim {
+        Simulator::Verilator => {
+            let mdir = dir.join("obj_dir");
+            let mut c = Command::new("verilator");
+            c.args([
+                "--binary",
+                "--timing",
+                "-Wno-fatal",
+                "-Wno-lint",
+                "-Wno-style",
+            ])
+            .args(["--top-module", "tb", "-o", "simv", "--Mdir"])
+            .arg(&mdir)
+            .arg(&tb)
+            .args(sources);
+            run(&mut c, "verilator")?;
+            run(
+                Command::new(mdir.join("simv")).current_dir(dir),
+                "simv",
+            )?;
+        }
+        Simulator::Icarus => {
+            let vvp = dir.join("sim.vvp");
+            let mut c = Command::new("iverilog");
+            c.args(["-g2012", "-s", "tb", "-o"])
+                .arg(&vvp)
+                .arg(&tb)
+                .args(sources);
+            run(&mut c, "iverilog")?;
+            run(
+                Command::new("vvp").arg("-n").arg(&vvp).current_dir(dir),
+                "vvp",
+            )?;
+        }
+    }
+    let path = dir.join("rtl_out.hex");
+    let text = std::fs::read_to_string(&path).map_err(|e| format!("{}: {e}", path.display()))?;
+    text.lines()
+        .filter(|l| !l.trim().is_empty())
+        .map(|l| {
+            let f: Vec<&str> = l.split_whitespace().collect();
+            if f.len() != outs.len() {
+                return Err(format!(
+                    "{}: '{}' has not {} ports",
+                    path.display(),
+                    formats::shorten(l),
+                    outs.len()
+                ));
+            }
+            Ok(f.iter().map(|x| u64::from_str_radix(x, 16).ok()).collect())
+        })
+        .collect()
+}

@@ -1,0 +1,117 @@
+//! A waveform of two implementations side by side (the Rust model and the RTL of a
+//! co-simulation): scopes `tb.model` and `tb.rtl` with the same ports, `tb.mismatch` with a
+//! flag per port, and a `.gtkw` that puts each RTL port and its flag right under the model's.
+
+use crate::gtkw::{Gtkw, Item, Style};
+use std::io::{BufWriter, Write};
+use std::path::Path;
+use vcd::{IdCode, TimescaleUnit};
+
+/// A port: name and width.
+pub type PortDef<'a> = (&'a str, u32);
+
+/// Writes `path` (and its `.gtkw`): `model[c][k]` and `rtl[c][k]` are port `k`'s values in
+/// cycle `c` (`None`: unknown, written as `x`); one cycle per 10 ns.
+pub fn write(
+    path: &Path,
+    title: &str,
+    ports: &[PortDef],
+    model: &[Vec<u64>],
+    rtl: &[Vec<Option<u64>>],
+) -> Result<(), String> {
+    let err = |e: std::io::Error| format!("{}: {e}", path.display());
+    let tmp = crate::partial_path(path);
+    let f = std::fs::File::create(&tmp).map_err(err)?;
+    let mut w = vcd::Writer::new(BufWriter::new(f));
+    let ids = header(&mut w, title, ports).map_err(err)?;
+    let mut last: Vec<Option<String>> = vec![None; ids.len()];
+    for (c, (m, r)) in model.iter().zip(rtl).enumerate() {
+        w.timestamp(c as u64 * 10_000).map_err(err)?;
+        if c == 0 {
+            w.begin(vcd::SimulationCommand::Dumpvars).map_err(err)?;
+        }
+        for (k, &(_, width)) in ports.iter().enumerate() {
+            let vals = [Some(m[k]), r[k], Some(u64::from(r[k] != Some(m[k])))];
+            for (j, v) in vals.into_iter().enumerate() {
+                let wd = if j == 2 { 1 } else { width };
+                let text = value(v, wd);
+                let slot = 3 * k + j;
+                if last[slot].as_deref() != Some(text.as_str()) {
+                    writeln!(w.writer(), "{text}{}", ids[slot]).map_err(err)?;
+                    last[slot] = Some(text);
+                }
+            }
+        }
+        if c == 0 {
+            w.end().map_err(err)?;
+        }
+    }
+    w.timestamp(model.len() as u64 * 10_000).map_err(err)?;
+    w.flush().map_err(err)?;
+    drop(w);
+    std::fs::rename(&tmp, path).map_err(err)?;
+    gtkw(path, title, ports, model.len() as u64 * 10_000)
+}
+
+/// `b0101 ` / `1` / `x` text of a value change (the id follows).
+fn value(v: Option<u64>, width: u32) -> String {
+    match (v, width) {
+        (Some(b), 1) => format!("{}", b & 1),
+        (None, 1) => "x".into(),
+        (Some(b), w) => format!("b{b:0w$b} ", w = w as usize),
+        (None, _) => "bx ".into(),
+    }
+}
+
+fn header<W: Write>(
+    w: &mut vcd::Writer<W>,
+    title: &str,
+    ports: &[PortDef],
+) -> std::io::Result<Vec<IdCode>> {
+    w.comment(&format!("texrtl cosim: {title}"))?;
+    w.timescale(1, TimescaleUnit::PS)?;
+    w.add_module("tb")?;
+    let mut ids = vec![IdCode::FIRST; 3 * ports.len()];
+    for (j, scope) in ["model", "rtl", "mismatch"].into_iter().enumerate() {
+        w.add_module(scope)?;
+        for (k, &(name, width)) in ports.iter().enumerate() {
+            let wd = if j == 2 { 1 } else { width };
+            let idx = (wd > 1).then(|| vcd::ReferenceIndex::Range(wd as i32 - 1, 0));
+            ids[3 * k + j] = w.add_var(vcd::VarType::Wire, wd, name, idx)?;
+        }
+        w.upscope()?;
+    }
+    w.upscope()?;
+    w.enddefinitions()?;
+    Ok(ids)
+}
+
+fn gtkw(vcd: &Path, title: &str, ports: &[PortDef], end: u64) -> Result<(), String> {
+    let mut g = Gtkw::new(vcd);
+    g.set_end_time(end);
+    g.treeopen("tb");
+    for &(name, width) in ports {
+        g.begin_group(name, "tb");
+        for scope in ["model", "rtl"] {
+            let n = if width > 1 {
+                format!("tb.{scope}.{name}[{}:0]", width - 1)
+            } else {
+                format!("tb.{scope}.{name}")
+            };
+            let style = if width > 1 { Style::Hex } else { Style::Bin };
+            g.push(Item::Trace {
+                name: n,
+                style,
+                filter: None,
+            });
+        }
+        g.push(Item::Trace {
+            name: format!("tb.mismatch.{name}"),
+            style: Style::Bin,
+            filter: None,
+        });
+        g.end_group();
+    }
+    g.write(&format!("cosim {title}"))
+        .map_err(|e| format!("{}: {e}", g.path().display()))
+}
