@@ -11,13 +11,13 @@ pub fn table(results: &[TbResult]) -> String {
     let mut s = String::new();
     let _ = writeln!(
         s,
-        "{:<20} {:>9} {:>9} {:>6} {:>7} {:>9} {:>10} {:>7}  result",
+        "{:<32} {:>9} {:>9} {:>6} {:>7} {:>9} {:>10} {:>7}  result",
         "testbench", "txns", "cycles", "mism", "cover", "max LSB", "mean LSB", "latency"
     );
     for r in results {
         let _ = writeln!(
             s,
-            "{:<20} {:>9} {:>9} {:>6} {:>6.1}% {:>9.3} {:>10.4} {:>7}  {}",
+            "{:<32} {:>9} {:>9} {:>6} {:>6.1}% {:>9.3} {:>10.4} {:>7}  {}",
             r.name,
             r.transactions,
             r.cycles,

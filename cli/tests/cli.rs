@@ -95,6 +95,16 @@ fn regress_writes_valid_waveforms_and_summary() {
         let p = out.join(vcd);
         check_gtkw(&p, &read_vcd(&p).unwrap()).unwrap();
     }
+    // With Verilator installed, every twin is co-simulated as a row of the table.
+    if std::process::Command::new("verilator")
+        .arg("-V")
+        .output()
+        .is_ok()
+    {
+        for u in tb::cosim::UNITS {
+            assert!(stdout.contains(&format!("cosim/{u}/verilator")), "{stdout}");
+        }
+    }
     // FSM states by name: a translate filter file per state register, referenced from the
     // .gtkw just before the trace it names.
     let filter = out.join("texture_unit_602.fill_engine_607.state.txt");
@@ -119,6 +129,7 @@ fn trace_options_apply() {
     let out = tmp("filter");
     let o = texrtl(&[
         "--fst",
+        "--no-cosim",
         "--out",
         out.to_str().unwrap(),
         "--trace-filter",
@@ -338,6 +349,7 @@ fn shards_merge_into_the_whole_run() {
         let mut a = vec![
             "regress",
             "--no-vcd",
+            "--no-cosim",
             "--count",
             "40",
             "--out",
@@ -501,6 +513,7 @@ fn trace_filter_applies_to_every_waveform() {
     let out = tmp("every-filter");
     let o = texrtl(&[
         "regress",
+        "--no-cosim",
         "--count",
         "2",
         "--out",

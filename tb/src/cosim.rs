@@ -117,6 +117,10 @@ pub trait CosimUnit {
     fn model(&self) -> Result<Box<dyn CosimModel>, String>;
     /// Inputs of `cycles` cycles (raw bits in input-port order), seeded.
     fn stimulus(&self, seed: verif::Seed, cycles: usize) -> Vec<Vec<u64>>;
+    /// Whether the twin has `clk` and `rst` ports (a combinational unit has none).
+    fn clocked(&self) -> bool {
+        true
+    }
 }
 
 /// Cycles of reset at the start of every run.
@@ -256,17 +260,124 @@ impl CosimUnit for BlendAdjustCosim {
     }
 }
 
-/// The units with a Verilog twin, by name, in a configuration given by `params` (the
-/// defaults when empty).
+/// Address unit 150 against `rtl/bump/address_150.v`: positions `sQ<pos_int>.<pos_frac>`,
+/// blend factors of `blend_bits`.
+pub struct AddressCosim {
+    pub pos_int: u32,
+    pub pos_frac: u32,
+    pub blend_bits: u32,
+}
+
+impl Default for AddressCosim {
+    fn default() -> Self {
+        AddressCosim {
+            pos_int: 16,
+            pos_frac: 8,
+            blend_bits: 8,
+        }
+    }
+}
+
+impl CosimUnit for AddressCosim {
+    fn name(&self) -> &'static str {
+        "address_150"
+    }
+    fn rtl(&self) -> Vec<&'static str> {
+        vec!["bump/address_150.v"]
+    }
+    fn parameters(&self) -> Vec<(&'static str, i64)> {
+        vec![
+            ("POS_INT", i64::from(self.pos_int)),
+            ("POS_FRAC", i64::from(self.pos_frac)),
+            ("BLEND_BITS", i64::from(self.blend_bits)),
+        ]
+    }
+    fn model(&self) -> Result<Box<dyn CosimModel>, String> {
+        use hdl::bump::address_150::AddressUnit;
+        let pos = Format::signed(self.pos_int + self.pos_frac, self.pos_frac as i32);
+        let dut = AddressUnit::new(self.name(), pos, self.blend_bits)?;
+        Ok(Box::new(ModelSim::new(
+            dut,
+            |d: &mut AddressUnit, v: &[u64]| {
+                d.u.set_bits(v[0]);
+                d.v.set_bits(v[1]);
+                d.colour.set_bits(v[2]);
+            },
+        )))
+    }
+    fn stimulus(&self, seed: verif::Seed, cycles: usize) -> Vec<Vec<u64>> {
+        let mut st = verif::Stimulus::new(seed);
+        let mask = (1u64 << (self.pos_int + self.pos_frac)) - 1;
+        st.draw_n(&(0..=mask, 0..=mask, 0u64..2), cycles)
+            .into_iter()
+            .map(|(u, v, c)| vec![u, v, c])
+            .collect()
+    }
+}
+
+/// Replicate unit 152 against `rtl/bump/replicate_152.v`: texels of `texel_bits` bits (8:
+/// `uQ6.2`, 4: `uQ3.1`), B-spline or Bezier (Equation 1) control points.
+pub struct ReplicateCosim {
+    pub texel_bits: u32,
+    pub bezier: bool,
+}
+
+impl CosimUnit for ReplicateCosim {
+    fn name(&self) -> &'static str {
+        "replicate_152"
+    }
+    fn rtl(&self) -> Vec<&'static str> {
+        vec!["bump/replicate_152.v"]
+    }
+    fn parameters(&self) -> Vec<(&'static str, i64)> {
+        vec![
+            ("TEXEL_BITS", i64::from(self.texel_bits)),
+            ("BEZIER", i64::from(self.bezier)),
+        ]
+    }
+    fn clocked(&self) -> bool {
+        false
+    }
+    fn model(&self) -> Result<Box<dyn CosimModel>, String> {
+        use hdl::bump::replicate_152::Replicate;
+        let texel = Format::unsigned(self.texel_bits, self.texel_bits as i32 / 4);
+        let dut = Replicate::new(self.name(), texel, self.bezier);
+        Ok(Box::new(ModelSim::new(
+            dut,
+            |d: &mut Replicate, v: &[u64]| {
+                for (s, x) in d.h.iter_mut().zip(v) {
+                    s.set_bits(*x);
+                }
+            },
+        )))
+    }
+    fn stimulus(&self, seed: verif::Seed, cycles: usize) -> Vec<Vec<u64>> {
+        let mut st = verif::Stimulus::new(seed);
+        let max = (1u64 << self.texel_bits) - 1;
+        let texel = proptest::prop_oneof![1 => proptest::strategy::Just(max), 1 => proptest::strategy::Just(0u64), 6 => 0..=max];
+        (0..cycles).map(|_| st.draw_n(&texel, 9)).collect()
+    }
+}
+
+/// The units with a Verilog twin, by name, in their default configuration.
 pub fn unit(name: &str) -> Result<Box<dyn CosimUnit>, String> {
     match name {
         "blend_adjust_153" => Ok(Box::new(BlendAdjustCosim(Default::default()))),
+        "address_150" => Ok(Box::new(AddressCosim::default())),
+        "replicate_152" => Ok(Box::new(ReplicateCosim {
+            texel_bits: 8,
+            bezier: false,
+        })),
         _ => Err(format!(
-            "--unit {}: no Verilog twin (there is: blend_adjust_153)",
-            formats::shorten(name)
+            "--unit {}: no Verilog twin (there are: {})",
+            formats::shorten(name),
+            UNITS.join(", ")
         )),
     }
 }
+
+/// The units with a Verilog twin.
+pub const UNITS: [&str; 3] = ["address_150", "replicate_152", "blend_adjust_153"];
 
 /// Runs `unit` in `sim` against `rtl` (its twin when empty) for `cycles` cycles in `dir`.
 /// `Err` is for what stops the run (a simulator missing or failing, bad sources); a difference
@@ -413,13 +524,20 @@ fn testbench(
     for p in outs {
         let _ = writeln!(s, "    wire {}{};", range(p), p.name);
     }
-    let _ = writeln!(s, "    reg [{}:0] stim [0:{}];", width - 1, cycles - 1);
+    // The testbench's own names carry a prefix, so no port of the unit can collide with them.
+    let _ = writeln!(
+        s,
+        "    reg [{}:0] texrtl_stim [0:{}];",
+        width - 1,
+        cycles - 1
+    );
     let params: Vec<String> = unit
         .parameters()
         .iter()
         .map(|(n, v)| format!(".{n}({v})"))
         .collect();
-    let conns: Vec<String> = ["clk", "rst"]
+    let clock: &[&str] = if unit.clocked() { &["clk", "rst"] } else { &[] };
+    let conns: Vec<String> = clock
         .iter()
         .map(|n| n.to_string())
         .chain(ins.iter().chain(outs).map(|p| p.name.clone()))
@@ -437,7 +555,7 @@ fn testbench(
     let onames: Vec<&str> = outs.iter().map(|p| p.name.as_str()).collect();
     let _ = write!(
         s,
-        "    integer c, fd;\n    initial begin\n        $readmemh(\"{}\", stim);\n        fd = $fopen(\"{}\", \"w\");\n        for (c = 0; c < {cycles}; c = c + 1) begin\n            {{rst, {}}} = stim[c];\n            #1;\n            $fwrite(fd, \"{}\\n\", {});\n            clk = 1'b1;\n            #1;\n            clk = 1'b0;\n            #1;\n        end\n        $fclose(fd);\n        $finish;\n    end\nendmodule\n",
+        "    integer texrtl_cycle, texrtl_fd;\n    initial begin\n        $readmemh(\"{}\", texrtl_stim);\n        texrtl_fd = $fopen(\"{}\", \"w\");\n        for (texrtl_cycle = 0; texrtl_cycle < {cycles}; texrtl_cycle = texrtl_cycle + 1) begin\n            {{rst, {}}} = texrtl_stim[texrtl_cycle];\n            #1;\n            $fwrite(texrtl_fd, \"{}\\n\", {});\n            clk = 1'b1;\n            #1;\n            clk = 1'b0;\n            #1;\n        end\n        $fclose(texrtl_fd);\n        $finish;\n    end\nendmodule\n",
         abs("stim.hex").display(),
         abs("rtl_out.hex").display(),
         names.join(", "),
@@ -465,7 +583,9 @@ fn simulate(
             .lines()
             .find(|l| !l.trim().is_empty())
             .unwrap_or("failed");
-        Err(format!("{what}: {}", formats::shorten(first)))
+        // The simulator's first message, cut at 200 characters (it names the file and line).
+        let first: String = first.chars().take(200).collect();
+        Err(format!("{what}: {first}"))
     };
     match sim {
         Simulator::Verilator => {
@@ -483,10 +603,7 @@ fn simulate(
             .arg(&tb)
             .args(sources);
             run(&mut c, "verilator")?;
-            run(
-                Command::new(mdir.join("simv")).current_dir(dir),
-                "simv",
-            )?;
+            run(Command::new(mdir.join("simv")).current_dir(dir), "simv")?;
         }
         Simulator::Icarus => {
             let vvp = dir.join("sim.vvp");

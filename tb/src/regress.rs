@@ -1,6 +1,7 @@
 //! `texrtl regress`: every registered testbench on built-in stimulus, with waveforms and a
 //! summary.
 
+use crate::cosim::Simulator;
 use formats::output::write_atomic;
 use serde::{Deserialize, Serialize};
 use std::path::PathBuf;
@@ -22,6 +23,9 @@ pub fn registry() -> Registry {
 
 /// The name of the bit-accuracy vectors row (a check of fixed stimuli, not a testbench).
 pub const VECTORS: &str = "vectors";
+
+/// The prefix of the co-simulation rows (`cosim/<unit>/<simulator>`; `--only cosim`).
+pub const COSIM: &str = "cosim";
 
 /// `summary.json`: every result, the seed, the shard and the tool version.
 #[derive(Clone, Serialize, Deserialize)]
@@ -54,6 +58,8 @@ pub struct RegressConfig {
     pub only: Vec<String>,
     /// Run the kernel's schedule check on every cycle.
     pub check_schedule: bool,
+    /// Co-simulate every Verilog twin in every simulator that is installed.
+    pub cosim: bool,
 }
 
 impl RegressConfig {
@@ -69,9 +75,9 @@ impl RegressConfig {
             ));
         }
         for o in &self.only {
-            if reg.get(o).is_none() && o != VECTORS {
+            if reg.get(o).is_none() && o != VECTORS && o != COSIM {
                 return Err(format!(
-                    "--only: no testbench '{o}' (there are: {}, {VECTORS})",
+                    "--only: no testbench '{o}' (there are: {}, {VECTORS}, {COSIM})",
                     reg.names().join(", ")
                 ));
             }
@@ -118,6 +124,17 @@ pub fn regress(
     if dir.is_dir() && cfg.shard.index == 1 && cfg.selected(VECTORS) {
         results.push(vectors_row(&dir));
     }
+    if cfg.cosim && cfg.shard.index == 1 && cfg.selected(COSIM) {
+        for sim in [Simulator::Verilator, Simulator::Icarus] {
+            if sim.check_installed().is_err() {
+                continue;
+            }
+            for unit in crate::cosim::UNITS {
+                progress(COSIM, &format!("{unit} in {}", sim.name()));
+                results.push(cosim_row(unit, sim, cfg)?);
+            }
+        }
+    }
     for r in &mut results {
         check_waveform(r, cfg.fst);
     }
@@ -132,6 +149,32 @@ pub fn regress(
     let json = serde_json::to_vec_pretty(&summary).map_err(|e| e.to_string())?;
     write_atomic(&path, &json).map_err(|e| format!("{}: {e}", path.display()))?;
     Ok(summary)
+}
+
+/// Cycles each twin is co-simulated for in a regression: Verilator / Icarus.
+const COSIM_CYCLES: [usize; 2] = [100_000, 20_000];
+
+/// A twin against its model as a row of the table: `cosim/<unit>/<simulator>`.
+fn cosim_row(unit: &str, sim: Simulator, cfg: &RegressConfig) -> Result<TbResult, String> {
+    let u = crate::cosim::unit(unit)?;
+    let name = format!("{COSIM}/{unit}/{}", sim.name());
+    let mut r = TbResult::new(
+        &name,
+        "the model against its Verilog twin (rtl/), every output port on every cycle",
+    );
+    let n = COSIM_CYCLES[usize::from(sim == Simulator::Icarus)];
+    let dir = cfg.out.join(COSIM).join(format!("{unit}-{}", sim.name()));
+    let c = crate::cosim::run(u.as_ref(), sim, &[], n, cfg.seed, &dir)?;
+    r.transactions = c.cycles as u64;
+    r.cycles = c.cycles as u64;
+    r.mismatches = c.differences;
+    r.coverage_percent = 100.0;
+    if let Some(d) = c.mismatch {
+        r.mismatch_log.push(d.to_string());
+    }
+    r.vcd = Some(c.vcd);
+    r.finish_with(false);
+    Ok(r)
 }
 
 /// The vectors check as a row of the table.

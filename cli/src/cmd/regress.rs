@@ -57,6 +57,10 @@ pub struct RegressArgs {
     /// Run the kernel's schedule check (every cycle evaluated twice) in every testbench.
     #[arg(long)]
     check_schedule: bool,
+    /// Skip the co-simulation of the Verilog twins (run by default when Verilator or Icarus
+    /// is installed, as rows cosim/UNIT/SIMULATOR).
+    #[arg(long)]
+    no_cosim: bool,
 }
 
 fn parse_window(s: &str) -> Result<(u64, u64), String> {
@@ -99,6 +103,7 @@ pub fn run(a: RegressArgs) -> ExitCode {
         fst: a.fst,
         only: a.only,
         check_schedule: a.check_schedule,
+        cosim: !a.no_cosim,
     };
     if let Err(e) = cfg.trace.validate() {
         return crate::fail(format!("--period-ps/--trace-window: {e}"));
