@@ -241,6 +241,11 @@ pub fn check_gtkw(vcd: &Path, rb: &Readback) -> Result<usize, String> {
         if line.is_empty() || line.starts_with('[') || line.starts_with('*') {
             continue;
         }
+        // A trace shown under an alias: `+{alias} name`.
+        let line = match line.strip_prefix("+{").and_then(|r| r.split_once("} ")) {
+            Some((_, name)) => name,
+            None => line,
+        };
         let (base, width) = match line.split_once('[') {
             Some((b, r)) => {
                 let r = r.trim_end_matches(']');

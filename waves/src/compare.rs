@@ -92,21 +92,23 @@ fn gtkw(vcd: &Path, title: &str, ports: &[PortDef], end: u64) -> Result<(), Stri
     g.treeopen("tb");
     for &(name, width) in ports {
         g.begin_group(name, "tb");
-        for scope in ["model", "rtl"] {
-            let n = if width > 1 {
-                format!("tb.{scope}.{name}[{}:0]", width - 1)
+        // Each trace under an alias (`+{u0 model}`): GTKWave shows leaf names, the same in
+        // both scopes.
+        for (scope, label) in [("model", "model"), ("rtl", "RTL")] {
+            let range = if width > 1 {
+                format!("[{}:0]", width - 1)
             } else {
-                format!("tb.{scope}.{name}")
+                String::new()
             };
             let style = if width > 1 { Style::Hex } else { Style::Bin };
             g.push(Item::Trace {
-                name: n,
+                name: format!("+{{{name} {label}}} tb.{scope}.{name}{range}"),
                 style,
                 filter: None,
             });
         }
         g.push(Item::Trace {
-            name: format!("tb.mismatch.{name}"),
+            name: format!("+{{{name} mismatch}} tb.mismatch.{name}"),
             style: Style::Bin,
             filter: None,
         });
