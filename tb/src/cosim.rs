@@ -359,6 +359,87 @@ impl CosimUnit for ReplicateCosim {
     }
 }
 
+/// A bilinear unit (65-68) against `rtl/bump/bilinear_65_68.v`, in the formats the FIG. 7
+/// pipeline gives it: texels of `texel_bits` bits out of replicate 152, blend factors of
+/// `blend_bits + 1` bits, the output exact or rounded to `bilinear_frac` fraction bits.
+pub struct BilinearCosim {
+    pub texel_bits: u32,
+    pub blend_bits: u32,
+    pub bilinear_frac: Option<u32>,
+}
+
+impl BilinearCosim {
+    fn params(&self) -> hdl::bump::params::BumpParams {
+        use hdl::bump::params::{BumpParams, HeightTexel};
+        BumpParams {
+            blend_bits: self.blend_bits,
+            height: if self.texel_bits == 4 {
+                HeightTexel::Bits4
+            } else {
+                HeightTexel::Bits8
+            },
+            bilinear_frac: self.bilinear_frac,
+            // The position must carry at least the blend factor's bits.
+            pos_frac: self.blend_bits.max(8),
+            ..BumpParams::default()
+        }
+    }
+}
+
+impl CosimUnit for BilinearCosim {
+    fn name(&self) -> &'static str {
+        "bilinear_65_68"
+    }
+    fn rtl(&self) -> Vec<&'static str> {
+        vec!["bump/bilinear_65_68.v"]
+    }
+    fn parameters(&self) -> Vec<(&'static str, i64)> {
+        let p = self.params();
+        let (t, b, o) = (p.replicate_fmt(), p.adj_fmt(), p.bilinear_fmt());
+        vec![
+            ("TEXEL_W", i64::from(t.width())),
+            ("TEXEL_F", i64::from(t.frac())),
+            ("BLEND_W", i64::from(b.width())),
+            ("OUT_W", i64::from(o.width())),
+            ("OUT_F", i64::from(o.frac())),
+        ]
+    }
+    fn model(&self) -> Result<Box<dyn CosimModel>, String> {
+        use hdl::bump::bilinear_65_68::Bilinear;
+        let p = self.params();
+        p.validate()?;
+        let dut = Bilinear::new(
+            self.name(),
+            p.replicate_fmt(),
+            p.adj_fmt(),
+            p.bilinear_fmt(),
+        )?;
+        Ok(Box::new(ModelSim::new(
+            dut,
+            |d: &mut Bilinear, v: &[u64]| {
+                for (s, x) in d.p.iter_mut().zip(v) {
+                    s.set_bits(*x);
+                }
+                d.s.set_bits(v[4]);
+                d.t.set_bits(v[5]);
+            },
+        )))
+    }
+    fn stimulus(&self, seed: verif::Seed, cycles: usize) -> Vec<Vec<u64>> {
+        let mut st = verif::Stimulus::new(seed);
+        let p = self.params();
+        let tmax = (1u64 << p.replicate_fmt().width()) - 1;
+        let bmax = (1u64 << p.adj_fmt().width()) - 1;
+        (0..cycles)
+            .map(|_| {
+                let mut v = st.draw_n(&(0..=tmax), 4);
+                v.extend(st.draw_n(&(0..=bmax), 2));
+                v
+            })
+            .collect()
+    }
+}
+
 /// The units with a Verilog twin, by name, in their default configuration.
 pub fn unit(name: &str) -> Result<Box<dyn CosimUnit>, String> {
     match name {
@@ -367,6 +448,11 @@ pub fn unit(name: &str) -> Result<Box<dyn CosimUnit>, String> {
         "replicate_152" => Ok(Box::new(ReplicateCosim {
             texel_bits: 8,
             bezier: false,
+        })),
+        "bilinear_65_68" => Ok(Box::new(BilinearCosim {
+            texel_bits: 8,
+            blend_bits: 8,
+            bilinear_frac: None,
         })),
         _ => Err(format!(
             "--unit {}: no Verilog twin (there are: {})",
@@ -377,7 +463,12 @@ pub fn unit(name: &str) -> Result<Box<dyn CosimUnit>, String> {
 }
 
 /// The units with a Verilog twin.
-pub const UNITS: [&str; 3] = ["address_150", "replicate_152", "blend_adjust_153"];
+pub const UNITS: [&str; 4] = [
+    "address_150",
+    "replicate_152",
+    "blend_adjust_153",
+    "bilinear_65_68",
+];
 
 /// Runs `unit` in `sim` against `rtl` (its twin when empty) for `cycles` cycles in `dir`.
 /// `Err` is for what stops the run (a simulator missing or failing, bad sources); a difference
@@ -394,6 +485,13 @@ pub fn run(
     std::fs::create_dir_all(dir).map_err(|e| format!("{}: {e}", dir.display()))?;
     // The simulator runs inside `dir`: every path it is given is absolute.
     let dir = &std::path::absolute(dir).map_err(|e| format!("{}: {e}", dir.display()))?;
+    let plain = |c: char| c.is_ascii_alphanumeric() || "._-/".contains(c);
+    if sim == Simulator::Verilator && !dir.to_string_lossy().chars().all(plain) {
+        return Err(format!(
+            "{}: Verilator's build (make) needs a folder path of letters, digits, '.', '_', '-' and '/'",
+            dir.display()
+        ));
+    }
     let mut model = unit.model()?;
     let (ins, outs) = model.ports();
     let stim = unit.stimulus(seed, cycles);

@@ -5,7 +5,9 @@
 
 use hdl::bump::blend_adjust_153::BlendAdjustParams;
 use std::path::PathBuf;
-use tb::cosim::{run, AddressCosim, BlendAdjustCosim, CosimUnit, ReplicateCosim, Simulator};
+use tb::cosim::{
+    run, AddressCosim, BilinearCosim, BlendAdjustCosim, CosimUnit, ReplicateCosim, Simulator,
+};
 use verif::Seed;
 
 /// Whether `sim` can run; without it, fails only when co-simulation is required.
@@ -59,6 +61,18 @@ fn twins() -> Vec<(String, Box<dyn CosimUnit>)> {
         };
         v.push((format!("replicate_152 {t}-bit bezier={bez}"), Box::new(u)));
     }
+    // Exact (the default), rounded to 12 fraction bits, 4-bit texels with F = 16 rounded to 8.
+    for (t, f, frac) in [(8, 8, None), (8, 8, Some(12)), (4, 16, Some(8))] {
+        let u = BilinearCosim {
+            texel_bits: t,
+            blend_bits: f,
+            bilinear_frac: frac,
+        };
+        v.push((
+            format!("bilinear_65_68 {t}-bit F={f} frac={frac:?}"),
+            Box::new(u),
+        ));
+    }
     v
 }
 
@@ -78,7 +92,11 @@ fn every_twin_matches_its_model_on_every_cycle() {
                 Simulator::Icarus => continue,
             };
             seen.push(u.name());
-            let d = dir(&format!("{}-{}", sim.name(), label.replace(' ', "_")));
+            let safe: String = label
+                .chars()
+                .map(|c| if c.is_ascii_alphanumeric() { c } else { '_' })
+                .collect();
+            let d = dir(&format!("{}-{safe}", sim.name()));
             let r = run(u.as_ref(), sim, &[], n, Seed(label.len() as u64), &d).unwrap();
             assert_eq!(r.cycles, n);
             assert!(
@@ -284,6 +302,53 @@ fn replicate_bug_is_caught_with_its_cycle_and_port() {
         assert_eq!(
             (diff.cycle, diff.port.as_str()),
             (1, "r00"),
+            "{}: {diff}",
+            sim.name()
+        );
+        let _ = std::fs::remove_dir_all(&d);
+    }
+}
+
+/// A bilinear unit that rounds half away from zero instead of half to even: caught at the
+/// first cycle whose registered result has a dropped half exactly and an even quotient, on
+/// port `q`, as the model's own arithmetic predicts.
+#[test]
+fn bilinear_rounding_bug_is_caught_with_its_cycle_and_port() {
+    use hdl::bump::bilinear_65_68::Bilinear;
+    for sim in [Simulator::Verilator, Simulator::Icarus] {
+        if !available(sim) {
+            continue;
+        }
+        // 4-bit texels (uQ3.3 out of 152), F = 4 (factors uQ0.5): exact fraction 13, rounded
+        // to 12: a dropped half is common.
+        let u = BilinearCosim {
+            texel_bits: 4,
+            blend_bits: 4,
+            bilinear_frac: Some(12),
+        };
+        let n = 4_000;
+        let d = dir(&format!("bug-bilinear-{}", sim.name()));
+        let m = mutant(
+            &d,
+            "bump/bilinear_65_68.v",
+            "(rem == half && fl[0])",
+            "(rem == half)",
+        );
+        let r = run(&u, sim, &[m], n, Seed(12), &d).unwrap();
+        let diff = r.mismatch.expect("the bug is caught");
+        let stim = u.stimulus(Seed(12), n);
+        let want = (tb::cosim::RESET_CYCLES + 1..n)
+            .find(|&c| {
+                let v = &stim[c - 1];
+                let p = [v[0], v[1], v[2], v[3]].map(|x| x as i64);
+                // Exact fraction 3 + 2 * 5 = 13: one dropped bit.
+                let x = Bilinear::exact(p, v[4] as i64, v[5] as i64, 5);
+                x & 1 == 1 && (x >> 1) & 1 == 0
+            })
+            .unwrap();
+        assert_eq!(
+            (diff.cycle, diff.port.as_str()),
+            (want, "q"),
             "{}: {diff}",
             sim.name()
         );

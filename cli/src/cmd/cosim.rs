@@ -10,7 +10,8 @@ use verif::Seed;
 /// Co-simulate a unit's model and Verilog (its twin in rtl/, or --rtl FILE.v of yours).
 #[derive(Args, Debug)]
 pub struct CosimArgs {
-    /// The unit (its Verilog module name): blend_adjust_153.
+    /// The unit (its Verilog module name): address_150, replicate_152, blend_adjust_153,
+    /// bilinear_65_68.
     #[arg(long)]
     pub unit: String,
     /// verilator or icarus.
