@@ -7,7 +7,8 @@
 // fraction bits, to nearest with ties to even, and saturated to OUT_W bits (it cannot exceed
 // the largest texel). With OUT_F = TEXEL_F + 2 BLEND_W (the default) nothing is rounded.
 // p00..p11: uQ.TEXEL_F (replicate unit 152's outputs); s, t: uQ0.BLEND_W; q: uQ.OUT_F.
-// One register stage (latency 1), cleared by the synchronous reset.
+// Every intermediate is as wide as its range needs (no wider). One register stage (latency
+// 1), cleared by the synchronous reset.
 module bilinear_65_68 #(
     parameter integer TEXEL_W = 10,
     parameter integer TEXEL_F = 4,
@@ -27,37 +28,49 @@ module bilinear_65_68 #(
 );
     localparam integer EXACT_F = TEXEL_F + 2 * BLEND_W;
     localparam integer SH = EXACT_F - OUT_F;
-    // The exact blend fits 48 bits (texels up to 14 bits, factors up to 17); it is computed
-    // in 64-bit signed arithmetic, whose upper bits are zero by construction.
-    /* verilator lint_off UNUSEDSIGNAL */
-    wire signed [63:0] a00 = {{(64 - TEXEL_W){1'b0}}, p00};
-    wire signed [63:0] a10 = {{(64 - TEXEL_W){1'b0}}, p10};
-    wire signed [63:0] a01 = {{(64 - TEXEL_W){1'b0}}, p01};
-    wire signed [63:0] a11 = {{(64 - TEXEL_W){1'b0}}, p11};
-    wire signed [63:0] sx = {{(64 - BLEND_W){1'b0}}, s};
-    wire signed [63:0] tx = {{(64 - BLEND_W){1'b0}}, t};
-    wire signed [63:0] r0 = (a00 <<< BLEND_W) + sx * (a10 - a00);
-    wire signed [63:0] r1 = (a01 <<< BLEND_W) + sx * (a11 - a01);
-    wire signed [63:0] x = (r0 <<< BLEND_W) + tx * (r1 - r0);
-    wire [63:0] qn;
+    // Widths as the arithmetic needs them: the first blends lie in [0, 2^(TEXEL_W+BLEND_W))
+    // and their differences in magnitude below that; one sign bit and one bit of headroom.
+    localparam integer RW = TEXEL_W + BLEND_W + 2;
+    localparam integer XW = RW + BLEND_W + 1;
+    wire signed [RW-1:0] a00 = $signed({{(RW - TEXEL_W){1'b0}}, p00});
+    wire signed [RW-1:0] a10 = $signed({{(RW - TEXEL_W){1'b0}}, p10});
+    wire signed [RW-1:0] a01 = $signed({{(RW - TEXEL_W){1'b0}}, p01});
+    wire signed [RW-1:0] a11 = $signed({{(RW - TEXEL_W){1'b0}}, p11});
+    wire signed [RW-1:0] sx = $signed({{(RW - BLEND_W){1'b0}}, s});
+    // lerp(a, b, s) = a 2^BLEND_W + s (b - a), exact.
+    wire signed [RW-1:0] r0 = (a00 <<< BLEND_W) + sx * (a10 - a00);
+    wire signed [RW-1:0] r1 = (a01 <<< BLEND_W) + sx * (a11 - a01);
+    wire signed [XW-1:0] r0x = {{(XW - RW){r0[RW-1]}}, r0};
+    wire signed [XW-1:0] r1x = {{(XW - RW){r1[RW-1]}}, r1};
+    wire signed [XW-1:0] tx = $signed({{(XW - BLEND_W){1'b0}}, t});
+    wire signed [XW-1:0] x = (r0x <<< BLEND_W) + tx * (r1x - r0x);
+    wire [OUT_W-1:0] qn;
     generate
         if (SH == 0) begin : g_exact
-            assign qn = x;
+            // The exact result is below 2^OUT_W: the bits above are zero.
+            /* verilator lint_off UNUSEDSIGNAL */
+            wire [XW-1:0] xu = x;
+            /* verilator lint_on UNUSEDSIGNAL */
+            assign qn = xu[OUT_W-1:0];
         end else begin : g_round
             // Round half to even on the SH dropped bits, then saturate to OUT_W bits.
-            wire [63:0] fl = x >>> SH;
-            wire [63:0] rem = x & ((64'd1 << SH) - 64'd1);
-            wire [63:0] half = 64'd1 << (SH - 1);
+            wire [XW-1:0] xu = x;
+            wire [XW-1:0] fl = xu >> SH;
+            wire [SH-1:0] rem = xu[SH-1:0];
+            wire [SH-1:0] half = {1'b1, {(SH - 1){1'b0}}};
             wire up = (rem > half) || (rem == half && fl[0]);
-            wire [63:0] rn = fl + {63'd0, up};
-            wire [63:0] max = (64'd1 << OUT_W) - 64'd1;
-            assign qn = (rn > max) ? max : rn;
+            wire [XW-1:0] rn = fl + {{(XW - 1){1'b0}}, up};
+            wire [XW-1:0] max = {{(XW - OUT_W){1'b0}}, {OUT_W{1'b1}}};
+            wire [XW-1:0] sat = (rn > max) ? max : rn;
+            /* verilator lint_off UNUSEDSIGNAL */
+            wire [XW-1:0] keep = sat;
+            /* verilator lint_on UNUSEDSIGNAL */
+            assign qn = keep[OUT_W-1:0];
         end
     endgenerate
-    /* verilator lint_on UNUSEDSIGNAL */
 
     always @(posedge clk) begin
         if (rst) q <= {OUT_W{1'b0}};
-        else q <= qn[OUT_W-1:0];
+        else q <= qn;
     end
 endmodule

@@ -355,3 +355,36 @@ fn bilinear_rounding_bug_is_caught_with_its_cycle_and_port() {
         let _ = std::fs::remove_dir_all(&d);
     }
 }
+
+/// Where Yosys is installed, every twin synthesises (`rtl/synth`, generic cells) and the
+/// B-spline replicate unit is pure wiring, as para. 0056 says.
+#[test]
+fn every_twin_synthesises_where_yosys_is_present() {
+    if std::process::Command::new("yosys")
+        .arg("-V")
+        .output()
+        .is_err()
+    {
+        println!("synthesis skipped: yosys not found (Debian: apt-get install yosys)");
+        return;
+    }
+    let o = std::process::Command::new(tb::cosim::rtl_dir().join("synth"))
+        .output()
+        .unwrap();
+    let table = String::from_utf8_lossy(&o.stdout);
+    assert!(
+        o.status.success(),
+        "{table}{}",
+        String::from_utf8_lossy(&o.stderr)
+    );
+    for u in tb::cosim::UNITS {
+        assert!(
+            table.contains(&format!("| {u} |")),
+            "{u} not synthesised: {table}"
+        );
+    }
+    assert!(
+        table.contains("| replicate_152 | 8-bit texels, B-spline (default) | 0 | 0 | 0 |"),
+        "{table}"
+    );
+}
