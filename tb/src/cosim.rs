@@ -221,6 +221,23 @@ impl std::fmt::Display for Difference {
     }
 }
 
+/// Values of a `width`-bit field: its corners (0, 1, the largest, the sign boundary 2^(w-1)
+/// and one below it) a quarter of the time, otherwise uniform. `width` is 1..=64, as every
+/// unit's `validate` guarantees.
+fn field(width: u32) -> impl proptest::strategy::Strategy<Value = u64> {
+    use proptest::strategy::Just;
+    let max = if width == 64 {
+        u64::MAX
+    } else {
+        (1u64 << width) - 1
+    };
+    let top = 1u64 << (width - 1);
+    proptest::prop_oneof![
+        1 => proptest::prop_oneof![Just(0u64), Just(1 & max), Just(max), Just(top), Just(top - 1)],
+        3 => 0..=max,
+    ]
+}
+
 /// Blend-factor adjust unit 153 against `rtl/bump/blend_adjust_153.v`.
 pub struct BlendAdjustCosim(pub hdl::bump::blend_adjust_153::BlendAdjustParams);
 
@@ -252,8 +269,8 @@ impl CosimUnit for BlendAdjustCosim {
     }
     fn stimulus(&self, seed: verif::Seed, cycles: usize) -> Vec<Vec<u64>> {
         let mut st = verif::Stimulus::new(seed);
-        let max = (1u64 << self.0.frac_bits) - 1;
-        let bits = st.draw_n(&(0u64..4, 0..=max, 0..=max), cycles);
+        let f = self.0.frac_bits;
+        let bits = st.draw_n(&(0u64..4, field(f), field(f)), cycles);
         bits.into_iter()
             .map(|(vb, u, v)| vec![vb & 1, vb >> 1, u, v])
             .collect()
@@ -307,8 +324,8 @@ impl CosimUnit for AddressCosim {
     }
     fn stimulus(&self, seed: verif::Seed, cycles: usize) -> Vec<Vec<u64>> {
         let mut st = verif::Stimulus::new(seed);
-        let mask = (1u64 << (self.pos_int + self.pos_frac)) - 1;
-        st.draw_n(&(0..=mask, 0..=mask, 0u64..2), cycles)
+        let w = self.pos_int + self.pos_frac;
+        st.draw_n(&(field(w), field(w), 0u64..2), cycles)
             .into_iter()
             .map(|(u, v, c)| vec![u, v, c])
             .collect()
@@ -428,12 +445,11 @@ impl CosimUnit for BilinearCosim {
     fn stimulus(&self, seed: verif::Seed, cycles: usize) -> Vec<Vec<u64>> {
         let mut st = verif::Stimulus::new(seed);
         let p = self.params();
-        let tmax = (1u64 << p.replicate_fmt().width()) - 1;
-        let bmax = (1u64 << p.adj_fmt().width()) - 1;
+        let (tw, bw) = (p.replicate_fmt().width(), p.adj_fmt().width());
         (0..cycles)
             .map(|_| {
-                let mut v = st.draw_n(&(0..=tmax), 4);
-                v.extend(st.draw_n(&(0..=bmax), 2));
+                let mut v = st.draw_n(&field(tw), 4);
+                v.extend(st.draw_n(&field(bw), 2));
                 v
             })
             .collect()
