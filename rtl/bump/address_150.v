@@ -25,9 +25,12 @@ module address_150 #(
     localparam integer W = POS_INT + POS_FRAC;
     // Half a texel in the position's fraction, one bit wider than the position.
     wire [W:0] half = colour ? ({{W{1'b0}}, 1'b1} << (POS_FRAC - 1)) : {(W + 1){1'b0}};
-    // Sign-extended by one bit, so U - 1/2 cannot wrap.
+    // Sign-extended by one bit, so U - 1/2 cannot wrap. The fraction bits below the blend
+    // factor's (POS_FRAC > BLEND_BITS) are truncated, by design: unused.
+    /* verilator lint_off UNUSEDSIGNAL */
     wire [W:0] up = {u[W-1], u} - half;
     wire [W:0] vp = {v[W-1], v} - half;
+    /* verilator lint_on UNUSEDSIGNAL */
 
     always @(posedge clk) begin
         if (rst) begin
