@@ -470,6 +470,7 @@ pub fn unit(name: &str) -> Result<Box<dyn CosimUnit>, String> {
             blend_bits: 8,
             bilinear_frac: None,
         })),
+        "tangent_155" => Ok(Box::new(TangentCosim(Default::default()))),
         _ => Err(format!(
             "--unit {}: no Verilog twin (there are: {})",
             formats::shorten(name),
@@ -478,12 +479,79 @@ pub fn unit(name: &str) -> Result<Box<dyn CosimUnit>, String> {
     }
 }
 
+/// Tangent unit 155 (one MIP level) against `rtl/bump/tangent_155.v`, in the formats of
+/// the FIG. 7 pipeline built from `params` (`trilinear` must be off).
+pub struct TangentCosim(pub hdl::bump::params::BumpParams);
+
+impl CosimUnit for TangentCosim {
+    fn name(&self) -> &'static str {
+        "tangent_155"
+    }
+    fn rtl(&self) -> Vec<&'static str> {
+        vec!["bump/tangent_155.v"]
+    }
+    fn parameters(&self) -> Vec<(&'static str, i64)> {
+        use hdl::bump::params::Filter;
+        let p = &self.0;
+        let (bl, s) = (p.bilinear_fmt(), p.scale_fmt());
+        let w = |f: Format| i64::from(f.width());
+        vec![
+            ("BL_W", w(bl)),
+            ("BL_F", i64::from(bl.frac())),
+            ("F", i64::from(p.blend_bits)),
+            ("SCALE_W", w(s)),
+            ("SCALE_F", i64::from(s.frac())),
+            ("TAN_W", w(p.tangent_fmt())),
+            ("H_W", w(p.height_out_fmt())),
+            ("TAN_F", i64::from(p.tangent_frac)),
+            ("BLINN", i64::from(p.filter == Filter::Blinn)),
+        ]
+    }
+    fn model(&self) -> Result<Box<dyn CosimModel>, String> {
+        use hdl::bump::tangent_155::Tangent;
+        self.0.validate()?;
+        if self.0.trilinear {
+            return Err("tangent_155: the twin models one MIP level (trilinear off)".into());
+        }
+        let dut = Tangent::new(self.name(), &self.0);
+        Ok(Box::new(ModelSim::new(
+            dut,
+            |d: &mut Tangent, v: &[u64]| {
+                for (s, x) in d.rgba.iter_mut().zip(v) {
+                    s.set_bits(*x);
+                }
+                d.tu.set_bits(v[4]);
+                d.tv.set_bits(v[5]);
+                d.scale.set_bits(v[6]);
+            },
+        )))
+    }
+    fn stimulus(&self, seed: verif::Seed, cycles: usize) -> Vec<Vec<u64>> {
+        let mut st = verif::Stimulus::new(seed);
+        let p = &self.0;
+        let (bw, f, sw) = (
+            p.bilinear_fmt().width(),
+            p.blend_bits,
+            p.scale_fmt().width(),
+        );
+        (0..cycles)
+            .map(|_| {
+                let mut v = st.draw_n(&field(bw), 4);
+                v.extend(st.draw_n(&field(f), 2));
+                v.extend(st.draw_n(&field(sw), 1));
+                v
+            })
+            .collect()
+    }
+}
+
 /// The units with a Verilog twin.
-pub const UNITS: [&str; 4] = [
+pub const UNITS: [&str; 5] = [
     "address_150",
     "replicate_152",
     "blend_adjust_153",
     "bilinear_65_68",
+    "tangent_155",
 ];
 
 /// Runs `unit` in `sim` against `rtl` (its twin when empty) for `cycles` cycles in `dir`.
@@ -601,12 +669,20 @@ fn write_stimulus(path: &Path, ins: &[Port], stim: &[Vec<u64>]) -> Result<(), St
     let width: u32 = 1 + ins.iter().map(|p| p.fmt.width()).sum::<u32>();
     let digits = width.div_ceil(4) as usize;
     let mut text = String::with_capacity(stim.len() * (digits + 1));
+    // Bits MSB first, left-padded to whole hex digits (a line may be wider than any integer).
+    let mut bits = Vec::with_capacity(digits * 4);
     for (c, v) in stim.iter().enumerate() {
-        let mut word = u128::from(c < RESET_CYCLES);
+        bits.clear();
+        bits.resize(digits * 4 - width as usize, false);
+        bits.push(c < RESET_CYCLES);
         for (p, x) in ins.iter().zip(v) {
-            word = (word << p.fmt.width()) | u128::from(*x);
+            bits.extend((0..p.fmt.width()).rev().map(|k| (x >> k) & 1 == 1));
         }
-        let _ = writeln!(text, "{word:0digits$x}");
+        for nibble in bits.chunks(4) {
+            let d = nibble.iter().fold(0u32, |d, b| (d << 1) | u32::from(*b));
+            text.push(char::from_digit(d, 16).unwrap_or('0'));
+        }
+        text.push('\n');
     }
     std::fs::write(path, text).map_err(|e| format!("{}: {e}", path.display()))
 }
@@ -750,4 +826,45 @@ fn simulate(
             Ok(f.iter().map(|x| u64::from_str_radix(x, 16).ok()).collect())
         })
         .collect()
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// A stimulus line wider than any machine integer keeps every field in place: reset
+    /// first, then each port MSB first, left-padded to whole hex digits.
+    #[test]
+    fn stimulus_lines_wider_than_128_bits_are_packed_whole() {
+        let port = |name: &str, w: u32| Port {
+            name: name.into(),
+            fmt: Format::unsigned(w, 0),
+        };
+        let ins = [port("a", 60), port("b", 60), port("c", 60), port("d", 3)];
+        let x = (1u64 << 59) | 1;
+        let stim = vec![vec![x, 0, x, 5]; RESET_CYCLES + 1];
+        let dir = std::env::temp_dir().join(format!("texrtl-stim-{}", std::process::id()));
+        std::fs::create_dir_all(&dir).unwrap();
+        let f = dir.join("stim.hex");
+        write_stimulus(&f, &ins, &stim).unwrap();
+        let text = std::fs::read_to_string(&f).unwrap();
+        let _ = std::fs::remove_dir_all(&dir);
+        // 1 + 183 = 184 bits = 46 digits; the last line is out of reset.
+        let bits = |rst: bool| {
+            let mut s = String::from(if rst { "1" } else { "0" });
+            let f = |v: u64, w: usize| format!("{v:0w$b}");
+            s += &(f(x, 60) + &f(0, 60) + &f(x, 60) + &f(5, 3));
+            s
+        };
+        let lines: Vec<&str> = text.lines().collect();
+        assert_eq!(lines.len(), RESET_CYCLES + 1);
+        for (c, line) in lines.iter().enumerate() {
+            assert_eq!(line.len(), 46, "{line}");
+            let got: String = line
+                .chars()
+                .map(|d| format!("{:04b}", d.to_digit(16).unwrap()))
+                .collect();
+            assert_eq!(got, bits(c < RESET_CYCLES), "cycle {c}");
+        }
+    }
 }

@@ -4,9 +4,11 @@
 //! `TEXRTL_REQUIRE_COSIM=1` (which `.ci/run` sets).
 
 use hdl::bump::blend_adjust_153::BlendAdjustParams;
+use hdl::bump::params::{BumpParams, Filter, HeightTexel};
 use std::path::PathBuf;
 use tb::cosim::{
     run, AddressCosim, BilinearCosim, BlendAdjustCosim, CosimUnit, ReplicateCosim, Simulator,
+    TangentCosim,
 };
 use verif::Seed;
 
@@ -73,7 +75,57 @@ fn twins() -> Vec<(String, Box<dyn CosimUnit>)> {
             Box::new(u),
         ));
     }
+    for (label, p) in tangent_configs() {
+        v.push((format!("tangent_155 {label}"), Box::new(TangentCosim(p))));
+    }
     v
+}
+
+/// Tangent unit 155: the default; Blinn with 4 bilinear fraction bits and an integer scale
+/// (the tangents gain fraction bits: nothing rounded); Bezier with 4-bit texels, F = 16 and
+/// rounded bilinear outputs; F = 16 exact with the widest scale and tangents (a 225-bit
+/// stimulus line, 97-bit height product).
+fn tangent_configs() -> Vec<(&'static str, BumpParams)> {
+    let d = BumpParams::default();
+    vec![
+        ("default (B-spline, 8-bit, F=8)", d),
+        (
+            "Blinn bl.frac=4 scale uQ4.0 tan.frac=12",
+            BumpParams {
+                filter: Filter::Blinn,
+                bilinear_frac: Some(4),
+                scale_int: 4,
+                scale_frac: 0,
+                tangent_frac: 12,
+                ..d
+            },
+        ),
+        (
+            "Bezier 4-bit F=16 bl.frac=10 scale uQ2.16 tan.frac=8",
+            BumpParams {
+                filter: Filter::Bezier,
+                height: HeightTexel::Bits4,
+                blend_bits: 16,
+                pos_frac: 16,
+                bilinear_frac: Some(10),
+                scale_int: 2,
+                scale_frac: 16,
+                tangent_frac: 8,
+                ..d
+            },
+        ),
+        (
+            "B-spline 8-bit F=16 exact scale uQ12.16 tan.frac=24",
+            BumpParams {
+                blend_bits: 16,
+                pos_frac: 16,
+                scale_int: 12,
+                scale_frac: 16,
+                tangent_frac: 24,
+                ..d
+            },
+        ),
+    ]
 }
 
 /// Every twin matches its model on every port of every cycle: 100 k random cycles per
@@ -193,34 +245,28 @@ fn injected_bugs_are_caught_with_their_cycle_and_port() {
     }
 }
 
-/// `verilator --lint-only -Wall` is clean on every twin, in every configuration it has.
+/// `verilator --lint-only -Wall` is clean on every twin, in every configuration the
+/// co-simulation covers (its Verilog parameters as `-G` overrides).
 #[test]
 fn every_twin_is_lint_clean() {
     if !available(Simulator::Verilator) {
         return;
     }
-    let twins: Vec<(&str, Vec<&str>)> = vec![(
-        "bump/blend_adjust_153.v",
-        vec![
-            "-GREGISTERED=1",
-            "-GREGISTERED=0",
-            "-GFRAC_BITS=4",
-            "-GFRAC_BITS=16",
-        ],
-    )];
-    for (f, configs) in twins {
-        for g in configs {
-            let o = std::process::Command::new("verilator")
-                .args(["--lint-only", "-Wall", g])
-                .arg(tb::cosim::rtl_dir().join(f))
-                .output()
-                .unwrap();
-            let err = String::from_utf8_lossy(&o.stderr);
-            assert!(
-                o.status.success() && err.trim().is_empty(),
-                "{f} {g}: {err}"
-            );
+    for (label, u) in twins() {
+        let mut cmd = std::process::Command::new("verilator");
+        cmd.args(["--lint-only", "-Wall", "--top-module", u.name()]);
+        for (k, v) in u.parameters() {
+            cmd.arg(format!("-G{k}={v}"));
         }
+        for f in u.rtl() {
+            cmd.arg(tb::cosim::rtl_dir().join(f));
+        }
+        let o = cmd.output().unwrap();
+        let err = String::from_utf8_lossy(&o.stderr);
+        assert!(
+            o.status.success() && err.trim().is_empty(),
+            "{label}: {err}"
+        );
     }
 }
 
@@ -349,6 +395,68 @@ fn bilinear_rounding_bug_is_caught_with_its_cycle_and_port() {
         assert_eq!(
             (diff.cycle, diff.port.as_str()),
             (want, "q"),
+            "{}: {diff}",
+            sim.name()
+        );
+        let _ = std::fs::remove_dir_all(&d);
+    }
+}
+
+/// Whether rounding `x` (`sh` dropped bits, `sh > 0`) half to even and half up differ: the
+/// dropped bits are exactly one half and the kept part is even.
+fn tie_to_even(x: i128, sh: u32) -> bool {
+    x & ((1 << sh) - 1) == 1 << (sh - 1) && (x >> sh) & 1 == 0
+}
+
+/// Tangent unit 155 with its ties rounded up instead of to even (the rounding mode swapped):
+/// reported at the first cycle whose registered du, dv or height had an exact tie on an even
+/// value, on the first such port, computed here from the unit's equations.
+#[test]
+fn tangent_rounding_bug_is_caught_with_its_cycle_and_port() {
+    for sim in [Simulator::Verilator, Simulator::Icarus] {
+        if !available(sim) {
+            continue;
+        }
+        // 4-bit texels, F = 4, bilinear uQ3.3, scale uQ2.5, tangents .8: du, dv drop
+        // 3 + 4 - 1 + 5 - 8 = 3 bits, the height 3 + 8 + 5 - 8 = 8.
+        let p = BumpParams {
+            height: HeightTexel::Bits4,
+            blend_bits: 4,
+            bilinear_frac: Some(3),
+            scale_int: 2,
+            scale_frac: 5,
+            tangent_frac: 8,
+            ..BumpParams::default()
+        };
+        let u = TangentCosim(p);
+        let n = 2_000;
+        let d = dir(&format!("bug-tangent-{}", sim.name()));
+        let m = mutant(
+            &d,
+            "bump/tangent_155.v",
+            "(rem == half && fl[0])",
+            "(rem == half)",
+        );
+        let r = run(&u, sim, &[m], n, Seed(155), &d).unwrap();
+        let diff = r.mismatch.expect("the bug is caught");
+        let stim = u.stimulus(Seed(155), n);
+        let want = (tb::cosim::RESET_CYCLES + 1..n)
+            .find_map(|c| {
+                let v: Vec<i128> = stim[c - 1].iter().map(|&x| i128::from(x)).collect();
+                let [r, g, b, a, tu, tv, s] = [v[0], v[1], v[2], v[3], v[4], v[5], v[6]];
+                let lerp = |x: i128, y: i128, t: i128| (x << 4) + t * (y - x);
+                let du = lerp(g - r, a - b, tv) * s;
+                let dv = lerp(b - r, a - g, tu) * s;
+                let h = lerp(lerp(r, g, tu), lerp(b, a, tu), tv) * s;
+                [("du", du, 3), ("dv", dv, 3), ("height", h, 8)]
+                    .into_iter()
+                    .find(|&(_, x, sh)| tie_to_even(x, sh))
+                    .map(|(port, _, _)| (c, port))
+            })
+            .unwrap();
+        assert_eq!(
+            (diff.cycle, diff.port.as_str()),
+            want,
             "{}: {diff}",
             sim.name()
         );
