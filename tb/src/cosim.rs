@@ -471,6 +471,7 @@ pub fn unit(name: &str) -> Result<Box<dyn CosimUnit>, String> {
             bilinear_frac: None,
         })),
         "tangent_155" => Ok(Box::new(TangentCosim(Default::default()))),
+        "rsqrt_156" => Ok(Box::new(RsqrtCosim(Default::default()))),
         _ => Err(format!(
             "--unit {}: no Verilog twin (there are: {})",
             formats::shorten(name),
@@ -545,13 +546,51 @@ impl CosimUnit for TangentCosim {
     }
 }
 
+/// The inverse-square-root unit inside normal unit 156 against `rtl/bump/rsqrt_156.v`: its
+/// table (built at elaboration in Verilog, at construction in the model) and Newton steps.
+pub struct RsqrtCosim(pub hdl::bump::params::RsqrtParams);
+
+impl CosimUnit for RsqrtCosim {
+    fn name(&self) -> &'static str {
+        "rsqrt_156"
+    }
+    fn rtl(&self) -> Vec<&'static str> {
+        vec!["bump/rsqrt_156.v"]
+    }
+    fn parameters(&self) -> Vec<(&'static str, i64)> {
+        let p = &self.0;
+        vec![
+            ("TABLE_BITS", i64::from(p.table_bits)),
+            ("ITERATIONS", i64::from(p.iterations)),
+            ("M_F", i64::from(p.mant_frac)),
+            ("Y_F", i64::from(p.y_frac)),
+        ]
+    }
+    fn model(&self) -> Result<Box<dyn CosimModel>, String> {
+        use hdl::bump::rsqrt_156::Rsqrt;
+        let dut = Rsqrt::new(self.name(), self.0)?;
+        Ok(Box::new(ModelSim::new(dut, |d: &mut Rsqrt, v: &[u64]| {
+            d.m.set_bits(v[0]);
+        })))
+    }
+    /// Mantissas over the whole port, corners included (below 1 too: the zero path).
+    fn stimulus(&self, seed: verif::Seed, cycles: usize) -> Vec<Vec<u64>> {
+        let mut st = verif::Stimulus::new(seed);
+        st.draw_n(&field(self.0.mant_frac + 2), cycles)
+            .into_iter()
+            .map(|m| vec![m])
+            .collect()
+    }
+}
+
 /// The units with a Verilog twin.
-pub const UNITS: [&str; 5] = [
+pub const UNITS: [&str; 6] = [
     "address_150",
     "replicate_152",
     "blend_adjust_153",
     "bilinear_65_68",
     "tangent_155",
+    "rsqrt_156",
 ];
 
 /// Runs `unit` in `sim` against `rtl` (its twin when empty) for `cycles` cycles in `dir`.

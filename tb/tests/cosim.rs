@@ -4,11 +4,11 @@
 //! `TEXRTL_REQUIRE_COSIM=1` (which `.ci/run` sets).
 
 use hdl::bump::blend_adjust_153::BlendAdjustParams;
-use hdl::bump::params::{BumpParams, Filter, HeightTexel};
+use hdl::bump::params::{BumpParams, Filter, HeightTexel, RsqrtParams};
 use std::path::PathBuf;
 use tb::cosim::{
-    run, AddressCosim, BilinearCosim, BlendAdjustCosim, CosimUnit, ReplicateCosim, Simulator,
-    TangentCosim,
+    run, AddressCosim, BilinearCosim, BlendAdjustCosim, CosimUnit, ReplicateCosim, RsqrtCosim,
+    Simulator, TangentCosim,
 };
 use verif::Seed;
 
@@ -77,6 +77,25 @@ fn twins() -> Vec<(String, Box<dyn CosimUnit>)> {
     }
     for (label, p) in tangent_configs() {
         v.push((format!("tangent_155 {label}"), Box::new(TangentCosim(p))));
+    }
+    // The default; the table alone (4 bits); the widest mantissa and iterate with the
+    // smallest table and the most iterations; the largest table with short iterates.
+    for (table_bits, iterations, mant_frac, y_frac) in [
+        (8, 1, 22, 24),
+        (4, 0, 8, 8),
+        (3, 3, 40, 40),
+        (14, 2, 30, 12),
+    ] {
+        let p = RsqrtParams {
+            table_bits,
+            iterations,
+            mant_frac,
+            y_frac,
+        };
+        v.push((
+            format!("rsqrt_156 table={table_bits} iter={iterations} uQ2.{mant_frac} uQ1.{y_frac}"),
+            Box::new(RsqrtCosim(p)),
+        ));
     }
     v
 }
@@ -457,6 +476,55 @@ fn tangent_rounding_bug_is_caught_with_its_cycle_and_port() {
         assert_eq!(
             (diff.cycle, diff.port.as_str()),
             want,
+            "{}: {diff}",
+            sim.name()
+        );
+        let _ = std::fs::remove_dir_all(&d);
+    }
+}
+
+/// The rsqrt unit of 156 with its table entries truncated instead of rounded (`(z + 1) >> 1`
+/// become `z >> 1`): with the table alone (no iteration) reported at the first cycle whose
+/// registered mantissa is at least 1 and indexes an entry whose doubled root `z` is odd.
+#[test]
+fn rsqrt_table_bug_is_caught_with_its_cycle_and_port() {
+    use hdl::bump::rsqrt_156::RsqrtTable;
+    for sim in [Simulator::Verilator, Simulator::Icarus] {
+        if !available(sim) {
+            continue;
+        }
+        let p = RsqrtParams {
+            table_bits: 4,
+            iterations: 0,
+            mant_frac: 16,
+            y_frac: 16,
+        };
+        let u = RsqrtCosim(p);
+        let n = 2_000;
+        let d = dir(&format!("bug-rsqrt-{}", sim.name()));
+        let m = mutant(&d, "bump/rsqrt_156.v", "r = (z + 1) >> 1;", "r = z >> 1;");
+        let r = run(&u, sim, &[m], n, Seed(156), &d).unwrap();
+        let diff = r.mismatch.expect("the bug is caught");
+        let table = RsqrtTable::new(p).unwrap();
+        // z = floor(2 / sqrt(midpoint)) in units of 2^-Y, from the entry's interval.
+        let z_odd = |idx: usize| {
+            let lo_bits = p.table_bits - 1;
+            let (hi, lo) = (idx as u32 >> lo_bits, idx as u128 & ((1 << lo_bits) - 1));
+            let shift = p.mant_frac + hi - lo_bits;
+            let mid2 = (((1u128 << lo_bits) | lo) << (shift + 1)) + (1u128 << shift);
+            let z = ((1u128 << (2 * p.y_frac + p.mant_frac + 3)) / mid2).isqrt();
+            z & 1 == 1
+        };
+        let stim = u.stimulus(Seed(156), n);
+        let want = (tb::cosim::RESET_CYCLES + 1..n)
+            .find(|&c| {
+                let m = stim[c - 1][0];
+                m >> p.mant_frac != 0 && z_odd(table.index(m))
+            })
+            .unwrap();
+        assert_eq!(
+            (diff.cycle, diff.port.as_str()),
+            (want, "y"),
             "{}: {diff}",
             sim.name()
         );

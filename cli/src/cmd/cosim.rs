@@ -11,7 +11,7 @@ use verif::Seed;
 #[derive(Args, Debug)]
 pub struct CosimArgs {
     /// The unit (its Verilog module name): address_150, replicate_152, blend_adjust_153,
-    /// bilinear_65_68, tangent_155.
+    /// bilinear_65_68, tangent_155, rsqrt_156.
     #[arg(long)]
     pub unit: String,
     /// verilator or icarus.
