@@ -472,6 +472,7 @@ pub fn unit(name: &str) -> Result<Box<dyn CosimUnit>, String> {
         })),
         "tangent_155" => Ok(Box::new(TangentCosim(Default::default()))),
         "rsqrt_156" => Ok(Box::new(RsqrtCosim(Default::default()))),
+        "normal_156" => Ok(Box::new(NormalCosim(Default::default()))),
         _ => Err(format!(
             "--unit {}: no Verilog twin (there are: {})",
             formats::shorten(name),
@@ -583,14 +584,68 @@ impl CosimUnit for RsqrtCosim {
     }
 }
 
+/// Normal unit 156 (its rsqrt included) against `rtl/bump/normal_156.v` and
+/// `rtl/bump/rsqrt_156.v`, in the formats of the FIG. 7 pipeline built from `params`.
+pub struct NormalCosim(pub hdl::bump::params::BumpParams);
+
+impl CosimUnit for NormalCosim {
+    fn name(&self) -> &'static str {
+        "normal_156"
+    }
+    fn rtl(&self) -> Vec<&'static str> {
+        vec!["bump/normal_156.v", "bump/rsqrt_156.v"]
+    }
+    fn parameters(&self) -> Vec<(&'static str, i64)> {
+        let p = &self.0;
+        vec![
+            ("TAN_W", i64::from(p.tangent_fmt().width())),
+            ("TF", i64::from(p.tangent_frac)),
+            ("OUT_F", i64::from(p.out_frac)),
+            ("TABLE_BITS", i64::from(p.rsqrt.table_bits)),
+            ("ITERATIONS", i64::from(p.rsqrt.iterations)),
+            ("M_F", i64::from(p.rsqrt.mant_frac)),
+            ("Y_F", i64::from(p.rsqrt.y_frac)),
+        ]
+    }
+    fn model(&self) -> Result<Box<dyn CosimModel>, String> {
+        use hdl::bump::normal_156::Normal;
+        self.0.validate()?;
+        let dut = Normal::new(self.name(), &self.0)?;
+        Ok(Box::new(ModelSim::new(dut, |d: &mut Normal, v: &[u64]| {
+            d.du.set_bits(v[0]);
+            d.dv.set_bits(v[1]);
+        })))
+    }
+    /// Tangents in the symmetric range unit 155 produces: corners (0, +-1, +-largest), slopes
+    /// within +-4 (most surfaces), and any value.
+    fn stimulus(&self, seed: verif::Seed, cycles: usize) -> Vec<Vec<u64>> {
+        use proptest::strategy::{Just, Strategy};
+        let f = self.0.tangent_fmt();
+        let (w, max) = (f.width(), f.max_raw() as i64);
+        let small = 4i64 << self.0.tangent_frac;
+        let tangent = proptest::prop_oneof![
+            1 => proptest::prop_oneof![Just(0i64), Just(1), Just(-1), Just(max), Just(-max)],
+            2 => -small..=small,
+            1 => -max..=max,
+        ]
+        .prop_map(move |x| (x as u64) & (u64::MAX >> (64 - w)));
+        let mut st = verif::Stimulus::new(seed);
+        st.draw_n(&(tangent.clone(), tangent), cycles)
+            .into_iter()
+            .map(|(u, v)| vec![u, v])
+            .collect()
+    }
+}
+
 /// The units with a Verilog twin.
-pub const UNITS: [&str; 6] = [
+pub const UNITS: [&str; 7] = [
     "address_150",
     "replicate_152",
     "blend_adjust_153",
     "bilinear_65_68",
     "tangent_155",
     "rsqrt_156",
+    "normal_156",
 ];
 
 /// Runs `unit` in `sim` against `rtl` (its twin when empty) for `cycles` cycles in `dir`.

@@ -7,8 +7,8 @@ use hdl::bump::blend_adjust_153::BlendAdjustParams;
 use hdl::bump::params::{BumpParams, Filter, HeightTexel, RsqrtParams};
 use std::path::PathBuf;
 use tb::cosim::{
-    run, AddressCosim, BilinearCosim, BlendAdjustCosim, CosimUnit, ReplicateCosim, RsqrtCosim,
-    Simulator, TangentCosim,
+    run, AddressCosim, BilinearCosim, BlendAdjustCosim, CosimUnit, NormalCosim, ReplicateCosim,
+    RsqrtCosim, Simulator, TangentCosim,
 };
 use verif::Seed;
 
@@ -97,7 +97,46 @@ fn twins() -> Vec<(String, Box<dyn CosimUnit>)> {
             Box::new(RsqrtCosim(p)),
         ));
     }
+    for (label, p) in normal_configs() {
+        v.push((format!("normal_156 {label}"), Box::new(NormalCosim(p))));
+    }
     v
+}
+
+/// Normal unit 156: the default; short iterates and more output bits than the product has
+/// (the result shifted left, nothing rounded) with two iterations; the widest tangents
+/// (`sQ20.24`, an 89-bit sum of squares) with the table alone.
+fn normal_configs() -> Vec<(&'static str, BumpParams)> {
+    let d = BumpParams::default();
+    vec![
+        ("default (sQ16.16 in, sQ2.16 out, 1 iteration)", d),
+        (
+            "sQ16.8 in, sQ2.24 out, uQ2.8 -> uQ1.8, 2 iterations",
+            BumpParams {
+                tangent_frac: 8,
+                out_frac: 24,
+                rsqrt: RsqrtParams {
+                    table_bits: 6,
+                    iterations: 2,
+                    mant_frac: 8,
+                    y_frac: 8,
+                },
+                ..d
+            },
+        ),
+        (
+            "sQ20.24 in, table alone",
+            BumpParams {
+                scale_int: 12,
+                tangent_frac: 24,
+                rsqrt: RsqrtParams {
+                    iterations: 0,
+                    ..d.rsqrt
+                },
+                ..d
+            },
+        ),
+    ]
 }
 
 /// Tangent unit 155: the default; Blinn with 4 bilinear fraction bits and an integer scale
@@ -525,6 +564,69 @@ fn rsqrt_table_bug_is_caught_with_its_cycle_and_port() {
         assert_eq!(
             (diff.cycle, diff.port.as_str()),
             (want, "y"),
+            "{}: {diff}",
+            sim.name()
+        );
+        let _ = std::fs::remove_dir_all(&d);
+    }
+}
+
+/// Normal unit 156 with its ties rounded up instead of to even in the multiply stage:
+/// reported at the first cycle whose nx, ny or nz product had an exact tie on an even value
+/// (first such port), found from the unit's equations with the model's own table and steps.
+#[test]
+fn normal_rounding_bug_is_caught_with_its_cycle_and_port() {
+    use hdl::bump::normal_156::normalise;
+    use hdl::bump::rsqrt_156::{rsqrt, RsqrtTable};
+    for sim in [Simulator::Verilator, Simulator::Icarus] {
+        if !available(sim) {
+            continue;
+        }
+        // sQ.8 tangents, uQ1.8 iterates, sQ2.14 out: 8 + 8 + k - 14 = 2 + k dropped bits.
+        let p = BumpParams {
+            tangent_frac: 8,
+            out_frac: 14,
+            rsqrt: RsqrtParams {
+                table_bits: 6,
+                iterations: 1,
+                mant_frac: 8,
+                y_frac: 8,
+            },
+            ..BumpParams::default()
+        };
+        let u = NormalCosim(p);
+        let n = 3_000;
+        let d = dir(&format!("bug-normal-{}", sim.name()));
+        let m = mutant(
+            &d,
+            "bump/normal_156.v",
+            "(rem == half && fl[0])",
+            "(rem == half)",
+        );
+        // `--rtl` replaces every source of the twin: the mutant and the rsqrt it instantiates.
+        let rsqrt_v = tb::cosim::rtl_dir().join("bump/rsqrt_156.v");
+        let r = run(&u, sim, &[m, rsqrt_v], n, Seed(156), &d).unwrap();
+        let diff = r.mismatch.expect("the bug is caught");
+        let table = RsqrtTable::new(p.rsqrt).unwrap();
+        let w = p.tangent_fmt().width();
+        let signed = |x: u64| ((x << (64 - w)) as i64) >> (64 - w);
+        let latency = 3 + p.rsqrt.iterations as usize;
+        let stim = u.stimulus(Seed(156), n);
+        let want = (tb::cosim::RESET_CYCLES + latency..n)
+            .find_map(|c| {
+                let (du, dv) = (signed(stim[c - latency][0]), signed(stim[c - latency][1]));
+                let s = (du * du + dv * dv) as u128 + (1 << 16);
+                let (k, mant) = normalise(s, 16, 8);
+                let y = rsqrt(&table, mant) as i128;
+                [("nx", -du), ("ny", -dv), ("nz", 1 << 8)]
+                    .into_iter()
+                    .find(|&(_, x)| tie_to_even(i128::from(x) * y, 2 + k))
+                    .map(|(port, _)| (c, port))
+            })
+            .unwrap();
+        assert_eq!(
+            (diff.cycle, diff.port.as_str()),
+            want,
             "{}: {diff}",
             sim.name()
         );

@@ -11,13 +11,14 @@ use verif::Seed;
 #[derive(Args, Debug)]
 pub struct CosimArgs {
     /// The unit (its Verilog module name): address_150, replicate_152, blend_adjust_153,
-    /// bilinear_65_68, tangent_155, rsqrt_156.
+    /// bilinear_65_68, tangent_155, rsqrt_156, normal_156.
     #[arg(long)]
     pub unit: String,
     /// verilator or icarus.
     #[arg(long, default_value = "verilator")]
     pub sim: String,
-    /// Verilog sources of the unit to check instead of its twin (repeatable).
+    /// Verilog sources of the unit to check instead of its twin (repeatable; they replace all
+    /// of the twin's files, so a unit built on another, as normal_156 on rsqrt_156, needs both).
     #[arg(long)]
     pub rtl: Vec<PathBuf>,
     /// Cycles to simulate (1..=10000000), random inputs every cycle after 2 cycles of reset.
