@@ -7,8 +7,8 @@ use hdl::bump::blend_adjust_153::BlendAdjustParams;
 use hdl::bump::params::{BumpParams, Filter, HeightTexel, RsqrtParams};
 use std::path::PathBuf;
 use tb::cosim::{
-    run, AddressCosim, BilinearCosim, BlendAdjustCosim, CosimUnit, NormalCosim, ReplicateCosim,
-    RsqrtCosim, Simulator, TangentCosim,
+    run, AddressCosim, BilinearCosim, BlendAdjustCosim, CosimUnit, Difference, NormalCosim,
+    ReplicateCosim, RsqrtCosim, Simulator, TangentCosim,
 };
 use verif::Seed;
 
@@ -222,6 +222,36 @@ fn every_twin_matches_its_model_on_every_cycle() {
     }
 }
 
+/// A one-bit bug: in the twin's source `.0`, `.1` replaced by `.2`.
+struct Bug(&'static str, &'static str, &'static str);
+
+/// The first difference of `u` with `bug` injected (its other sources kept, all passed as a
+/// user passes `--rtl`), in every simulator installed, over `n` cycles from `seed`.
+fn caught(u: &dyn CosimUnit, bug: Bug, n: usize, seed: Seed) -> Vec<(Simulator, Difference)> {
+    let mut found = Vec::new();
+    for sim in [Simulator::Verilator, Simulator::Icarus] {
+        if !available(sim) {
+            continue;
+        }
+        let d = dir(&format!("bug-{}-{}", u.name(), sim.name()));
+        let sources: Vec<PathBuf> = u
+            .rtl()
+            .into_iter()
+            .map(|f| match f == bug.0 {
+                true => mutant(&d, bug.0, bug.1, bug.2),
+                false => tb::cosim::rtl_dir().join(f),
+            })
+            .collect();
+        let r = run(u, sim, &sources, n, seed, &d).unwrap();
+        let diff = r
+            .mismatch
+            .unwrap_or_else(|| panic!("{}: the bug is not caught", sim.name()));
+        let _ = std::fs::remove_dir_all(&d);
+        found.push((sim, diff));
+    }
+    found
+}
+
 /// The twin with `from` replaced by `to` (a one-bit bug), as a user's `--rtl` file.
 fn mutant(d: &std::path::Path, file: &str, from: &str, to: &str) -> PathBuf {
     let src = std::fs::read_to_string(tb::cosim::rtl_dir().join(file)).unwrap();
@@ -384,32 +414,24 @@ fn address_bug_is_caught_with_its_cycle_and_port() {
 /// compared; the unit is combinational) on the first port that carries it, red's `r00`.
 #[test]
 fn replicate_bug_is_caught_with_its_cycle_and_port() {
-    for sim in [Simulator::Verilator, Simulator::Icarus] {
-        if !available(sim) {
-            continue;
-        }
-        let u = ReplicateCosim {
-            texel_bits: 8,
-            bezier: false,
-        };
-        let d = dir(&format!("bug-replicate-{}", sim.name()));
-        let m = mutant(
-            &d,
-            "bump/replicate_152.v",
-            "assign pa = xa << 2;",
-            "assign pa = xa << 1;",
-        );
-        let r = run(&u, sim, &[m], 500, Seed(6), &d).unwrap();
-        let diff = r.mismatch.expect("the bug is caught");
-        // Cycle 1's `a` is never 0 with this seed, so r00 differs there (checked here).
-        assert_ne!(u.stimulus(Seed(6), 500)[1][0], 0);
+    let u = ReplicateCosim {
+        texel_bits: 8,
+        bezier: false,
+    };
+    let bug = Bug(
+        "bump/replicate_152.v",
+        "assign pa = xa << 2;",
+        "assign pa = xa << 1;",
+    );
+    // Cycle 1's `a` is never 0 with this seed, so r00 differs there (checked here).
+    assert_ne!(u.stimulus(Seed(6), 500)[1][0], 0);
+    for (sim, diff) in caught(&u, bug, 500, Seed(6)) {
         assert_eq!(
             (diff.cycle, diff.port.as_str()),
             (1, "r00"),
             "{}: {diff}",
             sim.name()
         );
-        let _ = std::fs::remove_dir_all(&d);
     }
 }
 
@@ -419,44 +441,36 @@ fn replicate_bug_is_caught_with_its_cycle_and_port() {
 #[test]
 fn bilinear_rounding_bug_is_caught_with_its_cycle_and_port() {
     use hdl::bump::bilinear_65_68::Bilinear;
-    for sim in [Simulator::Verilator, Simulator::Icarus] {
-        if !available(sim) {
-            continue;
-        }
-        // 4-bit texels (uQ3.3 out of 152), F = 4 (factors uQ0.5): exact fraction 13, rounded
-        // to 12: a dropped half is common.
-        let u = BilinearCosim {
-            texel_bits: 4,
-            blend_bits: 4,
-            bilinear_frac: Some(12),
-        };
-        let n = 4_000;
-        let d = dir(&format!("bug-bilinear-{}", sim.name()));
-        let m = mutant(
-            &d,
-            "bump/bilinear_65_68.v",
-            "(rem == half && fl[0])",
-            "(rem == half)",
-        );
-        let r = run(&u, sim, &[m], n, Seed(12), &d).unwrap();
-        let diff = r.mismatch.expect("the bug is caught");
-        let stim = u.stimulus(Seed(12), n);
-        let want = (tb::cosim::RESET_CYCLES + 1..n)
-            .find(|&c| {
-                let v = &stim[c - 1];
-                let p = [v[0], v[1], v[2], v[3]].map(|x| x as i64);
-                // Exact fraction 3 + 2 * 5 = 13: one dropped bit.
-                let x = Bilinear::exact(p, v[4] as i64, v[5] as i64, 5);
-                x & 1 == 1 && (x >> 1) & 1 == 0
-            })
-            .unwrap();
+    // 4-bit texels (uQ3.3 out of 152), F = 4 (factors uQ0.5): exact fraction 13, rounded
+    // to 12: a dropped half is common.
+    let u = BilinearCosim {
+        texel_bits: 4,
+        blend_bits: 4,
+        bilinear_frac: Some(12),
+    };
+    let n = 4_000;
+    let bug = Bug(
+        "bump/bilinear_65_68.v",
+        "(rem == half && fl[0])",
+        "(rem == half)",
+    );
+    let stim = u.stimulus(Seed(12), n);
+    let want = (tb::cosim::RESET_CYCLES + 1..n)
+        .find(|&c| {
+            let v = &stim[c - 1];
+            let p = [v[0], v[1], v[2], v[3]].map(|x| x as i64);
+            // Exact fraction 3 + 2 * 5 = 13: one dropped bit.
+            let x = Bilinear::exact(p, v[4] as i64, v[5] as i64, 5);
+            x & 1 == 1 && (x >> 1) & 1 == 0
+        })
+        .unwrap();
+    for (sim, diff) in caught(&u, bug, n, Seed(12)) {
         assert_eq!(
             (diff.cycle, diff.port.as_str()),
             (want, "q"),
             "{}: {diff}",
             sim.name()
         );
-        let _ = std::fs::remove_dir_all(&d);
     }
 }
 
@@ -471,54 +485,46 @@ fn tie_to_even(x: i128, sh: u32) -> bool {
 /// value, on the first such port, computed here from the unit's equations.
 #[test]
 fn tangent_rounding_bug_is_caught_with_its_cycle_and_port() {
-    for sim in [Simulator::Verilator, Simulator::Icarus] {
-        if !available(sim) {
-            continue;
-        }
-        // 4-bit texels, F = 4, bilinear uQ3.3, scale uQ2.5, tangents .8: du, dv drop
-        // 3 + 4 - 1 + 5 - 8 = 3 bits, the height 3 + 8 + 5 - 8 = 8.
-        let p = BumpParams {
-            height: HeightTexel::Bits4,
-            blend_bits: 4,
-            bilinear_frac: Some(3),
-            scale_int: 2,
-            scale_frac: 5,
-            tangent_frac: 8,
-            ..BumpParams::default()
-        };
-        let u = TangentCosim(p);
-        let n = 2_000;
-        let d = dir(&format!("bug-tangent-{}", sim.name()));
-        let m = mutant(
-            &d,
-            "bump/tangent_155.v",
-            "(rem == half && fl[0])",
-            "(rem == half)",
-        );
-        let r = run(&u, sim, &[m], n, Seed(155), &d).unwrap();
-        let diff = r.mismatch.expect("the bug is caught");
-        let stim = u.stimulus(Seed(155), n);
-        let want = (tb::cosim::RESET_CYCLES + 1..n)
-            .find_map(|c| {
-                let v: Vec<i128> = stim[c - 1].iter().map(|&x| i128::from(x)).collect();
-                let [r, g, b, a, tu, tv, s] = [v[0], v[1], v[2], v[3], v[4], v[5], v[6]];
-                let lerp = |x: i128, y: i128, t: i128| (x << 4) + t * (y - x);
-                let du = lerp(g - r, a - b, tv) * s;
-                let dv = lerp(b - r, a - g, tu) * s;
-                let h = lerp(lerp(r, g, tu), lerp(b, a, tu), tv) * s;
-                [("du", du, 3), ("dv", dv, 3), ("height", h, 8)]
-                    .into_iter()
-                    .find(|&(_, x, sh)| tie_to_even(x, sh))
-                    .map(|(port, _, _)| (c, port))
-            })
-            .unwrap();
+    // 4-bit texels, F = 4, bilinear uQ3.3, scale uQ2.5, tangents .8: du, dv drop
+    // 3 + 4 - 1 + 5 - 8 = 3 bits, the height 3 + 8 + 5 - 8 = 8.
+    let p = BumpParams {
+        height: HeightTexel::Bits4,
+        blend_bits: 4,
+        bilinear_frac: Some(3),
+        scale_int: 2,
+        scale_frac: 5,
+        tangent_frac: 8,
+        ..BumpParams::default()
+    };
+    let u = TangentCosim(p);
+    let n = 2_000;
+    let bug = Bug(
+        "bump/tangent_155.v",
+        "(rem == half && fl[0])",
+        "(rem == half)",
+    );
+    let stim = u.stimulus(Seed(155), n);
+    let want = (tb::cosim::RESET_CYCLES + 1..n)
+        .find_map(|c| {
+            let v: Vec<i128> = stim[c - 1].iter().map(|&x| i128::from(x)).collect();
+            let [r, g, b, a, tu, tv, s] = [v[0], v[1], v[2], v[3], v[4], v[5], v[6]];
+            let lerp = |x: i128, y: i128, t: i128| (x << 4) + t * (y - x);
+            let du = lerp(g - r, a - b, tv) * s;
+            let dv = lerp(b - r, a - g, tu) * s;
+            let h = lerp(lerp(r, g, tu), lerp(b, a, tu), tv) * s;
+            [("du", du, 3), ("dv", dv, 3), ("height", h, 8)]
+                .into_iter()
+                .find(|&(_, x, sh)| tie_to_even(x, sh))
+                .map(|(port, _, _)| (c, port))
+        })
+        .unwrap();
+    for (sim, diff) in caught(&u, bug, n, Seed(155)) {
         assert_eq!(
             (diff.cycle, diff.port.as_str()),
             want,
             "{}: {diff}",
             sim.name()
         );
-        let _ = std::fs::remove_dir_all(&d);
     }
 }
 
@@ -528,46 +534,39 @@ fn tangent_rounding_bug_is_caught_with_its_cycle_and_port() {
 #[test]
 fn rsqrt_table_bug_is_caught_with_its_cycle_and_port() {
     use hdl::bump::rsqrt_156::RsqrtTable;
-    for sim in [Simulator::Verilator, Simulator::Icarus] {
-        if !available(sim) {
-            continue;
-        }
-        let p = RsqrtParams {
-            table_bits: 4,
-            iterations: 0,
-            mant_frac: 16,
-            y_frac: 16,
-        };
-        let u = RsqrtCosim(p);
-        let n = 2_000;
-        let d = dir(&format!("bug-rsqrt-{}", sim.name()));
-        let m = mutant(&d, "bump/rsqrt_156.v", "r = (z + 1) >> 1;", "r = z >> 1;");
-        let r = run(&u, sim, &[m], n, Seed(156), &d).unwrap();
-        let diff = r.mismatch.expect("the bug is caught");
-        let table = RsqrtTable::new(p).unwrap();
-        // z = floor(2 / sqrt(midpoint)) in units of 2^-Y, from the entry's interval.
-        let z_odd = |idx: usize| {
-            let lo_bits = p.table_bits - 1;
-            let (hi, lo) = (idx as u32 >> lo_bits, idx as u128 & ((1 << lo_bits) - 1));
-            let shift = p.mant_frac + hi - lo_bits;
-            let mid2 = (((1u128 << lo_bits) | lo) << (shift + 1)) + (1u128 << shift);
-            let z = ((1u128 << (2 * p.y_frac + p.mant_frac + 3)) / mid2).isqrt();
-            z & 1 == 1
-        };
-        let stim = u.stimulus(Seed(156), n);
-        let want = (tb::cosim::RESET_CYCLES + 1..n)
-            .find(|&c| {
-                let m = stim[c - 1][0];
-                m >> p.mant_frac != 0 && z_odd(table.index(m))
-            })
-            .unwrap();
+    let p = RsqrtParams {
+        table_bits: 4,
+        iterations: 0,
+        mant_frac: 16,
+        y_frac: 16,
+    };
+    let u = RsqrtCosim(p);
+    let n = 2_000;
+    let bug = Bug("bump/rsqrt_156.v", "r = (z + 1) >> 1;", "r = z >> 1;");
+    let stim = u.stimulus(Seed(156), n);
+    let table = RsqrtTable::new(p).unwrap();
+    // z = floor(2 / sqrt(midpoint)) in units of 2^-Y, from the entry's interval.
+    let z_odd = |idx: usize| {
+        let lo_bits = p.table_bits - 1;
+        let (hi, lo) = (idx as u32 >> lo_bits, idx as u128 & ((1 << lo_bits) - 1));
+        let shift = p.mant_frac + hi - lo_bits;
+        let mid2 = (((1u128 << lo_bits) | lo) << (shift + 1)) + (1u128 << shift);
+        let z = ((1u128 << (2 * p.y_frac + p.mant_frac + 3)) / mid2).isqrt();
+        z & 1 == 1
+    };
+    let want = (tb::cosim::RESET_CYCLES + 1..n)
+        .find(|&c| {
+            let m = stim[c - 1][0];
+            m >> p.mant_frac != 0 && z_odd(table.index(m))
+        })
+        .unwrap();
+    for (sim, diff) in caught(&u, bug, n, Seed(156)) {
         assert_eq!(
             (diff.cycle, diff.port.as_str()),
             (want, "y"),
             "{}: {diff}",
             sim.name()
         );
-        let _ = std::fs::remove_dir_all(&d);
     }
 }
 
@@ -578,59 +577,49 @@ fn rsqrt_table_bug_is_caught_with_its_cycle_and_port() {
 fn normal_rounding_bug_is_caught_with_its_cycle_and_port() {
     use hdl::bump::normal_156::normalise;
     use hdl::bump::rsqrt_156::{rsqrt, RsqrtTable};
-    for sim in [Simulator::Verilator, Simulator::Icarus] {
-        if !available(sim) {
-            continue;
-        }
-        // sQ.8 tangents, uQ1.8 iterates, sQ2.14 out: 8 + 8 + k - 14 = 2 + k dropped bits.
-        let p = BumpParams {
-            tangent_frac: 8,
-            out_frac: 14,
-            rsqrt: RsqrtParams {
-                table_bits: 6,
-                iterations: 1,
-                mant_frac: 8,
-                y_frac: 8,
-            },
-            ..BumpParams::default()
-        };
-        let u = NormalCosim(p);
-        let n = 3_000;
-        let d = dir(&format!("bug-normal-{}", sim.name()));
-        let m = mutant(
-            &d,
-            "bump/normal_156.v",
-            "(rem == half && fl[0])",
-            "(rem == half)",
-        );
-        // `--rtl` replaces every source of the twin: the mutant and the rsqrt it instantiates.
-        let rsqrt_v = tb::cosim::rtl_dir().join("bump/rsqrt_156.v");
-        let r = run(&u, sim, &[m, rsqrt_v], n, Seed(156), &d).unwrap();
-        let diff = r.mismatch.expect("the bug is caught");
-        let table = RsqrtTable::new(p.rsqrt).unwrap();
-        let w = p.tangent_fmt().width();
-        let signed = |x: u64| ((x << (64 - w)) as i64) >> (64 - w);
-        let latency = 3 + p.rsqrt.iterations as usize;
-        let stim = u.stimulus(Seed(156), n);
-        let want = (tb::cosim::RESET_CYCLES + latency..n)
-            .find_map(|c| {
-                let (du, dv) = (signed(stim[c - latency][0]), signed(stim[c - latency][1]));
-                let s = (du * du + dv * dv) as u128 + (1 << 16);
-                let (k, mant) = normalise(s, 16, 8);
-                let y = rsqrt(&table, mant) as i128;
-                [("nx", -du), ("ny", -dv), ("nz", 1 << 8)]
-                    .into_iter()
-                    .find(|&(_, x)| tie_to_even(i128::from(x) * y, 2 + k))
-                    .map(|(port, _)| (c, port))
-            })
-            .unwrap();
+    // sQ.8 tangents, uQ1.8 iterates, sQ2.14 out: 8 + 8 + k - 14 = 2 + k dropped bits.
+    let p = BumpParams {
+        tangent_frac: 8,
+        out_frac: 14,
+        rsqrt: RsqrtParams {
+            table_bits: 6,
+            iterations: 1,
+            mant_frac: 8,
+            y_frac: 8,
+        },
+        ..BumpParams::default()
+    };
+    let u = NormalCosim(p);
+    let n = 3_000;
+    let bug = Bug(
+        "bump/normal_156.v",
+        "(rem == half && fl[0])",
+        "(rem == half)",
+    );
+    let stim = u.stimulus(Seed(156), n);
+    let table = RsqrtTable::new(p.rsqrt).unwrap();
+    let w = p.tangent_fmt().width();
+    let signed = |x: u64| ((x << (64 - w)) as i64) >> (64 - w);
+    let latency = 3 + p.rsqrt.iterations as usize;
+    let want = (tb::cosim::RESET_CYCLES + latency..n)
+        .find_map(|c| {
+            let (du, dv) = (signed(stim[c - latency][0]), signed(stim[c - latency][1]));
+            let s = (du * du + dv * dv) as u128 + (1 << 16);
+            let (k, mant) = normalise(s, 16, 8);
+            let y = rsqrt(&table, mant) as i128;
+            [("nx", -du), ("ny", -dv), ("nz", 1 << 8)]
+                .into_iter()
+                .find(|&(_, x)| tie_to_even(i128::from(x) * y, 2 + k))
+                .map(|(port, _)| (c, port))
+        })
+        .unwrap();
+    for (sim, diff) in caught(&u, bug, n, Seed(156)) {
         assert_eq!(
             (diff.cycle, diff.port.as_str()),
             want,
             "{}: {diff}",
             sim.name()
         );
-        let _ = std::fs::remove_dir_all(&d);
     }
 }
 
