@@ -7,8 +7,8 @@ use hdl::bump::blend_adjust_153::BlendAdjustParams;
 use hdl::bump::params::{BumpParams, Filter, HeightTexel, RsqrtParams};
 use std::path::PathBuf;
 use tb::cosim::{
-    run, AddressCosim, BilinearCosim, BlendAdjustCosim, CosimUnit, Difference, NormalCosim,
-    ReplicateCosim, RsqrtCosim, Simulator, TangentCosim,
+    run, AddressCosim, BilinearCosim, BlendAdjustCosim, CosimUnit, NormalCosim, ReplicateCosim,
+    RsqrtCosim, Simulator, TangentCosim,
 };
 use verif::Seed;
 
@@ -225,10 +225,10 @@ fn every_twin_matches_its_model_on_every_cycle() {
 /// A one-bit bug: in the twin's source `.0`, `.1` replaced by `.2`.
 struct Bug(&'static str, &'static str, &'static str);
 
-/// The first difference of `u` with `bug` injected (its other sources kept, all passed as a
-/// user passes `--rtl`), in every simulator installed, over `n` cycles from `seed`.
-fn caught(u: &dyn CosimUnit, bug: Bug, n: usize, seed: Seed) -> Vec<(Simulator, Difference)> {
-    let mut found = Vec::new();
+/// Requires the first difference of `u` with `bug` injected (its other sources kept, all
+/// passed as a user passes `--rtl`) at cycle and port `want`, in every simulator installed,
+/// over `n` cycles from `seed`.
+fn assert_caught(u: &dyn CosimUnit, bug: Bug, n: usize, seed: Seed, want: (usize, &str)) {
     for sim in [Simulator::Verilator, Simulator::Icarus] {
         if !available(sim) {
             continue;
@@ -247,9 +247,13 @@ fn caught(u: &dyn CosimUnit, bug: Bug, n: usize, seed: Seed) -> Vec<(Simulator, 
             .mismatch
             .unwrap_or_else(|| panic!("{}: the bug is not caught", sim.name()));
         let _ = std::fs::remove_dir_all(&d);
-        found.push((sim, diff));
+        assert_eq!(
+            (diff.cycle, diff.port.as_str()),
+            want,
+            "{}: {diff}",
+            sim.name()
+        );
     }
-    found
 }
 
 /// The twin with `from` replaced by `to` (a one-bit bug), as a user's `--rtl` file.
@@ -425,14 +429,7 @@ fn replicate_bug_is_caught_with_its_cycle_and_port() {
     );
     // Cycle 1's `a` is never 0 with this seed, so r00 differs there (checked here).
     assert_ne!(u.stimulus(Seed(6), 500)[1][0], 0);
-    for (sim, diff) in caught(&u, bug, 500, Seed(6)) {
-        assert_eq!(
-            (diff.cycle, diff.port.as_str()),
-            (1, "r00"),
-            "{}: {diff}",
-            sim.name()
-        );
-    }
+    assert_caught(&u, bug, 500, Seed(6), (1, "r00"));
 }
 
 /// A bilinear unit that rounds half away from zero instead of half to even: caught at the
@@ -464,14 +461,7 @@ fn bilinear_rounding_bug_is_caught_with_its_cycle_and_port() {
             x & 1 == 1 && (x >> 1) & 1 == 0
         })
         .unwrap();
-    for (sim, diff) in caught(&u, bug, n, Seed(12)) {
-        assert_eq!(
-            (diff.cycle, diff.port.as_str()),
-            (want, "q"),
-            "{}: {diff}",
-            sim.name()
-        );
-    }
+    assert_caught(&u, bug, n, Seed(12), (want, "q"));
 }
 
 /// Whether rounding `x` (`sh` dropped bits, `sh > 0`) half to even and half up differ: the
@@ -518,14 +508,7 @@ fn tangent_rounding_bug_is_caught_with_its_cycle_and_port() {
                 .map(|(port, _, _)| (c, port))
         })
         .unwrap();
-    for (sim, diff) in caught(&u, bug, n, Seed(155)) {
-        assert_eq!(
-            (diff.cycle, diff.port.as_str()),
-            want,
-            "{}: {diff}",
-            sim.name()
-        );
-    }
+    assert_caught(&u, bug, n, Seed(155), want);
 }
 
 /// The rsqrt unit of 156 with its table entries truncated instead of rounded (`(z + 1) >> 1`
@@ -560,14 +543,7 @@ fn rsqrt_table_bug_is_caught_with_its_cycle_and_port() {
             m >> p.mant_frac != 0 && z_odd(table.index(m))
         })
         .unwrap();
-    for (sim, diff) in caught(&u, bug, n, Seed(156)) {
-        assert_eq!(
-            (diff.cycle, diff.port.as_str()),
-            (want, "y"),
-            "{}: {diff}",
-            sim.name()
-        );
-    }
+    assert_caught(&u, bug, n, Seed(156), (want, "y"));
 }
 
 /// Normal unit 156 with its ties rounded up instead of to even in the multiply stage:
@@ -613,14 +589,7 @@ fn normal_rounding_bug_is_caught_with_its_cycle_and_port() {
                 .map(|(port, _)| (c, port))
         })
         .unwrap();
-    for (sim, diff) in caught(&u, bug, n, Seed(156)) {
-        assert_eq!(
-            (diff.cycle, diff.port.as_str()),
-            want,
-            "{}: {diff}",
-            sim.name()
-        );
-    }
+    assert_caught(&u, bug, n, Seed(156), want);
 }
 
 /// Where Yosys is installed, every twin synthesises (`rtl/synth`, generic cells) and the
