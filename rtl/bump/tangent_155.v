@@ -1,17 +1,20 @@
-// Tangent unit 155 of US 2004/0207631 (Fenney), FIG. 7, single MIP level: the Verilog twin
-// of hdl/src/bump/tangent_155.rs with `trilinear` off (same ports, widths, latency, rounding
-// and reset).
+// Tangent unit 155 of US 2004/0207631 (Fenney), FIG. 7: the Verilog twin of
+// hdl/src/bump/tangent_155.rs (same ports, widths, latency, rounding and reset).
 //
 //   B-spline / Bezier:  du = 2 lerp(tv, G - R, A - B)     dv = 2 lerp(tu, B - R, A - G)
 //                       h  = lerp(tv, lerp(tu, R, G), lerp(tu, B, A))
 //   Blinn (BLINN = 1):  du = G - R    dv = B - R    h = R
+//   Trilinear (TRILINEAR = 1, para. 0081): the same for the coarser MIP level (r1, g1, b1,
+//   a1 with tu1, tv1), then du = lerp(lod, du0, du1 / 2) (its texels are twice as wide),
+//   h = lerp(lod, h0, h1);
 //   then du, dv and h times the height scale.
 //
 // lerp(x, y, t) = x 2^F + t (y - x) is exact; the factor 2 is one fraction bit less. Each
 // output is rounded once, to nearest with ties to even, to TAN_F fraction bits; du and dv
 // saturate symmetrically to TAN_W bits (so normal unit 156 may negate them), h to H_W bits.
-// r, g, b, a: uQ.BL_F (bilinear units 65-68), tu, tv: uQ0.F, scale: uQ.SCALE_F,
+// r, g, b, a: uQ.BL_F (bilinear units 65-68), tu, tv, lod: uQ0.F, scale: uQ.SCALE_F,
 // du, dv: sQ.TAN_F, height: uQ.TAN_F. One register stage (latency 1), synchronous reset.
+// Without TRILINEAR the second level's ports are unused (the model has none).
 module tangent_155 #(
     parameter integer BL_W = 28,
     parameter integer BL_F = 22,
@@ -21,7 +24,8 @@ module tangent_155 #(
     parameter integer TAN_W = 32,
     parameter integer H_W = 30,
     parameter integer TAN_F = 16,
-    parameter integer BLINN = 0
+    parameter integer BLINN = 0,
+    parameter integer TRILINEAR = 0
 ) (
     input  wire               clk,
     input  wire               rst,
@@ -29,65 +33,78 @@ module tangent_155 #(
     input  wire [BL_W-1:0]    g,
     input  wire [BL_W-1:0]    b,
     input  wire [BL_W-1:0]    a,
+    input  wire [BL_W-1:0]    r1,
+    input  wire [BL_W-1:0]    g1,
+    input  wire [BL_W-1:0]    b1,
+    input  wire [BL_W-1:0]    a1,
     input  wire [F-1:0]       tu,
     input  wire [F-1:0]       tv,
     input  wire [SCALE_W-1:0] scale,
+    input  wire [F-1:0]       tu1,
+    input  wire [F-1:0]       tv1,
+    input  wire [F-1:0]       lod,
     output reg  [TAN_W-1:0]   du,
     output reg  [TAN_W-1:0]   dv,
     output reg  [H_W-1:0]     height
 );
-    // Slopes: the differences lie in (-2^BL_W, 2^BL_W), their blend in (-2^(BL_W+F),
-    // 2^(BL_W+F)); DW bits hold it and t (d1 - d0) (modular sums, exact final value).
+    // One level: slopes in DW bits, the height in HW bits (see tangent_155_level).
     localparam integer DW = BL_W + F + 2;
-    // Height: the inner blends in [0, 2^(BL_W+F)), the outer in [0, 2^(BL_W+2F)).
     localparam integer HW = BL_W + 2 * F + 2;
+    // After the trilinear blend: 2 du0 2^F + lod (du1 - 2 du0), h0 2^F + lod (h1 - h0).
+    localparam integer TD = (TRILINEAR != 0) ? DW + F + 3 : DW;
+    localparam integer TH = (TRILINEAR != 0) ? HW + F + 2 : HW;
     localparam integer SW = SCALE_W + 1;
-    localparam integer DPW = DW + SW;
-    localparam integer HPW = HW + SW;
+    localparam integer DPW = TD + SW;
+    localparam integer HPW = TH + SW;
     // Fraction bits of the exact products.
-    localparam integer DU_F = (BLINN != 0) ? BL_F + SCALE_F : BL_F + F - 1 + SCALE_F;
-    localparam integer H_F = (BLINN != 0) ? BL_F + SCALE_F : BL_F + 2 * F + SCALE_F;
+    localparam integer LD_F = (BLINN != 0) ? BL_F : BL_F + F - 1;
+    localparam integer LH_F = (BLINN != 0) ? BL_F : BL_F + 2 * F;
+    localparam integer DU_F = ((TRILINEAR != 0) ? LD_F + 1 + F : LD_F) + SCALE_F;
+    localparam integer H_F = ((TRILINEAR != 0) ? LH_F + F : LH_F) + SCALE_F;
 
-    wire signed [DW-1:0] rx = $signed({{(DW - BL_W){1'b0}}, r});
-    wire signed [DW-1:0] gx = $signed({{(DW - BL_W){1'b0}}, g});
-    wire signed [DW-1:0] bx = $signed({{(DW - BL_W){1'b0}}, b});
-    wire signed [SW-1:0] ss = $signed({1'b0, scale});
-
-    wire signed [DW-1:0] gr = gx - rx;
-    wire signed [DW-1:0] br = bx - rx;
-    wire signed [DW-1:0] x_du;
-    wire signed [DW-1:0] x_dv;
-    wire signed [HW-1:0] x_h;
+    wire signed [DW-1:0] du0;
+    wire signed [DW-1:0] dv0;
+    wire signed [HW-1:0] h0;
+    tangent_155_level #(.BL_W(BL_W), .F(F), .BLINN(BLINN)) level0 (
+        .r(r), .g(g), .b(b), .a(a), .tu(tu), .tv(tv), .du(du0), .dv(dv0), .h(h0)
+    );
+    wire signed [TD-1:0] x_du;
+    wire signed [TD-1:0] x_dv;
+    wire signed [TH-1:0] x_h;
     generate
-        if (BLINN != 0) begin : g_blinn
-            // Blinn's height ignores A and the blend factors (three bilinear units); the
-            // ports stay, as in the model.
+        if (TRILINEAR != 0) begin : g_trilinear
+            wire signed [DW-1:0] du1;
+            wire signed [DW-1:0] dv1;
+            wire signed [HW-1:0] h1;
+            tangent_155_level #(.BL_W(BL_W), .F(F), .BLINN(BLINN)) level1 (
+                .r(r1), .g(g1), .b(b1), .a(a1), .tu(tu1), .tv(tv1), .du(du1), .dv(dv1), .h(h1)
+            );
+            wire signed [TD-1:0] lodd = $signed({{(TD - F){1'b0}}, lod});
+            wire signed [TH-1:0] lodh = $signed({{(TH - F){1'b0}}, lod});
+            // The coarser level's slopes are halved: the finer one's doubled instead.
+            wire signed [TD-1:0] du2 = {{(TD - DW){du0[DW-1]}}, du0} <<< 1;
+            wire signed [TD-1:0] dv2 = {{(TD - DW){dv0[DW-1]}}, dv0} <<< 1;
+            wire signed [TD-1:0] du1x = {{(TD - DW){du1[DW-1]}}, du1};
+            wire signed [TD-1:0] dv1x = {{(TD - DW){dv1[DW-1]}}, dv1};
+            wire signed [TH-1:0] h0x = {{(TH - HW){h0[HW-1]}}, h0};
+            wire signed [TH-1:0] h1x = {{(TH - HW){h1[HW-1]}}, h1};
+            assign x_du = (du2 <<< F) + lodd * (du1x - du2);
+            assign x_dv = (dv2 <<< F) + lodd * (dv1x - dv2);
+            assign x_h = (h0x <<< F) + lodh * (h1x - h0x);
+        end else begin : g_single
             /* verilator lint_off UNUSEDSIGNAL */
-            wire [BL_W+2*F-1:0] unused_ta = {a, tu, tv};
+            wire [4*BL_W+3*F-1:0] unused_l1 = {r1, g1, b1, a1, tu1, tv1, lod};
             /* verilator lint_on UNUSEDSIGNAL */
-            assign x_du = gr;
-            assign x_dv = br;
-            assign x_h = {{(HW - DW){rx[DW-1]}}, rx};
-        end else begin : g_quadratic
-            wire signed [DW-1:0] tus = $signed({{(DW - F){1'b0}}, tu});
-            wire signed [DW-1:0] tvs = $signed({{(DW - F){1'b0}}, tv});
-            wire signed [HW-1:0] tvh = $signed({{(HW - F){1'b0}}, tv});
-            wire signed [DW-1:0] ax = $signed({{(DW - BL_W){1'b0}}, a});
-            wire signed [DW-1:0] ab = ax - bx;
-            wire signed [DW-1:0] ag = ax - gx;
-            assign x_du = (gr <<< F) + tvs * (ab - gr);
-            assign x_dv = (br <<< F) + tus * (ag - br);
-            wire signed [DW-1:0] h0 = (rx <<< F) + tus * (gx - rx);
-            wire signed [DW-1:0] h1 = (bx <<< F) + tus * (ax - bx);
-            wire signed [HW-1:0] h0x = {{(HW - DW){h0[DW-1]}}, h0};
-            wire signed [HW-1:0] h1x = {{(HW - DW){h1[DW-1]}}, h1};
-            assign x_h = (h0x <<< F) + tvh * (h1x - h0x);
+            assign x_du = du0;
+            assign x_dv = dv0;
+            assign x_h = h0;
         end
     endgenerate
 
-    wire signed [DPW-1:0] p_du = {{SW{x_du[DW-1]}}, x_du} * {{DW{1'b0}}, ss};
-    wire signed [DPW-1:0] p_dv = {{SW{x_dv[DW-1]}}, x_dv} * {{DW{1'b0}}, ss};
-    wire signed [HPW-1:0] p_h = {{SW{x_h[HW-1]}}, x_h} * {{HW{1'b0}}, ss};
+    wire signed [SW-1:0] ss = $signed({1'b0, scale});
+    wire signed [DPW-1:0] p_du = {{SW{x_du[TD-1]}}, x_du} * {{TD{1'b0}}, ss};
+    wire signed [DPW-1:0] p_dv = {{SW{x_dv[TD-1]}}, x_dv} * {{TD{1'b0}}, ss};
+    wire signed [HPW-1:0] p_h = {{SW{x_h[TH-1]}}, x_h} * {{TH{1'b0}}, ss};
 
     wire [TAN_W-1:0] du_n;
     wire [TAN_W-1:0] dv_n;
@@ -108,6 +125,62 @@ module tangent_155 #(
         end
     end
 endmodule
+
+// One MIP level of unit 155, exact: du and dv in DW = BL_W + F + 2 bits (fraction BL_F + F - 1,
+// or BL_F for Blinn), h in HW = BL_W + 2F + 2 bits (fraction BL_F + 2F, or BL_F for Blinn).
+// The differences lie in (-2^BL_W, 2^BL_W), their blend in (-2^(BL_W+F), 2^(BL_W+F)); the
+// inner height blends in [0, 2^(BL_W+F)), the outer in [0, 2^(BL_W+2F)).
+/* verilator lint_off DECLFILENAME */
+module tangent_155_level #(
+    parameter integer BL_W = 28,
+    parameter integer F = 8,
+    parameter integer BLINN = 0
+) (
+    input  wire [BL_W-1:0]                  r,
+    input  wire [BL_W-1:0]                  g,
+    input  wire [BL_W-1:0]                  b,
+    input  wire [BL_W-1:0]                  a,
+    input  wire [F-1:0]                     tu,
+    input  wire [F-1:0]                     tv,
+    output wire signed [BL_W+F+1:0]         du,
+    output wire signed [BL_W+F+1:0]         dv,
+    output wire signed [BL_W+2*F+1:0]       h
+);
+    localparam integer DW = BL_W + F + 2;
+    localparam integer HW = BL_W + 2 * F + 2;
+    wire signed [DW-1:0] rx = $signed({{(DW - BL_W){1'b0}}, r});
+    wire signed [DW-1:0] gx = $signed({{(DW - BL_W){1'b0}}, g});
+    wire signed [DW-1:0] bx = $signed({{(DW - BL_W){1'b0}}, b});
+    wire signed [DW-1:0] gr = gx - rx;
+    wire signed [DW-1:0] br = bx - rx;
+    generate
+        if (BLINN != 0) begin : g_blinn
+            // Blinn's height ignores A and the blend factors (three bilinear units); the
+            // ports stay, as in the model.
+            /* verilator lint_off UNUSEDSIGNAL */
+            wire [BL_W+2*F-1:0] unused_ta = {a, tu, tv};
+            /* verilator lint_on UNUSEDSIGNAL */
+            assign du = gr;
+            assign dv = br;
+            assign h = {{(HW - DW){rx[DW-1]}}, rx};
+        end else begin : g_quadratic
+            wire signed [DW-1:0] tus = $signed({{(DW - F){1'b0}}, tu});
+            wire signed [DW-1:0] tvs = $signed({{(DW - F){1'b0}}, tv});
+            wire signed [HW-1:0] tvh = $signed({{(HW - F){1'b0}}, tv});
+            wire signed [DW-1:0] ax = $signed({{(DW - BL_W){1'b0}}, a});
+            wire signed [DW-1:0] ab = ax - bx;
+            wire signed [DW-1:0] ag = ax - gx;
+            assign du = (gr <<< F) + tvs * (ab - gr);
+            assign dv = (br <<< F) + tus * (ag - br);
+            wire signed [DW-1:0] h0 = (rx <<< F) + tus * (gx - rx);
+            wire signed [DW-1:0] h1 = (bx <<< F) + tus * (ax - bx);
+            wire signed [HW-1:0] h0x = {{(HW - DW){h0[DW-1]}}, h0};
+            wire signed [HW-1:0] h1x = {{(HW - DW){h1[DW-1]}}, h1};
+            assign h = (h0x <<< F) + tvh * (h1x - h0x);
+        end
+    endgenerate
+endmodule
+/* verilator lint_on DECLFILENAME */
 
 // One narrowing of unit 155: the signed IW-bit x with SH more fraction bits than the output
 // (SH may be zero or negative: then nothing is rounded) rounded to nearest, ties to even,
