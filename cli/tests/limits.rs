@@ -316,7 +316,15 @@ fn mipmap_sweep_and_vectors_options_at_their_limits() {
         false,
     );
     sweep(&base, "--sim", &[("bogus", 2)], false);
+    sweep(&base, "--stimulus", &[("bogus", 2)], false);
     sweep(&s(&["cosim"]), "--unit", &[("bogus", 2)], false);
+    // Regression vectors exist for three of the twins only.
+    sweep(
+        &s(&["cosim", "--stimulus", "vectors"]),
+        "--unit",
+        &[("cache_614", 2)],
+        false,
+    );
     let v = d.join("v").to_string_lossy().into_owned();
     let base = s(&["vectors", "--out", &v]);
     sweep(

@@ -172,7 +172,7 @@ impl Monitor<MipmapGen> for FrameMonitor {
 }
 
 /// The texels of `frames` in the order the video port delivers them (lines in scan order).
-fn video_stream(p: &MipmapParams, frames: &[Vec<u8>]) -> Vec<VideoTexel> {
+pub fn video_stream(p: &MipmapParams, frames: &[Vec<u8>]) -> Vec<VideoTexel> {
     let (w, h) = (p.width as usize, p.height as usize);
     let order: Vec<usize> = match p.scan {
         Scan::Progressive => (0..h).collect(),

@@ -118,27 +118,52 @@ fn blend_adjust() -> UnitVectors {
     }
 }
 
+/// The groups of the FIG. 7 vectors: filter and built-in 16x16 map, default widths otherwise.
+pub const NORMAL_GROUPS: [(Filter, &str); 3] = [
+    (Filter::BSpline, "noise"),
+    (Filter::Blinn, "smooth"),
+    (Filter::BSpline, "steps"),
+];
+
+/// The 128 samples of every FIG. 7 vector group.
+pub fn normal_samples() -> Vec<Sample> {
+    (0..128u32)
+        .map(|k| Sample {
+            u: f64::from(k * 37 % 4096) / 256.0 - 0.5,
+            v: f64::from(k * 91 % 4096) / 256.0,
+            scale: f64::from(1 + k % 5) * 0.75,
+            lod: 0.0,
+        })
+        .collect()
+}
+
+/// The frame of the FIG. 14 vectors (16x8, seed 5) and their two scan orders.
+pub const MIPMAP_SCANS: [Scan; 2] = [Scan::InterlacedTop, Scan::Progressive];
+
+pub fn mipmap_frame() -> Vec<Vec<u8>> {
+    crate::mipmap::synthetic_video(16, 8, 1, verif::Seed(5))
+}
+
+/// The parameters of the FIG. 14 vectors in `scan` order.
+pub fn mipmap_params(scan: Scan) -> MipmapParams {
+    MipmapParams {
+        width: 16,
+        height: 8,
+        scan,
+        rounding: Rounding::Round,
+    }
+}
+
 fn normals() -> Result<UnitVectors, String> {
     let mut rows = Vec::new();
     let mut desc = Vec::new();
-    for (filter, map) in [
-        (Filter::BSpline, "noise"),
-        (Filter::Blinn, "smooth"),
-        (Filter::BSpline, "steps"),
-    ] {
+    for (filter, map) in NORMAL_GROUPS {
         let p = BumpParams {
             filter,
             ..BumpParams::default()
         };
         let m = crate::maps::builtin(map, 16, 16, p.texel_fmt())?;
-        let samples: Vec<Sample> = (0..128u32)
-            .map(|k| Sample {
-                u: f64::from(k * 37 % 4096) / 256.0 - 0.5,
-                v: f64::from(k * 91 % 4096) / 256.0,
-                scale: f64::from(1 + k % 5) * 0.75,
-                lod: 0.0,
-            })
-            .collect();
+        let samples = normal_samples();
         let o = run_normals(&NormalsRun {
             name: "vectors".into(),
             params: p,
@@ -201,14 +226,10 @@ fn normals() -> Result<UnitVectors, String> {
 
 fn mipmap() -> Result<UnitVectors, String> {
     let mut rows = Vec::new();
-    for (scan, code) in [(Scan::InterlacedTop, 1u64), (Scan::Progressive, 0)] {
-        let p = MipmapParams {
-            width: 16,
-            height: 8,
-            scan,
-            rounding: Rounding::Round,
-        };
-        let frames = crate::mipmap::synthetic_video(16, 8, 1, verif::Seed(5));
+    for scan in MIPMAP_SCANS {
+        let code = u64::from(scan != Scan::Progressive);
+        let p = mipmap_params(scan);
+        let frames = mipmap_frame();
         let o = crate::mipmap::run_mipmap(p, &frames, None)?;
         // One row per output texel: (scan, level, index) -> value; the frame itself is level 0.
         for (k, level) in o.frames[0].iter().enumerate() {

@@ -4,11 +4,16 @@
 //! `TEXRTL_REQUIRE_COSIM=1` (which `.ci/run` sets).
 
 use hdl::bump::blend_adjust_153::BlendAdjustParams;
-use hdl::bump::params::{BumpParams, Filter, HeightTexel, RsqrtParams};
+use hdl::bump::params::{Border, BumpParams, Filter, HeightTexel, RsqrtParams};
+use hdl::mipmap::mipmap_gen_816::{MipmapParams, Rounding, Scan};
+use hdl::texmem::cache_614::Lookahead;
+use hdl::texmem::dram_604::DramParams;
+use hdl::texmem::layout::Layout;
 use std::path::PathBuf;
 use tb::cosim::{
-    run, AddressCosim, BilinearCosim, BlendAdjustCosim, CosimUnit, NormalCosim, ReplicateCosim,
-    RsqrtCosim, Simulator, TangentCosim,
+    run, AddressCosim, BilinearCosim, BlendAdjustCosim, CacheCosim, ControlCosim, CosimUnit,
+    FillCosim, LookaheadCosim, MipmapCosim, NormalCosim, PipelineCosim, ReplicateCosim, RsqrtCosim,
+    Simulator, TangentCosim, TexelFetchCosim,
 };
 use verif::Seed;
 
@@ -97,10 +102,266 @@ fn twins() -> Vec<(String, Box<dyn CosimUnit>)> {
             Box::new(RsqrtCosim(p)),
         ));
     }
+    for (label, u) in texel_fetch_configs() {
+        v.push((format!("texel_fetch_151 {label}"), Box::new(u)));
+    }
     for (label, p) in normal_configs() {
         v.push((format!("normal_156 {label}"), Box::new(NormalCosim(p))));
     }
+    for (label, u) in pipeline_configs() {
+        v.push((format!("normal_pipeline_fig7 {label}"), Box::new(u)));
+    }
+    for (label, p) in control_configs() {
+        v.push((format!("control_607 {label}"), Box::new(ControlCosim(p))));
+    }
+    for (mode, blocks, frac_bits) in [
+        (Lookahead::Quadrant, (16, 16), 4),
+        (Lookahead::Direction, (16, 16), 4),
+        (Lookahead::Direction, (5, 3), 8),
+        (Lookahead::Quadrant, (1, 1), 1),
+        (Lookahead::Off, (16, 16), 4),
+    ] {
+        let u = LookaheadCosim {
+            mode,
+            blocks,
+            frac_bits,
+        };
+        let label = format!(
+            "lookahead_queue_607 {} {}x{} blocks F={frac_bits}",
+            mode.name(),
+            blocks.0,
+            blocks.1
+        );
+        v.push((label, Box::new(u)));
+    }
+    for tag_bits in [9, 1, 12] {
+        v.push((
+            format!("cache_614 tags of {tag_bits} bits"),
+            Box::new(CacheCosim { tag_bits }),
+        ));
+    }
+    for (label, u) in fill_configs() {
+        v.push((format!("fill_engine_607 {label}"), Box::new(u)));
+    }
+    for (label, u) in mipmap_configs() {
+        v.push((format!("mipmap_gen_816 {label}"), Box::new(u)));
+    }
     v
+}
+
+/// The mipmap generator: progressive 16x16 back to back; both interlaced field orders with
+/// blanking and truncation; sides of 1 (vertical pairs only, horizontal pairs only); a 1x1
+/// frame; 2x2 interlaced (the shift register loaded with the line just written); a 256-wide
+/// frame (FIFOs of 128); a sync error mid-frame.
+fn mipmap_configs() -> Vec<(String, MipmapCosim)> {
+    let m = |width, height, scan, rounding, rate| {
+        let mut u = MipmapCosim::new(MipmapParams {
+            width,
+            height,
+            scan,
+            rounding,
+        });
+        u.rate = rate;
+        u
+    };
+    let (p, t, b) = (
+        Scan::Progressive,
+        Scan::InterlacedTop,
+        Scan::InterlacedBottom,
+    );
+    let (r, tr) = (Rounding::Round, Rounding::Truncate);
+    let mut v: Vec<MipmapCosim> = vec![
+        m(16, 16, p, r, 8),
+        m(32, 8, t, tr, 6),
+        m(8, 16, b, r, 7),
+        m(1, 8, p, r, 8),
+        m(32, 1, p, tr, 5),
+        m(1, 1, p, r, 8),
+        m(2, 2, t, r, 8),
+        m(256, 4, b, tr, 8),
+    ];
+    let mut e = m(8, 8, p, r, 8);
+    e.sync_error_at = Some(100);
+    v.push(e);
+    v.into_iter()
+        .map(|u| {
+            let p = u.params;
+            let err = u
+                .sync_error_at
+                .map_or(String::new(), |n| format!(", sof inverted at texel {n}"));
+            let label = format!(
+                "{}x{} {:?} {:?} {}/8 cycles{err}",
+                p.width, p.height, p.scan, p.rounding, u.rate
+            );
+            (label, u)
+        })
+        .collect()
+}
+
+/// The block fetch: row-major on the default DRAM; tiled (16 x 16 blocks to a 512-word page)
+/// from a base address; tiled on 1M x 16 (a 32 x 16 tile, three tiles across an odd width);
+/// row-major on tiny pages.
+fn fill_configs() -> Vec<(&'static str, FillCosim)> {
+    let d = DramParams::default();
+    let fill = |layout, blocks, base, dram| FillCosim {
+        layout,
+        blocks,
+        base,
+        dram,
+    };
+    vec![
+        (
+            "row-major 16x16 blocks",
+            fill(Layout::RowMajor, (16, 16), 0, d),
+        ),
+        (
+            "tiled 40x24 blocks from word 4096",
+            fill(Layout::Tiled, (40, 24), 4096, d),
+        ),
+        (
+            "tiled 70x20 blocks, 1M x 16",
+            fill(Layout::Tiled, (70, 20), 0, DramParams::one_meg()),
+        ),
+        (
+            "row-major 5x3 blocks, 64 x 32 words",
+            fill(
+                Layout::RowMajor,
+                (5, 3),
+                6,
+                DramParams {
+                    rows: 64,
+                    cols: 32,
+                    ..d
+                },
+            ),
+        ),
+    ]
+}
+
+/// Control unit 607 with DRAM 604: the document's 256K x 16 (30 ns page mode, 30 ns more on
+/// a fault at 5 ns a cycle); 1M x 16; tiny pages (4 rows of 8 words: mostly faults) with the
+/// shortest legal timing; long CAS# and RAS# times.
+fn control_configs() -> Vec<(&'static str, DramParams)> {
+    let d = DramParams::default();
+    vec![
+        ("256K x 16, 512-word pages (default)", d),
+        ("1M x 16, 1024-word pages", DramParams::one_meg()),
+        (
+            "4 x 8 words, t_rp 1 t_rcd 1 t_cas 2 t_cp 1",
+            DramParams {
+                rows: 4,
+                cols: 8,
+                t_rp: 1,
+                t_rcd: 1,
+                t_cas: 2,
+                t_cp: 1,
+                ..d
+            },
+        ),
+        (
+            "64 x 32 words, t_rp 5 t_rcd 4 t_cas 7 t_cp 2",
+            DramParams {
+                rows: 64,
+                cols: 32,
+                t_rp: 5,
+                t_rcd: 4,
+                t_cas: 7,
+                t_cp: 2,
+                ..d
+            },
+        ),
+    ]
+}
+
+/// The FIG. 7 pipeline: the default; trilinear over a map whose sides are not powers of two
+/// (clamped, two Newton steps); Bezier with 4-bit texels, F = 12 and rounded bilinear outputs
+/// (mirrored); Blinn trilinear with a constant border, the table alone and short outputs.
+fn pipeline_configs() -> Vec<(&'static str, PipelineCosim)> {
+    let d = BumpParams::default();
+    let r = d.rsqrt;
+    vec![
+        ("default 16x16", PipelineCosim::new(d, 16, 16, 11)),
+        (
+            "trilinear 13x11 clamp 2 iterations",
+            PipelineCosim::new(
+                BumpParams {
+                    trilinear: true,
+                    border: Border::Clamp,
+                    rsqrt: RsqrtParams { iterations: 2, ..r },
+                    ..d
+                },
+                13,
+                11,
+                12,
+            ),
+        ),
+        (
+            "Bezier 4-bit F=12 bl.frac=10 mirror 9x5",
+            PipelineCosim::new(
+                BumpParams {
+                    filter: Filter::Bezier,
+                    height: HeightTexel::Bits4,
+                    blend_bits: 12,
+                    pos_frac: 12,
+                    bilinear_frac: Some(10),
+                    border: Border::Mirror,
+                    ..d
+                },
+                9,
+                5,
+                13,
+            ),
+        ),
+        (
+            "Blinn trilinear constant 0x3c 8x8 table alone out.frac=12",
+            PipelineCosim::new(
+                BumpParams {
+                    filter: Filter::Blinn,
+                    trilinear: true,
+                    border: Border::Constant(0x3c),
+                    tangent_frac: 12,
+                    out_frac: 12,
+                    rsqrt: RsqrtParams { iterations: 0, ..r },
+                    ..d
+                },
+                8,
+                8,
+                14,
+            ),
+        ),
+    ]
+}
+
+/// Texel fetch unit 151: every border mode, power-of-two and other sides (the modulo of the
+/// wrap and mirror modes), 8- and 4-bit texels, the smallest map (2 x 2) and narrow
+/// coordinates (`pos_int` 4: the coordinate's whole range is near the map).
+fn texel_fetch_configs() -> Vec<(&'static str, TexelFetchCosim)> {
+    let d = BumpParams::default();
+    let with = |border, height, pos_int| BumpParams {
+        border,
+        height,
+        pos_int,
+        ..d
+    };
+    vec![
+        ("16x16 wrap 8-bit", TexelFetchCosim::new(d, 16, 16, 1)),
+        (
+            "13x7 clamp 8-bit",
+            TexelFetchCosim::new(with(Border::Clamp, HeightTexel::Bits8, 16), 13, 7, 2),
+        ),
+        (
+            "5x9 mirror 4-bit",
+            TexelFetchCosim::new(with(Border::Mirror, HeightTexel::Bits4, 16), 5, 9, 3),
+        ),
+        (
+            "2x2 constant 0xb5 8-bit sQ4 coordinates",
+            TexelFetchCosim::new(with(Border::Constant(0xb5), HeightTexel::Bits8, 4), 2, 2, 4),
+        ),
+        (
+            "12x6 wrap 4-bit sQ4 coordinates",
+            TexelFetchCosim::new(with(Border::Wrap, HeightTexel::Bits4, 4), 12, 6, 5),
+        ),
+    ]
 }
 
 /// Normal unit 156: the default; short iterates and more output bits than the product has
@@ -173,6 +434,28 @@ fn tangent_configs() -> Vec<(&'static str, BumpParams)> {
             },
         ),
         (
+            "trilinear B-spline (default widths)",
+            BumpParams {
+                trilinear: true,
+                ..d
+            },
+        ),
+        (
+            "trilinear Blinn 4-bit F=12 bl.frac=6 scale uQ3.5 tan.frac=10",
+            BumpParams {
+                trilinear: true,
+                filter: Filter::Blinn,
+                height: HeightTexel::Bits4,
+                blend_bits: 12,
+                pos_frac: 12,
+                bilinear_frac: Some(6),
+                scale_int: 3,
+                scale_frac: 5,
+                tangent_frac: 10,
+                ..d
+            },
+        ),
+        (
             "B-spline 8-bit F=16 exact scale uQ12.16 tan.frac=24",
             BumpParams {
                 blend_bits: 16,
@@ -187,42 +470,77 @@ fn tangent_configs() -> Vec<(&'static str, BumpParams)> {
 }
 
 /// Every twin matches its model on every port of every cycle: 100 k random cycles per
-/// configuration in Verilator, 20 k in Icarus (its first configuration of each unit).
+/// configuration in Verilator, 20 k in Icarus (its first configuration of each unit). The
+/// runs share two threads (the machine's cores; Verilator's C++ builds dominate).
+/// `TEXRTL_COSIM_ONLY=text` runs only the configurations whose label contains `text`.
 #[test]
 fn every_twin_matches_its_model_on_every_cycle() {
+    let mut jobs: Vec<(Simulator, usize, usize)> = Vec::new();
     for sim in [Simulator::Verilator, Simulator::Icarus] {
         if !available(sim) {
             continue;
         }
         let mut seen = Vec::new();
-        for (label, u) in twins() {
-            let n = match sim {
-                Simulator::Verilator => 100_000,
-                Simulator::Icarus if !seen.contains(&u.name()) => 20_000,
-                Simulator::Icarus => continue,
-            };
+        let only = std::env::var("TEXRTL_COSIM_ONLY").unwrap_or_default();
+        for (k, (label, u)) in twins().iter().enumerate() {
+            if !label.contains(&only) {
+                continue;
+            }
+            match sim {
+                Simulator::Verilator => jobs.push((sim, k, 100_000)),
+                Simulator::Icarus if !seen.contains(&u.name()) => jobs.push((sim, k, 20_000)),
+                Simulator::Icarus => {}
+            }
             seen.push(u.name());
-            let safe: String = label
-                .chars()
-                .map(|c| if c.is_ascii_alphanumeric() { c } else { '_' })
-                .collect();
-            let d = dir(&format!("{}-{safe}", sim.name()));
-            let r = run(u.as_ref(), sim, &[], n, Seed(label.len() as u64), &d).unwrap();
-            assert_eq!(r.cycles, n);
-            assert!(
-                r.mismatch.is_none(),
-                "{label} in {}: {}",
-                sim.name(),
-                r.mismatch.unwrap()
-            );
-            let rb = waves::check::read_vcd(&r.vcd).unwrap();
-            waves::check::check_gtkw(&r.vcd, &rb).unwrap();
-            let _ = std::fs::remove_dir_all(&d);
         }
     }
+    let next = std::sync::atomic::AtomicUsize::new(0);
+    let failures = std::sync::Mutex::new(Vec::new());
+    std::thread::scope(|s| {
+        for _ in 0..2 {
+            s.spawn(|| {
+                let units = twins();
+                loop {
+                    let j = next.fetch_add(1, std::sync::atomic::Ordering::Relaxed);
+                    let Some(&(sim, k, n)) = jobs.get(j) else {
+                        break;
+                    };
+                    let (label, u) = &units[k];
+                    if let Err(e) = check_twin(label, u.as_ref(), sim, n) {
+                        failures.lock().unwrap().push(e);
+                    }
+                }
+            });
+        }
+    });
+    let failures = failures.into_inner().unwrap();
+    assert!(failures.is_empty(), "{}", failures.join("\n"));
+}
+
+/// One twin in one configuration and simulator: equal on every cycle, its waveform and
+/// `.gtkw` read back.
+fn check_twin(label: &str, u: &dyn CosimUnit, sim: Simulator, n: usize) -> Result<(), String> {
+    let safe: String = label
+        .chars()
+        .map(|c| if c.is_ascii_alphanumeric() { c } else { '_' })
+        .collect();
+    let d = dir(&format!("{}-{safe}", sim.name()));
+    let r = run(u, sim, &[], n, Seed(label.len() as u64), &d)
+        .map_err(|e| format!("{label} in {}: {e}", sim.name()))?;
+    if r.cycles != n {
+        return Err(format!("{label}: {} cycles, not {n}", r.cycles));
+    }
+    if let Some(m) = r.mismatch {
+        return Err(format!("{label} in {}: {m}", sim.name()));
+    }
+    let rb = waves::check::read_vcd(&r.vcd)?;
+    waves::check::check_gtkw(&r.vcd, &rb)?;
+    let _ = std::fs::remove_dir_all(&d);
+    Ok(())
 }
 
 /// A one-bit bug: in the twin's source `.0`, `.1` replaced by `.2`.
+#[derive(Clone, Copy)]
 struct Bug(&'static str, &'static str, &'static str);
 
 /// Requires the first difference of `u` with `bug` injected (its other sources kept, all
@@ -346,11 +664,11 @@ fn every_twin_is_lint_clean() {
     }
     for (label, u) in twins() {
         let mut cmd = std::process::Command::new("verilator");
-        cmd.args(["--lint-only", "-Wall", "--top-module", u.name()]);
+        cmd.args(["--lint-only", "-Wall", "--top-module", u.top()]);
         for (k, v) in u.parameters() {
             cmd.arg(format!("-G{k}={v}"));
         }
-        for f in u.rtl() {
+        for f in u.rtl().into_iter().chain(u.bench_rtl()) {
             cmd.arg(tb::cosim::rtl_dir().join(f));
         }
         let o = cmd.output().unwrap();
@@ -623,4 +941,324 @@ fn every_twin_synthesises_where_yosys_is_present() {
         table.contains("| replicate_152 | 8-bit texels, B-spline (default) | 0 | 0 | 0 |"),
         "{table}"
     );
+}
+
+/// Texel fetch unit 151 whose wrap mode adds `n - 1` instead of `n` to a negative remainder
+/// (a constant changed): caught at the first cycle whose registered 3x3 grid reads a
+/// different texel, on the first such port (a..k), as the border arithmetic predicts.
+#[test]
+fn texel_fetch_wrap_bug_is_caught_with_its_cycle_and_port() {
+    const NAMES: [&str; 9] = ["a", "b", "c", "d", "e", "f", "g", "h", "k"];
+    let u = TexelFetchCosim::new(BumpParams::default(), 16, 16, 1);
+    let bug = Bug(
+        "bump/texel_fetch_151.v",
+        "(rn < 0) ? rn + SN : rn",
+        "(rn < 0) ? rn + SN - 1 : rn",
+    );
+    let (n, seed) = (2_000, Seed(15));
+    let stim = u.stimulus(seed, n);
+    let coord = |x: u64| ((x << 47) as i64) >> 47;
+    let wrap = |i: i64, n: u32| i.rem_euclid(i64::from(n)) as u32;
+    let bugged = |i: i64, n: u32| {
+        let r = i % i64::from(n);
+        (if r < 0 { r + i64::from(n) - 1 } else { r }) as u32
+    };
+    let grid = |ui: i64, vj: i64, idx: &dyn Fn(i64, u32) -> u32| -> Vec<u8> {
+        (0..9)
+            .map(|k| {
+                let (x, y) = (ui + k % 3 - 1, vj + k / 3 - 1);
+                u.map.get(idx(x, 16), idx(y, 16))
+            })
+            .collect()
+    };
+    // The grid registered at the end of cycle c - 1 shows in cycle c.
+    let want = (tb::cosim::RESET_CYCLES + 1..n)
+        .find_map(|c| {
+            let (ui, vj) = (coord(stim[c - 1][0]), coord(stim[c - 1][1]));
+            let (good, bad) = (grid(ui, vj, &wrap), grid(ui, vj, &bugged));
+            (0..9).find(|&k| good[k] != bad[k]).map(|k| (c, NAMES[k]))
+        })
+        .expect("the stimulus reaches a negative coordinate");
+    assert_caught(&u, bug, n, seed, want);
+}
+
+/// The FIG. 7 pipeline with one register stage removed from its valid delay line: `valid`
+/// runs a cycle ahead of the data; caught at the first cycle where the valid input one cycle
+/// later differs from the one it should show, on port `valid`.
+#[test]
+fn pipeline_valid_stage_bug_is_caught_with_its_cycle_and_port() {
+    let u = PipelineCosim::new(BumpParams::default(), 16, 16, 11);
+    let bug = Bug(
+        "bump/normal_pipeline_fig7.v",
+        ".DEPTH(4 + NORMAL_LATENCY)) valid_carry",
+        ".DEPTH(3 + NORMAL_LATENCY)) valid_carry",
+    );
+    let (n, seed) = (500, Seed(16));
+    let stim = u.stimulus(seed, n);
+    // valid(c) is valid_in(c - depth) once that input was out of reset, else 0.
+    let valid = |c: usize, depth: usize| match c.checked_sub(depth) {
+        Some(i) if i >= tb::cosim::RESET_CYCLES => stim[i][0],
+        _ => 0,
+    };
+    let latency = 4 + 3 + BumpParams::default().rsqrt.iterations as usize;
+    let want = (tb::cosim::FIRST_COMPARED..n)
+        .find(|&c| valid(c, latency) != valid(c, latency - 1))
+        .expect("valid toggles");
+    assert_caught(&u, bug, n, seed, (want, "valid"));
+}
+
+/// Control unit 607 that leaves RAS# precharge a cycle early (a constant changed): caught on
+/// pin `ras_n` in the last cycle of the first precharge the model makes, and the behavioural
+/// DRAM's timing check counts the short precharge (its `violations` port ends above zero,
+/// while the model's DRAM, driven correctly, counts none).
+#[test]
+fn control_precharge_bug_is_caught_with_its_cycle_port_and_timing_check() {
+    let u = ControlCosim(DramParams::default());
+    let bug = Bug(
+        "texmem/control_607.v",
+        "PRECHARGE: if (count >= 11'(T_RP))",
+        "PRECHARGE: if (count >= 11'(T_RP - 1))",
+    );
+    let (n, seed) = (400, Seed(17));
+    let stim = u.stimulus(seed, n);
+    let mut m = u.model().unwrap();
+    let (_, outs) = m.ports();
+    let k = outs.iter().position(|p| p.name == "ras_n").unwrap();
+    let ras: Vec<u64> = (0..n)
+        .map(|c| m.cycle(c < tb::cosim::RESET_CYCLES, &stim[c])[k])
+        .collect();
+    // RAS# falls only when a precharge ends: its last cycle is the one before.
+    let want = (tb::cosim::FIRST_COMPARED..n - 1)
+        .find(|&c| ras[c] == 1 && ras[c + 1] == 0)
+        .expect("the stimulus opens a row");
+    assert_caught(&u, bug, n, seed, (want, "ras_n"));
+    // The DRAM's own check, read from the RTL's outputs.
+    for sim in [Simulator::Verilator, Simulator::Icarus] {
+        if !available(sim) {
+            continue;
+        }
+        let d = dir(&format!("bug-607-timing-{}", sim.name()));
+        // The wrapper and the behavioural DRAM come with the unit, as for `--rtl`.
+        let sources = vec![mutant(&d, bug.0, bug.1, bug.2)];
+        let r = run(&u, sim, &sources, n, seed, &d).unwrap();
+        assert!(r.mismatch.is_some());
+        let out = std::fs::read_to_string(d.join("rtl_out.hex")).unwrap();
+        let last = out
+            .lines()
+            .last()
+            .unwrap()
+            .split_whitespace()
+            .last()
+            .unwrap();
+        let violations = u64::from_str_radix(last, 16).unwrap();
+        let _ = std::fs::remove_dir_all(&d);
+        assert!(
+            violations > 0,
+            "{}: the DRAM counted no violation",
+            sim.name()
+        );
+    }
+}
+
+/// Cache 614 whose touch sets the `prefetched` bit instead of clearing it (a constant
+/// changed): caught on port `prefetched` in the first cycle after an entry is touched without
+/// being written.
+#[test]
+fn cache_touch_bug_is_caught_with_its_cycle_and_port() {
+    let u = CacheCosim { tag_bits: 9 };
+    let bug = Bug(
+        "texmem/cache_614.v",
+        "if (touch[k]) prefetched[k] <= 1'b0;",
+        "if (touch[k]) prefetched[k] <= 1'b1;",
+    );
+    let (n, seed) = (300, Seed(18));
+    let stim = u.stimulus(seed, n);
+    // Inputs: touch, invalidate, write, write_bx, write_by, ...
+    let written = |s: &[u64]| (s[2] == 1).then_some((s[3] & 1 | (s[4] & 1) << 1) as usize);
+    let want = (tb::cosim::RESET_CYCLES + 1..n)
+        .find(|&c| {
+            let s = &stim[c - 1];
+            (0..4).any(|k| s[0] >> k & 1 == 1 && written(s) != Some(k))
+        })
+        .expect("an entry is touched");
+    assert_caught(&u, bug, n, seed, (want, "prefetched"));
+}
+
+/// The lookahead queue taking a candidate while it is being flushed (the flush dropped from
+/// the take condition): caught on port `take` in the first cycle that flushes a queue the
+/// fill engine could otherwise have taken from (the model, run with that cycle's flush off,
+/// says when).
+#[test]
+fn lookahead_flush_bug_is_caught_with_its_cycle_and_port() {
+    use hdl::kernel::{Module, Sim};
+    use hdl::texmem::control_607::LookaheadQueue;
+    let u = LookaheadCosim {
+        mode: Lookahead::Quadrant,
+        blocks: (16, 16),
+        frac_bits: 4,
+    };
+    let bug = Bug(
+        "texmem/lookahead_queue_607.v",
+        "assign take = !flush && engine_free",
+        "assign take = engine_free",
+    );
+    let (n, seed) = (2_000, Seed(19));
+    let stim = u.stimulus(seed, n);
+    let uq = hdl::fx::Format::unsigned(16, 4);
+    let mut sim = Sim::new(LookaheadQueue::new(Lookahead::Quadrant, (16, 16), uq, 10));
+    let drive = |d: &mut LookaheadQueue, s: &[u64]| {
+        let ins = [
+            &mut d.complete,
+            &mut d.u,
+            &mut d.v,
+            &mut d.newline,
+            &mut d.flush,
+            &mut d.engine_free,
+            &mut d.stage0_missing,
+        ];
+        for (sig, x) in ins.into_iter().zip(s) {
+            sig.set_bits(*x);
+        }
+    };
+    let mut want = None;
+    for (c, s) in stim.iter().enumerate() {
+        sim.set_reset(c < tb::cosim::RESET_CYCLES);
+        drive(&mut sim.dut, s);
+        if c >= tb::cosim::FIRST_COMPARED && s[4] == 1 {
+            let mut without = sim.dut.clone();
+            without.flush.set_bits(0);
+            without.eval();
+            if without.take.is_high() {
+                want = Some(c);
+                break;
+            }
+        }
+        sim.eval();
+        sim.tick();
+    }
+    let want = want.expect("a flush meets a non-empty queue");
+    assert_caught(&u, bug, n, seed, (want, "take"));
+}
+
+/// The block fetch forgetting that a block is two words in the tiled layout (the offset inside
+/// a tile not doubled): caught on port `word_addr` in the first cycle it asks for a word of a
+/// block that is not the first of its tile.
+#[test]
+fn fill_tiled_address_bug_is_caught_with_its_cycle_and_port() {
+    use hdl::kernel::Sim;
+    use hdl::texmem::control_607::FillEngine;
+    use hdl::texmem::layout::BlockMap;
+    let u = FillCosim {
+        layout: Layout::Tiled,
+        blocks: (40, 24),
+        base: 4096,
+        dram: DramParams::default(),
+    };
+    let bug = Bug(
+        "texmem/fill_engine_607.v",
+        "ty * AB'(TILES_X) + tx) + (inner << 1);",
+        "ty * AB'(TILES_X) + tx) + inner;",
+    );
+    let (n, seed) = (500, Seed(20));
+    let stim = u.stimulus(seed, n);
+    let map = BlockMap::new(Layout::Tiled, 40, 24, 512, 4096);
+    let (tw, th) = map.tile();
+    let mut sim = Sim::new(FillEngine::new(map, 10, hdl::fx::Format::uint(18)));
+    let mut want = None;
+    for (c, s) in stim.iter().enumerate() {
+        sim.set_reset(c < tb::cosim::RESET_CYCLES);
+        let d = &mut sim.dut;
+        let ins = [
+            &mut d.start,
+            &mut d.start_bx,
+            &mut d.start_by,
+            &mut d.start_prefetch,
+            &mut d.word_ready,
+            &mut d.word_resp,
+            &mut d.line_done,
+        ];
+        for (sig, x) in ins.into_iter().zip(s) {
+            sig.set_bits(*x);
+        }
+        let (bx, by, _) = sim.dut.block();
+        if c >= tb::cosim::FIRST_COMPARED
+            && sim.dut.word_request().is_some()
+            && (by % th) * tw + bx % tw != 0
+        {
+            want = Some(c);
+            break;
+        }
+        sim.eval();
+        sim.tick();
+    }
+    let want = want.expect("a block inside a tile is fetched");
+    assert_caught(&u, bug, n, seed, (want, "word_addr"));
+}
+
+/// Mipmap generator 816 whose level adders round a sum of four with +1 instead of +2 (a
+/// constant changed): caught on port `l1_texel` one cycle after the first 2x2 block whose sum
+/// is 2 modulo 4 is completed (its odd texel of its odd line).
+#[test]
+fn mipmap_rounding_bug_is_caught_with_its_cycle_and_port() {
+    let (w, h) = (16usize, 16usize);
+    let u = MipmapCosim::new(MipmapParams {
+        width: w as u32,
+        height: h as u32,
+        scan: Scan::Progressive,
+        rounding: Rounding::Round,
+    });
+    let bug = Bug(
+        "mipmap/level_fig14.v",
+        "(ROUND != 0) ? 10'd2 : 10'd0",
+        "(ROUND != 0) ? 10'd1 : 10'd0",
+    );
+    let (n, seed) = (2_000, Seed(21));
+    let stim = u.stimulus(seed, n);
+    let mut sums = vec![0u64; (w / 2) * (h / 2)];
+    let mut pos = 0usize;
+    let mut want = None;
+    for (c, s) in stim.iter().enumerate() {
+        if s[0] == 0 {
+            continue;
+        }
+        let (x, y) = (pos % w, pos / w % h);
+        pos += 1;
+        let b = (y / 2) * (w / 2) + x / 2;
+        sums[b] += s[1];
+        if x % 2 == 1 && y % 2 == 1 {
+            if sums[b] % 4 == 2 {
+                want = Some(c + 1);
+                break;
+            }
+            sums[b] = 0;
+        }
+    }
+    let want = want.expect("a block sums to 2 modulo 4");
+    assert_caught(&u, bug, n, seed, (want, "l1_texel"));
+}
+
+/// The regression vectors' transactions, in their configurations, agree on every port of
+/// every cycle in every simulator installed.
+#[test]
+fn regression_vectors_cosimulate_equal() {
+    for sim in [Simulator::Verilator, Simulator::Icarus] {
+        if !available(sim) {
+            continue;
+        }
+        for u in tb::cosim::vectors::UNITS {
+            for d in tb::cosim::vectors::regression(u).unwrap() {
+                let dir = dir(&format!("vectors-{u}-{}-{}", d.label, sim.name()));
+                let r = tb::cosim::run_with(d.unit.as_ref(), sim, &[], &d.stimulus, &dir).unwrap();
+                let _ = std::fs::remove_dir_all(&dir);
+                assert!(
+                    r.mismatch.is_none(),
+                    "{u} {} in {}: {}",
+                    d.label,
+                    sim.name(),
+                    r.mismatch.unwrap()
+                );
+                assert_eq!(r.cycles, d.stimulus.len());
+            }
+        }
+    }
 }

@@ -10,23 +10,32 @@ use verif::Seed;
 /// Co-simulate a unit's model and Verilog (its twin in rtl/, or --rtl FILE.v of yours).
 #[derive(Args, Debug)]
 pub struct CosimArgs {
-    /// The unit (its Verilog module name): address_150, replicate_152, blend_adjust_153,
-    /// bilinear_65_68, tangent_155, rsqrt_156, normal_156.
+    /// The unit (its Verilog module name): address_150, texel_fetch_151, replicate_152,
+    /// blend_adjust_153, bilinear_65_68, tangent_155, rsqrt_156, normal_156,
+    /// normal_pipeline_fig7, control_607, lookahead_queue_607, cache_614, fill_engine_607,
+    /// mipmap_gen_816.
     #[arg(long)]
     pub unit: String,
     /// verilator or icarus.
     #[arg(long, default_value = "verilator")]
     pub sim: String,
     /// Verilog sources of the unit to check instead of its twin (repeatable; they replace all
-    /// of the twin's files, so a unit built on another, as normal_156 on rsqrt_156, needs both).
+    /// of the twin's files, so a unit built on another, as normal_156 on rsqrt_156, needs both;
+    /// the behavioural DRAM of control_607 and frame store of mipmap_gen_816 stay).
     #[arg(long)]
     pub rtl: Vec<PathBuf>,
-    /// Cycles to simulate (1..=10000000), random inputs every cycle after 2 cycles of reset.
+    /// Cycles to simulate (1..=10000000), seeded random inputs every cycle after 2 cycles of
+    /// reset (video frames for mipmap_gen_816).
     #[arg(long, default_value_t = 100_000)]
     pub count: usize,
     /// Stimulus seed.
     #[arg(long, value_parser = Seed::parse, default_value = "0xc051")]
     pub seed: Seed,
+    /// random (seeded, --count cycles) or vectors: the transactions of the unit's regression
+    /// vectors, in their configuration (blend_adjust_153, normal_pipeline_fig7,
+    /// mipmap_gen_816; one run per configuration, in folders under --out).
+    #[arg(long, default_value = "random")]
+    pub stimulus: String,
     /// Folder for the testbench, stimulus, RTL outputs and the waveform (default
     /// target/texrtl-cosim/UNIT-SIM).
     #[arg(long)]
@@ -35,6 +44,11 @@ pub struct CosimArgs {
 
 /// Runs it: exit 0 when every port agrees on every cycle, 1 at a difference, 2 bad input.
 pub fn run(a: &CosimArgs) -> Result<String, CmdError> {
+    let vectors = match a.stimulus.as_str() {
+        "random" => false,
+        "vectors" => true,
+        s => return Err(format!("--stimulus {}: random or vectors", formats::shorten(s)).into()),
+    };
     let unit = cosim::unit(&a.unit)?;
     let sim = Simulator::parse(&a.sim)
         .ok_or_else(|| format!("--sim {}: verilator or icarus", formats::shorten(&a.sim)))?;
@@ -44,34 +58,55 @@ pub fn run(a: &CosimArgs) -> Result<String, CmdError> {
     if let Some(f) = a.rtl.iter().find(|f| !f.is_file()) {
         return Err(format!("--rtl {}: no such file", f.display()).into());
     }
+    let runs = if vectors {
+        cosim::vectors::regression(&a.unit)?
+    } else {
+        Vec::new()
+    };
     sim.check_installed()?;
     let dir = a
         .out
         .clone()
         .unwrap_or_else(|| PathBuf::from(format!("target/texrtl-cosim/{}-{}", a.unit, sim.name())));
-    let r =
-        cosim::run(unit.as_ref(), sim, &a.rtl, a.count, a.seed, &dir).map_err(CmdError::Failed)?;
+    if !vectors {
+        let r = cosim::run(unit.as_ref(), sim, &a.rtl, a.count, a.seed, &dir)
+            .map_err(CmdError::Failed)?;
+        let what = format!("{} in {} (seed {})", a.unit, sim.name(), a.seed);
+        return report(&what, &r);
+    }
+    let mut lines = Vec::new();
+    for d in &runs {
+        let r = cosim::run_with(
+            d.unit.as_ref(),
+            sim,
+            &a.rtl,
+            &d.stimulus,
+            &dir.join(&d.label),
+        )
+        .map_err(CmdError::Failed)?;
+        let what = format!("{} in {} ({})", a.unit, sim.name(), d.label);
+        lines.push(report(&what, &r)?);
+    }
+    Ok(lines.join("\n"))
+}
+
+/// The run's one line: agreement, or the first difference (printed in full) as a failure.
+fn report(what: &str, r: &cosim::CosimResult) -> Result<String, CmdError> {
     let view = r.vcd.with_extension("gtkw");
     match &r.mismatch {
         None => Ok(format!(
-            "{} in {}: {} cycles, every output port equal on every cycle (seed {}); waveform: gtkwave {}",
-            a.unit,
-            sim.name(),
+            "{what}: {} cycles, every output port equal on every cycle; waveform: gtkwave {}",
             r.cycles,
-            a.seed,
             view.display()
         )),
         Some(d) => {
             crate::say(&format!("{d}\n"));
             Err(CmdError::Failed(format!(
-                "{} in {}: {} differences in {} cycles, the first at cycle {} on port {} (seed {}); waveform: gtkwave {}",
-                a.unit,
-                sim.name(),
+                "{what}: {} differences in {} cycles, the first at cycle {} on port {}; waveform: gtkwave {}",
                 r.differences,
                 r.cycles,
                 d.cycle,
                 d.port,
-                a.seed,
                 view.display()
             )))
         }

@@ -15,6 +15,16 @@ use std::fmt::Write as _;
 use std::path::{Path, PathBuf};
 use std::process::Command;
 
+pub mod bump;
+pub mod mipmap;
+pub mod texmem;
+pub mod vectors;
+mod verilator;
+
+pub use bump::*;
+pub use mipmap::*;
+pub use texmem::*;
+
 /// A port of the unit's top: its name and format.
 #[derive(Clone, Debug, PartialEq)]
 pub struct Port {
@@ -35,6 +45,9 @@ pub trait CosimModel {
 pub struct ModelSim<M: Module> {
     sim: Sim<M>,
     drive: fn(&mut M, &[u64]),
+    /// Values inside the model compared as further output ports (see [`ModelSim::probes`]).
+    probes: Vec<Port>,
+    probe: fn(&M) -> Vec<u64>,
 }
 
 impl<M: Module> ModelSim<M> {
@@ -42,7 +55,18 @@ impl<M: Module> ModelSim<M> {
         ModelSim {
             sim: Sim::new(dut).check_schedule(true),
             drive,
+            probes: Vec::new(),
+            probe: |_| Vec::new(),
         }
+    }
+
+    /// Compares `ports` too, after the top's outputs: `probe` reads them from the settled
+    /// model (signals of a child, such as the pins a controller drives, or counters the RTL
+    /// brings out as ports).
+    pub fn probes(mut self, ports: Vec<Port>, probe: fn(&M) -> Vec<u64>) -> Self {
+        self.probes = ports;
+        self.probe = probe;
+        self
     }
 }
 
@@ -94,13 +118,16 @@ fn top_ports(m: &dyn Module) -> TopPorts {
 impl<M: Module> CosimModel for ModelSim<M> {
     fn ports(&self) -> (Vec<Port>, Vec<Port>) {
         let t = top_ports(&self.sim.dut);
-        (t.inputs, t.outputs)
+        let mut outs = t.outputs;
+        outs.extend(self.probes.iter().cloned());
+        (t.inputs, outs)
     }
     fn cycle(&mut self, rst: bool, inputs: &[u64]) -> Vec<u64> {
         self.sim.set_reset(rst);
         (self.drive)(&mut self.sim.dut, inputs);
         self.sim.eval();
-        let out = top_ports(&self.sim.dut).out_bits;
+        let mut out = top_ports(&self.sim.dut).out_bits;
+        out.extend((self.probe)(&self.sim.dut));
         self.sim.tick();
         out
     }
@@ -110,8 +137,18 @@ impl<M: Module> CosimModel for ModelSim<M> {
 pub trait CosimUnit {
     /// The unit's name: its module in Verilog, its kind in the model.
     fn name(&self) -> &'static str;
-    /// The twin's sources, relative to the repository's `rtl/`.
+    /// The Verilog module the testbench instantiates: the unit itself, or the unit with the
+    /// behavioural parts the model holds beside it (control 607 with its DRAM 604).
+    fn top(&self) -> &'static str {
+        self.name()
+    }
+    /// The twin's sources, relative to the repository's `rtl/` (what `--rtl` replaces).
     fn rtl(&self) -> Vec<&'static str>;
+    /// Testbench-side sources, relative to `rtl/`, always compiled (with the twin or the
+    /// user's `--rtl`): the top wrapping the unit and the behavioural models it drives.
+    fn bench_rtl(&self) -> Vec<&'static str> {
+        Vec::new()
+    }
     /// The Verilog parameters of this configuration (the model's parameters).
     fn parameters(&self) -> Vec<(&'static str, i64)>;
     fn model(&self) -> Result<Box<dyn CosimModel>, String>;
@@ -120,6 +157,11 @@ pub trait CosimUnit {
     /// Whether the twin has `clk` and `rst` ports (a combinational unit has none).
     fn clocked(&self) -> bool {
         true
+    }
+    /// Memory images the twin loads with `$readmemh` (file name, text): written into the
+    /// run's folder, where the simulator runs, before it starts.
+    fn memories(&self) -> Vec<(String, String)> {
+        Vec::new()
     }
 }
 
@@ -224,7 +266,7 @@ impl std::fmt::Display for Difference {
 /// Values of a `width`-bit field: its corners (0, 1, the largest, the sign boundary 2^(w-1)
 /// and one below it) a quarter of the time, otherwise uniform. `width` is 1..=64, as every
 /// unit's `validate` guarantees.
-fn field(width: u32) -> impl proptest::strategy::Strategy<Value = u64> {
+pub(crate) fn field(width: u32) -> impl proptest::strategy::Strategy<Value = u64> {
     use proptest::strategy::Just;
     let max = if width == 64 {
         u64::MAX
@@ -236,224 +278,6 @@ fn field(width: u32) -> impl proptest::strategy::Strategy<Value = u64> {
         1 => proptest::prop_oneof![Just(0u64), Just(1 & max), Just(max), Just(top), Just(top - 1)],
         3 => 0..=max,
     ]
-}
-
-/// Blend-factor adjust unit 153 against `rtl/bump/blend_adjust_153.v`.
-pub struct BlendAdjustCosim(pub hdl::bump::blend_adjust_153::BlendAdjustParams);
-
-impl CosimUnit for BlendAdjustCosim {
-    fn name(&self) -> &'static str {
-        "blend_adjust_153"
-    }
-    fn rtl(&self) -> Vec<&'static str> {
-        vec!["bump/blend_adjust_153.v"]
-    }
-    fn parameters(&self) -> Vec<(&'static str, i64)> {
-        vec![
-            ("FRAC_BITS", i64::from(self.0.frac_bits)),
-            ("REGISTERED", i64::from(self.0.registered)),
-        ]
-    }
-    fn model(&self) -> Result<Box<dyn CosimModel>, String> {
-        use hdl::bump::blend_adjust_153::BlendAdjust;
-        let dut = BlendAdjust::new(self.name(), self.0)?;
-        Ok(Box::new(ModelSim::new(
-            dut,
-            |d: &mut BlendAdjust, v: &[u64]| {
-                d.i.valid_in.set_bits(v[0]);
-                d.i.bypass.set_bits(v[1]);
-                d.i.u_in.set_bits(v[2]);
-                d.i.v_in.set_bits(v[3]);
-            },
-        )))
-    }
-    fn stimulus(&self, seed: verif::Seed, cycles: usize) -> Vec<Vec<u64>> {
-        let mut st = verif::Stimulus::new(seed);
-        let f = self.0.frac_bits;
-        let bits = st.draw_n(&(0u64..4, field(f), field(f)), cycles);
-        bits.into_iter()
-            .map(|(vb, u, v)| vec![vb & 1, vb >> 1, u, v])
-            .collect()
-    }
-}
-
-/// Address unit 150 against `rtl/bump/address_150.v`: positions `sQ<pos_int>.<pos_frac>`,
-/// blend factors of `blend_bits`.
-pub struct AddressCosim {
-    pub pos_int: u32,
-    pub pos_frac: u32,
-    pub blend_bits: u32,
-}
-
-impl Default for AddressCosim {
-    fn default() -> Self {
-        AddressCosim {
-            pos_int: 16,
-            pos_frac: 8,
-            blend_bits: 8,
-        }
-    }
-}
-
-impl CosimUnit for AddressCosim {
-    fn name(&self) -> &'static str {
-        "address_150"
-    }
-    fn rtl(&self) -> Vec<&'static str> {
-        vec!["bump/address_150.v"]
-    }
-    fn parameters(&self) -> Vec<(&'static str, i64)> {
-        vec![
-            ("POS_INT", i64::from(self.pos_int)),
-            ("POS_FRAC", i64::from(self.pos_frac)),
-            ("BLEND_BITS", i64::from(self.blend_bits)),
-        ]
-    }
-    fn model(&self) -> Result<Box<dyn CosimModel>, String> {
-        use hdl::bump::address_150::AddressUnit;
-        let pos = Format::signed(self.pos_int + self.pos_frac, self.pos_frac as i32);
-        let dut = AddressUnit::new(self.name(), pos, self.blend_bits)?;
-        Ok(Box::new(ModelSim::new(
-            dut,
-            |d: &mut AddressUnit, v: &[u64]| {
-                d.u.set_bits(v[0]);
-                d.v.set_bits(v[1]);
-                d.colour.set_bits(v[2]);
-            },
-        )))
-    }
-    fn stimulus(&self, seed: verif::Seed, cycles: usize) -> Vec<Vec<u64>> {
-        let mut st = verif::Stimulus::new(seed);
-        let w = self.pos_int + self.pos_frac;
-        st.draw_n(&(field(w), field(w), 0u64..2), cycles)
-            .into_iter()
-            .map(|(u, v, c)| vec![u, v, c])
-            .collect()
-    }
-}
-
-/// Replicate unit 152 against `rtl/bump/replicate_152.v`: texels of `texel_bits` bits (8:
-/// `uQ6.2`, 4: `uQ3.1`), B-spline or Bezier (Equation 1) control points.
-pub struct ReplicateCosim {
-    pub texel_bits: u32,
-    pub bezier: bool,
-}
-
-impl CosimUnit for ReplicateCosim {
-    fn name(&self) -> &'static str {
-        "replicate_152"
-    }
-    fn rtl(&self) -> Vec<&'static str> {
-        vec!["bump/replicate_152.v"]
-    }
-    fn parameters(&self) -> Vec<(&'static str, i64)> {
-        vec![
-            ("TEXEL_BITS", i64::from(self.texel_bits)),
-            ("BEZIER", i64::from(self.bezier)),
-        ]
-    }
-    fn clocked(&self) -> bool {
-        false
-    }
-    fn model(&self) -> Result<Box<dyn CosimModel>, String> {
-        use hdl::bump::replicate_152::Replicate;
-        let texel = Format::unsigned(self.texel_bits, self.texel_bits as i32 / 4);
-        let dut = Replicate::new(self.name(), texel, self.bezier);
-        Ok(Box::new(ModelSim::new(
-            dut,
-            |d: &mut Replicate, v: &[u64]| {
-                for (s, x) in d.h.iter_mut().zip(v) {
-                    s.set_bits(*x);
-                }
-            },
-        )))
-    }
-    fn stimulus(&self, seed: verif::Seed, cycles: usize) -> Vec<Vec<u64>> {
-        let mut st = verif::Stimulus::new(seed);
-        let max = (1u64 << self.texel_bits) - 1;
-        let texel = proptest::prop_oneof![1 => proptest::strategy::Just(max), 1 => proptest::strategy::Just(0u64), 6 => 0..=max];
-        (0..cycles).map(|_| st.draw_n(&texel, 9)).collect()
-    }
-}
-
-/// A bilinear unit (65-68) against `rtl/bump/bilinear_65_68.v`, in the formats the FIG. 7
-/// pipeline gives it: texels of `texel_bits` bits out of replicate 152, blend factors of
-/// `blend_bits + 1` bits, the output exact or rounded to `bilinear_frac` fraction bits.
-pub struct BilinearCosim {
-    pub texel_bits: u32,
-    pub blend_bits: u32,
-    pub bilinear_frac: Option<u32>,
-}
-
-impl BilinearCosim {
-    fn params(&self) -> hdl::bump::params::BumpParams {
-        use hdl::bump::params::{BumpParams, HeightTexel};
-        BumpParams {
-            blend_bits: self.blend_bits,
-            height: if self.texel_bits == 4 {
-                HeightTexel::Bits4
-            } else {
-                HeightTexel::Bits8
-            },
-            bilinear_frac: self.bilinear_frac,
-            // The position must carry at least the blend factor's bits.
-            pos_frac: self.blend_bits.max(8),
-            ..BumpParams::default()
-        }
-    }
-}
-
-impl CosimUnit for BilinearCosim {
-    fn name(&self) -> &'static str {
-        "bilinear_65_68"
-    }
-    fn rtl(&self) -> Vec<&'static str> {
-        vec!["bump/bilinear_65_68.v"]
-    }
-    fn parameters(&self) -> Vec<(&'static str, i64)> {
-        let p = self.params();
-        let (t, b, o) = (p.replicate_fmt(), p.adj_fmt(), p.bilinear_fmt());
-        vec![
-            ("TEXEL_W", i64::from(t.width())),
-            ("TEXEL_F", i64::from(t.frac())),
-            ("BLEND_W", i64::from(b.width())),
-            ("OUT_W", i64::from(o.width())),
-            ("OUT_F", i64::from(o.frac())),
-        ]
-    }
-    fn model(&self) -> Result<Box<dyn CosimModel>, String> {
-        use hdl::bump::bilinear_65_68::Bilinear;
-        let p = self.params();
-        p.validate()?;
-        let dut = Bilinear::new(
-            self.name(),
-            p.replicate_fmt(),
-            p.adj_fmt(),
-            p.bilinear_fmt(),
-        )?;
-        Ok(Box::new(ModelSim::new(
-            dut,
-            |d: &mut Bilinear, v: &[u64]| {
-                for (s, x) in d.p.iter_mut().zip(v) {
-                    s.set_bits(*x);
-                }
-                d.s.set_bits(v[4]);
-                d.t.set_bits(v[5]);
-            },
-        )))
-    }
-    fn stimulus(&self, seed: verif::Seed, cycles: usize) -> Vec<Vec<u64>> {
-        let mut st = verif::Stimulus::new(seed);
-        let p = self.params();
-        let (tw, bw) = (p.replicate_fmt().width(), p.adj_fmt().width());
-        (0..cycles)
-            .map(|_| {
-                let mut v = st.draw_n(&field(tw), 4);
-                v.extend(st.draw_n(&field(bw), 2));
-                v
-            })
-            .collect()
-    }
 }
 
 /// The units with a Verilog twin, by name, in their default configuration.
@@ -473,6 +297,34 @@ pub fn unit(name: &str) -> Result<Box<dyn CosimUnit>, String> {
         "tangent_155" => Ok(Box::new(TangentCosim(Default::default()))),
         "rsqrt_156" => Ok(Box::new(RsqrtCosim(Default::default()))),
         "normal_156" => Ok(Box::new(NormalCosim(Default::default()))),
+        "texel_fetch_151" => Ok(Box::new(TexelFetchCosim::new(
+            Default::default(),
+            16,
+            16,
+            1,
+        ))),
+        "normal_pipeline_fig7" => Ok(Box::new(PipelineCosim::new(Default::default(), 16, 16, 1))),
+        "control_607" => Ok(Box::new(ControlCosim(Default::default()))),
+        "cache_614" => Ok(Box::new(CacheCosim { tag_bits: 9 })),
+        "mipmap_gen_816" => Ok(Box::new(MipmapCosim::new(
+            hdl::mipmap::mipmap_gen_816::MipmapParams {
+                width: 16,
+                height: 16,
+                scan: hdl::mipmap::mipmap_gen_816::Scan::Progressive,
+                rounding: hdl::mipmap::mipmap_gen_816::Rounding::Round,
+            },
+        ))),
+        "fill_engine_607" => Ok(Box::new(FillCosim {
+            layout: hdl::texmem::layout::Layout::RowMajor,
+            blocks: (16, 16),
+            base: 0,
+            dram: Default::default(),
+        })),
+        "lookahead_queue_607" => Ok(Box::new(LookaheadCosim {
+            mode: Default::default(),
+            blocks: (16, 16),
+            frac_bits: 4,
+        })),
         _ => Err(format!(
             "--unit {}: no Verilog twin (there are: {})",
             formats::shorten(name),
@@ -481,171 +333,22 @@ pub fn unit(name: &str) -> Result<Box<dyn CosimUnit>, String> {
     }
 }
 
-/// Tangent unit 155 (one MIP level) against `rtl/bump/tangent_155.v`, in the formats of
-/// the FIG. 7 pipeline built from `params` (`trilinear` must be off).
-pub struct TangentCosim(pub hdl::bump::params::BumpParams);
-
-impl CosimUnit for TangentCosim {
-    fn name(&self) -> &'static str {
-        "tangent_155"
-    }
-    fn rtl(&self) -> Vec<&'static str> {
-        vec!["bump/tangent_155.v"]
-    }
-    fn parameters(&self) -> Vec<(&'static str, i64)> {
-        use hdl::bump::params::Filter;
-        let p = &self.0;
-        let (bl, s) = (p.bilinear_fmt(), p.scale_fmt());
-        let w = |f: Format| i64::from(f.width());
-        vec![
-            ("BL_W", w(bl)),
-            ("BL_F", i64::from(bl.frac())),
-            ("F", i64::from(p.blend_bits)),
-            ("SCALE_W", w(s)),
-            ("SCALE_F", i64::from(s.frac())),
-            ("TAN_W", w(p.tangent_fmt())),
-            ("H_W", w(p.height_out_fmt())),
-            ("TAN_F", i64::from(p.tangent_frac)),
-            ("BLINN", i64::from(p.filter == Filter::Blinn)),
-        ]
-    }
-    fn model(&self) -> Result<Box<dyn CosimModel>, String> {
-        use hdl::bump::tangent_155::Tangent;
-        self.0.validate()?;
-        if self.0.trilinear {
-            return Err("tangent_155: the twin models one MIP level (trilinear off)".into());
-        }
-        let dut = Tangent::new(self.name(), &self.0);
-        Ok(Box::new(ModelSim::new(
-            dut,
-            |d: &mut Tangent, v: &[u64]| {
-                for (s, x) in d.rgba.iter_mut().zip(v) {
-                    s.set_bits(*x);
-                }
-                d.tu.set_bits(v[4]);
-                d.tv.set_bits(v[5]);
-                d.scale.set_bits(v[6]);
-            },
-        )))
-    }
-    fn stimulus(&self, seed: verif::Seed, cycles: usize) -> Vec<Vec<u64>> {
-        let mut st = verif::Stimulus::new(seed);
-        let p = &self.0;
-        let (bw, f, sw) = (
-            p.bilinear_fmt().width(),
-            p.blend_bits,
-            p.scale_fmt().width(),
-        );
-        (0..cycles)
-            .map(|_| {
-                let mut v = st.draw_n(&field(bw), 4);
-                v.extend(st.draw_n(&field(f), 2));
-                v.extend(st.draw_n(&field(sw), 1));
-                v
-            })
-            .collect()
-    }
-}
-
-/// The inverse-square-root unit inside normal unit 156 against `rtl/bump/rsqrt_156.v`: its
-/// table (built at elaboration in Verilog, at construction in the model) and Newton steps.
-pub struct RsqrtCosim(pub hdl::bump::params::RsqrtParams);
-
-impl CosimUnit for RsqrtCosim {
-    fn name(&self) -> &'static str {
-        "rsqrt_156"
-    }
-    fn rtl(&self) -> Vec<&'static str> {
-        vec!["bump/rsqrt_156.v"]
-    }
-    fn parameters(&self) -> Vec<(&'static str, i64)> {
-        let p = &self.0;
-        vec![
-            ("TABLE_BITS", i64::from(p.table_bits)),
-            ("ITERATIONS", i64::from(p.iterations)),
-            ("M_F", i64::from(p.mant_frac)),
-            ("Y_F", i64::from(p.y_frac)),
-        ]
-    }
-    fn model(&self) -> Result<Box<dyn CosimModel>, String> {
-        use hdl::bump::rsqrt_156::Rsqrt;
-        let dut = Rsqrt::new(self.name(), self.0)?;
-        Ok(Box::new(ModelSim::new(dut, |d: &mut Rsqrt, v: &[u64]| {
-            d.m.set_bits(v[0]);
-        })))
-    }
-    /// Mantissas over the whole port, corners included (below 1 too: the zero path).
-    fn stimulus(&self, seed: verif::Seed, cycles: usize) -> Vec<Vec<u64>> {
-        let mut st = verif::Stimulus::new(seed);
-        st.draw_n(&field(self.0.mant_frac + 2), cycles)
-            .into_iter()
-            .map(|m| vec![m])
-            .collect()
-    }
-}
-
-/// Normal unit 156 (its rsqrt included) against `rtl/bump/normal_156.v` and
-/// `rtl/bump/rsqrt_156.v`, in the formats of the FIG. 7 pipeline built from `params`.
-pub struct NormalCosim(pub hdl::bump::params::BumpParams);
-
-impl CosimUnit for NormalCosim {
-    fn name(&self) -> &'static str {
-        "normal_156"
-    }
-    fn rtl(&self) -> Vec<&'static str> {
-        vec!["bump/normal_156.v", "bump/rsqrt_156.v"]
-    }
-    fn parameters(&self) -> Vec<(&'static str, i64)> {
-        let p = &self.0;
-        vec![
-            ("TAN_W", i64::from(p.tangent_fmt().width())),
-            ("TF", i64::from(p.tangent_frac)),
-            ("OUT_F", i64::from(p.out_frac)),
-            ("TABLE_BITS", i64::from(p.rsqrt.table_bits)),
-            ("ITERATIONS", i64::from(p.rsqrt.iterations)),
-            ("M_F", i64::from(p.rsqrt.mant_frac)),
-            ("Y_F", i64::from(p.rsqrt.y_frac)),
-        ]
-    }
-    fn model(&self) -> Result<Box<dyn CosimModel>, String> {
-        use hdl::bump::normal_156::Normal;
-        self.0.validate()?;
-        let dut = Normal::new(self.name(), &self.0)?;
-        Ok(Box::new(ModelSim::new(dut, |d: &mut Normal, v: &[u64]| {
-            d.du.set_bits(v[0]);
-            d.dv.set_bits(v[1]);
-        })))
-    }
-    /// Tangents in the symmetric range unit 155 produces: corners (0, +-1, +-largest), slopes
-    /// within +-4 (most surfaces), and any value.
-    fn stimulus(&self, seed: verif::Seed, cycles: usize) -> Vec<Vec<u64>> {
-        use proptest::strategy::{Just, Strategy};
-        let f = self.0.tangent_fmt();
-        let (w, max) = (f.width(), f.max_raw() as i64);
-        let small = 4i64 << self.0.tangent_frac;
-        let tangent = proptest::prop_oneof![
-            1 => proptest::prop_oneof![Just(0i64), Just(1), Just(-1), Just(max), Just(-max)],
-            2 => -small..=small,
-            1 => -max..=max,
-        ]
-        .prop_map(move |x| (x as u64) & (u64::MAX >> (64 - w)));
-        let mut st = verif::Stimulus::new(seed);
-        st.draw_n(&(tangent.clone(), tangent), cycles)
-            .into_iter()
-            .map(|(u, v)| vec![u, v])
-            .collect()
-    }
-}
-
 /// The units with a Verilog twin.
-pub const UNITS: [&str; 7] = [
+pub const UNITS: [&str; 14] = [
     "address_150",
+    "texel_fetch_151",
     "replicate_152",
     "blend_adjust_153",
     "bilinear_65_68",
     "tangent_155",
     "rsqrt_156",
     "normal_156",
+    "normal_pipeline_fig7",
+    "control_607",
+    "lookahead_queue_607",
+    "cache_614",
+    "fill_engine_607",
+    "mipmap_gen_816",
 ];
 
 /// Runs `unit` in `sim` against `rtl` (its twin when empty) for `cycles` cycles in `dir`.
@@ -659,6 +362,22 @@ pub fn run(
     seed: verif::Seed,
     dir: &Path,
 ) -> Result<CosimResult, String> {
+    run_with(unit, sim, rtl, &unit.stimulus(seed, cycles), dir)
+}
+
+/// Runs `unit` as [`run`] does on the given inputs of every cycle (`stim`, the first
+/// [`RESET_CYCLES`] of them in reset): directed stimulus, such as the regression vectors.
+pub fn run_with(
+    unit: &dyn CosimUnit,
+    sim: Simulator,
+    rtl: &[PathBuf],
+    stim: &[Vec<u64>],
+    dir: &Path,
+) -> Result<CosimResult, String> {
+    let cycles = stim.len();
+    if cycles == 0 {
+        return Err(format!("{}: no cycles to simulate", unit.name()));
+    }
     sim.check_installed()?;
     std::fs::create_dir_all(dir).map_err(|e| format!("{}: {e}", dir.display()))?;
     // The simulator runs inside `dir`: every path it is given is absolute.
@@ -672,14 +391,14 @@ pub fn run(
     }
     let mut model = unit.model()?;
     let (ins, outs) = model.ports();
-    let stim = unit.stimulus(seed, cycles);
     let rst = |c: usize| c < RESET_CYCLES;
     let expected: Vec<Vec<u64>> = (0..cycles).map(|c| model.cycle(rst(c), &stim[c])).collect();
-    let sources: Vec<PathBuf> = if rtl.is_empty() {
+    let mut sources: Vec<PathBuf> = if rtl.is_empty() {
         unit.rtl().iter().map(|f| rtl_dir().join(f)).collect()
     } else {
         rtl.to_vec()
     };
+    sources.extend(unit.bench_rtl().iter().map(|f| rtl_dir().join(f)));
     let sources: Vec<PathBuf> = sources
         .iter()
         .map(|s| std::path::absolute(s).unwrap_or_else(|_| s.clone()))
@@ -689,7 +408,11 @@ pub fn run(
             return Err(format!("{}: no such Verilog file", s.display()));
         }
     }
-    write_stimulus(&dir.join("stim.hex"), &ins, &stim)?;
+    write_stimulus(&dir.join("stim.hex"), &ins, stim)?;
+    for (file, text) in unit.memories() {
+        let path = dir.join(file);
+        std::fs::write(&path, text).map_err(|e| format!("{}: {e}", path.display()))?;
+    }
     let tb = testbench(unit, &ins, &outs, cycles, dir);
     std::fs::write(dir.join("tb.sv"), tb).map_err(|e| format!("{}: {e}", dir.display()))?;
     let got = simulate(sim, dir, &sources, &outs)?;
@@ -700,7 +423,7 @@ pub fn run(
             got.len()
         ));
     }
-    let (mismatch, differences) = compare(&ins, &outs, &stim, &expected, &got);
+    let (mismatch, differences) = compare(&ins, &outs, stim, &expected, &got);
     let vcd = dir.join(format!("{}_cosim.vcd", unit.name()));
     let defs: Vec<(&str, u32)> = outs
         .iter()
@@ -830,7 +553,7 @@ fn testbench(
     let _ = writeln!(
         s,
         "    {} #({}) dut ({});",
-        unit.name(),
+        unit.top(),
         params.join(", "),
         conns.join(", ")
     );
@@ -873,21 +596,8 @@ fn simulate(
     };
     match sim {
         Simulator::Verilator => {
-            let mdir = dir.join("obj_dir");
-            let mut c = Command::new("verilator");
-            c.args([
-                "--binary",
-                "--timing",
-                "-Wno-fatal",
-                "-Wno-lint",
-                "-Wno-style",
-            ])
-            .args(["--top-module", "tb", "-o", "simv", "--Mdir"])
-            .arg(&mdir)
-            .arg(&tb)
-            .args(sources);
-            run(&mut c, "verilator")?;
-            run(Command::new(mdir.join("simv")).current_dir(dir), "simv")?;
+            let simv = verilator::build(&tb, sources, &dir.join("obj_dir"), &run)?;
+            run(Command::new(simv).current_dir(dir), "simv")?;
         }
         Simulator::Icarus => {
             let vvp = dir.join("sim.vvp");

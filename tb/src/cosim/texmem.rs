@@ -1,0 +1,363 @@
+//! Co-simulation adapters of the Figure 6 memory path (Schilling & Knittel): each unit's
+//! model, its twin in `rtl/texmem/`, the twin's parameters from the model's and the stimulus.
+
+use super::{field, CosimModel, CosimUnit, ModelSim, Port};
+use hdl::fx::Format;
+use hdl::texmem::cache_614::{Lookahead, TextureCache};
+use hdl::texmem::control_607::{DramCtrl, FillEngine, LookaheadQueue};
+use hdl::texmem::dram_604::DramParams;
+use hdl::texmem::layout::{BlockMap, Layout};
+
+/// Control unit 607 (word reads, with its page register) driving DRAM 604, against
+/// `rtl/texmem/control_607.v` driving the behavioural `rtl/texmem/dram_604.v`. Compared
+/// besides the controller's ports: the DRAM pins RAS#, CAS#, OE# and the address every cycle,
+/// and the DRAM's count of timing violations (both DRAM models check the same timing).
+pub struct ControlCosim(pub DramParams);
+
+/// The pins and the violation count, compared after the controller's ports.
+fn dram_probes() -> Vec<Port> {
+    let p = |name: &str, w: u32| Port {
+        name: name.into(),
+        fmt: Format::uint(w),
+    };
+    vec![
+        p("ras_n", 1),
+        p("cas_n", 1),
+        p("oe_n", 1),
+        p("addr", 11),
+        p("violations", 32),
+    ]
+}
+
+impl CosimUnit for ControlCosim {
+    fn name(&self) -> &'static str {
+        "control_607"
+    }
+    fn top(&self) -> &'static str {
+        "control_607_with_dram"
+    }
+    fn rtl(&self) -> Vec<&'static str> {
+        vec!["texmem/control_607.v"]
+    }
+    fn bench_rtl(&self) -> Vec<&'static str> {
+        vec!["texmem/control_607_with_dram.v", "texmem/dram_604.v"]
+    }
+    fn parameters(&self) -> Vec<(&'static str, i64)> {
+        let p = &self.0;
+        vec![
+            ("ROWS", p.rows.into()),
+            ("COLS", p.cols.into()),
+            ("T_RP", p.t_rp.into()),
+            ("T_RCD", p.t_rcd.into()),
+            ("T_CAS", p.t_cas.into()),
+            ("T_CP", p.t_cp.into()),
+        ]
+    }
+    fn model(&self) -> Result<Box<dyn CosimModel>, String> {
+        let dut = DramCtrl::new(self.name(), self.0)?;
+        let m = ModelSim::new(dut, |d: &mut DramCtrl, v: &[u64]| {
+            d.req_valid.set_bits(v[0]);
+            d.req_addr.set_bits(v[1]);
+        });
+        Ok(Box::new(m.probes(dram_probes(), |d: &DramCtrl| {
+            let r = &d.dram;
+            vec![
+                r.ras_n.bits(),
+                r.cas_n.bits(),
+                r.oe_n.bits(),
+                r.addr.bits(),
+                r.violations & 0xffff_ffff,
+            ]
+        })))
+    }
+    /// Requests three times in four; addresses in one of four rows three times in four (page
+    /// hits and faults in page mode), anywhere otherwise, corners included.
+    fn stimulus(&self, seed: verif::Seed, cycles: usize) -> Vec<Vec<u64>> {
+        use proptest::strategy::Strategy;
+        let p = self.0;
+        let ab = 64 - (p.words() - 1).leading_zeros();
+        let mut st = verif::Stimulus::new(seed);
+        let rows = st.draw_n(&(0..u64::from(p.rows)), 4);
+        let cols = u64::from(p.cols);
+        let near = (0..4usize, 0..cols).prop_map(move |(r, c)| rows[r] * cols + c);
+        let addr = proptest::prop_oneof![1 => field(ab), 3 => near];
+        let valid = proptest::prop_oneof![1 => proptest::strategy::Just(0u64), 3 => proptest::strategy::Just(1u64)];
+        st.draw_n(&(valid, addr), cycles)
+            .into_iter()
+            .map(|(v, a)| vec![v, a])
+            .collect()
+    }
+}
+
+/// The lookahead queue of control unit 607 against `rtl/texmem/lookahead_queue_607.v`, for a
+/// texture of `blocks` (width, height) 4x4 blocks, coordinates `uQ12.<frac_bits>` and the
+/// unit's 10-bit block coordinates. Compared besides its ports: the live-slot mask.
+pub struct LookaheadCosim {
+    pub mode: Lookahead,
+    pub blocks: (u32, u32),
+    pub frac_bits: u32,
+}
+
+/// Block coordinates of texture unit 602 (12-bit texel coordinates, 4x4 blocks).
+const BLOCK_BITS: u32 = 10;
+
+impl CosimUnit for LookaheadCosim {
+    fn name(&self) -> &'static str {
+        "lookahead_queue_607"
+    }
+    fn rtl(&self) -> Vec<&'static str> {
+        vec!["texmem/lookahead_queue_607.v"]
+    }
+    fn parameters(&self) -> Vec<(&'static str, i64)> {
+        let mode = match self.mode {
+            Lookahead::Off => 0,
+            Lookahead::Quadrant => 1,
+            Lookahead::Direction => 2,
+        };
+        vec![
+            ("MODE", mode),
+            ("BW", self.blocks.0.into()),
+            ("BH", self.blocks.1.into()),
+            ("F", self.frac_bits.into()),
+            ("BB", BLOCK_BITS.into()),
+        ]
+    }
+    fn model(&self) -> Result<Box<dyn CosimModel>, String> {
+        let uq = Format::unsigned(12 + self.frac_bits, self.frac_bits as i32);
+        let dut = LookaheadQueue::new(self.mode, self.blocks, uq, BLOCK_BITS);
+        let m = ModelSim::new(dut, |d: &mut LookaheadQueue, v: &[u64]| {
+            let ins = [
+                &mut d.complete,
+                &mut d.u,
+                &mut d.v,
+                &mut d.newline,
+                &mut d.flush,
+                &mut d.engine_free,
+                &mut d.stage0_missing,
+            ];
+            for (s, x) in ins.into_iter().zip(v) {
+                s.set_bits(*x);
+            }
+        });
+        let mask = Port {
+            name: "mask".into(),
+            fmt: Format::uint(3),
+        };
+        Ok(Box::new(m.probes(vec![mask], |d: &LookaheadQueue| {
+            vec![d.mask.q().bits()]
+        })))
+    }
+    /// A point that walks like a rasterizer (small steps in any direction, across block
+    /// edges) three times in four and jumps anywhere in the texture otherwise (beyond it one
+    /// time in sixteen); completions half the time, a new scanline or a flush now and then, the
+    /// fill engine free and stage 0 missing at random.
+    fn stimulus(&self, seed: verif::Seed, cycles: usize) -> Vec<Vec<u64>> {
+        let f = self.frac_bits;
+        let w = 12 + f;
+        let (tw, th) = (
+            u64::from(4 * self.blocks.0) << f,
+            u64::from(4 * self.blocks.1) << f,
+        );
+        let mut st = verif::Stimulus::new(seed);
+        let (mut u, mut v) = (0u64, 0u64);
+        let step = 1i64 << f;
+        (0..cycles)
+            .map(|_| {
+                let kind = st.draw(&(0u32..16));
+                if kind < 12 {
+                    let (du, dv) = st.draw(&(-step..=step, -step / 2..=step / 2));
+                    u = (u as i64 + du).clamp(0, tw as i64 - 1) as u64;
+                    v = (v as i64 + dv).clamp(0, th as i64 - 1) as u64;
+                } else if kind < 15 {
+                    (u, v) = st.draw(&(0..tw, 0..th));
+                } else {
+                    (u, v) = st.draw(&(field(w), field(w)));
+                }
+                let (complete, newline, flush, free, missing) =
+                    st.draw(&(0u64..2, 0u64..8, 0u64..16, 0u64..2, 0u64..4));
+                vec![
+                    complete,
+                    u,
+                    v,
+                    u64::from(newline == 0),
+                    u64::from(flush == 0),
+                    free,
+                    u64::from(missing == 0),
+                ]
+            })
+            .collect()
+    }
+}
+
+/// Cache 614 against `rtl/texmem/cache_614.v`, tags of `tag_bits` bits per coordinate. Its
+/// registered state is compared every cycle: valid and prefetched by entry, tags and lines
+/// (what the model's `holds`, `line` and `prefetched` read).
+pub struct CacheCosim {
+    pub tag_bits: u32,
+}
+
+/// The cache's state as ports, after the model's (it has no outputs of its own).
+fn cache_probes(tag_bits: u32) -> Vec<Port> {
+    let p = |name: String, w: u32| Port {
+        name,
+        fmt: Format::uint(w),
+    };
+    let mut v = vec![p("valid".into(), 4), p("prefetched".into(), 4)];
+    for (field, w) in [("tag_x", tag_bits), ("tag_y", tag_bits), ("line", 64)] {
+        v.extend(["a", "b", "c", "d"].map(|e| p(format!("{field}_{e}"), w)));
+    }
+    v
+}
+
+impl CosimUnit for CacheCosim {
+    fn name(&self) -> &'static str {
+        "cache_614"
+    }
+    fn rtl(&self) -> Vec<&'static str> {
+        vec!["texmem/cache_614.v"]
+    }
+    fn parameters(&self) -> Vec<(&'static str, i64)> {
+        vec![("TAG_BITS", self.tag_bits.into())]
+    }
+    fn model(&self) -> Result<Box<dyn CosimModel>, String> {
+        if !(1..=31).contains(&self.tag_bits) {
+            return Err(format!("cache_614: tag_bits {}: 1..=31", self.tag_bits));
+        }
+        let dut = TextureCache::new(self.name(), self.tag_bits);
+        let m = ModelSim::new(dut, |d: &mut TextureCache, v: &[u64]| {
+            let ins = [
+                &mut d.touch,
+                &mut d.invalidate,
+                &mut d.write,
+                &mut d.write_bx,
+                &mut d.write_by,
+                &mut d.write_data,
+                &mut d.write_prefetched,
+            ];
+            for (s, x) in ins.into_iter().zip(v) {
+                s.set_bits(*x);
+            }
+        });
+        Ok(Box::new(m.probes(
+            cache_probes(self.tag_bits),
+            |d: &TextureCache| {
+                let e = &d.entries;
+                let bits =
+                    |f: &dyn Fn(usize) -> bool| (0..4).fold(0, |m, k| m | u64::from(f(k)) << k);
+                let mut v = vec![
+                    bits(&|k| e[k].valid.q().is_high()),
+                    bits(&|k| e[k].prefetched.q().is_high()),
+                ];
+                v.extend(e.iter().map(|x| x.tag_x.q().bits()));
+                v.extend(e.iter().map(|x| x.tag_y.q().bits()));
+                v.extend(e.iter().map(|x| x.data.q().bits()));
+                v
+            },
+        )))
+    }
+    /// Writes half the time, of blocks from a set of eight three times in four (tags that
+    /// repeat and entries that conflict) and anywhere otherwise; any line, touches at random,
+    /// an invalidation one cycle in eight.
+    fn stimulus(&self, seed: verif::Seed, cycles: usize) -> Vec<Vec<u64>> {
+        use proptest::strategy::Strategy;
+        let b = self.tag_bits + 1;
+        let mut st = verif::Stimulus::new(seed);
+        let blocks = st.draw_n(&(field(b), field(b)), 8);
+        let near = (0..8usize).prop_map(move |k| blocks[k]);
+        let block = proptest::prop_oneof![3 => near, 1 => (field(b), field(b))];
+        let s = (0u64..16, 0u64..8, 0u64..2, block, field(64), 0u64..2);
+        st.draw_n(&s, cycles)
+            .into_iter()
+            .map(|(touch, inval, write, (bx, by), data, pre)| {
+                vec![touch, u64::from(inval == 0), write, bx, by, data, pre]
+            })
+            .collect()
+    }
+}
+
+/// The block fetch of control unit 607 against `rtl/texmem/fill_engine_607.v`: a texture of
+/// `blocks` 4x4 blocks from DRAM word `base` in `layout`, on `dram`'s pages and addresses.
+/// Compared besides its ports: its state and prefetch flag.
+pub struct FillCosim {
+    pub layout: Layout,
+    pub blocks: (u32, u32),
+    pub base: u64,
+    pub dram: DramParams,
+}
+
+impl FillCosim {
+    fn map(&self) -> BlockMap {
+        let (bw, bh) = self.blocks;
+        BlockMap::new(self.layout, bw, bh, self.dram.cols, self.base)
+    }
+    fn addr_bits(&self) -> u32 {
+        64 - (self.dram.words() - 1).leading_zeros()
+    }
+}
+
+impl CosimUnit for FillCosim {
+    fn name(&self) -> &'static str {
+        "fill_engine_607"
+    }
+    fn rtl(&self) -> Vec<&'static str> {
+        vec!["texmem/fill_engine_607.v"]
+    }
+    fn parameters(&self) -> Vec<(&'static str, i64)> {
+        vec![
+            ("LAYOUT", i64::from(self.layout == Layout::Tiled)),
+            ("BW", self.blocks.0.into()),
+            ("PAGE_WORDS", self.dram.cols.into()),
+            ("BASE", self.base as i64),
+            ("BB", BLOCK_BITS.into()),
+            ("AB", self.addr_bits().into()),
+        ]
+    }
+    fn model(&self) -> Result<Box<dyn CosimModel>, String> {
+        self.dram.validate()?;
+        let map = self.map();
+        if self.base + map.words() > self.dram.words() {
+            return Err("fill_engine_607: the texture does not fit the DRAM".into());
+        }
+        let dut = FillEngine::new(map, BLOCK_BITS, Format::uint(self.addr_bits()));
+        let m = ModelSim::new(dut, |d: &mut FillEngine, v: &[u64]| {
+            let ins = [
+                &mut d.start,
+                &mut d.start_bx,
+                &mut d.start_by,
+                &mut d.start_prefetch,
+                &mut d.word_ready,
+                &mut d.word_resp,
+                &mut d.line_done,
+            ];
+            for (s, x) in ins.into_iter().zip(v) {
+                s.set_bits(*x);
+            }
+        });
+        let p = |name: &str, w: u32| Port {
+            name: name.into(),
+            fmt: Format::uint(w),
+        };
+        Ok(Box::new(m.probes(
+            vec![p("state", 2), p("prefetch", 1)],
+            |d: &FillEngine| vec![d.state.q().bits(), d.prefetch.q().bits()],
+        )))
+    }
+    /// Blocks anywhere in the texture (its corners a quarter of the time); starts, grants and
+    /// responses at random, the decoder done one cycle in four.
+    fn stimulus(&self, seed: verif::Seed, cycles: usize) -> Vec<Vec<u64>> {
+        use proptest::strategy::Just;
+        let (bw, bh) = (u64::from(self.blocks.0), u64::from(self.blocks.1));
+        let coord = |n: u64| proptest::prop_oneof![1 => Just(0), 1 => Just(n - 1), 6 => 0..n];
+        let s = (
+            (0u64..2, coord(bw), coord(bh), 0u64..2),
+            (0u64..2, 0u64..2, 0u64..4),
+        );
+        let mut st = verif::Stimulus::new(seed);
+        st.draw_n(&s, cycles)
+            .into_iter()
+            .map(|((go, bx, by, pre), (ready, resp, done))| {
+                vec![go, bx, by, pre, ready, resp, u64::from(done == 0)]
+            })
+            .collect()
+    }
+}
