@@ -44,9 +44,22 @@ fn params(frac_bits: u32, registered: bool) -> BlendAdjustParams {
     }
 }
 
-/// Every twin in every configuration the tests cover: (label, unit).
-fn twins() -> Vec<(String, Box<dyn CosimUnit>)> {
-    let mut v: Vec<(String, Box<dyn CosimUnit>)> = Vec::new();
+/// A configuration of a twin: its label and the unit.
+type Twin = (String, Box<dyn CosimUnit>);
+
+/// Every twin in every configuration the tests cover.
+fn twins() -> Vec<Twin> {
+    let mut v = fig7_twins();
+    v.extend(memory_twins());
+    for (label, u) in mipmap_configs() {
+        v.push((format!("mipmap_gen_816 {label}"), Box::new(u)));
+    }
+    v
+}
+
+/// The FIG. 7 units and their pipeline.
+fn fig7_twins() -> Vec<Twin> {
+    let mut v: Vec<Twin> = Vec::new();
     for (f, reg) in [(8, true), (4, false), (16, true)] {
         v.push((
             format!("blend_adjust_153 F={f} registered={reg}"),
@@ -111,6 +124,12 @@ fn twins() -> Vec<(String, Box<dyn CosimUnit>)> {
     for (label, u) in pipeline_configs() {
         v.push((format!("normal_pipeline_fig7 {label}"), Box::new(u)));
     }
+    v
+}
+
+/// Figure 6: control unit 607's word controller, lookahead queue and block fetch, cache 614.
+fn memory_twins() -> Vec<Twin> {
+    let mut v: Vec<Twin> = Vec::new();
     for (label, p) in control_configs() {
         v.push((format!("control_607 {label}"), Box::new(ControlCosim(p))));
     }
@@ -142,9 +161,6 @@ fn twins() -> Vec<(String, Box<dyn CosimUnit>)> {
     }
     for (label, u) in fill_configs() {
         v.push((format!("fill_engine_607 {label}"), Box::new(u)));
-    }
-    for (label, u) in mipmap_configs() {
-        v.push((format!("mipmap_gen_816 {label}"), Box::new(u)));
     }
     v
 }
