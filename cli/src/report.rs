@@ -9,15 +9,22 @@ use verif::{Seed, TbResult};
 /// The summary table printed by `texrtl regress`.
 pub fn table(results: &[TbResult]) -> String {
     let mut s = String::new();
+    // The name column fits the longest name (co-simulation rows are long).
+    let w = results
+        .iter()
+        .map(|r| r.name.len())
+        .max()
+        .unwrap_or(0)
+        .max(32);
     let _ = writeln!(
         s,
-        "{:<32} {:>9} {:>9} {:>6} {:>7} {:>9} {:>10} {:>7}  result",
+        "{:<w$} {:>9} {:>9} {:>6} {:>7} {:>9} {:>10} {:>7}  result",
         "testbench", "txns", "cycles", "mism", "cover", "max LSB", "mean LSB", "latency"
     );
     for r in results {
         let _ = writeln!(
             s,
-            "{:<32} {:>9} {:>9} {:>6} {:>6.1}% {:>9.3} {:>10.4} {:>7}  {}",
+            "{:<w$} {:>9} {:>9} {:>6} {:>6.1}% {:>9.3} {:>10.4} {:>7}  {}",
             r.name,
             r.transactions,
             r.cycles,
