@@ -39,20 +39,28 @@ pub trait CosimModel {
     /// One cycle: reset, inputs (raw bits in input-port order), settle, the outputs' bits in
     /// output-port order, then the clock edge.
     fn cycle(&mut self, rst: bool, inputs: &[u64]) -> Vec<u64>;
+    /// A benchmark run of the design as built (not as [`CosimModel::cycle`] left it): `stim`
+    /// driven cycle by cycle ([`RESET_CYCLES`] in reset), no schedule check, no output read;
+    /// untraced, or traced to the VCD `vcd` (every signal, no `real` companions). Returns the
+    /// time of the cycle loop (with the trace's flush).
+    fn bench(&self, stim: &[Vec<u64>], vcd: Option<&Path>) -> Result<std::time::Duration, String>;
 }
 
 /// A co-simulation model of a [`Module`] whose inputs `drive` sets from raw bits.
 pub struct ModelSim<M: Module> {
     sim: Sim<M>,
+    /// The design as built, for benchmark runs.
+    pristine: M,
     drive: fn(&mut M, &[u64]),
     /// Values inside the model compared as further output ports (see [`ModelSim::probes`]).
     probes: Vec<Port>,
     probe: fn(&M) -> Vec<u64>,
 }
 
-impl<M: Module> ModelSim<M> {
+impl<M: Module + Clone> ModelSim<M> {
     pub fn new(dut: M, drive: fn(&mut M, &[u64])) -> Self {
         ModelSim {
+            pristine: dut.clone(),
             sim: Sim::new(dut).check_schedule(true),
             drive,
             probes: Vec::new(),
@@ -115,7 +123,7 @@ fn top_ports(m: &dyn Module) -> TopPorts {
     t
 }
 
-impl<M: Module> CosimModel for ModelSim<M> {
+impl<M: Module + Clone> CosimModel for ModelSim<M> {
     fn ports(&self) -> (Vec<Port>, Vec<Port>) {
         let t = top_ports(&self.sim.dut);
         let mut outs = t.outputs;
@@ -130,6 +138,38 @@ impl<M: Module> CosimModel for ModelSim<M> {
         out.extend((self.probe)(&self.sim.dut));
         self.sim.tick();
         out
+    }
+    fn bench(&self, stim: &[Vec<u64>], vcd: Option<&Path>) -> Result<std::time::Duration, String> {
+        let dut = self.pristine.clone();
+        let drive = self.drive;
+        let Some(path) = vcd else {
+            let mut sim = Sim::new(dut);
+            let t0 = std::time::Instant::now();
+            for (c, s) in stim.iter().enumerate() {
+                sim.set_reset(c < RESET_CYCLES);
+                drive(&mut sim.dut, s);
+                sim.eval();
+                sim.tick();
+            }
+            return Ok(t0.elapsed());
+        };
+        let cfg = waves::TraceConfig {
+            companions: false,
+            ..Default::default()
+        };
+        let err = |e: std::io::Error| format!("{}: {e}", path.display());
+        let title = format!("{} benchmark", self.pristine.kind());
+        let tracer = waves::VcdTracer::create(path, &title, cfg).map_err(err)?;
+        let mut sim = Sim::traced(dut, tracer).map_err(err)?;
+        let t0 = std::time::Instant::now();
+        for (c, s) in stim.iter().enumerate() {
+            sim.set_reset(c < RESET_CYCLES);
+            drive(&mut sim.dut, s);
+            sim.eval();
+            sim.tick();
+        }
+        sim.finish().map_err(err)?;
+        Ok(t0.elapsed())
     }
 }
 
