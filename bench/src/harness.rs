@@ -8,6 +8,9 @@ use std::path::{Path, PathBuf};
 use std::process::Command;
 use tb::cosim::{CosimUnit, Port, RESET_CYCLES};
 
+/// Passes over the stimulus of an untraced run; the fastest counts (on both sides).
+pub const PASSES: usize = 3;
+
 /// What a run records.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum Mode {
@@ -64,7 +67,8 @@ pub fn main_cpp(unit: &dyn CosimUnit, ins: &[Port], outs: &[Port], mode: Mode) -
     };
     let _ = write!(
         s,
-        "    uint64_t sum = 0;\n    const auto t0 = std::chrono::steady_clock::now();\n    for (size_t c = 0; c < cycles; ++c) {{\n        const uint64_t* s = &stim[c * n];\n"
+        "    uint64_t sum = 0;\n    double best = 1e300;\n    // Untraced: the best of several passes (each from reset); traced: one.\n    const int passes = {};\n    for (int pass = 0; pass < passes; ++pass) {{\n    const auto t0 = std::chrono::steady_clock::now();\n    for (size_t c = 0; c < cycles; ++c) {{\n        const uint64_t* s = &stim[c * n];\n",
+        if traced { 1 } else { PASSES }
     );
     if clocked {
         let _ = writeln!(s, "        top.rst = c < {RESET_CYCLES};");
@@ -88,7 +92,7 @@ pub fn main_cpp(unit: &dyn CosimUnit, ins: &[Port], outs: &[Port], mode: Mode) -
     let close = if traced { "    tfp.close();\n" } else { "" };
     let _ = write!(
         s,
-        "    }}\n{close}    const auto t1 = std::chrono::steady_clock::now();\n    top.final();\n    std::printf(\"seconds %.9f checksum %llu\\n\", std::chrono::duration<double>(t1 - t0).count(), (unsigned long long)sum);\n    return 0;\n}}\n"
+        "    }}\n{close}    const auto t1 = std::chrono::steady_clock::now();\n    const double secs = std::chrono::duration<double>(t1 - t0).count();\n    if (secs < best) best = secs;\n    }}\n    top.final();\n    std::printf(\"seconds %.9f checksum %llu\\n\", best, (unsigned long long)sum);\n    return 0;\n}}\n"
     );
     s
 }

@@ -7,10 +7,12 @@
 //! `rst` and `tb.golden` (the testbench's probes). Every fixed-point signal gets a companion
 //! `real` variable `<name>_real` with its value.
 
+mod fst_trace;
 pub mod glob;
 pub mod gtkw;
 mod vcd_trace;
 
+pub use fst_trace::FstTracer;
 pub use vcd_trace::{ProbeId, TraceConfig, VcdTracer, ROOT};
 pub mod check;
 pub mod compare;

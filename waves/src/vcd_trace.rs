@@ -82,6 +82,7 @@ enum ProbeValue {
 struct Probe {
     name: String,
     id: IdCode,
+    code: Box<[u8]>,
     width: u32,
     value: ProbeValue,
     last: Option<ProbeValue>,
@@ -91,8 +92,92 @@ struct Probe {
 struct Entry {
     id: Option<IdCode>,
     real: Option<IdCode>,
+    /// The identifier codes of `id` and `real` as written (empty when not traced).
+    code: Box<[u8]>,
+    real_code: Box<[u8]>,
     fmt: Format,
     last: u64,
+}
+
+/// An identifier code as the VCD writes it.
+fn code_of(id: IdCode) -> Box<[u8]> {
+    id.to_string().into_bytes().into_boxed_slice()
+}
+
+/// `#t` and a newline.
+fn push_time(buf: &mut Vec<u8>, t: u64) {
+    buf.push(b'#');
+    push_decimal(buf, t);
+    buf.push(b'\n');
+}
+
+fn push_decimal(buf: &mut Vec<u8>, mut x: u64) {
+    let mut digits = [0u8; 20];
+    let mut n = 0;
+    loop {
+        digits[n] = b'0' + (x % 10) as u8;
+        n += 1;
+        x /= 10;
+        if x == 0 {
+            break;
+        }
+    }
+    buf.extend(digits[..n].iter().rev());
+}
+
+/// Every byte in binary digits, most significant first.
+static BINARY: [[u8; 8]; 256] = {
+    let mut t = [[b'0'; 8]; 256];
+    let mut v = 0;
+    while v < 256 {
+        let mut k = 0;
+        while k < 8 {
+            if (v >> (7 - k)) & 1 == 1 {
+                t[v][k] = b'1';
+            }
+            k += 1;
+        }
+        v += 1;
+    }
+    t
+};
+
+/// The `width` low bits of `bits` as binary digits, most significant first.
+#[inline]
+pub(crate) fn push_binary(buf: &mut Vec<u8>, width: u32, bits: u64) {
+    // The bits above a whole number of bytes one by one, then eight at a time.
+    let w = width as usize;
+    for k in (w - w % 8..w).rev() {
+        buf.push(b'0' + ((bits >> k) & 1) as u8);
+    }
+    for byte in (0..w / 8).rev() {
+        buf.extend_from_slice(&BINARY[((bits >> (8 * byte)) & 0xff) as usize]);
+    }
+}
+
+/// A value change as the `vcd` crate writes it (`1!` for a bit, `b0101 !` for a vector), but
+/// formatted by hand into the cycle's buffer: the formatting machinery was the tracer's main
+/// cost.
+#[inline]
+fn push_change(buf: &mut Vec<u8>, code: &[u8], width: u32, bits: u64) {
+    if width == 1 {
+        buf.push(b'0' + (bits & 1) as u8);
+    } else {
+        buf.push(b'b');
+        push_binary(buf, width, bits);
+        buf.push(b' ');
+    }
+    buf.extend_from_slice(code);
+    buf.push(b'\n');
+}
+
+/// A real value change, `r<value> <code>` with the value as Rust's `Display` writes it (as the
+/// `vcd` crate does).
+fn push_real(buf: &mut Vec<u8>, code: &[u8], x: f64) {
+    use std::io::Write as _;
+    let _ = write!(buf, "r{x} ");
+    buf.extend_from_slice(code);
+    buf.push(b'\n');
 }
 
 /// Writes a VCD (and its `.gtkw`) of a simulation: every port and register of every instance
@@ -114,6 +199,10 @@ pub struct VcdTracer {
     rst_last: Option<bool>,
     dumped: bool,
     last_time: Option<u64>,
+    /// The cycle's text, written in one go.
+    buf: Vec<u8>,
+    clk_code: Box<[u8]>,
+    rst_code: Box<[u8]>,
     gtkw: Gtkw,
     /// Translate filter files (FSM state names) the `.gtkw` refers to.
     filters: Vec<(PathBuf, &'static [&'static str])>,
@@ -162,6 +251,9 @@ impl VcdTracer {
             rst_last: None,
             dumped: false,
             last_time: None,
+            buf: Vec::with_capacity(1 << 12),
+            clk_code: Box::default(),
+            rst_code: Box::default(),
             filters: Vec::new(),
             finished: false,
             changes: 0,
@@ -195,6 +287,7 @@ impl VcdTracer {
         self.probes.push(Probe {
             name: escape(name),
             id: IdCode::FIRST,
+            code: Box::default(),
             width,
             value: v,
             last: None,
@@ -243,6 +336,12 @@ impl VcdTracer {
     }
 
     fn timestamp(&mut self, t: u64) -> io::Result<()> {
+        self.check_time(t)?;
+        self.writer().timestamp(t)
+    }
+
+    /// Takes `t` as the latest time; timestamps must increase.
+    fn check_time(&mut self, t: u64) -> io::Result<()> {
         if let Some(last) = self.last_time {
             if t <= last {
                 return Err(io_err(format!(
@@ -252,23 +351,7 @@ impl VcdTracer {
             }
         }
         self.last_time = Some(t);
-        self.writer().timestamp(t)
-    }
-}
-
-fn write_bits<W: Write>(
-    w: &mut vcd::Writer<W>,
-    id: IdCode,
-    width: u32,
-    bits: u64,
-) -> io::Result<()> {
-    if width == 1 {
-        w.change_scalar(id, if bits & 1 == 1 { Value::V1 } else { Value::V0 })
-    } else {
-        // The same `b<bits> <id>` line the crate's `change_vector` writes, formatted in one go
-        // (the crate writes every bit with its own `write!`, the slowest part of tracing).
-        let width = width as usize;
-        writeln!(w.writer(), "b{bits:0width$b} {id}")
+        Ok(())
     }
 }
 
@@ -351,6 +434,8 @@ impl Visitor for Declare<'_> {
         let mut e = Entry {
             id: None,
             real: None,
+            code: Box::default(),
+            real_code: Box::default(),
             fmt,
             last: 0,
         };
@@ -376,6 +461,8 @@ impl Visitor for Declare<'_> {
             if let Err(err) = r {
                 self.err.get_or_insert(err);
             }
+            e.code = e.id.map(code_of).unwrap_or_default();
+            e.real_code = e.real.map(code_of).unwrap_or_default();
             let style = if w == 1 {
                 Style::Bin
             } else if fmt.is_signed() {
@@ -411,14 +498,13 @@ impl Visitor for Declare<'_> {
     }
 }
 
-/// Writes the changes of one cycle.
+/// Formats the changes of one cycle into the cycle's buffer.
 struct Sample<'a> {
-    w: &'a mut vcd::Writer<BufWriter<File>>,
+    buf: &'a mut Vec<u8>,
     entries: &'a mut [Entry],
     next: usize,
     all: bool,
     changes: u64,
-    err: Option<io::Error>,
 }
 
 impl Visitor for Sample<'_> {
@@ -428,20 +514,19 @@ impl Visitor for Sample<'_> {
     fn signal(&mut self, _: Dir, s: &Signal) {
         let e = &mut self.entries[self.next];
         self.next += 1;
-        let Some(id) = e.id else { return };
+        if e.id.is_none() {
+            return;
+        }
         let bits = s.bits();
         if !self.all && bits == e.last {
             return;
         }
         e.last = bits;
         self.changes += 1;
-        let mut r = write_bits(self.w, id, e.fmt.width(), bits);
-        if let (Some(rid), Ok(())) = (e.real, &r) {
-            r = self.w.change_real(rid, real_of(bits, e.fmt));
+        push_change(self.buf, &e.code, e.fmt.width(), bits);
+        if e.real.is_some() {
+            push_real(self.buf, &e.real_code, real_of(bits, e.fmt));
             self.changes += 1;
-        }
-        if let Err(err) = r {
-            self.err.get_or_insert(err);
         }
     }
 }
@@ -509,6 +594,7 @@ impl Trace for VcdTracer {
         let rst = w.add_wire(1, "rst")?;
         self.clk = Some(clk);
         self.rst = Some(rst);
+        (self.clk_code, self.rst_code) = (code_of(clk), code_of(rst));
         self.gtkw.treeopen(ROOT);
         self.gtkw.push(Item::Trace {
             name: format!("{ROOT}.clk"),
@@ -548,6 +634,7 @@ impl Trace for VcdTracer {
                     self.writer().add_var(VarType::Wire, width, &name, idx)?
                 };
                 self.probes[i].id = id;
+                self.probes[i].code = code_of(id);
                 let full = format!("{ROOT}.golden.{name}");
                 let trace = Item::Trace {
                     name: if !real && width > 1 {
@@ -572,52 +659,52 @@ impl Trace for VcdTracer {
             return Ok(());
         }
         let t = cycle * self.cfg.period_ps;
-        self.timestamp(t)?;
+        let half = t + self.cfg.period_ps / 2;
+        self.check_time(t)?;
+        self.check_time(half)?;
         let all = !self.dumped;
-        let (clk, rst) = (self.clk.unwrap(), self.rst.unwrap());
-        let w = self.w.as_mut().expect("tracer already finished");
+        let mut buf = std::mem::take(&mut self.buf);
+        buf.clear();
+        push_time(&mut buf, t);
         if all {
-            w.begin(vcd::SimulationCommand::Dumpvars)?;
+            buf.extend_from_slice(b"$dumpvars\n");
         }
-        w.change_scalar(clk, Value::V1)?;
+        push_change(&mut buf, &self.clk_code, 1, 1);
         let mut n = 1;
         if all || self.rst_last != Some(reset) {
-            w.change_scalar(rst, if reset { Value::V1 } else { Value::V0 })?;
+            push_change(&mut buf, &self.rst_code, 1, u64::from(reset));
             self.rst_last = Some(reset);
             n += 1;
         }
         let mut s = Sample {
-            w,
+            buf: &mut buf,
             entries: &mut self.entries,
             next: 0,
             all,
             changes: 0,
-            err: None,
         };
         top.visit(&mut s);
-        if let Some(e) = s.err {
-            return Err(e);
-        }
         n += s.changes;
         for p in &mut self.probes {
             if all || p.last != Some(p.value) {
                 match p.value {
-                    ProbeValue::Real(x) => s.w.change_real(p.id, x)?,
-                    ProbeValue::Bits(b) => write_bits(s.w, p.id, p.width, b)?,
+                    ProbeValue::Real(x) => push_real(&mut buf, &p.code, x),
+                    ProbeValue::Bits(b) => push_change(&mut buf, &p.code, p.width, b),
                 }
                 p.last = Some(p.value);
                 n += 1;
             }
         }
         if all {
-            s.w.end()?;
+            buf.extend_from_slice(b"$end\n");
             self.dumped = true;
         }
         self.changes += n;
-        let half = t + self.cfg.period_ps / 2;
-        self.timestamp(half)?;
-        let clk = self.clk.unwrap();
-        self.writer().change_scalar(clk, Value::V0)
+        push_time(&mut buf, half);
+        push_change(&mut buf, &self.clk_code, 1, 0);
+        let r = self.writer().writer().write_all(&buf);
+        self.buf = buf;
+        r
     }
 
     fn finish(&mut self, cycles: u64) -> io::Result<()> {
@@ -653,5 +740,58 @@ impl Drop for VcdTracer {
             self.w = None;
             let _ = std::fs::remove_file(&self.tmp);
         }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// The hand-written change is the `vcd` crate's text for every width and for bit patterns
+    /// across the byte boundaries.
+    #[test]
+    fn changes_are_written_as_the_vcd_crate_writes_them() {
+        let id = IdCode::FIRST;
+        let code = code_of(id);
+        for width in 1..=64u32 {
+            for bits in [
+                0u64,
+                1,
+                0x5a,
+                0x8000_0000_0000_0001,
+                u64::MAX,
+                0x0123_4567_89ab_cdef,
+            ] {
+                let bits = if width == 64 {
+                    bits
+                } else {
+                    bits & ((1 << width) - 1)
+                };
+                let mut ours = Vec::new();
+                push_change(&mut ours, &code, width, bits);
+                let mut theirs = vcd::Writer::new(Vec::new());
+                if width == 1 {
+                    let v = if bits == 1 { Value::V1 } else { Value::V0 };
+                    theirs.change_scalar(id, v).unwrap();
+                } else {
+                    let v = (0..width).rev().map(|k| {
+                        if (bits >> k) & 1 == 1 {
+                            Value::V1
+                        } else {
+                            Value::V0
+                        }
+                    });
+                    theirs.change_vector(id, v).unwrap();
+                }
+                assert_eq!(
+                    ours,
+                    theirs.writer().clone(),
+                    "width {width} bits {bits:#x}"
+                );
+            }
+        }
+        let mut t = Vec::new();
+        push_time(&mut t, 1_234_567_890);
+        assert_eq!(t, b"#1234567890\n");
     }
 }

@@ -224,3 +224,42 @@ fn fst_of_a_windowed_trace() {
         waves::fst::same_values(&a, &b)
     );
 }
+
+/// The blend adjust unit's run of [`run`] traced directly to FST (no companions, no probes).
+fn run_fst(name: &str, cfg: TraceConfig) -> PathBuf {
+    let path = tmpdir(name).join("ba.fst");
+    let t = waves::FstTracer::create(&path, cfg).unwrap();
+    let dut = BlendAdjust::new("blend_adjust_153", BlendAdjustParams::default()).unwrap();
+    let mut sim = Sim::traced(dut, t).unwrap();
+    sim.reset(2);
+    for c in 0..20u64 {
+        sim.dut.i.valid_in.set_bool(true);
+        sim.dut.i.u_in.set_bits(10 * c);
+        sim.eval();
+        sim.tick();
+    }
+    sim.finish().unwrap();
+    path
+}
+
+/// The FST written while simulating holds what the VCD of the same run holds (without the
+/// VCD's `real` companions and probes): every variable, width and value at every VCD time,
+/// whole and windowed.
+#[test]
+fn direct_fst_holds_the_vcds_values() {
+    for (name, window) in [("direct", None), ("directw", Some((5, 9)))] {
+        let cfg = TraceConfig {
+            companions: false,
+            window,
+            ..Default::default()
+        };
+        let vcd = run(&format!("{name}-vcd"), cfg.clone(), true);
+        let fst = run_fst(name, cfg);
+        let mut a = read_vcd(&vcd).unwrap();
+        a.vars.retain(|n, _| !n.starts_with("tb.golden"));
+        let b = waves::check::read_fst(&fst).unwrap();
+        let r = waves::fst::same_values(&a, &b);
+        assert!(r.is_ok(), "{name}: {r:?}");
+        assert!(!b.vars.is_empty());
+    }
+}

@@ -41,9 +41,35 @@ pub trait CosimModel {
     fn cycle(&mut self, rst: bool, inputs: &[u64]) -> Vec<u64>;
     /// A benchmark run of the design as built (not as [`CosimModel::cycle`] left it): `stim`
     /// driven cycle by cycle ([`RESET_CYCLES`] in reset), no schedule check, no output read;
-    /// untraced, or traced to the VCD `vcd` (every signal, no `real` companions). Returns the
-    /// time of the cycle loop (with the trace's flush).
-    fn bench(&self, stim: &[Vec<u64>], vcd: Option<&Path>) -> Result<std::time::Duration, String>;
+    /// untraced, or traced (every signal, no `real` companions). Returns the time of the cycle
+    /// loop with the trace's final flush.
+    fn bench(&self, stim: &[Vec<u64>], trace: BenchTrace) -> Result<std::time::Duration, String>;
+}
+
+/// What a benchmark run writes.
+#[derive(Clone, Copy, Debug)]
+pub enum BenchTrace<'a> {
+    None,
+    Vcd(&'a Path),
+    /// FST written while simulating ([`waves::FstTracer`]).
+    Fst(&'a Path),
+}
+
+/// The cycle loop of a benchmark run; its time, the trace finished.
+fn bench_loop<M: Module, T: hdl::kernel::Trace>(
+    mut sim: Sim<M, T>,
+    stim: &[Vec<u64>],
+    drive: fn(&mut M, &[u64]),
+) -> std::io::Result<std::time::Duration> {
+    let t0 = std::time::Instant::now();
+    for (c, s) in stim.iter().enumerate() {
+        sim.set_reset(c < RESET_CYCLES);
+        drive(&mut sim.dut, s);
+        sim.eval();
+        sim.tick();
+    }
+    sim.finish()?;
+    Ok(t0.elapsed())
 }
 
 /// A co-simulation model of a [`Module`] whose inputs `drive` sets from raw bits.
@@ -139,37 +165,25 @@ impl<M: Module + Clone> CosimModel for ModelSim<M> {
         self.sim.tick();
         out
     }
-    fn bench(&self, stim: &[Vec<u64>], vcd: Option<&Path>) -> Result<std::time::Duration, String> {
+    fn bench(&self, stim: &[Vec<u64>], trace: BenchTrace) -> Result<std::time::Duration, String> {
         let dut = self.pristine.clone();
-        let drive = self.drive;
-        let Some(path) = vcd else {
-            let mut sim = Sim::new(dut);
-            let t0 = std::time::Instant::now();
-            for (c, s) in stim.iter().enumerate() {
-                sim.set_reset(c < RESET_CYCLES);
-                drive(&mut sim.dut, s);
-                sim.eval();
-                sim.tick();
-            }
-            return Ok(t0.elapsed());
-        };
         let cfg = waves::TraceConfig {
             companions: false,
             ..Default::default()
         };
-        let err = |e: std::io::Error| format!("{}: {e}", path.display());
-        let title = format!("{} benchmark", self.pristine.kind());
-        let tracer = waves::VcdTracer::create(path, &title, cfg).map_err(err)?;
-        let mut sim = Sim::traced(dut, tracer).map_err(err)?;
-        let t0 = std::time::Instant::now();
-        for (c, s) in stim.iter().enumerate() {
-            sim.set_reset(c < RESET_CYCLES);
-            drive(&mut sim.dut, s);
-            sim.eval();
-            sim.tick();
-        }
-        sim.finish().map_err(err)?;
-        Ok(t0.elapsed())
+        let r = match trace {
+            BenchTrace::None => bench_loop(Sim::new(dut), stim, self.drive),
+            BenchTrace::Vcd(p) => {
+                let title = format!("{} benchmark", self.pristine.kind());
+                waves::VcdTracer::create(p, &title, cfg)
+                    .and_then(|t| Sim::traced(dut, t))
+                    .and_then(|s| bench_loop(s, stim, self.drive))
+            }
+            BenchTrace::Fst(p) => waves::FstTracer::create(p, cfg)
+                .and_then(|t| Sim::traced(dut, t))
+                .and_then(|s| bench_loop(s, stim, self.drive)),
+        };
+        r.map_err(|e| e.to_string())
     }
 }
 
