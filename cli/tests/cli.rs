@@ -548,3 +548,53 @@ fn trace_filter_applies_to_every_waveform() {
         }
     }
 }
+
+/// `regress -j N` gives the same results byte for byte as `-j 1`: the summary, the report and
+/// the table, with waveforms on (the traced configuration writes the same VCD).
+#[test]
+fn parallel_regress_is_byte_identical_to_one_thread() {
+    let d = tmp("jobs");
+    let run = |jobs: &str| {
+        let out = d.join(format!("j{jobs}"));
+        let o = texrtl(&[
+            "regress",
+            "--no-cosim",
+            "--count",
+            "60",
+            "--seed",
+            "0x51",
+            "-j",
+            jobs,
+            "--out",
+            out.to_str().unwrap(),
+        ]);
+        assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+        // The output folder's own name aside (it is in the summary's waveform paths).
+        let dir = out.to_str().unwrap();
+        let text = |f: &str| {
+            std::fs::read_to_string(out.join(f))
+                .unwrap()
+                .replace(dir, "OUT")
+        };
+        let stdout = String::from_utf8_lossy(&o.stdout).replace(dir, "OUT");
+        let vcd = std::fs::read(out.join("blend_adjust_153.vcd")).unwrap();
+        (text("summary.json"), text("report.md"), vcd, stdout)
+    };
+    let one = run("1");
+    for jobs in ["2", "5"] {
+        let many = run(jobs);
+        assert!(one.0 == many.0, "-j {jobs}: summary.json differs");
+        assert!(one.1 == many.1, "-j {jobs}: report.md differs");
+        assert!(one.2 == many.2, "-j {jobs}: the VCD differs");
+        assert_eq!(one.3, many.3, "-j {jobs}: the table differs");
+    }
+    let o = texrtl(&[
+        "regress",
+        "-j",
+        "0",
+        "--out",
+        d.join("j0").to_str().unwrap(),
+    ]);
+    assert_eq!(o.status.code(), Some(2));
+    let _ = std::fs::remove_dir_all(&d);
+}

@@ -362,6 +362,12 @@ fn regress_options_at_their_limits() {
     );
     sweep(
         &base,
+        "--jobs",
+        &[("1", 0), ("256", 0), ("0", 2), ("257", 2), ("-1", 2)],
+        true,
+    );
+    sweep(
+        &base,
         "--shard",
         &[
             ("1/1", 0),

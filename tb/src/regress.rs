@@ -60,6 +60,8 @@ pub struct RegressConfig {
     pub check_schedule: bool,
     /// Co-simulate every Verilog twin in every simulator that is installed.
     pub cosim: bool,
+    /// Configurations run at once (threads); the results do not depend on it.
+    pub jobs: usize,
 }
 
 impl RegressConfig {
@@ -73,6 +75,9 @@ impl RegressConfig {
                 "--count {n}: 0..={} random transactions per configuration",
                 Self::MAX_COUNT
             ));
+        }
+        if !(1..=256).contains(&self.jobs) {
+            return Err(format!("--jobs {}: 1..=256 threads", self.jobs));
         }
         for o in &self.only {
             if reg.get(o).is_none() && o != VECTORS && o != COSIM {
@@ -110,6 +115,7 @@ pub fn regress(
             .vcd
             .then(|| (cfg.out.clone(), cfg.trace.clone(), cfg.period_ps)),
         check_schedule: cfg.check_schedule,
+        jobs: cfg.jobs,
     };
     let mut results = Vec::new();
     for tb in reg.iter().filter(|t| cfg.selected(t.name())) {

@@ -134,6 +134,9 @@ pub struct RunOptions {
     /// Write each testbench's waveform into this folder as `<name>.vcd` + `.gtkw`.
     pub waves: Option<(PathBuf, TraceConfig, Option<u64>)>,
     pub check_schedule: bool,
+    /// Configurations run at once, on as many threads (1: one after the other). The merged
+    /// result is the same either way: configurations are merged in their order.
+    pub jobs: usize,
 }
 
 impl Default for RunOptions {
@@ -144,6 +147,7 @@ impl Default for RunOptions {
             shard: Shard::default(),
             waves: None,
             check_schedule: false,
+            jobs: 1,
         }
     }
 }
@@ -182,33 +186,96 @@ pub fn run_testbench(
     let mut merged = TbResult::new(tb.name(), tb.unit());
     merged.seed = Some(opts.seed.to_string());
     merged.coverage = Some(tb.coverage());
-    for (index, label) in tb.configurations().into_iter().enumerate() {
-        if !opts.shard.owns(index as u64) {
-            continue;
-        }
-        progress(&label);
-        let waves = opts.waves.as_ref().filter(|_| index == tb.traced());
-        let ctx = Ctx {
-            index,
-            seed: config_seed(opts.seed, tb.name(), index),
-            count: opts.count.unwrap_or_else(|| tb.default_count()),
-            waves: waves.map(|(dir, trace, period_ps)| WaveOut {
-                vcd: dir.join(format!("{}.vcd", tb.name())),
-                trace: trace.clone(),
-                period_ps: *period_ps,
-            }),
-            check_schedule: opts.check_schedule,
-            label,
-        };
-        let r = tb
-            .run(&ctx)
-            .map_err(|e| format!("{} [{}]: {e}", tb.name(), ctx.label))?;
+    let owned: Vec<(usize, String)> = tb
+        .configurations()
+        .into_iter()
+        .enumerate()
+        .filter(|(index, _)| opts.shard.owns(*index as u64))
+        .collect();
+    let results = if opts.jobs > 1 && owned.len() > 1 {
+        run_parallel(tb, opts, &owned, progress)
+    } else {
+        owned
+            .iter()
+            .map(|(index, label)| {
+                progress(label);
+                run_configuration(tb, opts, *index, label)
+            })
+            .collect()
+    };
+    // Merged in configuration order, however they ran.
+    for ((_, label), r) in owned.iter().zip(results) {
         merged
-            .absorb(&r, Some(&ctx.label))
-            .map_err(|e| format!("{} [{}]: {e}", tb.name(), ctx.label))?;
+            .absorb(&r?, Some(label))
+            .map_err(|e| format!("{} [{label}]: {e}", tb.name()))?;
     }
     conclude(tb, &mut merged, opts.shard.is_all());
     Ok(merged)
+}
+
+/// One configuration of `tb`.
+fn run_configuration(
+    tb: &dyn Testbench,
+    opts: &RunOptions,
+    index: usize,
+    label: &str,
+) -> Result<TbResult, String> {
+    let waves = opts.waves.as_ref().filter(|_| index == tb.traced());
+    let ctx = Ctx {
+        index,
+        seed: config_seed(opts.seed, tb.name(), index),
+        count: opts.count.unwrap_or_else(|| tb.default_count()),
+        waves: waves.map(|(dir, trace, period_ps)| WaveOut {
+            vcd: dir.join(format!("{}.vcd", tb.name())),
+            trace: trace.clone(),
+            period_ps: *period_ps,
+        }),
+        check_schedule: opts.check_schedule,
+        label: label.to_string(),
+    };
+    tb.run(&ctx)
+        .map_err(|e| format!("{} [{}]: {e}", tb.name(), ctx.label))
+}
+
+/// The configurations `owned` on `opts.jobs` threads, each result in its configuration's
+/// place; `progress` is told of each as it finishes.
+fn run_parallel(
+    tb: &dyn Testbench,
+    opts: &RunOptions,
+    owned: &[(usize, String)],
+    progress: &mut dyn FnMut(&str),
+) -> Vec<Result<TbResult, String>> {
+    use std::sync::atomic::{AtomicUsize, Ordering};
+    let next = AtomicUsize::new(0);
+    let (tx, rx) = std::sync::mpsc::channel();
+    let mut results: Vec<Option<Result<TbResult, String>>> = owned.iter().map(|_| None).collect();
+    std::thread::scope(|s| {
+        for _ in 0..opts.jobs.min(owned.len()) {
+            let tx = tx.clone();
+            let next = &next;
+            s.spawn(move || loop {
+                let k = next.fetch_add(1, Ordering::Relaxed);
+                let Some((index, label)) = owned.get(k) else {
+                    break;
+                };
+                if tx
+                    .send((k, run_configuration(tb, opts, *index, label)))
+                    .is_err()
+                {
+                    break;
+                }
+            });
+        }
+        drop(tx);
+        for (k, r) in rx {
+            progress(&owned[k].1);
+            results[k] = Some(r);
+        }
+    });
+    results
+        .into_iter()
+        .map(|r| r.unwrap_or_else(|| Err(format!("{}: a configuration did not finish", tb.name()))))
+        .collect()
 }
 
 /// The framework's verdict on a merged result: coverage figures, the testbench's own

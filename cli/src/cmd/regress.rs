@@ -61,6 +61,10 @@ pub struct RegressArgs {
     /// is installed, as rows cosim/UNIT/SIMULATOR).
     #[arg(long)]
     no_cosim: bool,
+    /// Configurations run at once, 1..=256 threads (default: the machine's cores); the
+    /// results are the same for any number.
+    #[arg(short = 'j', long)]
+    jobs: Option<usize>,
 }
 
 fn parse_window(s: &str) -> Result<(u64, u64), String> {
@@ -104,6 +108,9 @@ pub fn run(a: RegressArgs) -> ExitCode {
         only: a.only,
         check_schedule: a.check_schedule,
         cosim: !a.no_cosim,
+        jobs: a.jobs.unwrap_or_else(|| {
+            std::thread::available_parallelism().map_or(1, std::num::NonZeroUsize::get)
+        }),
     };
     if let Err(e) = cfg.trace.validate() {
         return crate::fail(format!("--period-ps/--trace-window: {e}"));
