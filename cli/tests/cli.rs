@@ -45,7 +45,24 @@ fn regress_writes_valid_waveforms_and_summary() {
     assert_eq!(rb.vars["tb.blend_adjust_153.u0"].width, Some(9));
     assert!(rb.vars.contains_key("tb.golden.u0_golden"));
     assert!(rb.vars.contains_key("tb.golden.mismatch"));
-    // The golden value equals the DUT's companion real wherever the output is valid.
+    check_golden_beside_companion(&rb);
+    assert!(check_gtkw(&vcd, &rb).unwrap() > 10);
+    check_summary_report_and_pictures(&out);
+    // With Verilator installed, every twin is co-simulated as a row of the table.
+    if std::process::Command::new("verilator")
+        .arg("-V")
+        .output()
+        .is_ok()
+    {
+        for u in tb::cosim::UNITS {
+            assert!(stdout.contains(&format!("cosim/{u}/verilator")), "{stdout}");
+        }
+    }
+    check_state_names(&out);
+}
+
+/// The golden value equals the DUT's companion real wherever the output is valid.
+fn check_golden_beside_companion(rb: &waves::check::Readback) {
     let valid = &rb.vars["tb.blend_adjust_153.valid"];
     let mut checked = 0;
     for (t, v) in &valid.changes {
@@ -65,12 +82,15 @@ fn regress_writes_valid_waveforms_and_summary() {
         }
     }
     assert!(checked > 0);
-    assert!(check_gtkw(&vcd, &rb).unwrap() > 10);
+}
+
+/// `summary.json`, `report.md` with its links, the pictures and the other waveforms.
+fn check_summary_report_and_pictures(out: &Path) {
     let s: serde_json::Value =
         serde_json::from_str(&std::fs::read_to_string(out.join("summary.json")).unwrap()).unwrap();
     assert_eq!(s["passed"], true);
     assert_eq!(s["testbenches"][0]["mismatches"], 0);
-    assert!(no_partials(&out));
+    assert!(no_partials(out));
     let report = std::fs::read_to_string(out.join("report.md")).unwrap();
     for link in [
         "normals_render.png",
@@ -95,18 +115,11 @@ fn regress_writes_valid_waveforms_and_summary() {
         let p = out.join(vcd);
         check_gtkw(&p, &read_vcd(&p).unwrap()).unwrap();
     }
-    // With Verilator installed, every twin is co-simulated as a row of the table.
-    if std::process::Command::new("verilator")
-        .arg("-V")
-        .output()
-        .is_ok()
-    {
-        for u in tb::cosim::UNITS {
-            assert!(stdout.contains(&format!("cosim/{u}/verilator")), "{stdout}");
-        }
-    }
-    // FSM states by name: a translate filter file per state register, referenced from the
-    // .gtkw just before the trace it names.
+}
+
+/// FSM states by name: a translate filter file per state register, referenced from the
+/// `.gtkw` just before the trace it names.
+fn check_state_names(out: &Path) {
     let filter = out.join("texture_unit_602.fill_engine_607.state.txt");
     let names = std::fs::read_to_string(&filter).unwrap();
     assert!(names.contains("0 IDLE\n1 FETCH\n2 DECODE\n"), "{names}");

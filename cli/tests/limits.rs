@@ -61,7 +61,7 @@ fn s(v: &[&str]) -> Vec<String> {
 }
 
 #[test]
-fn normals_and_render_options_at_their_limits() {
+fn normals_options_at_their_limits() {
     let d = dir("normals");
     let h = write(
         &d,
@@ -140,6 +140,17 @@ fn normals_and_render_options_at_their_limits() {
         false,
     );
     sweep(&base, "--lod", &[("0.5", 2)], false);
+    let _ = std::fs::remove_dir_all(&d);
+}
+
+#[test]
+fn render_options_at_their_limits() {
+    let d = dir("render");
+    let h = write(
+        &d,
+        "h.pgm",
+        b"P2\n4 4\n15\n1 2 3 4\n5 6 7 8\n9 10 11 12\n13 14 15 0\n",
+    );
     let png = d.join("r.png").to_string_lossy().into_owned();
     let base = s(&["render", "--height", &h, "--out", &png]);
     sweep(

@@ -23,21 +23,38 @@ fn texrtl(args: &[&str]) -> std::process::Output {
         .output()
         .expect("runs")
 }
-#[test]
-fn ccc_and_texread_commands() {
-    let d = dir("cmd");
-    let (t, c, dec) = (d.join("t.ppm"), d.join("t.ccc"), d.join("d.ppm"));
+/// A folder with the test texture as `t.ppm`, encoded by `texrtl ccc encode` into `t.ccc`.
+fn encoded(name: &str) -> (std::path::PathBuf, std::path::PathBuf, std::path::PathBuf) {
+    let d = dir(name);
+    let (t, c) = (d.join("t.ppm"), d.join("t.ccc"));
     std::fs::write(&t, ppm(32, 16)).unwrap();
-    let s = |p: &std::path::Path| p.to_str().unwrap().to_string();
     let o = texrtl(&["ccc", "encode", "--in", &s(&t), "--out", &s(&c)]);
     assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
     assert!(String::from_utf8_lossy(&o.stdout).contains("PSNR"));
+    (d, t, c)
+}
+
+fn s(p: &std::path::Path) -> String {
+    p.to_str().unwrap().to_string()
+}
+
+#[test]
+fn ccc_decode_gives_the_encoded_texture() {
+    let (d, _, c) = encoded("decode");
+    let dec = d.join("d.ppm");
     let o = texrtl(&["ccc", "decode", "--in", &s(&c), "--out", &s(&dec)]);
     assert!(o.status.success());
     let tex = Ccc::read(&c).unwrap();
     let img = formats::netpbm::read_ppm(&dec).unwrap();
     assert_eq!(img.pixels, tex.decode());
+}
 
+/// Every cache and layout mode gives the integer reference's colours, with its statistics
+/// and a waveform; a PPM texture encoded on the fly gives the same.
+#[test]
+fn texread_modes_agree_with_the_reference() {
+    let (d, t, c) = encoded("modes");
+    let tex = Ccc::read(&c).unwrap();
     let r = d.join("r.csv");
     std::fs::write(
         &r,
@@ -101,8 +118,29 @@ fn ccc_and_texread_commands() {
         let want = reference_filter(&tex, u, v, 4);
         assert_eq!(f, vec![want >> 16, want >> 8 & 0xff, want & 0xff], "{row}");
     }
-    // The waveform: DRAM pins, page register, cache tags and valid bits, controller states.
-    let rb = waves::check::read_vcd(&vcd).unwrap();
+    check_texread_waveform(&vcd);
+    // A PPM texture is encoded on the fly: the same results as its .ccc.
+    let a: Vec<String> = [
+        "texread",
+        "--texture",
+        &s(&t),
+        "--requests",
+        &s(&r),
+        "--out",
+        &s(&out),
+    ]
+    .iter()
+    .map(|x| x.to_string())
+    .collect();
+    let o = texrtl(&a.iter().map(String::as_str).collect::<Vec<_>>());
+    assert!(o.status.success());
+    assert_eq!(std::fs::read_to_string(&out).unwrap(), outs[0]);
+}
+
+/// The waveform of `texread --vcd`: DRAM pins, page register, cache tags and valid bits,
+/// controller states.
+fn check_texread_waveform(vcd: &std::path::Path) {
+    let rb = waves::check::read_vcd(vcd).unwrap();
     for v in [
         "tb.texture_unit_602.control_607.dram_604.ras_n",
         "tb.texture_unit_602.control_607.dram_604.cas_n",
@@ -125,25 +163,15 @@ fn ccc_and_texread_commands() {
         rb.vars["tb.texture_unit_602.ccc_decode_608.reg_608"].width,
         Some(32)
     );
-    waves::check::check_gtkw(&vcd, &rb).unwrap();
-    // A PPM texture is encoded on the fly: the same results as its .ccc.
-    let mut a: Vec<String> = [
-        "texread",
-        "--texture",
-        &s(&t),
-        "--requests",
-        &s(&r),
-        "--out",
-        &s(&out),
-    ]
-    .iter()
-    .map(|x| x.to_string())
-    .collect();
-    let o = texrtl(&a.iter().map(String::as_str).collect::<Vec<_>>());
-    assert!(o.status.success());
-    assert_eq!(std::fs::read_to_string(&out).unwrap(), outs[0]);
+    waves::check::check_gtkw(vcd, &rb).unwrap();
+}
 
-    // Bad input: one line naming the file, exit 2, nothing written.
+/// Bad input: one line naming the file, exit 2, nothing written.
+#[test]
+fn texread_refuses_bad_textures_and_requests() {
+    let (d, _, c) = encoded("bad");
+    let r = d.join("r.csv");
+    let mut a: Vec<String>;
     let bad_out = d.join("bad.csv");
     let good = std::fs::read(&c).unwrap();
     let cases: Vec<(&str, Vec<u8>, &str, &str)> = vec![
@@ -206,6 +234,15 @@ fn ccc_and_texread_commands() {
         );
         assert!(!bad_out.exists(), "{name}");
     }
+}
+
+/// A texture beyond the DRAM is refused until the larger part is chosen; bad options and a
+/// non-CCC file given to `ccc decode` are refused.
+#[test]
+fn texread_sizes_and_options() {
+    let (d, t, c) = encoded("big");
+    let r = d.join("r.csv");
+    let bad_out = d.join("bad.csv");
     // A texture beyond the DRAM: 2048 x 2048 needs 512K words; the 1M x 16 part holds it.
     let big = d.join("big.ccc");
     std::fs::write(&big, tb::texture::test_pattern(2048, 2048).to_bytes()).unwrap();
