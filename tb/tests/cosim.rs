@@ -1122,24 +1122,10 @@ fn lookahead_flush_bug_is_caught_with_its_cycle_and_port() {
     let stim = u.stimulus(seed, n);
     let uq = hdl::fx::Format::unsigned(16, 4);
     let mut sim = Sim::new(LookaheadQueue::new(Lookahead::Quadrant, (16, 16), uq, 10));
-    let drive = |d: &mut LookaheadQueue, s: &[u64]| {
-        let ins = [
-            &mut d.complete,
-            &mut d.u,
-            &mut d.v,
-            &mut d.newline,
-            &mut d.flush,
-            &mut d.engine_free,
-            &mut d.stage0_missing,
-        ];
-        for (sig, x) in ins.into_iter().zip(s) {
-            sig.set_bits(*x);
-        }
-    };
     let mut want = None;
     for (c, s) in stim.iter().enumerate() {
         sim.set_reset(c < tb::cosim::RESET_CYCLES);
-        drive(&mut sim.dut, s);
+        tb::cosim::drive_lookahead(&mut sim.dut, s);
         if c >= tb::cosim::FIRST_COMPARED && s[4] == 1 {
             let mut without = sim.dut.clone();
             without.flush.set_bits(0);
@@ -1183,19 +1169,7 @@ fn fill_tiled_address_bug_is_caught_with_its_cycle_and_port() {
     let mut want = None;
     for (c, s) in stim.iter().enumerate() {
         sim.set_reset(c < tb::cosim::RESET_CYCLES);
-        let d = &mut sim.dut;
-        let ins = [
-            &mut d.start,
-            &mut d.start_bx,
-            &mut d.start_by,
-            &mut d.start_prefetch,
-            &mut d.word_ready,
-            &mut d.word_resp,
-            &mut d.line_done,
-        ];
-        for (sig, x) in ins.into_iter().zip(s) {
-            sig.set_bits(*x);
-        }
+        tb::cosim::drive_fill(&mut sim.dut, s);
         let (bx, by, _) = sim.dut.block();
         if c >= tb::cosim::FIRST_COMPARED
             && sim.dut.word_request().is_some()

@@ -89,6 +89,38 @@ impl CosimUnit for ControlCosim {
     }
 }
 
+/// Drives the lookahead queue's inputs from one cycle of [`LookaheadCosim`]'s stimulus.
+pub fn drive_lookahead(d: &mut LookaheadQueue, v: &[u64]) {
+    let ins = [
+        &mut d.complete,
+        &mut d.u,
+        &mut d.v,
+        &mut d.newline,
+        &mut d.flush,
+        &mut d.engine_free,
+        &mut d.stage0_missing,
+    ];
+    for (s, x) in ins.into_iter().zip(v) {
+        s.set_bits(*x);
+    }
+}
+
+/// Drives the block fetch's inputs from one cycle of [`FillCosim`]'s stimulus.
+pub fn drive_fill(d: &mut FillEngine, v: &[u64]) {
+    let ins = [
+        &mut d.start,
+        &mut d.start_bx,
+        &mut d.start_by,
+        &mut d.start_prefetch,
+        &mut d.word_ready,
+        &mut d.word_resp,
+        &mut d.line_done,
+    ];
+    for (s, x) in ins.into_iter().zip(v) {
+        s.set_bits(*x);
+    }
+}
+
 /// The lookahead queue of control unit 607 against `rtl/texmem/lookahead_queue_607.v`, for a
 /// texture of `blocks` (width, height) 4x4 blocks, coordinates `uQ12.<frac_bits>` and the
 /// unit's 10-bit block coordinates. Compared besides its ports: the live-slot mask.
@@ -125,20 +157,7 @@ impl CosimUnit for LookaheadCosim {
     fn model(&self) -> Result<Box<dyn CosimModel>, String> {
         let uq = Format::unsigned(12 + self.frac_bits, self.frac_bits as i32);
         let dut = LookaheadQueue::new(self.mode, self.blocks, uq, BLOCK_BITS);
-        let m = ModelSim::new(dut, |d: &mut LookaheadQueue, v: &[u64]| {
-            let ins = [
-                &mut d.complete,
-                &mut d.u,
-                &mut d.v,
-                &mut d.newline,
-                &mut d.flush,
-                &mut d.engine_free,
-                &mut d.stage0_missing,
-            ];
-            for (s, x) in ins.into_iter().zip(v) {
-                s.set_bits(*x);
-            }
-        });
+        let m = ModelSim::new(dut, drive_lookahead);
         let mask = Port {
             name: "mask".into(),
             fmt: Format::uint(3),
@@ -319,20 +338,7 @@ impl CosimUnit for FillCosim {
             return Err("fill_engine_607: the texture does not fit the DRAM".into());
         }
         let dut = FillEngine::new(map, BLOCK_BITS, Format::uint(self.addr_bits()));
-        let m = ModelSim::new(dut, |d: &mut FillEngine, v: &[u64]| {
-            let ins = [
-                &mut d.start,
-                &mut d.start_bx,
-                &mut d.start_by,
-                &mut d.start_prefetch,
-                &mut d.word_ready,
-                &mut d.word_resp,
-                &mut d.line_done,
-            ];
-            for (s, x) in ins.into_iter().zip(v) {
-                s.set_bits(*x);
-            }
-        });
+        let m = ModelSim::new(dut, drive_fill);
         let p = |name: &str, w: u32| Port {
             name: name.into(),
             fmt: Format::uint(w),
