@@ -4,8 +4,9 @@
 //! values and the inputs that led to it, and one waveform holding both.
 //!
 //! The RTL runs in a generated SystemVerilog testbench that replays the stimulus with
-//! `$readmemh` and writes every output port every cycle with `$fwrite` (Verilator `--binary
-//! --timing` or Icarus `iverilog -g2012`); the Rust side then compares. This costs a file per
+//! `$readmemh` and writes every output port every cycle with `$fwrite` (Verilator with
+//! `--timing`, its runtime reused between builds, see `verilator.rs`, or Icarus `iverilog
+//! -g2012`); the Rust side then compares. This costs a file per
 //! run but needs no C++ glue or FFI, runs unchanged in both simulators, and leaves the
 //! testbench, stimulus and outputs in the run's folder for the RTL engineer to rerun by hand.
 
