@@ -8,7 +8,8 @@ use std::path::{Path, PathBuf};
 use std::process::Command;
 use tb::cosim::{CosimUnit, Port, RESET_CYCLES};
 
-/// Passes over the stimulus of an untraced run; the fastest counts (on both sides).
+/// Passes over the stimulus (untraced, inside one run) or runs (traced); the fastest counts,
+/// on both sides.
 pub const PASSES: usize = 3;
 
 /// What a run records.

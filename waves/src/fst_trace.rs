@@ -43,6 +43,8 @@ pub struct FstTracer {
     started: bool,
     last_time: Option<u64>,
     bits: Vec<u8>,
+    /// The cycle's changes (kept between cycles: no allocation per cycle).
+    pending: Vec<(FstSignalId, u32, u64)>,
 }
 
 fn fst_err(path: &Path, e: impl std::fmt::Debug) -> io::Error {
@@ -81,6 +83,7 @@ impl FstTracer {
             started: false,
             last_time: None,
             bits: Vec::with_capacity(64),
+            pending: Vec::new(),
         })
     }
 
@@ -241,16 +244,18 @@ impl Trace for FstTracer {
             self.change(rst, 1, u64::from(reset))?;
             self.rst_last = Some(reset);
         }
-        let mut out = Vec::new();
+        let mut out = std::mem::take(&mut self.pending);
+        out.clear();
         top.visit(&mut Changes {
             vars: &mut self.vars,
             next: 0,
             all,
             out: &mut out,
         });
-        for (id, width, bits) in out {
+        for &(id, width, bits) in &out {
             self.change(id, width, bits)?;
         }
+        self.pending = out;
         self.time(t + self.cfg.period_ps / 2)?;
         self.change(clk, 1, 0)
     }
