@@ -38,6 +38,19 @@ fn s(p: &std::path::Path) -> String {
     p.to_str().unwrap().to_string()
 }
 
+/// `texrtl texread --texture T --requests R --out O` with `extra` options.
+fn texread(
+    texture: &std::path::Path,
+    requests: &std::path::Path,
+    out: &std::path::Path,
+    extra: &[&str],
+) -> std::process::Output {
+    let (t, r, o) = (s(texture), s(requests), s(out));
+    let mut a = vec!["texread", "--texture", &t, "--requests", &r, "--out", &o];
+    a.extend(extra);
+    texrtl(&a)
+}
+
 #[test]
 fn ccc_decode_gives_the_encoded_texture() {
     let (d, _, c) = encoded("decode");
@@ -69,22 +82,10 @@ fn texread_modes_agree_with_the_reference() {
         vec!["--no-lookahead", "--layout", "tiled"],
         vec!["--interval", "5"],
     ] {
-        let mut a = vec![
-            "texread".to_string(),
-            "--texture".into(),
-            s(&c),
-            "--requests".into(),
-            s(&r),
-            "--out".into(),
-            s(&out),
-            "--stats".into(),
-            s(&stats),
-            "--vcd".into(),
-            s(&vcd),
-        ];
-        a.extend(extra.iter().map(|x| x.to_string()));
-        let a: Vec<&str> = a.iter().map(String::as_str).collect();
-        let o = texrtl(&a);
+        let (st, w) = (s(&stats), s(&vcd));
+        let mut a = vec!["--stats", &st, "--vcd", &w];
+        a.extend(extra);
+        let o = texread(&c, &r, &out, &a);
         assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
         outs.push(std::fs::read_to_string(&out).unwrap());
         let j: serde_json::Value = serde_json::from_slice(&std::fs::read(&stats).unwrap()).unwrap();
@@ -120,19 +121,7 @@ fn texread_modes_agree_with_the_reference() {
     }
     check_texread_waveform(&vcd);
     // A PPM texture is encoded on the fly: the same results as its .ccc.
-    let a: Vec<String> = [
-        "texread",
-        "--texture",
-        &s(&t),
-        "--requests",
-        &s(&r),
-        "--out",
-        &s(&out),
-    ]
-    .iter()
-    .map(|x| x.to_string())
-    .collect();
-    let o = texrtl(&a.iter().map(String::as_str).collect::<Vec<_>>());
+    let o = texread(&t, &r, &out, &[]);
     assert!(o.status.success());
     assert_eq!(std::fs::read_to_string(&out).unwrap(), outs[0]);
 }
@@ -171,7 +160,6 @@ fn check_texread_waveform(vcd: &std::path::Path) {
 fn texread_refuses_bad_textures_and_requests() {
     let (d, _, c) = encoded("bad");
     let r = d.join("r.csv");
-    let mut a: Vec<String>;
     let bad_out = d.join("bad.csv");
     let good = std::fs::read(&c).unwrap();
     let cases: Vec<(&str, Vec<u8>, &str, &str)> = vec![
@@ -213,19 +201,7 @@ fn texread_refuses_bad_textures_and_requests() {
         let tp = d.join(format!("bad-{name}"));
         std::fs::write(&tp, &bytes).unwrap();
         std::fs::write(&r, req).unwrap();
-        a = [
-            "texread",
-            "--texture",
-            &s(&tp),
-            "--requests",
-            &s(&r),
-            "--out",
-            &s(&bad_out),
-        ]
-        .iter()
-        .map(|x| x.to_string())
-        .collect();
-        let o = texrtl(&a.iter().map(String::as_str).collect::<Vec<_>>());
+        let o = texread(&tp, &r, &bad_out, &[]);
         let err = String::from_utf8_lossy(&o.stderr);
         assert_eq!(o.status.code(), Some(2), "{name}: {err}");
         assert!(
@@ -247,16 +223,7 @@ fn texread_sizes_and_options() {
     let big = d.join("big.ccc");
     std::fs::write(&big, tb::texture::test_pattern(2048, 2048).to_bytes()).unwrap();
     std::fs::write(&r, "u,v\n2047.5,1\n").unwrap();
-    let args = |extra: &[&str]| {
-        let mut a: Vec<String> = ["texread", "--texture", &s(&big), "--requests", &s(&r)]
-            .iter()
-            .map(|x| x.to_string())
-            .collect();
-        a.extend(["--out".to_string(), s(&bad_out)]);
-        a.extend(extra.iter().map(|x| x.to_string()));
-        a
-    };
-    let o = texrtl(&args(&[]).iter().map(String::as_str).collect::<Vec<_>>());
+    let o = texread(&big, &r, &bad_out, &[]);
     let err = String::from_utf8_lossy(&o.stderr);
     assert_eq!(o.status.code(), Some(2), "{err}");
     assert!(
@@ -270,33 +237,18 @@ fn texread_sizes_and_options() {
         &["--lookahead", "sideways"],
         &["--dram", "2m"],
     ] {
-        let o = texrtl(&args(bad).iter().map(String::as_str).collect::<Vec<_>>());
+        let o = texread(&big, &r, &bad_out, bad);
         assert_eq!(o.status.code(), Some(2), "{bad:?}");
         assert!(!bad_out.exists());
     }
-    let o = texrtl(
-        &args(&["--dram", "1m"])
-            .iter()
-            .map(String::as_str)
-            .collect::<Vec<_>>(),
-    );
+    let o = texread(&big, &r, &bad_out, &["--dram", "1m"]);
     assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
     std::fs::remove_file(&bad_out).unwrap();
 
     let o = texrtl(&["ccc", "decode", "--in", &s(&t), "--out", &s(&bad_out)]);
     assert_eq!(o.status.code(), Some(2));
     assert!(String::from_utf8_lossy(&o.stderr).contains("magic"));
-    let o = texrtl(&[
-        "texread",
-        "--texture",
-        &s(&c),
-        "--requests",
-        &s(&r),
-        "--out",
-        &s(&bad_out),
-        "--layout",
-        "zigzag",
-    ]);
+    let o = texread(&c, &r, &bad_out, &["--layout", "zigzag"]);
     assert_eq!(o.status.code(), Some(2));
     assert!(!bad_out.exists());
 }

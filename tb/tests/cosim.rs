@@ -1106,7 +1106,7 @@ fn cache_touch_bug_is_caught_with_its_cycle_and_port() {
 /// says when).
 #[test]
 fn lookahead_flush_bug_is_caught_with_its_cycle_and_port() {
-    use hdl::kernel::{Module, Sim};
+    use hdl::kernel::Module;
     use hdl::texmem::control_607::LookaheadQueue;
     let u = LookaheadCosim {
         mode: Lookahead::Quadrant,
@@ -1121,25 +1121,38 @@ fn lookahead_flush_bug_is_caught_with_its_cycle_and_port() {
     let (n, seed) = (2_000, Seed(19));
     let stim = u.stimulus(seed, n);
     let uq = hdl::fx::Format::unsigned(16, 4);
-    let mut sim = Sim::new(LookaheadQueue::new(Lookahead::Quadrant, (16, 16), uq, 10));
-    let mut want = None;
+    let dut = LookaheadQueue::new(Lookahead::Quadrant, (16, 16), uq, 10);
+    let flushes_a_take = |d: &LookaheadQueue, s: &[u64]| {
+        let mut without = d.clone();
+        without.flush.set_bits(0);
+        without.eval();
+        s[4] == 1 && without.take.is_high()
+    };
+    let want = first_cycle(dut, &stim, tb::cosim::drive_lookahead, flushes_a_take)
+        .expect("a flush meets a non-empty queue");
+    assert_caught(&u, bug, n, seed, (want, "take"));
+}
+
+/// The first cycle from [`tb::cosim::FIRST_COMPARED`] at which `hit` holds for the model
+/// `dut` driven with `stim` by `drive` (looked at with the cycle's inputs driven, before its
+/// `eval`; reset as the harness applies it).
+fn first_cycle<M: hdl::kernel::Module>(
+    dut: M,
+    stim: &[Vec<u64>],
+    drive: fn(&mut M, &[u64]),
+    hit: impl Fn(&M, &[u64]) -> bool,
+) -> Option<usize> {
+    let mut sim = hdl::kernel::Sim::new(dut);
     for (c, s) in stim.iter().enumerate() {
         sim.set_reset(c < tb::cosim::RESET_CYCLES);
-        tb::cosim::drive_lookahead(&mut sim.dut, s);
-        if c >= tb::cosim::FIRST_COMPARED && s[4] == 1 {
-            let mut without = sim.dut.clone();
-            without.flush.set_bits(0);
-            without.eval();
-            if without.take.is_high() {
-                want = Some(c);
-                break;
-            }
+        drive(&mut sim.dut, s);
+        if c >= tb::cosim::FIRST_COMPARED && hit(&sim.dut, s) {
+            return Some(c);
         }
         sim.eval();
         sim.tick();
     }
-    let want = want.expect("a flush meets a non-empty queue");
-    assert_caught(&u, bug, n, seed, (want, "take"));
+    None
 }
 
 /// The block fetch forgetting that a block is two words in the tiled layout (the offset inside
@@ -1147,7 +1160,6 @@ fn lookahead_flush_bug_is_caught_with_its_cycle_and_port() {
 /// block that is not the first of its tile.
 #[test]
 fn fill_tiled_address_bug_is_caught_with_its_cycle_and_port() {
-    use hdl::kernel::Sim;
     use hdl::texmem::control_607::FillEngine;
     use hdl::texmem::layout::BlockMap;
     let u = FillCosim {
@@ -1165,23 +1177,13 @@ fn fill_tiled_address_bug_is_caught_with_its_cycle_and_port() {
     let stim = u.stimulus(seed, n);
     let map = BlockMap::new(Layout::Tiled, 40, 24, 512, 4096);
     let (tw, th) = map.tile();
-    let mut sim = Sim::new(FillEngine::new(map, 10, hdl::fx::Format::uint(18)));
-    let mut want = None;
-    for (c, s) in stim.iter().enumerate() {
-        sim.set_reset(c < tb::cosim::RESET_CYCLES);
-        tb::cosim::drive_fill(&mut sim.dut, s);
-        let (bx, by, _) = sim.dut.block();
-        if c >= tb::cosim::FIRST_COMPARED
-            && sim.dut.word_request().is_some()
-            && (by % th) * tw + bx % tw != 0
-        {
-            want = Some(c);
-            break;
-        }
-        sim.eval();
-        sim.tick();
-    }
-    let want = want.expect("a block inside a tile is fetched");
+    let dut = FillEngine::new(map, 10, hdl::fx::Format::uint(18));
+    let inside_a_tile = |d: &FillEngine, _: &[u64]| {
+        let (bx, by, _) = d.block();
+        d.word_request().is_some() && (by % th) * tw + bx % tw != 0
+    };
+    let want = first_cycle(dut, &stim, tb::cosim::drive_fill, inside_a_tile)
+        .expect("a block inside a tile is fetched");
     assert_caught(&u, bug, n, seed, (want, "word_addr"));
 }
 

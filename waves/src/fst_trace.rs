@@ -5,7 +5,6 @@
 //! memory and flushed into a new value-change section whenever the buffer passes
 //! [`FLUSH_BYTES`], so a long run needs bounded memory.
 
-use crate::glob::glob_match;
 use crate::TraceConfig;
 use fst_writer::{
     FstBodyWriter, FstFileType, FstHeaderWriter, FstInfo, FstScopeType, FstSignalId, FstSignalType,
@@ -136,9 +135,7 @@ impl Visitor for Declare<'_> {
     fn signal(&mut self, _: Dir, s: &Signal) {
         let depth = self.scope.len();
         let full = format!("{}.{}", self.scope.join("."), s.name());
-        let keep = self.cfg.max_depth.is_none_or(|d| depth <= d)
-            && (self.cfg.filters.is_empty()
-                || self.cfg.filters.iter().any(|f| glob_match(f, &full)));
+        let keep = self.cfg.keeps(depth, &full);
         let width = s.fmt().width();
         let id = if keep {
             let t = FstSignalType::bit_vec(width);

@@ -56,6 +56,14 @@ impl TraceConfig {
     }
 }
 
+impl TraceConfig {
+    /// Whether a signal at scope depth `depth`, with hierarchical name `full`, is traced.
+    pub fn keeps(&self, depth: usize, full: &str) -> bool {
+        self.max_depth.is_none_or(|d| depth <= d)
+            && (self.filters.is_empty() || self.filters.iter().any(|f| glob_match(f, full)))
+    }
+}
+
 impl Default for TraceConfig {
     fn default() -> Self {
         TraceConfig {
@@ -427,9 +435,7 @@ impl Visitor for Declare<'_> {
         let depth = self.scope.len();
         let name = escape(s.name());
         let full = format!("{}.{}", self.scope.join("."), name);
-        let cfg = &self.t.cfg;
-        let keep = cfg.max_depth.is_none_or(|d| depth <= d)
-            && (cfg.filters.is_empty() || cfg.filters.iter().any(|f| glob_match(f, &full)));
+        let keep = self.t.cfg.keeps(depth, &full);
         let fmt = s.fmt();
         let mut e = Entry {
             id: None,

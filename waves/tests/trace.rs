@@ -13,6 +13,21 @@ fn tmpdir(name: &str) -> PathBuf {
     d
 }
 
+/// Two cycles of reset, then 20 with u = 10 * cycle; `settled` sees each cycle before its edge.
+fn drive<T: hdl::kernel::Trace>(
+    sim: &mut Sim<BlendAdjust, T>,
+    mut settled: impl FnMut(&mut Sim<BlendAdjust, T>),
+) {
+    sim.reset(2);
+    for c in 0..20u64 {
+        sim.dut.i.valid_in.set_bool(true);
+        sim.dut.i.u_in.set_bits(10 * c);
+        sim.eval();
+        settled(sim);
+        sim.tick();
+    }
+}
+
 /// Runs the blend adjust unit for 20 cycles with u = 10 * cycle, traced by `cfg`.
 fn run(name: &str, cfg: TraceConfig, finish: bool) -> PathBuf {
     let path = tmpdir(name).join("ba.vcd");
@@ -20,15 +35,10 @@ fn run(name: &str, cfg: TraceConfig, finish: bool) -> PathBuf {
     let gold = t.probe_real("u0", Some("tb.blend_adjust_153.u0"));
     let dut = BlendAdjust::new("blend_adjust_153", BlendAdjustParams::default()).unwrap();
     let mut sim = Sim::traced(dut, t).unwrap();
-    sim.reset(2);
-    for c in 0..20u64 {
-        sim.dut.i.valid_in.set_bool(true);
-        sim.dut.i.u_in.set_bits(10 * c);
-        sim.eval();
+    drive(&mut sim, |sim| {
         let u = sim.dut.o.u0.fx().to_f64();
         sim.trace_mut().unwrap().set_real(gold, u);
-        sim.tick();
-    }
+    });
     if finish {
         sim.finish().unwrap();
     }
@@ -231,13 +241,7 @@ fn run_fst(name: &str, cfg: TraceConfig) -> PathBuf {
     let t = waves::FstTracer::create(&path, cfg).unwrap();
     let dut = BlendAdjust::new("blend_adjust_153", BlendAdjustParams::default()).unwrap();
     let mut sim = Sim::traced(dut, t).unwrap();
-    sim.reset(2);
-    for c in 0..20u64 {
-        sim.dut.i.valid_in.set_bool(true);
-        sim.dut.i.u_in.set_bits(10 * c);
-        sim.eval();
-        sim.tick();
-    }
+    drive(&mut sim, |_| {});
     sim.finish().unwrap();
     path
 }

@@ -3,7 +3,6 @@
 //! parameters and video stimulus.
 
 use super::{CosimModel, CosimUnit, ModelSim, Port};
-use hdl::fx::Format;
 use hdl::mipmap::mipmap_gen_816::{MipmapGen, MipmapParams, Rounding, Scan};
 
 /// Mipmap generator 816 against `rtl/mipmap/mipmap_gen_816.v` (with `level_fig14.v`,
@@ -70,14 +69,8 @@ impl CosimUnit for MipmapCosim {
         let probes: Vec<Port> = (1..dut.dims().len())
             .flat_map(|k| {
                 [
-                    Port {
-                        name: format!("l{k}_valid"),
-                        fmt: Format::uint(1),
-                    },
-                    Port {
-                        name: format!("l{k}_texel"),
-                        fmt: Format::uint(8),
-                    },
+                    Port::uint(format!("l{k}_valid"), 1),
+                    Port::uint(format!("l{k}_texel"), 8),
                 ]
             })
             .collect();

@@ -33,6 +33,16 @@ pub struct Port {
     pub fmt: Format,
 }
 
+impl Port {
+    /// An unsigned integer port of `width` bits.
+    pub fn uint(name: impl Into<String>, width: u32) -> Port {
+        Port {
+            name: name.into(),
+            fmt: Format::uint(width),
+        }
+    }
+}
+
 /// The model's side of a co-simulation: the top's ports and one cycle at a time.
 pub trait CosimModel {
     /// Input and output ports of the top, in declaration (visit) order.
@@ -695,10 +705,7 @@ mod tests {
     /// first, then each port MSB first, left-padded to whole hex digits.
     #[test]
     fn stimulus_lines_wider_than_128_bits_are_packed_whole() {
-        let port = |name: &str, w: u32| Port {
-            name: name.into(),
-            fmt: Format::unsigned(w, 0),
-        };
+        let port = Port::uint;
         let ins = [port("a", 60), port("b", 60), port("c", 60), port("d", 3)];
         let x = (1u64 << 59) | 1;
         let stim = vec![vec![x, 0, x, 5]; RESET_CYCLES + 1];

@@ -16,10 +16,7 @@ pub struct ControlCosim(pub DramParams);
 
 /// The pins and the violation count, compared after the controller's ports.
 fn dram_probes() -> Vec<Port> {
-    let p = |name: &str, w: u32| Port {
-        name: name.into(),
-        fmt: Format::uint(w),
-    };
+    let p = Port::uint;
     vec![
         p("ras_n", 1),
         p("cas_n", 1),
@@ -158,10 +155,7 @@ impl CosimUnit for LookaheadCosim {
         let uq = Format::unsigned(12 + self.frac_bits, self.frac_bits as i32);
         let dut = LookaheadQueue::new(self.mode, self.blocks, uq, BLOCK_BITS);
         let m = ModelSim::new(dut, drive_lookahead);
-        let mask = Port {
-            name: "mask".into(),
-            fmt: Format::uint(3),
-        };
+        let mask = Port::uint("mask", 3);
         Ok(Box::new(m.probes(vec![mask], |d: &LookaheadQueue| {
             vec![d.mask.q().bits()]
         })))
@@ -217,13 +211,10 @@ pub struct CacheCosim {
 
 /// The cache's state as ports, after the model's (it has no outputs of its own).
 fn cache_probes(tag_bits: u32) -> Vec<Port> {
-    let p = |name: String, w: u32| Port {
-        name,
-        fmt: Format::uint(w),
-    };
-    let mut v = vec![p("valid".into(), 4), p("prefetched".into(), 4)];
+    let p = Port::uint;
+    let mut v = vec![p("valid", 4), p("prefetched", 4)];
     for (field, w) in [("tag_x", tag_bits), ("tag_y", tag_bits), ("line", 64)] {
-        v.extend(["a", "b", "c", "d"].map(|e| p(format!("{field}_{e}"), w)));
+        v.extend(["a", "b", "c", "d"].map(|e| Port::uint(format!("{field}_{e}"), w)));
     }
     v
 }
@@ -339,10 +330,7 @@ impl CosimUnit for FillCosim {
         }
         let dut = FillEngine::new(map, BLOCK_BITS, Format::uint(self.addr_bits()));
         let m = ModelSim::new(dut, drive_fill);
-        let p = |name: &str, w: u32| Port {
-            name: name.into(),
-            fmt: Format::uint(w),
-        };
+        let p = Port::uint;
         Ok(Box::new(m.probes(
             vec![p("state", 2), p("prefetch", 1)],
             |d: &FillEngine| vec![d.state.q().bits(), d.prefetch.q().bits()],
