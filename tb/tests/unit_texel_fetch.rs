@@ -11,7 +11,8 @@ use hdl::kernel::Sim;
 #[test]
 fn grid_in_every_border_mode() {
     let fmt = Format::unsigned(8, 2);
-    for (w, h) in [(5u32, 3u32), (2, 2), (7, 4)] {
+    // Power-of-two sides take the modulo as a mask, the others divide: both kinds, both axes.
+    for (w, h) in [(5u32, 3u32), (2, 2), (7, 4), (4, 8)] {
         let t: Vec<u8> = (0..w * h).map(|k| (k * 37 % 251) as u8).collect();
         let map = HeightMap::new(w, h, fmt, t.clone()).unwrap();
         let gold = Heights::from_raw(w as usize, h as usize, &t, 0);

@@ -90,6 +90,7 @@ impl Module for AddressUnit {
     fn kind(&self) -> &'static str {
         "address_150"
     }
+    #[inline]
     fn eval(&mut self) {
         let colour = self.colour.is_high();
         let (ui, ub) = self.split(self.u.raw(), colour);
@@ -103,6 +104,7 @@ impl Module for AddressUnit {
         self.ub.follow(self.r[2].q());
         self.vb.follow(self.r[3].q());
     }
+    #[inline]
     fn tick(&mut self, reset: bool) {
         for r in &mut self.r {
             r.tick(reset);

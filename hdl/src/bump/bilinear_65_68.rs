@@ -86,6 +86,7 @@ impl Module for Bilinear {
     fn kind(&self) -> &'static str {
         "bilinear_65_68"
     }
+    #[inline]
     fn eval(&mut self) {
         let p = [
             self.p[0].raw(),
@@ -97,6 +98,7 @@ impl Module for Bilinear {
         self.r.set_next_raw(v);
         self.q.follow(self.r.q());
     }
+    #[inline]
     fn tick(&mut self, reset: bool) {
         self.r.tick(reset);
     }

@@ -165,6 +165,7 @@ impl Module for BlendAdjust {
         "blend_adjust_153"
     }
 
+    #[inline]
     fn eval(&mut self) {
         let f = self.params.frac_bits;
         let bypass = self.i.bypass.is_high();
@@ -186,6 +187,7 @@ impl Module for BlendAdjust {
         }
     }
 
+    #[inline]
     fn tick(&mut self, reset: bool) {
         if self.params.registered {
             for r in &mut self.r {

@@ -123,6 +123,7 @@ impl Module for Normal {
     fn kind(&self) -> &'static str {
         "normal_156"
     }
+    #[inline]
     fn eval(&mut self) {
         // Square stage.
         let (du, dv) = (self.du.raw(), self.dv.raw());
@@ -153,6 +154,7 @@ impl Module for Normal {
         self.ny.follow(self.mul[1].q());
         self.nz.follow(self.mul[2].q());
     }
+    #[inline]
     fn tick(&mut self, reset: bool) {
         for r in self.sq.iter_mut().chain(self.mul.iter_mut()) {
             r.tick(reset);

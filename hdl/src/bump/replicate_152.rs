@@ -26,9 +26,12 @@ const OUT: [[&str; 4]; 4] = [
 
 /// The grid in units of the output format: `4 * p`, or Equation 1's Bezier points times 4.
 #[inline]
-pub fn control_points(h: [u64; 9], bezier: bool) -> [u64; 9] {
+pub fn control_points(mut h: [u64; 9], bezier: bool) -> [u64; 9] {
     if !bezier {
-        return h.map(|x| x << 2);
+        for x in &mut h {
+            *x <<= 2;
+        }
+        return h;
     }
     let [a, b, c, d, e, f, g, hh, k] = h;
     [
@@ -74,8 +77,13 @@ impl Module for Replicate {
     fn kind(&self) -> &'static str {
         "replicate_152"
     }
+    #[inline]
     fn eval(&mut self) {
-        let p = control_points(std::array::from_fn(|k| self.h[k].bits()), self.bezier);
+        let mut h = [0; 9];
+        for (x, s) in h.iter_mut().zip(&self.h) {
+            *x = s.bits();
+        }
+        let p = control_points(h, self.bezier);
         for (wi, idx) in WINDOWS.iter().enumerate() {
             for (k, &i) in idx.iter().enumerate() {
                 self.w[wi][k].set_bits(p[i]);

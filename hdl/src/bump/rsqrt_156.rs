@@ -158,6 +158,7 @@ impl Module for Rsqrt {
     fn kind(&self) -> &'static str {
         "rsqrt_156"
     }
+    #[inline]
     fn eval(&mut self) {
         let m = self.m.bits();
         // Stage 0: table lookup (an input of zero, never produced by unit 156 since its sum of
@@ -182,6 +183,7 @@ impl Module for Rsqrt {
         let last = self.y_r.len() - 1;
         self.y.follow(self.y_r[last].q());
     }
+    #[inline]
     fn tick(&mut self, reset: bool) {
         for r in self.m_r.iter_mut().chain(self.y_r.iter_mut()) {
             r.tick(reset);

@@ -198,6 +198,7 @@ impl Module for Tangent {
     fn kind(&self) -> &'static str {
         "tangent_155"
     }
+    #[inline]
     fn eval(&mut self) {
         let mut rgba = [0i64; 8];
         for (k, s) in self.rgba.iter().enumerate() {
@@ -219,6 +220,7 @@ impl Module for Tangent {
         self.dv.follow(self.r[1].q());
         self.height.follow(self.r[2].q());
     }
+    #[inline]
     fn tick(&mut self, reset: bool) {
         for r in &mut self.r {
             r.tick(reset);

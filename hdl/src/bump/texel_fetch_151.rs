@@ -27,13 +27,24 @@ use crate::signals;
 pub fn border_index(i: i64, n: u32, border: Border) -> Option<u32> {
     let n = i64::from(n);
     match border {
-        Border::Wrap => Some(i.rem_euclid(n) as u32),
+        Border::Wrap => Some(modulo(i, n) as u32),
         Border::Clamp => Some(i.clamp(0, n - 1) as u32),
         Border::Mirror => {
-            let m = i.rem_euclid(2 * n);
+            let m = modulo(i, 2 * n);
             Some(if m < n { m } else { 2 * n - 1 - m } as u32)
         }
         Border::Constant(_) => (0..n).contains(&i).then_some(i as u32),
+    }
+}
+
+/// `i mod m` in `0..m`: for a power-of-two `m` (the usual side, and what the hardware does
+/// with the low address bits) the two's complement mask, otherwise a division.
+#[inline]
+fn modulo(i: i64, m: i64) -> i64 {
+    if m & (m - 1) == 0 {
+        i & (m - 1)
+    } else {
+        i.rem_euclid(m)
     }
 }
 
@@ -84,40 +95,25 @@ impl TexelFetch {
         &self.map
     }
 
-    /// The 3x3 grid around `(ui, vj)`, a..k.
+    /// The 3x3 grid around `(ui, vj)`, a..k: three column and three row addresses through
+    /// the border mode, then nine reads (the constant border's value where either is outside).
     #[inline]
     pub fn grid(&self, ui: i64, vj: i64) -> [u8; 9] {
-        let (w, h) = (self.map.width(), self.map.height());
-        // Inside the map every mode reads the same texels: no border logic.
-        if ui >= 1 && vj >= 1 && ui + 1 < i64::from(w) && vj + 1 < i64::from(h) {
-            let t = self.map.texels();
-            let w = w as usize;
-            let base = (vj as usize - 1) * w + ui as usize - 1;
-            return [
-                t[base],
-                t[base + 1],
-                t[base + 2],
-                t[base + w],
-                t[base + w + 1],
-                t[base + w + 2],
-                t[base + 2 * w],
-                t[base + 2 * w + 1],
-                t[base + 2 * w + 2],
-            ];
-        }
-        let xs = [-1, 0, 1].map(|d| border_index(ui + d, w, self.border));
-        let ys = [-1, 0, 1].map(|d| border_index(vj + d, h, self.border));
-        let c = match self.border {
+        let (w, h, b) = (self.map.width(), self.map.height(), self.border);
+        let x = |i| border_index(i, w, b);
+        let row = |j| border_index(j, h, b).map(|y| y as usize * w as usize);
+        let xs = [x(ui - 1), x(ui), x(ui + 1)];
+        let rows = [row(vj - 1), row(vj), row(vj + 1)];
+        let mut out = [match b {
             Border::Constant(c) => c,
             _ => 0,
-        };
-        let mut out = [0u8; 9];
-        for (r, y) in ys.iter().enumerate() {
+        }; 9];
+        let t = self.map.texels();
+        for (r, row) in rows.iter().enumerate() {
             for (col, x) in xs.iter().enumerate() {
-                out[3 * r + col] = match (x, y) {
-                    (Some(x), Some(y)) => self.map.get(*x, *y),
-                    _ => c,
-                };
+                if let (Some(row), Some(x)) = (row, x) {
+                    out[3 * r + col] = t[row + *x as usize];
+                }
             }
         }
         out
@@ -131,6 +127,7 @@ impl Module for TexelFetch {
     fn kind(&self) -> &'static str {
         "texel_fetch_151"
     }
+    #[inline]
     fn eval(&mut self) {
         let g = self.grid(self.ui.raw(), self.vj.raw());
         for ((r, h), g) in self.r.iter_mut().zip(&mut self.h).zip(g) {
@@ -138,6 +135,7 @@ impl Module for TexelFetch {
             h.follow(r.q());
         }
     }
+    #[inline]
     fn tick(&mut self, reset: bool) {
         for r in &mut self.r {
             r.tick(reset);

@@ -99,6 +99,34 @@ pub fn quantise(raw: i128, src_frac: i32, dst: Format, q: Quant, o: Overflow) ->
             return i128::from(v);
         }
     }
+    quantise_wide(raw, shift, src_frac, dst, q, o)
+}
+
+/// [`quantise`] beyond machine words. First a raw value wider than 64 bits whose rounded
+/// result fits one (a product such as rsqrt 156's `m y^2`, 74 bits): the rounding bits come
+/// from the low word; then the same in i128; then the general case.
+#[inline]
+fn quantise_wide(raw: i128, shift: i32, src_frac: i32, dst: Format, q: Quant, o: Overflow) -> i128 {
+    let in_range = |v: i128| {
+        dst.contains_raw(v)
+            && !(o == Overflow::SaturateSymmetric && dst.is_signed() && v == dst.min_raw())
+    };
+    if (1..64).contains(&shift) && dst.width() < 63 {
+        let floor = raw >> shift;
+        if floor == i128::from(floor as i64) {
+            let low = raw as u64;
+            let inc = q.increment(
+                raw < 0,
+                floor & 1 == 1,
+                (low >> (shift - 1)) & 1 == 1,
+                low & ((1u64 << (shift - 1)) - 1) != 0,
+            );
+            let v = floor + i128::from(inc);
+            if in_range(v) {
+                return v;
+            }
+        }
+    }
     if shift > 0 && shift < 127 {
         let v = round_shift(raw, shift as u32, q);
         if in_range(v) {

@@ -2,7 +2,9 @@
 //! pipeline registers that carry values alongside a datapath.
 //!
 //! Modelled as the shift register it is, but stored as a ring buffer: one write and one read
-//! per signal per cycle, whatever the depth.
+//! per signal per cycle, whatever the depth. The edge stores the inputs as `eval` left them
+//! (a module's inputs do not change between its `eval` and the edge), so no next-value copy
+//! is kept.
 
 use super::module::{Dir, Module, Visitor};
 use super::signal::Signal;
@@ -18,7 +20,6 @@ pub struct Delay {
     /// `depth` slots of `n` values; `head` is the oldest (the stage the outputs show).
     ring: Vec<u64>,
     head: usize,
-    next: Vec<u64>,
 }
 
 impl Delay {
@@ -42,7 +43,6 @@ impl Delay {
             depth,
             ring: vec![0; depth * n],
             head: 0,
-            next: vec![0; n],
         }
     }
 
@@ -58,6 +58,7 @@ impl Module for Delay {
     fn kind(&self) -> &'static str {
         "delay"
     }
+    #[inline(always)]
     fn eval(&mut self) {
         let n = self.i.len();
         if self.depth == 0 {
@@ -66,18 +67,14 @@ impl Module for Delay {
             }
             return;
         }
+        // The ring holds only values the inputs held, each checked against the format that
+        // the output shares, so the outputs take them without a second check.
         let oldest = &self.ring[self.head * n..(self.head + 1) * n];
-        for (((next, i), o), &old) in self
-            .next
-            .iter_mut()
-            .zip(&self.i)
-            .zip(&mut self.o)
-            .zip(oldest)
-        {
-            *next = i.bits();
-            o.set_bits(old);
+        for (o, &old) in self.o.iter_mut().zip(oldest) {
+            o.set_checked_bits(old);
         }
     }
+    #[inline(always)]
     fn tick(&mut self, reset: bool) {
         if self.depth == 0 {
             return;
@@ -88,8 +85,11 @@ impl Module for Delay {
             self.head = 0;
             return;
         }
-        // The oldest slot takes the newest values and becomes the youngest stage.
-        self.ring[self.head * n..(self.head + 1) * n].copy_from_slice(&self.next);
+        // The oldest slot takes the inputs and becomes the youngest stage.
+        let slot = &mut self.ring[self.head * n..(self.head + 1) * n];
+        for (r, i) in slot.iter_mut().zip(&self.i) {
+            *r = i.bits();
+        }
         self.head += 1;
         if self.head == self.depth {
             self.head = 0;

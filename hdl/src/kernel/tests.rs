@@ -227,3 +227,15 @@ fn registers_may_change_at_the_edge() {
     }
     assert_eq!(instances(&sim.dut).len(), 2);
 }
+
+/// A wire between two formats is caught wherever the tests run (debug builds): the format
+/// check, and the value check behind it, are what let release builds copy unchecked.
+#[test]
+#[cfg(debug_assertions)]
+#[should_panic(expected = "'narrow' <- 'wide'")]
+fn follow_between_formats_panics_in_debug_builds() {
+    let mut wide = Signal::new("wide", Format::uint(9));
+    wide.set_bits(0x1ff);
+    let mut narrow = Signal::new("narrow", Format::uint(8));
+    narrow.follow(&wide);
+}

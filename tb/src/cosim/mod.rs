@@ -72,8 +72,12 @@ fn bench_loop<M: Module, T: hdl::kernel::Trace>(
     stim: &[Vec<u64>],
     drive: fn(&mut M, &[u64]),
 ) -> std::io::Result<std::time::Duration> {
+    // One contiguous array, as the Verilator side replays it: no pointer per cycle.
+    let n = stim.first().map_or(0, Vec::len);
+    let flat: Vec<u64> = stim.iter().flatten().copied().collect();
+    assert_eq!(flat.len(), n * stim.len(), "every cycle drives every input");
     let t0 = std::time::Instant::now();
-    for (c, s) in stim.iter().enumerate() {
+    for (c, s) in flat.chunks_exact(n.max(1)).enumerate() {
         sim.set_reset(c < RESET_CYCLES);
         drive(&mut sim.dut, s);
         sim.eval();
