@@ -156,8 +156,15 @@ fn trace_options_apply() {
     assert!(!rb.vars.contains_key("tb.blend_adjust_153.v0"));
     assert_eq!(rb.times.first(), Some(&100_000));
     assert_eq!(rb.times.last(), Some(&500_000));
+    // The FST is written while simulating: the design's variables, without the VCD's `real`
+    // companions and probes.
     let fst = waves::check::read_fst(&out.join("blend_adjust_153.fst")).unwrap();
-    waves::fst::same_values(&rb, &fst).unwrap();
+    let mut design = rb;
+    design
+        .vars
+        .retain(|n, v| v.width.is_some() && !n.starts_with("tb.golden"));
+    assert!(design.vars.contains_key("tb.blend_adjust_153.u0"));
+    waves::fst::same_values(&design, &fst).unwrap();
 }
 
 fn no_partials(dir: &Path) -> bool {

@@ -5,6 +5,7 @@ use criterion::{criterion_group, criterion_main, BatchSize, Criterion, Throughpu
 use hdl::bump::blend_adjust_153::{BlendAdjust, BlendAdjustParams};
 use hdl::bump::normal_pipeline_fig7::NormalPipeline;
 use hdl::bump::params::BumpParams;
+use hdl::bump::replicate_152::Replicate;
 use hdl::fx::{Format, Fx, Overflow, Quant};
 use hdl::kernel::{Sim, Trace};
 use hdl::mipmap::{MipmapGen, MipmapParams, Rounding, Scan};
@@ -12,7 +13,7 @@ use std::hint::black_box;
 use tb::maps::builtin;
 use tb::mipmap::synthetic_video;
 use verif::Seed;
-use waves::{TraceConfig, VcdTracer};
+use waves::{FstTracer, TraceConfig, VcdTracer};
 
 const CYCLES: u64 = 4096;
 
@@ -240,9 +241,70 @@ fn texture(c: &mut Criterion) {
     g.finish();
 }
 
+/// Cycles of the tracer benchmarks.
+const TRACED: u64 = 20_000;
+
+/// The replicate unit 152 with new texels every cycle (a fixed LCG): its 9 inputs and 16
+/// outputs change almost every cycle, so the run measures the tracer, not the model.
+fn replicate<T: Trace>(sim: &mut Sim<Replicate, T>) {
+    let mut x: u64 = 1;
+    for _ in 0..TRACED {
+        for h in &mut sim.dut.h {
+            x = x
+                .wrapping_mul(6364136223846793005)
+                .wrapping_add(1442695040888963407);
+            h.set_bits(x >> 56);
+        }
+        sim.step();
+    }
+}
+
+/// Value changes per second through each tracer alone (`companions` off, as the
+/// vs-Verilator table runs them), counted by the VCD tracer.
+fn tracer(c: &mut Criterion) {
+    let unit = || Replicate::new("replicate_152", Format::unsigned(8, 2), false);
+    let cfg = TraceConfig {
+        companions: false,
+        ..Default::default()
+    };
+    let dir = std::env::temp_dir().join(format!("texrtl-bench-t-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let (vcd, fst) = (dir.join("r.vcd"), dir.join("r.fst"));
+    let mut sim = Sim::traced(unit(), VcdTracer::create(&vcd, "t", cfg.clone()).unwrap()).unwrap();
+    replicate(&mut sim);
+    let changes = sim.trace_mut().map_or(0, |t| t.changes());
+    drop(sim.finish());
+    let mut g = c.benchmark_group("tracer");
+    g.throughput(Throughput::Elements(changes));
+    g.sample_size(20);
+    g.bench_function("replicate_value_changes_vcd", |b| {
+        b.iter_batched(
+            || Sim::traced(unit(), VcdTracer::create(&vcd, "t", cfg.clone()).unwrap()).unwrap(),
+            |mut sim| {
+                replicate(&mut sim);
+                sim.finish().unwrap();
+            },
+            BatchSize::PerIteration,
+        )
+    });
+    g.bench_function("replicate_value_changes_fst", |b| {
+        b.iter_batched(
+            || Sim::traced(unit(), FstTracer::create(&fst, cfg.clone()).unwrap()).unwrap(),
+            |mut sim| {
+                replicate(&mut sim);
+                sim.finish().unwrap();
+            },
+            BatchSize::PerIteration,
+        )
+    });
+    g.finish();
+    let _ = std::fs::remove_dir_all(&dir);
+}
+
 criterion_group!(
     benches,
     kernel,
+    tracer,
     fixed_point,
     normal_pipeline,
     mipmap,

@@ -1,9 +1,14 @@
 //! An FST tracer: the compact waveform written directly while simulating (no VCD first),
 //! through `fst-writer`. Same hierarchy and names as [`crate::VcdTracer`] (`tb.clk`, `tb.rst`,
 //! the design under `tb`), the same depth and name filters and trace window; bit-vector
-//! variables only (no `real` companions, no probes), no `.gtkw`. Value changes are buffered in
-//! memory and flushed into a new value-change section whenever the buffer passes
-//! [`FLUSH_BYTES`], so a long run needs bounded memory.
+//! variables only (no `real` companions, no probes), no `.gtkw`.
+//!
+//! The simulation only collects each cycle's changes (value and identifier, no formatting)
+//! into batches of [`BATCH`] records; a writer thread encodes them with `fst-writer`, as
+//! Verilator's FST writer compresses in a thread of its own. The batches pass through a
+//! channel of two, and the writer flushes a new value-change section whenever its buffer
+//! passes [`FLUSH_BYTES`] (small enough that fst-writer's per-signal walk through it stays in
+//! cache), so a run of any length needs bounded memory.
 
 use crate::TraceConfig;
 use fst_writer::{
@@ -14,11 +19,109 @@ use hdl::kernel::{Dir, Module, Signal, Trace, Visitor};
 use std::fs::File;
 use std::io::{self, BufWriter};
 use std::path::{Path, PathBuf};
+use std::sync::mpsc::{channel, sync_channel, Receiver, Sender, SyncSender};
+use std::thread::JoinHandle;
 
 /// Buffered value changes above which a section is written out.
-pub const FLUSH_BYTES: usize = 64 << 20;
+pub const FLUSH_BYTES: usize = 4 << 20;
+
+/// Records per batch handed to the writer thread.
+pub const BATCH: usize = 1 << 12;
 
 type Out = BufWriter<File>;
+
+/// What the simulation hands the writer, in order.
+#[derive(Clone, Copy)]
+enum Rec {
+    Time(u64),
+    Change(FstSignalId, u32, u64),
+}
+
+/// The writer thread's side: the FST body and a scratch buffer for one value's digits.
+struct Writer {
+    body: FstBodyWriter<Out>,
+    tmp: PathBuf,
+    bits: Vec<u8>,
+    flush_bytes: usize,
+}
+
+impl Writer {
+    /// Encodes batches until the simulation hangs up, returning each emptied batch for reuse;
+    /// then finishes the file.
+    fn run(mut self, batches: Receiver<Vec<Rec>>, recycle: Sender<Vec<Rec>>) -> io::Result<()> {
+        for mut batch in batches {
+            for &r in &batch {
+                match r {
+                    Rec::Time(t) => self.time(t)?,
+                    Rec::Change(id, width, bits) => self.change(id, width, bits)?,
+                }
+            }
+            batch.clear();
+            let _ = recycle.send(batch);
+        }
+        let mut out = self.body.finish().map_err(|e| fst_err(&self.tmp, e))?;
+        io::Write::flush(&mut out)
+    }
+
+    /// A new time step (flushing a full buffer first, which fst-writer allows only here).
+    fn time(&mut self, t: u64) -> io::Result<()> {
+        if self.body.size() > self.flush_bytes {
+            self.body.flush().map_err(|e| fst_err(&self.tmp, e))?;
+        }
+        self.body.time_change(t).map_err(|e| fst_err(&self.tmp, e))
+    }
+
+    fn change(&mut self, id: FstSignalId, width: u32, bits: u64) -> io::Result<()> {
+        self.bits.clear();
+        crate::vcd_trace::push_binary(&mut self.bits, width, bits);
+        self.body
+            .signal_change(id, &self.bits)
+            .map_err(|e| fst_err(&self.tmp, e))
+    }
+}
+
+/// The simulation's end of the writer thread.
+struct WriterThread {
+    batches: SyncSender<Vec<Rec>>,
+    recycle: Receiver<Vec<Rec>>,
+    handle: JoinHandle<io::Result<()>>,
+}
+
+impl WriterThread {
+    fn spawn(w: Writer) -> io::Result<WriterThread> {
+        let (batches, rx) = sync_channel(8);
+        let (back, recycle) = channel();
+        let handle = std::thread::Builder::new()
+            .name("fst-writer".into())
+            .spawn(move || w.run(rx, back))?;
+        Ok(WriterThread {
+            batches,
+            recycle,
+            handle,
+        })
+    }
+
+    /// Hands over `batch`, returning an empty one; a writer that stopped reports its error.
+    fn send(self, batch: Vec<Rec>) -> io::Result<(WriterThread, Vec<Rec>)> {
+        if self.batches.send(batch).is_err() {
+            let e = self.join().err();
+            return Err(e.unwrap_or_else(|| io::Error::other("the FST writer stopped")));
+        }
+        let next = self
+            .recycle
+            .try_recv()
+            .unwrap_or_else(|_| Vec::with_capacity(BATCH));
+        Ok((self, next))
+    }
+
+    /// Waits for the writer to finish the file.
+    fn join(self) -> io::Result<()> {
+        drop(self.batches);
+        self.handle
+            .join()
+            .unwrap_or_else(|_| Err(io::Error::other("the FST writer thread panicked")))
+    }
+}
 
 /// One traced signal: its FST id, width and last value (in visit order; `None` = not traced).
 struct Var {
@@ -34,16 +137,20 @@ pub struct FstTracer {
     tmp: PathBuf,
     cfg: TraceConfig,
     header: Option<FstHeaderWriter<Out>>,
-    body: Option<FstBodyWriter<Out>>,
+    writer: Option<WriterThread>,
     vars: Vec<Var>,
     clk: Option<FstSignalId>,
     rst: Option<FstSignalId>,
     rst_last: Option<bool>,
     started: bool,
     last_time: Option<u64>,
-    bits: Vec<u8>,
-    /// The cycle's changes (kept between cycles: no allocation per cycle).
-    pending: Vec<(FstSignalId, u32, u64)>,
+    /// Records not yet handed to the writer.
+    batch: Vec<Rec>,
+    /// [`FLUSH_BYTES`] and [`BATCH`] unless a test set them ([`FstTracer::with_limits`]).
+    flush_bytes: usize,
+    batch_len: usize,
+    changes: u64,
+    finished: bool,
 }
 
 fn fst_err(path: &Path, e: impl std::fmt::Debug) -> io::Error {
@@ -74,39 +181,51 @@ impl FstTracer {
             tmp,
             cfg,
             header: Some(header),
-            body: None,
+            writer: None,
             vars: Vec::new(),
             clk: None,
             rst: None,
             rst_last: None,
             started: false,
             last_time: None,
-            bits: Vec::with_capacity(64),
-            pending: Vec::new(),
+            batch: Vec::with_capacity(BATCH),
+            flush_bytes: FLUSH_BYTES,
+            batch_len: BATCH,
+            changes: 0,
+            finished: false,
         })
+    }
+
+    /// The same tracer with other section and batch sizes (at least 1 each): tests use tiny
+    /// ones to cross both boundaries many times in a short run.
+    pub fn with_limits(mut self, flush_bytes: usize, batch: usize) -> Self {
+        self.flush_bytes = flush_bytes.max(1);
+        self.batch_len = batch.max(1);
+        self
+    }
+
+    /// Value changes recorded so far (the clock's rises included, its falls not: as
+    /// [`crate::VcdTracer::changes`] counts).
+    pub fn changes(&self) -> u64 {
+        self.changes
     }
 
     fn in_window(&self, cycle: u64) -> bool {
         self.cfg.window.is_none_or(|(a, b)| cycle >= a && cycle < b)
     }
 
-    /// A new time step (flushing a full buffer first, which fst-writer allows only here).
-    fn time(&mut self, t: u64) -> io::Result<()> {
-        let body = self.body.as_mut().expect("started");
-        if body.size() > FLUSH_BYTES {
-            body.flush().map_err(|e| fst_err(&self.tmp, e))?;
-        }
-        body.time_change(t).map_err(|e| fst_err(&self.tmp, e))?;
+    fn time(&mut self, t: u64) {
+        self.batch.push(Rec::Time(t));
         self.last_time = Some(t);
-        Ok(())
     }
 
-    fn change(&mut self, id: FstSignalId, width: u32, bits: u64) -> io::Result<()> {
-        self.bits.clear();
-        crate::vcd_trace::push_binary(&mut self.bits, width, bits);
-        let body = self.body.as_mut().expect("started");
-        body.signal_change(id, &self.bits)
-            .map_err(|e| fst_err(&self.tmp, e))
+    /// Hands a full batch to the writer.
+    fn hand_over(&mut self) -> io::Result<()> {
+        let w = self.writer.take().expect("started");
+        let (w, next) = w.send(std::mem::take(&mut self.batch))?;
+        self.writer = Some(w);
+        self.batch = next;
+        Ok(())
     }
 }
 
@@ -164,7 +283,7 @@ struct Changes<'a> {
     vars: &'a mut [Var],
     next: usize,
     all: bool,
-    out: &'a mut Vec<(FstSignalId, u32, u64)>,
+    out: &'a mut Vec<Rec>,
 }
 
 impl Visitor for Changes<'_> {
@@ -178,7 +297,7 @@ impl Visitor for Changes<'_> {
         let bits = s.bits();
         if self.all || bits != v.last {
             v.last = bits;
-            self.out.push((id, v.width, bits));
+            self.out.push(Rec::Change(id, v.width, bits));
         }
     }
 }
@@ -223,7 +342,13 @@ impl Trace for FstTracer {
         h.up_scope().map_err(e)?;
         let mut body = h.finish().map_err(e)?;
         body.set_deduplicate(false);
-        self.body = Some(body);
+        let tmp = self.tmp.clone();
+        self.writer = Some(WriterThread::spawn(Writer {
+            body,
+            tmp,
+            bits: Vec::with_capacity(64),
+            flush_bytes: self.flush_bytes,
+        })?);
         Ok(())
     }
 
@@ -232,29 +357,31 @@ impl Trace for FstTracer {
             return Ok(());
         }
         let t = cycle * self.cfg.period_ps;
-        self.time(t)?;
+        self.time(t);
+        let before = self.batch.len();
         let all = !self.started;
         self.started = true;
         let (clk, rst) = (self.clk.expect("started"), self.rst.expect("started"));
-        self.change(clk, 1, 1)?;
+        self.batch.push(Rec::Change(clk, 1, 1));
         if all || self.rst_last != Some(reset) {
-            self.change(rst, 1, u64::from(reset))?;
+            self.batch.push(Rec::Change(rst, 1, u64::from(reset)));
             self.rst_last = Some(reset);
         }
-        let mut out = std::mem::take(&mut self.pending);
-        out.clear();
         top.visit(&mut Changes {
             vars: &mut self.vars,
             next: 0,
             all,
-            out: &mut out,
+            out: &mut self.batch,
         });
-        for &(id, width, bits) in &out {
-            self.change(id, width, bits)?;
+        self.time(t + self.cfg.period_ps / 2);
+        self.batch.push(Rec::Change(clk, 1, 0));
+        // Every record since the cycle's first time step is a change, but the second time
+        // step and the clock's fall (counted as the VCD tracer counts).
+        self.changes += (self.batch.len() - before - 2) as u64;
+        if self.batch.len() >= self.batch_len {
+            self.hand_over()?;
         }
-        self.pending = out;
-        self.time(t + self.cfg.period_ps / 2)?;
-        self.change(clk, 1, 0)
+        Ok(())
     }
 
     fn finish(&mut self, cycles: u64) -> io::Result<()> {
@@ -262,12 +389,27 @@ impl Trace for FstTracer {
             Some((a, b)) => cycles.min(b).max(a),
             None => cycles,
         } * self.cfg.period_ps;
-        if self.body.is_some() && self.last_time.is_none_or(|l| end > l) {
-            self.time(end)?;
+        if self.writer.is_some() && self.last_time.is_none_or(|l| end > l) {
+            self.time(end);
         }
-        if let Some(body) = self.body.take() {
-            body.finish().map_err(|e| fst_err(&self.tmp, e))?;
+        if let Some(w) = self.writer.take() {
+            let (w, _) = w.send(std::mem::take(&mut self.batch))?;
+            w.join()?;
         }
-        std::fs::rename(&self.tmp, &self.path)
+        std::fs::rename(&self.tmp, &self.path)?;
+        self.finished = true;
+        Ok(())
+    }
+}
+
+impl Drop for FstTracer {
+    /// An unfinished trace leaves no file: the writer is stopped and the partial file removed.
+    fn drop(&mut self) {
+        if let Some(w) = self.writer.take() {
+            drop(w.join());
+        }
+        if !self.finished {
+            let _ = std::fs::remove_file(&self.tmp);
+        }
     }
 }

@@ -11,6 +11,7 @@ mod fst_trace;
 pub mod glob;
 pub mod gtkw;
 mod vcd_trace;
+mod vcd_writer;
 
 pub use fst_trace::FstTracer;
 pub use vcd_trace::{ProbeId, TraceConfig, VcdTracer, ROOT};

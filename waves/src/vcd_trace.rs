@@ -2,11 +2,13 @@
 
 use crate::glob::glob_match;
 use crate::gtkw::{Gtkw, Item, Style};
+use crate::vcd_writer::{Code, Rec, WriterThread, BATCH};
 use hdl::fx::Format;
 use hdl::kernel::{Dir, Module, Signal, Trace, Visitor};
 use std::fs::File;
 use std::io::{self, BufWriter, Write};
 use std::path::{Path, PathBuf};
+use std::sync::Arc;
 use vcd::{IdCode, ReferenceIndex, TimescaleUnit, Value, VarType};
 
 /// The scope every trace starts with; the DUT's instance is inside it, beside `clk`, `rst` and
@@ -28,6 +30,9 @@ pub struct TraceConfig {
     pub window: Option<(u64, u64)>,
     /// Add a `real` companion (`<name>_real`) for every fixed-point signal (fraction bits != 0).
     pub companions: bool,
+    /// Also write the FST beside the VCD (same name, `.fst`), directly while simulating
+    /// ([`crate::FstTracer`]: the design's variables, no companions, no probes).
+    pub fst: bool,
 }
 
 impl TraceConfig {
@@ -72,6 +77,7 @@ impl Default for TraceConfig {
             filters: Vec::new(),
             window: None,
             companions: true,
+            fst: false,
         }
     }
 }
@@ -113,24 +119,10 @@ fn code_of(id: IdCode) -> Box<[u8]> {
 }
 
 /// `#t` and a newline.
-fn push_time(buf: &mut Vec<u8>, t: u64) {
+pub(crate) fn push_time(buf: &mut Vec<u8>, t: u64) {
     buf.push(b'#');
-    push_decimal(buf, t);
+    buf.extend_from_slice(itoa::Buffer::new().format(t).as_bytes());
     buf.push(b'\n');
-}
-
-fn push_decimal(buf: &mut Vec<u8>, mut x: u64) {
-    let mut digits = [0u8; 20];
-    let mut n = 0;
-    loop {
-        digits[n] = b'0' + (x % 10) as u8;
-        n += 1;
-        x /= 10;
-        if x == 0 {
-            break;
-        }
-    }
-    buf.extend(digits[..n].iter().rev());
 }
 
 /// Every byte in binary digits, most significant first.
@@ -150,6 +142,20 @@ static BINARY: [[u8; 8]; 256] = {
     t
 };
 
+/// The `out.len()` low bits of `bits` as binary digits, most significant first: the bits
+/// above a whole number of bytes one by one, then eight at a time.
+#[inline]
+pub(crate) fn binary_digits(out: &mut [u8], bits: u64) {
+    let w = out.len();
+    let top = w % 8;
+    for (k, d) in out[..top].iter_mut().enumerate() {
+        *d = b'0' + ((bits >> (w - 1 - k)) & 1) as u8;
+    }
+    for (j, chunk) in out[top..].chunks_exact_mut(8).enumerate() {
+        chunk.copy_from_slice(&BINARY[((bits >> (8 * (w / 8 - 1 - j))) & 0xff) as usize]);
+    }
+}
+
 /// The `width` low bits of `bits` as binary digits, most significant first.
 #[inline]
 pub(crate) fn push_binary(buf: &mut Vec<u8>, width: u32, bits: u64) {
@@ -167,7 +173,7 @@ pub(crate) fn push_binary(buf: &mut Vec<u8>, width: u32, bits: u64) {
 /// formatted by hand into the cycle's buffer: the formatting machinery was the tracer's main
 /// cost.
 #[inline]
-fn push_change(buf: &mut Vec<u8>, code: &[u8], width: u32, bits: u64) {
+pub(crate) fn push_change(buf: &mut Vec<u8>, code: &[u8], width: u32, bits: u64) {
     if width == 1 {
         buf.push(b'0' + (bits & 1) as u8);
     } else {
@@ -181,7 +187,7 @@ fn push_change(buf: &mut Vec<u8>, code: &[u8], width: u32, bits: u64) {
 
 /// A real value change, `r<value> <code>` with the value as Rust's `Display` writes it (as the
 /// `vcd` crate does).
-fn push_real(buf: &mut Vec<u8>, code: &[u8], x: f64) {
+pub(crate) fn push_real(buf: &mut Vec<u8>, code: &[u8], x: f64) {
     use std::io::Write as _;
     let _ = write!(buf, "r{x} ");
     buf.extend_from_slice(code);
@@ -207,8 +213,13 @@ pub struct VcdTracer {
     rst_last: Option<bool>,
     dumped: bool,
     last_time: Option<u64>,
-    /// The cycle's text, written in one go.
-    buf: Vec<u8>,
+    /// The records not yet handed to the writer thread (which formats them; see
+    /// [`crate::vcd_writer`]), and the thread, from the end of the declarations until
+    /// `finish`; `w` is with the thread meanwhile.
+    recs: Vec<Rec>,
+    thread: Option<WriterThread>,
+    /// The FST written beside, when the configuration asks for it.
+    fst: Option<crate::FstTracer>,
     clk_code: Box<[u8]>,
     rst_code: Box<[u8]>,
     gtkw: Gtkw,
@@ -245,6 +256,16 @@ impl VcdTracer {
         let tmp = PathBuf::from(tmp);
         let file = File::create(&tmp)
             .map_err(|e| io::Error::new(e.kind(), format!("{}: {e}", tmp.display())))?;
+        let fst = match cfg.fst {
+            true => Some(crate::FstTracer::create(
+                path.with_extension("fst"),
+                TraceConfig {
+                    fst: false,
+                    ..cfg.clone()
+                },
+            )?),
+            false => None,
+        };
         Ok(VcdTracer {
             gtkw: Gtkw::new(&path),
             path,
@@ -259,7 +280,9 @@ impl VcdTracer {
             rst_last: None,
             dumped: false,
             last_time: None,
-            buf: Vec::with_capacity(1 << 12),
+            recs: Vec::with_capacity(BATCH),
+            thread: None,
+            fst,
             clk_code: Box::default(),
             rst_code: Box::default(),
             filters: Vec::new(),
@@ -335,6 +358,53 @@ impl VcdTracer {
         self.changes
     }
 
+    /// How the writer thread writes each variable: the design's entries in visit order, then
+    /// `clk`, `rst` and the probes (see [`VcdTracer::fixed_codes`]).
+    fn codes(&self) -> Arc<[Code]> {
+        let vars = self.entries.iter().map(|e| Code {
+            code: e.code.clone(),
+            width: e.fmt.width(),
+            real: e.real.map(|_| (e.real_code.clone(), e.fmt)),
+        });
+        let bit = |code: &[u8]| Code {
+            code: code.into(),
+            width: 1,
+            real: None,
+        };
+        let fixed = [bit(&self.clk_code), bit(&self.rst_code)];
+        let probes = self.probes.iter().map(|p| Code {
+            code: p.code.clone(),
+            width: p.width,
+            real: None,
+        });
+        vars.chain(fixed).chain(probes).collect()
+    }
+
+    /// The writer's indices of `clk`, `rst` and the first probe.
+    fn fixed_codes(&self) -> (u32, u32, u32) {
+        let n = self.entries.len() as u32;
+        (n, n + 1, n + 2)
+    }
+
+    /// Hands the records so far to the writer thread (whose error, if it stopped, is
+    /// returned; the file is then given back for `Drop` to remove).
+    fn hand_over(&mut self) -> io::Result<()> {
+        let Some(t) = self.thread.take() else {
+            return Ok(());
+        };
+        match t.send(std::mem::take(&mut self.recs)) {
+            Ok((t, next)) => {
+                self.thread = Some(t);
+                self.recs = next;
+                Ok(())
+            }
+            Err((w, e)) => {
+                self.w = Some(w);
+                Err(e)
+            }
+        }
+    }
+
     fn writer(&mut self) -> &mut vcd::Writer<BufWriter<File>> {
         self.w.as_mut().expect("tracer already finished")
     }
@@ -363,7 +433,7 @@ impl VcdTracer {
     }
 }
 
-fn real_of(bits: u64, fmt: Format) -> f64 {
+pub(crate) fn real_of(bits: u64, fmt: Format) -> f64 {
     hdl::fx::Fx::from_bits(fmt, bits as u128).to_f64()
 }
 
@@ -504,9 +574,9 @@ impl Visitor for Declare<'_> {
     }
 }
 
-/// Formats the changes of one cycle into the cycle's buffer.
+/// Collects the changes of one cycle as records for the writer thread.
 struct Sample<'a> {
-    buf: &'a mut Vec<u8>,
+    recs: &'a mut Vec<Rec>,
     entries: &'a mut [Entry],
     next: usize,
     all: bool,
@@ -518,7 +588,8 @@ impl Visitor for Sample<'_> {
     fn leave(&mut self) {}
     #[inline]
     fn signal(&mut self, _: Dir, s: &Signal) {
-        let e = &mut self.entries[self.next];
+        let i = self.next;
+        let e = &mut self.entries[i];
         self.next += 1;
         if e.id.is_none() {
             return;
@@ -528,12 +599,8 @@ impl Visitor for Sample<'_> {
             return;
         }
         e.last = bits;
-        self.changes += 1;
-        push_change(self.buf, &e.code, e.fmt.width(), bits);
-        if e.real.is_some() {
-            push_real(self.buf, &e.real_code, real_of(bits, e.fmt));
-            self.changes += 1;
-        }
+        self.recs.push(Rec::bits(i as u32, bits));
+        self.changes += 1 + u64::from(e.real.is_some());
     }
 }
 
@@ -590,6 +657,9 @@ fn write_filter(path: &Path, names: &[&str]) -> io::Result<()> {
 
 impl Trace for VcdTracer {
     fn start(&mut self, top: &dyn Module) -> io::Result<()> {
+        if let Some(f) = self.fst.as_mut() {
+            f.start(top)?;
+        }
         let title = self.title.clone();
         let w = self.writer();
         w.comment(&format!("texrtl: {title}"))?;
@@ -657,10 +727,16 @@ impl Trace for VcdTracer {
             self.writer().upscope()?;
         }
         self.writer().upscope()?;
-        self.writer().enddefinitions()
+        self.writer().enddefinitions()?;
+        let w = self.w.take().expect("tracer already finished");
+        self.thread = Some(WriterThread::spawn(w, self.codes())?);
+        Ok(())
     }
 
     fn sample(&mut self, cycle: u64, reset: bool, top: &dyn Module) -> io::Result<()> {
+        if let Some(f) = self.fst.as_mut() {
+            fst_sample(f, cycle, reset, top)?;
+        }
         if !self.in_window(cycle) {
             return Ok(());
         }
@@ -669,21 +745,21 @@ impl Trace for VcdTracer {
         self.check_time(t)?;
         self.check_time(half)?;
         let all = !self.dumped;
-        let mut buf = std::mem::take(&mut self.buf);
-        buf.clear();
-        push_time(&mut buf, t);
+        let (clk, rst, probes) = self.fixed_codes();
+        let mut recs = std::mem::take(&mut self.recs);
+        recs.push(Rec::time(t));
         if all {
-            buf.extend_from_slice(b"$dumpvars\n");
+            recs.push(Rec::text(false));
         }
-        push_change(&mut buf, &self.clk_code, 1, 1);
+        recs.push(Rec::bits(clk, 1));
         let mut n = 1;
         if all || self.rst_last != Some(reset) {
-            push_change(&mut buf, &self.rst_code, 1, u64::from(reset));
+            recs.push(Rec::bits(rst, u64::from(reset)));
             self.rst_last = Some(reset);
             n += 1;
         }
         let mut s = Sample {
-            buf: &mut buf,
+            recs: &mut recs,
             entries: &mut self.entries,
             next: 0,
             all,
@@ -691,29 +767,41 @@ impl Trace for VcdTracer {
         };
         top.visit(&mut s);
         n += s.changes;
-        for p in &mut self.probes {
+        for (k, p) in self.probes.iter_mut().enumerate() {
             if all || p.last != Some(p.value) {
-                match p.value {
-                    ProbeValue::Real(x) => push_real(&mut buf, &p.code, x),
-                    ProbeValue::Bits(b) => push_change(&mut buf, &p.code, p.width, b),
-                }
+                let i = probes + k as u32;
+                recs.push(match p.value {
+                    ProbeValue::Real(x) => Rec::real(i, x),
+                    ProbeValue::Bits(b) => Rec::bits(i, b),
+                });
                 p.last = Some(p.value);
                 n += 1;
             }
         }
         if all {
-            buf.extend_from_slice(b"$end\n");
+            recs.push(Rec::text(true));
             self.dumped = true;
         }
         self.changes += n;
-        push_time(&mut buf, half);
-        push_change(&mut buf, &self.clk_code, 1, 0);
-        let r = self.writer().writer().write_all(&buf);
-        self.buf = buf;
-        r
+        recs.push(Rec::time(half));
+        recs.push(Rec::bits(clk, 0));
+        self.recs = recs;
+        if self.recs.len() >= BATCH {
+            self.hand_over()?;
+        }
+        Ok(())
     }
 
     fn finish(&mut self, cycles: u64) -> io::Result<()> {
+        if let Some(f) = self.fst.as_mut() {
+            f.finish(cycles)?;
+        }
+        self.hand_over()?;
+        if let Some(t) = self.thread.take() {
+            let (w, r) = t.join();
+            self.w = Some(w);
+            r?;
+        }
         if !self.dumped {
             // The run ended before the trace window began: every value is unknown in it.
             self.dump_unknown()?;
@@ -740,8 +828,23 @@ impl Trace for VcdTracer {
     }
 }
 
+/// The FST companion's cycle, out of line: inlined, it made the VCD tracer's own cycle slower
+/// even without a companion.
+#[inline(never)]
+fn fst_sample(
+    f: &mut crate::FstTracer,
+    cycle: u64,
+    reset: bool,
+    top: &dyn Module,
+) -> io::Result<()> {
+    f.sample(cycle, reset, top)
+}
+
 impl Drop for VcdTracer {
     fn drop(&mut self) {
+        if let Some(t) = self.thread.take() {
+            drop(t.join());
+        }
         if !self.finished {
             self.w = None;
             let _ = std::fs::remove_file(&self.tmp);

@@ -235,10 +235,14 @@ fn fst_of_a_windowed_trace() {
     );
 }
 
-/// The blend adjust unit's run of [`run`] traced directly to FST (no companions, no probes).
-fn run_fst(name: &str, cfg: TraceConfig) -> PathBuf {
+/// The blend adjust unit's run of [`run`] traced directly to FST (no companions, no probes),
+/// with the writer's section and batch sizes `limits` when given.
+fn run_fst(name: &str, cfg: TraceConfig, limits: Option<(usize, usize)>) -> PathBuf {
     let path = tmpdir(name).join("ba.fst");
-    let t = waves::FstTracer::create(&path, cfg).unwrap();
+    let mut t = waves::FstTracer::create(&path, cfg).unwrap();
+    if let Some((flush, batch)) = limits {
+        t = t.with_limits(flush, batch);
+    }
     let dut = BlendAdjust::new("blend_adjust_153", BlendAdjustParams::default()).unwrap();
     let mut sim = Sim::traced(dut, t).unwrap();
     drive(&mut sim, |_| {});
@@ -248,22 +252,90 @@ fn run_fst(name: &str, cfg: TraceConfig) -> PathBuf {
 
 /// The FST written while simulating holds what the VCD of the same run holds (without the
 /// VCD's `real` companions and probes): every variable, width and value at every VCD time,
-/// whole and windowed.
+/// whole and windowed, in one section and batch or across many (tiny limits: a section every
+/// few hundred bytes, a batch every 7 records, so every boundary falls somewhere new).
 #[test]
 fn direct_fst_holds_the_vcds_values() {
-    for (name, window) in [("direct", None), ("directw", Some((5, 9)))] {
+    for (name, window, limits) in [
+        ("direct", None, None),
+        ("directw", Some((5, 9)), None),
+        ("directs", None, Some((300, 7))),
+        ("directsw", Some((5, 9)), Some((1, 1))),
+    ] {
         let cfg = TraceConfig {
             companions: false,
             window,
             ..Default::default()
         };
         let vcd = run(&format!("{name}-vcd"), cfg.clone(), true);
-        let fst = run_fst(name, cfg);
+        let fst = run_fst(name, cfg, limits);
         let mut a = read_vcd(&vcd).unwrap();
         a.vars.retain(|n, _| !n.starts_with("tb.golden"));
         let b = waves::check::read_fst(&fst).unwrap();
         let r = waves::fst::same_values(&a, &b);
         assert!(r.is_ok(), "{name}: {r:?}");
         assert!(!b.vars.is_empty());
+    }
+}
+
+/// A long run through both writer threads: many VCD batches and 256 KB chunks, many FST
+/// batches and sections (tiny limits). The two files, written by independent paths, hold the
+/// same values at every time, and the VCD's values are the model's (checked at sampled
+/// cycles against what the design held).
+#[test]
+fn long_runs_cross_every_batch_and_chunk_boundary() {
+    use hdl::bump::replicate_152::Replicate;
+    use hdl::fx::Format;
+    let cfg = TraceConfig {
+        companions: false,
+        ..Default::default()
+    };
+    let dir = tmpdir("long");
+    let (vcd, fst) = (dir.join("r.vcd"), dir.join("r.fst"));
+    let unit = || Replicate::new("replicate_152", Format::unsigned(8, 2), false);
+    let mut a = Sim::traced(
+        unit(),
+        VcdTracer::create(&vcd, "long", cfg.clone()).unwrap(),
+    )
+    .unwrap();
+    let fst_tracer = waves::FstTracer::create(&fst, cfg)
+        .unwrap()
+        .with_limits(4096, 1000);
+    let mut b = Sim::traced(unit(), fst_tracer).unwrap();
+    let mut seen = Vec::new();
+    let mut x: u64 = 7;
+    for c in 0..6000u64 {
+        for k in 0..9 {
+            x = x
+                .wrapping_mul(6364136223846793005)
+                .wrapping_add(1442695040888963407);
+            a.dut.h[k].set_bits(x >> 56);
+            b.dut.h[k].set_bits(x >> 56);
+        }
+        a.eval();
+        b.eval();
+        if c % 997 == 0 {
+            seen.push((c, a.dut.w[3][2].bits()));
+        }
+        a.tick();
+        b.tick();
+    }
+    assert!(
+        a.trace_mut().unwrap().changes() > 100_000,
+        "several VCD batches"
+    );
+    let a_name = a.dut.w[3][2].name();
+    a.finish().unwrap();
+    b.finish().unwrap();
+    let rv = read_vcd(&vcd).unwrap();
+    let rf = waves::check::read_fst(&fst).unwrap();
+    waves::fst::same_values(&rv, &rf).unwrap();
+    let var = format!("tb.replicate_152.{}", a_name);
+    for (c, bits) in seen {
+        assert_eq!(
+            rv.value_at(&var, c * 10_000).and_then(Value::as_u64),
+            Some(bits),
+            "{var} at cycle {c}"
+        );
     }
 }

@@ -45,7 +45,8 @@ pub struct RegressArgs {
     /// Random transactions per configuration (default: each testbench's own).
     #[arg(long)]
     count: Option<usize>,
-    /// Also write every waveform as FST (compact; open with `gtkwave X.fst X.gtkw`).
+    /// Also write every waveform as FST, directly while simulating (compact; open with
+    /// `gtkwave X.fst X.gtkw`).
     #[arg(long)]
     fst: bool,
     /// Run only this testbench (repeatable; `vectors` is the bit-accuracy check).
@@ -100,6 +101,7 @@ pub fn run(a: RegressArgs) -> ExitCode {
             filters: a.trace_filter,
             window: a.trace_window,
             companions: true,
+            fst: a.fst,
         },
         period_ps: a.period_ps,
         shard: a.shard,

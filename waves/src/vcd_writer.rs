@@ -1,0 +1,257 @@
+//! The VCD tracer's writer thread: the simulation hands over each cycle's changes as compact
+//! records (which variable, which value), and this thread formats them into VCD text and
+//! writes the file, so formatting and writing overlap with simulating. The text is exactly
+//! what formatting in the simulation's thread gave (same functions, same order).
+
+use crate::vcd_trace::{binary_digits, push_change, push_real, push_time, real_of};
+use hdl::fx::Format;
+use std::fs::File;
+use std::io::{self, BufWriter, Write};
+use std::sync::mpsc::{channel, sync_channel, Receiver, Sender, SyncSender};
+use std::sync::Arc;
+use std::thread::JoinHandle;
+
+pub(crate) type Out = vcd::Writer<BufWriter<File>>;
+
+/// Records per batch handed to the writer.
+pub(crate) const BATCH: usize = 1 << 14;
+
+/// Formatted text written to the file at once (straight through, no copy into the writer's
+/// buffer, few system calls).
+const CHUNK: usize = 1 << 18;
+
+/// How one variable is written: its identifier code and width, and for a fixed-point signal
+/// with a `real` companion, the companion's code and the signal's format.
+pub(crate) struct Code {
+    pub code: Box<[u8]>,
+    pub width: u32,
+    pub real: Option<(Box<[u8]>, Format)>,
+}
+
+/// What ends a change line: the code and a newline, padded to a fixed 16 bytes so that it is
+/// copied in one move (a copy of the code's own length was a call to `memcpy` per change).
+#[derive(Clone, Copy)]
+struct Tail {
+    bytes: [u8; 16],
+    len: usize,
+}
+
+impl Tail {
+    /// The tail of `code`, if it is short enough (up to 15 characters: 94^15 variables).
+    fn of(code: &[u8]) -> Option<Tail> {
+        let mut bytes = [0u8; 16];
+        bytes.get_mut(..code.len())?.copy_from_slice(code);
+        *bytes.get_mut(code.len())? = b'\n';
+        Some(Tail {
+            bytes,
+            len: code.len() + 1,
+        })
+    }
+}
+
+/// One step of the dump, in order: 16 bytes (what crosses between the threads is most of the
+/// cost, so the record is packed: a kind and an index in one word, a value in the other).
+#[derive(Clone, Copy)]
+pub(crate) struct Rec {
+    /// The kind in the top two bits, an index below.
+    tag: u32,
+    value: u64,
+}
+
+/// The texts a [`Rec::text`] can name.
+const TEXTS: [&[u8]; 2] = [b"$dumpvars\n", b"$end\n"];
+
+impl Rec {
+    const TIME: u32 = 0;
+    const TEXT: u32 = 1 << 30;
+    const BITS: u32 = 2 << 30;
+    const REAL: u32 = 3 << 30;
+
+    /// `#t`.
+    pub fn time(t: u64) -> Rec {
+        Rec {
+            tag: Rec::TIME,
+            value: t,
+        }
+    }
+    /// `$dumpvars` (`end` false) or `$end`.
+    pub fn text(end: bool) -> Rec {
+        Rec {
+            tag: Rec::TEXT | u32::from(end),
+            value: 0,
+        }
+    }
+    /// Variable `codes[i]` takes bits `v` (and its companion, if any, their real value).
+    pub fn bits(i: u32, v: u64) -> Rec {
+        debug_assert!(i < 1 << 30);
+        Rec {
+            tag: Rec::BITS | i,
+            value: v,
+        }
+    }
+    /// Real variable `codes[i]` takes `x`.
+    pub fn real(i: u32, x: f64) -> Rec {
+        debug_assert!(i < 1 << 30);
+        Rec {
+            tag: Rec::REAL | i,
+            value: x.to_bits(),
+        }
+    }
+}
+
+/// The text being formatted: a fixed buffer and a cursor (the cursor stays in a register;
+/// a `Vec` would store its length at every byte).
+struct Text {
+    buf: Box<[u8]>,
+    pos: usize,
+}
+
+/// The longest line a change makes: `b`, 64 digits, a space and a [`Tail`]; a longer code
+/// or a `real` goes through a `Vec`.
+const LINE: usize = 1 + 64 + 1 + 16;
+
+impl Text {
+    fn new() -> Text {
+        Text {
+            buf: vec![0; CHUNK + LINE].into_boxed_slice(),
+            pos: 0,
+        }
+    }
+
+    fn put(&mut self, bytes: &[u8]) {
+        self.buf[self.pos..self.pos + bytes.len()].copy_from_slice(bytes);
+        self.pos += bytes.len();
+    }
+
+    /// A value change, as [`push_change`] writes it.
+    #[inline]
+    fn change(&mut self, tail: &Tail, width: u32, bits: u64) {
+        let (w, mut p) = (width as usize, self.pos);
+        if w == 1 {
+            self.buf[p] = b'0' + (bits & 1) as u8;
+            p += 1;
+        } else {
+            self.buf[p] = b'b';
+            binary_digits(&mut self.buf[p + 1..p + 1 + w], bits);
+            self.buf[p + 1 + w] = b' ';
+            p += w + 2;
+        }
+        self.buf[p..p + 16].copy_from_slice(&tail.bytes);
+        self.pos = p + tail.len;
+    }
+
+    /// Appends what a `Vec` formatter wrote.
+    fn with_vec(&mut self, scratch: &mut Vec<u8>, f: impl FnOnce(&mut Vec<u8>)) {
+        scratch.clear();
+        f(scratch);
+        self.put(scratch);
+    }
+}
+
+/// Formats `recs` into `text`, writing it out whenever it passes [`CHUNK`] bytes.
+fn format(
+    w: &mut Out,
+    text: &mut Text,
+    scratch: &mut Vec<u8>,
+    codes: &[Code],
+    tails: &[Option<Tail>],
+    recs: &[Rec],
+) -> io::Result<()> {
+    for r in recs {
+        if text.pos >= CHUNK {
+            w.writer().write_all(&text.buf[..text.pos])?;
+            text.pos = 0;
+        }
+        let i = (r.tag & !(3 << 30)) as usize;
+        match r.tag & (3 << 30) {
+            Rec::TIME => text.with_vec(scratch, |b| push_time(b, r.value)),
+            Rec::TEXT => text.put(TEXTS[i]),
+            Rec::BITS => {
+                let c = &codes[i];
+                if let Some(tail) = &tails[i] {
+                    text.change(tail, c.width, r.value);
+                } else {
+                    text.with_vec(scratch, |b| push_change(b, &c.code, c.width, r.value));
+                }
+                if let Some((code, fmt)) = &c.real {
+                    text.with_vec(scratch, |b| push_real(b, code, real_of(r.value, *fmt)));
+                }
+            }
+            _ => {
+                let code = &codes[i].code;
+                text.with_vec(scratch, |b| push_real(b, code, f64::from_bits(r.value)));
+            }
+        }
+    }
+    Ok(())
+}
+
+/// Formats batches until the simulation hangs up, returning each emptied batch for reuse;
+/// then gives the writer back (with everything written to it).
+fn run(
+    mut w: Out,
+    codes: Arc<[Code]>,
+    batches: Receiver<Vec<Rec>>,
+    recycle: Sender<Vec<Rec>>,
+) -> (Out, io::Result<()>) {
+    let (mut text, mut scratch) = (Text::new(), Vec::with_capacity(64));
+    let tails: Vec<Option<Tail>> = codes.iter().map(|c| Tail::of(&c.code)).collect();
+    for mut batch in batches {
+        if let Err(e) = format(&mut w, &mut text, &mut scratch, &codes, &tails, &batch) {
+            return (w, Err(e));
+        }
+        batch.clear();
+        let _ = recycle.send(batch);
+    }
+    let r = w.writer().write_all(&text.buf[..text.pos]);
+    (w, r)
+}
+
+/// The simulation's end of the writer thread.
+pub(crate) struct WriterThread {
+    batches: SyncSender<Vec<Rec>>,
+    recycle: Receiver<Vec<Rec>>,
+    handle: JoinHandle<(Out, io::Result<()>)>,
+}
+
+impl WriterThread {
+    pub fn spawn(w: Out, codes: Arc<[Code]>) -> io::Result<WriterThread> {
+        let (batches, rx) = sync_channel(8);
+        let (back, recycle) = channel();
+        let handle = std::thread::Builder::new()
+            .name("vcd-writer".into())
+            .spawn(move || run(w, codes, rx, back))?;
+        Ok(WriterThread {
+            batches,
+            recycle,
+            handle,
+        })
+    }
+
+    /// Hands over `batch` and returns an empty one, or the writer's error (the thread has then
+    /// ended: the writer comes back too).
+    pub fn send(self, batch: Vec<Rec>) -> Result<(WriterThread, Vec<Rec>), (Out, io::Error)> {
+        if self.batches.send(batch).is_err() {
+            let (w, r) = self.join();
+            let e = r
+                .err()
+                .unwrap_or_else(|| io::Error::other("the VCD writer stopped"));
+            return Err((w, e));
+        }
+        let next = self
+            .recycle
+            .try_recv()
+            .unwrap_or_else(|_| Vec::with_capacity(BATCH));
+        Ok((self, next))
+    }
+
+    /// Waits for everything handed over to be written; the writer comes back.
+    pub fn join(self) -> (Out, io::Result<()>) {
+        drop(self.batches);
+        match self.handle.join() {
+            Ok(r) => r,
+            // `run` does not panic short of a bug; then there is no writer to give back.
+            Err(p) => std::panic::resume_unwind(p),
+        }
+    }
+}
