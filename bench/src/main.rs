@@ -20,7 +20,7 @@ struct Args {
     #[arg(long, default_value_t = 1_000_000)]
     cycles: usize,
     /// Cycles of the traced runs, VCD and FST (1..=10000000; the fastest of three runs counts).
-    #[arg(long, default_value_t = 100_000)]
+    #[arg(long, default_value_t = 1_000_000)]
     traced_cycles: usize,
     /// Units to measure (repeatable; default every twin).
     #[arg(long)]
