@@ -289,6 +289,13 @@ fn normals_bad_input_is_one_line_exit_2_and_no_output() {
             vec![],
             "1x1",
         ),
+        // Issue 17: a plain header declaring 65535x65535 aborted on its allocation.
+        (
+            write(&d, "huge.pgm", b"P2\n65535 65535\n255\n1 2 3\n"),
+            good_c.clone(),
+            vec![],
+            "hold at most",
+        ),
         (
             good_h.clone(),
             write(&d, "nan.csv", b"u,v\nNaN,0\n"),

@@ -81,6 +81,16 @@ fn netpbm(b: &[u8], channels: usize) -> Result<Pgm, String> {
     }
     let n = w as usize * h as usize * channels;
     let pixels: Vec<u8> = if ascii {
+        // Each sample takes a digit and a separator, so the bytes left bound what the file can
+        // hold: a header declaring more is refused before anything is allocated for it.
+        let room = (b.len() - pos).div_ceil(2);
+        if n > room {
+            return Err(format!(
+                "{kind} declares {w}x{h} ({n} samples) but its {} bytes of samples hold at \
+                 most {room}",
+                b.len() - pos
+            ));
+        }
         let mut v = Vec::with_capacity(n);
         for k in 0..n {
             let x = token(b, &mut pos)?.ok_or_else(|| format!("{kind} has {k} of {n} samples"))?;
@@ -180,6 +190,26 @@ mod tests {
         ] {
             assert!(parse(bad).is_err(), "{:?}", String::from_utf8_lossy(bad));
         }
+    }
+
+    /// A plain (ASCII) header may declare any size up to 65535 a side; the parser refuses one
+    /// its bytes cannot hold before allocating for it (65535x65535x3 would be 12 GB).
+    #[test]
+    fn ascii_sizes_are_checked_against_the_file_before_allocating() {
+        for (b, ppm) in [
+            (&b"P2\n65535 65535\n255\n1 2 3\n"[..], false),
+            (&b"P3\n46341 46341\n255\n1 2 3\n"[..], true),
+            (&b"P2\n2 2\n255\n1 2 3\n"[..], false),
+        ] {
+            let e = if ppm {
+                parse_ppm(b).map(|_| ()).unwrap_err()
+            } else {
+                parse(b).map(|_| ()).unwrap_err()
+            };
+            assert!(e.contains("at most") || e.contains("has 3 of 4"), "{e}");
+        }
+        // Exactly enough bytes, the last sample without a separator, still parses.
+        assert_eq!(parse(b"P2\n2 1\n9\n1 2").unwrap().pixels, vec![1, 2]);
     }
 
     #[test]
