@@ -212,6 +212,57 @@ fn texread_refuses_bad_textures_and_requests() {
     }
 }
 
+/// Issue 17's texread reproducers: every output checked before any work (a missing folder
+/// for the second output left the first behind), outputs distinct from each other and from
+/// the inputs, and a bad --lookahead refused even beside --no-lookahead. Each exits 2 with
+/// one line naming the option, and leaves no file.
+#[test]
+fn texread_checks_every_output_before_any_work() {
+    let (d, _, c) = encoded("outs");
+    let r = d.join("r.csv");
+    std::fs::write(&r, "u,v\n1,1\n2,2\n").unwrap();
+    let out = d.join("o.csv");
+    let (st, nodir) = (s(&out), s(&d.join("nodir").join("s.json")));
+    let cases: Vec<(std::path::PathBuf, Vec<&str>, &str)> = vec![
+        (out.clone(), vec!["--stats", &nodir], "--stats"),
+        (out.clone(), vec!["--vcd", &nodir], "--vcd"),
+        (
+            out.clone(),
+            vec!["--stats", &st],
+            "the same file as the output --out",
+        ),
+        (r.clone(), vec![], "the same file as the input --requests"),
+        (c.clone(), vec![], "the same file as the input --texture"),
+        (
+            out.clone(),
+            vec!["--no-lookahead", "--lookahead", "bogus"],
+            "--lookahead bogus",
+        ),
+        (
+            out.clone(),
+            vec!["--no-lookahead", "--lookahead", "direction"],
+            "choose one",
+        ),
+    ];
+    let texture = std::fs::read(&c).unwrap();
+    for (o_path, extra, needle) in cases {
+        let o = texread(&c, &r, &o_path, &extra);
+        let err = String::from_utf8_lossy(&o.stderr);
+        assert_eq!(o.status.code(), Some(2), "{extra:?}: {err}");
+        assert!(
+            err.contains(needle) && err.trim_end().lines().count() == 1,
+            "{needle}: {err}"
+        );
+        assert!(!out.exists(), "{extra:?} left {}", out.display());
+        assert_eq!(
+            std::fs::read(&r).unwrap(),
+            b"u,v\n1,1\n2,2\n",
+            "requests kept"
+        );
+        assert_eq!(std::fs::read(&c).unwrap(), texture, "texture kept");
+    }
+}
+
 /// A texture beyond the DRAM is refused until the larger part is chosen; bad options and a
 /// non-CCC file given to `ccc decode` are refused.
 #[test]

@@ -339,7 +339,9 @@ fn score_levels(
                 error: st.max_abs_lsb,
                 bound,
             });
-            res.stats.merge(&st);
+            if let Err(e) = res.stats.merge(&st) {
+                res.failures.push(e);
+            }
         }
     }
     let n_levels = p.levels().len() as u64;

@@ -860,8 +860,15 @@ impl Testbench for TextureTb {
     }
     fn conclude(&self, merged: &mut TbResult) {
         let mut compression = verif::ErrorStats::new();
+        let mut refused = None;
         for c in merged.records_of::<verif::ErrorStats>() {
-            compression.merge(&c);
+            if let Err(e) = compression.merge(&c) {
+                refused = Some(e);
+                break;
+            }
+        }
+        if let Some(e) = refused {
+            merged.failures.push(format!("compression statistics: {e}"));
         }
         merged.notes.push(format!(
             "compression error (hardware against the golden model of the original texture): worst {:.2} levels, mean {:.2}",

@@ -112,24 +112,43 @@ impl TbResult {
     /// configuration are prefixed with `label` when one is given. Coverage of another model
     /// is an error, and then nothing is added.
     pub fn absorb(&mut self, o: &TbResult, label: Option<&str>) -> Result<(), String> {
-        match (&mut self.coverage, &o.coverage) {
-            (Some(a), Some(b)) => a.merge(b)?,
-            (None, Some(b)) => self.coverage = Some(b.clone()),
-            _ => {}
-        }
+        // Everything that can fail first, into copies: a refused result changes nothing.
+        let coverage = match (&self.coverage, &o.coverage) {
+            (Some(a), Some(b)) => {
+                let mut m = a.clone();
+                m.merge(b)?;
+                Some(m)
+            }
+            (a, b) => a.clone().or_else(|| b.clone()),
+        };
+        let mut stats = self.stats.clone();
+        stats.merge(&o.stats)?;
+        let add = |a: u64, b: u64, what: &str| {
+            a.checked_add(b)
+                .ok_or_else(|| format!("the {what} count overflows u64"))
+        };
+        let configurations = add(
+            self.configurations,
+            o.configurations.max(u64::from(label.is_some())),
+            "configuration",
+        )?;
+        let transactions = add(self.transactions, o.transactions, "transaction")?;
+        let cycles = add(self.cycles, o.cycles, "cycle")?;
+        let mismatches = add(self.mismatches, o.mismatches, "mismatch")?;
         let tag = |m: &String| match label {
             Some(l) => format!("[{l}] {m}"),
             None => m.clone(),
         };
-        self.configurations += o.configurations.max(u64::from(label.is_some()));
-        self.transactions += o.transactions;
-        self.cycles += o.cycles;
-        self.mismatches += o.mismatches;
+        self.coverage = coverage;
+        self.stats = stats;
+        self.configurations = configurations;
+        self.transactions = transactions;
+        self.cycles = cycles;
+        self.mismatches = mismatches;
         self.mismatch_log.extend(o.mismatch_log.iter().map(tag));
         self.mismatch_log.truncate(20);
         let failures = o.failures.iter().filter(|f| !f.starts_with(HOLES));
         self.failures.extend(failures.map(tag));
-        self.stats.merge(&o.stats);
         self.latency = match (self.latency, o.latency) {
             (Some(a), Some(b)) => Some(a.max(b)),
             (a, b) => a.or(b),
@@ -205,5 +224,28 @@ impl TbResult {
         } else {
             "FAIL"
         }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// Issue 17: merged counters wrapped. An overflowing result is refused and the merged
+    /// result keeps what it had.
+    #[test]
+    fn absorb_refuses_overflowing_counters_and_changes_nothing() {
+        let mut a = TbResult::new("t", "u");
+        a.transactions = 5;
+        a.cycles = 7;
+        let mut b = TbResult::new("t", "u");
+        b.transactions = 1;
+        b.cycles = u64::MAX;
+        let e = a.absorb(&b, None).unwrap_err();
+        assert!(e.contains("cycle count overflows"), "{e}");
+        assert_eq!((a.transactions, a.cycles), (5, 7));
+        b.cycles = 1;
+        a.absorb(&b, None).unwrap();
+        assert_eq!((a.transactions, a.cycles), (6, 8));
     }
 }

@@ -66,20 +66,45 @@ impl ErrorStats {
     }
 
     /// Combines statistics of two runs (shards).
-    pub fn merge(&mut self, o: &ErrorStats) {
-        if o.max_abs_lsb > self.max_abs_lsb {
-            self.max_abs_lsb = o.max_abs_lsb;
-            self.worst = o.worst.map(|(i, d, g)| (i + self.count, d, g));
+    pub fn merge(&mut self, o: &ErrorStats) -> Result<(), String> {
+        // Into a copy: an overflow leaves `self` as it was.
+        let mut m = self.clone();
+        let add = |a: u64, b: u64| {
+            a.checked_add(b)
+                .ok_or_else(|| "error statistics: a count overflows u64".to_string())
+        };
+        let sum = |a: f64, b: f64| {
+            let x = a + b;
+            if x.is_finite() {
+                Ok(x)
+            } else {
+                Err(format!(
+                    "error statistics: {a:e} + {b:e} is not a finite sum"
+                ))
+            }
+        };
+        if !o.max_abs_lsb.is_finite() {
+            return Err(format!(
+                "error statistics: maximum {} is not finite",
+                o.max_abs_lsb
+            ));
         }
-        self.count += o.count;
-        self.sum_abs_lsb += o.sum_abs_lsb;
-        self.exact += o.exact;
-        self.within_1_lsb += o.within_1_lsb;
+        if o.max_abs_lsb > m.max_abs_lsb {
+            m.max_abs_lsb = o.max_abs_lsb;
+            m.worst = o.worst.map(|(i, d, g)| (i.saturating_add(m.count), d, g));
+        }
+        m.count = add(m.count, o.count)?;
+        m.sum_abs_lsb = sum(m.sum_abs_lsb, o.sum_abs_lsb)?;
+        m.exact = add(m.exact, o.exact)?;
+        m.within_1_lsb = add(m.within_1_lsb, o.within_1_lsb)?;
         for (k, v) in &o.histogram {
-            *self.histogram.entry(*k).or_insert(0) += v;
+            let e = m.histogram.entry(*k).or_insert(0);
+            *e = add(*e, *v)?;
         }
-        self.sum_sq_signal += o.sum_sq_signal;
-        self.sum_sq_error += o.sum_sq_error;
+        m.sum_sq_signal = sum(m.sum_sq_signal, o.sum_sq_signal)?;
+        m.sum_sq_error = sum(m.sum_sq_error, o.sum_sq_error)?;
+        *self = m;
+        Ok(())
     }
 
     /// One line: `n=…, max=… LSB, mean=… LSB, exact=…, ±1=…`.
@@ -118,10 +143,29 @@ mod tests {
         assert_eq!(s.worst.unwrap().0, 2);
         let mut t = ErrorStats::new();
         t.record(1.0, 1.0, lsb);
-        t.merge(&s);
+        t.merge(&s).unwrap();
         assert_eq!(t.count, 4);
         assert_eq!(t.worst.unwrap().0, 3);
         assert!(t.sqnr_db().unwrap() > 40.0);
+    }
+
+    /// Issue 17: merged shard summaries wrapped u64 counters and wrote 1e308 + 1e308 as
+    /// `null`. Both are refused, and the refused merge changes nothing.
+    #[test]
+    fn merging_refuses_overflow_and_leaves_the_stats_unchanged() {
+        let mut a = ErrorStats::new();
+        a.record(1.0, 1.0, 1.0);
+        let before = a.clone();
+        let mut b = a.clone();
+        b.count = u64::MAX;
+        assert!(a.merge(&b).unwrap_err().contains("overflows u64"));
+        let mut c = a.clone();
+        c.sum_sq_signal = 1e308;
+        a.sum_sq_signal = 1e308;
+        assert!(a.merge(&c).unwrap_err().contains("not a finite sum"));
+        a.sum_sq_signal = before.sum_sq_signal;
+        assert_eq!(a.count, before.count);
+        assert_eq!(a.sum_abs_lsb, before.sum_abs_lsb);
     }
 
     #[test]

@@ -1,6 +1,6 @@
 //! `texrtl ccc encode|decode`: CCC texture compression (Schilling & Knittel, section 3).
 
-use super::{check_out, input, write_out, CmdError};
+use super::{input, write_out, CmdError};
 use clap::Subcommand;
 use formats::ccc::{self, Ccc};
 use std::path::{Path, PathBuf};
@@ -34,7 +34,7 @@ pub fn run(c: &CccCmd) -> Result<String, CmdError> {
 
 /// `texrtl ccc encode`: PPM to `.ccc`; reports the PSNR of the decoded texture.
 fn encode(inp: &Path, out: &Path) -> Result<String, CmdError> {
-    check_out(out)?;
+    super::check_outputs(&[("--out", out)], &[("--in", inp)])?;
     let img = formats::netpbm::read_ppm(inp).map_err(input)?;
     let c = ccc::encode(&img).map_err(|e| input(format!("{}: {e}", inp.display())))?;
     write_out(out, &c.to_bytes())?;
@@ -51,7 +51,7 @@ fn encode(inp: &Path, out: &Path) -> Result<String, CmdError> {
 
 /// `texrtl ccc decode`: `.ccc` to a binary PPM (the reference decoder).
 fn decode(inp: &Path, out: &Path) -> Result<String, CmdError> {
-    check_out(out)?;
+    super::check_outputs(&[("--out", out)], &[("--in", inp)])?;
     let c = Ccc::read(inp).map_err(input)?;
     write_out(
         out,

@@ -41,6 +41,9 @@ pub fn read_trace(path: &Path, words: u64) -> Result<Vec<u64>, String> {
 
 /// Runs the trace; prints the statistics as JSON.
 pub fn run(a: &DramArgs) -> Result<String, CmdError> {
+    if let Some(v) = a.vcd.as_deref() {
+        super::check_outputs(&[("--vcd", v)], &[("--trace", a.trace.as_path())])?;
+    }
     dram_cmd(&a.trace, a.page_words, a.t_fault_ns, &a.size, a.vcd.clone())
 }
 

@@ -48,6 +48,42 @@ pub fn check_out(path: &Path) -> Result<(), CmdError> {
     }
 }
 
+/// Whether two paths name one file: the same absolute path, or (when both exist) the same
+/// file after links are resolved.
+fn same_file(a: &Path, b: &Path) -> bool {
+    let abs = |p: &Path| std::path::absolute(p).ok();
+    if abs(a).is_some() && abs(a) == abs(b) {
+        return true;
+    }
+    matches!((a.canonicalize(), b.canonicalize()), (Ok(x), Ok(y)) if x == y)
+}
+
+/// Every output of a command, checked before any work: each one's folder exists and it is
+/// not a folder, no two are the same file, and none is one of the inputs (which it would
+/// overwrite). `outs` and `ins` pair each path with its option's name, which the one-line
+/// message names.
+pub fn check_outputs(outs: &[(&str, &Path)], ins: &[(&str, &Path)]) -> Result<(), CmdError> {
+    for (k, (opt, path)) in outs.iter().enumerate() {
+        check_out(path).map_err(|e| match e {
+            CmdError::Input(m) => input(format!("{opt} {m}")),
+            other => other,
+        })?;
+        let earlier = outs[..k].iter().chain(ins);
+        if let Some((other, _)) = earlier.clone().find(|(_, q)| same_file(path, q)) {
+            let what = if ins.iter().any(|(o, _)| o == other) {
+                "the input"
+            } else {
+                "the output"
+            };
+            return Err(input(format!(
+                "{opt} {}: the same file as {what} {other}: choose another",
+                path.display()
+            )));
+        }
+    }
+    Ok(())
+}
+
 /// Writes an output file atomically; an I/O error is bad input naming the file.
 pub fn write_out(path: &Path, bytes: &[u8]) -> Result<(), CmdError> {
     check_out(path)?;

@@ -72,6 +72,13 @@ pub fn read_coords(path: &Path) -> Result<Vec<(f64, f64)>, String> {
 /// `texrtl normals`: one CSV row per coordinate, each component the exact decimal value of
 /// its fixed-point result. Returns a summary line.
 pub fn run(a: &NormalsArgs) -> Result<String, CmdError> {
+    let mut outs = vec![("--out", a.out.as_path())];
+    outs.extend(a.vcd.as_deref().map(|p| ("--vcd", p)));
+    let ins = [
+        ("--height", a.height.as_path()),
+        ("--coords", a.coords.as_path()),
+    ];
+    super::check_outputs(&outs, &ins)?;
     if a.lod != 0.0 && !a.trilinear {
         return Err(CmdError::Input(
             "--lod: the weight of the coarser MIP level needs --trilinear".into(),

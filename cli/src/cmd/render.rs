@@ -56,6 +56,10 @@ fn dot3(n: [f64; 3], l: [f64; 3]) -> f64 {
 /// B-spline (bit-exact) | golden B-spline | heat map of |B-spline - golden| in intensity
 /// (log scale, black = below 2^-24, white = 2^-8 or more). Returns a summary.
 pub fn run(a: &RenderArgs) -> Result<String, CmdError> {
+    super::check_outputs(
+        &[("--out", a.out.as_path())],
+        &[("--height", a.height.as_path())],
+    )?;
     if !a.zoom.is_power_of_two() || a.zoom > 64 {
         return Err(CmdError::Input(format!(
             "--zoom {}: a power of two up to 64",

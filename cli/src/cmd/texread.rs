@@ -144,6 +144,14 @@ pub struct TexreadArgs {
 
 /// `texrtl texread`: requests through the cycle-accurate unit; CSV of results, JSON stats.
 pub fn run(a: &TexreadArgs) -> Result<String, CmdError> {
+    let mut outs = vec![("--out", a.out.as_path())];
+    outs.extend(a.stats.as_deref().map(|p| ("--stats", p)));
+    outs.extend(a.vcd.as_deref().map(|p| ("--vcd", p)));
+    let ins = [
+        ("--texture", a.texture.as_path()),
+        ("--requests", a.requests.as_path()),
+    ];
+    super::check_outputs(&outs, &ins)?;
     if !(1..=8).contains(&a.frac_bits) {
         return Err(input(format!("--frac-bits {}: 1..=8", a.frac_bits)));
     }
@@ -153,15 +161,21 @@ pub fn run(a: &TexreadArgs) -> Result<String, CmdError> {
     let mut p = TexParams::new(tex.width, tex.height);
     p.layout = layout;
     p.cache = !a.no_cache;
+    // The scheme is checked even with --no-lookahead: a bad value is refused, not ignored.
     p.lookahead = match (a.no_lookahead, Lookahead::parse(&a.lookahead)) {
-        (true, _) => Lookahead::Off,
-        (false, Some(l)) => l,
-        (false, None) => {
+        (_, None) => {
             return Err(input(format!(
                 "--lookahead {}: quadrant, direction or off",
-                a.lookahead
+                formats::shorten(&a.lookahead)
             )))
         }
+        (true, Some(Lookahead::Direction)) => {
+            return Err(input(
+                "--no-lookahead with --lookahead direction: choose one".into(),
+            ))
+        }
+        (true, _) => Lookahead::Off,
+        (false, Some(l)) => l,
     };
     p.frac_bits = a.frac_bits;
     p.dram = match a.dram.as_str() {
