@@ -289,6 +289,13 @@ fn normals_bad_input_is_one_line_exit_2_and_no_output() {
             vec![],
             "1x1",
         ),
+        // Issue 17: --scale out of range blamed the coordinates file in 309 digits.
+        (
+            good_h.clone(),
+            good_c.clone(),
+            vec!["--scale", "1e308"],
+            "--scale 1e308 outside",
+        ),
         // Issue 17: a plain header declaring 65535x65535 aborted on its allocation.
         (
             write(&d, "huge.pgm", b"P2\n65535 65535\n255\n1 2 3\n"),
@@ -624,4 +631,25 @@ fn parallel_regress_is_byte_identical_to_one_thread() {
     ]);
     assert_eq!(o.status.code(), Some(2));
     let _ = std::fs::remove_dir_all(&d);
+}
+
+/// Issue 17: with `summary.json` a folder, regress ran every testbench and left the waves
+/// and pictures behind before failing. Now it refuses before any work.
+#[test]
+fn regress_refuses_an_unwritable_summary_before_running() {
+    let out = tmp("summary-dir");
+    std::fs::create_dir_all(out.join("summary.json")).unwrap();
+    let o = texrtl(&[
+        "--no-cosim",
+        "--only",
+        "blend_adjust_153",
+        "--out",
+        out.to_str().unwrap(),
+    ]);
+    let err = String::from_utf8_lossy(&o.stderr);
+    assert_eq!(o.status.code(), Some(2), "{err}");
+    assert_eq!(err.trim_end().lines().count(), 1, "{err}");
+    assert!(err.contains("summary.json is a folder"), "{err}");
+    let left: Vec<_> = std::fs::read_dir(&out).unwrap().collect();
+    assert_eq!(left.len(), 1, "only the folder that was there: {left:?}");
 }

@@ -47,6 +47,12 @@ fn dram_command() {
         ("addr\n1x\n", vec![], "not a word address"),
         ("addr\n1\n", vec!["--t-fault-ns", "7"], "multiple"),
         ("addr\n1\n", vec!["--page-words", "3"], "page-words"),
+        // Issue 17: a fault time too long for the timing registers blamed --page-words.
+        (
+            "addr\n1\n",
+            vec!["--t-fault-ns", "10010"],
+            "--t-fault-ns 10010: t_rp",
+        ),
     ] {
         std::fs::write(&t, body).unwrap();
         let out = d.join("bad.vcd");

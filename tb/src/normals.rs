@@ -60,6 +60,12 @@ pub fn quantise(p: &BumpParams, s: &Sample) -> Result<RawSample, String> {
         let lo = Fx::from_raw(f, f.min_raw()).to_f64();
         let hi = Fx::from_raw(f, f.max_raw()).to_f64();
         if x < lo || x > hi {
+            // Short: 1e308 is written as such, not as 309 digits.
+            let x = if x.abs() < 1e9 {
+                format!("{x}")
+            } else {
+                format!("{x:e}")
+            };
             return Err(format!("{what} {x} outside {lo}..={hi} ({f})"));
         }
         Ok(v.raw() as i64)

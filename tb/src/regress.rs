@@ -79,6 +79,12 @@ impl RegressConfig {
         if !(1..=256).contains(&self.jobs) {
             return Err(format!("--jobs {}: 1..=256 threads", self.jobs));
         }
+        // What the run writes at the end must be writable before it starts: a folder where
+        // summary.json goes left every waveform behind.
+        let summary = self.out.join("summary.json");
+        if summary.is_dir() {
+            return Err(format!("--out: {} is a folder", summary.display()));
+        }
         for o in &self.only {
             if reg.get(o).is_none() && o != VECTORS && o != COSIM {
                 return Err(format!(

@@ -80,8 +80,14 @@ fn dram_cmd(
         t_rcd: fault - fault / 2,
         ..base
     };
-    p.validate()
-        .map_err(|e| CmdError::Input(format!("--page-words {page_words}: {e}")))?;
+    p.validate().map_err(|e| {
+        // The fault time sets t_rp and t_rcd; the page size sets the rest.
+        if e.starts_with("t_rp") || e.starts_with("t_rcd") {
+            CmdError::Input(format!("--t-fault-ns {t_fault_ns}: {e}"))
+        } else {
+            CmdError::Input(format!("--page-words {page_words}: {e}"))
+        }
+    })?;
     let addrs = read_trace(trace, p.words()).map_err(CmdError::Input)?;
     if let Some(v) = &vcd {
         if v.is_dir() {

@@ -89,6 +89,15 @@ pub fn run(a: &NormalsArgs) -> Result<String, CmdError> {
     p.border = a.border;
     p.trilinear = a.trilinear;
     p.validate()?;
+    // The options that every sample shares, checked before the files are read and named as
+    // options (not as the coordinates file's first row).
+    let at_origin = Sample {
+        u: 0.0,
+        v: 0.0,
+        scale: a.scale,
+        lod: a.lod,
+    };
+    tb::normals::quantise(&p, &at_origin).map_err(|e| CmdError::Input(format!("--{e}")))?;
     let map = read_height(&a.height, &p)?;
     let coords = read_coords(&a.coords)?;
     let samples: Vec<Sample> = coords
