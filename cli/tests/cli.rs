@@ -289,20 +289,6 @@ fn normals_bad_input_is_one_line_exit_2_and_no_output() {
             vec![],
             "1x1",
         ),
-        // Issue 17: --scale out of range blamed the coordinates file in 309 digits.
-        (
-            good_h.clone(),
-            good_c.clone(),
-            vec!["--scale", "1e308"],
-            "--scale 1e308 outside",
-        ),
-        // Issue 17: a plain header declaring 65535x65535 aborted on its allocation.
-        (
-            write(&d, "huge.pgm", b"P2\n65535 65535\n255\n1 2 3\n"),
-            good_c.clone(),
-            vec![],
-            "hold at most",
-        ),
         (
             good_h.clone(),
             write(&d, "nan.csv", b"u,v\nNaN,0\n"),
@@ -652,4 +638,34 @@ fn regress_refuses_an_unwritable_summary_before_running() {
     assert!(err.contains("summary.json is a folder"), "{err}");
     let left: Vec<_> = std::fs::read_dir(&out).unwrap().collect();
     assert_eq!(left.len(), 1, "only the folder that was there: {left:?}");
+}
+
+/// Issue 17's normals reproducers: a plain header declaring 65535x65535 aborted on its
+/// allocation; --scale out of range blamed the coordinates file in 309 digits. Each exits 2
+/// with one line and writes nothing.
+#[test]
+fn normals_issue_17_reproducers() {
+    let d = tmp("normals-17");
+    let good_h = write(&d, "h.pgm", b"P2\n2 2\n255\n1 2 3 4\n");
+    let huge = write(&d, "huge.pgm", b"P2\n65535 65535\n255\n1 2 3\n");
+    let c = write(&d, "c.csv", b"u,v\n0.5,0.5\n");
+    let out = d.join("n.csv");
+    for (h, extra, needle) in [
+        (&huge, vec![], "hold at most"),
+        (&good_h, vec!["--scale", "1e308"], "--scale 1e308 outside"),
+    ] {
+        let (hs, cs, os) = (
+            h.to_str().unwrap(),
+            c.to_str().unwrap(),
+            out.to_str().unwrap(),
+        );
+        let mut a = vec!["normals", "--height", hs, "--coords", cs, "--out", os];
+        a.extend(extra);
+        let o = texrtl(&a);
+        let err = String::from_utf8_lossy(&o.stderr);
+        assert_eq!(o.status.code(), Some(2), "{needle}: {err}");
+        assert_eq!(err.trim_end().lines().count(), 1, "{err}");
+        assert!(err.contains(needle), "{needle}: {err}");
+        assert!(!out.exists(), "{needle}");
+    }
 }
