@@ -271,45 +271,59 @@ fn normals_render_and_sweep_commands() {
     assert!(String::from_utf8_lossy(&o.stdout).contains("blend\\table"));
 }
 
-#[test]
-fn normals_bad_input_is_one_line_exit_2_and_no_output() {
-    let d = tmp("normals-bad");
-    let good_h = write(&d, "h.pgm", b"P2\n2 2\n255\n1 2 3 4\n");
-    let good_c = write(&d, "c.csv", b"u,v\n0.5,0.5\n");
-    let cases: Vec<(PathBuf, PathBuf, Vec<&str>, &str)> = vec![
+/// The normals command's bad inputs: height map, coordinates, extra options, and what the
+/// one-line refusal must say.
+fn normals_bad_cases(d: &Path) -> Vec<(PathBuf, PathBuf, Vec<&'static str>, &'static str)> {
+    let good_h = write(d, "h.pgm", b"P2\n2 2\n255\n1 2 3 4\n");
+    let good_c = write(d, "c.csv", b"u,v\n0.5,0.5\n");
+    vec![
+        // Issue 17: a plain header declaring 65535x65535 aborted on its allocation.
         (
-            write(&d, "a.pgm", b"P6\n2 2\n255\n"),
+            write(d, "huge.pgm", b"P2\n65535 65535\n255\n1 2 3\n"),
+            good_c.clone(),
+            vec![],
+            "hold at most",
+        ),
+        // Issue 17: --scale out of range blamed the coordinates file in 309 digits.
+        (
+            good_h.clone(),
+            good_c.clone(),
+            vec!["--scale", "1e308"],
+            "--scale 1e308 outside",
+        ),
+        (
+            write(d, "a.pgm", b"P6\n2 2\n255\n"),
             good_c.clone(),
             vec![],
             "not a PGM",
         ),
         (
-            write(&d, "b.pgm", b"P2\n1 1\n255\n7\n"),
+            write(d, "b.pgm", b"P2\n1 1\n255\n7\n"),
             good_c.clone(),
             vec![],
             "1x1",
         ),
         (
             good_h.clone(),
-            write(&d, "nan.csv", b"u,v\nNaN,0\n"),
+            write(d, "nan.csv", b"u,v\nNaN,0\n"),
             vec![],
             "not a finite number",
         ),
         (
             good_h.clone(),
-            write(&d, "bad.csv", b"u,v\n1;2\n"),
+            write(d, "bad.csv", b"u,v\n1;2\n"),
             vec![],
             "1 fields, the header has 2",
         ),
         (
             good_h.clone(),
-            write(&d, "hdr.csv", b"x,y\n1,2\n"),
+            write(d, "hdr.csv", b"x,y\n1,2\n"),
             vec![],
             "not 'u,v'",
         ),
         (
             good_h.clone(),
-            write(&d, "far.csv", b"u,v\n1e9,0\n"),
+            write(d, "far.csv", b"u,v\n1e9,0\n"),
             vec![],
             "outside",
         ),
@@ -332,8 +346,13 @@ fn normals_bad_input_is_one_line_exit_2_and_no_output() {
             "inf",
         ),
         (good_h.clone(), good_c.clone(), vec!["--bogus"], "--bogus"),
-    ];
-    for (h, c, extra, needle) in cases {
+    ]
+}
+
+#[test]
+fn normals_bad_input_is_one_line_exit_2_and_no_output() {
+    let d = tmp("normals-bad");
+    for (h, c, extra, needle) in normals_bad_cases(&d) {
         let out = d.join("out.csv");
         let vcd = d.join("out.vcd");
         let mut args = normals_args(&h, &c, &out, &vcd);
@@ -352,7 +371,7 @@ fn normals_bad_input_is_one_line_exit_2_and_no_output() {
     let o = texrtl(&[
         "render",
         "--height",
-        good_h.to_str().unwrap(),
+        d.join("h.pgm").to_str().unwrap(),
         "--out",
         d.join("r.png").to_str().unwrap(),
         "--light",
@@ -638,34 +657,4 @@ fn regress_refuses_an_unwritable_summary_before_running() {
     assert!(err.contains("summary.json is a folder"), "{err}");
     let left: Vec<_> = std::fs::read_dir(&out).unwrap().collect();
     assert_eq!(left.len(), 1, "only the folder that was there: {left:?}");
-}
-
-/// Issue 17's normals reproducers: a plain header declaring 65535x65535 aborted on its
-/// allocation; --scale out of range blamed the coordinates file in 309 digits. Each exits 2
-/// with one line and writes nothing.
-#[test]
-fn normals_issue_17_reproducers() {
-    let d = tmp("normals-17");
-    let good_h = write(&d, "h.pgm", b"P2\n2 2\n255\n1 2 3 4\n");
-    let huge = write(&d, "huge.pgm", b"P2\n65535 65535\n255\n1 2 3\n");
-    let c = write(&d, "c.csv", b"u,v\n0.5,0.5\n");
-    let out = d.join("n.csv");
-    for (h, extra, needle) in [
-        (&huge, vec![], "hold at most"),
-        (&good_h, vec!["--scale", "1e308"], "--scale 1e308 outside"),
-    ] {
-        let (hs, cs, os) = (
-            h.to_str().unwrap(),
-            c.to_str().unwrap(),
-            out.to_str().unwrap(),
-        );
-        let mut a = vec!["normals", "--height", hs, "--coords", cs, "--out", os];
-        a.extend(extra);
-        let o = texrtl(&a);
-        let err = String::from_utf8_lossy(&o.stderr);
-        assert_eq!(o.status.code(), Some(2), "{needle}: {err}");
-        assert_eq!(err.trim_end().lines().count(), 1, "{err}");
-        assert!(err.contains(needle), "{needle}: {err}");
-        assert!(!out.exists(), "{needle}");
-    }
 }
