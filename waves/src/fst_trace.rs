@@ -221,7 +221,12 @@ impl FstTracer {
 
     /// Hands a full batch to the writer.
     fn hand_over(&mut self) -> io::Result<()> {
-        let w = self.writer.take().expect("started");
+        // No writer: it stopped on an error already reported (the simulation keeps that
+        // first error); the records go nowhere, and memory stays bounded.
+        let Some(w) = self.writer.take() else {
+            self.batch.clear();
+            return Ok(());
+        };
         let (w, next) = w.send(std::mem::take(&mut self.batch))?;
         self.writer = Some(w);
         self.batch = next;
@@ -389,13 +394,17 @@ impl Trace for FstTracer {
             Some((a, b)) => cycles.min(b).max(a),
             None => cycles,
         } * self.cfg.period_ps;
-        if self.writer.is_some() && self.last_time.is_none_or(|l| end > l) {
+        if self.last_time.is_none_or(|l| end > l) {
             self.time(end);
         }
-        if let Some(w) = self.writer.take() {
-            let (w, _) = w.send(std::mem::take(&mut self.batch))?;
-            w.join()?;
-        }
+        let Some(w) = self.writer.take() else {
+            return Err(io::Error::other(format!(
+                "{}: the writer stopped on an earlier error",
+                self.path.display()
+            )));
+        };
+        let (w, _) = w.send(std::mem::take(&mut self.batch))?;
+        w.join()?;
         std::fs::rename(&self.tmp, &self.path)?;
         self.finished = true;
         Ok(())

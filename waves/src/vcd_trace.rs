@@ -389,7 +389,10 @@ impl VcdTracer {
     /// Hands the records so far to the writer thread (whose error, if it stopped, is
     /// returned; the file is then given back for `Drop` to remove).
     fn hand_over(&mut self) -> io::Result<()> {
+        // No thread: it stopped on an error already reported (the simulation keeps that first
+        // error); the records go nowhere, and memory stays bounded.
         let Some(t) = self.thread.take() else {
+            self.recs.clear();
             return Ok(());
         };
         match t.send(std::mem::take(&mut self.recs)) {
@@ -398,8 +401,9 @@ impl VcdTracer {
                 self.recs = next;
                 Ok(())
             }
+            // The file is closed here, and removed when the tracer is dropped.
             Err((w, e)) => {
-                self.w = Some(w);
+                drop(w);
                 Err(e)
             }
         }
@@ -793,6 +797,12 @@ impl Trace for VcdTracer {
     }
 
     fn finish(&mut self, cycles: u64) -> io::Result<()> {
+        if self.thread.is_none() && self.w.is_none() {
+            return Err(io_err(format!(
+                "{}: the writer stopped on an earlier error",
+                self.path.display()
+            )));
+        }
         if let Some(f) = self.fst.as_mut() {
             f.finish(cycles)?;
         }
