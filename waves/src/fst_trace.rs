@@ -6,7 +6,7 @@
 //! The simulation only collects each cycle's changes (value and identifier, no formatting)
 //! into batches of [`BATCH`] records; a writer thread encodes them with `fst-writer`, as
 //! Verilator's FST writer compresses in a thread of its own. The batches pass through a
-//! channel of two, and the writer flushes a new value-change section whenever its buffer
+//! channel of eight, and the writer flushes a new value-change section whenever its buffer
 //! passes [`FLUSH_BYTES`] (small enough that fst-writer's per-signal walk through it stays in
 //! cache), so a run of any length needs bounded memory.
 
