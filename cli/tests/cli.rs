@@ -658,3 +658,54 @@ fn regress_refuses_an_unwritable_summary_before_running() {
     let left: Vec<_> = std::fs::read_dir(&out).unwrap().collect();
     assert_eq!(left.len(), 1, "only the folder that was there: {left:?}");
 }
+
+/// Issue 17: `merge` of a shard declaring 1/4294967295 allocated a 4 G-entry vector (the
+/// shard syntax now stops at 4096, and merge keeps a set of the shards given, not a vector
+/// of the count), and shards of different texrtl versions merged silently. Both are refused
+/// with one line.
+#[test]
+fn merge_refuses_huge_counts_and_mixed_versions_without_allocating() {
+    let d = tmp("merge17");
+    let s1 = d.join("s1");
+    let o = texrtl(&[
+        "--no-cosim",
+        "--no-vcd",
+        "--only",
+        "blend_adjust_153",
+        "--count",
+        "10",
+        "--shard",
+        "1/2",
+        "--out",
+        s1.to_str().unwrap(),
+    ]);
+    assert!(o.status.code().is_some_and(|c| c <= 1), "{o:?}");
+    let j: serde_json::Value =
+        serde_json::from_slice(&std::fs::read(s1.join("summary.json")).unwrap()).unwrap();
+    let variant = |name: &str, edit: &dyn Fn(&mut serde_json::Value)| {
+        let mut v = j.clone();
+        edit(&mut v);
+        let p = d.join(name);
+        std::fs::write(&p, serde_json::to_vec(&v).unwrap()).unwrap();
+        p
+    };
+    let huge = variant("huge.json", &|v| v["shard"] = "1/4294967295".into());
+    let other = variant("other.json", &|v| {
+        v["shard"] = "2/2".into();
+        v["texrtl"] = "0.0.0".into();
+    });
+    let merged = d.join("m.json");
+    for (files, needle) in [
+        (vec![&huge], "N <= 4096"),
+        (vec![&s1.join("summary.json"), &other], "texrtl 0.0.0"),
+    ] {
+        let mut a = vec!["merge", "--out", merged.to_str().unwrap()];
+        a.extend(files.iter().map(|p| p.to_str().unwrap()));
+        let o = texrtl(&a);
+        let err = String::from_utf8_lossy(&o.stderr);
+        assert_eq!(o.status.code(), Some(2), "{err}");
+        assert_eq!(err.trim_end().lines().count(), 1, "{err}");
+        assert!(err.contains(needle), "{needle}: {err}");
+        assert!(!merged.exists());
+    }
+}

@@ -263,9 +263,19 @@ pub fn merge(paths: &[PathBuf]) -> Result<Summary, String> {
         }
     };
     let n = parse(first_path, first)?.count;
-    let mut seen = vec![false; n as usize];
+    // The shards given, as a set: nothing is allocated for the count a file declares.
+    let mut seen = std::collections::BTreeSet::new();
     for (p, s) in &shards {
         let sh = parse(p, s)?;
+        if s.texrtl != first.texrtl {
+            return Err(format!(
+                "{}: written by texrtl {}, {} by texrtl {}: merge the shards of one version",
+                p.display(),
+                formats::shorten(&s.texrtl),
+                first_path.display(),
+                formats::shorten(&first.texrtl)
+            ));
+        }
         if s.seed != first.seed || sh.count != n {
             return Err(format!(
                 "{}: shard {sh} of seed {} does not belong with {}/{n} of seed {}",
@@ -275,12 +285,13 @@ pub fn merge(paths: &[PathBuf]) -> Result<Summary, String> {
                 first.seed
             ));
         }
-        if std::mem::replace(&mut seen[sh.index as usize - 1], true) {
+        if !seen.insert(sh.index) {
             return Err(format!("{}: shard {sh} given twice", p.display()));
         }
     }
-    if let Some(i) = seen.iter().position(|s| !s) {
-        return Err(format!("merge: shard {}/{n} is missing", i + 1));
+    // The first gap is at most one past the shards given, however large the count.
+    if let Some(i) = (1..=n).find(|i| !seen.contains(i)) {
+        return Err(format!("merge: shard {i}/{n} is missing"));
     }
     let reg = registry();
     let mut merged: Vec<TbResult> = Vec::new();
