@@ -159,14 +159,10 @@ pub(crate) fn binary_digits(out: &mut [u8], bits: u64) {
 /// The `width` low bits of `bits` as binary digits, most significant first.
 #[inline]
 pub(crate) fn push_binary(buf: &mut Vec<u8>, width: u32, bits: u64) {
-    // The bits above a whole number of bytes one by one, then eight at a time.
-    let w = width as usize;
-    for k in (w - w % 8..w).rev() {
-        buf.push(b'0' + ((bits >> k) & 1) as u8);
-    }
-    for byte in (0..w / 8).rev() {
-        buf.extend_from_slice(&BINARY[((bits >> (8 * byte)) & 0xff) as usize]);
-    }
+    let mut digits = [0u8; 64];
+    let d = &mut digits[..width as usize];
+    binary_digits(d, bits);
+    buf.extend_from_slice(d);
 }
 
 /// A value change as the `vcd` crate writes it (`1!` for a bit, `b0101 !` for a vector), but

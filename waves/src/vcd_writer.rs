@@ -255,3 +255,36 @@ impl WriterThread {
         }
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// The writer thread's line is the same text as [`push_change`] (itself tested against
+    /// the `vcd` crate) for every width, bit patterns across the byte boundaries, and codes
+    /// of one to fifteen characters.
+    #[test]
+    fn text_change_is_push_change() {
+        for code in [&b"!"[..], b"#%", b"abcdefghijklmno"] {
+            let tail = Tail::of(code).expect("short code");
+            for width in 1..=64u32 {
+                let mask = u64::MAX >> (64 - width);
+                for bits in [0, mask, 0xa5a5_5a5a_f00f_0ff0 & mask, 1u64 << (width - 1)] {
+                    let mut text = Text::new();
+                    text.change(&tail, width, bits);
+                    let mut want = Vec::new();
+                    push_change(&mut want, code, width, bits);
+                    assert_eq!(
+                        &text.buf[..text.pos],
+                        &want[..],
+                        "width {width} bits {bits:#x}"
+                    );
+                }
+            }
+        }
+        assert!(
+            Tail::of(b"0123456789abcdef").is_none(),
+            "16 characters take the long path"
+        );
+    }
+}
