@@ -225,8 +225,7 @@ pub fn memory_plots(
     for (file, title, ydesc, series, caption) in plots {
         let png = grouped_bars_png(title, ydesc, &traces, &series)?;
         let path = out.join(file);
-        formats::output::write_atomic(&path, &png)
-            .map_err(|e| format!("{}: {e}", path.display()))?;
+        formats::output::write_output(&path, &png).map_err(|e| e.to_string())?;
         v.push((file.to_string(), caption.to_string()));
     }
     Ok(v)

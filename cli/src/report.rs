@@ -1,6 +1,6 @@
 //! Results of testbenches, the summary table and `summary.json`.
 
-use formats::output::write_atomic;
+use formats::output::write_output;
 use std::fmt::Write;
 use std::path::Path;
 use tb::regress::{RegressConfig, Summary};
@@ -148,9 +148,7 @@ pub fn markdown(s: &Summary, pictures: &[(&str, &str)]) -> String {
 
 /// The pictures and `report.md` of a regression's summary.
 pub fn write_report(out: &Path, summary: &Summary) -> Result<(), String> {
-    let write = |f: &str, b: &[u8]| {
-        write_atomic(&out.join(f), b).map_err(|e| format!("{}: {e}", out.join(f).display()))
-    };
+    let write = |f: &str, b: &[u8]| write_output(&out.join(f), b).map_err(|e| e.to_string());
     let results = &summary.testbenches;
     let mut pictures = Vec::new();
     if results.iter().any(|r| r.name == tb::normals::NAME) {
@@ -194,7 +192,7 @@ fn normals_picture(out: &std::path::Path) -> Result<(String, String), String> {
     let map = tb::maps::builtin("bumps", 48, 48, p.texel_fmt())?;
     let (png, worst) = crate::cmd::render::render_png(&map, &p, [1.0, 1.0, 2.0], 0.5, 4)?;
     let f = "normals_render.png";
-    write_atomic(&out.join(f), &png).map_err(|e| format!("{}: {e}", out.join(f).display()))?;
+    write_output(&out.join(f), &png).map_err(|e| e.to_string())?;
     Ok((
         f.to_string(),
         format!(
@@ -226,8 +224,7 @@ fn mipmap_picture(out: &std::path::Path) -> Result<(String, String), String> {
         }
     }
     let f = "mipmap_levels.png";
-    write_atomic(&out.join(f), &formats::png::encode(&img)?)
-        .map_err(|e| format!("{}: {e}", out.join(f).display()))?;
+    write_output(&out.join(f), &formats::png::encode(&img)?).map_err(|e| e.to_string())?;
     Ok((
         f.to_string(),
         "Mipmap levels 0-6 of a 64x32 interlaced synthetic frame from the cycle-accurate generator, each scaled to the size of level 0".to_string(),

@@ -1,6 +1,12 @@
-//! Writing output files: a regular file is written to `NAME.partial` and renamed, so a failed
-//! or interrupted write never leaves a half-written file under the real name.
+//! Writing output files. A regular file (or a new one) is written to `NAME.partial` and
+//! renamed into place when complete, so a failed or interrupted write never leaves a
+//! half-written file under the real name. Anything else is written through: a device
+//! (`/dev/null`, `/dev/full`), a pipe or a socket is opened and written as it is, and a write
+//! error is reported; a symbolic link is followed, and its target is written the same way
+//! (atomically when it is a regular file), so the link itself stays.
 
+use std::fs::{File, OpenOptions};
+use std::io::{self, Write};
 use std::path::{Path, PathBuf};
 
 /// The temporary name `path` is written under before the rename.
@@ -10,12 +16,210 @@ pub fn partial(path: &Path) -> PathBuf {
     PathBuf::from(tmp)
 }
 
-/// Writes `contents` to `path` through a temporary file, so no partial file is ever left.
-pub fn write_atomic(path: &Path, contents: &[u8]) -> std::io::Result<()> {
-    let tmp = partial(path);
-    if let Err(e) = std::fs::write(&tmp, contents) {
-        let _ = std::fs::remove_file(&tmp);
-        return Err(e);
+/// One output file being written; see the module documentation for the two ways. An output
+/// that is dropped without [`Staged::commit`] removes its partial file.
+#[derive(Debug)]
+pub struct Staged {
+    /// The path as the user named it (messages name this one).
+    path: PathBuf,
+    /// Where the bytes go: `NAME.partial`, or the device/pipe/link target itself.
+    write: PathBuf,
+    /// The final name of an atomic write (`None` when written through).
+    rename_to: Option<PathBuf>,
+    committed: bool,
+}
+
+/// How a path that exists is to be written: atomically at `real`, or through.
+enum Kind {
+    Atomic(PathBuf),
+    Through,
+}
+
+fn kind(path: &Path) -> Kind {
+    let Ok(meta) = std::fs::symlink_metadata(path) else {
+        return Kind::Atomic(path.to_path_buf());
+    };
+    if meta.file_type().is_symlink() {
+        return match (std::fs::metadata(path), std::fs::canonicalize(path)) {
+            (Ok(m), Ok(real)) if m.is_file() => Kind::Atomic(real),
+            // A link to a device or pipe, or a dangling link (its target is created).
+            _ => Kind::Through,
+        };
     }
-    std::fs::rename(&tmp, path)
+    if meta.is_file() || meta.is_dir() {
+        // A folder fails at the rename with a message naming the path.
+        Kind::Atomic(path.to_path_buf())
+    } else {
+        Kind::Through
+    }
+}
+
+impl Staged {
+    /// Decides how `path` is written (from what is there now); creates nothing.
+    pub fn new(path: &Path) -> Staged {
+        let (write, rename_to) = match kind(path) {
+            Kind::Atomic(real) => (partial(&real), Some(real)),
+            Kind::Through => (path.to_path_buf(), None),
+        };
+        Staged {
+            path: path.to_path_buf(),
+            write,
+            rename_to,
+            committed: false,
+        }
+    }
+
+    /// The path as named.
+    pub fn path(&self) -> &Path {
+        &self.path
+    }
+
+    /// The path the bytes are written to (for writers that open the file themselves).
+    pub fn write_path(&self) -> &Path {
+        &self.write
+    }
+
+    /// Whether the output is a regular file, replaced atomically (false for a device, a pipe
+    /// or a link to one). Files that go beside an output (a `.gtkw` beside a `.vcd`) are only
+    /// written beside a regular file.
+    pub fn is_file(&self) -> bool {
+        self.rename_to.is_some()
+    }
+
+    /// An error naming the output as the user named it.
+    pub fn err(&self, e: impl std::fmt::Display) -> io::Error {
+        io::Error::other(format!("{}: {e}", self.path.display()))
+    }
+
+    /// Opens the file to write (created or truncated).
+    pub fn create(&self) -> io::Result<File> {
+        OpenOptions::new()
+            .write(true)
+            .create(true)
+            .truncate(true)
+            .open(&self.write)
+            .map_err(|e| self.err(e))
+    }
+
+    /// Puts a completely written file in place (the rename); nothing for a written-through
+    /// output.
+    pub fn commit(mut self) -> io::Result<()> {
+        if let Some(to) = &self.rename_to {
+            std::fs::rename(&self.write, to).map_err(|e| self.err(e))?;
+        }
+        self.committed = true;
+        Ok(())
+    }
+}
+
+impl Drop for Staged {
+    fn drop(&mut self) {
+        if !self.committed && self.rename_to.is_some() {
+            let _ = std::fs::remove_file(&self.write);
+        }
+    }
+}
+
+/// Writes `contents` to `path` as the module describes; errors name `path`.
+pub fn write_output(path: &Path, contents: &[u8]) -> io::Result<()> {
+    let out = Staged::new(path);
+    let mut f = out.create()?;
+    f.write_all(contents).map_err(|e| out.err(e))?;
+    f.flush().map_err(|e| out.err(e))?;
+    drop(f);
+    out.commit()
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn dir(name: &str) -> PathBuf {
+        let d = std::env::temp_dir().join(format!("texrtl-output-{name}-{}", std::process::id()));
+        let _ = std::fs::remove_dir_all(&d);
+        std::fs::create_dir_all(&d).unwrap();
+        d
+    }
+
+    fn names(d: &Path) -> Vec<String> {
+        let mut v: Vec<String> = std::fs::read_dir(d)
+            .unwrap()
+            .map(|e| e.unwrap().file_name().to_string_lossy().into_owned())
+            .collect();
+        v.sort();
+        v
+    }
+
+    #[test]
+    fn a_regular_file_is_replaced_and_no_partial_is_left() {
+        let d = dir("regular");
+        let p = d.join("o.csv");
+        std::fs::write(&p, "old").unwrap();
+        write_output(&p, b"new").unwrap();
+        assert_eq!(std::fs::read(&p).unwrap(), b"new");
+        assert_eq!(names(&d), ["o.csv"]);
+    }
+
+    #[test]
+    fn an_uncommitted_output_leaves_nothing() {
+        let d = dir("uncommitted");
+        let out = Staged::new(&d.join("o.csv"));
+        out.create().unwrap().write_all(b"half").unwrap();
+        drop(out);
+        assert!(names(&d).is_empty());
+    }
+
+    #[cfg(unix)]
+    #[test]
+    fn a_symlink_is_written_through_and_stays_a_link() {
+        let d = dir("symlink");
+        let target = d.join("target.csv");
+        std::fs::write(&target, "old").unwrap();
+        let link = d.join("link.csv");
+        std::os::unix::fs::symlink(&target, &link).unwrap();
+        write_output(&link, b"new").unwrap();
+        assert!(std::fs::symlink_metadata(&link)
+            .unwrap()
+            .file_type()
+            .is_symlink());
+        assert_eq!(std::fs::read(&target).unwrap(), b"new");
+        assert_eq!(names(&d), ["link.csv", "target.csv"]);
+    }
+
+    #[cfg(unix)]
+    #[test]
+    fn a_dangling_symlink_creates_its_target() {
+        let d = dir("dangling");
+        let link = d.join("link.csv");
+        std::os::unix::fs::symlink(d.join("t.csv"), &link).unwrap();
+        write_output(&link, b"x").unwrap();
+        assert_eq!(std::fs::read(d.join("t.csv")).unwrap(), b"x");
+    }
+
+    #[cfg(target_os = "linux")]
+    #[test]
+    fn devices_are_written_through_and_their_errors_reported() {
+        use std::os::unix::fs::FileTypeExt;
+        let null = Path::new("/dev/null");
+        assert!(!Staged::new(null).is_file());
+        write_output(null, b"bytes").unwrap();
+        assert!(std::fs::metadata(null)
+            .unwrap()
+            .file_type()
+            .is_char_device());
+        let e = write_output(Path::new("/dev/full"), b"bytes").unwrap_err();
+        assert!(e.to_string().starts_with("/dev/full: "), "{e}");
+        assert!(!Path::new("/dev/full.partial").exists());
+    }
+
+    #[test]
+    fn a_missing_folder_is_an_error_naming_the_output() {
+        let d = dir("missing");
+        let p = d.join("no").join("o.csv");
+        let e = write_output(&p, b"x").unwrap_err();
+        assert!(
+            e.to_string().starts_with(&format!("{}: ", p.display())),
+            "{e}"
+        );
+    }
 }

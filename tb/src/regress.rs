@@ -2,7 +2,7 @@
 //! summary.
 
 use crate::cosim::Simulator;
-use formats::output::write_atomic;
+use formats::output::write_output;
 use serde::{Deserialize, Serialize};
 use std::path::PathBuf;
 use verif::TbResult;
@@ -159,7 +159,7 @@ pub fn regress(
     };
     let path = cfg.out.join("summary.json");
     let json = serde_json::to_vec_pretty(&summary).map_err(|e| e.to_string())?;
-    write_atomic(&path, &json).map_err(|e| format!("{}: {e}", path.display()))?;
+    write_output(&path, &json).map_err(|e| e.to_string())?;
     Ok(summary)
 }
 

@@ -398,7 +398,7 @@ impl UnitVectors {
                 let _ = writeln!(s, "{word:0w$x}", w = (total as usize).div_ceil(4));
             }
             let path = dir.join(format!("{}_{kind}.hex", self.unit));
-            formats::output::write_atomic(&path, s.as_bytes())?;
+            formats::output::write_output(&path, s.as_bytes())?;
             out.push(path);
         }
         Ok(out)
@@ -463,8 +463,7 @@ pub fn bless(dir: &Path) -> Result<Vec<String>, String> {
         }
         let mut json = serde_json::to_vec_pretty(&now).map_err(|e| e.to_string())?;
         json.push(b'\n');
-        formats::output::write_atomic(&path, &json)
-            .map_err(|e| format!("{}: {e}", path.display()))?;
+        formats::output::write_output(&path, &json).map_err(|e| e.to_string())?;
     }
     Ok(changed)
 }

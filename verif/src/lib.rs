@@ -16,8 +16,10 @@
 //!   the [`TbResult`]s and decides pass/fail the same way for every testbench; a [`Registry`]
 //!   lists a project's testbenches for regress, merge, the report and the progress bar.
 //! * [`ProbeSink`]: golden values and mismatch flags shown beside the design in a waveform.
+//! * [`mutate`]: malformed inputs (a valid file with byte-level mutations) for fuzzing.
 
 pub mod coverage;
+pub mod mutate;
 mod probe;
 mod random;
 mod result;

@@ -20,8 +20,8 @@ pub fn write(
     rtl: &[Vec<Option<u64>>],
 ) -> Result<(), String> {
     let err = |e: std::io::Error| format!("{}: {e}", path.display());
-    let tmp = crate::partial_path(path);
-    let f = std::fs::File::create(&tmp).map_err(err)?;
+    let out = formats::output::Staged::new(path);
+    let f = out.create().map_err(|e| e.to_string())?;
     let mut w = vcd::Writer::new(BufWriter::new(f));
     let ids = header(&mut w, title, ports).map_err(err)?;
     let mut last: Vec<Option<String>> = vec![None; ids.len()];
@@ -49,7 +49,11 @@ pub fn write(
     w.timestamp(model.len() as u64 * 10_000).map_err(err)?;
     w.flush().map_err(err)?;
     drop(w);
-    std::fs::rename(&tmp, path).map_err(err)?;
+    let beside = out.is_file();
+    out.commit().map_err(|e| e.to_string())?;
+    if !beside {
+        return Ok(());
+    }
     gtkw(path, title, ports, model.len() as u64 * 10_000)
 }
 

@@ -3,7 +3,7 @@
 //! same hierarchy, widths and values; `gtkwave X.fst X.gtkw` opens it with the VCD's view.
 
 use fst_writer::{FstFileType, FstInfo, FstScopeType, FstSignalType, FstVarDirection, FstVarType};
-use std::path::{Path, PathBuf};
+use std::path::Path;
 use wellen::{simple, SignalValue, SignalValueRef};
 
 /// Writes `fst` with everything `vcd` holds (through `fst.partial`, renamed when complete).
@@ -29,10 +29,9 @@ pub fn vcd_to_fst(vcd: &Path, fst: &Path) -> Result<(), String> {
         date: String::new(),
         file_type: FstFileType::Verilog,
     };
-    let mut tmp = fst.as_os_str().to_owned();
-    tmp.push(".partial");
-    let tmp = PathBuf::from(tmp);
-    let mut hw = fst_writer::open_fst(&tmp, &info).map_err(|e| err(format!("{e:?}")))?;
+    let out = formats::output::Staged::new(fst);
+    let mut hw = fst_writer::open_fst(out.write_path(), &info)
+        .map_err(|e| err(crate::fst_trace::fst_message(&e)))?;
     // Hierarchy: walk scopes depth first, declaring each scope's variables.
     let mut ids = Vec::new(); // (signal ref, fst id, is real, width)
     fn walk(
@@ -43,7 +42,7 @@ pub fn vcd_to_fst(vcd: &Path, fst: &Path) -> Result<(), String> {
     ) -> Result<(), String> {
         let scope = &h[s];
         hw.scope(scope.name(h), "", FstScopeType::Module)
-            .map_err(|e| format!("{e:?}"))?;
+            .map_err(|e| crate::fst_trace::fst_message(&e))?;
         for v in scope.vars(h) {
             let var = &h[v];
             let real = var.is_real(h);
@@ -55,13 +54,13 @@ pub fn vcd_to_fst(vcd: &Path, fst: &Path) -> Result<(), String> {
             };
             let id = hw
                 .var(var.name(h), st, vt, FstVarDirection::Implicit, None)
-                .map_err(|e| format!("{e:?}"))?;
+                .map_err(|e| crate::fst_trace::fst_message(&e))?;
             ids.push((var.signal_ref(), id, real, width));
         }
         for c in scope.scopes(h) {
             walk(h, c, hw, ids)?;
         }
-        hw.up_scope().map_err(|e| format!("{e:?}"))
+        hw.up_scope().map_err(|e| crate::fst_trace::fst_message(&e))
     }
     for s in h.scopes() {
         walk(h, s, &mut hw, &mut ids).map_err(err)?;
@@ -85,23 +84,27 @@ pub fn vcd_to_fst(vcd: &Path, fst: &Path) -> Result<(), String> {
         }
     }
     changes.sort_by_key(|c| (c.0, c.1));
-    let mut bw = hw.finish().map_err(|e| err(format!("{e:?}")))?;
+    let mut bw = hw
+        .finish()
+        .map_err(|e| err(crate::fst_trace::fst_message(&e)))?;
     let mut current = None;
     for (ti, k, bytes) in &changes {
         if current != Some(*ti) {
             bw.time_change(times[*ti as usize])
-                .map_err(|e| err(format!("{e:?}")))?;
+                .map_err(|e| err(crate::fst_trace::fst_message(&e)))?;
             current = Some(*ti);
         }
         bw.signal_change(ids[*k].1, bytes)
-            .map_err(|e| err(format!("{e:?}")))?;
+            .map_err(|e| err(crate::fst_trace::fst_message(&e)))?;
     }
     // The VCD's closing timestamp, so the trace does not look as if it ended early.
     if let Some(&end) = times.last() {
-        bw.time_change(end).map_err(|e| err(format!("{e:?}")))?;
+        bw.time_change(end)
+            .map_err(|e| err(crate::fst_trace::fst_message(&e)))?;
     }
-    bw.finish().map_err(|e| err(format!("{e:?}")))?;
-    std::fs::rename(&tmp, fst).map_err(|e| err(e.to_string()))
+    bw.finish()
+        .map_err(|e| err(crate::fst_trace::fst_message(&e)))?;
+    out.commit().map_err(|e| e.to_string())
 }
 
 /// Whether a FST read back holds the VCD's variables, widths and, at every VCD timestamp, the

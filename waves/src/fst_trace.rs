@@ -11,9 +11,10 @@
 //! cache), so a run of any length needs bounded memory.
 
 use crate::TraceConfig;
+use formats::output::Staged;
 use fst_writer::{
     FstBodyWriter, FstFileType, FstHeaderWriter, FstInfo, FstScopeType, FstSignalId, FstSignalType,
-    FstVarDirection, FstVarType,
+    FstVarDirection, FstVarType, FstWriteError,
 };
 use hdl::kernel::{Dir, Module, Signal, Trace, Visitor};
 use std::fs::File;
@@ -40,7 +41,8 @@ enum Rec {
 /// The writer thread's side: the FST body and a scratch buffer for one value's digits.
 struct Writer {
     body: FstBodyWriter<Out>,
-    tmp: PathBuf,
+    /// The output as named (for messages).
+    path: PathBuf,
     bits: Vec<u8>,
     flush_bytes: usize,
 }
@@ -59,16 +61,16 @@ impl Writer {
             batch.clear();
             let _ = recycle.send(batch);
         }
-        let mut out = self.body.finish().map_err(|e| fst_err(&self.tmp, e))?;
+        let mut out = self.body.finish().map_err(|e| fst_err(&self.path, e))?;
         io::Write::flush(&mut out)
     }
 
     /// A new time step (flushing a full buffer first, which fst-writer allows only here).
     fn time(&mut self, t: u64) -> io::Result<()> {
         if self.body.size() > self.flush_bytes {
-            self.body.flush().map_err(|e| fst_err(&self.tmp, e))?;
+            self.body.flush().map_err(|e| fst_err(&self.path, e))?;
         }
-        self.body.time_change(t).map_err(|e| fst_err(&self.tmp, e))
+        self.body.time_change(t).map_err(|e| fst_err(&self.path, e))
     }
 
     fn change(&mut self, id: FstSignalId, width: u32, bits: u64) -> io::Result<()> {
@@ -76,7 +78,7 @@ impl Writer {
         crate::vcd_trace::push_binary(&mut self.bits, width, bits);
         self.body
             .signal_change(id, &self.bits)
-            .map_err(|e| fst_err(&self.tmp, e))
+            .map_err(|e| fst_err(&self.path, e))
     }
 }
 
@@ -134,7 +136,8 @@ struct Var {
 /// finishes.
 pub struct FstTracer {
     path: PathBuf,
-    tmp: PathBuf,
+    /// The file being written (`None` once committed).
+    out: Option<Staged>,
     cfg: TraceConfig,
     header: Option<FstHeaderWriter<Out>>,
     writer: Option<WriterThread>,
@@ -150,11 +153,22 @@ pub struct FstTracer {
     flush_bytes: usize,
     batch_len: usize,
     changes: u64,
-    finished: bool,
 }
 
-fn fst_err(path: &Path, e: impl std::fmt::Debug) -> io::Error {
-    io::Error::other(format!("{}: {e:?}", path.display()))
+fn fst_err(path: &Path, e: FstWriteError) -> io::Error {
+    let kind = match &e {
+        FstWriteError::Io(io) => io.kind(),
+        _ => io::ErrorKind::Other,
+    };
+    io::Error::new(kind, format!("{}: {}", path.display(), fst_message(&e)))
+}
+
+/// An fst-writer error as one line (its I/O variant with the operating system's words).
+pub(crate) fn fst_message(e: &FstWriteError) -> String {
+    match e {
+        FstWriteError::Io(io) => io.to_string(),
+        e => e.to_string(),
+    }
 }
 
 impl FstTracer {
@@ -167,7 +181,7 @@ impl FstTracer {
                 format!("{}: {e}", path.display()),
             )
         })?;
-        let tmp = crate::partial_path(&path);
+        let out = Staged::new(&path);
         let info = FstInfo {
             start_time: cfg.window.map_or(0, |(a, _)| a * cfg.period_ps),
             timescale_exponent: -12,
@@ -175,10 +189,11 @@ impl FstTracer {
             date: String::new(),
             file_type: FstFileType::Verilog,
         };
-        let header = fst_writer::open_fst(&tmp, &info).map_err(|e| fst_err(&tmp, e))?;
+        let header =
+            fst_writer::open_fst(out.write_path(), &info).map_err(|e| fst_err(&path, e))?;
         Ok(FstTracer {
             path,
-            tmp,
+            out: Some(out),
             cfg,
             header: Some(header),
             writer: None,
@@ -192,7 +207,6 @@ impl FstTracer {
             flush_bytes: FLUSH_BYTES,
             batch_len: BATCH,
             changes: 0,
-            finished: false,
         })
     }
 
@@ -310,7 +324,7 @@ impl Visitor for Changes<'_> {
 impl Trace for FstTracer {
     fn start(&mut self, top: &dyn Module) -> io::Result<()> {
         let mut h = self.header.take().expect("started once");
-        let e = |e| fst_err(&self.tmp, e);
+        let e = |e| fst_err(&self.path, e);
         h.scope(crate::ROOT, "", FstScopeType::Module).map_err(e)?;
         let bit = FstSignalType::bit_vec(1);
         self.clk = Some(
@@ -342,15 +356,14 @@ impl Trace for FstTracer {
         };
         top.visit(&mut d);
         if let Some(m) = d.err {
-            return Err(fst_err(&self.tmp, m));
+            return Err(io::Error::other(format!("{}: {m}", self.path.display())));
         }
         h.up_scope().map_err(e)?;
         let mut body = h.finish().map_err(e)?;
         body.set_deduplicate(false);
-        let tmp = self.tmp.clone();
         self.writer = Some(WriterThread::spawn(Writer {
             body,
-            tmp,
+            path: self.path.clone(),
             bits: Vec::with_capacity(64),
             flush_bytes: self.flush_bytes,
         })?);
@@ -405,8 +418,7 @@ impl Trace for FstTracer {
         };
         let (w, _) = w.send(std::mem::take(&mut self.batch))?;
         w.join()?;
-        std::fs::rename(&self.tmp, &self.path)?;
-        self.finished = true;
+        self.out.take().expect("tracer already finished").commit()?;
         Ok(())
     }
 }
@@ -417,8 +429,6 @@ impl Drop for FstTracer {
         if let Some(w) = self.writer.take() {
             drop(w.join());
         }
-        if !self.finished {
-            let _ = std::fs::remove_file(&self.tmp);
-        }
+        // An uncommitted `out` removes its partial file when it is dropped.
     }
 }

@@ -6,7 +6,7 @@
 //! through a translate filter file (the names of an FSM's states) is preceded by a line
 //! `^N /path/to/filter`, which loads that file into GTKWave's filter slot N.
 
-use std::io::{self, Write};
+use std::io;
 use std::path::{Path, PathBuf};
 
 /// How a trace is shown.
@@ -204,13 +204,7 @@ impl Gtkw {
 
     /// Writes the save file (via a temporary name, so it is never left half written).
     pub fn write(&self, title: &str) -> io::Result<()> {
-        let mut tmp = self.path.clone().into_os_string();
-        tmp.push(".partial");
-        let tmp = PathBuf::from(tmp);
-        let mut f = std::fs::File::create(&tmp)?;
-        f.write_all(self.render(title).as_bytes())?;
-        f.sync_all().ok();
-        std::fs::rename(&tmp, &self.path)
+        formats::output::write_output(&self.path, self.render(title).as_bytes())
     }
 
     /// The items without the groups that hold no trace (a filtered trace leaves them): a

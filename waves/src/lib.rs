@@ -18,10 +18,3 @@ pub use vcd_trace::{ProbeId, TraceConfig, VcdTracer, ROOT};
 pub mod check;
 pub mod compare;
 pub mod fst;
-
-/// The temporary name a file is written under before it is renamed into place.
-pub(crate) fn partial_path(path: &std::path::Path) -> std::path::PathBuf {
-    let mut tmp = path.as_os_str().to_owned();
-    tmp.push(".partial");
-    std::path::PathBuf::from(tmp)
-}

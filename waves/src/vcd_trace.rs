@@ -3,6 +3,7 @@
 use crate::glob::glob_match;
 use crate::gtkw::{Gtkw, Item, Style};
 use crate::vcd_writer::{Code, Rec, WriterThread, BATCH};
+use formats::output::Staged;
 use hdl::fx::Format;
 use hdl::kernel::{Dir, Module, Signal, Trace, Visitor};
 use std::fs::File;
@@ -198,7 +199,8 @@ pub(crate) fn push_real(buf: &mut Vec<u8>, code: &[u8], x: f64) {
 /// abandoned run leaves no partial output.
 pub struct VcdTracer {
     path: PathBuf,
-    tmp: PathBuf,
+    /// The file being written (`None` once committed).
+    out: Option<Staged>,
     w: Option<vcd::Writer<BufWriter<File>>>,
     cfg: TraceConfig,
     title: String,
@@ -247,11 +249,8 @@ impl VcdTracer {
         let path = path.as_ref().to_path_buf();
         cfg.validate()
             .map_err(|e| io_err(format!("{}: {e}", path.display())))?;
-        let mut tmp = path.clone().into_os_string();
-        tmp.push(".partial");
-        let tmp = PathBuf::from(tmp);
-        let file = File::create(&tmp)
-            .map_err(|e| io::Error::new(e.kind(), format!("{}: {e}", tmp.display())))?;
+        let out = Staged::new(&path);
+        let file = out.create()?;
         let fst = match cfg.fst {
             true => Some(crate::FstTracer::create(
                 path.with_extension("fst"),
@@ -265,7 +264,7 @@ impl VcdTracer {
         Ok(VcdTracer {
             gtkw: Gtkw::new(&path),
             path,
-            tmp,
+            out: Some(out),
             w: Some(vcd::Writer::new(BufWriter::with_capacity(1 << 16, file))),
             cfg,
             title: title.to_string(),
@@ -400,9 +399,67 @@ impl VcdTracer {
             // The file is closed here, and removed when the tracer is dropped.
             Err((w, e)) => {
                 drop(w);
-                Err(e)
+                Err(self.named(e))
             }
         }
+    }
+
+    /// `e` with the VCD's path in front (unless it names it already).
+    fn named(&self, e: io::Error) -> io::Error {
+        let p = self.path.display().to_string();
+        if e.to_string().starts_with(&p) {
+            e
+        } else {
+            io::Error::new(e.kind(), format!("{p}: {e}"))
+        }
+    }
+
+    /// [`Trace::finish`]: the rest of the file, the rename, the view and filter files.
+    fn finish_file(&mut self, cycles: u64) -> io::Result<()> {
+        if self.thread.is_none() && self.w.is_none() {
+            return Err(io_err(format!(
+                "{}: the writer stopped on an earlier error",
+                self.path.display()
+            )));
+        }
+        if let Some(f) = self.fst.as_mut() {
+            f.finish(cycles)?;
+        }
+        self.hand_over()?;
+        if let Some(t) = self.thread.take() {
+            let (w, r) = t.join();
+            self.w = Some(w);
+            r?;
+        }
+        if !self.dumped {
+            // The run ended before the trace window began: every value is unknown in it.
+            self.dump_unknown()?;
+        }
+        let end = match self.cfg.window {
+            Some((a, b)) => cycles.min(b).max(a),
+            None => cycles,
+        };
+        let t_end = end * self.cfg.period_ps;
+        if self.last_time.is_none_or(|l| t_end > l) {
+            self.timestamp(t_end)?;
+        }
+        let mut w = self.w.take().expect("tracer already finished");
+        w.flush()?;
+        drop(w);
+        let out = self.out.take().expect("tracer already finished");
+        let beside = out.is_file();
+        out.commit()?;
+        self.finished = true;
+        if !beside {
+            // A device or pipe: no view or filter files beside it.
+            return Ok(());
+        }
+        self.gtkw.set_end_time(self.last_time.unwrap_or(0));
+        for (path, names) in &self.filters {
+            write_filter(path, names)?;
+        }
+        self.gtkw.write(&self.title)?;
+        Ok(())
     }
 
     fn writer(&mut self) -> &mut vcd::Writer<BufWriter<File>> {
@@ -649,10 +706,7 @@ fn write_filter(path: &Path, names: &[&str]) -> io::Result<()> {
     for (v, n) in names.iter().enumerate() {
         text.push_str(&format!("{v} {n}\n"));
     }
-    let mut tmp = path.as_os_str().to_owned();
-    tmp.push(".partial");
-    std::fs::write(&tmp, text)?;
-    std::fs::rename(&tmp, path)
+    formats::output::write_output(path, text.as_bytes())
 }
 
 impl Trace for VcdTracer {
@@ -793,44 +847,7 @@ impl Trace for VcdTracer {
     }
 
     fn finish(&mut self, cycles: u64) -> io::Result<()> {
-        if self.thread.is_none() && self.w.is_none() {
-            return Err(io_err(format!(
-                "{}: the writer stopped on an earlier error",
-                self.path.display()
-            )));
-        }
-        if let Some(f) = self.fst.as_mut() {
-            f.finish(cycles)?;
-        }
-        self.hand_over()?;
-        if let Some(t) = self.thread.take() {
-            let (w, r) = t.join();
-            self.w = Some(w);
-            r?;
-        }
-        if !self.dumped {
-            // The run ended before the trace window began: every value is unknown in it.
-            self.dump_unknown()?;
-        }
-        let end = match self.cfg.window {
-            Some((a, b)) => cycles.min(b).max(a),
-            None => cycles,
-        };
-        let t_end = end * self.cfg.period_ps;
-        if self.last_time.is_none_or(|l| t_end > l) {
-            self.timestamp(t_end)?;
-        }
-        let mut w = self.w.take().expect("tracer already finished");
-        w.flush()?;
-        drop(w);
-        std::fs::rename(&self.tmp, &self.path)?;
-        self.gtkw.set_end_time(self.last_time.unwrap_or(0));
-        for (path, names) in &self.filters {
-            write_filter(path, names)?;
-        }
-        self.gtkw.write(&self.title)?;
-        self.finished = true;
-        Ok(())
+        self.finish_file(cycles).map_err(|e| self.named(e))
     }
 }
 
@@ -852,8 +869,8 @@ impl Drop for VcdTracer {
             drop(t.join());
         }
         if !self.finished {
+            // Closes the file; dropping `out` then removes the partial file.
             self.w = None;
-            let _ = std::fs::remove_file(&self.tmp);
         }
     }
 }

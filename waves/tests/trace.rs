@@ -339,3 +339,41 @@ fn long_runs_cross_every_batch_and_chunk_boundary() {
         );
     }
 }
+
+/// A trace to a full device: the writer's error comes back from `finish` naming the file,
+/// with no panic, and the device is not replaced (it is written through).
+#[cfg(target_os = "linux")]
+#[test]
+fn a_full_device_is_an_error_naming_it() {
+    use hdl::bump::replicate_152::Replicate;
+    use hdl::fx::Format;
+    let cfg = TraceConfig {
+        companions: false,
+        ..Default::default()
+    };
+    let unit = || Replicate::new("replicate_152", Format::unsigned(8, 2), false);
+    let full = std::path::Path::new("/dev/full");
+    let vcd = VcdTracer::create(full, "full", cfg.clone()).unwrap();
+    let fst = waves::FstTracer::create(full, cfg)
+        .unwrap()
+        .with_limits(4096, 1000);
+    let mut a = Sim::traced(unit(), vcd).unwrap();
+    let mut x: u64 = 3;
+    for _ in 0..6000u64 {
+        for k in 0..9 {
+            x = x.wrapping_mul(6364136223846793005).wrapping_add(1);
+            a.dut.h[k].set_bits(x >> 56);
+        }
+        a.eval();
+        a.tick();
+    }
+    // fst-writer writes its header when the hierarchy is declared: the error comes there.
+    let e = Sim::traced(unit(), fst)
+        .err()
+        .expect("the FST header cannot be written");
+    for e in [a.finish().unwrap_err(), e] {
+        assert!(e.to_string().starts_with("/dev/full: No space left"), "{e}");
+    }
+    assert!(!std::path::Path::new("/dev/full.gtkw").exists());
+    assert!(!std::path::Path::new("/dev/full.partial").exists());
+}

@@ -64,18 +64,35 @@ pub fn run(a: &CosimArgs) -> Result<String, CmdError> {
         Vec::new()
     };
     sim.check_installed()?;
+    let mut made = super::Outputs::default();
+    if let Some(o) = &a.out {
+        if o.exists() && !o.is_dir() {
+            return Err(format!("--out {}: exists and is not a directory", o.display()).into());
+        }
+        made.folder(o);
+    }
+    made.settle(simulate(a, sim, unit.as_ref(), &runs))
+}
+
+/// The co-simulation runs once the options are checked.
+fn simulate(
+    a: &CosimArgs,
+    sim: Simulator,
+    unit: &dyn cosim::CosimUnit,
+    runs: &[cosim::vectors::Directed],
+) -> Result<String, CmdError> {
+    let vectors = a.stimulus == "vectors";
     let dir = a
         .out
         .clone()
         .unwrap_or_else(|| PathBuf::from(format!("target/texrtl-cosim/{}-{}", a.unit, sim.name())));
     if !vectors {
-        let r = cosim::run(unit.as_ref(), sim, &a.rtl, a.count, a.seed, &dir)
-            .map_err(CmdError::Failed)?;
+        let r = cosim::run(unit, sim, &a.rtl, a.count, a.seed, &dir).map_err(CmdError::Input)?;
         let what = format!("{} in {} (seed {})", a.unit, sim.name(), a.seed);
         return report(&what, &r);
     }
     let mut lines = Vec::new();
-    for d in &runs {
+    for d in runs {
         let r = cosim::run_with(
             d.unit.as_ref(),
             sim,
@@ -83,7 +100,7 @@ pub fn run(a: &CosimArgs) -> Result<String, CmdError> {
             &d.stimulus,
             &dir.join(&d.label),
         )
-        .map_err(CmdError::Failed)?;
+        .map_err(CmdError::Input)?;
         let what = format!("{} in {} ({})", a.unit, sim.name(), d.label);
         lines.push(report(&what, &r)?);
     }

@@ -41,10 +41,15 @@ pub fn read_trace(path: &Path, words: u64) -> Result<Vec<u64>, String> {
 
 /// Runs the trace; prints the statistics as JSON.
 pub fn run(a: &DramArgs) -> Result<String, CmdError> {
-    if let Some(v) = a.vcd.as_deref() {
-        super::check_outputs(&[("--vcd", v)], &[("--trace", a.trace.as_path())])?;
-    }
-    dram_cmd(&a.trace, a.page_words, a.t_fault_ns, &a.size, a.vcd.clone())
+    let outs: Vec<_> = a.vcd.as_deref().map(|v| ("--vcd", v)).into_iter().collect();
+    let guard = super::Outputs::check(&outs, &[("--trace", a.trace.as_path())])?;
+    guard.settle(dram_cmd(
+        &a.trace,
+        a.page_words,
+        a.t_fault_ns,
+        &a.size,
+        a.vcd.clone(),
+    ))
 }
 
 fn dram_cmd(
@@ -89,12 +94,7 @@ fn dram_cmd(
         }
     })?;
     let addrs = read_trace(trace, p.words()).map_err(CmdError::Input)?;
-    if let Some(v) = &vcd {
-        if v.is_dir() {
-            return Err(CmdError::Input(format!("{}: is a directory", v.display())));
-        }
-    }
-    let st = tb::dram::run_trace(p, &addrs, vcd).map_err(CmdError::Failed)?;
+    let st = tb::dram::run_trace(p, &addrs, vcd).map_err(CmdError::Input)?;
     if st.violations != 0 || st.data_errors != 0 {
         return Err(CmdError::Failed(format!(
             "{} timing violations, {} data errors",

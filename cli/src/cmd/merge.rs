@@ -17,17 +17,17 @@ pub struct MergeArgs {
 
 /// Merges; exit 1 when the merged run failed.
 pub fn run(a: &MergeArgs) -> Result<String, CmdError> {
+    let ins: Vec<_> = a
+        .summaries
+        .iter()
+        .map(|p| ("a summary", p.as_path()))
+        .collect();
+    super::check_outputs(&[("--out", a.out.as_path())], &ins)?;
     merge_cmd(&a.out, &a.summaries)
 }
 
 fn merge_cmd(out: &std::path::Path, paths: &[PathBuf]) -> Result<String, CmdError> {
     let m = tb::regress::merge(paths).map_err(CmdError::Input)?;
-    if out.is_dir() {
-        return Err(CmdError::Input(format!(
-            "{}: is a directory",
-            out.display()
-        )));
-    }
     let json = serde_json::to_vec_pretty(&m).map_err(|e| CmdError::Failed(e.to_string()))?;
     write_out(out, &json)?;
     let mut s = crate::report::table(&m.testbenches);

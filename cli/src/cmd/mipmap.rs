@@ -4,7 +4,7 @@ use super::{write_out, CmdError};
 use clap::Args;
 use formats::netpbm;
 use hdl::mipmap::{Rounding, Scan};
-use std::path::PathBuf;
+use std::path::{Path, PathBuf};
 use waves::TraceConfig;
 
 /// Mipmaps of video frames through the cycle-accurate generator of FIG. 14.
@@ -41,6 +41,57 @@ pub fn run(a: &MipmapArgs) -> Result<String, CmdError> {
     if a.inputs.is_empty() {
         return Err(CmdError::Input("mipmap: no --in frame".into()));
     }
+    let ins: Vec<_> = a.inputs.iter().map(|p| ("--in", p.as_path())).collect();
+    let vcd: Vec<_> = a.vcd.iter().map(|p| ("--vcd", p.as_path())).collect();
+    let mut guard = super::Outputs::check(&vcd, &ins)?;
+    check_folder(a, &ins)?;
+    guard.folder(&a.out);
+    guard.settle(mipmap(a))
+}
+
+/// The most levels a frame has (1024 x 1024 down to 1 x 1).
+const MAX_LEVELS: usize = 11;
+
+/// The output folder: not a file, not the VCD, and no file it may receive (levels, stats)
+/// one of the inputs.
+fn check_folder(a: &MipmapArgs, ins: &[(&str, &Path)]) -> Result<(), CmdError> {
+    if a.out.exists() && !a.out.is_dir() {
+        return Err(CmdError::Input(format!(
+            "--out {}: exists and is not a directory",
+            a.out.display()
+        )));
+    }
+    let dirs: Vec<PathBuf> = match a.inputs.len() {
+        1 => vec![a.out.clone()],
+        n => (0..n).map(|f| a.out.join(format!("frame{f}"))).collect(),
+    };
+    let mut planned = vec![a.out.join("stats.json")];
+    for d in &dirs {
+        planned.extend((0..MAX_LEVELS).map(|k| d.join(format!("level{k}.pgm"))));
+    }
+    let vcd = a.vcd.iter().map(|v| ("--vcd", v.as_path()));
+    let others: Vec<(&str, &Path)> = ins.iter().copied().chain(vcd).collect();
+    for p in &planned {
+        if p.is_dir() {
+            return Err(CmdError::Input(format!(
+                "--out {}: {} is a directory",
+                a.out.display(),
+                p.display()
+            )));
+        }
+        if let Some((opt, q)) = others.iter().find(|(_, q)| super::same_file(p, q)) {
+            return Err(CmdError::Input(format!(
+                "--out {}: would overwrite {opt} {}: choose another folder",
+                a.out.display(),
+                q.display()
+            )));
+        }
+    }
+    Ok(())
+}
+
+/// The command once its outputs are checked.
+fn mipmap(a: &MipmapArgs) -> Result<String, CmdError> {
     let mut frames = Vec::new();
     let mut size = None;
     for path in &a.inputs {
@@ -69,17 +120,6 @@ pub fn run(a: &MipmapArgs) -> Result<String, CmdError> {
         }
         frames.push(img.pixels);
     }
-    if a.out.exists() && !a.out.is_dir() {
-        return Err(CmdError::Input(format!(
-            "{}: exists and is not a directory",
-            a.out.display()
-        )));
-    }
-    if let Some(v) = &a.vcd {
-        if v.is_dir() {
-            return Err(CmdError::Input(format!("{}: is a directory", v.display())));
-        }
-    }
     let (w, h) = size.expect("at least one frame");
     let p = hdl::mipmap::MipmapParams {
         width: w,
@@ -92,7 +132,7 @@ pub fn run(a: &MipmapArgs) -> Result<String, CmdError> {
         &frames,
         a.vcd.clone().map(|v| (v, TraceConfig::default())),
     )
-    .map_err(CmdError::Failed)?;
+    .map_err(CmdError::Input)?;
     if o.error != 0 {
         return Err(CmdError::Failed(format!(
             "mipmap generator reported error code {}",

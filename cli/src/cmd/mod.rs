@@ -6,6 +6,7 @@ pub mod dram;
 pub mod merge;
 pub mod mipmap;
 pub mod normals;
+pub mod outputs;
 pub mod regress;
 pub mod render;
 pub mod sweep;
@@ -14,6 +15,8 @@ pub mod vectors;
 pub mod widths;
 
 use std::path::Path;
+
+pub use outputs::Outputs;
 
 /// A command's failure: bad input (exit 2) or a run that failed (exit 1).
 #[derive(Debug)]
@@ -50,7 +53,7 @@ pub fn check_out(path: &Path) -> Result<(), CmdError> {
 
 /// Whether two paths name one file: the same absolute path, or (when both exist) the same
 /// file after links are resolved.
-fn same_file(a: &Path, b: &Path) -> bool {
+pub(crate) fn same_file(a: &Path, b: &Path) -> bool {
     let abs = |p: &Path| std::path::absolute(p).ok();
     if abs(a).is_some() && abs(a) == abs(b) {
         return true;
@@ -87,8 +90,7 @@ pub fn check_outputs(outs: &[(&str, &Path)], ins: &[(&str, &Path)]) -> Result<()
 /// Writes an output file atomically; an I/O error is bad input naming the file.
 pub fn write_out(path: &Path, bytes: &[u8]) -> Result<(), CmdError> {
     check_out(path)?;
-    formats::output::write_atomic(path, bytes)
-        .map_err(|e| input(format!("{}: {e}", path.display())))
+    formats::output::write_output(path, bytes).map_err(|e| input(e.to_string()))
 }
 
 /// A finite number (a clap value parser).

@@ -78,7 +78,12 @@ pub fn run(a: &NormalsArgs) -> Result<String, CmdError> {
         ("--height", a.height.as_path()),
         ("--coords", a.coords.as_path()),
     ];
-    super::check_outputs(&outs, &ins)?;
+    let guard = super::Outputs::check(&outs, &ins)?;
+    guard.settle(normals(a))
+}
+
+/// The command once its outputs are checked.
+fn normals(a: &NormalsArgs) -> Result<String, CmdError> {
     if a.lod != 0.0 && !a.trilinear {
         return Err(CmdError::Input(
             "--lod: the weight of the coarser MIP level needs --trilinear".into(),
@@ -112,14 +117,6 @@ pub fn run(a: &NormalsArgs) -> Result<String, CmdError> {
     for (k, s) in samples.iter().enumerate() {
         quantise(&p, s).map_err(|e| format!("{}:{}: {e}", a.coords.display(), k + 2))?;
     }
-    for out in [Some(&a.out), a.vcd.as_ref()].into_iter().flatten() {
-        if out.is_dir() {
-            return Err(CmdError::Input(format!(
-                "{}: is a directory",
-                out.display()
-            )));
-        }
-    }
     let o = run_normals(&NormalsRun {
         name: "normals".into(),
         params: p,
@@ -132,7 +129,7 @@ pub fn run(a: &NormalsArgs) -> Result<String, CmdError> {
         check_schedule: false,
         seed: Seed(0),
     })
-    .map_err(CmdError::Failed)?;
+    .map_err(CmdError::Input)?;
     if !o.result.failures.is_empty() {
         return Err(CmdError::Failed(o.result.failures.join("; ")));
     }

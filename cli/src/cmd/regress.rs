@@ -120,6 +120,10 @@ pub fn run(a: RegressArgs) -> ExitCode {
     if let Err(e) = cfg.validate(&tb::regress::registry()) {
         return crate::fail(e);
     }
+    // On an I/O error, what this run made in the output folder goes (a failed testbench
+    // keeps its waves and report).
+    let mut made = super::Outputs::default();
+    made.folder(&cfg.out);
     eprintln!(
         "texrtl regress: seed {} (replay with --seed {})",
         cfg.seed, cfg.seed
@@ -161,7 +165,10 @@ pub fn run(a: RegressArgs) -> ExitCode {
                 ExitCode::from(1)
             }
         }
-        Err(e) => crate::fail(e),
+        Err(e) => {
+            made.remove_new();
+            crate::fail(e)
+        }
     }
 }
 

@@ -151,7 +151,12 @@ pub fn run(a: &TexreadArgs) -> Result<String, CmdError> {
         ("--texture", a.texture.as_path()),
         ("--requests", a.requests.as_path()),
     ];
-    super::check_outputs(&outs, &ins)?;
+    let guard = super::Outputs::check(&outs, &ins)?;
+    guard.settle(texread(a))
+}
+
+/// The command once its outputs are checked.
+fn texread(a: &TexreadArgs) -> Result<String, CmdError> {
     if !(1..=8).contains(&a.frac_bits) {
         return Err(input(format!("--frac-bits {}: 1..=8", a.frac_bits)));
     }
@@ -189,16 +194,8 @@ pub fn run(a: &TexreadArgs) -> Result<String, CmdError> {
         return Err(input(format!("--interval {}: 1..=1000 cycles", a.interval)));
     }
     let reqs = read_requests(&a.requests, &p).map_err(input)?;
-    for o in [Some(&a.out), a.stats.as_ref(), a.vcd.as_ref()]
-        .into_iter()
-        .flatten()
-    {
-        if o.is_dir() {
-            return Err(input(format!("{}: is a directory", o.display())));
-        }
-    }
     let vcd = a.vcd.clone().map(|v| (v, waves::TraceConfig::default()));
-    let run = run_texread(&tex, p, &reqs, a.interval, vcd).map_err(CmdError::Failed)?;
+    let run = run_texread(&tex, p, &reqs, a.interval, vcd).map_err(input)?;
     if run.stats.violations != 0 {
         return Err(CmdError::Failed(format!(
             "{} DRAM timing violations",

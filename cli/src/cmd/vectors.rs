@@ -17,20 +17,22 @@ pub struct VectorsArgs {
 
 /// Writes the files.
 pub fn run(a: &VectorsArgs) -> Result<String, CmdError> {
-    vectors_cmd(&a.unit, &a.out)
+    let mut guard = super::Outputs::default();
+    guard.folder(&a.out);
+    guard.settle(vectors_cmd(&a.unit, &a.out))
 }
 
 fn vectors_cmd(unit: &str, out: &std::path::Path) -> Result<String, CmdError> {
     let v = tb::vectors::unit_vectors(unit).map_err(CmdError::Input)?;
     if out.exists() && !out.is_dir() {
         return Err(CmdError::Input(format!(
-            "{}: exists and is not a directory",
+            "--out {}: exists and is not a directory",
             out.display()
         )));
     }
     let files = v
         .write_readmemh(out)
-        .map_err(|e| CmdError::Input(format!("{}: {e}", out.display())))?;
+        .map_err(|e| CmdError::Input(format!("--out {}: {e}", out.display())))?;
     let names: Vec<String> = files.iter().map(|p| p.display().to_string()).collect();
     Ok(format!(
         "{} vectors of {}: {}",
