@@ -694,10 +694,29 @@ fn merge_refuses_huge_counts_and_mixed_versions_without_allocating() {
         v["shard"] = "2/2".into();
         v["texrtl"] = "0.0.0".into();
     });
+    // The other half, with one coverage bin deleted: a different coverage model.
+    let nobin = variant("nobin.json", &|v| {
+        v["shard"] = "2/2".into();
+        let bins = &mut v["testbenches"][0]["coverage"]["points"][0]["bins"];
+        bins.as_array_mut().unwrap().pop();
+    });
+    // Both halves with a sum near the largest double: their sum is not finite.
+    let big = |name: &str, shard: &str| {
+        variant(name, &|v| {
+            v["shard"] = shard.into();
+            v["testbenches"][0]["stats"]["sum_sq_signal"] = 1e308.into();
+        })
+    };
+    let (big1, big2) = (big("big1.json", "1/2"), big("big2.json", "2/2"));
     let merged = d.join("m.json");
     for (files, needle) in [
         (vec![&huge], "N <= 4096"),
         (vec![&s1.join("summary.json"), &other], "texrtl 0.0.0"),
+        (
+            vec![&s1.join("summary.json"), &nobin],
+            "differs between the models",
+        ),
+        (vec![&big1, &big2], "finite"),
     ] {
         let mut a = vec!["merge", "--out", merged.to_str().unwrap()];
         a.extend(files.iter().map(|p| p.to_str().unwrap()));

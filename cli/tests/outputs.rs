@@ -146,6 +146,11 @@ fn a_missing_folder_is_exit_2_naming_the_option_and_nothing_is_left() {
         "--vcd",
     );
     assert_eq!(names(&d), ["c.csv", "h.pgm", "trace.csv"]);
+    // A folder where the waveform should go: named, with its option.
+    let folder = d.join("dram.vcd");
+    std::fs::create_dir(&folder).unwrap();
+    let o = texrtl(&["dram", "--trace", s(&t), "--vcd", s(&folder)]);
+    refused(&o, &format!("--vcd {}: is a directory", folder.display()));
 }
 
 fn pgm(d: &Path, name: &str) -> PathBuf {

@@ -248,10 +248,21 @@ pub fn merge(paths: &[PathBuf]) -> Result<Summary, String> {
     let mut shards: Vec<(PathBuf, Summary)> = Vec::new();
     for p in paths {
         let b = std::fs::read(p).map_err(|e| format!("{}: {e}", p.display()))?;
-        let s: Summary = serde_json::from_slice(&b)
-            .map_err(|e| format!("{}: not a texrtl summary.json: {e}", p.display()))?;
-        shards.push((p.clone(), s));
+        shards.push((p.clone(), parse_summary(p, &b)?));
     }
+    merge_shards(&shards)
+}
+
+/// A `summary.json`'s bytes (`path` names it in the message).
+pub fn parse_summary(path: &std::path::Path, b: &[u8]) -> Result<Summary, String> {
+    serde_json::from_slice(b).map_err(|e| {
+        let e = formats::shorten(&e.to_string());
+        format!("{}: not a texrtl summary.json: {e}", path.display())
+    })
+}
+
+/// [`merge`] of summaries already read, each with the path its messages name.
+pub fn merge_shards(shards: &[(PathBuf, Summary)]) -> Result<Summary, String> {
     let (first_path, first) = shards.first().ok_or("merge: no summary.json given")?;
     let parse = |p: &PathBuf, s: &Summary| -> Result<verif::Shard, String> {
         match &s.shard {
@@ -265,7 +276,7 @@ pub fn merge(paths: &[PathBuf]) -> Result<Summary, String> {
     let n = parse(first_path, first)?.count;
     // The shards given, as a set: nothing is allocated for the count a file declares.
     let mut seen = std::collections::BTreeSet::new();
-    for (p, s) in &shards {
+    for (p, s) in shards {
         let sh = parse(p, s)?;
         if s.texrtl != first.texrtl {
             return Err(format!(
@@ -295,7 +306,7 @@ pub fn merge(paths: &[PathBuf]) -> Result<Summary, String> {
     }
     let reg = registry();
     let mut merged: Vec<TbResult> = Vec::new();
-    for (p, s) in &shards {
+    for (p, s) in shards {
         for r in &s.testbenches {
             let mut r = r.clone();
             r.strip_conclusions();

@@ -1,0 +1,238 @@
+//! Fuzzing every command's front end, as a user meets it: the program run on a valid input
+//! file with up to eight byte-level mutations ([`verif::mutate`]), under a 2 GiB
+//! address-space limit (an allocation by a declared size aborts there). Every run must exit
+//! 0, or 2 with one line and no new file (1 only where a testbench can fail); never a panic
+//! (101) or an abort (134). Seeds are printed; replay with `TEXRTL_SEED`.
+
+use proptest::test_runner::TestCaseError;
+use std::path::{Path, PathBuf};
+use std::process::Command;
+use verif::mutate::{mutated, mutations};
+
+/// Runs per command in `cargo test` (each is a process; the campaign runs more).
+const CASES: u32 = 40;
+
+fn dir(name: &str) -> PathBuf {
+    let d = std::env::temp_dir().join(format!("texrtl-fuzz-{}-{name}", std::process::id()));
+    let _ = std::fs::remove_dir_all(&d);
+    std::fs::create_dir_all(&d).unwrap();
+    d
+}
+
+fn names(d: &Path) -> Vec<String> {
+    let mut v: Vec<String> = std::fs::read_dir(d)
+        .unwrap()
+        .map(|e| e.unwrap().file_name().to_string_lossy().into_owned())
+        .collect();
+    v.sort();
+    v
+}
+
+/// One command with its input files: `{NAME}` in an argument is the path of file NAME in the
+/// case's folder, `{out}` a path for an output there.
+struct Front {
+    name: &'static str,
+    args: &'static [&'static str],
+    files: Vec<(&'static str, Vec<u8>)>,
+}
+
+fn pgm() -> Vec<u8> {
+    let px: Vec<u8> = (0..64u8).map(|k| k.wrapping_mul(29)).collect();
+    formats::netpbm::encode(8, 8, &px)
+}
+
+fn ppm() -> Vec<u8> {
+    let rgb: Vec<u8> = (0..16 * 16 * 3).map(|k| (k * 7 % 256) as u8).collect();
+    formats::netpbm::encode_ppm(16, 16, &rgb)
+}
+
+fn fronts() -> Vec<Front> {
+    let ccc = {
+        let img = formats::netpbm::parse_ppm(&ppm()).unwrap();
+        formats::ccc::encode(&img).unwrap().to_bytes()
+    };
+    let coords = b"u,v\n1.5,1.5\n3,2.25\n".to_vec();
+    let reqs = b"u,v\n1,1\n2.5,3.5\n".to_vec();
+    vec![
+        Front {
+            name: "normals",
+            args: &[
+                "normals",
+                "--height",
+                "{h.pgm}",
+                "--coords",
+                "{c.csv}",
+                "--out",
+                "{out}.csv",
+                "--vcd",
+                "{out}.vcd",
+            ],
+            files: vec![("h.pgm", pgm()), ("c.csv", coords)],
+        },
+        Front {
+            name: "render",
+            args: &["render", "--height", "{h.pgm}", "--out", "{out}.png"],
+            files: vec![("h.pgm", pgm())],
+        },
+        Front {
+            name: "mipmap",
+            args: &["mipmap", "--in", "{f.pgm}", "--out", "{out}"],
+            files: vec![("f.pgm", pgm())],
+        },
+        Front {
+            name: "ccc-encode",
+            args: &["ccc", "encode", "--in", "{t.ppm}", "--out", "{out}.ccc"],
+            files: vec![("t.ppm", ppm())],
+        },
+        Front {
+            name: "ccc-decode",
+            args: &["ccc", "decode", "--in", "{t.ccc}", "--out", "{out}.ppm"],
+            files: vec![("t.ccc", ccc)],
+        },
+        Front {
+            name: "texread",
+            args: &[
+                "texread",
+                "--texture",
+                "{t.ppm}",
+                "--requests",
+                "{r.csv}",
+                "--out",
+                "{out}.csv",
+                "--stats",
+                "{out}.json",
+            ],
+            files: vec![("t.ppm", ppm()), ("r.csv", reqs)],
+        },
+        Front {
+            name: "dram",
+            args: &["dram", "--trace", "{a.csv}"],
+            files: vec![("a.csv", b"addr\n0\n1\n2\n600\n601\n3\n".to_vec())],
+        },
+    ]
+}
+
+/// The arguments with the case folder's paths filled in.
+fn args(f: &Front, d: &Path) -> Vec<String> {
+    f.args
+        .iter()
+        .map(|a| {
+            let a = a.replace("{out}", &d.join("out").to_string_lossy());
+            match a.strip_prefix('{').and_then(|x| x.strip_suffix('}')) {
+                Some(file) => d.join(file).to_string_lossy().into_owned(),
+                None => a,
+            }
+        })
+        .collect()
+}
+
+/// Runs the program under the address-space limit.
+fn run_limited(args: &[String]) -> std::process::Output {
+    Command::new("sh")
+        .arg("-c")
+        .arg("ulimit -v 2097152; exec \"$0\" \"$@\"")
+        .arg(env!("CARGO_BIN_EXE_texrtl"))
+        .args(args)
+        .output()
+        .expect("runs")
+}
+
+/// One case: the command's file `which` mutated; checks the exit, the message and the folder.
+fn case(
+    f: &Front,
+    n: usize,
+    which: usize,
+    muts: &[verif::mutate::Mutation],
+) -> Result<(), TestCaseError> {
+    let d = dir(&format!("{}-{n}", f.name));
+    let which = which % f.files.len();
+    for (k, (name, bytes)) in f.files.iter().enumerate() {
+        let b = if k == which {
+            mutated(bytes, muts)
+        } else {
+            bytes.clone()
+        };
+        std::fs::write(d.join(name), b).unwrap();
+    }
+    let before = names(&d);
+    let a = args(f, &d);
+    let o = run_limited(&a);
+    let err = String::from_utf8_lossy(&o.stderr);
+    let code = o.status.code().unwrap_or(-1);
+    let fail = |m: String| {
+        Err(TestCaseError::fail(format!(
+            "texrtl {}: {m}\n{err}",
+            a.join(" ")
+        )))
+    };
+    match code {
+        0 => {}
+        2 => {
+            if err.trim_end().lines().count() != 1 || err.len() > 400 {
+                return fail("not one short line".into());
+            }
+            if names(&d) != before {
+                return fail(format!("left {:?}", names(&d)));
+            }
+        }
+        // A merged run that failed (a mutation can mark a shard failed).
+        1 if f.name == "merge" => {}
+        c => return fail(format!("exit {c}")),
+    }
+    let _ = std::fs::remove_dir_all(&d);
+    Ok(())
+}
+
+#[test]
+fn every_command_front_end_survives_mutated_inputs() {
+    let n = std::sync::atomic::AtomicUsize::new(0);
+    for f in fronts() {
+        let mut runner = verif::seeded_runner(&format!("fuzz {}", f.name), CASES);
+        let strat = (0..f.files.len(), mutations(8));
+        runner
+            .run(&strat, |(which, muts)| {
+                let k = n.fetch_add(1, std::sync::atomic::Ordering::Relaxed);
+                case(&f, k, which, &muts)
+            })
+            .unwrap();
+    }
+}
+
+/// A shard summary of a small real run (`--shard K/2`).
+fn shard_summary(k: u32) -> Vec<u8> {
+    let d = dir(&format!("summary{k}"));
+    let o = Command::new(env!("CARGO_BIN_EXE_texrtl"))
+        .args([
+            "--no-cosim",
+            "--no-vcd",
+            "--only",
+            "blend_adjust_153",
+            "--count",
+            "10",
+        ])
+        .arg("--shard")
+        .arg(format!("{k}/2"))
+        .arg("--out")
+        .arg(&d)
+        .output()
+        .unwrap();
+    assert!(o.status.code().is_some_and(|c| c <= 1), "{o:?}");
+    std::fs::read(d.join("summary.json")).unwrap()
+}
+
+#[test]
+fn merge_survives_mutated_summaries() {
+    let f = Front {
+        name: "merge",
+        args: &["merge", "--out", "{out}.json", "{s1.json}", "{s2.json}"],
+        files: vec![("s1.json", shard_summary(1)), ("s2.json", shard_summary(2))],
+    };
+    let n = std::sync::atomic::AtomicUsize::new(0);
+    let mut runner = verif::seeded_runner("fuzz merge", CASES);
+    runner
+        .run(&(0..2usize, mutations(8)), |(which, muts)| {
+            let k = n.fetch_add(1, std::sync::atomic::Ordering::Relaxed);
+            case(&f, k, which, &muts)
+        })
+        .unwrap();
+}

@@ -1,0 +1,15 @@
+//! `summary.json` as `texrtl merge` reads it: parsed, then merged as a one-shard run (which
+//! checks the shard, the version, the coverage models and the counters).
+#![no_main]
+use libfuzzer_sys::fuzz_target;
+use std::path::{Path, PathBuf};
+
+fuzz_target!(|data: &[u8]| {
+    let p = Path::new("s.json");
+    let Ok(s) = tb::regress::parse_summary(p, data) else {
+        return;
+    };
+    if let Err(e) = tb::regress::merge_shards(&[(PathBuf::from(p), s)]) {
+        assert!(!e.contains('\n'), "{e}");
+    }
+});
