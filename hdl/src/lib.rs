@@ -38,3 +38,6 @@ pub mod bump;
 pub mod mipmap;
 /// Figure 6 of Schilling & Knittel: the texture memory path.
 pub mod texmem;
+/// Figure 8 of Schilling & Knittel: the TEXRAM chip's interface, shared arithmetic and
+/// behavioural stub.
+pub mod texram;

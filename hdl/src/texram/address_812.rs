@@ -1,0 +1,205 @@
+//! The address and control unit 812's arithmetic for one trilinear access: the two levels
+//! and the weight between them from lambda, the 2x2 at each level and its weights from u, v,
+//! and the border operation that brings each texel index into the map (section 6: the
+//! OpenGL operations plus mirroring).
+//!
+//! With L = floor(lambda) clamped to `0 ..= Lmax` and f its fraction (0 when lambda < 0, as
+//! there is no detail map here, or at the last level), each level k of {L, L + 1} reads at
+//! `u_k = u * 2^-k - 1/2`: `i = floor(u_k)`, `a = frac(u_k)` truncated to 8 bits (v alike).
+//! All of it is exact integer arithmetic on the raw sQ12.8 / sQ5.8 values.
+
+use super::{Drf, FRAC};
+
+/// What a texel index outside `0 .. size` becomes.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Default)]
+pub enum Border {
+    /// `i mod size`.
+    #[default]
+    Wrap,
+    /// The nearest edge texel.
+    Clamp,
+    /// Reflected at the edges: `..., 1, 0, 0, 1, ..., size-1, size-1, ...`.
+    Mirror,
+    /// The DRF's border colour; no bank is read.
+    Colour(u8),
+}
+
+impl Border {
+    pub fn name(self) -> String {
+        match self {
+            Border::Wrap => "wrap".into(),
+            Border::Clamp => "clamp".into(),
+            Border::Mirror => "mirror".into(),
+            Border::Colour(c) => format!("border:{c}"),
+        }
+    }
+
+    /// `wrap`, `clamp`, `mirror` or `border:N` (N 0..=255).
+    pub fn parse(s: &str) -> Option<Border> {
+        match s {
+            "wrap" => Some(Border::Wrap),
+            "clamp" => Some(Border::Clamp),
+            "mirror" => Some(Border::Mirror),
+            _ => s
+                .strip_prefix("border:")
+                .and_then(|n| n.parse().ok())
+                .map(Border::Colour),
+        }
+    }
+
+    /// The texel index `i` of an axis of `size` texels (a power of two) becomes, or `None`
+    /// for the border colour.
+    pub fn remap(self, i: i32, size: u32) -> Option<u32> {
+        let n = size as i32;
+        match self {
+            Border::Wrap => Some((i & (n - 1)) as u32),
+            Border::Clamp => Some(i.clamp(0, n - 1) as u32),
+            Border::Mirror => {
+                let m = i & (2 * n - 1);
+                Some(if m < n { m } else { 2 * n - 1 - m } as u32)
+            }
+            Border::Colour(_) => (0..n).contains(&i).then_some(i as u32),
+        }
+    }
+}
+
+/// The two levels of an access and the weight of the coarser one.
+pub fn levels(lambda: i32, max_level: u32) -> (u32, u32, u8) {
+    let l = lambda >> FRAC;
+    if l < 0 {
+        return (0, 1.min(max_level), 0);
+    }
+    let l = l as u32;
+    if l >= max_level {
+        return (max_level, max_level, 0);
+    }
+    (l, l + 1, (lambda & 0xFF) as u8)
+}
+
+/// Index and weight along one axis at level `k`: `c * 2^-k - 1/2` split into its floor and
+/// its fraction's top 8 bits.
+pub fn axis(c: i32, k: u32) -> (i32, u8) {
+    let x = c - ((1 << (FRAC - 1)) << k);
+    (x >> (FRAC + k), ((x >> k) & 0xFF) as u8)
+}
+
+/// Where one access reads: per level, the four texels (i, j), (i+1, j), (i, j+1),
+/// (i+1, j+1) after the border operation (`None`: the border colour), and the weights.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct Footprint {
+    pub fine: u32,
+    pub coarse: u32,
+    pub texels: [[Option<(u32, u32)>; 4]; 2],
+    pub a: [u8; 2],
+    pub b: [u8; 2],
+    pub f: u8,
+}
+
+impl Footprint {
+    /// The footprint of `(u, v, lambda)` (raw sQ12.8, sQ12.8, sQ5.8) on the map of `drf`.
+    pub fn of(drf: &Drf, u: i32, v: i32, lambda: i32) -> Footprint {
+        let (fine, coarse, f) = levels(lambda, drf.max_level());
+        let mut fp = Footprint {
+            fine,
+            coarse,
+            texels: [[None; 4]; 2],
+            a: [0; 2],
+            b: [0; 2],
+            f,
+        };
+        for (n, k) in [fine, coarse].into_iter().enumerate() {
+            let (w, h) = drf.level_size(k);
+            let (i, a) = axis(u, k);
+            let (j, b) = axis(v, k);
+            let xs = [drf.border.remap(i, w), drf.border.remap(i + 1, w)];
+            let ys = [drf.border.remap(j, h), drf.border.remap(j + 1, h)];
+            for (t, (dx, dy)) in [(0, 0), (1, 0), (0, 1), (1, 1)].into_iter().enumerate() {
+                fp.texels[n][t] = xs[dx].zip(ys[dy]);
+            }
+            (fp.a[n], fp.b[n]) = (a, b);
+        }
+        fp
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// The border operations as written in the notes, on plain integers.
+    fn reference(border: Border, i: i64, n: i64) -> Option<i64> {
+        match border {
+            Border::Wrap => Some(i.rem_euclid(n)),
+            Border::Clamp => Some(i.max(0).min(n - 1)),
+            Border::Mirror => {
+                let m = i.rem_euclid(2 * n);
+                Some(if m < n { m } else { 2 * n - 1 - m })
+            }
+            Border::Colour(_) => (0 <= i && i < n).then_some(i),
+        }
+    }
+
+    #[test]
+    fn border_operations_match_their_definitions_exhaustively() {
+        for border in [
+            Border::Wrap,
+            Border::Clamp,
+            Border::Mirror,
+            Border::Colour(7),
+        ] {
+            for log in 0..=10 {
+                let n = 1u32 << log;
+                for i in -3000..3000 {
+                    let got = border.remap(i, n).map(i64::from);
+                    assert_eq!(
+                        got,
+                        reference(border, i.into(), n.into()),
+                        "{border:?} {i} {n}"
+                    );
+                }
+            }
+        }
+    }
+
+    #[test]
+    fn axis_is_floor_and_fraction_of_the_scaled_coordinate() {
+        for k in 0..=10u32 {
+            for c in (-(1 << 20)..(1 << 20)).step_by(997) {
+                let exact = (c as i64 - (128i64 << k)) as f64 / f64::from(256u32 << k);
+                let (i, a) = axis(c, k);
+                assert_eq!(i64::from(i), exact.floor() as i64, "c {c} k {k}");
+                let frac = exact - exact.floor();
+                assert_eq!(a, (frac * 256.0).floor() as u8, "c {c} k {k}");
+            }
+        }
+        // Texel centres: u = 2.5 at level 0 is texel 2 with weight 0.
+        assert_eq!(axis(2 * 256 + 128, 0), (2, 0));
+        assert_eq!(axis(3 * 256, 0), (2, 128));
+    }
+
+    #[test]
+    fn levels_clamp_and_the_fraction_weighs_the_coarser_level() {
+        assert_eq!(levels(-4 << 8, 10), (0, 1, 0));
+        assert_eq!(levels(-1, 10), (0, 1, 0));
+        assert_eq!(levels(0, 10), (0, 1, 0));
+        assert_eq!(levels((2 << 8) + 64, 10), (2, 3, 64));
+        assert_eq!(levels((9 << 8) + 255, 10), (9, 10, 255));
+        assert_eq!(levels(10 << 8, 10), (10, 10, 0));
+        assert_eq!(levels(10 << 8, 3), (3, 3, 0));
+        assert_eq!(levels(100, 0), (0, 0, 0));
+    }
+
+    #[test]
+    fn names_parse_back() {
+        for b in [
+            Border::Wrap,
+            Border::Clamp,
+            Border::Mirror,
+            Border::Colour(200),
+        ] {
+            assert_eq!(Border::parse(&b.name()), Some(b));
+        }
+        assert_eq!(Border::parse("border:256"), None);
+        assert_eq!(Border::parse("repeat"), None);
+    }
+}

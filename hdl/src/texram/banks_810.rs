@@ -1,0 +1,136 @@
+//! Banks 810 and their address decoders 822: the two-level layout of Figure 2. Each level's
+//! texels are spread in 2x2 groups over four banks, texel (x, y) in bank `2 (y & 1) + (x & 1)`
+//! of its group; even levels use banks 0-3, odd levels banks 4-7 (the only reading that gives
+//! a trilinear pair L, L+1 for every L, [C]). Inside a bank a level is row-major by 2x2
+//! groups: word `base + offset(L) + (y >> 1) * ceil(W_L / 2) + (x >> 1)`, where `offset(L)`
+//! is the words of the earlier levels of the same group.
+//!
+//! So the 2x2 of a level after any border operation touches each of its four banks at most
+//! once (two neighbours differ in parity unless a clamp, mirror or a 1-texel level makes them
+//! the same texel, which is then one read), and the two levels use different banks: one access
+//! reads all eight texels. The tests prove it for every position of every level of several
+//! maps under every border operation.
+
+use super::Drf;
+
+/// Banks on the chip.
+pub const BANKS: usize = 8;
+/// Words of a page (one DRAM row), [C].
+pub const ROW_WORDS: u32 = 512;
+
+/// Words per bank of level `k`'s group: `ceil(W/2) * ceil(H/2)`.
+fn level_words(drf: &Drf, k: u32) -> u32 {
+    let (w, h) = drf.level_size(k);
+    w.div_ceil(2) * h.div_ceil(2)
+}
+
+/// First word of level `k` inside its group (after the earlier levels of the same parity).
+pub fn offset(drf: &Drf, k: u32) -> u32 {
+    (k % 2..k).step_by(2).map(|j| level_words(drf, j)).sum()
+}
+
+/// Words the map takes in each bank of the even (`group` 0) or odd (1) levels.
+pub fn group_words(drf: &Drf, group: u32) -> u32 {
+    (group..=drf.max_level())
+        .step_by(2)
+        .map(|j| level_words(drf, j))
+        .sum()
+}
+
+/// Bank and word of texel `(x, y)` of level `k`.
+pub fn locate(drf: &Drf, k: u32, x: u32, y: u32) -> (usize, u32) {
+    let group = k & 1;
+    let bank = 4 * group + 2 * (y & 1) + (x & 1);
+    let base = if group == 0 {
+        drf.base_even
+    } else {
+        drf.base_odd
+    };
+    let (w, _) = drf.level_size(k);
+    let word = base + offset(drf, k) + (y >> 1) * w.div_ceil(2) + (x >> 1);
+    (bank as usize, word)
+}
+
+/// Words per bank for the largest map, 1024 x 1024 with its chain (derived, [C]): even-level
+/// banks 279,621 words (bank 0; banks 1-3 one fewer), odd-level banks 69,905, each rounded up
+/// to whole rows.
+pub fn bank_words(bank: usize) -> u32 {
+    let full = Drf::new(10, 10, super::Border::Wrap);
+    group_words(&full, (bank / 4) as u32).next_multiple_of(ROW_WORDS)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::super::{Border, Footprint};
+    use super::*;
+    use std::collections::HashMap;
+
+    const MAPS: [(u32, u32); 6] = [(6, 6), (0, 5), (5, 0), (3, 1), (1, 4), (0, 0)];
+    const BORDERS: [Border; 4] = [
+        Border::Wrap,
+        Border::Clamp,
+        Border::Mirror,
+        Border::Colour(9),
+    ];
+
+    #[test]
+    fn every_texel_has_its_own_bank_word() {
+        for (wl, hl) in MAPS {
+            let drf = Drf::new(wl, hl, Border::Wrap);
+            let mut seen = HashMap::new();
+            for k in 0..=drf.max_level() {
+                let (w, h) = drf.level_size(k);
+                for y in 0..h {
+                    for x in 0..w {
+                        let at = locate(&drf, k, x, y);
+                        assert!(at.1 < group_words(&drf, k & 1), "{wl},{hl} L{k} ({x},{y})");
+                        let old = seen.insert(at, (k, x, y));
+                        assert!(old.is_none(), "{at:?} holds {old:?} and {:?}", (k, x, y));
+                    }
+                }
+            }
+        }
+    }
+
+    /// The invariant of the layout: any footprint, any level, any border: per bank at most one
+    /// distinct word.
+    #[test]
+    fn every_trilinear_footprint_is_conflict_free() {
+        for (wl, hl) in MAPS {
+            for border in BORDERS {
+                let drf = Drf::new(wl, hl, border);
+                for k in 0..=drf.max_level() {
+                    let (w, h) = drf.level_size(k);
+                    let lambda = (k as i32) << 8 | 0x80;
+                    // Every 2x2 position at level k, inside the map and one texel beyond each
+                    // edge, at the texel-centre offset that makes (i, j) the first corner.
+                    for j in -2..=h as i32 + 1 {
+                        for i in -2..=w as i32 + 1 {
+                            let u = ((2 * i + 1) << 7) << k;
+                            let v = ((2 * j + 1) << 7) << k;
+                            let fp = Footprint::of(&drf, u, v, lambda);
+                            assert_eq!(fp.fine, k);
+                            let mut word = [None; BANKS];
+                            for (n, lv) in [fp.fine, fp.coarse].into_iter().enumerate() {
+                                for (x, y) in fp.texels[n].iter().flatten() {
+                                    let (bank, wd) = locate(&drf, lv, *x, *y);
+                                    let ok = word[bank].is_none_or(|old| old == wd);
+                                    assert!(ok, "{wl},{hl} {border:?} L{k} ({i},{j}): bank {bank}");
+                                    word[bank] = Some(wd);
+                                }
+                            }
+                        }
+                    }
+                }
+            }
+        }
+    }
+
+    #[test]
+    fn the_largest_map_fits_the_banks() {
+        assert_eq!(group_words(&Drf::new(10, 10, Border::Wrap), 0), 279_621);
+        assert_eq!(group_words(&Drf::new(10, 10, Border::Wrap), 1), 69_905);
+        assert_eq!(bank_words(0), 547 * 512);
+        assert_eq!(bank_words(7), 137 * 512);
+    }
+}

@@ -1,0 +1,161 @@
+//! Schilling & Knittel's TEXRAM chip (Figure 8): eight banks 810 holding a mipmap in the
+//! two-level layout, so that the eight texels of any trilinear footprint (a 2x2 at level L and
+//! a 2x2 at level L+1) are read in one access slot of 30 ns.
+//!
+//! What is here so far is the chip's transaction-level interface and the arithmetic its units
+//! share; the cycle-accurate chip (issue 13) is built on them:
+//!
+//! * [`TexramAccess`]: one access, `(DRF, u, v, lambda) -> 8 texels, weights, slots, faults`,
+//!   the interface the footprint assembly, the volume stepper and the map chain are written
+//!   against;
+//! * [`address_812`]: the address and control unit's arithmetic: level, weights and the
+//!   border operations (wrap, clamp, mirror, border colour) of one access;
+//! * [`banks_810`]: the two-level layout, texel `(level, x, y)` to bank and word (the bank
+//!   address decoders 822), proved conflict-free by exhaustive tests;
+//! * [`page_registers_824`]: one open row per bank; an access costs one slot, two if any bank
+//!   it reads misses its open row;
+//! * [`trilinear_818`]: the trilinear interpolator, one rounding of the exact weighted sum;
+//! * [`stub`]: [`stub::TexramStub`], a behavioural model of the chip made of the above, exact
+//!   in its texels, weights, result and slot count but not cycle by cycle. It stands in for the
+//!   chip until the cycle-accurate one exists (luminance configuration only).
+//!
+//! Formats ([C] marks the project's choices where the document is silent, see
+//! `../shared/notes/seed-systems.md`):
+//!
+//! | value | format | note |
+//! |---|---|---|
+//! | u, v | sQ12.8 (21 bits, two's complement) | level-0 texel units, [C] |
+//! | lambda | sQ5.8 (14 bits) | level of detail, [C]; `-4.0 ..= 10.0` |
+//! | texel | u8 | the document's 8-bit texels (section 6) |
+//! | a, b, f | u8 (Q0.8, truncated) | weights, [C] |
+//! | result of 818 | u8 | `(sum + 2^23) >> 24` of the exact sum, round half up |
+
+pub mod address_812;
+pub mod banks_810;
+pub mod page_registers_824;
+pub mod stub;
+pub mod trilinear_818;
+
+pub use address_812::{Border, Footprint};
+
+/// Fraction bits of u, v and lambda.
+pub const FRAC: u32 = 8;
+/// u and v: sQ12.8, `-2^20 ..= 2^20 - 1` raw.
+pub const UV_BITS: u32 = 21;
+/// lambda: sQ5.8 raw, limited to `-4.0 ..= 10.0`.
+pub const LAMBDA_MIN: i32 = -4 << FRAC;
+pub const LAMBDA_MAX: i32 = 10 << FRAC;
+/// Description register files: seven (DRF 7 holds the cube faces of an environment map).
+pub const DRFS: usize = 7;
+
+/// A description register file (DRF) as far as one texture access needs it: where the map
+/// is, its size and its border operation.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct Drf {
+    /// log2 of the level-0 width and height (0 ..= 10: up to 1024 x 1024).
+    pub width_log2: u32,
+    pub height_log2: u32,
+    /// First word of the even levels (banks 0-3) and of the odd levels (banks 4-7).
+    pub base_even: u32,
+    pub base_odd: u32,
+    pub border: Border,
+}
+
+impl Drf {
+    /// A map of `2^w x 2^h` texels at word 0 of both bank groups.
+    pub fn new(width_log2: u32, height_log2: u32, border: Border) -> Drf {
+        Drf {
+            width_log2,
+            height_log2,
+            base_even: 0,
+            base_odd: 0,
+            border,
+        }
+    }
+
+    /// The coarsest level: the chain ends at 1 x 1.
+    pub fn max_level(&self) -> u32 {
+        self.width_log2.max(self.height_log2)
+    }
+
+    /// Width and height of level `k` (each at least 1).
+    pub fn level_size(&self, k: u32) -> (u32, u32) {
+        (
+            1 << self.width_log2.saturating_sub(k),
+            1 << self.height_log2.saturating_sub(k),
+        )
+    }
+
+    pub fn validate(&self) -> Result<(), String> {
+        if self.width_log2 > 10 || self.height_log2 > 10 {
+            return Err(format!(
+                "map {}x{}: at most 1024 x 1024 per chip",
+                1u64 << self.width_log2,
+                1u64 << self.height_log2
+            ));
+        }
+        Ok(())
+    }
+}
+
+/// One texture access as the rasterizer (or the footprint generator) sends it.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct TexramRequest {
+    /// Which DRF (0 .. [`DRFS`]).
+    pub drf: u8,
+    /// sQ12.8 raw, level-0 texel units.
+    pub u: i32,
+    pub v: i32,
+    /// sQ5.8 raw.
+    pub lambda: i32,
+}
+
+impl TexramRequest {
+    /// Checks the fields against their formats.
+    pub fn validate(&self) -> Result<(), String> {
+        let lim = 1i32 << (UV_BITS - 1);
+        if usize::from(self.drf) >= DRFS {
+            return Err(format!("drf {}: 0..{DRFS}", self.drf));
+        }
+        for (n, x) in [("u", self.u), ("v", self.v)] {
+            if !(-lim..lim).contains(&x) {
+                return Err(format!("{n} raw {x}: outside sQ12.8"));
+            }
+        }
+        if !(LAMBDA_MIN..=LAMBDA_MAX).contains(&self.lambda) {
+            return Err(format!("lambda raw {}: outside -4.0 ..= 10.0", self.lambda));
+        }
+        Ok(())
+    }
+}
+
+/// What one access gives back.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct TexramReply {
+    /// The two levels read (`fine + 1 == coarse`, or both the last level).
+    pub fine: u32,
+    pub coarse: u32,
+    /// Texels: the fine 2x2 as (i, j), (i+1, j), (i, j+1), (i+1, j+1), then the coarse 2x2.
+    /// A border-colour texel holds the DRF's border colour.
+    pub texels: [u8; 8],
+    /// Weights of the fine and coarse levels (a along u, b along v) and between them (f).
+    pub a: [u8; 2],
+    pub b: [u8; 2],
+    pub f: u8,
+    /// The trilinear interpolator 818's result.
+    pub value: u8,
+    /// Access slots taken (1, or 2 after a page fault).
+    pub slots: u32,
+    /// Banks whose open row missed.
+    pub faults: u32,
+}
+
+/// The chip seen from outside: one trilinear access per call.
+pub trait TexramAccess {
+    /// Sets DRF `k`; the map it describes must then be loaded.
+    fn set_drf(&mut self, k: usize, drf: Drf) -> Result<(), String>;
+    /// One access; `Err` names the field that is out of its format or an unset DRF.
+    fn access(&mut self, req: TexramRequest) -> Result<TexramReply, String>;
+    /// Slots taken since the start (accesses, their faults and anything else the chip did).
+    fn slots(&self) -> u64;
+}

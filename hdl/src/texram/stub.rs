@@ -1,0 +1,268 @@
+//! A behavioural TEXRAM: the banks 810 as arrays, the address arithmetic of 812, the page
+//! registers 824 and the interpolator 818, composed access by access. Its texels, weights,
+//! result, slots and faults are those the chip is specified to give; it has no clock, no
+//! video port and one configuration (luminance). It lets the footprint assembly, volume and
+//! map-chain work start before the cycle-accurate chip exists, and will be held against it.
+
+use super::address_812::Footprint;
+use super::banks_810::{bank_words, locate, BANKS};
+use super::page_registers_824::PageRegisters;
+use super::trilinear_818::trilinear;
+use super::{Border, Drf, TexramAccess, TexramReply, TexramRequest, DRFS};
+
+/// The chip's state: DRFs, bank contents, open rows and counters.
+#[derive(Clone, Debug)]
+pub struct TexramStub {
+    drfs: [Option<Drf>; DRFS],
+    banks: Vec<Vec<u8>>,
+    pages: PageRegisters,
+    slots: u64,
+    accesses: u64,
+    faults: u64,
+}
+
+impl Default for TexramStub {
+    fn default() -> Self {
+        TexramStub::new()
+    }
+}
+
+/// The next level of a mipmap: each texel the rounded mean of its 2x2 (or of its pair when
+/// one side is already 1), `(a + b + c + d + 2) >> 2`, as generator 816 rounds by default.
+pub fn next_level(w: u32, h: u32, texels: &[u8]) -> Vec<u8> {
+    let (nw, nh) = ((w / 2).max(1), (h / 2).max(1));
+    let (sx, sy) = (if w > 1 { 2 } else { 1 }, if h > 1 { 2 } else { 1 });
+    let mut out = Vec::with_capacity((nw * nh) as usize);
+    for y in 0..nh {
+        for x in 0..nw {
+            let mut sum = 0u32;
+            for dy in 0..sy {
+                for dx in 0..sx {
+                    sum += u32::from(texels[((y * sy + dy) * w + x * sx + dx) as usize]);
+                }
+            }
+            let n = sx * sy;
+            out.push(((sum + n / 2) / n) as u8);
+        }
+    }
+    out
+}
+
+impl TexramStub {
+    /// Empty banks of the chip's size, every DRF unset, every row closed.
+    pub fn new() -> TexramStub {
+        TexramStub {
+            drfs: [None; DRFS],
+            banks: (0..BANKS)
+                .map(|b| vec![0; bank_words(b) as usize])
+                .collect(),
+            pages: PageRegisters::new(),
+            slots: 0,
+            accesses: 0,
+            faults: 0,
+        }
+    }
+
+    /// Writes level `k` of DRF `drf`'s map (row-major texels of the level's size).
+    pub fn write_level(&mut self, drf: usize, k: u32, texels: &[u8]) -> Result<(), String> {
+        let d = self.drf(drf)?;
+        if k > d.max_level() {
+            return Err(format!(
+                "level {k}: the map has levels 0..={}",
+                d.max_level()
+            ));
+        }
+        let (w, h) = d.level_size(k);
+        if texels.len() != (w * h) as usize {
+            return Err(format!("level {k}: {} texels for {w}x{h}", texels.len()));
+        }
+        for y in 0..h {
+            for x in 0..w {
+                let (bank, word) = locate(&d, k, x, y);
+                let cell = self.banks[bank]
+                    .get_mut(word as usize)
+                    .ok_or_else(|| format!("level {k}: word {word} beyond bank {bank}"))?;
+                *cell = texels[(y * w + x) as usize];
+            }
+        }
+        Ok(())
+    }
+
+    /// Loads level 0 of DRF `drf`'s map and every level above it ([`next_level`]).
+    pub fn load(&mut self, drf: usize, level0: &[u8]) -> Result<(), String> {
+        let d = self.drf(drf)?;
+        let mut level = level0.to_vec();
+        for k in 0..=d.max_level() {
+            self.write_level(drf, k, &level)?;
+            let (w, h) = d.level_size(k);
+            level = next_level(w, h, &level);
+        }
+        Ok(())
+    }
+
+    fn drf(&self, k: usize) -> Result<Drf, String> {
+        self.drfs
+            .get(k)
+            .copied()
+            .flatten()
+            .ok_or_else(|| format!("drf {k}: not set"))
+    }
+
+    /// Accesses so far, and the banks that missed their open row in them.
+    pub fn counts(&self) -> (u64, u64) {
+        (self.accesses, self.faults)
+    }
+}
+
+impl TexramAccess for TexramStub {
+    fn set_drf(&mut self, k: usize, drf: Drf) -> Result<(), String> {
+        drf.validate()?;
+        let slot = self
+            .drfs
+            .get_mut(k)
+            .ok_or_else(|| format!("drf {k}: 0..{DRFS}"))?;
+        *slot = Some(drf);
+        Ok(())
+    }
+
+    fn access(&mut self, req: TexramRequest) -> Result<TexramReply, String> {
+        req.validate()?;
+        let d = self.drf(usize::from(req.drf))?;
+        let fp = Footprint::of(&d, req.u, req.v, req.lambda);
+        let colour = match d.border {
+            Border::Colour(c) => c,
+            _ => 0,
+        };
+        let mut texels = [colour; 8];
+        let mut word = [None; BANKS];
+        for (n, k) in [fp.fine, fp.coarse].into_iter().enumerate() {
+            for (t, at) in fp.texels[n].iter().enumerate() {
+                if let Some((x, y)) = at {
+                    let (bank, w) = locate(&d, k, *x, *y);
+                    debug_assert!(word[bank].is_none_or(|o| o == w), "bank conflict");
+                    word[bank] = Some(w);
+                    texels[4 * n + t] = self.banks[bank][w as usize];
+                }
+            }
+        }
+        let cost = self.pages.access(&word);
+        self.slots += u64::from(cost.slots);
+        self.accesses += 1;
+        self.faults += u64::from(cost.faults);
+        Ok(TexramReply {
+            fine: fp.fine,
+            coarse: fp.coarse,
+            texels,
+            a: fp.a,
+            b: fp.b,
+            f: fp.f,
+            value: trilinear(&texels, fp.a, fp.b, fp.f),
+            slots: cost.slots,
+            faults: cost.faults,
+        })
+    }
+
+    fn slots(&self) -> u64 {
+        self.slots
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn chip(wl: u32, hl: u32, border: Border) -> (TexramStub, Vec<u8>) {
+        let mut c = TexramStub::new();
+        c.set_drf(0, Drf::new(wl, hl, border)).unwrap();
+        let level0: Vec<u8> = (0..(1u32 << (wl + hl)))
+            .map(|k| (k.wrapping_mul(2_654_435_761) >> 24) as u8)
+            .collect();
+        c.load(0, &level0).unwrap();
+        (c, level0)
+    }
+
+    fn req(u: i32, v: i32, lambda: i32) -> TexramRequest {
+        TexramRequest {
+            drf: 0,
+            u,
+            v,
+            lambda,
+        }
+    }
+
+    #[test]
+    fn level_zero_texels_come_back_where_they_were_written() {
+        let (mut c, level0) = chip(5, 3, Border::Wrap);
+        for y in 0..8 {
+            for x in 0..32 {
+                let r = c
+                    .access(req((2 * x + 1) << 7, (2 * y + 1) << 7, 0))
+                    .unwrap();
+                assert_eq!(r.texels[0], level0[(y * 32 + x) as usize]);
+                assert_eq!(r.value, r.texels[0], "at a texel centre with lambda 0");
+            }
+        }
+    }
+
+    #[test]
+    fn integer_lambda_is_the_bilinear_of_that_level() {
+        let (mut c, _) = chip(4, 4, Border::Clamp);
+        for lambda in 0..=4 {
+            let r = c.access(req(1000, 777, lambda << 8)).unwrap();
+            assert_eq!((r.fine, r.f), (lambda as u32, 0));
+            let mut fine = r.texels;
+            fine[4..].copy_from_slice(&[0; 4]);
+            assert_eq!(r.value, trilinear(&fine, r.a, r.b, 0));
+        }
+    }
+
+    #[test]
+    fn border_colour_texels_read_no_bank() {
+        let (mut c, _) = chip(3, 3, Border::Colour(200));
+        let r = c.access(req(-5000, -5000, 0)).unwrap();
+        assert_eq!(r.texels, [200; 8]);
+        assert_eq!(r.value, 200);
+        assert_eq!((r.slots, r.faults), (1, 0), "nothing read, nothing missed");
+    }
+
+    #[test]
+    fn slots_count_page_faults_from_the_open_rows() {
+        let (mut c, _) = chip(10, 10, Border::Wrap);
+        let first = c.access(req(100, 100, 0)).unwrap();
+        assert_eq!(first.slots, 2, "every row starts closed");
+        assert_eq!(c.access(req(356, 100, 0)).unwrap().slots, 1, "same rows");
+        // 512 words per row hold one row of 2x2 groups of level 0: 32 texel rows further
+        // down is another row in every bank.
+        assert_eq!(c.access(req(100, 100 + (32 << 8), 0)).unwrap().slots, 2);
+        assert_eq!(c.slots(), 5);
+        assert_eq!(c.counts().0, 3);
+    }
+
+    #[test]
+    fn bad_requests_and_unset_drfs_are_refused() {
+        let (mut c, _) = chip(2, 2, Border::Wrap);
+        assert!(c.access(req(1 << 20, 0, 0)).unwrap_err().contains("u raw"));
+        assert!(c.access(req(0, 0, 11 << 8)).unwrap_err().contains("lambda"));
+        let e = c
+            .access(TexramRequest {
+                drf: 3,
+                ..req(0, 0, 0)
+            })
+            .unwrap_err();
+        assert_eq!(e, "drf 3: not set");
+        assert!(c.set_drf(7, Drf::new(1, 1, Border::Wrap)).is_err());
+        assert!(c.set_drf(0, Drf::new(11, 1, Border::Wrap)).is_err());
+        assert!(c
+            .write_level(0, 3, &[0])
+            .unwrap_err()
+            .contains("levels 0..=2"));
+    }
+
+    #[test]
+    fn next_level_rounds_the_mean_of_each_block() {
+        assert_eq!(next_level(2, 2, &[1, 2, 3, 5]), vec![3]);
+        assert_eq!(next_level(4, 1, &[1, 2, 3, 4]), vec![2, 4]);
+        assert_eq!(next_level(1, 2, &[0, 1]), vec![1]);
+        assert_eq!(next_level(1, 1, &[9]), vec![9]);
+    }
+}
