@@ -255,10 +255,17 @@ pub fn merge(paths: &[PathBuf]) -> Result<Summary, String> {
 
 /// A `summary.json`'s bytes (`path` names it in the message).
 pub fn parse_summary(path: &std::path::Path, b: &[u8]) -> Result<Summary, String> {
-    serde_json::from_slice(b).map_err(|e| {
+    let s: Summary = serde_json::from_slice(b).map_err(|e| {
         let e = formats::shorten(&e.to_string());
         format!("{}: not a texrtl summary.json: {e}", path.display())
-    })
+    })?;
+    for r in &s.testbenches {
+        if let Some(c) = &r.coverage {
+            c.validate()
+                .map_err(|e| format!("{}: {}: {e}", path.display(), formats::shorten(&r.name)))?;
+        }
+    }
+    Ok(s)
 }
 
 /// [`merge`] of summaries already read, each with the path its messages name.

@@ -143,9 +143,38 @@ impl Coverage {
         }
     }
 
+    /// Whether the model is whole (one read from a file may not be): every bin's `lo <= hi`,
+    /// every cross names two coverpoints and has one count per pair of their bins. `Err` says
+    /// the first problem.
+    pub fn validate(&self) -> Result<(), String> {
+        for p in &self.points {
+            if let Some(b) = p.bins.iter().find(|b| b.lo > b.hi) {
+                return Err(format!(
+                    "coverpoint '{}': bin '{}' is empty",
+                    p.name, b.name
+                ));
+            }
+        }
+        for c in &self.crosses {
+            let bins = |k: usize| self.points.get(k).map(|p| p.bins.len());
+            let (Some(na), Some(nb)) = (bins(c.a), bins(c.b)) else {
+                return Err(format!("cross '{}': no such coverpoint", c.name));
+            };
+            if c.hits.len() != na || c.hits.iter().any(|r| r.len() != nb) {
+                return Err(format!(
+                    "cross '{}': not {na} x {nb} counts like its coverpoints",
+                    c.name
+                ));
+            }
+        }
+        Ok(())
+    }
+
     /// Whether `o` is a model of the same shape: the same coverpoints with the same bins, the
     /// same crosses. `Err` says the first difference.
     pub fn same_model(&self, o: &Coverage) -> Result<(), String> {
+        self.validate()?;
+        o.validate()?;
         if self.points.len() != o.points.len() || self.crosses.len() != o.crosses.len() {
             return Err("coverage models differ in their coverpoints or crosses".into());
         }
@@ -286,6 +315,28 @@ impl Coverage {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn a_model_read_from_a_file_is_checked_whole() {
+        let mut c = Coverage::new();
+        let a = c.add(Coverpoint::new("a").value("x", 0).value("y", 1));
+        let b = c.add(Coverpoint::new("b").value("p", 0));
+        c.cross("ab", a, b);
+        assert!(c.validate().is_ok());
+        let mut short = c.clone();
+        short.crosses[0].hits.pop();
+        assert!(short.validate().unwrap_err().contains("not 2 x 1"));
+        assert!(c.same_model(&short).is_err());
+        let mut dangling = c.clone();
+        dangling.crosses[0].b = 7;
+        assert!(dangling
+            .validate()
+            .unwrap_err()
+            .contains("no such coverpoint"));
+        let mut empty = c.clone();
+        empty.points[0].bins[0].lo = 5;
+        assert!(empty.validate().unwrap_err().contains("bin 'x' is empty"));
+    }
 
     #[test]
     fn bins_crosses_and_unhit_report() {

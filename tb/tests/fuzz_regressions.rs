@@ -1,0 +1,22 @@
+//! Every input the fuzz campaign (`fuzz/campaign`) found a crash with, kept in
+//! `fuzz/regressions/summary/`, read and merged as `texrtl merge` does: a clean error or a
+//! merged summary, never a panic.
+
+use std::path::{Path, PathBuf};
+
+#[test]
+fn summaries_that_once_crashed_merge_now_give_a_clean_answer() {
+    let dir = Path::new(env!("CARGO_MANIFEST_DIR")).join("../fuzz/regressions/summary");
+    let mut n = 0;
+    for e in std::fs::read_dir(&dir).unwrap() {
+        let p = e.unwrap().path();
+        let bytes = std::fs::read(&p).unwrap();
+        let r = tb::regress::parse_summary(&p, &bytes)
+            .and_then(|s| tb::regress::merge_shards(&[(PathBuf::from(&p), s)]));
+        if let Err(e) = r {
+            assert!(!e.contains('\n'), "{}: {e}", p.display());
+        }
+        n += 1;
+    }
+    assert!(n > 0, "no regression inputs in {}", dir.display());
+}
