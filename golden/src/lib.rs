@@ -6,4 +6,5 @@ pub mod blend_adjust;
 pub mod bump;
 pub mod mipmap;
 pub mod rsqrt;
+pub mod texram;
 pub mod texture;

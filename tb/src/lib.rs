@@ -10,5 +10,6 @@ pub mod maps;
 pub mod mipmap;
 pub mod normals;
 pub mod regress;
+pub mod texram;
 pub mod texture;
 pub mod vectors;
