@@ -34,6 +34,7 @@ pub mod address_812;
 pub mod banks_810;
 pub mod page_registers_824;
 pub mod stub;
+pub mod texram_802;
 pub mod trilinear_818;
 
 pub use address_812::{Border, Footprint};
