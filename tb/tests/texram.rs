@@ -153,13 +153,15 @@ fn integer_lambda_is_exactly_the_bilinear_of_its_level() {
     }
 }
 
-/// Runs `reqs` back to back through the cycle-accurate chip; per output: the cycle it came
-/// out, its value, texels and fault flag.
+/// One result of the chip: the cycle it came out, its value, texels and fault flag.
+type Out = (u64, u8, [u8; 8], bool);
+
+/// Runs `reqs` back to back through the cycle-accurate chip; its results and slot count.
 fn run_chip(
     chip: hdl::texram::texram_802::Texram802,
     reqs: &[(i32, i32, i32)],
     vcd: Option<&std::path::Path>,
-) -> (Vec<(u64, u8, [u8; 8], bool)>, u64) {
+) -> (Vec<Out>, u64) {
     use hdl::kernel::Sim;
     let tracer = vcd.map(|p| waves::VcdTracer::create(p, "texram", Default::default()).unwrap());
     let mut sim = Sim::maybe_traced(chip, tracer).unwrap().check_schedule(true);
