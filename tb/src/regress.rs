@@ -17,7 +17,8 @@ pub fn registry() -> Registry {
         .register(Box::new(crate::normals::NormalsTb))
         .register(Box::new(crate::mipmap::MipmapTb))
         .register(Box::new(crate::dram::DramTb))
-        .register(Box::new(crate::texture::TextureTb));
+        .register(Box::new(crate::texture::TextureTb))
+        .register(Box::new(crate::texram::TexramTb));
     r
 }
 

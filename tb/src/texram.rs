@@ -127,3 +127,506 @@ impl RefMipmap {
         (texels, value as u8)
     }
 }
+
+// ---------------------------------------------------------------------------------------
+// The testbench of the cycle-accurate chip.
+
+use hdl::kernel::{Sim, Trace};
+use hdl::texram::texram_802::{Texram802, TexramParams};
+use hdl::texram::{Border, Drf};
+use proptest::prelude::*;
+use verif::{
+    run, Coverage, Coverpoint, Ctx, Driver, Event, Monitor, Pacing, RunSpec, Scoreboard, Stimulus,
+    TbResult, Testbench,
+};
+
+/// The testbench's name: the chip's.
+pub const NAME: &str = "texram_802";
+/// The chip's clock (5 ns).
+pub const CYCLE_PS: u64 = 5_000;
+
+/// One request: raw sQ12.8 `u`, `v`, sQ5.8 `lambda`.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct TexReq {
+    pub u: i32,
+    pub v: i32,
+    pub lambda: i32,
+}
+
+/// One result.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct TexOut {
+    pub value: u8,
+    pub texels: [u8; 8],
+    pub fault: bool,
+}
+
+pub struct TexDriver;
+
+impl Driver<Texram802> for TexDriver {
+    type Txn = TexReq;
+    fn drive(&mut self, dut: &mut Texram802, t: Option<&TexReq>) {
+        dut.req_valid.set_bool(t.is_some());
+        let t = t.copied().unwrap_or(TexReq {
+            u: 0,
+            v: 0,
+            lambda: 0,
+        });
+        dut.req_drf.set_bits(0);
+        dut.req_u.set_raw(i64::from(t.u));
+        dut.req_v.set_raw(i64::from(t.v));
+        dut.req_lambda.set_raw(i64::from(t.lambda));
+    }
+    fn accepted(&self, dut: &Texram802) -> bool {
+        dut.req_ready.is_high()
+    }
+}
+
+pub struct TexMonitor;
+
+impl Monitor<Texram802> for TexMonitor {
+    type Txn = TexOut;
+    fn sample(&mut self, dut: &Texram802) -> Option<TexOut> {
+        dut.out_valid.q().is_high().then(|| TexOut {
+            value: dut.out_value.q().bits() as u8,
+            texels: dut.out_texels.q().bits().to_le_bytes(),
+            fault: dut.out_fault.q().is_high(),
+        })
+    }
+}
+
+/// The configurations: map sizes (log2) and border operations.
+const CONFIGS: [(u32, u32, Border); 8] = [
+    (6, 6, Border::Wrap),
+    (6, 6, Border::Clamp),
+    (6, 6, Border::Mirror),
+    (6, 6, Border::Colour(77)),
+    (10, 10, Border::Wrap),
+    (8, 5, Border::Mirror),
+    (0, 5, Border::Clamp),
+    (5, 0, Border::Colour(200)),
+];
+
+fn ref_border(b: Border) -> RefBorder {
+    match b {
+        Border::Wrap => RefBorder::Wrap,
+        Border::Clamp => RefBorder::Clamp,
+        Border::Mirror => RefBorder::Mirror,
+        Border::Colour(c) => RefBorder::Colour(c),
+    }
+}
+
+fn golden_border(b: Border) -> golden::texram::Border {
+    match b {
+        Border::Wrap => golden::texram::Border::Wrap,
+        Border::Clamp => golden::texram::Border::Clamp,
+        Border::Mirror => golden::texram::Border::Mirror,
+        Border::Colour(c) => golden::texram::Border::Colour(f64::from(c)),
+    }
+}
+
+/// A level 0 with structure at every scale: a ramp, a checker and seeded noise.
+pub fn test_map(w: u32, h: u32, stim: &mut Stimulus) -> Vec<u8> {
+    let noise = stim.draw_n(&(0u8..48), (w * h) as usize);
+    (0..w * h)
+        .map(|k| {
+            let (x, y) = (k % w, k / w);
+            let checker = if (x / 4 + y / 4) % 2 == 0 { 60 } else { 0 };
+            ((x * 3 + y * 5) % 140 + checker + u32::from(noise[k as usize])).min(255) as u8
+        })
+        .collect()
+}
+
+/// Random requests over the map and two texels beyond it; lambda over -4..10 with integers
+/// and the last level a quarter of the time.
+fn requests(wl: u32, hl: u32, n: usize, stim: &mut Stimulus) -> Vec<TexReq> {
+    let (w, h) = ((1i32 << wl) << 8, (1i32 << hl) << 8);
+    let lmax = wl.max(hl) as i32;
+    let lambda = prop_oneof![
+        2 => -4 * 256..=10 * 256,
+        1 => (-4..=10i32).prop_map(|l| l << 8),
+        1 => Just(lmax << 8),
+    ];
+    let s =
+        (-512..w + 512, -512..h + 512, lambda).prop_map(|(u, v, lambda)| TexReq { u, v, lambda });
+    stim.draw_n(&s, n)
+}
+
+fn coverage_model() -> Coverage {
+    let mut c = Coverage::new();
+    let b = c.add(
+        Coverpoint::new("border")
+            .value("wrap", 0)
+            .value("clamp", 1)
+            .value("mirror", 2)
+            .value("colour", 3),
+    );
+    let l = c.add(
+        Coverpoint::new("lambda")
+            .value("negative", 0)
+            .value("integer", 1)
+            .value("fraction", 2)
+            .value("last_level", 3),
+    );
+    c.add(
+        Coverpoint::new("position")
+            .value("inside", 0)
+            .value("beyond_an_edge", 1),
+    );
+    c.add(Coverpoint::new("page").value("hit", 0).value("fault", 1));
+    c.cross("border_x_lambda", b, l);
+    c
+}
+
+fn lambda_class(lambda: i32, lmax: u32) -> i64 {
+    if lambda < 0 {
+        0
+    } else if lambda >> 8 >= lmax as i32 {
+        3
+    } else if lambda & 0xFF == 0 {
+        1
+    } else {
+        2
+    }
+}
+
+fn border_class(b: Border) -> i64 {
+    match b {
+        Border::Wrap => 0,
+        Border::Clamp => 1,
+        Border::Mirror => 2,
+        Border::Colour(_) => 3,
+    }
+}
+
+/// The testbench of the TEXRAM chip 802: per configuration (map size, border operation)
+/// random requests with random input pacing, each scored against the integer reference
+/// (value and texels, bit-exact), the stub (its page fault) and the f64 golden model (error
+/// in LSBs, bound 0.5).
+pub struct TexramTb;
+
+/// What one request is expected to give: the reference's result, the stub's fault, golden.
+type Expected = (TexReq, TexOut, f64);
+
+impl Testbench for TexramTb {
+    fn name(&self) -> &'static str {
+        NAME
+    }
+    fn unit(&self) -> &'static str {
+        "TEXRAM chip 802: units 810, 812, 818, 824 (Schilling & Knittel, Figure 8, sections 5-6)"
+    }
+    fn configurations(&self) -> Vec<String> {
+        CONFIGS
+            .iter()
+            .map(|(w, h, b)| format!("{}x{} {}", 1u32 << w, 1u32 << h, b.name()))
+            .collect()
+    }
+    fn default_count(&self) -> usize {
+        3000
+    }
+    fn coverage(&self) -> Coverage {
+        coverage_model()
+    }
+    fn conclude(&self, merged: &mut TbResult) {
+        let mut table = String::from(
+            "| TEXRAM pixel rate (section 5) | pixels | slots | ns | M pixels/s | document |\n|---|---|---|---|---|---|\n",
+        );
+        for f in figures() {
+            let doc = f.document.map_or("-".into(), |d| format!("{:.1}", d / 1e6));
+            table.push_str(&format!(
+                "| {} | {} | {} | {} | {:.2} | {doc} |\n",
+                f.what,
+                f.pixels,
+                f.slots,
+                f.cycles * CYCLE_PS / 1000,
+                f.pixels_per_second / 1e6
+            ));
+            merged.notes.push(format!(
+                "{}: {:.2} M pixels/s ({} slots for {} pixels)",
+                f.what,
+                f.pixels_per_second / 1e6,
+                f.slots,
+                f.pixels
+            ));
+            if let Some(d) = f.document {
+                if (f.pixels_per_second / d - 1.0).abs() > 0.01 {
+                    merged.failures.push(format!(
+                        "{}: {:.2} M pixels/s, the document {:.2} M",
+                        f.what,
+                        f.pixels_per_second / 1e6,
+                        d / 1e6
+                    ));
+                }
+            }
+        }
+        merged.tables.push(table);
+    }
+    fn run(&self, ctx: &Ctx) -> Result<TbResult, String> {
+        let (wl, hl, border) = CONFIGS[ctx.index];
+        let mut stim = Stimulus::new(ctx.seed);
+        let level0 = test_map(1 << wl, 1 << hl, &mut stim);
+        let mut chip = Texram802::new(TexramParams::default())?;
+        chip.set_drf(0, Drf::new(wl, hl, border))?;
+        chip.load(0, &level0)?;
+        let tracer = ctx.tracer(&format!("texram_802 {}", ctx.label), CYCLE_PS)?;
+        let sim = Sim::maybe_traced(chip, tracer).map_err(|e| e.to_string())?;
+        let (sim, res) = one_config(sim, ctx, (wl, hl, border), &level0, &mut stim)?;
+        if let Some(w) = &ctx.waves {
+            sim.finish()
+                .map_err(|e| format!("{}: {e}", w.vcd.display()))?;
+            let mut res = res;
+            res.vcd = Some(w.vcd.clone());
+            return Ok(res);
+        }
+        Ok(res)
+    }
+}
+
+/// Runs one configuration's requests through the chip and scores them.
+fn one_config<T: Trace>(
+    sim: Sim<Texram802, T>,
+    ctx: &Ctx,
+    (wl, hl, border): (u32, u32, Border),
+    level0: &[u8],
+    stim: &mut Stimulus,
+) -> Result<(Sim<Texram802, T>, TbResult), String> {
+    use hdl::texram::stub::TexramStub;
+    use hdl::texram::{TexramAccess, TexramRequest};
+    let mut res = TbResult::new(NAME, "");
+    let mut cov = coverage_model();
+    let mut sim = sim.check_schedule(ctx.check_schedule);
+    sim.reset(2);
+    let reference = RefMipmap::build(1 << wl, 1 << hl, level0);
+    let mut stub = TexramStub::new();
+    stub.set_drf(0, Drf::new(wl, hl, border))?;
+    stub.load(0, level0)?;
+    let g = golden::texram::Mipmap {
+        width: 1 << wl,
+        height: 1 << hl,
+        levels: &reference.levels,
+        border: golden_border(border),
+    };
+    let lmax = wl.max(hl);
+    let reqs = requests(wl, hl, ctx.count, stim);
+    let n = reqs.len() as u64;
+    let mut sb: Scoreboard<Expected, TexOut> =
+        Scoreboard::new(|(_, e, _): &Expected, a: &TexOut| {
+            if e == a {
+                Ok(())
+            } else {
+                Err(format!("got {a:?}, want {e:?}"))
+            }
+        });
+    let pacing = Pacing::random(200, stim.seed().derive(7));
+    let mut spec = RunSpec::new(n, 20 * n + 100).pacing(pacing);
+    let (w, h) = ((1i32 << wl) << 8, (1i32 << hl) << 8);
+    let r = run(
+        &mut sim,
+        &mut TexDriver,
+        &mut TexMonitor,
+        reqs,
+        &mut spec,
+        |_, ev| match ev {
+            Event::Sent { txn, .. } => {
+                let (texels, value) =
+                    reference.access(txn.u, txn.v, txn.lambda, ref_border(border));
+                let s = stub
+                    .access(TexramRequest {
+                        drf: 0,
+                        u: txn.u,
+                        v: txn.v,
+                        lambda: txn.lambda,
+                    })
+                    .expect("requests are in range");
+                let f = |x: i32| f64::from(x) / 256.0;
+                let wts = golden::texram::Weights::truncated(
+                    f(txn.u),
+                    f(txn.v),
+                    f(txn.lambda),
+                    lmax as usize,
+                );
+                let want = golden::texram::trilinear(&g, &wts);
+                sb.expect((
+                    *txn,
+                    TexOut {
+                        value,
+                        texels,
+                        fault: s.slots == 2,
+                    },
+                    want,
+                ));
+            }
+            Event::Received { cycle, txn } => {
+                let out = sb.observe(cycle, txn);
+                if let Some((q, _, want)) = out.expected {
+                    res.stats.record(f64::from(txn.value), want, 1.0);
+                    let beyond = q.u < 0 || q.v < 0 || q.u >= w || q.v >= h;
+                    cov.sample(&[
+                        border_class(border),
+                        lambda_class(q.lambda, lmax),
+                        i64::from(beyond),
+                        i64::from(txn.fault),
+                    ]);
+                }
+            }
+            Event::Settled { .. } => {}
+        },
+    );
+    res.transactions += n;
+    res.mismatches += sb.mismatch_count();
+    for m in sb.mismatches().iter().take(10) {
+        res.mismatch_log
+            .push(format!("{} (cycle {:?}): {}", m.index, m.cycle, m.detail));
+    }
+    match r {
+        Ok(st) => res.cycles += st.cycles,
+        Err(t) => res.failures.push(t.to_string()),
+    }
+    let slots = sim.dut.slots.q().bits();
+    if slots != stub.slots() {
+        res.failures
+            .push(format!("{slots} slots, the stub took {}", stub.slots()));
+    }
+    let (accesses, faults) = stub.counts();
+    res.notes.push(format!(
+        "{}: {accesses} accesses in {slots} slots, {faults} bank faults",
+        ctx.label
+    ));
+    if res.stats.max_abs_lsb > golden::texram::ERROR_BOUND_LSB {
+        res.failures.push(format!(
+            "error {:.4} LSB against golden, bound {}",
+            res.stats.max_abs_lsb,
+            golden::texram::ERROR_BOUND_LSB
+        ));
+    }
+    res.coverage = Some(cov);
+    Ok((sim, res))
+}
+
+// ---------------------------------------------------------------------------------------
+// The document's pixel rates, measured on the chip from its page-register state.
+
+/// One measured rate against the document's.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Figure {
+    pub what: &'static str,
+    pub pixels: u64,
+    pub slots: u64,
+    /// Clock cycles from the first result to one slot after the last (the pixels' time).
+    pub cycles: u64,
+    pub pixels_per_second: f64,
+    /// The document's figure (pixels per second), where it gives one.
+    pub document: Option<f64>,
+}
+
+/// Runs `reqs` (DRF, u, v, lambda) back to back through `chip`: cycles from the first result
+/// (a warm-up request's) to the last, and the slots the chip counted after the warm-up.
+fn time_stream(chip: Texram802, reqs: &[(u8, i32, i32, i32)]) -> (u64, u64) {
+    let mut sim = Sim::new(chip);
+    sim.reset(2);
+    let (mut next, mut first, mut last, mut seen) = (0, None, 0, 0);
+    while seen < reqs.len() {
+        let d = &mut sim.dut;
+        d.req_valid.set_bool(next < reqs.len());
+        if let Some(&(drf, u, v, l)) = reqs.get(next) {
+            d.req_drf.set_bits(u64::from(drf));
+            d.req_u.set_raw(i64::from(u));
+            d.req_v.set_raw(i64::from(v));
+            d.req_lambda.set_raw(i64::from(l));
+        }
+        sim.eval();
+        if sim.dut.req_valid.is_high() && sim.dut.req_ready.is_high() {
+            next += 1;
+        }
+        if sim.dut.out_valid.q().is_high() {
+            first.get_or_insert(sim.cycle());
+            last = sim.cycle();
+            seen += 1;
+        }
+        sim.tick();
+    }
+    (last - first.unwrap_or(last), sim.dut.slots.q().bits())
+}
+
+/// A chip with a map in DRF 0 (1024 x 1024, or 512 x 512 to leave room for a second) and a
+/// 256 x 256 map in DRF 1 stored after it in every bank.
+fn figure_chip(log2: u32) -> Texram802 {
+    let mut chip = Texram802::new(TexramParams::default()).expect("default parameters");
+    let big = Drf::new(log2, log2, Border::Wrap);
+    let mut env = Drf::new(8, 8, Border::Clamp);
+    env.base_even = hdl::texram::banks_810::group_words(&big, 0);
+    env.base_odd = hdl::texram::banks_810::group_words(&big, 1);
+    chip.set_drf(0, big).expect("fits");
+    chip.set_drf(1, env).expect("fits");
+    let level0: Vec<u8> = (0..1 << 20).map(|k: u32| (k % 251) as u8).collect();
+    chip.load(0, &level0[..1 << (2 * log2)]).expect("loads");
+    if log2 < 10 {
+        chip.load(1, &level0[..1 << 16]).expect("loads");
+    }
+    chip
+}
+
+/// The rates of section 5, from the slots the chip takes: one pixel per hit access (33.3 M),
+/// scanlines of 8 pixels with 2 page faults (about 27 M), two accesses per pixel (texture and
+/// environment, 16.7 M without faults) and four (all colours from one chip, 8.3 M). The last
+/// row is what the page registers make of two maps in different rows of the same banks.
+pub fn figures() -> Vec<Figure> {
+    let texel = |x: i32| (x << 8) + 128;
+    let pixel = |u: i32, v: i32| (0u8, texel(u), texel(v), 0);
+    let mut out = Vec::new();
+    // `per` accesses per pixel; `reqs` after a warm-up access that opens rows far away.
+    let mut measure = |what, per: u64, reqs: Vec<(u8, i32, i32, i32)>, document: Option<f64>| {
+        // The two-map figure needs room for the second map.
+        let log2 = if document.is_none() { 9 } else { 10 };
+        let mut all = vec![pixel(0, 400)];
+        all.extend(&reqs);
+        let (cycles, slots) = time_stream(figure_chip(log2), &all);
+        let ns = cycles as f64 * CYCLE_PS as f64 / 1000.0;
+        let pixels = reqs.len() as u64 / per;
+        out.push(Figure {
+            what,
+            pixels,
+            slots: slots - 2,
+            cycles,
+            pixels_per_second: pixels as f64 / ns * 1e9,
+            document,
+        });
+    };
+    // Peak: a span along a scanline, every access in the rows the first opened.
+    let span: Vec<_> = (0..1000).map(|k| pixel(k % 500, 7)).collect();
+    measure("one access per pixel, no page fault", 1, span, Some(33.3e6));
+    // Scanlines of 8 pixels; each opens new rows at its start and once more half way.
+    let mut lines = Vec::new();
+    for s in 0..200 {
+        let v = 8 * s;
+        lines.extend((0..4).map(|k| pixel(100 + k, v)));
+        lines.extend((4..8).map(|k| pixel(100 + k, v + 2)));
+    }
+    measure(
+        "8 pixels and 2 page faults per scanline",
+        1,
+        lines,
+        Some(26.7e6),
+    );
+    // Two and four accesses per pixel in the open rows.
+    let two: Vec<_> = (0..2000).map(|k| pixel(k / 2 % 500, 7)).collect();
+    measure(
+        "2 accesses per pixel (texture + environment), no fault",
+        2,
+        two,
+        Some(16.7e6),
+    );
+    let four: Vec<_> = (0..4000).map(|k| pixel(k / 4 % 500, 7)).collect();
+    measure(
+        "4 accesses per pixel (all colours on one chip)",
+        4,
+        four,
+        Some(8.33e6),
+    );
+    // Texture (DRF 0) and environment (DRF 1) alternating: each access reopens its rows.
+    let alt: Vec<_> = (0..2000)
+        .map(|k| (k as u8 % 2, texel(k / 2 % 200), texel(7), 0))
+        .collect();
+    measure("texture + environment maps in different rows", 2, alt, None);
+    out
+}

@@ -164,7 +164,9 @@ fn run_chip(
 ) -> (Vec<Out>, u64) {
     use hdl::kernel::Sim;
     let tracer = vcd.map(|p| waves::VcdTracer::create(p, "texram", Default::default()).unwrap());
-    let mut sim = Sim::maybe_traced(chip, tracer).unwrap().check_schedule(true);
+    let mut sim = Sim::maybe_traced(chip, tracer)
+        .unwrap()
+        .check_schedule(true);
     sim.reset(2);
     let mut out = Vec::new();
     let mut next = 0;
@@ -262,4 +264,37 @@ fn the_chip_waveform_has_one_scope_per_unit() {
         );
     }
     waves::check::check_gtkw(&vcd, &rb).unwrap();
+}
+
+#[test]
+fn the_documents_pixel_rates_come_from_the_page_registers() {
+    let f = tb::texram::figures();
+    let rate = |what: &str| {
+        f.iter()
+            .find(|x| x.what.starts_with(what))
+            .map(|x| x.pixels_per_second / 1e6)
+            .unwrap()
+    };
+    let near = |got: f64, want: f64| (got / want - 1.0).abs() < 0.01;
+    assert!(near(rate("one access"), 33.33), "{}", rate("one access"));
+    assert!(near(rate("8 pixels"), 26.67), "{}", rate("8 pixels"));
+    assert!(near(rate("2 accesses"), 16.67));
+    assert!(near(rate("4 accesses"), 8.33));
+    // Two maps in different rows of the same banks: every access faults, half the rate.
+    assert!(near(rate("texture + environment maps"), 8.33));
+}
+
+/// The regress testbench over every configuration: no mismatch, coverage, the error bound.
+#[test]
+fn the_testbench_passes_the_chip_and_reports_full_coverage() {
+    let tb = tb::texram::TexramTb;
+    let opts = verif::RunOptions {
+        count: Some(500),
+        ..Default::default()
+    };
+    let r = verif::run_testbench(&tb, &opts, &mut |_| {}).unwrap();
+    assert!(r.passed, "{:?}", r.failures);
+    assert_eq!(r.mismatches, 0);
+    assert!(r.coverage_percent > 99.0, "{}", r.coverage_percent);
+    assert!(r.stats.max_abs_lsb <= 0.5 + 1e-9);
 }

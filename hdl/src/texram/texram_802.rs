@@ -208,7 +208,10 @@ impl Texram802 {
             for y in 0..h {
                 for x in 0..w {
                     let (bank, word) = locate(&d, lv, x, y);
-                    self.banks[bank][word as usize] = level[(y * w + x) as usize];
+                    let cell = self.banks[bank]
+                        .get_mut(word as usize)
+                        .ok_or_else(|| format!("drf {k}: level {lv} beyond bank {bank}"))?;
+                    *cell = level[(y * w + x) as usize];
                 }
             }
             level = next_level(w, h, &level);
