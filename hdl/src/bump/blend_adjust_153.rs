@@ -147,6 +147,8 @@ impl BlendAdjust {
 
     /// The adjusted pair for one blend factor's bits: `({1, b}, {0, b})`, or `({b, 0}, {b, 0})`
     /// in bypass.
+    // `(1 << f) | b` equals `^` and `+` here (b < 2^f): cargo-mutants' `|` -> `^` survives as an
+    // equivalent mutant.
     #[inline]
     fn adjust(f: u32, b: u64, bypass: bool) -> (u64, u64) {
         if bypass {
@@ -216,6 +218,15 @@ mod tests {
     use super::*;
     use crate::fx::Fx;
     use crate::kernel::Sim;
+
+    /// The instance is the name it was given (its waveform scope, `tb.blend_adjust_153`).
+    #[test]
+    fn the_instance_is_named_as_asked() {
+        let p = BlendAdjustParams::default();
+        let u = BlendAdjust::new("blend_adjust_153", p).unwrap();
+        assert_eq!((u.instance(), u.kind()), ("blend_adjust_153", "blend_adjust_153"));
+        assert_eq!(BlendAdjust::new("other", p).unwrap().instance(), "other");
+    }
 
     #[test]
     fn adjust_is_half_plus_half_b_exhaustive_f4_to_f16() {

@@ -317,3 +317,33 @@ fn upper_hex() {
     assert_eq!(format!("{x:X}"), "3FE");
     assert_eq!(format!("{x:#X}"), "0x3FE");
 }
+
+/// The modes' names are the ones the command line and the format tables use, and they
+/// parse back (a mutated name would break `--rounding`-style options and the tables).
+#[test]
+fn mode_names_are_fixed_and_parse_back() {
+    let q: Vec<&str> = Quant::ALL.iter().map(|m| m.name()).collect();
+    assert_eq!(
+        q,
+        [
+            "trunc",
+            "trunc-zero",
+            "round-half-up",
+            "round-half-zero",
+            "round-half-away",
+            "round-half-down",
+            "round-half-even"
+        ]
+    );
+    let o: Vec<&str> = Overflow::ALL.iter().map(|m| m.name()).collect();
+    assert_eq!(o, ["wrap", "saturate", "saturate-symmetric", "saturate-zero"]);
+    for m in Quant::ALL {
+        assert_eq!(m.name().parse::<Quant>(), Ok(m));
+        assert_eq!(m.to_string(), m.name());
+    }
+    for m in Overflow::ALL {
+        assert!(!m.name().is_empty());
+        assert_eq!(m.name().parse::<Overflow>(), Ok(m));
+    }
+    assert!("xyzzy".parse::<Quant>().is_err());
+}

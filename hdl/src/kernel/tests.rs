@@ -239,3 +239,12 @@ fn follow_between_formats_panics_in_debug_builds() {
     let mut narrow = Signal::new("narrow", Format::uint(8));
     narrow.follow(&wide);
 }
+
+/// A delay line is named as its parent asked: its waveform scope is that name.
+#[test]
+fn a_delay_line_is_the_instance_it_was_named() {
+    let d = Delay::new("align_3", &[("x", Format::uint(4))], 3, &["x_out"]);
+    assert_eq!(d.instance(), "align_3");
+    assert_eq!(d.kind(), "delay");
+    assert_eq!(instances(&d), [("align_3".to_string(), "delay".to_string())]);
+}
