@@ -42,6 +42,7 @@ enum Cmd {
     /// control 607, CCC decode, cache 614 with lookahead, bilinear 622).
     #[command(after_help = cmd::texread::STATS_HELP)]
     Texread(cmd::texread::TexreadArgs),
+    Texram(cmd::texram::TexramArgs),
     /// Co-simulate a unit's model and Verilog (its twin in rtl/, or --rtl FILE.v of yours):
     /// every output port compared on every cycle.
     Cosim(cmd::cosim::CosimArgs),
@@ -90,6 +91,7 @@ fn main() -> ExitCode {
         Some(Cmd::Dram(a)) => cmd::dram::run(&a),
         Some(Cmd::Ccc(c)) => cmd::ccc::run(&c),
         Some(Cmd::Texread(a)) => cmd::texread::run(&a),
+        Some(Cmd::Texram(a)) => cmd::texram::run(&a),
         Some(Cmd::Cosim(a)) => cmd::cosim::run(&a),
         Some(Cmd::Merge(a)) => cmd::merge::run(&a),
         Some(Cmd::Vectors(a)) => cmd::vectors::run(&a),

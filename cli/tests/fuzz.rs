@@ -105,6 +105,24 @@ fn fronts() -> Vec<Front> {
             files: vec![("t.ppm", ppm()), ("r.csv", reqs)],
         },
         Front {
+            name: "texram",
+            args: &[
+                "texram",
+                "--texture",
+                "{h.pgm}",
+                "--requests",
+                "{q.csv}",
+                "--out",
+                "{out}.csv",
+                "--stats",
+                "{out}.json",
+            ],
+            files: vec![
+                ("h.pgm", pgm()),
+                ("q.csv", b"u,v,lambda\n1.5,2,0.5\n-3,9,2\n".to_vec()),
+            ],
+        },
+        Front {
             name: "dram",
             args: &["dram", "--trace", "{a.csv}"],
             files: vec![("a.csv", b"addr\n0\n1\n2\n600\n601\n3\n".to_vec())],

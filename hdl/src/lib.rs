@@ -28,6 +28,11 @@
 //! | mipmap generation unit 816 (FIG. 14) with page registers 824 and shift register 826 | `mipmap/mipmap_gen_816.rs` | `mipmap_gen_816` | `mipmap_gen_816` | `tb.mipmap_gen_816` |
 //! | a level of FIG. 14a/b: adders 1402, 1410, register 1404 | `mipmap/level_fig14.rs` | `mipmap_level_fig14` = `level1` … | `mipmap_gen_816` | `tb.mipmap_gen_816.level1` |
 //! | FIFOs 1408 and 1412 | `mipmap/fifo.rs` | `fifo_1408`, `fifo_1412` | `mipmap_gen_816` | `tb.mipmap_gen_816.level1.fifo_1408` |
+//! | TEXRAM chip 802 (Schilling & Knittel Figure 8): request port, units 812, 824, 810, 818 cycle by cycle | `texram/texram_802.rs` | `texram_802` | `texram_802`; `tb/tests/texram.rs` | `tb.texram_802` |
+//! | address and control unit 812: levels, weights, border operations | `texram/address_812.rs` | scope `address_812` | `texram_802` | `tb.texram_802.address_812` |
+//! | page registers 824 | `texram/page_registers_824.rs` | scope `page_registers_824` | `texram_802` | `tb.texram_802.page_registers_824` |
+//! | banks 810 and their address decoders 822: the two-level layout | `texram/banks_810.rs` | scope `banks_810` | `texram_802` | `tb.texram_802.banks_810` |
+//! | trilinear interpolator 818 | `texram/trilinear_818.rs` | scope `trilinear_818` | `texram_802` | `tb.texram_802.trilinear_818` |
 
 pub mod fx;
 pub mod kernel;

@@ -630,3 +630,115 @@ pub fn figures() -> Vec<Figure> {
     measure("texture + environment maps in different rows", 2, alt, None);
     out
 }
+
+// ---------------------------------------------------------------------------------------
+// The machinery of `texrtl texram`.
+
+/// What `texrtl texram` measured (its `--stats`).
+#[derive(Clone, Debug, serde::Serialize)]
+pub struct TexramStats {
+    pub accesses: u64,
+    pub slots: u64,
+    /// Accesses that took a second slot (a bank they read missed its open row).
+    pub page_faults: u64,
+    /// Banks that missed their open row, summed over the accesses.
+    pub bank_misses: u64,
+    /// Accesses that asked one bank for two words (none, by the layout; counted by 812).
+    pub bank_conflicts: u64,
+    /// Slots taken by the video port (not modelled yet: 0).
+    pub video_slots: u64,
+    pub cycles: u64,
+    pub ns: u64,
+    pub pixels_per_second: f64,
+}
+
+/// A run of the chip over requests (raw sQ12.8 u, v and sQ5.8 lambda): one result per request
+/// in order, and the statistics.
+pub struct TexramRun {
+    pub values: Vec<u8>,
+    pub stats: TexramStats,
+}
+
+/// Runs `reqs` back to back through the chip holding `level0` (`2^wl x 2^hl`) with `border`,
+/// every result checked against the integer reference (a difference is an error: the command
+/// must not print a wrong texel). Traced to `vcd` when given.
+pub fn run_texram(
+    level0: &[u8],
+    (wl, hl): (u32, u32),
+    border: Border,
+    reqs: &[TexReq],
+    vcd: Option<&std::path::Path>,
+) -> Result<TexramRun, String> {
+    let mut chip = Texram802::new(TexramParams::default())?;
+    chip.set_drf(0, Drf::new(wl, hl, border))?;
+    chip.load(0, level0)?;
+    let tracer = match vcd {
+        Some(p) => Some(
+            waves::VcdTracer::create(
+                p,
+                "texram_802",
+                waves::TraceConfig {
+                    period_ps: CYCLE_PS,
+                    ..Default::default()
+                },
+            )
+            .map_err(|e| e.to_string())?,
+        ),
+        None => None,
+    };
+    let mut sim = Sim::maybe_traced(chip, tracer).map_err(|e| e.to_string())?;
+    sim.reset(2);
+    let reference = RefMipmap::build(1 << wl, 1 << hl, level0);
+    let n = reqs.len() as u64;
+    let mut values = Vec::with_capacity(reqs.len());
+    let mut spec = RunSpec::new(n, 20 * n + 100);
+    let mut wrong = None;
+    let st = run(
+        &mut sim,
+        &mut TexDriver,
+        &mut TexMonitor,
+        reqs.to_vec(),
+        &mut spec,
+        |_, ev| {
+            if let Event::Received { txn, .. } = ev {
+                let q = reqs[values.len()];
+                let (_, want) = reference.access(q.u, q.v, q.lambda, ref_border(border));
+                if txn.value != want && wrong.is_none() {
+                    wrong = Some(format!(
+                        "request {}: chip {}, reference {want}",
+                        values.len(),
+                        txn.value
+                    ));
+                }
+                values.push(txn.value);
+            }
+        },
+    )
+    .map_err(|e| e.to_string())?;
+    if let Some(w) = wrong {
+        return Err(w);
+    }
+    let d = &sim.dut;
+    let (slots, faults) = (d.slots.q().bits(), d.faults.q().bits());
+    let conflicts = d.conflicts.q().bits();
+    let ns = st.cycles * CYCLE_PS / 1000;
+    sim.finish().map_err(|e| e.to_string())?;
+    Ok(TexramRun {
+        values,
+        stats: TexramStats {
+            accesses: n,
+            slots,
+            page_faults: slots - n,
+            bank_misses: faults,
+            bank_conflicts: conflicts,
+            video_slots: 0,
+            cycles: st.cycles,
+            ns,
+            pixels_per_second: if ns == 0 {
+                0.0
+            } else {
+                n as f64 / ns as f64 * 1e9
+            },
+        },
+    })
+}

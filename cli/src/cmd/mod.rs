@@ -10,6 +10,7 @@ pub mod outputs;
 pub mod regress;
 pub mod render;
 pub mod sweep;
+pub mod texram;
 pub mod texread;
 pub mod vectors;
 pub mod widths;

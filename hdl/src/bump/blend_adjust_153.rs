@@ -224,7 +224,10 @@ mod tests {
     fn the_instance_is_named_as_asked() {
         let p = BlendAdjustParams::default();
         let u = BlendAdjust::new("blend_adjust_153", p).unwrap();
-        assert_eq!((u.instance(), u.kind()), ("blend_adjust_153", "blend_adjust_153"));
+        assert_eq!(
+            (u.instance(), u.kind()),
+            ("blend_adjust_153", "blend_adjust_153")
+        );
         assert_eq!(BlendAdjust::new("other", p).unwrap().instance(), "other");
     }
 

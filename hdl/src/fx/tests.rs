@@ -336,7 +336,10 @@ fn mode_names_are_fixed_and_parse_back() {
         ]
     );
     let o: Vec<&str> = Overflow::ALL.iter().map(|m| m.name()).collect();
-    assert_eq!(o, ["wrap", "saturate", "saturate-symmetric", "saturate-zero"]);
+    assert_eq!(
+        o,
+        ["wrap", "saturate", "saturate-symmetric", "saturate-zero"]
+    );
     for m in Quant::ALL {
         assert_eq!(m.name().parse::<Quant>(), Ok(m));
         assert_eq!(m.to_string(), m.name());

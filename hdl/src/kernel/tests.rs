@@ -246,5 +246,8 @@ fn a_delay_line_is_the_instance_it_was_named() {
     let d = Delay::new("align_3", &[("x", Format::uint(4))], 3, &["x_out"]);
     assert_eq!(d.instance(), "align_3");
     assert_eq!(d.kind(), "delay");
-    assert_eq!(instances(&d), [("align_3".to_string(), "delay".to_string())]);
+    assert_eq!(
+        instances(&d),
+        [("align_3".to_string(), "delay".to_string())]
+    );
 }

@@ -138,8 +138,9 @@ pub struct Texram802 {
     bank: Access,
     left: Reg,
     fault: Reg,
-    /// Counters: slots and faulting banks since reset.
+    /// Counters: slots, faulting banks and bank conflicts since reset.
     pub slots: Reg,
+    pub conflicts: Reg,
     pub faults: Reg,
     /// 818's output registers.
     pub out_valid: Reg,
@@ -172,6 +173,7 @@ impl Texram802 {
             left: Reg::new("left", Format::uint(5)),
             fault: Reg::new("fault", Format::uint(1)),
             slots: Reg::new("slots", Format::uint(40)),
+            conflicts: Reg::new("conflicts", Format::uint(40)),
             faults: Reg::new("faults", Format::uint(40)),
             out_valid: Reg::new("out_valid", Format::uint(1)),
             out_value: Reg::new("out_value", Format::uint(8)),
@@ -232,12 +234,15 @@ impl Texram802 {
         let (u, v, l) = (self.req_u.raw(), self.req_v.raw(), self.req_lambda.raw());
         let fp = Footprint::of(&d, u as i32, v as i32, l as i32);
         let (mut read, mut src) = (0u64, 0u64);
+        let mut conflict = false;
         for (n, lv) in [fp.fine, fp.coarse].into_iter().enumerate() {
             for (t, at) in fp.texels[n].iter().enumerate() {
                 let from = match at {
                     Some((x, y)) => {
                         let (bank, word) = locate(&d, lv, *x, *y);
-                        self.addr.word[bank].set_next_bits(u64::from(word));
+                        let w = &mut self.addr.word[bank];
+                        conflict |= read >> bank & 1 == 1 && w.next_bits() != u64::from(word);
+                        w.set_next_bits(u64::from(word));
                         read |= 1 << bank;
                         bank as u64
                     }
@@ -248,6 +253,9 @@ impl Texram802 {
         }
         self.addr.read.set_next_bits(read);
         self.addr.src.set_next_bits(src);
+        // The layout makes this impossible; counted so that a run shows it.
+        self.conflicts
+            .set_next_bits(self.conflicts.q().bits() + u64::from(conflict));
         let w = [fp.a[0], fp.b[0], fp.a[1], fp.b[1], fp.f];
         let packed = w
             .iter()
@@ -349,6 +357,7 @@ impl Module for Texram802 {
             &mut self.fault,
             &mut self.slots,
             &mut self.faults,
+            &mut self.conflicts,
         ] {
             r.tick(reset);
         }
@@ -369,6 +378,7 @@ impl Module for Texram802 {
             Output: self.req_ready);
         v.enter("address_812", "address_812");
         self.addr.visit(v);
+        v.reg(&self.conflicts);
         v.leave();
         v.enter("page_registers_824", "page_registers_824");
         for r in &self.open {

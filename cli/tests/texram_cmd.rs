@@ -1,0 +1,149 @@
+//! `texrtl texram` run as a user runs it: results against the chip's testbench reference,
+//! the statistics, the waveform's scopes, and bad input refused with one line, exit 2 and no
+//! file.
+
+use std::path::{Path, PathBuf};
+use std::process::{Command, Output};
+
+fn dir(name: &str) -> PathBuf {
+    let d = std::env::temp_dir().join(format!("texrtl-texram-{}-{name}", std::process::id()));
+    let _ = std::fs::remove_dir_all(&d);
+    std::fs::create_dir_all(&d).unwrap();
+    d
+}
+
+fn texrtl(args: &[&str]) -> Output {
+    Command::new(env!("CARGO_BIN_EXE_texrtl"))
+        .args(args)
+        .output()
+        .expect("runs")
+}
+
+fn s(p: &Path) -> &str {
+    p.to_str().unwrap()
+}
+
+/// A 64 x 32 PGM and four requests in `d`.
+fn inputs(d: &Path) -> (PathBuf, PathBuf) {
+    let t = d.join("t.pgm");
+    let px: Vec<u8> = (0..64 * 32u32)
+        .map(|k| ((k % 64) * 3 + (k / 64) * 5) as u8)
+        .collect();
+    std::fs::write(&t, formats::netpbm::encode(64, 32, &px)).unwrap();
+    let r = d.join("r.csv");
+    std::fs::write(
+        &r,
+        "u,v,lambda\n1.5,1.5,0\n10.25,7.75,1.5\n-3,40,2\n63.9,31.9,10\n",
+    )
+    .unwrap();
+    (t, r)
+}
+
+#[test]
+fn results_statistics_and_waveform() {
+    let d = dir("ok");
+    let (t, r) = inputs(&d);
+    let (o, st, vcd) = (d.join("o.csv"), d.join("s.json"), d.join("w.vcd"));
+    let args = [
+        "texram",
+        "--texture",
+        s(&t),
+        "--requests",
+        s(&r),
+        "--out",
+        s(&o),
+    ];
+    let mut a = args.to_vec();
+    a.extend(["--stats", s(&st), "--vcd", s(&vcd), "--border", "mirror"]);
+    let out = texrtl(&a);
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    let csv = std::fs::read_to_string(&o).unwrap();
+    let rows: Vec<&str> = csv.lines().collect();
+    assert_eq!(rows[0], "u,v,lambda,r,g,b,a");
+    assert_eq!(rows.len(), 5);
+    // At a texel centre with lambda 0 the result is that texel: (1, 1) = 3 + 5.
+    assert_eq!(rows[1], "1.5,1.5,0,8,8,8,8");
+    assert!(
+        rows[4].starts_with("63.8984375,31.8984375,10,"),
+        "{}",
+        rows[4]
+    );
+    let j: serde_json::Value = serde_json::from_slice(&std::fs::read(&st).unwrap()).unwrap();
+    for k in [
+        "accesses",
+        "slots",
+        "page_faults",
+        "bank_misses",
+        "bank_conflicts",
+        "video_slots",
+        "cycles",
+        "ns",
+        "pixels_per_second",
+    ] {
+        assert!(j.get(k).is_some(), "stats lack {k}");
+    }
+    assert_eq!(j["accesses"], 4);
+    assert_eq!(j["bank_conflicts"], 0);
+    let slots = j["slots"].as_u64().unwrap();
+    assert_eq!(slots, 4 + j["page_faults"].as_u64().unwrap());
+    let rb = waves::check::read_vcd(&vcd).unwrap();
+    assert!(rb
+        .vars
+        .keys()
+        .any(|n| n.starts_with("tb.texram_802.page_registers_824.")));
+}
+
+#[test]
+fn bad_input_is_one_line_exit_2_and_no_file() {
+    let d = dir("bad");
+    let (t, r) = inputs(&d);
+    let odd = d.join("odd.pgm");
+    std::fs::write(&odd, formats::netpbm::encode(3, 2, &[0; 6])).unwrap();
+    let far = d.join("far.csv");
+    std::fs::write(&far, "u,v,lambda\n1,1,11\n").unwrap();
+    let head = d.join("head.csv");
+    std::fs::write(&head, "u,v\n1,1\n").unwrap();
+    let o = d.join("o.csv");
+    let w = d.join("w.vcd");
+    let cases: [(&Path, &Path, &[&str], &str); 6] = [
+        (
+            &t,
+            &r,
+            &["--config", "index"],
+            "--config index: not modelled yet",
+        ),
+        (&t, &r, &["--config", "bogus"], "--config bogus"),
+        (&t, &r, &["--border", "border:256"], "--border border:256"),
+        (&odd, &r, &[], "width 3 is not a power of two"),
+        (&t, &far, &[], "lambda 11 outside"),
+        (&t, &head, &[], "header"),
+    ];
+    for (tex, req, extra, needle) in cases {
+        let mut a = vec![
+            "texram",
+            "--texture",
+            s(tex),
+            "--requests",
+            s(req),
+            "--out",
+            s(&o),
+        ];
+        a.extend_from_slice(extra);
+        a.extend(["--vcd", s(&w)]);
+        let out = texrtl(&a);
+        let err = String::from_utf8_lossy(&out.stderr);
+        assert_eq!(out.status.code(), Some(2), "{a:?}: {err}");
+        assert_eq!(err.trim_end().lines().count(), 1, "{err}");
+        assert!(err.contains(needle), "{needle}: {err}");
+        let left: Vec<_> = std::fs::read_dir(&d)
+            .unwrap()
+            .map(|e| e.unwrap().file_name().to_string_lossy().into_owned())
+            .filter(|n| n.starts_with("o.") || n.starts_with("w."))
+            .collect();
+        assert!(left.is_empty(), "{a:?} left {left:?}");
+    }
+}
