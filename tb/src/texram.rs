@@ -91,6 +91,19 @@ impl RefMipmap {
 
     /// The access at raw sQ12.8 `u`, `v` and sQ5.8 `lambda`: the eight texels and the result.
     pub fn access(&self, u: i32, v: i32, lambda: i32, border: RefBorder) -> ([u8; 8], u8) {
+        self.access_mapped(u, v, lambda, border, &|t| t)
+    }
+
+    /// The same with each texel replaced by `map(texel)` before it is weighed (one component
+    /// of a colour table, for the index configuration); the texels returned are unmapped.
+    pub fn access_mapped(
+        &self,
+        u: i32,
+        v: i32,
+        lambda: i32,
+        border: RefBorder,
+        map: &dyn Fn(u8) -> u8,
+    ) -> ([u8; 8], u8) {
         let l = i64::from(lambda).div_euclid(256);
         let (fine, f) = if l < 0 {
             (0, 0)
@@ -120,7 +133,7 @@ impl RefMipmap {
             for (t, (di, dj, w)) in corners.into_iter().enumerate() {
                 let tex = self.texel(k as usize, i + di, j + dj, border);
                 texels[4 * n + t] = tex;
-                sum += i64::from(tex) * w * wl;
+                sum += i64::from(map(tex)) * w * wl;
             }
         }
         let value = (sum + (1 << 23)) / (1 << 24);

@@ -15,6 +15,8 @@
 //! * [`page_registers_824`]: one open row per bank; an access costs one slot, two if any bank
 //!   it reads misses its open row;
 //! * [`trilinear_818`]: the trilinear interpolator, one rounding of the exact weighted sum;
+//! * [`clut_814`]: the colour look-up table of the index configuration, filtered after look-up;
+//! * [`output_820`]: the output stage's eq. 5, `C_d = (I_d | k_T | 1) . T`;
 //! * [`stub`]: [`stub::TexramStub`], a behavioural model of the chip made of the above, exact
 //!   in its texels, weights, result and slot count but not cycle by cycle. It stands in for the
 //!   chip until the cycle-accurate one exists (luminance configuration only).
@@ -32,6 +34,8 @@
 
 pub mod address_812;
 pub mod banks_810;
+pub mod clut_814;
+pub mod output_820;
 pub mod page_registers_824;
 pub mod stub;
 pub mod texram_802;
@@ -60,6 +64,18 @@ pub struct Drf {
     pub base_even: u32,
     pub base_odd: u32,
     pub border: Border,
+    /// How the stored texels are read (section 6).
+    pub config: Config,
+}
+
+/// The configurations of section 6 modelled so far.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Default)]
+pub enum Config {
+    /// 8-bit luminance: the result in all four components.
+    #[default]
+    Luminance,
+    /// 8-bit indices into the CLUT 814, filtered per component after the look-up.
+    Index,
 }
 
 impl Drf {
@@ -71,6 +87,7 @@ impl Drf {
             base_even: 0,
             base_odd: 0,
             border,
+            config: Config::Luminance,
         }
     }
 
@@ -143,8 +160,10 @@ pub struct TexramReply {
     pub a: [u8; 2],
     pub b: [u8; 2],
     pub f: u8,
-    /// The trilinear interpolator 818's result.
+    /// The trilinear interpolator 818's result (luminance; R in index mode).
     pub value: u8,
+    /// The result's R, G, B and alpha (luminance: the value four times).
+    pub rgba: [u8; 4],
     /// Access slots taken (1, or 2 after a page fault).
     pub slots: u32,
     /// Banks whose open row missed.

@@ -6,9 +6,10 @@
 
 use super::address_812::Footprint;
 use super::banks_810::{bank_words, locate, BANKS};
+use super::clut_814::Clut;
 use super::page_registers_824::PageRegisters;
 use super::trilinear_818::trilinear;
-use super::{Border, Drf, TexramAccess, TexramReply, TexramRequest, DRFS};
+use super::{Border, Config, Drf, TexramAccess, TexramReply, TexramRequest, DRFS};
 
 /// The chip's state: DRFs, bank contents, open rows and counters.
 #[derive(Clone, Debug)]
@@ -16,6 +17,7 @@ pub struct TexramStub {
     drfs: [Option<Drf>; DRFS],
     banks: Vec<Vec<u8>>,
     pages: PageRegisters,
+    clut: Clut,
     slots: u64,
     accesses: u64,
     faults: u64,
@@ -57,6 +59,7 @@ impl TexramStub {
                 .map(|b| vec![0; bank_words(b) as usize])
                 .collect(),
             pages: PageRegisters::new(),
+            clut: Clut::identity(),
             slots: 0,
             accesses: 0,
             faults: 0,
@@ -108,6 +111,11 @@ impl TexramStub {
             .ok_or_else(|| format!("drf {k}: not set"))
     }
 
+    /// Loads the CLUT 814 (entries R, G, B, alpha from the top byte down).
+    pub fn set_clut(&mut self, clut: Clut) {
+        self.clut = clut;
+    }
+
     /// Accesses so far, and the banks that missed their open row in them.
     pub fn counts(&self) -> (u64, u64) {
         (self.accesses, self.faults)
@@ -149,6 +157,11 @@ impl TexramAccess for TexramStub {
         self.slots += u64::from(cost.slots);
         self.accesses += 1;
         self.faults += u64::from(cost.faults);
+        let value = trilinear(&texels, fp.a, fp.b, fp.f);
+        let rgba = match d.config {
+            Config::Luminance => [value; 4],
+            Config::Index => self.clut.filter(&texels, fp.a, fp.b, fp.f),
+        };
         Ok(TexramReply {
             fine: fp.fine,
             coarse: fp.coarse,
@@ -156,7 +169,8 @@ impl TexramAccess for TexramStub {
             a: fp.a,
             b: fp.b,
             f: fp.f,
-            value: trilinear(&texels, fp.a, fp.b, fp.f),
+            value: rgba[0],
+            rgba,
             slots: cost.slots,
             faults: cost.faults,
         })

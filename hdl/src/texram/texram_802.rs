@@ -20,9 +20,10 @@
 
 use super::address_812::Footprint;
 use super::banks_810::{bank_words, locate, BANKS, ROW_WORDS};
+use super::clut_814::Clut;
 use super::stub::next_level;
 use super::trilinear_818::trilinear;
-use super::{Border, Drf, DRFS};
+use super::{Border, Config, Drf, DRFS};
 use crate::fx::Format;
 use crate::kernel::{Module, Reg, Signal, Visitor};
 use crate::signals;
@@ -69,6 +70,8 @@ struct Access {
     src: Reg,
     weights: Reg,
     colour: Reg,
+    /// The DRF's configuration: 1 for index (CLUT 814), 0 for luminance.
+    index: Reg,
 }
 
 impl Access {
@@ -86,6 +89,7 @@ impl Access {
             // a0, b0, a1, b1, f in bytes 0-4.
             weights: Reg::new("weights", Format::uint(40)),
             colour: Reg::new("colour", Format::uint(8)),
+            index: Reg::new("index", Format::uint(1)),
         }
     }
 
@@ -97,6 +101,7 @@ impl Access {
         self.src.set_next_bits(o.src.q().bits());
         self.weights.set_next_bits(o.weights.q().bits());
         self.colour.set_next_bits(o.colour.q().bits());
+        self.index.set_next_bits(o.index.q().bits());
     }
 
     fn tick(&mut self, reset: bool) {
@@ -108,10 +113,11 @@ impl Access {
         self.src.tick(reset);
         self.weights.tick(reset);
         self.colour.tick(reset);
+        self.index.tick(reset);
     }
 
     fn visit(&self, v: &mut dyn Visitor) {
-        signals!(v; Reg: self.valid, self.read, self.src, self.weights, self.colour);
+        signals!(v; Reg: self.valid, self.read, self.src, self.weights, self.colour, self.index);
         for w in &self.word {
             v.reg(w);
         }
@@ -124,6 +130,7 @@ pub struct Texram802 {
     p: TexramParams,
     drfs: [Option<Drf>; DRFS],
     banks: Vec<Vec<u8>>,
+    clut: Clut,
     pub req_valid: Signal,
     pub req_ready: Signal,
     pub req_drf: Signal,
@@ -145,6 +152,8 @@ pub struct Texram802 {
     /// 818's output registers.
     pub out_valid: Reg,
     pub out_value: Reg,
+    /// R, G, B, alpha from the top byte down (luminance: the value four times).
+    pub out_rgba: Reg,
     pub out_texels: Reg,
     pub out_fault: Reg,
 }
@@ -158,6 +167,7 @@ impl Texram802 {
             banks: (0..BANKS)
                 .map(|b| vec![0; bank_words(b) as usize])
                 .collect(),
+            clut: Clut::identity(),
             req_valid: Signal::bit("req_valid"),
             req_ready: Signal::bit("req_ready"),
             req_drf: Signal::new("req_drf", Format::uint(3)),
@@ -177,6 +187,7 @@ impl Texram802 {
             faults: Reg::new("faults", Format::uint(40)),
             out_valid: Reg::new("out_valid", Format::uint(1)),
             out_value: Reg::new("out_value", Format::uint(8)),
+            out_rgba: Reg::new("out_rgba", Format::uint(32)),
             out_texels: Reg::new("out_texels", Format::uint(64)),
             out_fault: Reg::new("out_fault", Format::uint(1)),
         })
@@ -191,6 +202,11 @@ impl Texram802 {
             .ok_or_else(|| format!("drf {k}: 0..{DRFS}"))?;
         *slot = Some(drf);
         Ok(())
+    }
+
+    /// Loads the CLUT 814.
+    pub fn set_clut(&mut self, clut: Clut) {
+        self.clut = clut;
     }
 
     /// Loads level 0 of DRF `k`'s map and the levels above it (as the stub does).
@@ -267,6 +283,7 @@ impl Texram802 {
             _ => 0,
         };
         self.addr.colour.set_next_bits(u64::from(colour));
+        self.addr.index.set_next_bool(d.config == Config::Index);
     }
 
     /// 824: the access moving into the banks: its cost in slots, the rows it opens.
@@ -304,8 +321,15 @@ impl Texram802 {
             };
         }
         let w = self.bank.weights.q().bits().to_le_bytes();
-        let value = trilinear(&texels, [w[0], w[2]], [w[1], w[3]], w[4]);
-        self.out_value.set_next_bits(u64::from(value));
+        let (a, b, f) = ([w[0], w[2]], [w[1], w[3]], w[4]);
+        let rgba = if self.bank.index.q().is_high() {
+            self.clut.filter(&texels, a, b, f)
+        } else {
+            [trilinear(&texels, a, b, f); 4]
+        };
+        self.out_value.set_next_bits(u64::from(rgba[0]));
+        self.out_rgba
+            .set_next_bits(u64::from(u32::from_be_bytes(rgba)));
         self.out_texels.set_next_bits(u64::from_le_bytes(texels));
         self.out_fault.set_next_bits(self.fault.q().bits());
     }
@@ -364,6 +388,7 @@ impl Module for Texram802 {
         for r in [
             &mut self.out_valid,
             &mut self.out_value,
+            &mut self.out_rgba,
             &mut self.out_texels,
             &mut self.out_fault,
         ] {
@@ -391,7 +416,7 @@ impl Module for Texram802 {
         signals!(v; Reg: self.left, self.fault);
         v.leave();
         v.enter("trilinear_818", "trilinear_818");
-        signals!(v; Reg: self.out_valid, self.out_value, self.out_texels, self.out_fault);
+        signals!(v; Reg: self.out_valid, self.out_value, self.out_rgba, self.out_texels, self.out_fault);
         v.leave();
         v.leave();
     }

@@ -1,0 +1,61 @@
+//! The output and combination stage 820 (section 6, eq. 5): the texture colour T combined
+//! with the interpolated illumination, `C_d = (I_d | k_T | 1) . T`, where `|` is the DRF's
+//! choice of one of the three and `.` the multiplication of two 8-bit values that stand for
+//! 0 ..= 1. [C] `x . y = round(x y / 255)`, exactly, half up, with no division:
+//! `t = x y + 128; (t + (t >> 8)) >> 8` (so 255 is the neutral element: `255 . y = y`).
+
+/// What eq. 5 multiplies the texture colour by (a DRF field).
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Default)]
+pub enum Modulate {
+    /// The interpolated diffuse illumination `I_d` from the rasterizer.
+    Illumination,
+    /// The DRF's constant `k_T`.
+    Constant(u8),
+    /// 1: the texture colour alone.
+    #[default]
+    One,
+}
+
+/// `round(x y / 255)`, exact for all 8-bit x and y.
+#[inline]
+pub fn mul255(x: u8, y: u8) -> u8 {
+    let t = u32::from(x) * u32::from(y) + 128;
+    ((t + (t >> 8)) >> 8) as u8
+}
+
+/// Eq. 5 for one component: `(I_d | k_T | 1) . T`.
+pub fn combine(m: Modulate, illumination: u8, texture: u8) -> u8 {
+    let factor = match m {
+        Modulate::Illumination => illumination,
+        Modulate::Constant(k) => k,
+        Modulate::One => 255,
+    };
+    mul255(factor, texture)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn mul255_rounds_the_exact_quotient_half_up_for_every_pair() {
+        for x in 0..=255u32 {
+            for y in 0..=255u32 {
+                // round(x y / 255) half up, as integers: floor((2 x y + 255) / 510).
+                let want = (2 * x * y + 255) / 510;
+                assert_eq!(u32::from(mul255(x as u8, y as u8)), want, "{x} . {y}");
+            }
+        }
+    }
+
+    #[test]
+    fn one_is_neutral_and_the_choices_select() {
+        for t in 0..=255u8 {
+            assert_eq!(combine(Modulate::One, 0, t), t);
+            assert_eq!(combine(Modulate::Constant(255), 0, t), t);
+            assert_eq!(combine(Modulate::Illumination, 0, t), 0);
+            assert_eq!(combine(Modulate::Illumination, 255, t), t);
+        }
+        assert_eq!(combine(Modulate::Constant(128), 0, 200), 100);
+    }
+}
