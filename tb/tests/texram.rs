@@ -351,3 +351,109 @@ fn index_mode_filters_each_component_after_the_lookup() {
         }
     }
 }
+
+/// The colour configurations agree component by component: four component planes in the
+/// quadrants of one chip (planar, four accesses a pixel), one plane per chip in lock-step
+/// (one slot a pixel), and one luminance chip per plane. The literal layout of section 6
+/// (R, G, B, alpha in a 2x2 cell) gives the same level-0 colours but asks a bank for two
+/// words in most accesses (all but those of the smallest levels and clamped corners).
+#[test]
+fn colour_configurations_agree_component_by_component() {
+    use hdl::kernel::Sim;
+    use hdl::texram::lockstep::TexramLockstep;
+    use hdl::texram::texram_802::TexramParams;
+    use hdl::texram::Config;
+    let mut stim = verif::seeded_stimulus("texram colour");
+    let (pl, n) = (5u32, 32usize);
+    let planes: [Vec<u8>; 4] = std::array::from_fn(|_| stim.draw_n(&any::<u8>(), n * n));
+    let mut planar0 = vec![0u8; 4 * n * n];
+    let mut literal0 = vec![0u8; 4 * n * n];
+    for c in 0..4 {
+        for y in 0..n {
+            for x in 0..n {
+                let t = planes[c][y * n + x];
+                planar0[(y + n * (c >> 1)) * 2 * n + x + n * (c & 1)] = t;
+                literal0[(2 * y + (c >> 1)) * 2 * n + 2 * x + (c & 1)] = t;
+            }
+        }
+    }
+    let stub = |config, level0: &[u8]| {
+        let mut s = TexramStub::new();
+        let mut d = Drf::new(pl + 1, pl + 1, Border::Clamp);
+        d.config = config;
+        s.set_drf(0, d).unwrap();
+        s.load(0, level0).unwrap();
+        s
+    };
+    let (mut planar, mut literal) = (
+        stub(Config::Planar, &planar0),
+        stub(Config::Literal, &literal0),
+    );
+    let mut lum: Vec<TexramStub> = planes
+        .iter()
+        .map(|p| {
+            let mut s = TexramStub::new();
+            s.set_drf(0, Drf::new(pl, pl, Border::Clamp)).unwrap();
+            s.load(0, p).unwrap();
+            s
+        })
+        .collect();
+    let mut group = TexramLockstep::new(TexramParams::default()).unwrap();
+    group
+        .load(0, Drf::new(pl, pl, Border::Clamp), &planes)
+        .unwrap();
+    let reqs = stim.draw_n(&requests(pl, pl), 2000);
+    // The lock-step chips, back to back.
+    let mut sim = Sim::new(group).check_schedule(true);
+    sim.reset(2);
+    let (mut next, mut rgba) = (0, Vec::new());
+    while rgba.len() < reqs.len() {
+        assert!(sim.cycle() < 40_000, "stalled");
+        sim.dut.req_valid.set_bool(next < reqs.len());
+        if let Some(&(u, v, l)) = reqs.get(next) {
+            sim.dut.req_u.set_raw(i64::from(u));
+            sim.dut.req_v.set_raw(i64::from(v));
+            sim.dut.req_lambda.set_raw(i64::from(l));
+        }
+        sim.eval();
+        if sim.dut.req_valid.is_high() && sim.dut.req_ready.is_high() {
+            next += 1;
+        }
+        if sim.dut.out_valid.is_high() {
+            rgba.push((sim.dut.out_rgba.bits() as u32).to_be_bytes());
+        }
+        sim.tick();
+    }
+    assert!(!sim.dut.out_of_step.q().is_high());
+    let mut level0_requests = 0;
+    for (k, &(u, v, lambda)) in reqs.iter().enumerate() {
+        let q = TexramRequest {
+            drf: 0,
+            u,
+            v,
+            lambda,
+        };
+        let p = planar.access(q).unwrap();
+        let each: Vec<u8> = lum.iter_mut().map(|s| s.access(q).unwrap().value).collect();
+        assert_eq!(p.rgba.to_vec(), each, "planar, request {k}");
+        assert_eq!(rgba[k], p.rgba, "lock-step chips, request {k}");
+        let l = literal.access(q).unwrap();
+        if lambda <= 0 {
+            // Level 0 only (f = 0): the literal layout holds the same colours there.
+            assert_eq!(l.rgba, p.rgba, "literal, request {k}");
+            level0_requests += 1;
+        }
+    }
+    assert!(level0_requests > 50);
+    assert_eq!(literal.counts().0, reqs.len() as u64);
+    let conflicts = literal.conflicts();
+    // All but the accesses to the 1-texel levels and clamped corners.
+    assert!(
+        conflicts > 2 * reqs.len() as u64,
+        "{conflicts} conflicting component accesses"
+    );
+    assert_eq!(planar.conflicts(), 0);
+    // Planar: four accesses a pixel; lock-step: one slot a pixel on each chip.
+    assert!(planar.slots() >= 4 * reqs.len() as u64);
+    assert!(literal.slots() > planar.slots());
+}

@@ -35,6 +35,7 @@
 pub mod address_812;
 pub mod banks_810;
 pub mod clut_814;
+pub mod lockstep;
 pub mod output_820;
 pub mod page_registers_824;
 pub mod stub;
@@ -76,6 +77,38 @@ pub enum Config {
     Luminance,
     /// 8-bit indices into the CLUT 814, filtered per component after the look-up.
     Index,
+    /// True colour, [C] the conflict-free reading: the DRF's space holds four component
+    /// planes of half its width and height in its quadrants (R top left, G top right, B
+    /// bottom left, alpha bottom right); four accesses per pixel.
+    Planar,
+    /// True colour as section 6 prints it: R, G, B, alpha of a texel in one 2x2 cell, so the
+    /// neighbours of a component sit in the same bank: every access conflicts (reported).
+    Literal,
+}
+
+impl Config {
+    /// Where texel (x, y) of level `k` of component `c`'s map (`plane`) is stored, in the
+    /// level-k coordinates of the DRF's whole space.
+    pub fn place(self, plane: &Drf, c: u32, k: u32, x: u32, y: u32) -> (u32, u32) {
+        let (w, h) = plane.level_size(k);
+        match self {
+            Config::Luminance | Config::Index => (x, y),
+            Config::Planar => (x + w * (c & 1), y + h * (c >> 1)),
+            Config::Literal => (2 * x + (c & 1), 2 * y + (c >> 1)),
+        }
+    }
+}
+
+impl Drf {
+    /// The map of one colour component (planar, literal): half the width and height.
+    pub fn component_map(&self) -> Drf {
+        Drf {
+            width_log2: self.width_log2.saturating_sub(1),
+            height_log2: self.height_log2.saturating_sub(1),
+            config: Config::Luminance,
+            ..*self
+        }
+    }
 }
 
 impl Drf {
@@ -105,6 +138,10 @@ impl Drf {
     }
 
     pub fn validate(&self) -> Result<(), String> {
+        let colour = matches!(self.config, Config::Planar | Config::Literal);
+        if colour && (self.width_log2 == 0 || self.height_log2 == 0) {
+            return Err("a planar or literal colour map needs at least 2 x 2 texels".into());
+        }
         if self.width_log2 > 10 || self.height_log2 > 10 {
             return Err(format!(
                 "map {}x{}: at most 1024 x 1024 per chip",

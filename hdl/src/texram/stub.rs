@@ -7,7 +7,7 @@
 use super::address_812::Footprint;
 use super::banks_810::{bank_words, locate, BANKS};
 use super::clut_814::Clut;
-use super::page_registers_824::PageRegisters;
+use super::page_registers_824::{Cost, PageRegisters};
 use super::trilinear_818::trilinear;
 use super::{Border, Config, Drf, TexramAccess, TexramReply, TexramRequest, DRFS};
 
@@ -21,6 +21,7 @@ pub struct TexramStub {
     slots: u64,
     accesses: u64,
     faults: u64,
+    conflicts: u64,
 }
 
 impl Default for TexramStub {
@@ -63,6 +64,7 @@ impl TexramStub {
             slots: 0,
             accesses: 0,
             faults: 0,
+            conflicts: 0,
         }
     }
 
@@ -116,6 +118,52 @@ impl TexramStub {
         self.clut = clut;
     }
 
+    /// Reads the eight texels of `fp` (texel (x, y) of level k stored where `place` says, in
+    /// the layout of `d`): each bank one word per slot, so a bank asked for two words (the
+    /// literal colour layout) takes a second round; each round one slot, two on a page fault.
+    fn read(
+        &mut self,
+        d: &Drf,
+        fp: &Footprint,
+        colour: u8,
+        place: impl Fn(u32, u32, u32) -> (u32, u32),
+    ) -> ([u8; 8], Cost) {
+        let mut texels = [colour; 8];
+        let mut words: [Vec<u32>; BANKS] = Default::default();
+        for (n, k) in [fp.fine, fp.coarse].into_iter().enumerate() {
+            for (t, at) in fp.texels[n].iter().enumerate() {
+                if let Some((x, y)) = at {
+                    let (gx, gy) = place(k, *x, *y);
+                    let (bank, w) = locate(d, k, gx, gy);
+                    if !words[bank].contains(&w) {
+                        words[bank].push(w);
+                    }
+                    texels[4 * n + t] = self.banks[bank][w as usize];
+                }
+            }
+        }
+        let rounds = words.iter().map(Vec::len).max().unwrap_or(0).max(1);
+        if rounds > 1 {
+            self.conflicts += 1;
+        }
+        let mut cost = Cost {
+            slots: 0,
+            faults: 0,
+        };
+        for r in 0..rounds {
+            let round: [Option<u32>; BANKS] = std::array::from_fn(|b| words[b].get(r).copied());
+            let c = self.pages.access(&round);
+            cost.slots += c.slots;
+            cost.faults += c.faults;
+        }
+        (texels, cost)
+    }
+
+    /// Accesses that asked a bank for two words (none but in the literal colour layout).
+    pub fn conflicts(&self) -> u64 {
+        self.conflicts
+    }
+
     /// Accesses so far, and the banks that missed their open row in them.
     pub fn counts(&self) -> (u64, u64) {
         (self.accesses, self.faults)
@@ -136,32 +184,36 @@ impl TexramAccess for TexramStub {
     fn access(&mut self, req: TexramRequest) -> Result<TexramReply, String> {
         req.validate()?;
         let d = self.drf(usize::from(req.drf))?;
-        let fp = Footprint::of(&d, req.u, req.v, req.lambda);
         let colour = match d.border {
             Border::Colour(c) => c,
             _ => 0,
         };
-        let mut texels = [colour; 8];
-        let mut word = [None; BANKS];
-        for (n, k) in [fp.fine, fp.coarse].into_iter().enumerate() {
-            for (t, at) in fp.texels[n].iter().enumerate() {
-                if let Some((x, y)) = at {
-                    let (bank, w) = locate(&d, k, *x, *y);
-                    debug_assert!(word[bank].is_none_or(|o| o == w), "bank conflict");
-                    word[bank] = Some(w);
-                    texels[4 * n + t] = self.banks[bank][w as usize];
-                }
-            }
-        }
-        let cost = self.pages.access(&word);
-        self.slots += u64::from(cost.slots);
-        self.accesses += 1;
-        self.faults += u64::from(cost.faults);
-        let value = trilinear(&texels, fp.a, fp.b, fp.f);
-        let rgba = match d.config {
-            Config::Luminance => [value; 4],
-            Config::Index => self.clut.filter(&texels, fp.a, fp.b, fp.f),
+        // Planar and literal colour: each component is a map of half the DRF's size, stored
+        // in a quadrant (planar) or interleaved in 2x2 cells (literal); one access each.
+        let (plane, parts) = match d.config {
+            Config::Luminance | Config::Index => (d, 1),
+            Config::Planar | Config::Literal => (d.component_map(), 4),
         };
+        let mut rgba = [0u8; 4];
+        let (mut first, mut slots, mut faults) = (None, 0, 0);
+        for c in 0..parts {
+            let fp = Footprint::of(&plane, req.u, req.v, req.lambda);
+            let place = |k: u32, x: u32, y: u32| d.config.place(&plane, c, k, x, y);
+            let (texels, cost) = self.read(&d, &fp, colour, place);
+            slots += cost.slots;
+            faults += cost.faults;
+            let value = trilinear(&texels, fp.a, fp.b, fp.f);
+            match d.config {
+                Config::Luminance => rgba = [value; 4],
+                Config::Index => rgba = self.clut.filter(&texels, fp.a, fp.b, fp.f),
+                Config::Planar | Config::Literal => rgba[c as usize] = value,
+            }
+            first.get_or_insert((fp, texels));
+        }
+        let (fp, texels) = first.expect("at least one part");
+        self.slots += u64::from(slots);
+        self.accesses += 1;
+        self.faults += u64::from(faults);
         Ok(TexramReply {
             fine: fp.fine,
             coarse: fp.coarse,
@@ -171,8 +223,8 @@ impl TexramAccess for TexramStub {
             f: fp.f,
             value: rgba[0],
             rgba,
-            slots: cost.slots,
-            faults: cost.faults,
+            slots,
+            faults,
         })
     }
 

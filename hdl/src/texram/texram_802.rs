@@ -127,6 +127,7 @@ impl Access {
 /// The chip: request port, units 812, 824, 810, 818, and its DRFs and bank contents.
 #[derive(Clone, Debug)]
 pub struct Texram802 {
+    name: String,
     p: TexramParams,
     drfs: [Option<Drf>; DRFS],
     banks: Vec<Vec<u8>>,
@@ -162,6 +163,7 @@ impl Texram802 {
     pub fn new(p: TexramParams) -> Result<Texram802, String> {
         p.validate()?;
         Ok(Texram802 {
+            name: "texram_802".into(),
             p,
             drfs: [None; DRFS],
             banks: (0..BANKS)
@@ -193,9 +195,21 @@ impl Texram802 {
         })
     }
 
+    /// The same chip under another instance name (several chips in one design).
+    pub fn named(mut self, name: &str) -> Texram802 {
+        self.name = name.into();
+        self
+    }
+
     /// Sets DRF `k` (its map must then be loaded).
     pub fn set_drf(&mut self, k: usize, drf: Drf) -> Result<(), String> {
         drf.validate()?;
+        if matches!(drf.config, Config::Planar | Config::Literal) {
+            return Err(format!(
+                "drf {k}: the {:?} colour layout is in the stub only so far (use one chip per component)",
+                drf.config
+            ));
+        }
         let slot = self
             .drfs
             .get_mut(k)
@@ -336,6 +350,9 @@ impl Texram802 {
 }
 
 impl Module for Texram802 {
+    fn instance(&self) -> &str {
+        &self.name
+    }
     fn kind(&self) -> &'static str {
         "texram_802"
     }
