@@ -457,3 +457,68 @@ fn colour_configurations_agree_component_by_component() {
     assert!(planar.slots() >= 4 * reqs.len() as u64);
     assert!(literal.slots() > planar.slots());
 }
+
+/// Section 11-12: interlaced 768 x 576 video at 25 frames a second written into a map while
+/// the rasterizer reads it "without slowing down": each video line's texels go through the
+/// shift registers 826 into their banks' rows, a transfer per bank and line, at every level
+/// the mipmap generator 816 makes; a transfer takes a slot (two when it opens a row) and
+/// leaves its row open, so the rasterizer's next access there faults. Counted from the page
+/// registers over one frame time of full-rate rasterizer accesses: under 1 % of the slots.
+#[test]
+fn video_at_25_frames_a_second_takes_under_one_percent_of_the_slots() {
+    use hdl::texram::banks_810::locate;
+    let drf = Drf::new(10, 10, Border::Wrap);
+    // The transfers of one frame, in video order: level k's lines as the generator completes
+    // them (one per 2^k input lines), two banks per line (x even and odd).
+    let mut transfers = Vec::new();
+    for y in 0..576u32 {
+        // Interlaced: the even field, then the odd one.
+        let line = if y < 288 { 2 * y } else { 2 * (y - 288) + 1 };
+        for k in 0..=9u32 {
+            if (line + 1) % (1 << k) != 0 || (line >> k) >= (576 >> k).max(1) {
+                continue;
+            }
+            for x in 0..2 {
+                transfers.push(locate(&drf, k, x, line >> k));
+            }
+        }
+    }
+    // One frame time (40 ms) of 30 ns slots, the rasterizer reading a span over and over.
+    let frame_slots = 40_000_000 / 30;
+    let run = |video: bool| {
+        let mut chip = TexramStub::new();
+        chip.set_drf(0, drf).unwrap();
+        let every = frame_slots / transfers.len() as u64;
+        let (mut k, mut t) = (0u64, 0);
+        while chip.slots() < frame_slots {
+            let q = TexramRequest {
+                drf: 0,
+                u: ((k % 400) as i32) << 8,
+                v: 300 << 8,
+                lambda: 64,
+            };
+            chip.access(q).unwrap();
+            k += 1;
+            if video && k % every == 0 && t < transfers.len() {
+                let (bank, word) = transfers[t];
+                chip.video_transfer(bank, word);
+                t += 1;
+            }
+        }
+        (k, chip.video_slots())
+    };
+    let (alone, _) = run(false);
+    let (shared, video_slots) = run(true);
+    let lost = (alone - shared) as f64 / alone as f64;
+    eprintln!(
+        "video: {} transfers a frame, {video_slots} slots; rasterizer accesses {alone} -> {shared} ({:.3} % fewer)",
+        transfers.len(),
+        100.0 * lost
+    );
+    assert!(
+        lost < 0.01,
+        "{:.3} % of the rasterizer's accesses lost",
+        100.0 * lost
+    );
+    assert!(video_slots >= transfers.len() as u64);
+}

@@ -22,6 +22,7 @@ pub struct TexramStub {
     accesses: u64,
     faults: u64,
     conflicts: u64,
+    video_slots: u64,
 }
 
 impl Default for TexramStub {
@@ -65,6 +66,7 @@ impl TexramStub {
             accesses: 0,
             faults: 0,
             conflicts: 0,
+            video_slots: 0,
         }
     }
 
@@ -157,6 +159,24 @@ impl TexramStub {
             cost.faults += c.faults;
         }
         (texels, cost)
+    }
+
+    /// The video port 808: the shift register 826 of `bank` writes its collected texels
+    /// into the row holding `word` in one slot, two when the page register 824 holds another
+    /// row (which the transfer then replaces: the rasterizer's next access there faults).
+    /// The slots are stolen from the rasterizer and counted apart ([`TexramStub::video_slots`]).
+    pub fn video_transfer(&mut self, bank: usize, word: u32) -> Cost {
+        let mut one = [None; BANKS];
+        one[bank] = Some(word);
+        let cost = self.pages.access(&one);
+        self.video_slots += u64::from(cost.slots);
+        self.slots += u64::from(cost.slots);
+        cost
+    }
+
+    /// Slots the video port took.
+    pub fn video_slots(&self) -> u64 {
+        self.video_slots
     }
 
     /// Accesses that asked a bank for two words (none but in the literal colour layout).
