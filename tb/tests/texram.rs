@@ -522,3 +522,84 @@ fn video_at_25_frames_a_second_takes_under_one_percent_of_the_slots() {
     );
     assert!(video_slots >= transfers.len() as u64);
 }
+
+/// Runs `reqs` back to back through `chip`: each result's R, G, B, alpha and the cycle it
+/// came out, and the chip's slot and conflict counts.
+fn run_rgba(
+    chip: hdl::texram::texram_802::Texram802,
+    reqs: &[(i32, i32, i32)],
+) -> (Vec<([u8; 4], u64)>, u64, u64) {
+    use hdl::kernel::Sim;
+    let mut sim = Sim::new(chip).check_schedule(true);
+    sim.reset(2);
+    let (mut next, mut out) = (0, Vec::new());
+    while out.len() < reqs.len() {
+        assert!(
+            sim.cycle() < 100 + 200 * reqs.len() as u64,
+            "the chip stalled"
+        );
+        sim.dut.req_valid.set_bool(next < reqs.len());
+        if let Some(&(u, v, l)) = reqs.get(next) {
+            sim.dut.req_u.set_raw(i64::from(u));
+            sim.dut.req_v.set_raw(i64::from(v));
+            sim.dut.req_lambda.set_raw(i64::from(l));
+        }
+        sim.eval();
+        if sim.dut.req_valid.is_high() && sim.dut.req_ready.is_high() {
+            next += 1;
+        }
+        if sim.dut.out_valid.q().is_high() {
+            let rgba = (sim.dut.out_rgba.q().bits() as u32).to_be_bytes();
+            out.push((rgba, sim.cycle()));
+        }
+        sim.tick();
+    }
+    let d = &sim.dut;
+    (out, d.slots.q().bits(), d.conflicts.q().bits())
+}
+
+/// The cycle-accurate chip in the planar and literal colour layouts: the stub's colours,
+/// slots and conflicts, one component access after the other (a planar pixel every four
+/// slots when no page faults).
+#[test]
+fn the_chip_reads_colour_layouts_like_the_stub() {
+    use hdl::texram::texram_802::{Texram802, TexramParams};
+    use hdl::texram::Config;
+    let mut stim = verif::seeded_stimulus("texram colour chip");
+    for (config, border) in [
+        (Config::Planar, Border::Wrap),
+        (Config::Literal, Border::Mirror),
+    ] {
+        let level0: Vec<u8> = stim.draw_n(&any::<u8>(), 64 * 64);
+        let mut d = Drf::new(6, 6, border);
+        d.config = config;
+        let mut stub = TexramStub::new();
+        stub.set_drf(0, d).unwrap();
+        stub.load(0, &level0).unwrap();
+        let mut chip = Texram802::new(TexramParams::default()).unwrap();
+        chip.set_drf(0, d).unwrap();
+        chip.load(0, &level0).unwrap();
+        let reqs = stim.draw_n(&requests(5, 5), 1500);
+        let (out, slots, conflicts) = run_rgba(chip, &reqs);
+        for (k, &(u, v, lambda)) in reqs.iter().enumerate() {
+            let r = stub
+                .access(TexramRequest {
+                    drf: 0,
+                    u,
+                    v,
+                    lambda,
+                })
+                .unwrap();
+            assert_eq!(out[k].0, r.rgba, "{config:?} request {k}");
+            if k > 0 {
+                assert_eq!(
+                    out[k].1 - out[k - 1].1,
+                    6 * u64::from(r.slots),
+                    "{config:?} request {k}"
+                );
+            }
+        }
+        assert_eq!(slots, stub.slots(), "{config:?}");
+        assert_eq!(conflicts, stub.conflicts(), "{config:?}");
+    }
+}

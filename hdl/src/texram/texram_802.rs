@@ -14,7 +14,14 @@
 //!   bits `8t..8t+8`) and `fault`.
 //!
 //! 812 takes the next request while the banks serve the last, so back-to-back requests come
-//! out one per slot (33.3 M per second at 30 ns) when no page faults. The DRFs and the bank
+//! out one per slot (33.3 M per second at 30 ns) when no page faults.
+//!
+//! Colour (section 6): an index DRF looks the eight texels up in the CLUT 814 and filters each
+//! component; a planar or literal DRF splits a request into four component accesses, one
+//! after the other through 812 and the banks, the result out with the last (`out_rgba`). In
+//! the literal layout a component's 2x2 lies in one bank: 812 gives each bank up to four
+//! words, read in successive rounds of a slot each (two on a page fault), and counts the
+//! access in `conflicts`. The DRFs and the bank
 //! contents are loaded through [`Texram802::set_drf`] and [`Texram802::load`] (the chain
 //! walker and the video port that write them are later work).
 
@@ -30,10 +37,16 @@ use crate::signals;
 
 /// Bank words need 19 bits (280,064 words in banks 0-3).
 const WORD_BITS: u32 = 19;
-/// A texel's source: bank 0-7, or 8 for the border colour.
-const COLOUR: u64 = 8;
-const WORD_NAMES: [&str; BANKS] = [
-    "word0", "word1", "word2", "word3", "word4", "word5", "word6", "word7",
+/// Words one bank may be asked for in one access: one, but four in the literal colour layout
+/// (a component's 2x2 all in one bank), read in successive rounds.
+const ROUNDS: usize = 4;
+/// A texel's source: `4 bank + round`, or 32 for the border colour (6 bits per texel).
+const COLOUR: u64 = 32;
+const WORD_NAMES: [&str; BANKS * ROUNDS] = [
+    "word0_0", "word0_1", "word0_2", "word0_3", "word1_0", "word1_1", "word1_2", "word1_3",
+    "word2_0", "word2_1", "word2_2", "word2_3", "word3_0", "word3_1", "word3_2", "word3_3",
+    "word4_0", "word4_1", "word4_2", "word4_3", "word5_0", "word5_1", "word5_2", "word5_3",
+    "word6_0", "word6_1", "word6_2", "word6_3", "word7_0", "word7_1", "word7_2", "word7_3",
 ];
 const OPEN_NAMES: [&str; BANKS] = [
     "open0", "open1", "open2", "open3", "open4", "open5", "open6", "open7",
@@ -61,7 +74,8 @@ impl TexramParams {
     }
 }
 
-/// One access's registers between units: words per bank, texel sources, weights, levels.
+/// One access's registers between units: words per bank and round, texel sources, weights,
+/// the component it reads.
 #[derive(Clone, Debug)]
 struct Access {
     valid: Reg,
@@ -70,8 +84,12 @@ struct Access {
     src: Reg,
     weights: Reg,
     colour: Reg,
-    /// The DRF's configuration: 1 for index (CLUT 814), 0 for luminance.
+    /// The DRF's configuration: 1 for index (CLUT 814), 0 otherwise.
     index: Reg,
+    /// The colour component this access reads (planar, literal) and whether it is the
+    /// request's last; a luminance or index access is part 0 and last.
+    part: Reg,
+    last: Reg,
 }
 
 impl Access {
@@ -82,44 +100,55 @@ impl Access {
                 .iter()
                 .map(|n| Reg::new(n, Format::uint(WORD_BITS)))
                 .collect(),
-            // Which banks the access reads (one bit per bank).
-            read: Reg::new("read", Format::uint(BANKS as u32)),
-            // Texel t's source in bits 4t..4t+4.
-            src: Reg::new("src", Format::uint(32)),
+            // Which bank words the access reads: bit 4 bank + round.
+            read: Reg::new("read", Format::uint((BANKS * ROUNDS) as u32)),
+            // Texel t's source in bits 6t..6t+6.
+            src: Reg::new("src", Format::uint(48)),
             // a0, b0, a1, b1, f in bytes 0-4.
             weights: Reg::new("weights", Format::uint(40)),
             colour: Reg::new("colour", Format::uint(8)),
             index: Reg::new("index", Format::uint(1)),
+            part: Reg::new("part", Format::uint(2)),
+            last: Reg::new("last", Format::uint(1)),
         }
     }
 
+    fn regs(&self) -> impl Iterator<Item = &Reg> {
+        let one = [&self.read, &self.src, &self.weights, &self.colour];
+        one.into_iter()
+            .chain([&self.index, &self.part, &self.last])
+            .chain(&self.word)
+    }
+
+    fn regs_mut(&mut self) -> impl Iterator<Item = &mut Reg> {
+        let one = [
+            &mut self.read,
+            &mut self.src,
+            &mut self.weights,
+            &mut self.colour,
+        ];
+        one.into_iter()
+            .chain([&mut self.index, &mut self.part, &mut self.last])
+            .chain(&mut self.word)
+    }
+
     fn copy_from(&mut self, o: &Access) {
-        for (w, x) in self.word.iter_mut().zip(&o.word) {
-            w.set_next_bits(x.q().bits());
+        for (to, from) in self.regs_mut().zip(o.regs()) {
+            to.set_next_bits(from.q().bits());
         }
-        self.read.set_next_bits(o.read.q().bits());
-        self.src.set_next_bits(o.src.q().bits());
-        self.weights.set_next_bits(o.weights.q().bits());
-        self.colour.set_next_bits(o.colour.q().bits());
-        self.index.set_next_bits(o.index.q().bits());
     }
 
     fn tick(&mut self, reset: bool) {
         self.valid.tick(reset);
-        for w in &mut self.word {
-            w.tick(reset);
+        for r in self.regs_mut() {
+            r.tick(reset);
         }
-        self.read.tick(reset);
-        self.src.tick(reset);
-        self.weights.tick(reset);
-        self.colour.tick(reset);
-        self.index.tick(reset);
     }
 
     fn visit(&self, v: &mut dyn Visitor) {
-        signals!(v; Reg: self.valid, self.read, self.src, self.weights, self.colour, self.index);
-        for w in &self.word {
-            v.reg(w);
+        v.reg(&self.valid);
+        for r in self.regs() {
+            v.reg(r);
         }
     }
 }
@@ -138,8 +167,9 @@ pub struct Texram802 {
     pub req_u: Signal,
     pub req_v: Signal,
     pub req_lambda: Signal,
-    /// 812's registers.
+    /// 812's registers, and the request it is splitting into component accesses.
     addr: Access,
+    held: [Reg; 4],
     /// 824: per bank the open row plus one (0: closed).
     open: Vec<Reg>,
     /// 810: the access being served and the cycles left in its slot(s).
@@ -157,6 +187,8 @@ pub struct Texram802 {
     pub out_rgba: Reg,
     pub out_texels: Reg,
     pub out_fault: Reg,
+    /// The components of a colour request finished so far (R top byte).
+    acc_rgba: Reg,
 }
 
 impl Texram802 {
@@ -182,7 +214,7 @@ impl Texram802 {
                 .map(|n| Reg::new(n, Format::uint(11)))
                 .collect(),
             bank: Access::new(),
-            left: Reg::new("left", Format::uint(5)),
+            left: Reg::new("left", Format::uint(8)),
             fault: Reg::new("fault", Format::uint(1)),
             slots: Reg::new("slots", Format::uint(40)),
             conflicts: Reg::new("conflicts", Format::uint(40)),
@@ -192,6 +224,13 @@ impl Texram802 {
             out_rgba: Reg::new("out_rgba", Format::uint(32)),
             out_texels: Reg::new("out_texels", Format::uint(64)),
             out_fault: Reg::new("out_fault", Format::uint(1)),
+            acc_rgba: Reg::new("acc_rgba", Format::uint(32)),
+            held: [
+                Reg::new("held_drf", Format::uint(3)),
+                Reg::new("held_u", Format::signed(super::UV_BITS, 8)),
+                Reg::new("held_v", Format::signed(super::UV_BITS, 8)),
+                Reg::new("held_lambda", Format::signed(14, 8)),
+            ],
         })
     }
 
@@ -204,12 +243,6 @@ impl Texram802 {
     /// Sets DRF `k` (its map must then be loaded).
     pub fn set_drf(&mut self, k: usize, drf: Drf) -> Result<(), String> {
         drf.validate()?;
-        if matches!(drf.config, Config::Planar | Config::Literal) {
-            return Err(format!(
-                "drf {k}: the {:?} colour layout is in the stub only so far (use one chip per component)",
-                drf.config
-            ));
-        }
         let slot = self
             .drfs
             .get_mut(k)
@@ -251,41 +284,45 @@ impl Texram802 {
         Ok(())
     }
 
-    /// 812: the request on the port into the address registers.
-    fn address(&mut self) {
-        let k = self.req_drf.bits() as usize;
+    /// 812: part `part` of the request (DRF `k`, raw `u`, `v`, `lambda`) into the address
+    /// registers: its footprint, on the component's map for the colour layouts.
+    fn address(&mut self, part: u32, k: usize, (u, v, l): (i32, i32, i32)) {
         // An unset DRF reads nothing: every texel is 0 (the testbench checks DRFs are set).
-        let Some(d) = self.drfs.get(k).copied().flatten() else {
+        let d = self.drfs.get(k).copied().flatten();
+        let colour_map = d.is_some_and(|d| matches!(d.config, Config::Planar | Config::Literal));
+        self.addr.part.set_next_bits(u64::from(part));
+        self.addr.last.set_next_bool(!colour_map || part == 3);
+        let Some(d) = d else {
             self.addr.read.set_next_bits(0);
-            self.addr.src.set_next_bits(0x8888_8888);
+            self.addr
+                .src
+                .set_next_bits((0..8).fold(0, |a, t| a | COLOUR << (6 * t)));
             self.addr.colour.set_next_bits(0);
             return;
         };
-        let (u, v, l) = (self.req_u.raw(), self.req_v.raw(), self.req_lambda.raw());
-        let fp = Footprint::of(&d, u as i32, v as i32, l as i32);
-        let (mut read, mut src) = (0u64, 0u64);
-        let mut conflict = false;
+        let plane = if colour_map { d.component_map() } else { d };
+        let fp = Footprint::of(&plane, u, v, l);
+        let (mut read, mut src, mut rounds) = (0u64, 0u64, 1);
         for (n, lv) in [fp.fine, fp.coarse].into_iter().enumerate() {
             for (t, at) in fp.texels[n].iter().enumerate() {
                 let from = match at {
                     Some((x, y)) => {
-                        let (bank, word) = locate(&d, lv, *x, *y);
-                        let w = &mut self.addr.word[bank];
-                        conflict |= read >> bank & 1 == 1 && w.next_bits() != u64::from(word);
-                        w.set_next_bits(u64::from(word));
-                        read |= 1 << bank;
-                        bank as u64
+                        let (gx, gy) = d.config.place(&plane, part, lv, *x, *y);
+                        let (bank, word) = locate(&d, lv, gx, gy);
+                        let slot = self.word_slot(bank, u64::from(word), &mut read);
+                        rounds = rounds.max(slot % ROUNDS + 1);
+                        slot as u64
                     }
                     None => COLOUR,
                 };
-                src |= from << (4 * (4 * n + t));
+                src |= from << (6 * (4 * n + t));
             }
         }
         self.addr.read.set_next_bits(read);
         self.addr.src.set_next_bits(src);
-        // The layout makes this impossible; counted so that a run shows it.
+        // Only the literal colour layout asks a bank for more than one word.
         self.conflicts
-            .set_next_bits(self.conflicts.q().bits() + u64::from(conflict));
+            .set_next_bits(self.conflicts.q().bits() + u64::from(rounds > 1));
         let w = [fp.a[0], fp.b[0], fp.a[1], fp.b[1], fp.f];
         let packed = w
             .iter()
@@ -300,20 +337,52 @@ impl Texram802 {
         self.addr.index.set_next_bool(d.config == Config::Index);
     }
 
-    /// 824: the access moving into the banks: its cost in slots, the rows it opens.
-    fn open_rows(&mut self) {
-        let read = self.addr.read.q().bits();
-        let mut missed = 0u64;
-        for b in 0..BANKS {
-            if read >> b & 1 == 1 {
-                let row = self.addr.word[b].q().bits() / u64::from(ROW_WORDS) + 1;
-                if self.open[b].q().bits() != row {
-                    missed += 1;
-                    self.open[b].set_next_bits(row);
-                }
+    /// The round in which `bank` reads `word`: the round that already reads it, else the next
+    /// free one (`read` marks the taken ones). Returns `4 bank + round`.
+    fn word_slot(&mut self, bank: usize, word: u64, read: &mut u64) -> usize {
+        for r in 0..ROUNDS {
+            let at = bank * ROUNDS + r;
+            let reg = &mut self.addr.word[at];
+            if *read >> at & 1 == 0 {
+                reg.set_next_bits(word);
+                *read |= 1 << at;
+                return at;
+            }
+            if reg.next_bits() == word {
+                return at;
             }
         }
-        let slots = if missed > 0 { 2 } else { 1 };
+        unreachable!("a footprint reads at most four texels of one bank");
+    }
+
+    /// 824: the access moving into the banks, round by round: its cost in slots (one a round,
+    /// two when a bank misses its open row), the rows it leaves open.
+    fn open_rows(&mut self) {
+        let read = self.addr.read.q().bits();
+        let mut open: [u64; BANKS] = std::array::from_fn(|b| self.open[b].q().bits());
+        let (mut slots, mut missed) = (0u64, 0u64);
+        for r in 0..ROUNDS {
+            let mut round_missed = 0;
+            let mut any = false;
+            for (b, o) in open.iter_mut().enumerate() {
+                let at = b * ROUNDS + r;
+                if read >> at & 1 == 1 {
+                    any = true;
+                    let row = self.addr.word[at].q().bits() / u64::from(ROW_WORDS) + 1;
+                    if *o != row {
+                        round_missed += 1;
+                        *o = row;
+                    }
+                }
+            }
+            if any || r == 0 {
+                slots += if round_missed > 0 { 2 } else { 1 };
+                missed += round_missed;
+            }
+        }
+        for (reg, row) in self.open.iter_mut().zip(open) {
+            reg.set_next_bits(row);
+        }
         self.left
             .set_next_bits(slots * u64::from(self.p.slot_cycles));
         self.fault.set_next_bool(missed > 0);
@@ -321,31 +390,42 @@ impl Texram802 {
         self.faults.set_next_bits(self.faults.q().bits() + missed);
     }
 
-    /// 810 and 818: the banks' data at the end of the slot, interpolated.
+    /// 810 and 818: the banks' data at the end of the slot(s), interpolated; a colour request's
+    /// components are collected and come out with its last.
     fn interpolate(&mut self) {
         let src = self.bank.src.q().bits();
         let mut texels = [0u8; 8];
         for (t, x) in texels.iter_mut().enumerate() {
-            let from = src >> (4 * t) & 0xF;
+            let from = src >> (6 * t) & 0x3F;
             *x = if from == COLOUR {
                 self.bank.colour.q().bits() as u8
             } else {
                 let word = self.bank.word[from as usize].q().bits();
-                self.banks[from as usize][word as usize]
+                self.banks[from as usize / ROUNDS][word as usize]
             };
         }
         let w = self.bank.weights.q().bits().to_le_bytes();
         let (a, b, f) = ([w[0], w[2]], [w[1], w[3]], w[4]);
+        let value = trilinear(&texels, a, b, f);
+        let part = self.bank.part.q().bits();
         let rgba = if self.bank.index.q().is_high() {
-            self.clut.filter(&texels, a, b, f)
+            u32::from_be_bytes(self.clut.filter(&texels, a, b, f))
+        } else if self.bank.last.q().is_high() && part == 0 {
+            u32::from_be_bytes([value; 4])
         } else {
-            [trilinear(&texels, a, b, f); 4]
+            // Component `part` of a colour request: R in the top byte.
+            let shift = 8 * (3 - part);
+            (self.acc_rgba.q().bits() as u32 & !(0xFF << shift)) | u32::from(value) << shift
         };
-        self.out_value.set_next_bits(u64::from(rgba[0]));
-        self.out_rgba
-            .set_next_bits(u64::from(u32::from_be_bytes(rgba)));
-        self.out_texels.set_next_bits(u64::from_le_bytes(texels));
-        self.out_fault.set_next_bits(self.fault.q().bits());
+        self.acc_rgba.set_next_bits(u64::from(rgba));
+        let done = self.bank.last.q().is_high();
+        self.out_valid.set_next_bool(done);
+        if done {
+            self.out_value.set_next_bits(u64::from(rgba >> 24));
+            self.out_rgba.set_next_bits(u64::from(rgba));
+            self.out_texels.set_next_bits(u64::from_le_bytes(texels));
+            self.out_fault.set_next_bits(self.fault.q().bits());
+        }
     }
 }
 
@@ -360,11 +440,12 @@ impl Module for Texram802 {
     fn eval(&mut self) {
         let busy = self.bank.valid.q().is_high();
         let finishing = busy && self.left.q().bits() == 1;
-        self.out_valid.set_next_bool(finishing);
+        self.out_valid.set_next_bool(false);
         if finishing {
             self.interpolate();
         }
-        let move_on = self.addr.valid.q().is_high() && (!busy || finishing);
+        let waiting = self.addr.valid.q().is_high();
+        let move_on = waiting && (!busy || finishing);
         if move_on {
             self.open_rows();
             let (a, b) = (&self.addr, &mut self.bank);
@@ -375,20 +456,40 @@ impl Module for Texram802 {
         } else if busy {
             self.left.set_next_bits(self.left.q().bits() - 1);
         }
-        let ready = !self.addr.valid.q().is_high() || move_on;
+        // A colour request's next component follows its last into 812; a new request is
+        // taken only when 812 holds nothing more of the last one.
+        let more = waiting && !self.addr.last.q().is_high();
+        let ready = (!waiting || move_on) && !more;
         self.req_ready.set_bool(ready);
         let take = ready && self.req_valid.is_high();
         if take {
-            self.address();
+            let k = self.req_drf.bits();
+            let uvl = [&self.req_u, &self.req_v, &self.req_lambda].map(|x| x.raw() as i32);
+            for (h, x) in self
+                .held
+                .iter_mut()
+                .zip([i64::from(k as u8)].into_iter().chain(uvl.map(i64::from)))
+            {
+                h.set_next_raw(x);
+            }
+            self.address(0, k as usize, (uvl[0], uvl[1], uvl[2]));
+        } else if move_on && more {
+            let h = self.held.each_ref().map(|r| r.q().raw());
+            let part = self.addr.part.q().bits() as u32 + 1;
+            self.address(part, h[0] as usize, (h[1] as i32, h[2] as i32, h[3] as i32));
         }
         if take || move_on {
-            // A new access, or the last one gone to the banks; otherwise it waits.
-            self.addr.valid.set_next_bool(take);
+            // A new access (or component), or the last one gone to the banks; else it waits.
+            self.addr.valid.set_next_bool(take || more);
         }
     }
 
     fn tick(&mut self, reset: bool) {
         self.addr.tick(reset);
+        for r in &mut self.held {
+            r.tick(reset);
+        }
+        self.acc_rgba.tick(reset);
         for r in &mut self.open {
             r.tick(reset);
         }
@@ -420,6 +521,9 @@ impl Module for Texram802 {
             Output: self.req_ready);
         v.enter("address_812", "address_812");
         self.addr.visit(v);
+        for r in &self.held {
+            v.reg(r);
+        }
         v.reg(&self.conflicts);
         v.leave();
         v.enter("page_registers_824", "page_registers_824");
@@ -433,7 +537,7 @@ impl Module for Texram802 {
         signals!(v; Reg: self.left, self.fault);
         v.leave();
         v.enter("trilinear_818", "trilinear_818");
-        signals!(v; Reg: self.out_valid, self.out_value, self.out_rgba, self.out_texels, self.out_fault);
+        signals!(v; Reg: self.out_valid, self.out_value, self.out_rgba, self.out_texels, self.out_fault, self.acc_rgba);
         v.leave();
         v.leave();
     }
