@@ -395,6 +395,45 @@ impl Testbench for TexramTb {
     }
 }
 
+/// What each request should give: the integer reference's texels and value, the stub's
+/// page fault, the golden model's value.
+struct Oracles<'a> {
+    reference: &'a RefMipmap,
+    stub: hdl::texram::stub::TexramStub,
+    golden: golden::texram::Mipmap<'a>,
+    border: Border,
+    lmax: u32,
+}
+
+impl Oracles<'_> {
+    fn expect(&mut self, q: &TexReq) -> Expected {
+        use hdl::texram::{TexramAccess, TexramRequest};
+        let (texels, value) = self
+            .reference
+            .access(q.u, q.v, q.lambda, ref_border(self.border));
+        let req = TexramRequest {
+            drf: 0,
+            u: q.u,
+            v: q.v,
+            lambda: q.lambda,
+        };
+        let s = self.stub.access(req).expect("requests are in range");
+        let f = |x: i32| f64::from(x) / 256.0;
+        let lmax = self.lmax as usize;
+        let wts = golden::texram::Weights::truncated(f(q.u), f(q.v), f(q.lambda), lmax);
+        let want = golden::texram::trilinear(&self.golden, &wts);
+        (
+            *q,
+            TexOut {
+                value,
+                texels,
+                fault: s.slots == 2,
+            },
+            want,
+        )
+    }
+}
+
 /// Runs one configuration's requests through the chip and scores them.
 fn one_config<T: Trace>(
     sim: Sim<Texram802, T>,
@@ -403,23 +442,29 @@ fn one_config<T: Trace>(
     level0: &[u8],
     stim: &mut Stimulus,
 ) -> Result<(Sim<Texram802, T>, TbResult), String> {
-    use hdl::texram::stub::TexramStub;
-    use hdl::texram::{TexramAccess, TexramRequest};
+    use hdl::texram::TexramAccess;
     let mut res = TbResult::new(NAME, "");
     let mut cov = coverage_model();
     let mut sim = sim.check_schedule(ctx.check_schedule);
     sim.reset(2);
     let reference = RefMipmap::build(1 << wl, 1 << hl, level0);
-    let mut stub = TexramStub::new();
+    let mut stub = hdl::texram::stub::TexramStub::new();
     stub.set_drf(0, Drf::new(wl, hl, border))?;
     stub.load(0, level0)?;
-    let g = golden::texram::Mipmap {
+    let golden = golden::texram::Mipmap {
         width: 1 << wl,
         height: 1 << hl,
         levels: &reference.levels,
         border: golden_border(border),
     };
     let lmax = wl.max(hl);
+    let mut oracles = Oracles {
+        reference: &reference,
+        stub,
+        golden,
+        border,
+        lmax,
+    };
     let reqs = requests(wl, hl, ctx.count, stim);
     let n = reqs.len() as u64;
     let mut sb: Scoreboard<Expected, TexOut> =
@@ -440,46 +485,13 @@ fn one_config<T: Trace>(
         reqs,
         &mut spec,
         |_, ev| match ev {
-            Event::Sent { txn, .. } => {
-                let (texels, value) =
-                    reference.access(txn.u, txn.v, txn.lambda, ref_border(border));
-                let s = stub
-                    .access(TexramRequest {
-                        drf: 0,
-                        u: txn.u,
-                        v: txn.v,
-                        lambda: txn.lambda,
-                    })
-                    .expect("requests are in range");
-                let f = |x: i32| f64::from(x) / 256.0;
-                let wts = golden::texram::Weights::truncated(
-                    f(txn.u),
-                    f(txn.v),
-                    f(txn.lambda),
-                    lmax as usize,
-                );
-                let want = golden::texram::trilinear(&g, &wts);
-                sb.expect((
-                    *txn,
-                    TexOut {
-                        value,
-                        texels,
-                        fault: s.slots == 2,
-                    },
-                    want,
-                ));
-            }
+            Event::Sent { txn, .. } => sb.expect(oracles.expect(txn)),
             Event::Received { cycle, txn } => {
-                let out = sb.observe(cycle, txn);
-                if let Some((q, _, want)) = out.expected {
+                if let Some((q, _, want)) = sb.observe(cycle, txn).expected {
                     res.stats.record(f64::from(txn.value), want, 1.0);
                     let beyond = q.u < 0 || q.v < 0 || q.u >= w || q.v >= h;
-                    cov.sample(&[
-                        border_class(border),
-                        lambda_class(q.lambda, lmax),
-                        i64::from(beyond),
-                        i64::from(txn.fault),
-                    ]);
+                    let (b, l) = (border_class(border), lambda_class(q.lambda, lmax));
+                    cov.sample(&[b, l, i64::from(beyond), i64::from(txn.fault)]);
                 }
             }
             Event::Settled { .. } => {}
@@ -495,15 +507,31 @@ fn one_config<T: Trace>(
         Ok(st) => res.cycles += st.cycles,
         Err(t) => res.failures.push(t.to_string()),
     }
-    let slots = sim.dut.slots.q().bits();
+    settle_config(
+        &mut res,
+        sim.dut.slots.q().bits(),
+        &oracles.stub,
+        &ctx.label,
+    );
+    res.coverage = Some(cov);
+    Ok((sim, res))
+}
+
+/// The configuration's slot count against the stub's, its note, the error bound.
+fn settle_config(
+    res: &mut TbResult,
+    slots: u64,
+    stub: &hdl::texram::stub::TexramStub,
+    label: &str,
+) {
+    use hdl::texram::TexramAccess;
     if slots != stub.slots() {
         res.failures
             .push(format!("{slots} slots, the stub took {}", stub.slots()));
     }
     let (accesses, faults) = stub.counts();
     res.notes.push(format!(
-        "{}: {accesses} accesses in {slots} slots, {faults} bank faults",
-        ctx.label
+        "{label}: {accesses} accesses in {slots} slots, {faults} bank faults"
     ));
     if res.stats.max_abs_lsb > golden::texram::ERROR_BOUND_LSB {
         res.failures.push(format!(
@@ -512,8 +540,6 @@ fn one_config<T: Trace>(
             golden::texram::ERROR_BOUND_LSB
         ));
     }
-    res.coverage = Some(cov);
-    Ok((sim, res))
 }
 
 // ---------------------------------------------------------------------------------------
