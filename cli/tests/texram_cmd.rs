@@ -86,10 +86,12 @@ fn results_statistics_and_waveform() {
     ] {
         assert!(j.get(k).is_some(), "stats lack {k}");
     }
+    assert_eq!(j["requests"], 4);
     assert_eq!(j["accesses"], 4);
     assert_eq!(j["bank_conflicts"], 0);
     let slots = j["slots"].as_u64().unwrap();
     assert_eq!(slots, 4 + j["page_faults"].as_u64().unwrap());
+    assert!(j["bank_misses"].as_u64().unwrap() >= j["page_faults"].as_u64().unwrap());
     let rb = waves::check::read_vcd(&vcd).unwrap();
     assert!(rb
         .vars
@@ -114,7 +116,7 @@ fn bad_input_is_one_line_exit_2_and_no_file() {
             &t,
             &r,
             &["--config", "index"],
-            "--config index: not modelled yet",
+            "--config index: not in the command yet",
         ),
         (&t, &r, &["--config", "bogus"], "--config bogus"),
         (&t, &r, &["--border", "border:256"], "--border border:256"),
@@ -146,4 +148,76 @@ fn bad_input_is_one_line_exit_2_and_no_file() {
             .collect();
         assert!(left.is_empty(), "{a:?} left {left:?}");
     }
+}
+
+#[test]
+fn colour_textures_planar_and_truecolor() {
+    let d = dir("colour");
+    let (w, h) = (16u32, 16u32);
+    let rgb: Vec<u8> = (0..w * h)
+        .flat_map(|k| [(k % 16 * 9) as u8, (k / 16 * 11) as u8, (k * 7 % 256) as u8])
+        .collect();
+    let t = d.join("c.ppm");
+    std::fs::write(&t, formats::netpbm::encode_ppm(w, h, &rgb)).unwrap();
+    let r = d.join("r.csv");
+    std::fs::write(&r, "u,v,lambda\n3.5,5.5,0\n8,8,0.5\n").unwrap();
+    for (config, conflicts) in [("planar", false), ("truecolor", true)] {
+        let (o, st) = (
+            d.join(format!("{config}.csv")),
+            d.join(format!("{config}.json")),
+        );
+        let a = [
+            "texram",
+            "--texture",
+            s(&t),
+            "--requests",
+            s(&r),
+            "--out",
+            s(&o),
+        ];
+        let mut a = a.to_vec();
+        a.extend(["--config", config, "--stats", s(&st)]);
+        let out = texrtl(&a);
+        assert!(
+            out.status.success(),
+            "{config}: {}",
+            String::from_utf8_lossy(&out.stderr)
+        );
+        let csv = std::fs::read_to_string(&o).unwrap();
+        // Texel (3, 5) at its centre, level 0: the PPM's colour, opaque.
+        let k = 3 * (5 * 16 + 3) as usize;
+        let want = format!("3.5,5.5,0,{},{},{},255", rgb[k], rgb[k + 1], rgb[k + 2]);
+        assert_eq!(csv.lines().nth(1), Some(want.as_str()), "{config}");
+        let j: serde_json::Value = serde_json::from_slice(&std::fs::read(&st).unwrap()).unwrap();
+        assert_eq!(
+            j["accesses"], 8,
+            "{config}: four component accesses a pixel"
+        );
+        assert_eq!(
+            j["bank_conflicts"].as_u64().unwrap() > 0,
+            conflicts,
+            "{config}"
+        );
+    }
+    let wide = d.join("wide.ppm");
+    std::fs::write(
+        &wide,
+        formats::netpbm::encode_ppm(32, 16, &[0; 32 * 16 * 3]),
+    )
+    .unwrap();
+    let o = d.join("x.csv");
+    let out = texrtl(&[
+        "texram",
+        "--texture",
+        s(&wide),
+        "--requests",
+        s(&r),
+        "--out",
+        s(&o),
+        "--config",
+        "planar",
+    ]);
+    assert_eq!(out.status.code(), Some(2));
+    assert!(String::from_utf8_lossy(&out.stderr).contains("square"));
+    assert!(!o.exists());
 }

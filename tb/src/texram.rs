@@ -170,6 +170,8 @@ pub struct TexReq {
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub struct TexOut {
     pub value: u8,
+    /// R, G, B, alpha (luminance: the value four times).
+    pub rgba: [u8; 4],
     pub texels: [u8; 8],
     pub fault: bool,
 }
@@ -202,6 +204,7 @@ impl Monitor<Texram802> for TexMonitor {
     fn sample(&mut self, dut: &Texram802) -> Option<TexOut> {
         dut.out_valid.q().is_high().then(|| TexOut {
             value: dut.out_value.q().bits() as u8,
+            rgba: (dut.out_rgba.q().bits() as u32).to_be_bytes(),
             texels: dut.out_texels.q().bits().to_le_bytes(),
             fault: dut.out_fault.q().is_high(),
         })
@@ -426,6 +429,7 @@ impl Oracles<'_> {
             *q,
             TexOut {
                 value,
+                rgba: [value; 4],
                 texels,
                 fault: s.slots == 2,
             },
@@ -676,13 +680,16 @@ pub fn figures() -> Vec<Figure> {
 /// What `texrtl texram` measured (its `--stats`).
 #[derive(Clone, Debug, serde::Serialize)]
 pub struct TexramStats {
+    /// Pixels asked for.
+    pub requests: u64,
+    /// Bank accesses: one a request, four for the planar and literal colour layouts.
     pub accesses: u64,
     pub slots: u64,
-    /// Accesses that took a second slot (a bank they read missed its open row).
+    /// Slots added by page faults (a round of an access in which a bank missed its open row).
     pub page_faults: u64,
     /// Banks that missed their open row, summed over the accesses.
     pub bank_misses: u64,
-    /// Accesses that asked one bank for two words (none, by the layout; counted by 812).
+    /// Accesses that asked one bank for several words (only the literal colour layout).
     pub bank_conflicts: u64,
     /// Slots taken by the video port (not modelled yet: 0).
     pub video_slots: u64,
@@ -694,23 +701,29 @@ pub struct TexramStats {
 /// A run of the chip over requests (raw sQ12.8 u, v and sQ5.8 lambda): one result per request
 /// in order, and the statistics.
 pub struct TexramRun {
-    pub values: Vec<u8>,
+    /// R, G, B, alpha per request.
+    pub values: Vec<[u8; 4]>,
     pub stats: TexramStats,
 }
 
-/// Runs `reqs` back to back through the chip holding `level0` (`2^wl x 2^hl`) with `border`,
-/// every result checked against the integer reference (a difference is an error: the command
-/// must not print a wrong texel). Traced to `vcd` when given.
+/// Runs `reqs` back to back through the chip holding `level0` (the DRF's whole space) as
+/// `drf` describes, every result checked (a difference is an error: the command must not
+/// print a wrong texel): luminance against the integer reference, the other configurations
+/// against the behavioural stub. Traced to `vcd` when given.
 pub fn run_texram(
     level0: &[u8],
-    (wl, hl): (u32, u32),
-    border: Border,
+    drf: Drf,
     reqs: &[TexReq],
     vcd: Option<&std::path::Path>,
 ) -> Result<TexramRun, String> {
+    use hdl::texram::{Config, TexramAccess, TexramRequest};
     let mut chip = Texram802::new(TexramParams::default())?;
-    chip.set_drf(0, Drf::new(wl, hl, border))?;
+    chip.set_drf(0, drf)?;
     chip.load(0, level0)?;
+    let mut stub = hdl::texram::stub::TexramStub::new();
+    stub.set_drf(0, drf)?;
+    stub.load(0, level0)?;
+    let (wl, hl, border) = (drf.width_log2, drf.height_log2, drf.border);
     let tracer = match vcd {
         Some(p) => Some(
             waves::VcdTracer::create(
@@ -729,8 +742,9 @@ pub fn run_texram(
     sim.reset(2);
     let reference = RefMipmap::build(1 << wl, 1 << hl, level0);
     let n = reqs.len() as u64;
-    let mut values = Vec::with_capacity(reqs.len());
-    let mut spec = RunSpec::new(n, 20 * n + 100);
+    let mut values: Vec<[u8; 4]> = Vec::with_capacity(reqs.len());
+    // A literal colour request: four components, each up to four rounds of two slots.
+    let mut spec = RunSpec::new(n, 200 * n + 100);
     let mut wrong = None;
     let st = run(
         &mut sim,
@@ -741,15 +755,22 @@ pub fn run_texram(
         |_, ev| {
             if let Event::Received { txn, .. } = ev {
                 let q = reqs[values.len()];
-                let (_, want) = reference.access(q.u, q.v, q.lambda, ref_border(border));
-                if txn.value != want && wrong.is_none() {
-                    wrong = Some(format!(
-                        "request {}: chip {}, reference {want}",
-                        values.len(),
-                        txn.value
-                    ));
+                let want = if drf.config == Config::Luminance {
+                    [reference.access(q.u, q.v, q.lambda, ref_border(border)).1; 4]
+                } else {
+                    let r = TexramRequest {
+                        drf: 0,
+                        u: q.u,
+                        v: q.v,
+                        lambda: q.lambda,
+                    };
+                    stub.access(r).map(|r| r.rgba).unwrap_or_default()
+                };
+                if txn.rgba != want && wrong.is_none() {
+                    let k = values.len();
+                    wrong = Some(format!("request {k}: chip {:?}, model {want:?}", txn.rgba));
                 }
-                values.push(txn.value);
+                values.push(txn.rgba);
             }
         },
     )
@@ -760,14 +781,16 @@ pub fn run_texram(
     let d = &sim.dut;
     let (slots, faults) = (d.slots.q().bits(), d.faults.q().bits());
     let conflicts = d.conflicts.q().bits();
+    let (accesses, fault_slots) = (d.accesses.q().bits(), d.fault_slots.q().bits());
     let ns = st.cycles * CYCLE_PS / 1000;
     sim.finish().map_err(|e| e.to_string())?;
     Ok(TexramRun {
         values,
         stats: TexramStats {
-            accesses: n,
+            requests: n,
+            accesses,
             slots,
-            page_faults: slots - n,
+            page_faults: fault_slots,
             bank_misses: faults,
             bank_conflicts: conflicts,
             video_slots: 0,

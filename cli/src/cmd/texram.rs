@@ -1,8 +1,8 @@
 //! `texrtl texram`: trilinear texture accesses through the cycle-accurate TEXRAM chip of
-//! Figure 8 (the luminance configuration; the others are not modelled yet).
+//! Figure 8, in the luminance, planar and literal ("truecolor") configurations.
 
 use super::{input, write_out, CmdError};
-use hdl::texram::Border;
+use hdl::texram::{Border, Config, Drf};
 use std::fmt::Write;
 use std::path::{Path, PathBuf};
 use tb::texram::{run_texram, TexReq};
@@ -10,8 +10,10 @@ use tb::texram::{run_texram, TexReq};
 /// Trilinear accesses through the cycle-accurate TEXRAM chip (Figure 8).
 #[derive(Clone, Debug, clap::Args)]
 pub struct TexramArgs {
-    /// The texture: an 8-bit PGM (P5 or P2), sides powers of two up to 1024; its mipmap is
-    /// built as the generator 816 rounds, (a+b+c+d+2)>>2.
+    /// The texture: an 8-bit PGM (P5 or P2, luminance) or PPM (P6 or P3, planar and
+    /// truecolor: square, up to 512, the four components fill a space twice as wide and high),
+    /// sides powers of two up to 1024; its mipmap is built as the generator 816 rounds,
+    /// (a+b+c+d+2)>>2.
     #[arg(long)]
     pub texture: PathBuf,
     /// CSV with header u,v,lambda: level-0 texel units (texel centres at k + 0.5), the level of
@@ -21,14 +23,16 @@ pub struct TexramArgs {
     /// CSV: u,v,lambda,r,g,b,a per request in order (as quantised; luminance in all four).
     #[arg(long)]
     pub out: PathBuf,
-    /// luminance (the others of section 6, index, truecolor and planar, are not modelled yet).
+    /// luminance (PGM), planar (PPM, components in four planes: conflict-free, four accesses a
+    /// pixel) or truecolor (PPM, the document's literal 2x2 cells: bank conflicts, counted);
+    /// index is not in the command yet.
     #[arg(long, default_value = "luminance")]
     pub config: String,
     /// wrap, clamp, mirror or border:N (N 0..=255, the border colour).
     #[arg(long, default_value = "wrap")]
     pub border: String,
-    /// JSON: accesses, slots, page_faults (accesses that took a second slot), bank_misses,
-    /// bank_conflicts, video_slots, cycles, ns, pixels_per_second.
+    /// JSON: requests, accesses (four a pixel in the colour layouts), slots, page_faults (slots
+    /// they added), bank_misses, bank_conflicts, video_slots, cycles, ns, pixels_per_second.
     #[arg(long)]
     pub stats: Option<PathBuf>,
     /// Waveform of the chip (one scope per unit: 812, 824, 810, 818).
@@ -36,28 +40,57 @@ pub struct TexramArgs {
     pub vcd: Option<PathBuf>,
 }
 
-/// The texture as `2^wl x 2^hl` luminance texels.
-fn read_texture(path: &Path) -> Result<(Vec<u8>, u32, u32), String> {
-    let img = formats::netpbm::read(path)?;
-    let log2 = |n: u32, what: &str| {
-        if n.is_power_of_two() && n <= 1024 {
-            Ok(n.trailing_zeros())
-        } else {
-            Err(format!(
-                "{}: {what} {n} is not a power of two up to 1024",
-                path.display()
-            ))
-        }
-    };
-    let (wl, hl) = (log2(img.width, "width")?, log2(img.height, "height")?);
-    if img.maxval != 255 {
-        return Err(format!(
-            "{}: maxval {}, 8-bit texels need 255",
-            path.display(),
-            img.maxval
-        ));
+/// `n` as log2 if a power of two up to `max`.
+fn log2(path: &Path, what: &str, n: u32, max: u32) -> Result<u32, String> {
+    if n.is_power_of_two() && n <= max {
+        Ok(n.trailing_zeros())
+    } else {
+        Err(format!(
+            "{}: {what} {n} is not a power of two up to {max}",
+            path.display()
+        ))
     }
-    Ok((img.pixels, wl, hl))
+}
+
+/// The texture as the chip stores it for `config`: the DRF and its space's level 0.
+/// Luminance: a PGM as it is. Planar: a PPM's R, G, B planes and an opaque alpha in the
+/// quadrants of a space twice as wide and high; truecolor: the same components in 2x2 cells.
+fn read_texture(path: &Path, config: Config, border: Border) -> Result<(Drf, Vec<u8>), String> {
+    if config == Config::Luminance {
+        let img = formats::netpbm::read(path)?;
+        let wl = log2(path, "width", img.width, 1024)?;
+        let hl = log2(path, "height", img.height, 1024)?;
+        if img.maxval != 255 {
+            return Err(format!(
+                "{}: maxval {}, 8-bit texels need 255",
+                path.display(),
+                img.maxval
+            ));
+        }
+        return Ok((Drf::new(wl, hl, border), img.pixels));
+    }
+    let img = formats::netpbm::read_ppm(path)?;
+    let wl = log2(path, "width", img.width, 512)?;
+    let hl = log2(path, "height", img.height, 512)?;
+    let mut drf = Drf::new(wl + 1, hl + 1, border);
+    drf.config = config;
+    let plane = drf.component_map();
+    let (w, h) = (img.width as usize, img.height as usize);
+    let mut space = vec![0u8; 4 * w * h];
+    for y in 0..h {
+        for x in 0..w {
+            for c in 0..4u32 {
+                let t = if c == 3 {
+                    255
+                } else {
+                    img.pixels[3 * (y * w + x) + c as usize]
+                };
+                let (gx, gy) = config.place(&plane, c, 0, x as u32, y as u32);
+                space[gy as usize * 2 * w + gx as usize] = t;
+            }
+        }
+    }
+    Ok((drf, space))
 }
 
 /// Requests from the CSV, quantised and range-checked (u, v: sQ12.8; lambda: -4..=10).
@@ -108,34 +141,41 @@ pub fn run(a: &TexramArgs) -> Result<String, CmdError> {
 
 /// The command once its outputs are checked.
 fn texram(a: &TexramArgs) -> Result<String, CmdError> {
-    match a.config.as_str() {
-        "luminance" => {}
-        "index" | "truecolor" | "planar" => {
-            return Err(input(format!(
-                "--config {}: not modelled yet (luminance is)",
-                a.config
-            )))
-        }
-        c => {
-            let c = formats::shorten(c);
-            return Err(input(format!(
-                "--config {c}: luminance, index, truecolor or planar"
-            )));
-        }
-    }
+    let config =
+        match a.config.as_str() {
+            "luminance" => Config::Luminance,
+            "planar" => Config::Planar,
+            "truecolor" => Config::Literal,
+            "index" => return Err(input(
+                "--config index: not in the command yet (its upper levels need host-made palettes)"
+                    .into(),
+            )),
+            c => {
+                let c = formats::shorten(c);
+                return Err(input(format!(
+                    "--config {c}: luminance, index, truecolor or planar"
+                )));
+            }
+        };
     let border = Border::parse(&a.border).ok_or_else(|| {
         let b = formats::shorten(&a.border);
         input(format!(
             "--border {b}: wrap, clamp, mirror or border:N (N 0..=255)"
         ))
     })?;
-    let (level0, wl, hl) = read_texture(&a.texture).map_err(input)?;
+    let (drf, level0) = read_texture(&a.texture, config, border).map_err(input)?;
     let reqs = read_requests(&a.requests).map_err(input)?;
-    let run = run_texram(&level0, (wl, hl), border, &reqs, a.vcd.as_deref()).map_err(input)?;
+    let run = run_texram(&level0, drf, &reqs, a.vcd.as_deref()).map_err(input)?;
     let mut csv = String::from("u,v,lambda,r,g,b,a\n");
-    for (q, x) in reqs.iter().zip(&run.values) {
+    for (q, [r, g, b, al]) in reqs.iter().zip(&run.values) {
         let f = |r: i32| f64::from(r) / 256.0;
-        let _ = writeln!(csv, "{},{},{},{x},{x},{x},{x}", f(q.u), f(q.v), f(q.lambda));
+        let _ = writeln!(
+            csv,
+            "{},{},{},{r},{g},{b},{al}",
+            f(q.u),
+            f(q.v),
+            f(q.lambda)
+        );
     }
     write_out(&a.out, csv.as_bytes())?;
     if let Some(s) = &a.stats {
@@ -144,9 +184,10 @@ fn texram(a: &TexramArgs) -> Result<String, CmdError> {
     }
     let st = &run.stats;
     Ok(format!(
-        "{} accesses written to {}: {} slots, {} page faults, {:.2} M pixels/s",
-        st.accesses,
+        "{} pixels written to {}: {} accesses in {} slots, {} page faults, {:.2} M pixels/s",
+        st.requests,
         a.out.display(),
+        st.accesses,
         st.slots,
         st.page_faults,
         st.pixels_per_second / 1e6

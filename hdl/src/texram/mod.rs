@@ -139,8 +139,14 @@ impl Drf {
 
     pub fn validate(&self) -> Result<(), String> {
         let colour = matches!(self.config, Config::Planar | Config::Literal);
-        if colour && (self.width_log2 == 0 || self.height_log2 == 0) {
-            return Err("a planar or literal colour map needs at least 2 x 2 texels".into());
+        // [C] Square: a component's levels then stay apart down to 1 x 1 (a rectangular
+        // space's smaller side would reach 1 while the planes still need two rows).
+        if colour && (self.width_log2 == 0 || self.width_log2 != self.height_log2) {
+            return Err(format!(
+                "map {}x{}: a planar or literal colour space is square, at least 2 x 2",
+                1u64 << self.width_log2,
+                1u64 << self.height_log2
+            ));
         }
         if self.width_log2 > 10 || self.height_log2 > 10 {
             return Err(format!(

@@ -178,6 +178,9 @@ pub struct Texram802 {
     fault: Reg,
     /// Counters: slots, faulting banks and bank conflicts since reset.
     pub slots: Reg,
+    /// Component accesses served, and the slots their page faults added.
+    pub accesses: Reg,
+    pub fault_slots: Reg,
     pub conflicts: Reg,
     pub faults: Reg,
     /// 818's output registers.
@@ -218,6 +221,8 @@ impl Texram802 {
             fault: Reg::new("fault", Format::uint(1)),
             slots: Reg::new("slots", Format::uint(40)),
             conflicts: Reg::new("conflicts", Format::uint(40)),
+            accesses: Reg::new("accesses", Format::uint(40)),
+            fault_slots: Reg::new("fault_slots", Format::uint(40)),
             faults: Reg::new("faults", Format::uint(40)),
             out_valid: Reg::new("out_valid", Format::uint(1)),
             out_value: Reg::new("out_value", Format::uint(8)),
@@ -360,7 +365,7 @@ impl Texram802 {
     fn open_rows(&mut self) {
         let read = self.addr.read.q().bits();
         let mut open: [u64; BANKS] = std::array::from_fn(|b| self.open[b].q().bits());
-        let (mut slots, mut missed) = (0u64, 0u64);
+        let (mut slots, mut missed, mut fault_slots) = (0u64, 0u64, 0u64);
         for r in 0..ROUNDS {
             let mut round_missed = 0;
             let mut any = false;
@@ -377,6 +382,7 @@ impl Texram802 {
             }
             if any || r == 0 {
                 slots += if round_missed > 0 { 2 } else { 1 };
+                fault_slots += u64::from(round_missed > 0);
                 missed += round_missed;
             }
         }
@@ -388,6 +394,9 @@ impl Texram802 {
         self.fault.set_next_bool(missed > 0);
         self.slots.set_next_bits(self.slots.q().bits() + slots);
         self.faults.set_next_bits(self.faults.q().bits() + missed);
+        self.accesses.set_next_bits(self.accesses.q().bits() + 1);
+        self.fault_slots
+            .set_next_bits(self.fault_slots.q().bits() + fault_slots);
     }
 
     /// 810 and 818: the banks' data at the end of the slot(s), interpolated; a colour request's
@@ -500,6 +509,8 @@ impl Module for Texram802 {
             &mut self.slots,
             &mut self.faults,
             &mut self.conflicts,
+            &mut self.accesses,
+            &mut self.fault_slots,
         ] {
             r.tick(reset);
         }
@@ -530,7 +541,7 @@ impl Module for Texram802 {
         for r in &self.open {
             v.reg(r);
         }
-        signals!(v; Reg: self.slots, self.faults);
+        signals!(v; Reg: self.slots, self.faults, self.accesses, self.fault_slots);
         v.leave();
         v.enter("banks_810", "banks_810");
         self.bank.visit(v);
