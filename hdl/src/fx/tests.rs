@@ -350,3 +350,32 @@ fn mode_names_are_fixed_and_parse_back() {
     }
     assert!("xyzzy".parse::<Quant>().is_err());
 }
+
+/// Mixed signedness: an unsigned operand gains a sign bit inside a signed result, whichever
+/// side it is on; a product is signed if either factor is; a negation is one bit wider.
+#[test]
+fn mixed_signedness_widths() {
+    let (u4, s4) = (Format::uint(4), Format::sint(4));
+    assert_eq!(Format::sum(u4, s4), Format::sint(6));
+    assert_eq!(Format::sum(s4, u4), Format::sint(6));
+    assert_eq!(Format::sum(u4, u4), Format::uint(5));
+    assert_eq!(Format::difference(u4, u4), Format::sint(6));
+    assert_eq!(Format::product(u4, s4), Format::sint(8));
+    assert_eq!(Format::product(s4, u4), Format::sint(8));
+    assert_eq!(Format::product(u4, u4), Format::uint(8));
+    assert_eq!(Format::negation(Format::uint(8)), Format::sint(9));
+    assert_eq!(Format::negation(Format::signed(3, 2)), Format::signed(4, 2));
+}
+
+/// The limits of a format, and the messages that name them.
+#[test]
+fn format_limits_and_their_messages() {
+    let m = super::format::MAX_FRAC;
+    assert!(Format::try_new(8, -m, true).is_ok());
+    assert!(Format::try_new(8, m, true).is_ok());
+    let e = Format::try_new(8, -m - 1, true).unwrap_err();
+    assert_eq!(e.to_string(), format!("fraction bits {} out of range -{m}..={m}", -m - 1));
+    assert!(Format::try_new(8, m + 1, true).is_err());
+    let e = Format::try_new(0, 0, false).unwrap_err();
+    assert!(e.to_string().starts_with("width 0 out of range: unsigned formats hold 1..="), "{e}");
+}
