@@ -33,6 +33,9 @@
 //! | page registers 824 | `texram/page_registers_824.rs` | scope `page_registers_824` | `texram_802` | `tb.texram_802.page_registers_824` |
 //! | banks 810 and their address decoders 822: the two-level layout | `texram/banks_810.rs` | scope `banks_810` | `texram_802` | `tb.texram_802.banks_810` |
 //! | trilinear interpolator 818 | `texram/trilinear_818.rs` | scope `trilinear_818` | `texram_802` | `tb.texram_802.trilinear_818` |
+//! | CLUT 814 | `texram/clut_814.rs` | (in 818's arithmetic) | `texram_802`; `tb/tests/texram.rs` | `tb.texram_802.trilinear_818` |
+//! | output and combination stage 820 (eq. 5) | `texram/output_820.rs` | scope `output_820` | `texram_802`; `tb/tests/texram.rs` | `tb.texram_802.output_820` |
+//! | one colour component per chip, four chips 802 in lock-step | `texram/lockstep.rs` | `texram_lockstep`, chips `chip_r` … | `tb/tests/texram.rs` | `texram_lockstep.chip_r` … |
 
 pub mod fx;
 pub mod kernel;

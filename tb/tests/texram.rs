@@ -528,6 +528,7 @@ fn video_at_25_frames_a_second_takes_under_one_percent_of_the_slots() {
 fn run_rgba(
     chip: hdl::texram::texram_802::Texram802,
     reqs: &[(i32, i32, i32)],
+    illum: &[u32],
 ) -> (Vec<([u8; 4], u64)>, u64, u64) {
     use hdl::kernel::Sim;
     let mut sim = Sim::new(chip).check_schedule(true);
@@ -543,6 +544,9 @@ fn run_rgba(
             sim.dut.req_u.set_raw(i64::from(u));
             sim.dut.req_v.set_raw(i64::from(v));
             sim.dut.req_lambda.set_raw(i64::from(l));
+            sim.dut
+                .req_illum
+                .set_bits(u64::from(illum.get(next).copied().unwrap_or(0)));
         }
         sim.eval();
         if sim.dut.req_valid.is_high() && sim.dut.req_ready.is_high() {
@@ -580,7 +584,7 @@ fn the_chip_reads_colour_layouts_like_the_stub() {
         chip.set_drf(0, d).unwrap();
         chip.load(0, &level0).unwrap();
         let reqs = stim.draw_n(&requests(5, 5), 1500);
-        let (out, slots, conflicts) = run_rgba(chip, &reqs);
+        let (out, slots, conflicts) = run_rgba(chip, &reqs, &[]);
         for (k, &(u, v, lambda)) in reqs.iter().enumerate() {
             let r = stub
                 .access(TexramRequest {
@@ -601,5 +605,65 @@ fn the_chip_reads_colour_layouts_like_the_stub() {
         }
         assert_eq!(slots, stub.slots(), "{config:?}");
         assert_eq!(conflicts, stub.conflicts(), "{config:?}");
+    }
+}
+
+/// Eq. 5 in the output stage 820: `C_d = (I_d | k_T | 1) . T` on R, G, B (alpha the
+/// texture's), in the chip as in the stub, for luminance and planar colour.
+#[test]
+fn the_output_stage_shades_with_illumination_or_a_constant() {
+    use hdl::texram::output_820::{mul255, Modulate};
+    use hdl::texram::texram_802::{Texram802, TexramParams};
+    use hdl::texram::Config;
+    let mut stim = verif::seeded_stimulus("texram eq5");
+    let level0: Vec<u8> = stim.draw_n(&any::<u8>(), 32 * 32);
+    for (config, m) in [
+        (Config::Luminance, Modulate::Illumination),
+        (Config::Planar, Modulate::Constant(100)),
+        (Config::Planar, Modulate::Illumination),
+    ] {
+        let mut d = Drf::new(5, 5, Border::Clamp);
+        (d.config, d.modulate) = (config, m);
+        let mut stub = TexramStub::new();
+        stub.set_drf(0, d).unwrap();
+        stub.load(0, &level0).unwrap();
+        let mut chip = Texram802::new(TexramParams::default()).unwrap();
+        chip.set_drf(0, d).unwrap();
+        chip.load(0, &level0).unwrap();
+        let reqs = stim.draw_n(&requests(4, 4), 500);
+        let illum: Vec<u32> = stim.draw_n(&any::<u32>(), reqs.len());
+        let (out, _, _) = run_rgba(chip, &reqs, &illum);
+        let mut plain = TexramStub::new();
+        plain
+            .set_drf(
+                0,
+                Drf {
+                    modulate: Modulate::One,
+                    ..d
+                },
+            )
+            .unwrap();
+        plain.load(0, &level0).unwrap();
+        for (k, &(u, v, lambda)) in reqs.iter().enumerate() {
+            let q = TexramRequest {
+                drf: 0,
+                u,
+                v,
+                lambda,
+            };
+            let i = illum[k].to_be_bytes();
+            let r = stub.access_lit(q, i).unwrap();
+            assert_eq!(out[k].0, r.rgba, "{config:?} {m:?} request {k}");
+            let t = plain.access(q).unwrap().rgba;
+            for c in 0..3 {
+                let f = match m {
+                    Modulate::Illumination => i[c],
+                    Modulate::Constant(x) => x,
+                    Modulate::One => 255,
+                };
+                assert_eq!(r.rgba[c], mul255(f, t[c]));
+            }
+            assert_eq!(r.rgba[3], t[3], "alpha is the texture's");
+        }
     }
 }

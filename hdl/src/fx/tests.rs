@@ -374,8 +374,15 @@ fn format_limits_and_their_messages() {
     assert!(Format::try_new(8, -m, true).is_ok());
     assert!(Format::try_new(8, m, true).is_ok());
     let e = Format::try_new(8, -m - 1, true).unwrap_err();
-    assert_eq!(e.to_string(), format!("fraction bits {} out of range -{m}..={m}", -m - 1));
+    assert_eq!(
+        e.to_string(),
+        format!("fraction bits {} out of range -{m}..={m}", -m - 1)
+    );
     assert!(Format::try_new(8, m + 1, true).is_err());
     let e = Format::try_new(0, 0, false).unwrap_err();
-    assert!(e.to_string().starts_with("width 0 out of range: unsigned formats hold 1..="), "{e}");
+    assert!(
+        e.to_string()
+            .starts_with("width 0 out of range: unsigned formats hold 1..="),
+        "{e}"
+    );
 }

@@ -67,6 +67,8 @@ pub struct Drf {
     pub border: Border,
     /// How the stored texels are read (section 6).
     pub config: Config,
+    /// Eq. 5 in the output stage 820: what multiplies the texture colour.
+    pub modulate: output_820::Modulate,
 }
 
 /// The configurations of section 6 modelled so far.
@@ -121,6 +123,7 @@ impl Drf {
             base_odd: 0,
             border,
             config: Config::Luminance,
+            modulate: output_820::Modulate::One,
         }
     }
 

@@ -33,6 +33,16 @@ pub fn combine(m: Modulate, illumination: u8, texture: u8) -> u8 {
     mul255(factor, texture)
 }
 
+/// Eq. 5 on a result: R, G and B multiplied as `m` says by the illumination's (R, G, B) or
+/// the constant; alpha, [C], the texture's.
+pub fn shade(m: Modulate, illumination: [u8; 4], texture: [u8; 4]) -> [u8; 4] {
+    let mut out = texture;
+    for c in 0..3 {
+        out[c] = combine(m, illumination[c], texture[c]);
+    }
+    out
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

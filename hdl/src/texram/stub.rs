@@ -174,6 +174,19 @@ impl TexramStub {
         cost
     }
 
+    /// An access with the rasterizer's interpolated illumination `I_d` (R, G, B, alpha):
+    /// the result's `rgba` after eq. 5 of the output stage 820 as the DRF's `modulate` says.
+    pub fn access_lit(
+        &mut self,
+        req: TexramRequest,
+        illumination: [u8; 4],
+    ) -> Result<TexramReply, String> {
+        let mut r = self.access(req)?;
+        let m = self.drf(usize::from(req.drf))?.modulate;
+        r.rgba = super::output_820::shade(m, illumination, r.rgba);
+        Ok(r)
+    }
+
     /// Slots the video port took.
     pub fn video_slots(&self) -> u64 {
         self.video_slots

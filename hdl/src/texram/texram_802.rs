@@ -1,6 +1,7 @@
 //! The TEXRAM chip 802 (Figure 8), cycle by cycle: a request port from the rasterizer 804,
 //! the address and control unit 812, the page registers 824, the banks 810 and the trilinear
-//! interpolator 818. In the waveform each unit is its own scope under `texram_802`.
+//! interpolator 818, the output stage 820 (eq. 5). In the waveform each unit is its own scope
+//! under `texram_802`.
 //!
 //! # Timing ([C], the document gives the 30 ns slot only)
 //! The clock is 5 ns (as `dram_604`); one access slot is `slot_cycles` = 6 cycles.
@@ -28,6 +29,7 @@
 use super::address_812::Footprint;
 use super::banks_810::{bank_words, locate, BANKS, ROW_WORDS};
 use super::clut_814::Clut;
+use super::output_820::{shade, Modulate};
 use super::stub::next_level;
 use super::trilinear_818::trilinear;
 use super::{Border, Config, Drf, DRFS};
@@ -90,6 +92,9 @@ struct Access {
     /// request's last; a luminance or index access is part 0 and last.
     part: Reg,
     last: Reg,
+    /// Eq. 5: the request's illumination and the DRF's choice (0 I_d, 1 k_T, 2 one) and k_T.
+    illum: Reg,
+    modulate: Reg,
 }
 
 impl Access {
@@ -110,13 +115,21 @@ impl Access {
             index: Reg::new("index", Format::uint(1)),
             part: Reg::new("part", Format::uint(2)),
             last: Reg::new("last", Format::uint(1)),
+            illum: Reg::new("illum", Format::uint(32)),
+            modulate: Reg::new("modulate", Format::uint(10)),
         }
     }
 
     fn regs(&self) -> impl Iterator<Item = &Reg> {
         let one = [&self.read, &self.src, &self.weights, &self.colour];
         one.into_iter()
-            .chain([&self.index, &self.part, &self.last])
+            .chain([
+                &self.index,
+                &self.part,
+                &self.last,
+                &self.illum,
+                &self.modulate,
+            ])
             .chain(&self.word)
     }
 
@@ -129,6 +142,7 @@ impl Access {
         ];
         one.into_iter()
             .chain([&mut self.index, &mut self.part, &mut self.last])
+            .chain([&mut self.illum, &mut self.modulate])
             .chain(&mut self.word)
     }
 
@@ -167,6 +181,8 @@ pub struct Texram802 {
     pub req_u: Signal,
     pub req_v: Signal,
     pub req_lambda: Signal,
+    /// The rasterizer's interpolated illumination `I_d` (R top byte), for eq. 5.
+    pub req_illum: Signal,
     /// 812's registers, and the request it is splitting into component accesses.
     addr: Access,
     held: [Reg; 4],
@@ -211,6 +227,7 @@ impl Texram802 {
             req_u: Signal::new("req_u", Format::signed(super::UV_BITS, 8)),
             req_v: Signal::new("req_v", Format::signed(super::UV_BITS, 8)),
             req_lambda: Signal::new("req_lambda", Format::signed(14, 8)),
+            req_illum: Signal::new("req_illum", Format::uint(32)),
             addr: Access::new(),
             open: OPEN_NAMES
                 .iter()
@@ -340,6 +357,12 @@ impl Texram802 {
         };
         self.addr.colour.set_next_bits(u64::from(colour));
         self.addr.index.set_next_bool(d.config == Config::Index);
+        let m = match d.modulate {
+            Modulate::Illumination => 0,
+            Modulate::Constant(k) => 1 << 8 | u64::from(k),
+            Modulate::One => 2 << 8,
+        };
+        self.addr.modulate.set_next_bits(m);
     }
 
     /// The round in which `bank` reads `word`: the round that already reads it, else the next
@@ -430,6 +453,15 @@ impl Texram802 {
         let done = self.bank.last.q().is_high();
         self.out_valid.set_next_bool(done);
         if done {
+            // 820: eq. 5 on the finished colour.
+            let m = self.bank.modulate.q().bits();
+            let m = match m >> 8 {
+                0 => Modulate::Illumination,
+                1 => Modulate::Constant(m as u8),
+                _ => Modulate::One,
+            };
+            let illum = (self.bank.illum.q().bits() as u32).to_be_bytes();
+            let rgba = u32::from_be_bytes(shade(m, illum, rgba.to_be_bytes()));
             self.out_value.set_next_bits(u64::from(rgba >> 24));
             self.out_rgba.set_next_bits(u64::from(rgba));
             self.out_texels.set_next_bits(u64::from_le_bytes(texels));
@@ -482,6 +514,7 @@ impl Module for Texram802 {
                 h.set_next_raw(x);
             }
             self.address(0, k as usize, (uvl[0], uvl[1], uvl[2]));
+            self.addr.illum.set_next_bits(self.req_illum.bits());
         } else if move_on && more {
             let h = self.held.each_ref().map(|r| r.q().raw());
             let part = self.addr.part.q().bits() as u32 + 1;
@@ -528,7 +561,7 @@ impl Module for Texram802 {
     fn visit(&self, v: &mut dyn Visitor) {
         v.enter(self.instance(), self.kind());
         signals!(v;
-            Input: self.req_valid, self.req_drf, self.req_u, self.req_v, self.req_lambda;
+            Input: self.req_valid, self.req_drf, self.req_u, self.req_v, self.req_lambda, self.req_illum;
             Output: self.req_ready);
         v.enter("address_812", "address_812");
         self.addr.visit(v);
@@ -548,7 +581,10 @@ impl Module for Texram802 {
         signals!(v; Reg: self.left, self.fault);
         v.leave();
         v.enter("trilinear_818", "trilinear_818");
-        signals!(v; Reg: self.out_valid, self.out_value, self.out_rgba, self.out_texels, self.out_fault, self.acc_rgba);
+        v.reg(&self.acc_rgba);
+        v.leave();
+        v.enter("output_820", "output_820");
+        signals!(v; Reg: self.out_valid, self.out_value, self.out_rgba, self.out_texels, self.out_fault);
         v.leave();
         v.leave();
     }
