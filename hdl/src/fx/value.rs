@@ -552,3 +552,45 @@ impl Fx {
         F::Bits::try_from(v.raw).ok().map(F::from_bits)
     }
 }
+
+#[cfg(test)]
+mod bit_tests {
+    use super::*;
+
+    /// Bits past the 127th are the sign, and "any low bit" over the whole width is "not zero".
+    #[test]
+    fn bits_beyond_the_word_are_the_sign() {
+        for i in [127, 128, 200, u32::MAX] {
+            assert!(bit(-1, i));
+            assert!(bit(i128::MIN, i));
+            assert!(!bit(0, i));
+            assert!(!bit(5, i));
+        }
+        assert!(bit(4, 2) && !bit(4, 1));
+        for n in [128, 129, 1000] {
+            assert!(!any_low(0, n));
+            assert!(any_low(1, n));
+            assert!(any_low(-1, n));
+        }
+        assert!(!any_low(8, 3) && any_low(9, 3) && !any_low(9, 0));
+    }
+
+    /// The errors' messages name the value and the format.
+    #[test]
+    fn error_messages() {
+        let f = Format::sint(4);
+        let e = FxError::OutOfRange { raw: 9, fmt: f };
+        assert_eq!(e.to_string(), "raw value 9 does not fit s4 (-8..=7)");
+        assert_eq!(FxError::NotFinite.to_string(), "NaN or infinite input");
+        let v = Fx::from_raw(Format::unsigned(2, 1), 1);
+        let e = FxError::Inexact {
+            value: v,
+            fmt: Format::uint(4),
+        };
+        assert!(
+            e.to_string()
+                .ends_with("is not exactly representable in u4"),
+            "{e}"
+        );
+    }
+}
