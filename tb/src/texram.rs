@@ -281,6 +281,21 @@ fn requests(wl: u32, hl: u32, n: usize, stim: &mut Stimulus) -> Vec<TexReq> {
     stim.draw_n(&s, n)
 }
 
+/// Requests every configuration gets before its random ones, so that its coverage does not
+/// depend on the count: each lambda class inside the map and beyond an edge, and a repeat
+/// (a page hit after the fault of the first access).
+fn directed(wl: u32, hl: u32) -> Vec<TexReq> {
+    let lmax = wl.max(hl) as i32;
+    let mut v = Vec::new();
+    for lambda in [-256, 256.min(lmax << 8), 128, lmax << 8] {
+        for (u, v_) in [(384, 384), (-600, 200)] {
+            v.push(TexReq { u, v: v_, lambda });
+        }
+    }
+    v.push(v[0]);
+    v
+}
+
 fn coverage_model() -> Coverage {
     let mut c = Coverage::new();
     let b = c.add(
@@ -529,7 +544,8 @@ fn one_config<T: Trace>(
         lmax,
         config,
     };
-    let reqs = requests(wl, hl, ctx.count, stim);
+    let mut reqs = directed(wl, hl);
+    reqs.extend(requests(wl, hl, ctx.count, stim));
     let n = reqs.len() as u64;
     // Luminance: every field; colour: the colour (its texels are of the last component).
     let whole = config == Config::Luminance;
