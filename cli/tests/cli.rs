@@ -714,7 +714,7 @@ fn merge_refuses_huge_counts_and_mixed_versions_without_allocating() {
         (vec![&s1.join("summary.json"), &other], "texrtl 0.0.0"),
         (
             vec![&s1.join("summary.json"), &nobin],
-            "differs between the models",
+            "like its coverpoints",
         ),
         (vec![&big1, &big2], "finite"),
     ] {
