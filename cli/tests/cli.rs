@@ -700,6 +700,11 @@ fn merge_refuses_huge_counts_and_mixed_versions_without_allocating() {
         let bins = &mut v["testbenches"][0]["coverage"]["points"][0]["bins"];
         bins.as_array_mut().unwrap().pop();
     });
+    // The other half of a run whose model names a bin differently: whole, but another model.
+    let renamed = variant("renamed.json", &|v| {
+        v["shard"] = "2/2".into();
+        v["testbenches"][0]["coverage"]["points"][0]["bins"][0]["name"] = "other".into();
+    });
     // Both halves with a sum near the largest double: their sum is not finite.
     let big = |name: &str, shard: &str| {
         variant(name, &|v| {
@@ -715,6 +720,10 @@ fn merge_refuses_huge_counts_and_mixed_versions_without_allocating() {
         (
             vec![&s1.join("summary.json"), &nobin],
             "like its coverpoints",
+        ),
+        (
+            vec![&s1.join("summary.json"), &renamed],
+            "differs between the models",
         ),
         (vec![&big1, &big2], "finite"),
     ] {
