@@ -153,26 +153,36 @@ fn integer_lambda_is_exactly_the_bilinear_of_its_level() {
     }
 }
 
-/// One result of the chip: the cycle it came out, its value, texels and fault flag.
-type Out = (u64, u8, [u8; 8], bool);
+/// One result of the chip.
+#[derive(Clone, Copy, Debug)]
+struct Out {
+    /// The cycle it came out.
+    cycle: u64,
+    value: u8,
+    rgba: [u8; 4],
+    texels: [u8; 8],
+    fault: bool,
+}
 
-/// Runs `reqs` back to back through the cycle-accurate chip; its results and slot count.
+/// Runs `reqs` back to back through the cycle-accurate chip (with the illumination
+/// `illum[k]` on request k, 0 past its end; traced to `vcd` when given): its results, its
+/// slot and conflict counts.
 fn run_chip(
     chip: hdl::texram::texram_802::Texram802,
     reqs: &[(i32, i32, i32)],
+    illum: &[u32],
     vcd: Option<&std::path::Path>,
-) -> (Vec<Out>, u64) {
+) -> (Vec<Out>, u64, u64) {
     use hdl::kernel::Sim;
     let tracer = vcd.map(|p| waves::VcdTracer::create(p, "texram", Default::default()).unwrap());
     let mut sim = Sim::maybe_traced(chip, tracer)
         .unwrap()
         .check_schedule(true);
     sim.reset(2);
-    let mut out = Vec::new();
-    let mut next = 0;
+    let (mut next, mut out) = (0, Vec::new());
     while out.len() < reqs.len() {
         assert!(
-            sim.cycle() < 100 + 20 * reqs.len() as u64,
+            sim.cycle() < 100 + 200 * reqs.len() as u64,
             "the chip stalled"
         );
         let d = &mut sim.dut;
@@ -181,6 +191,8 @@ fn run_chip(
             d.req_u.set_raw(i64::from(u));
             d.req_v.set_raw(i64::from(v));
             d.req_lambda.set_raw(i64::from(l));
+            d.req_illum
+                .set_bits(u64::from(illum.get(next).copied().unwrap_or(0)));
         }
         sim.eval();
         let d = &sim.dut;
@@ -188,19 +200,19 @@ fn run_chip(
             next += 1;
         }
         if d.out_valid.q().is_high() {
-            let t = d.out_texels.q().bits().to_le_bytes();
-            out.push((
-                sim.cycle(),
-                d.out_value.q().bits() as u8,
-                t,
-                d.out_fault.q().is_high(),
-            ));
+            out.push(Out {
+                cycle: sim.cycle(),
+                value: d.out_value.q().bits() as u8,
+                rgba: (d.out_rgba.q().bits() as u32).to_be_bytes(),
+                texels: d.out_texels.q().bits().to_le_bytes(),
+                fault: d.out_fault.q().is_high(),
+            });
         }
         sim.tick();
     }
-    let slots = sim.dut.slots.q().bits();
+    let (slots, conflicts) = (sim.dut.slots.q().bits(), sim.dut.conflicts.q().bits());
     sim.finish().unwrap();
-    (out, slots)
+    (out, slots, conflicts)
 }
 
 #[test]
@@ -214,7 +226,7 @@ fn the_cycle_accurate_chip_matches_the_stub_texel_for_texel_and_slot_for_slot() 
             chip.set_drf(0, Drf::new(wl, hl, border)).unwrap();
             chip.load(0, &reference.levels[0]).unwrap();
             let reqs = stim.draw_n(&requests(wl, hl), 2000);
-            let (out, slots) = run_chip(chip, &reqs, None);
+            let (out, slots, _) = run_chip(chip, &reqs, &[], None);
             let mut last = None;
             for (k, &(u, v, lambda)) in reqs.iter().enumerate() {
                 let r = stub
@@ -225,7 +237,13 @@ fn the_cycle_accurate_chip_matches_the_stub_texel_for_texel_and_slot_for_slot() 
                         lambda,
                     })
                     .unwrap();
-                let (cycle, value, texels, fault) = out[k];
+                let Out {
+                    cycle,
+                    value,
+                    texels,
+                    fault,
+                    ..
+                } = out[k];
                 assert_eq!((value, texels), (r.value, r.texels), "request {k}");
                 assert_eq!(fault, r.slots == 2, "request {k}");
                 // Back to back: each result one slot (6 cycles) after the last, two after a fault.
@@ -248,7 +266,7 @@ fn the_chip_waveform_has_one_scope_per_unit() {
     let mut chip = Texram802::new(TexramParams::default()).unwrap();
     chip.set_drf(0, Drf::new(4, 4, Border::Mirror)).unwrap();
     chip.load(0, &[7; 256]).unwrap();
-    let (out, _) = run_chip(chip, &[(100, 200, 300), (4000, -90, 0)], Some(&vcd));
+    let (out, _, _) = run_chip(chip, &[(100, 200, 300), (4000, -90, 0)], &[], Some(&vcd));
     assert_eq!(out.len(), 2);
     let rb = waves::check::read_vcd(&vcd).unwrap();
     for unit in [
@@ -330,7 +348,7 @@ fn index_mode_filters_each_component_after_the_lookup() {
         chip.set_drf(0, drf).unwrap();
         chip.load(0, &level0).unwrap();
         chip.set_clut(clut.clone());
-        let (out, _) = run_chip(chip, &reqs, None);
+        let (out, _, _) = run_chip(chip, &reqs, &[], None);
         for (k, &(u, v, lambda)) in reqs.iter().enumerate() {
             let q = TexramRequest {
                 drf: 0,
@@ -347,7 +365,7 @@ fn index_mode_filters_each_component_after_the_lookup() {
                 let (_, want) = reference.access_mapped(u, v, lambda, RefBorder::Mirror, &comp);
                 assert_eq!(r.rgba[c], want, "request {k} component {c}");
             }
-            assert_eq!(out[k].1, r.rgba[0], "chip, request {k}");
+            assert_eq!(out[k].rgba, r.rgba, "chip, request {k}");
         }
     }
 }
@@ -523,45 +541,6 @@ fn video_at_25_frames_a_second_takes_under_one_percent_of_the_slots() {
     assert!(video_slots >= transfers.len() as u64);
 }
 
-/// Runs `reqs` back to back through `chip`: each result's R, G, B, alpha and the cycle it
-/// came out, and the chip's slot and conflict counts.
-fn run_rgba(
-    chip: hdl::texram::texram_802::Texram802,
-    reqs: &[(i32, i32, i32)],
-    illum: &[u32],
-) -> (Vec<([u8; 4], u64)>, u64, u64) {
-    use hdl::kernel::Sim;
-    let mut sim = Sim::new(chip).check_schedule(true);
-    sim.reset(2);
-    let (mut next, mut out) = (0, Vec::new());
-    while out.len() < reqs.len() {
-        assert!(
-            sim.cycle() < 100 + 200 * reqs.len() as u64,
-            "the chip stalled"
-        );
-        sim.dut.req_valid.set_bool(next < reqs.len());
-        if let Some(&(u, v, l)) = reqs.get(next) {
-            sim.dut.req_u.set_raw(i64::from(u));
-            sim.dut.req_v.set_raw(i64::from(v));
-            sim.dut.req_lambda.set_raw(i64::from(l));
-            sim.dut
-                .req_illum
-                .set_bits(u64::from(illum.get(next).copied().unwrap_or(0)));
-        }
-        sim.eval();
-        if sim.dut.req_valid.is_high() && sim.dut.req_ready.is_high() {
-            next += 1;
-        }
-        if sim.dut.out_valid.q().is_high() {
-            let rgba = (sim.dut.out_rgba.q().bits() as u32).to_be_bytes();
-            out.push((rgba, sim.cycle()));
-        }
-        sim.tick();
-    }
-    let d = &sim.dut;
-    (out, d.slots.q().bits(), d.conflicts.q().bits())
-}
-
 /// The cycle-accurate chip in the planar and literal colour layouts: the stub's colours,
 /// slots and conflicts, one component access after the other (a planar pixel every four
 /// slots when no page faults).
@@ -584,7 +563,7 @@ fn the_chip_reads_colour_layouts_like_the_stub() {
         chip.set_drf(0, d).unwrap();
         chip.load(0, &level0).unwrap();
         let reqs = stim.draw_n(&requests(5, 5), 1500);
-        let (out, slots, conflicts) = run_rgba(chip, &reqs, &[]);
+        let (out, slots, conflicts) = run_chip(chip, &reqs, &[], None);
         for (k, &(u, v, lambda)) in reqs.iter().enumerate() {
             let r = stub
                 .access(TexramRequest {
@@ -594,10 +573,10 @@ fn the_chip_reads_colour_layouts_like_the_stub() {
                     lambda,
                 })
                 .unwrap();
-            assert_eq!(out[k].0, r.rgba, "{config:?} request {k}");
+            assert_eq!(out[k].rgba, r.rgba, "{config:?} request {k}");
             if k > 0 {
                 assert_eq!(
-                    out[k].1 - out[k - 1].1,
+                    out[k].cycle - out[k - 1].cycle,
                     6 * u64::from(r.slots),
                     "{config:?} request {k}"
                 );
@@ -632,7 +611,7 @@ fn the_output_stage_shades_with_illumination_or_a_constant() {
         chip.load(0, &level0).unwrap();
         let reqs = stim.draw_n(&requests(4, 4), 500);
         let illum: Vec<u32> = stim.draw_n(&any::<u32>(), reqs.len());
-        let (out, _, _) = run_rgba(chip, &reqs, &illum);
+        let (out, _, _) = run_chip(chip, &reqs, &illum, None);
         let mut plain = TexramStub::new();
         plain
             .set_drf(
@@ -653,7 +632,7 @@ fn the_output_stage_shades_with_illumination_or_a_constant() {
             };
             let i = illum[k].to_be_bytes();
             let r = stub.access_lit(q, i).unwrap();
-            assert_eq!(out[k].0, r.rgba, "{config:?} {m:?} request {k}");
+            assert_eq!(out[k].rgba, r.rgba, "{config:?} {m:?} request {k}");
             let t = plain.access(q).unwrap().rgba;
             for c in 0..3 {
                 let f = match m {

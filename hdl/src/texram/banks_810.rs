@@ -51,6 +51,25 @@ pub fn locate(drf: &Drf, k: u32, x: u32, y: u32) -> (usize, u32) {
     (bank as usize, word)
 }
 
+/// Writes level `k` of the map of `d` (row-major texels of the level's size) into `banks`,
+/// each texel where [`locate`] says; an error names the level that does not fit.
+pub fn store_level(banks: &mut [Vec<u8>], d: &Drf, k: u32, texels: &[u8]) -> Result<(), String> {
+    let (w, h) = d.level_size(k);
+    if texels.len() != (w * h) as usize {
+        return Err(format!("level {k}: {} texels for {w}x{h}", texels.len()));
+    }
+    for y in 0..h {
+        for x in 0..w {
+            let (bank, word) = locate(d, k, x, y);
+            let cell = banks[bank]
+                .get_mut(word as usize)
+                .ok_or_else(|| format!("level {k}: word {word} beyond bank {bank}"))?;
+            *cell = texels[(y * w + x) as usize];
+        }
+    }
+    Ok(())
+}
+
 /// Words per bank for the largest map, 1024 x 1024 with its chain (derived, [C]): even-level
 /// banks 279,621 words (bank 0; banks 1-3 one fewer), odd-level banks 69,905, each rounded up
 /// to whole rows.

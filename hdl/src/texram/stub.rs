@@ -5,7 +5,7 @@
 //! map-chain work start before the cycle-accurate chip exists, and will be held against it.
 
 use super::address_812::Footprint;
-use super::banks_810::{bank_words, locate, BANKS};
+use super::banks_810::{bank_words, locate, store_level, BANKS};
 use super::clut_814::Clut;
 use super::page_registers_824::{Cost, PageRegisters};
 use super::trilinear_818::trilinear;
@@ -79,20 +79,7 @@ impl TexramStub {
                 d.max_level()
             ));
         }
-        let (w, h) = d.level_size(k);
-        if texels.len() != (w * h) as usize {
-            return Err(format!("level {k}: {} texels for {w}x{h}", texels.len()));
-        }
-        for y in 0..h {
-            for x in 0..w {
-                let (bank, word) = locate(&d, k, x, y);
-                let cell = self.banks[bank]
-                    .get_mut(word as usize)
-                    .ok_or_else(|| format!("level {k}: word {word} beyond bank {bank}"))?;
-                *cell = texels[(y * w + x) as usize];
-            }
-        }
-        Ok(())
+        store_level(&mut self.banks, &d, k, texels)
     }
 
     /// Loads level 0 of DRF `drf`'s map and every level above it ([`next_level`]).

@@ -27,7 +27,7 @@
 //! walker and the video port that write them are later work).
 
 use super::address_812::Footprint;
-use super::banks_810::{bank_words, locate, BANKS, ROW_WORDS};
+use super::banks_810::{bank_words, locate, store_level, BANKS, ROW_WORDS};
 use super::clut_814::Clut;
 use super::output_820::{shade, Modulate};
 use super::stub::next_level;
@@ -288,19 +288,8 @@ impl Texram802 {
             .ok_or(format!("drf {k}: not set"))?;
         let mut level = level0.to_vec();
         for lv in 0..=d.max_level() {
+            store_level(&mut self.banks, &d, lv, &level).map_err(|e| format!("drf {k}: {e}"))?;
             let (w, h) = d.level_size(lv);
-            if level.len() != (w * h) as usize {
-                return Err(format!("level {lv}: {} texels for {w}x{h}", level.len()));
-            }
-            for y in 0..h {
-                for x in 0..w {
-                    let (bank, word) = locate(&d, lv, x, y);
-                    let cell = self.banks[bank]
-                        .get_mut(word as usize)
-                        .ok_or_else(|| format!("drf {k}: level {lv} beyond bank {bank}"))?;
-                    *cell = level[(y * w + x) as usize];
-                }
-            }
             level = next_level(w, h, &level);
         }
         Ok(())
