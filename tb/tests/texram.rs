@@ -646,3 +646,45 @@ fn the_output_stage_shades_with_illumination_or_a_constant() {
         }
     }
 }
+
+/// The chip behind the `TexramAccess` interface answers like the stub, access by access
+/// (what the footprint assembly and the map chain will call).
+#[test]
+fn the_chip_behind_the_interface_answers_like_the_stub() {
+    use hdl::texram::texram_802::{Texram802, Texram802Access, TexramParams};
+    use hdl::texram::Config;
+    let mut stim = verif::seeded_stimulus("texram interface");
+    let level0: Vec<u8> = stim.draw_n(&any::<u8>(), 64 * 64);
+    for config in [Config::Luminance, Config::Planar] {
+        let mut d = Drf::new(6, 6, Border::Mirror);
+        d.config = config;
+        let mut stub = TexramStub::new();
+        stub.set_drf(0, d).unwrap();
+        stub.load(0, &level0).unwrap();
+        let mut chip = Texram802Access::new(Texram802::new(TexramParams::default()).unwrap());
+        chip.set_drf(0, d).unwrap();
+        chip.chip().load(0, &level0).unwrap();
+        for (u, v, lambda) in stim.draw_n(&requests(6, 6), 300) {
+            let q = TexramRequest {
+                drf: 0,
+                u,
+                v,
+                lambda,
+            };
+            let (a, b) = (chip.access(q).unwrap(), stub.access(q).unwrap());
+            assert_eq!(
+                (a.rgba, a.slots, a.faults),
+                (b.rgba, b.slots, b.faults),
+                "{q:?}"
+            );
+            assert_eq!(
+                (a.fine, a.coarse, a.a, a.b, a.f),
+                (b.fine, b.coarse, b.a, b.b, b.f)
+            );
+            if config == Config::Luminance {
+                assert_eq!(a.texels, b.texels);
+            }
+        }
+        assert_eq!(chip.slots(), stub.slots());
+    }
+}

@@ -578,3 +578,82 @@ impl Module for Texram802 {
         v.leave();
     }
 }
+
+/// The cycle-accurate chip behind [`super::TexramAccess`]: each access is driven into the
+/// request port and the chip clocked until its result comes out, so code written against the
+/// interface (footprint assembly, the map chain) runs on the chip as on the stub. Slots and
+/// faults are the chip's counters; the levels and weights are 812's (from the request).
+pub struct Texram802Access {
+    sim: crate::kernel::Sim<Texram802, crate::kernel::NoTrace>,
+}
+
+impl Texram802Access {
+    /// The chip, reset, with its DRFs and banks as given.
+    pub fn new(chip: Texram802) -> Texram802Access {
+        let mut sim = crate::kernel::Sim::new(chip);
+        sim.reset(2);
+        Texram802Access { sim }
+    }
+
+    /// The chip, to load DRFs, maps and the CLUT.
+    pub fn chip(&mut self) -> &mut Texram802 {
+        &mut self.sim.dut
+    }
+}
+
+impl super::TexramAccess for Texram802Access {
+    fn set_drf(&mut self, k: usize, drf: Drf) -> Result<(), String> {
+        self.sim.dut.set_drf(k, drf)
+    }
+
+    fn access(&mut self, req: super::TexramRequest) -> Result<super::TexramReply, String> {
+        req.validate()?;
+        let d =
+            self.sim.dut.drfs[usize::from(req.drf)].ok_or(format!("drf {}: not set", req.drf))?;
+        let (slots0, faults0) = (
+            self.sim.dut.slots.q().bits(),
+            self.sim.dut.faults.q().bits(),
+        );
+        let dut = &mut self.sim.dut;
+        dut.req_drf.set_bits(u64::from(req.drf));
+        dut.req_u.set_raw(i64::from(req.u));
+        dut.req_v.set_raw(i64::from(req.v));
+        dut.req_lambda.set_raw(i64::from(req.lambda));
+        let mut sent = false;
+        for _ in 0..1000 {
+            self.sim.dut.req_valid.set_bool(!sent);
+            self.sim.eval();
+            sent |= self.sim.dut.req_ready.is_high();
+            let done = self.sim.dut.out_valid.q().is_high() && sent;
+            if done {
+                let dut = &self.sim.dut;
+                let rgba = (dut.out_rgba.q().bits() as u32).to_be_bytes();
+                let plane = match d.config {
+                    Config::Planar | Config::Literal => d.component_map(),
+                    _ => d,
+                };
+                let fp = Footprint::of(&plane, req.u, req.v, req.lambda);
+                let reply = super::TexramReply {
+                    fine: fp.fine,
+                    coarse: fp.coarse,
+                    texels: dut.out_texels.q().bits().to_le_bytes(),
+                    a: fp.a,
+                    b: fp.b,
+                    f: fp.f,
+                    value: rgba[0],
+                    rgba,
+                    slots: (dut.slots.q().bits() - slots0) as u32,
+                    faults: (dut.faults.q().bits() - faults0) as u32,
+                };
+                self.sim.tick();
+                return Ok(reply);
+            }
+            self.sim.tick();
+        }
+        Err("the chip gave no result in 1000 cycles".into())
+    }
+
+    fn slots(&self) -> u64 {
+        self.sim.dut.slots.q().bits()
+    }
+}
