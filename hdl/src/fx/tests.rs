@@ -386,3 +386,34 @@ fn format_limits_and_their_messages() {
         "{e}"
     );
 }
+
+/// The machine-word fast paths of `quantise` at their edges: powers of two and their
+/// neighbours (values whose low bits are all zero are where a wrong shift looks like a fit),
+/// every destination width below 64, shifts up to 66, every mode, against the reference.
+#[test]
+fn quantise_fast_paths_at_their_edges() {
+    let mut values = vec![0i128];
+    for k in 0..70 {
+        for d in [-1i128, 0, 1] {
+            values.push((1i128 << k) + d);
+            values.push(-(1i128 << k) + d);
+        }
+    }
+    for w in (1..=64u32).step_by(3).chain([62, 63, 64]) {
+        for signed in [false, true] {
+            let dst = Format::new(w, 0, signed);
+            for shift in [1, 2, 31, 61, 62, 63, 64, 66] {
+                let src = Format::new(127, shift, true);
+                for &raw in &values {
+                    for q in Quant::ALL {
+                        for o in Overflow::ALL {
+                            let got = quantise(raw, shift, dst, q, o);
+                            let want = ref_convert(raw, src, dst, q, o);
+                            assert_eq!(got, want, "raw {raw} >> {shift} into {dst} {q} {o}");
+                        }
+                    }
+                }
+            }
+        }
+    }
+}
