@@ -112,12 +112,7 @@ fn bad_input_is_one_line_exit_2_and_no_file() {
     let o = d.join("o.csv");
     let w = d.join("w.vcd");
     let cases: [(&Path, &Path, &[&str], &str); 6] = [
-        (
-            &t,
-            &r,
-            &["--config", "index"],
-            "--config index: not in the command yet",
-        ),
+        (&t, &r, &["--config", "index"], "not a PPM"),
         (&t, &r, &["--config", "bogus"], "--config bogus"),
         (&t, &r, &["--border", "border:256"], "--border border:256"),
         (&odd, &r, &[], "width 3 is not a power of two"),
@@ -220,4 +215,59 @@ fn colour_textures_planar_and_truecolor() {
     assert_eq!(out.status.code(), Some(2));
     assert!(String::from_utf8_lossy(&out.stderr).contains("square"));
     assert!(!o.exists());
+}
+
+/// Index mode: a PPM of a few colours becomes a palette (the CLUT) and indices; at a texel
+/// centre of level 0 the result is the texel's colour; more than 256 colours are refused.
+#[test]
+fn index_textures_through_the_clut() {
+    let d = dir("index");
+    let cols = [[255u8, 0, 0], [0, 255, 0], [0, 0, 255], [255, 255, 0]];
+    let rgb: Vec<u8> = (0..16 * 16u32)
+        .flat_map(|k| cols[((k % 16 / 4 + k / 64) % 4) as usize])
+        .collect();
+    let t = d.join("p.ppm");
+    std::fs::write(&t, formats::netpbm::encode_ppm(16, 16, &rgb)).unwrap();
+    let r = d.join("r.csv");
+    std::fs::write(&r, "u,v,lambda\n5.5,1.5,0\n8,8,2.5\n").unwrap();
+    let o = d.join("o.csv");
+    let out = texrtl(&[
+        "texram",
+        "--texture",
+        s(&t),
+        "--requests",
+        s(&r),
+        "--out",
+        s(&o),
+        "--config",
+        "index",
+    ]);
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    let csv = std::fs::read_to_string(&o).unwrap();
+    // Texel (5, 1): colour (5 / 4 + 1 / 4) % 4 = 1, green.
+    assert_eq!(csv.lines().nth(1), Some("5.5,1.5,0,0,255,0,255"));
+    let many: Vec<u8> = (0..32 * 32u32)
+        .flat_map(|k| [(k % 32 * 8) as u8, (k / 32 * 8) as u8, 0])
+        .collect();
+    let t2 = d.join("many.ppm");
+    std::fs::write(&t2, formats::netpbm::encode_ppm(32, 32, &many)).unwrap();
+    let o2 = d.join("o2.csv");
+    let out = texrtl(&[
+        "texram",
+        "--texture",
+        s(&t2),
+        "--requests",
+        s(&r),
+        "--out",
+        s(&o2),
+        "--config",
+        "index",
+    ]);
+    assert_eq!(out.status.code(), Some(2));
+    assert!(String::from_utf8_lossy(&out.stderr).contains("more than 256 colours"));
+    assert!(!o2.exists());
 }

@@ -788,23 +788,52 @@ pub struct TexramRun {
     pub stats: TexramStats,
 }
 
-/// Runs `reqs` back to back through the chip holding `level0` (the DRF's whole space) as
-/// `drf` describes, every result checked (a difference is an error: the command must not
-/// print a wrong texel): luminance against the integer reference, the other configurations
-/// against the behavioural stub. Traced to `vcd` when given.
+/// A map as the host hands it to the chip: its DRF, every level, the CLUT (index maps).
+pub struct TexramTexture {
+    pub drf: Drf,
+    pub levels: Vec<Vec<u8>>,
+    pub clut: Clut,
+}
+
+impl TexramTexture {
+    /// Level 0 and the levels the generator 816 makes from it (luminance and colour maps).
+    pub fn generated(drf: Drf, level0: &[u8]) -> TexramTexture {
+        let mut levels = vec![level0.to_vec()];
+        for k in 0..drf.max_level() {
+            let (w, h) = drf.level_size(k);
+            let next = hdl::texram::stub::next_level(w, h, &levels[k as usize]);
+            levels.push(next);
+        }
+        TexramTexture {
+            drf,
+            levels,
+            clut: Clut::identity(),
+        }
+    }
+}
+
+/// Runs `reqs` back to back through the chip holding `tex`, every result checked (a
+/// difference is an error: the command must not print a wrong texel): luminance against the
+/// integer reference, the other configurations against the behavioural stub. Traced to `vcd`
+/// when given.
 pub fn run_texram(
-    level0: &[u8],
-    drf: Drf,
+    tex: &TexramTexture,
     reqs: &[TexReq],
     vcd: Option<&std::path::Path>,
 ) -> Result<TexramRun, String> {
     use hdl::texram::{Config, TexramAccess, TexramRequest};
+    let drf = tex.drf;
     let mut chip = Texram802::new(TexramParams::default())?;
     chip.set_drf(0, drf)?;
-    chip.load(0, level0)?;
     let mut stub = hdl::texram::stub::TexramStub::new();
     stub.set_drf(0, drf)?;
-    stub.load(0, level0)?;
+    for (k, level) in tex.levels.iter().enumerate() {
+        chip.write_level(0, k as u32, level)?;
+        stub.write_level(0, k as u32, level)?;
+    }
+    chip.set_clut(tex.clut.clone());
+    stub.set_clut(tex.clut.clone());
+    let level0 = &tex.levels[0];
     let (wl, hl, border) = (drf.width_log2, drf.height_log2, drf.border);
     let tracer = match vcd {
         Some(p) => Some(

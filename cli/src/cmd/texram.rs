@@ -1,11 +1,12 @@
 //! `texrtl texram`: trilinear texture accesses through the cycle-accurate TEXRAM chip of
-//! Figure 8, in the luminance, planar and literal ("truecolor") configurations.
+//! Figure 8, in the luminance, index, planar and literal ("truecolor") configurations.
 
 use super::{input, write_out, CmdError};
+use hdl::texram::clut_814::Clut;
 use hdl::texram::{Border, Config, Drf};
 use std::fmt::Write;
 use std::path::{Path, PathBuf};
-use tb::texram::{run_texram, TexReq};
+use tb::texram::{run_texram, TexReq, TexramTexture};
 
 /// Trilinear accesses through the cycle-accurate TEXRAM chip (Figure 8).
 #[derive(Clone, Debug, clap::Args)]
@@ -23,9 +24,9 @@ pub struct TexramArgs {
     /// CSV: u,v,lambda,r,g,b,a per request in order (as quantised; luminance in all four).
     #[arg(long)]
     pub out: PathBuf,
-    /// luminance (PGM), planar (PPM, components in four planes: conflict-free, four accesses a
-    /// pixel) or truecolor (PPM, the document's literal 2x2 cells: bank conflicts, counted);
-    /// index is not in the command yet.
+    /// luminance (PGM), index (PPM of at most 256 colours: the CLUT, host-made upper levels),
+    /// planar (PPM, components in four planes: conflict-free, four accesses a pixel) or
+    /// truecolor (PPM, the document's literal 2x2 cells: bank conflicts, counted).
     #[arg(long, default_value = "luminance")]
     pub config: String,
     /// wrap, clamp, mirror or border:N (N 0..=255, the border colour).
@@ -52,10 +53,11 @@ fn log2(path: &Path, what: &str, n: u32, max: u32) -> Result<u32, String> {
     }
 }
 
-/// The texture as the chip stores it for `config`: the DRF and its space's level 0.
-/// Luminance: a PGM as it is. Planar: a PPM's R, G, B planes and an opaque alpha in the
-/// quadrants of a space twice as wide and high; truecolor: the same components in 2x2 cells.
-fn read_texture(path: &Path, config: Config, border: Border) -> Result<(Drf, Vec<u8>), String> {
+/// The texture as the chip stores it for `config`. Luminance: a PGM as it is. Planar: a
+/// PPM's R, G, B planes and an opaque alpha in the quadrants of a space twice as wide and
+/// high; truecolor: the same components in 2x2 cells. Index: a PPM of at most 256 colours,
+/// its palette in the CLUT; its upper levels made by the host (see [`index_levels`]).
+fn read_texture(path: &Path, config: Config, border: Border) -> Result<TexramTexture, String> {
     if config == Config::Luminance {
         let img = formats::netpbm::read(path)?;
         let wl = log2(path, "width", img.width, 1024)?;
@@ -67,9 +69,19 @@ fn read_texture(path: &Path, config: Config, border: Border) -> Result<(Drf, Vec
                 img.maxval
             ));
         }
-        return Ok((Drf::new(wl, hl, border), img.pixels));
+        return Ok(TexramTexture::generated(
+            Drf::new(wl, hl, border),
+            &img.pixels,
+        ));
     }
     let img = formats::netpbm::read_ppm(path)?;
+    if config == Config::Index {
+        let wl = log2(path, "width", img.width, 1024)?;
+        let hl = log2(path, "height", img.height, 1024)?;
+        let mut drf = Drf::new(wl, hl, border);
+        drf.config = config;
+        return index_levels(&img, drf).map_err(|e| format!("{}: {e}", path.display()));
+    }
     let wl = log2(path, "width", img.width, 512)?;
     let hl = log2(path, "height", img.height, 512)?;
     let mut drf = Drf::new(wl + 1, hl + 1, border);
@@ -90,7 +102,73 @@ fn read_texture(path: &Path, config: Config, border: Border) -> Result<(Drf, Vec
             }
         }
     }
-    Ok((drf, space))
+    Ok(TexramTexture::generated(drf, &space))
+}
+
+/// An index map [C]: the palette is the image's colours in order of first appearance (at
+/// most 256, alpha 255); each upper level's texel is the palette entry nearest (squared RGB
+/// distance, the lowest index on a tie) to the rounded mean colour of the 2x2 (or pair) below
+/// it. The generator 816 cannot make these: it averages values, which means nothing for
+/// indices.
+fn index_levels(img: &formats::netpbm::Ppm, drf: Drf) -> Result<TexramTexture, String> {
+    let mut palette: Vec<[u8; 3]> = Vec::new();
+    let mut level0 = Vec::with_capacity(img.pixels.len() / 3);
+    for px in img.pixels.chunks_exact(3) {
+        let c = [px[0], px[1], px[2]];
+        let i = match palette.iter().position(|p| *p == c) {
+            Some(i) => i,
+            None if palette.len() < 256 => {
+                palette.push(c);
+                palette.len() - 1
+            }
+            None => return Err("more than 256 colours: index mode holds 256".into()),
+        };
+        level0.push(i as u8);
+    }
+    let nearest = |c: [u32; 3]| -> u8 {
+        let d = |p: &[u8; 3]| {
+            (0..3)
+                .map(|k| (i64::from(p[k]) - i64::from(c[k])).pow(2))
+                .sum::<i64>()
+        };
+        (0..palette.len())
+            .min_by_key(|&i| (d(&palette[i]), i))
+            .unwrap_or(0) as u8
+    };
+    let mut levels = vec![level0];
+    for k in 0..drf.max_level() {
+        let (w, h) = drf.level_size(k);
+        let (nw, nh) = ((w / 2).max(1), (h / 2).max(1));
+        let prev = &levels[k as usize];
+        let mut next = Vec::with_capacity((nw * nh) as usize);
+        for y in 0..nh {
+            for x in 0..nw {
+                let (sx, sy) = (if w > 1 { 2 } else { 1 }, if h > 1 { 2 } else { 1 });
+                let mut sum = [0u32; 3];
+                for dy in 0..sy {
+                    for dx in 0..sx {
+                        let p =
+                            palette[usize::from(prev[((y * sy + dy) * w + x * sx + dx) as usize])];
+                        for c in 0..3 {
+                            sum[c] += u32::from(p[c]);
+                        }
+                    }
+                }
+                let n = sx * sy;
+                next.push(nearest(sum.map(|s| (s + n / 2) / n)));
+            }
+        }
+        levels.push(next);
+    }
+    let mut entries = [0u32; 256];
+    for (e, p) in entries.iter_mut().zip(&palette) {
+        *e = u32::from_be_bytes([p[0], p[1], p[2], 255]);
+    }
+    Ok(TexramTexture {
+        drf,
+        levels,
+        clut: Clut { entries },
+    })
 }
 
 /// Requests from the CSV, quantised and range-checked (u, v: sQ12.8; lambda: -4..=10).
@@ -141,31 +219,27 @@ pub fn run(a: &TexramArgs) -> Result<String, CmdError> {
 
 /// The command once its outputs are checked.
 fn texram(a: &TexramArgs) -> Result<String, CmdError> {
-    let config =
-        match a.config.as_str() {
-            "luminance" => Config::Luminance,
-            "planar" => Config::Planar,
-            "truecolor" => Config::Literal,
-            "index" => return Err(input(
-                "--config index: not in the command yet (its upper levels need host-made palettes)"
-                    .into(),
-            )),
-            c => {
-                let c = formats::shorten(c);
-                return Err(input(format!(
-                    "--config {c}: luminance, index, truecolor or planar"
-                )));
-            }
-        };
+    let config = match a.config.as_str() {
+        "luminance" => Config::Luminance,
+        "planar" => Config::Planar,
+        "truecolor" => Config::Literal,
+        "index" => Config::Index,
+        c => {
+            let c = formats::shorten(c);
+            return Err(input(format!(
+                "--config {c}: luminance, index, truecolor or planar"
+            )));
+        }
+    };
     let border = Border::parse(&a.border).ok_or_else(|| {
         let b = formats::shorten(&a.border);
         input(format!(
             "--border {b}: wrap, clamp, mirror or border:N (N 0..=255)"
         ))
     })?;
-    let (drf, level0) = read_texture(&a.texture, config, border).map_err(input)?;
+    let tex = read_texture(&a.texture, config, border).map_err(input)?;
     let reqs = read_requests(&a.requests).map_err(input)?;
-    let run = run_texram(&level0, drf, &reqs, a.vcd.as_deref()).map_err(input)?;
+    let run = run_texram(&tex, &reqs, a.vcd.as_deref()).map_err(input)?;
     let mut csv = String::from("u,v,lambda,r,g,b,a\n");
     for (q, [r, g, b, al]) in reqs.iter().zip(&run.values) {
         let f = |r: i32| f64::from(r) / 256.0;

@@ -278,6 +278,23 @@ impl Texram802 {
         self.clut = clut;
     }
 
+    /// Writes level `lv` of DRF `k`'s map (levels made by the host, e.g. an index map's).
+    pub fn write_level(&mut self, k: usize, lv: u32, texels: &[u8]) -> Result<(), String> {
+        let d = self
+            .drfs
+            .get(k)
+            .copied()
+            .flatten()
+            .ok_or(format!("drf {k}: not set"))?;
+        if lv > d.max_level() {
+            return Err(format!(
+                "level {lv}: the map has levels 0..={}",
+                d.max_level()
+            ));
+        }
+        store_level(&mut self.banks, &d, lv, texels).map_err(|e| format!("drf {k}: {e}"))
+    }
+
     /// Loads level 0 of DRF `k`'s map and the levels above it (as the stub does).
     pub fn load(&mut self, k: usize, level0: &[u8]) -> Result<(), String> {
         let d = self
