@@ -875,7 +875,13 @@ pub fn run_texram(
                         v: q.v,
                         lambda: q.lambda,
                     };
-                    stub.access(r).map(|r| r.rgba).unwrap_or_default()
+                    match stub.access(r) {
+                        Ok(r) => r.rgba,
+                        Err(e) => {
+                            wrong.get_or_insert(format!("request {}: {e}", values.len()));
+                            [0; 4]
+                        }
+                    }
                 };
                 if txn.rgba != want && wrong.is_none() {
                     let k = values.len();

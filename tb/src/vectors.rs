@@ -48,11 +48,12 @@ pub struct VectorFile {
 }
 
 /// Units with vectors.
-pub const UNITS: [&str; 4] = [
+pub const UNITS: [&str; 5] = [
     crate::blend_adjust::NAME,
     crate::normals::NAME,
     crate::mipmap::NAME,
     crate::texture::NAME,
+    crate::texram::NAME,
 ];
 
 fn f(name: &str, width: u32) -> Field {
@@ -77,6 +78,7 @@ pub fn unit_vectors(unit: &str) -> Result<UnitVectors, String> {
         crate::normals::NAME => normals(),
         crate::mipmap::NAME => mipmap(),
         crate::texture::NAME => texture(),
+        crate::texram::NAME => texram(),
         _ => Err(format!(
             "unknown unit '{unit}' (one of {})",
             UNITS.join(", ")
@@ -243,6 +245,61 @@ fn mipmap() -> Result<UnitVectors, String> {
         description: "FIG. 14 generator, 16x8 synthetic frame (seed 5), round half up, interlaced top-first then progressive: every texel of every level".into(),
         inputs: vec![f("interlaced", 1), f("level", 4), f("index", 8)],
         outputs: vec![f("texel", 8)],
+        rows,
+    })
+}
+
+/// The TEXRAM chip's vectors: a 32x32 map from an integer formula, each border operation
+/// and the index configuration (a CLUT from an integer formula), 256 requests from an integer
+/// hash over the map and a texel beyond it, every lambda class: (config, u, v, lambda) ->
+/// R, G, B, alpha.
+fn texram() -> Result<UnitVectors, String> {
+    use crate::texram::{run_texram, TexReq, TexramTexture};
+    use hdl::texram::clut_814::Clut;
+    use hdl::texram::{Border, Config, Drf};
+    let level0: Vec<u8> = (0..32 * 32u32)
+        .map(|k| ((k * 29 + (k >> 5) * 7) % 256) as u8)
+        .collect();
+    let reqs: Vec<TexReq> = (0..256u32)
+        .map(|k| {
+            let h = k.wrapping_mul(0x9e37_79b9) ^ k.wrapping_mul(0x85eb_ca6b) >> 7;
+            TexReq {
+                u: (h % (34 << 8)) as i32 - 256,
+                v: ((h >> 9) % (34 << 8)) as i32 - 256,
+                lambda: ((h >> 3) % ((14 << 8) + 1)) as i32 - (4 << 8),
+            }
+        })
+        .collect();
+    let configs = [
+        (Border::Wrap, Config::Luminance),
+        (Border::Clamp, Config::Luminance),
+        (Border::Mirror, Config::Luminance),
+        (Border::Colour(200), Config::Luminance),
+        (Border::Mirror, Config::Index),
+    ];
+    let mut rows = Vec::new();
+    for (code, (border, config)) in configs.into_iter().enumerate() {
+        let mut drf = Drf::new(5, 5, border);
+        drf.config = config;
+        let mut tex = TexramTexture::generated(drf, &level0);
+        if config == Config::Index {
+            let entries = std::array::from_fn(|i| (i as u32).wrapping_mul(0x0103_0507) ^ 0xff);
+            tex.clut = Clut { entries };
+        }
+        let run = run_texram(&tex, &reqs, None)?;
+        for (q, rgba) in reqs.iter().zip(&run.values) {
+            let raw = |x: i32, w: u32| mask(i64::from(x), w);
+            rows.push((
+                vec![code as u64, raw(q.u, 21), raw(q.v, 21), raw(q.lambda, 14)],
+                vec![u64::from(u32::from_be_bytes(*rgba))],
+            ));
+        }
+    }
+    Ok(UnitVectors {
+        unit: crate::texram::NAME.into(),
+        description: "TEXRAM chip 802, 32x32 map from an integer formula: wrap, clamp, mirror, border:200 (luminance) and mirror in index mode; 256 hashed requests each".into(),
+        inputs: vec![f("config", 3), f("u", 21), f("v", 21), f("lambda", 14)],
+        outputs: vec![f("rgba", 32)],
         rows,
     })
 }
