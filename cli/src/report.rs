@@ -163,6 +163,9 @@ pub fn write_report(out: &Path, summary: &Summary) -> Result<(), String> {
             pictures.extend(crate::plots::memory_plots(out, &rows)?);
         }
     }
+    if results.iter().any(|r| r.name == tb::texram::NAME) {
+        pictures.push(crate::plots::texram_plot(out)?);
+    }
     for r in results.iter().filter(|r| r.stats.count > 0) {
         let f = format!("{}_error_histogram.png", r.name);
         let title = format!("{}: error against golden", r.name);

@@ -688,3 +688,25 @@ fn the_chip_behind_the_interface_answers_like_the_stub() {
         assert_eq!(chip.slots(), stub.slots());
     }
 }
+
+/// The report's per-configuration figures: one slot a pixel in luminance and index modes
+/// without faults along a scanline; the planar layout's four component accesses a pixel
+/// switch between the quadrants' rows; the literal layout adds conflict rounds.
+#[test]
+fn slots_per_pixel_by_configuration() {
+    let rows = tb::texram::layout_rows();
+    for (name, slots, faults) in &rows {
+        eprintln!("{name}: {slots:.3} slots a pixel, {faults:.2} slots lost a scanline");
+    }
+    let get = |n: &str| {
+        rows.iter()
+            .find(|r| r.0.starts_with(n))
+            .map(|r| (r.1, r.2))
+            .unwrap()
+    };
+    assert!(get("luminance").0 < 1.1);
+    assert!(get("index").0 < 1.1);
+    let (planar, literal) = (get("planar").0, get("literal").0);
+    assert!((4.0..=8.0).contains(&planar), "{planar}");
+    assert!(literal > planar, "{literal} {planar}");
+}
