@@ -810,6 +810,22 @@ impl TexramTexture {
             clut: Clut::identity(),
         }
     }
+
+    /// The chip and the stub with the map in DRF 0 (every level) and the CLUT.
+    fn load(&self) -> Result<(Texram802, hdl::texram::stub::TexramStub), String> {
+        use hdl::texram::TexramAccess;
+        let mut chip = Texram802::new(TexramParams::default())?;
+        chip.set_drf(0, self.drf)?;
+        let mut stub = hdl::texram::stub::TexramStub::new();
+        stub.set_drf(0, self.drf)?;
+        for (k, level) in self.levels.iter().enumerate() {
+            chip.write_level(0, k as u32, level)?;
+            stub.write_level(0, k as u32, level)?;
+        }
+        chip.set_clut(self.clut.clone());
+        stub.set_clut(self.clut.clone());
+        Ok((chip, stub))
+    }
 }
 
 /// Runs `reqs` back to back through the chip holding `tex`, every result checked (a
@@ -823,16 +839,7 @@ pub fn run_texram(
 ) -> Result<TexramRun, String> {
     use hdl::texram::{Config, TexramAccess, TexramRequest};
     let drf = tex.drf;
-    let mut chip = Texram802::new(TexramParams::default())?;
-    chip.set_drf(0, drf)?;
-    let mut stub = hdl::texram::stub::TexramStub::new();
-    stub.set_drf(0, drf)?;
-    for (k, level) in tex.levels.iter().enumerate() {
-        chip.write_level(0, k as u32, level)?;
-        stub.write_level(0, k as u32, level)?;
-    }
-    chip.set_clut(tex.clut.clone());
-    stub.set_clut(tex.clut.clone());
+    let (chip, mut stub) = tex.load()?;
     let level0 = &tex.levels[0];
     let (wl, hl, border) = (drf.width_log2, drf.height_log2, drf.border);
     let tracer = match vcd {
@@ -895,31 +902,32 @@ pub fn run_texram(
     if let Some(w) = wrong {
         return Err(w);
     }
-    let d = &sim.dut;
-    let (slots, faults) = (d.slots.q().bits(), d.faults.q().bits());
-    let conflicts = d.conflicts.q().bits();
-    let (accesses, fault_slots) = (d.accesses.q().bits(), d.fault_slots.q().bits());
-    let ns = st.cycles * CYCLE_PS / 1000;
+    let stats = TexramStats::of(&sim.dut, n, st.cycles);
     sim.finish().map_err(|e| e.to_string())?;
-    Ok(TexramRun {
-        values,
-        stats: TexramStats {
-            requests: n,
-            accesses,
-            slots,
-            page_faults: fault_slots,
-            bank_misses: faults,
-            bank_conflicts: conflicts,
+    Ok(TexramRun { values, stats })
+}
+
+impl TexramStats {
+    /// The chip's counters after `requests` requests in `cycles` cycles.
+    fn of(d: &Texram802, requests: u64, cycles: u64) -> TexramStats {
+        let ns = cycles * CYCLE_PS / 1000;
+        TexramStats {
+            requests,
+            accesses: d.accesses.q().bits(),
+            slots: d.slots.q().bits(),
+            page_faults: d.fault_slots.q().bits(),
+            bank_misses: d.faults.q().bits(),
+            bank_conflicts: d.conflicts.q().bits(),
             video_slots: 0,
-            cycles: st.cycles,
+            cycles,
             ns,
             pixels_per_second: if ns == 0 {
                 0.0
             } else {
-                n as f64 / ns as f64 * 1e9
+                requests as f64 / ns as f64 * 1e9
             },
-        },
-    })
+        }
+    }
 }
 
 /// Slots per pixel, and slots lost per scanline to page faults and bank conflicts (beyond one
