@@ -282,12 +282,13 @@ fn requests(wl: u32, hl: u32, n: usize, stim: &mut Stimulus) -> Vec<TexReq> {
 }
 
 /// Requests every configuration gets before its random ones, so that its coverage does not
-/// depend on the count: each lambda class inside the map and beyond an edge, and a repeat
+/// depend on the count: each lambda class and level range inside the map and beyond an edge,
+/// and a repeat
 /// (a page hit after the fault of the first access).
 fn directed(wl: u32, hl: u32) -> Vec<TexReq> {
     let lmax = wl.max(hl) as i32;
     let mut v = Vec::new();
-    for lambda in [-256, 256.min(lmax << 8), 128, lmax << 8] {
+    for lambda in [-256, 256.min(lmax << 8), 128, 3 << 8, 7 << 8, lmax << 8] {
         for (u, v_) in [(384, 384), (-600, 200)] {
             v.push(TexReq { u, v: v_, lambda });
         }
@@ -318,6 +319,14 @@ fn coverage_model() -> Coverage {
             .value("beyond_an_edge", 1),
     );
     c.add(Coverpoint::new("page").value("hit", 0).value("fault", 1));
+    c.add(
+        Coverpoint::new("level")
+            .value("0", 0)
+            .value("1", 1)
+            .bin("2..4", 2, 4)
+            .bin("5..9", 5, 9)
+            .value("10", 10),
+    );
     c.add(
         Coverpoint::new("config")
             .value("luminance", 0)
@@ -577,7 +586,9 @@ fn one_config<T: Trace>(
                     let beyond = q.u < 0 || q.v < 0 || q.u >= w || q.v >= h;
                     let (b, l) = (border_class(border), lambda_class(q.lambda, lmax));
                     let c = config_class(config);
-                    cov.sample(&[b, l, i64::from(beyond), i64::from(txn.fault), c]);
+                    let level = i64::from((q.lambda >> 8).clamp(0, lmax as i32));
+                    let f = i64::from(txn.fault);
+                    cov.sample(&[b, l, i64::from(beyond), f, level, c]);
                 }
             }
             Event::Settled { .. } => {}
