@@ -165,11 +165,11 @@ mod tests {
     fn axis_is_floor_and_fraction_of_the_scaled_coordinate() {
         for k in 0..=10u32 {
             for c in (-(1 << 20)..(1 << 20)).step_by(997) {
-                let exact = (c as i64 - (128i64 << k)) as f64 / f64::from(256u32 << k);
+                // c / 2^(8+k) - 1/2 as a fraction over 2^(8+k): floor and remainder.
+                let (num, den) = (i64::from(c) - (128i64 << k), 256i64 << k);
                 let (i, a) = axis(c, k);
-                assert_eq!(i64::from(i), exact.floor() as i64, "c {c} k {k}");
-                let frac = exact - exact.floor();
-                assert_eq!(a, (frac * 256.0).floor() as u8, "c {c} k {k}");
+                assert_eq!(i64::from(i), num.div_euclid(den), "c {c} k {k}");
+                assert_eq!(i64::from(a), num.rem_euclid(den) * 256 / den, "c {c} k {k}");
             }
         }
         // Texel centres: u = 2.5 at level 0 is texel 2 with weight 0.
