@@ -23,6 +23,21 @@ fn s(p: &Path) -> &str {
     p.to_str().unwrap()
 }
 
+/// `texrtl texram --texture t --requests r --out o --config config`.
+fn texram(t: &Path, r: &Path, o: &Path, config: &str) -> Output {
+    texrtl(&[
+        "texram",
+        "--texture",
+        s(t),
+        "--requests",
+        s(r),
+        "--out",
+        s(o),
+        "--config",
+        config,
+    ])
+}
+
 /// A 64 x 32 PGM and four requests in `d`.
 fn inputs(d: &Path) -> (PathBuf, PathBuf) {
     let t = d.join("t.pgm");
@@ -201,17 +216,7 @@ fn colour_textures_planar_and_truecolor() {
     )
     .unwrap();
     let o = d.join("x.csv");
-    let out = texrtl(&[
-        "texram",
-        "--texture",
-        s(&wide),
-        "--requests",
-        s(&r),
-        "--out",
-        s(&o),
-        "--config",
-        "planar",
-    ]);
+    let out = texram(&wide, &r, &o, "planar");
     assert_eq!(out.status.code(), Some(2));
     assert!(String::from_utf8_lossy(&out.stderr).contains("square"));
     assert!(!o.exists());
@@ -231,17 +236,7 @@ fn index_textures_through_the_clut() {
     let r = d.join("r.csv");
     std::fs::write(&r, "u,v,lambda\n5.5,1.5,0\n8,8,2.5\n").unwrap();
     let o = d.join("o.csv");
-    let out = texrtl(&[
-        "texram",
-        "--texture",
-        s(&t),
-        "--requests",
-        s(&r),
-        "--out",
-        s(&o),
-        "--config",
-        "index",
-    ]);
+    let out = texram(&t, &r, &o, "index");
     assert!(
         out.status.success(),
         "{}",
@@ -256,17 +251,7 @@ fn index_textures_through_the_clut() {
     let t2 = d.join("many.ppm");
     std::fs::write(&t2, formats::netpbm::encode_ppm(32, 32, &many)).unwrap();
     let o2 = d.join("o2.csv");
-    let out = texrtl(&[
-        "texram",
-        "--texture",
-        s(&t2),
-        "--requests",
-        s(&r),
-        "--out",
-        s(&o2),
-        "--config",
-        "index",
-    ]);
+    let out = texram(&t2, &r, &o2, "index");
     assert_eq!(out.status.code(), Some(2));
     assert!(String::from_utf8_lossy(&out.stderr).contains("more than 256 colours"));
     assert!(!o2.exists());
