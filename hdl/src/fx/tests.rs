@@ -389,7 +389,8 @@ fn format_limits_and_their_messages() {
 
 /// The machine-word fast paths of `quantise` at their edges: powers of two and their
 /// neighbours (values whose low bits are all zero are where a wrong shift looks like a fit),
-/// every destination width below 64, shifts up to 66, every mode, against the reference.
+/// destination widths below 64 and three wider (which must not take the 64-bit path), shifts
+/// up to 66, every mode, against the reference.
 #[test]
 fn quantise_fast_paths_at_their_edges() {
     let mut values = vec![0i128];
@@ -399,7 +400,7 @@ fn quantise_fast_paths_at_their_edges() {
             values.push(-(1i128 << k) + d);
         }
     }
-    for w in (1..=64u32).step_by(3).chain([62, 63, 64]) {
+    for w in (1..=64u32).step_by(3).chain([62, 63, 64, 65, 100, 126]) {
         for signed in [false, true] {
             let dst = Format::new(w, 0, signed);
             for shift in [1, 2, 31, 61, 62, 63, 64, 66] {
@@ -415,5 +416,30 @@ fn quantise_fast_paths_at_their_edges() {
                 }
             }
         }
+    }
+}
+
+/// Widening by 128 fraction bits or more: every bit of the value is above the destination's
+/// width, so wrapping leaves zero and saturation the extreme of the value's sign.
+#[test]
+fn widening_past_the_word() {
+    let src = Format::signed(8, -120);
+    let dst = Format::signed(16, 8);
+    for raw in [3i128, -3, 1, 127] {
+        let x = Fx::from_raw(src, raw);
+        assert_eq!(
+            x.convert(dst, Quant::Trunc, Overflow::Wrap).raw(),
+            0,
+            "{raw}"
+        );
+        let sat = x.convert(dst, Quant::Trunc, Overflow::Saturate).raw();
+        assert_eq!(
+            sat,
+            if raw < 0 {
+                dst.min_raw()
+            } else {
+                dst.max_raw()
+            }
+        );
     }
 }
