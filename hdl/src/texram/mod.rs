@@ -225,3 +225,79 @@ pub trait TexramAccess {
     /// Slots taken since the start (accesses, their faults and anything else the chip did).
     fn slots(&self) -> u64;
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn colour_maps_are_square_and_their_components_luminance() {
+        for config in [Config::Planar, Config::Literal] {
+            let mut d = Drf::new(3, 3, Border::Wrap);
+            d.config = config;
+            assert!(d.validate().is_ok());
+            let c = d.component_map();
+            assert_eq!(
+                (c.width_log2, c.height_log2, c.config),
+                (2, 2, Config::Luminance)
+            );
+            for (w, h) in [(0, 0), (3, 2), (2, 3), (0, 3)] {
+                let e = Drf {
+                    width_log2: w,
+                    height_log2: h,
+                    ..d
+                };
+                assert!(e.validate().unwrap_err().contains("square"), "{w} {h}");
+            }
+        }
+        // Luminance maps may be rectangular and 1 x 1; nothing past 1024.
+        assert!(Drf::new(0, 0, Border::Wrap).validate().is_ok());
+        assert!(Drf::new(10, 2, Border::Wrap).validate().is_ok());
+        assert!(Drf::new(11, 2, Border::Wrap).validate().is_err());
+    }
+
+    #[test]
+    fn requests_are_checked_against_their_formats() {
+        let ok = TexramRequest {
+            drf: 6,
+            u: (1 << 20) - 1,
+            v: -(1 << 20),
+            lambda: LAMBDA_MAX,
+        };
+        assert!(ok.validate().is_ok());
+        let bad = [
+            TexramRequest { drf: 7, ..ok },
+            TexramRequest { u: 1 << 20, ..ok },
+            TexramRequest {
+                v: -(1 << 20) - 1,
+                ..ok
+            },
+            TexramRequest {
+                lambda: LAMBDA_MAX + 1,
+                ..ok
+            },
+            TexramRequest {
+                lambda: LAMBDA_MIN - 1,
+                ..ok
+            },
+        ];
+        for r in bad {
+            assert!(r.validate().is_err(), "{r:?}");
+        }
+        assert!(TexramRequest {
+            lambda: LAMBDA_MIN,
+            ..ok
+        }
+        .validate()
+        .is_ok());
+    }
+
+    #[test]
+    fn level_sizes_stop_at_one() {
+        let d = Drf::new(4, 1, Border::Wrap);
+        assert_eq!(d.max_level(), 4);
+        assert_eq!(d.level_size(0), (16, 2));
+        assert_eq!(d.level_size(1), (8, 1));
+        assert_eq!(d.level_size(4), (1, 1));
+    }
+}
