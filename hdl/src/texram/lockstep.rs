@@ -73,18 +73,17 @@ impl Module for TexramLockstep {
             chip.req_lambda.follow(&self.req_lambda);
             chip.eval();
         }
-        let ready: Vec<bool> = self.chips.iter().map(|c| c.req_ready.is_high()).collect();
-        let valid: Vec<bool> = self
+        let ready = self.chips[0].req_ready.is_high();
+        let valid = self.chips[0].out_valid.q().is_high();
+        let apart = self
             .chips
             .iter()
-            .map(|c| c.out_valid.q().is_high())
-            .collect();
-        let apart = ready.iter().any(|r| *r != ready[0]) || valid.iter().any(|v| *v != valid[0]);
+            .any(|c| c.req_ready.is_high() != ready || c.out_valid.q().is_high() != valid);
         if apart {
             self.out_of_step.set_next_bool(true);
         }
-        self.req_ready.set_bool(ready[0]);
-        self.out_valid.set_bool(valid[0]);
+        self.req_ready.set_bool(ready);
+        self.out_valid.set_bool(valid);
         let rgba = self
             .chips
             .iter()
@@ -109,5 +108,68 @@ impl Module for TexramLockstep {
             chip.visit(v);
         }
         v.leave();
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::kernel::{instances, Sim};
+    use crate::texram::Border;
+
+    fn group(maps: [u32; 4]) -> TexramLockstep {
+        let mut g = TexramLockstep::new(TexramParams::default()).unwrap();
+        for (chip, log2) in g.chips.iter_mut().zip(maps) {
+            chip.set_drf(0, Drf::new(log2, log2, Border::Wrap)).unwrap();
+            chip.load(0, &vec![9; 1 << (2 * log2)]).unwrap();
+        }
+        g
+    }
+
+    #[test]
+    fn the_four_chips_are_scopes_of_the_group() {
+        let g = group([4; 4]);
+        let inst = instances(&g);
+        assert_eq!(
+            inst[0],
+            ("texram_lockstep".to_string(), "texram_lockstep".to_string())
+        );
+        for n in NAMES {
+            assert!(
+                inst.iter()
+                    .any(|(i, k)| i.ends_with(n) && k == "texram_802"),
+                "{n}"
+            );
+        }
+    }
+
+    /// Chips holding maps of different sizes fault at different times: the group notices
+    /// in the first cycle they differ, whether in ready or in valid.
+    #[test]
+    fn chips_out_of_step_are_flagged_at_once() {
+        let mut sim = Sim::new(group([10, 10, 10, 2])).check_schedule(true);
+        sim.reset(2);
+        let mut first_apart = None;
+        for k in 0..400i64 {
+            sim.dut.req_valid.set_bool(true);
+            sim.dut.req_u.set_raw((k * 37 % 800) << 8);
+            sim.dut.req_v.set_raw((k * 91 % 800) << 8);
+            sim.eval();
+            let c = &sim.dut.chips;
+            let differ = |f: &dyn Fn(&Texram802) -> bool| c.iter().any(|x| f(x) != f(&c[0]));
+            let r = differ(&|x| x.req_ready.is_high());
+            let v = differ(&|x| x.out_valid.q().is_high());
+            if (r || v) && first_apart.is_none() {
+                first_apart = Some(sim.cycle());
+            }
+            sim.tick();
+            if let Some(at) = first_apart {
+                assert!(
+                    sim.dut.out_of_step.q().is_high(),
+                    "apart at cycle {at}, not flagged"
+                );
+            }
+        }
+        assert!(first_apart.is_some(), "the chips never fell out of step");
     }
 }
