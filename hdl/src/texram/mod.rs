@@ -293,6 +293,16 @@ mod tests {
     }
 
     #[test]
+    fn the_slot_is_one_to_fifteen_cycles() {
+        use texram_802::TexramParams;
+        for (c, ok) in [(0, false), (1, true), (6, true), (15, true), (16, false)] {
+            let p = TexramParams { slot_cycles: c };
+            assert_eq!(p.validate().is_ok(), ok, "{c}");
+            assert_eq!(texram_802::Texram802::new(p).is_ok(), ok, "{c}");
+        }
+    }
+
+    #[test]
     fn level_sizes_stop_at_one() {
         let d = Drf::new(4, 1, Border::Wrap);
         assert_eq!(d.max_level(), 4);

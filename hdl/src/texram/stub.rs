@@ -345,6 +345,21 @@ mod tests {
     }
 
     #[test]
+    fn the_counters_add_up_the_replies() {
+        let (mut c, _) = chip(10, 10, Border::Wrap);
+        let (mut slots, mut faults) = (0u64, 0u64);
+        for k in 0..50 {
+            let r = c
+                .access(req(k * 997 % 200_000, k * 7919 % 200_000, 0))
+                .unwrap();
+            slots += u64::from(r.slots);
+            faults += u64::from(r.faults);
+        }
+        assert!(faults > 0);
+        assert_eq!((c.slots(), c.counts()), (slots, (50, faults)));
+    }
+
+    #[test]
     fn next_level_rounds_the_mean_of_each_block() {
         assert_eq!(next_level(2, 2, &[1, 2, 3, 5]), vec![3]);
         assert_eq!(next_level(4, 1, &[1, 2, 3, 4]), vec![2, 4]);
