@@ -22,6 +22,16 @@ fn borders() -> [(Border, RefBorder, golden::texram::Border); 4] {
     ]
 }
 
+/// A request to DRF 0.
+fn req(u: i32, v: i32, lambda: i32) -> TexramRequest {
+    TexramRequest {
+        drf: 0,
+        u,
+        v,
+        lambda,
+    }
+}
+
 /// A chip with `map` loaded in DRF 0, and the reference's mipmap of the same level 0.
 fn setup(wl: u32, hl: u32, border: Border, seed: u64) -> (TexramStub, RefMipmap) {
     let (w, h) = (1u32 << wl, 1u32 << hl);
@@ -48,14 +58,7 @@ fn the_access_is_bit_exact_against_the_integer_reference() {
         for (border, rb, _) in borders() {
             let (mut chip, reference) = setup(wl, hl, border, stim.seed().0);
             for (u, v, lambda) in stim.draw_n(&requests(wl, hl), per) {
-                let r = chip
-                    .access(TexramRequest {
-                        drf: 0,
-                        u,
-                        v,
-                        lambda,
-                    })
-                    .unwrap();
+                let r = chip.access(req(u, v, lambda)).unwrap();
                 let (texels, value) = reference.access(u, v, lambda, rb);
                 assert_eq!(
                     (r.texels, r.value),
@@ -82,14 +85,7 @@ fn the_access_is_within_half_an_lsb_of_golden_and_within_its_texels() {
             };
             let lmax = reference.levels.len() - 1;
             for (u, v, lambda) in stim.draw_n(&requests(wl, hl), 20_000) {
-                let r = chip
-                    .access(TexramRequest {
-                        drf: 0,
-                        u,
-                        v,
-                        lambda,
-                    })
-                    .unwrap();
+                let r = chip.access(req(u, v, lambda)).unwrap();
                 let (fu, fv, fl) = (
                     f64::from(u) / 256.0,
                     f64::from(v) / 256.0,
@@ -229,14 +225,7 @@ fn the_cycle_accurate_chip_matches_the_stub_texel_for_texel_and_slot_for_slot() 
             let (out, slots, _) = run_chip(chip, &reqs, &[], None);
             let mut last = None;
             for (k, &(u, v, lambda)) in reqs.iter().enumerate() {
-                let r = stub
-                    .access(TexramRequest {
-                        drf: 0,
-                        u,
-                        v,
-                        lambda,
-                    })
-                    .unwrap();
+                let r = stub.access(req(u, v, lambda)).unwrap();
                 let Out {
                     cycle,
                     value,
@@ -350,12 +339,7 @@ fn index_mode_filters_each_component_after_the_lookup() {
         chip.set_clut(clut.clone());
         let (out, _, _) = run_chip(chip, &reqs, &[], None);
         for (k, &(u, v, lambda)) in reqs.iter().enumerate() {
-            let q = TexramRequest {
-                drf: 0,
-                u,
-                v,
-                lambda,
-            };
+            let q = req(u, v, lambda);
             let r = stub.access(q).unwrap();
             if identity {
                 assert_eq!(r.rgba, [lum.access(q).unwrap().value; 4]);
@@ -445,12 +429,7 @@ fn colour_configurations_agree_component_by_component() {
     assert!(!sim.dut.out_of_step.q().is_high());
     let mut level0_requests = 0;
     for (k, &(u, v, lambda)) in reqs.iter().enumerate() {
-        let q = TexramRequest {
-            drf: 0,
-            u,
-            v,
-            lambda,
-        };
+        let q = req(u, v, lambda);
         let p = planar.access(q).unwrap();
         let each: Vec<u8> = lum.iter_mut().map(|s| s.access(q).unwrap().value).collect();
         assert_eq!(p.rgba.to_vec(), each, "planar, request {k}");
@@ -565,14 +544,7 @@ fn the_chip_reads_colour_layouts_like_the_stub() {
         let reqs = stim.draw_n(&requests(5, 5), 1500);
         let (out, slots, conflicts) = run_chip(chip, &reqs, &[], None);
         for (k, &(u, v, lambda)) in reqs.iter().enumerate() {
-            let r = stub
-                .access(TexramRequest {
-                    drf: 0,
-                    u,
-                    v,
-                    lambda,
-                })
-                .unwrap();
+            let r = stub.access(req(u, v, lambda)).unwrap();
             assert_eq!(out[k].rgba, r.rgba, "{config:?} request {k}");
             if k > 0 {
                 assert_eq!(
@@ -624,12 +596,7 @@ fn the_output_stage_shades_with_illumination_or_a_constant() {
             .unwrap();
         plain.load(0, &level0).unwrap();
         for (k, &(u, v, lambda)) in reqs.iter().enumerate() {
-            let q = TexramRequest {
-                drf: 0,
-                u,
-                v,
-                lambda,
-            };
+            let q = req(u, v, lambda);
             let i = illum[k].to_be_bytes();
             let r = stub.access_lit(q, i).unwrap();
             assert_eq!(out[k].rgba, r.rgba, "{config:?} {m:?} request {k}");
@@ -665,12 +632,7 @@ fn the_chip_behind_the_interface_answers_like_the_stub() {
         chip.set_drf(0, d).unwrap();
         chip.chip().load(0, &level0).unwrap();
         for (u, v, lambda) in stim.draw_n(&requests(6, 6), 300) {
-            let q = TexramRequest {
-                drf: 0,
-                u,
-                v,
-                lambda,
-            };
+            let q = req(u, v, lambda);
             let (a, b) = (chip.access(q).unwrap(), stub.access(q).unwrap());
             assert_eq!(
                 (a.rgba, a.slots, a.faults),
