@@ -32,7 +32,10 @@ pub use coverage::{Coverage, Coverpoint, Cross};
 pub use probe::ProbeSink;
 pub use random::{seeded_runner, seeded_stimulus, Seed, Shard, Stimulus, SEED_ENV};
 pub use result::TbResult;
-pub use run::{run, Driver, Event, Monitor, Pacing, RunSpec, RunStats, Timeout, Watchdog};
+pub use run::{
+    run, run_beside, Background, Driver, Event, Monitor, Pacing, RunSpec, RunStats, Timeout,
+    Watchdog,
+};
 pub use scoreboard::{Mismatch, Outcome, Scoreboard};
 pub use stats::ErrorStats;
 pub use testbench::{

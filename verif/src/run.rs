@@ -229,6 +229,39 @@ pub fn run<M, T, D, Mo, F>(
     monitor: &mut Mo,
     stimulus: impl IntoIterator<Item = D::Txn>,
     spec: &mut RunSpec,
+    on: F,
+) -> Result<RunStats, Timeout>
+where
+    M: Module,
+    T: Trace,
+    D: Driver<M>,
+    Mo: Monitor<M>,
+    F: FnMut(&mut Sim<M, T>, Event<'_, D::Txn, Mo::Txn>),
+{
+    run_beside(sim, driver, monitor, stimulus, spec, &mut (), on)
+}
+
+/// A port driven on its own schedule beside the transaction stream of [`run`] (a video
+/// source beside a request port): it sets its inputs every cycle before the design settles
+/// and may look at the settled design after. It does not end the run; the main stream does.
+pub trait Background<M> {
+    fn drive(&mut self, dut: &mut M, cycle: u64);
+    fn settled(&mut self, _dut: &M, _cycle: u64) {}
+}
+
+/// No second port.
+impl<M> Background<M> for () {
+    fn drive(&mut self, _dut: &mut M, _cycle: u64) {}
+}
+
+/// [`run`] with a second port, `side`, driven every cycle on its own schedule.
+pub fn run_beside<M, T, D, Mo, B, F>(
+    sim: &mut Sim<M, T>,
+    driver: &mut D,
+    monitor: &mut Mo,
+    stimulus: impl IntoIterator<Item = D::Txn>,
+    spec: &mut RunSpec,
+    side: &mut B,
     mut on: F,
 ) -> Result<RunStats, Timeout>
 where
@@ -236,6 +269,7 @@ where
     T: Trace,
     D: Driver<M>,
     Mo: Monitor<M>,
+    B: Background<M> + ?Sized,
     F: FnMut(&mut Sim<M, T>, Event<'_, D::Txn, Mo::Txn>),
 {
     let mut it = stimulus.into_iter().peekable();
@@ -263,9 +297,11 @@ where
             });
         }
         driver.drive(&mut sim.dut, current.as_ref());
+        side.drive(&mut sim.dut, c);
         let ready = spec.sink.willing();
         monitor.ready(&mut sim.dut, ready);
         sim.eval();
+        side.settled(&sim.dut, c);
         if current.is_some() {
             st.busy_cycles += 1;
             if driver.accepted(&sim.dut) {
