@@ -165,6 +165,9 @@ pub struct MipmapGen {
     /// Levels whose FIFO 1412 line goes to the frame store at the coming edge, bit `k` for
     /// level `k + 1` (decided by `eval`).
     drains: u32,
+    /// The frame store is the unit's own (`buffers`, three banks); false when it sits on the
+    /// TEXRAM banks, whose owner takes the writes and serves the shift register's line.
+    own_store: bool,
 }
 
 impl MipmapGen {
@@ -207,8 +210,54 @@ impl MipmapGen {
             cycle: 0,
             pending_store: None,
             drains: 0,
+            own_store: true,
             dims,
         })
+    }
+
+    /// The unit on the TEXRAM chip's banks (issue 13): no frame store of its own. Its owner
+    /// writes what [`MipmapGen::level0_write`] and [`MipmapGen::line_writes`] give at each
+    /// edge, reads the line [`MipmapGen::partner_read`] names and hands it back through
+    /// [`MipmapGen::load_partner`] before the line that needs it arrives.
+    /// `completed` and `frame_done` then say that a frame's last line left FIFO 1412, not
+    /// that it is in the banks (the owner knows when it is).
+    pub fn on_banks(mut self) -> MipmapGen {
+        self.own_store = false;
+        self.buffers = [Vec::new(), Vec::new()];
+        self
+    }
+
+    /// At the coming edge: the video texel written into level 0, as `(frame, x, y, texel)`.
+    pub fn level0_write(&self) -> Option<(u64, u32, u32, u8)> {
+        self.pending_store.map(|(x, y, t)| (self.frame0, x, y, t))
+    }
+
+    /// At the coming edge: the level-0 line of the current frame to load into shift register
+    /// 826 for the next line of the second field (interlaced video only).
+    pub fn partner_read(&self) -> Option<(u64, u32)> {
+        self.sr_load.map(|row| (self.frame0, row))
+    }
+
+    /// At the coming edge: each level whose FIFO 1412 line goes to the frame store, as
+    /// `(level, frame, row, texels)`.
+    pub fn line_writes(&self) -> impl Iterator<Item = (u32, u64, u32, Vec<u8>)> + '_ {
+        (0..self.levels.len()).filter_map(move |k| {
+            let l = &self.levels[k];
+            let (frame, row) = l.line_write().filter(|_| self.drains >> k & 1 == 1)?;
+            let texels = l.fifo_1412.iter().map(|t| t as u8).collect();
+            Some((k as u32 + 1, frame, row, texels))
+        })
+    }
+
+    /// Shift register 826 loaded with the partner line (the unit on the TEXRAM banks).
+    pub fn load_partner(&mut self, line: &[u8]) {
+        self.sr.copy_from_slice(line);
+    }
+
+    /// This cycle the video texel is added to the shift register's (interlaced level 1 in the
+    /// second field): the partner line must be there.
+    pub fn reads_partner(&self) -> bool {
+        self.p.scan != Scan::Progressive && self.valid.is_high() && self.field.q().is_high()
     }
 
     pub fn params(&self) -> &MipmapParams {
@@ -246,11 +295,14 @@ impl MipmapGen {
             let Some((frame, row)) = l.line_write() else {
                 continue;
             };
-            let lw = self.dims[k + 1].0;
-            let b = (frame % 2) as usize;
-            let dst = &mut self.buffers[b][k + 1][(row * lw) as usize..((row + 1) * lw) as usize];
-            for (d, s) in dst.iter_mut().zip(l.fifo_1412.iter()) {
-                *d = s as u8;
+            if self.own_store {
+                let lw = self.dims[k + 1].0;
+                let b = (frame % 2) as usize;
+                let dst =
+                    &mut self.buffers[b][k + 1][(row * lw) as usize..((row + 1) * lw) as usize];
+                for (d, s) in dst.iter_mut().zip(l.fifo_1412.iter()) {
+                    *d = s as u8;
+                }
             }
             if k + 2 == n {
                 self.completed.push((frame, self.cycle));
@@ -264,8 +316,10 @@ impl MipmapGen {
     fn store_level0(&mut self) {
         let w = self.p.width;
         if let Some((x, y, t)) = self.pending_store {
-            let b = (self.frame0 % 2) as usize;
-            self.buffers[b][0][(y * w + x) as usize] = t;
+            if self.own_store {
+                let b = (self.frame0 % 2) as usize;
+                self.buffers[b][0][(y * w + x) as usize] = t;
+            }
             let last = x + 1 == w
                 && y == self.frame_line(
                     u32::from(self.p.scan != Scan::Progressive),
@@ -280,7 +334,7 @@ impl MipmapGen {
                 self.frame0 += 1;
             }
         }
-        if let Some(row) = self.sr_load {
+        if let Some(row) = self.sr_load.filter(|_| self.own_store) {
             let b = (self.frame0 % 2) as usize;
             let line = &self.buffers[b][0][(row * w) as usize..((row + 1) * w) as usize];
             self.sr.copy_from_slice(line);
@@ -391,7 +445,9 @@ impl Module for MipmapGen {
             l.eval();
             self.drains |= u32::from(l.line_write().is_some()) << k;
         }
-        self.page_registers();
+        if self.own_store {
+            self.page_registers();
+        }
         // A FIFO error of any level takes precedence over a sync error.
         if let Some(e) = self.levels.iter().map(Level::error_code).find(|&e| e != 0) {
             code = e;
@@ -435,8 +491,11 @@ impl Module for MipmapGen {
             Input: self.valid, self.texel, self.sof;
             Output: self.error, self.err_code, self.frame_done;
             Reg: self.x, self.line, self.field);
-        for p in &self.page_row {
-            v.reg(p);
+        // On the TEXRAM banks the chip's page registers 824 are the ones that count.
+        if self.own_store {
+            for p in &self.page_row {
+                v.reg(p);
+            }
         }
         for l in &self.levels {
             l.visit(v);
