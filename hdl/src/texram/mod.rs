@@ -2,8 +2,8 @@
 //! two-level layout, so that the eight texels of any trilinear footprint (a 2x2 at level L and
 //! a 2x2 at level L+1) are read in one access slot of 30 ns.
 //!
-//! What is here so far is the chip's transaction-level interface and the arithmetic its units
-//! share; the cycle-accurate chip (issue 13) is built on them:
+//! The chip's transaction-level interface, the arithmetic its units share, the cycle-accurate
+//! chip built on them and a behavioural stub:
 //!
 //! * [`TexramAccess`]: one access, `(DRF, u, v, lambda) -> 8 texels, weights, slots, faults`,
 //!   the interface the footprint assembly, the volume stepper and the map chain are written
@@ -17,9 +17,14 @@
 //! * [`trilinear_818`]: the trilinear interpolator, one rounding of the exact weighted sum;
 //! * [`clut_814`]: the colour look-up table of the index configuration, filtered after look-up;
 //! * [`output_820`]: the output stage's eq. 5, `C_d = (I_d | k_T | 1) . T`;
+//! * [`video_port_808`]: the video port with the mipmap generator 816 on the banks and the
+//!   shift registers 826, stealing slots from the rasterizer;
+//! * [`texram_802`]: the chip cycle by cycle (request port, 812, 824, 810, 818, 820, the video
+//!   port), and `Texram802Access`, the chip behind [`TexramAccess`];
+//! * [`lockstep`]: one colour component per chip, four chips in lock-step;
 //! * [`stub`]: [`stub::TexramStub`], a behavioural model of the chip made of the above, exact
-//!   in its texels, weights, result and slot count but not cycle by cycle. It stands in for the
-//!   chip until the cycle-accurate one exists (luminance configuration only).
+//!   in its texels, weights, result and slot count but not cycle by cycle (every
+//!   configuration; the video port as single row transfers).
 //!
 //! Formats ([C] marks the project's choices where the document is silent, see
 //! `../shared/notes/seed-systems.md`):
@@ -41,6 +46,7 @@ pub mod page_registers_824;
 pub mod stub;
 pub mod texram_802;
 pub mod trilinear_818;
+pub mod video_port_808;
 
 pub use address_812::{Border, Footprint};
 

@@ -24,7 +24,14 @@
 //! words, read in successive rounds of a slot each (two on a page fault), and counts the
 //! access in `conflicts`. The DRFs and the bank
 //! contents are loaded through [`Texram802::set_drf`] and [`Texram802::load`] (the chain
-//! walker and the video port that write them are later work).
+//! walker that writes them is later work).
+//!
+//! Video (sections 11-12): with [`Texram802::attach_video`] the chip has its video port 808,
+//! the mipmap generator 816 and the shift registers 826 (`video_port_808.rs`). Their row
+//! transfers take the bank stage at a slot boundary before a waiting rasterizer access
+//! (`vid_round` segments, one slot, two when a bank has another row open): the slots stolen
+//! from the rasterizer are counted in `video_port_808/shift_registers_826/video_slots`, and
+//! in `slots` with the rasterizer's.
 
 use super::address_812::Footprint;
 use super::banks_810::{bank_words, locate, store_level, BANKS, ROW_WORDS};
@@ -32,6 +39,7 @@ use super::clut_814::Clut;
 use super::output_820::{shade, Modulate};
 use super::stub::next_level;
 use super::trilinear_818::trilinear;
+use super::video_port_808::{VideoParams, VideoPort808};
 use super::{Border, Config, Drf, DRFS};
 use crate::fx::Format;
 use crate::kernel::{Module, Reg, Signal, Visitor};
@@ -208,6 +216,10 @@ pub struct Texram802 {
     pub out_fault: Reg,
     /// The components of a colour request finished so far (R top byte).
     acc_rgba: Reg,
+    /// The bank stage serves `vid_round` segments of the video port (0: a rasterizer access).
+    pub vid_round: Reg,
+    /// The video port 808 with the generator 816 and shift registers 826, when set up.
+    video: Option<Box<VideoPort808>>,
 }
 
 impl Texram802 {
@@ -247,6 +259,8 @@ impl Texram802 {
             out_texels: Reg::new("out_texels", Format::uint(64)),
             out_fault: Reg::new("out_fault", Format::uint(1)),
             acc_rgba: Reg::new("acc_rgba", Format::uint(32)),
+            vid_round: Reg::new("vid_round", Format::uint(4)),
+            video: None,
             held: [
                 Reg::new("held_drf", Format::uint(3)),
                 Reg::new("held_u", Format::signed(super::UV_BITS, 8)),
@@ -262,15 +276,81 @@ impl Texram802 {
         self
     }
 
-    /// Sets DRF `k` (its map must then be loaded).
+    /// Sets DRF `k` (its map must then be loaded). A video map's DRF keeps its size.
     pub fn set_drf(&mut self, k: usize, drf: Drf) -> Result<(), String> {
         drf.validate()?;
-        let slot = self
-            .drfs
+        let mut drfs = self.drfs;
+        let slot = drfs
             .get_mut(k)
             .ok_or_else(|| format!("drf {k}: 0..{DRFS}"))?;
         *slot = Some(drf);
+        if let Some(v) = &self.video {
+            v.params().validate(&drfs)?;
+        }
+        self.drfs = drfs;
         Ok(())
+    }
+
+    /// Sets up the video port 808: frames of `p` written into the maps of DRFs `p.drfs`
+    /// (set before, luminance, of the frames' size), their upper levels made by the
+    /// generator 816. Takes effect at the next reset.
+    pub fn attach_video(&mut self, p: VideoParams) -> Result<(), String> {
+        self.video = Some(Box::new(VideoPort808::new(p, &self.drfs)?));
+        Ok(())
+    }
+
+    /// The video port, when set up.
+    pub fn video(&self) -> Option<&VideoPort808> {
+        self.video.as_deref()
+    }
+
+    /// The video port, to drive its inputs.
+    pub fn video_mut(&mut self) -> Option<&mut VideoPort808> {
+        self.video.as_deref_mut()
+    }
+
+    /// Texels of level `lv` of DRF `k`'s map as the banks hold them, row-major.
+    pub fn read_level(&self, k: usize, lv: u32) -> Result<Vec<u8>, String> {
+        let d = self
+            .drfs
+            .get(k)
+            .copied()
+            .flatten()
+            .ok_or(format!("drf {k}: not set"))?;
+        let (w, h) = d.level_size(lv);
+        Ok((0..h)
+            .flat_map(|y| (0..w).map(move |x| (x, y)))
+            .map(|(x, y)| {
+                let (b, word) = locate(&d, lv, x, y);
+                self.banks[b][word as usize]
+            })
+            .collect())
+    }
+
+    /// 824 for a video round starting: the rows its segments write or read, the slots it
+    /// takes (one, two if any bank has another row open). Returns the segments served.
+    fn video_round(&mut self) -> Option<usize> {
+        let v = self.video.as_deref_mut()?;
+        let (mut n, mut missed) = (0, 0u64);
+        for s in v.round().into_iter().flatten() {
+            let row = u64::from(s.word / ROW_WORDS) + 1;
+            let open = &mut self.open[s.bank];
+            if open.q().bits() != row {
+                missed += 1;
+                open.set_next_bits(row);
+            }
+            n += 1;
+        }
+        if n == 0 {
+            return None;
+        }
+        let slots = if missed > 0 { 2 } else { 1 };
+        v.start(slots);
+        self.left
+            .set_next_bits(slots * u64::from(self.p.slot_cycles));
+        self.slots.set_next_bits(self.slots.q().bits() + slots);
+        self.vid_round.set_next_bits(n as u64);
+        Some(n)
     }
 
     /// Loads the CLUT 814.
@@ -488,18 +568,28 @@ impl Module for Texram802 {
         let busy = self.bank.valid.q().is_high();
         let finishing = busy && self.left.q().bits() == 1;
         self.out_valid.set_next_bool(false);
-        if finishing {
+        let served = self.vid_round.q().bits() as usize;
+        if let Some(v) = self.video.as_deref_mut() {
+            v.eval(finishing && served > 0);
+        }
+        if finishing && served == 0 {
             self.interpolate();
         }
         let waiting = self.addr.valid.q().is_high();
-        let move_on = waiting && (!busy || finishing);
-        if move_on {
+        // The video port goes first at a slot boundary: video cannot wait.
+        let video = (!busy || finishing) && self.video_round().is_some();
+        let move_on = waiting && (!busy || finishing) && !video;
+        if video {
+            self.bank.valid.set_next_bool(true);
+        } else if move_on {
             self.open_rows();
+            self.vid_round.set_next_bits(0);
             let (a, b) = (&self.addr, &mut self.bank);
             b.copy_from(a);
             b.valid.set_next_bool(true);
         } else if finishing {
             self.bank.valid.set_next_bool(false);
+            self.vid_round.set_next_bits(0);
         } else if busy {
             self.left.set_next_bits(self.left.q().bits() - 1);
         }
@@ -542,7 +632,11 @@ impl Module for Texram802 {
             r.tick(reset);
         }
         self.bank.tick(reset);
+        if let Some(v) = self.video.as_deref_mut() {
+            v.tick(reset, &self.drfs, &mut self.banks);
+        }
         for r in [
+            &mut self.vid_round,
             &mut self.left,
             &mut self.fault,
             &mut self.slots,
@@ -584,7 +678,7 @@ impl Module for Texram802 {
         v.leave();
         v.enter("banks_810", "banks_810");
         self.bank.visit(v);
-        signals!(v; Reg: self.left, self.fault);
+        signals!(v; Reg: self.left, self.fault, self.vid_round);
         v.leave();
         v.enter("trilinear_818", "trilinear_818");
         v.reg(&self.acc_rgba);
@@ -592,6 +686,9 @@ impl Module for Texram802 {
         v.enter("output_820", "output_820");
         signals!(v; Reg: self.out_valid, self.out_value, self.out_rgba, self.out_texels, self.out_fault);
         v.leave();
+        if let Some(port) = &self.video {
+            port.visit(v);
+        }
         v.leave();
     }
 }
