@@ -11,5 +11,6 @@ pub mod mipmap;
 pub mod normals;
 pub mod regress;
 pub mod texram;
+pub mod texram_video;
 pub mod texture;
 pub mod vectors;

@@ -177,7 +177,11 @@ pub struct TexOut {
     pub fault: bool,
 }
 
-pub struct TexDriver;
+/// Drives the request port with requests to DRF `drf`.
+#[derive(Default)]
+pub struct TexDriver {
+    pub drf: u8,
+}
 
 impl Driver<Texram802> for TexDriver {
     type Txn = TexReq;
@@ -188,7 +192,7 @@ impl Driver<Texram802> for TexDriver {
             v: 0,
             lambda: 0,
         });
-        dut.req_drf.set_bits(0);
+        dut.req_drf.set_bits(u64::from(self.drf));
         dut.req_u.set_raw(i64::from(t.u));
         dut.req_v.set_raw(i64::from(t.v));
         dut.req_lambda.set_raw(i64::from(t.lambda));
@@ -572,7 +576,7 @@ fn one_config<T: Trace>(
     let (w, h) = ((1i32 << wl) << 8, (1i32 << hl) << 8);
     let r = run(
         &mut sim,
-        &mut TexDriver,
+        &mut TexDriver::default(),
         &mut TexMonitor,
         reqs,
         &mut spec,
@@ -784,7 +788,7 @@ pub struct TexramStats {
     pub bank_misses: u64,
     /// Accesses that asked one bank for several words (only the literal colour layout).
     pub bank_conflicts: u64,
-    /// Slots taken by the video port (not modelled yet: 0).
+    /// Slots taken by the video port 808 (0 when the chip has no video, as in `texrtl texram`).
     pub video_slots: u64,
     pub cycles: u64,
     pub ns: u64,
@@ -877,7 +881,7 @@ pub fn run_texram(
     let mut wrong = None;
     let st = run(
         &mut sim,
-        &mut TexDriver,
+        &mut TexDriver::default(),
         &mut TexMonitor,
         reqs.to_vec(),
         &mut spec,
@@ -929,7 +933,7 @@ impl TexramStats {
             page_faults: d.fault_slots.q().bits(),
             bank_misses: d.faults.q().bits(),
             bank_conflicts: d.conflicts.q().bits(),
-            video_slots: 0,
+            video_slots: d.video().map_or(0, |v| v.slots.q().bits()),
             cycles,
             ns,
             pixels_per_second: if ns == 0 {

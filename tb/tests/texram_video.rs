@@ -1,0 +1,103 @@
+//! The video port 808 on the TEXRAM chip (issue 13): the generator 816 writing its mipmaps
+//! into the banks through the shift registers 826, beside the rasterizer.
+
+use hdl::kernel::Sim;
+use hdl::mipmap::Scan;
+use tb::texram::test_map;
+use tb::texram_video::{video_chip, VideoConfig, VideoPortTb, VideoSource};
+use verif::Background;
+
+/// The regress testbench over every configuration: each frame's mipmap in the banks equals
+/// the reference, the rasterizer's results the stub's, slots and transfers add up.
+#[test]
+fn the_testbench_passes_and_covers_every_bin() {
+    let opts = verif::RunOptions {
+        count: Some(400),
+        // Every cycle evaluated twice: the port's eval must not move state.
+        check_schedule: true,
+        ..Default::default()
+    };
+    let r = verif::run_testbench(&VideoPortTb, &opts, &mut |_| {}).unwrap();
+    assert!(r.passed, "{:?}", r.failures);
+    assert_eq!(r.mismatches, 0);
+    assert!(r.coverage_percent > 99.0, "{}", r.coverage_percent);
+}
+
+/// Video alone through a chip: clocks until every frame is ready or `limit` cycles.
+fn video_only(
+    c: &VideoConfig,
+    frames: usize,
+    limit: u64,
+) -> (
+    Sim<hdl::texram::texram_802::Texram802, hdl::kernel::NoTrace>,
+    VideoSource,
+) {
+    let mut stim = verif::seeded_stimulus("texram video");
+    let level0 = test_map(32, 32, &mut stim);
+    let (chip, _) = video_chip(c, &level0).unwrap();
+    let frames: Vec<Vec<u8>> = (0..frames)
+        .map(|_| test_map(c.width, c.height, &mut stim))
+        .collect();
+    let mut sim = Sim::new(chip);
+    sim.reset(2);
+    let mut src = VideoSource::new(c, &frames);
+    while sim.cycle() < limit && src.frames_checked() < frames.len() {
+        src.drive(&mut sim.dut, 0);
+        sim.eval();
+        src.settled(&sim.dut, 0);
+        sim.tick();
+    }
+    (sim, src)
+}
+
+/// Interlaced video with no line blanking: the partner line cannot be read before the next
+/// line's first texel; the port flags an underrun (code 2) instead of adding stale texels.
+#[test]
+fn interlaced_video_without_blanking_underruns() {
+    let c = VideoConfig::of(32, 8, Scan::InterlacedTop, 1, 0);
+    let (sim, _) = video_only(&c, 1, 5_000);
+    let v = sim.dut.video().unwrap();
+    assert!(v.error.q().is_high());
+    assert_eq!(v.err_code.q().bits(), 2);
+    // With enough blanking the same video is fine.
+    let c = VideoConfig::of(32, 8, Scan::InterlacedTop, 1, 30);
+    let (sim, src) = video_only(&c, 1, 50_000);
+    let v = sim.dut.video().unwrap();
+    assert!(!v.error.q().is_high(), "code {}", v.err_code.q().bits());
+    assert!(src.mismatches.is_empty(), "{:?}", src.mismatches);
+    assert_eq!(src.frames_checked(), 1);
+}
+
+/// One row buffer for lines that make two segments: an overrun (code 1).
+#[test]
+fn too_few_row_buffers_overrun() {
+    let mut c = VideoConfig::of(16, 4, Scan::Progressive, 1, 50);
+    c.queue = 1;
+    let (sim, _) = video_only(&c, 1, 5_000);
+    let v = sim.dut.video().unwrap();
+    assert!(v.error.q().is_high());
+    assert_eq!(v.err_code.q().bits(), 1);
+}
+
+/// Sections 11-12, "without slowing down the accesses of the rasterizer", cycle by cycle:
+/// interlaced 1024 x 512 video at 25 frames a second (the largest power-of-two frame at least
+/// 768 wide whose two frame buffers fit the chip; 2,559 row transfers a frame) written
+/// while the rasterizer reads the last frame at full rate. Counted from the chip's page
+/// registers and slots over one frame time (40 ms): under 1 % of its accesses lost.
+#[test]
+fn video_at_25_frames_a_second_costs_the_rasterizer_under_one_percent() {
+    use hdl::texram::{Border, Drf};
+    let c = tb::texram_video::video_cost(1024, 512, 25).unwrap();
+    eprintln!("{c:?}: {:.3} % of the accesses lost", 100.0 * c.lost());
+    assert_eq!(c.error, 0);
+    assert_eq!(c.frame_cycles, 8_000_000);
+    let map = Drf::new(10, 9, Border::Wrap);
+    let want = tb::texram_video::expected_transfers(Scan::InterlacedTop, [map, map], 1);
+    assert_eq!(c.transfers, want);
+    // A round writes or reads several banks at once: fewer slots than transfers.
+    assert!(c.video_slots < c.transfers && c.video_slots * 3 > c.transfers);
+    assert!(c.accesses_without > 1_300_000, "{}", c.accesses_without);
+    assert!(c.lost() > 0.0 && c.lost() < 0.01, "{}", c.lost());
+    // The rows the video opens make the rasterizer fault more often.
+    assert!(c.fault_slots_with > c.fault_slots_without);
+}
