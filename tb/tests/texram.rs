@@ -262,7 +262,9 @@ fn the_chip_waveform_has_one_scope_per_unit() {
         "address_812",
         "page_registers_824",
         "banks_810",
+        "clut_814",
         "trilinear_818",
+        "output_820",
     ] {
         let scope = format!("tb.texram_802.{unit}.");
         assert!(
@@ -352,6 +354,50 @@ fn index_mode_filters_each_component_after_the_lookup() {
             assert_eq!(out[k].rgba, r.rgba, "chip, request {k}");
         }
     }
+}
+
+/// The CLUT 814's scope shows the eight table entries of an index access in the cycle it
+/// finishes (the cycle before its result is out): the entries of the eight texels it read.
+#[test]
+fn the_clut_shows_the_entries_it_looked_up() {
+    use hdl::kernel::Sim;
+    use hdl::texram::clut_814::Clut;
+    use hdl::texram::texram_802::{Texram802, TexramParams};
+    use hdl::texram::Config;
+    let mut stim = verif::seeded_stimulus("texram clut scope");
+    let entries: Vec<u32> = stim.draw_n(&any::<u32>(), 256);
+    let clut = Clut {
+        entries: entries.try_into().unwrap(),
+    };
+    let mut drf = Drf::new(4, 4, Border::Wrap);
+    drf.config = Config::Index;
+    let mut chip = Texram802::new(TexramParams::default()).unwrap();
+    chip.set_drf(0, drf).unwrap();
+    chip.load(0, &stim.draw_n(&any::<u8>(), 256)).unwrap();
+    chip.set_clut(clut.clone());
+    let mut sim = Sim::new(chip).check_schedule(true);
+    sim.reset(2);
+    let (mut shown, mut results, mut sent) = (None, 0, 0);
+    for cycle in 0..1000 {
+        let d = &mut sim.dut;
+        d.req_valid.set_bool(sent < 40);
+        d.req_u.set_raw(i64::from(cycle * 97 % 4096));
+        d.req_v.set_raw(i64::from(cycle * 61 % 4096));
+        d.req_lambda.set_raw(i64::from(cycle * 37 % 1024));
+        sim.eval();
+        let d = &sim.dut;
+        sent += i32::from(d.req_valid.is_high() && d.req_ready.is_high());
+        if d.out_valid.q().is_high() {
+            let texels = d.out_texels.q().bits().to_le_bytes();
+            let want = texels.map(|t| u32::from_be_bytes(clut.rgba(t)));
+            assert_eq!(shown, Some(want), "cycle {cycle}");
+            results += 1;
+        }
+        let now = d.clut_entries.each_ref().map(|e| e.bits() as u32);
+        shown = now.iter().any(|&e| e != 0).then_some(now);
+        sim.tick();
+    }
+    assert_eq!(results, 40);
 }
 
 /// The colour configurations agree component by component: four component planes in the

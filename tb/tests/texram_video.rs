@@ -101,3 +101,36 @@ fn video_at_25_frames_a_second_costs_the_rasterizer_under_one_percent() {
     // The rows the video opens make the rasterizer fault more often.
     assert!(c.fault_slots_with > c.fault_slots_without);
 }
+
+/// The video run's waveform: the port, the generator and the shift registers each a scope
+/// under the chip, beside the chip's other units; the .gtkw view opens it.
+#[test]
+fn the_video_waveform_has_a_scope_per_unit() {
+    let dir = std::env::temp_dir().join(format!("texrtl-video-{}", std::process::id()));
+    let opts = verif::RunOptions {
+        count: Some(50),
+        ..verif::RunOptions::with_waves(&dir)
+    };
+    let r = verif::run_testbench(&VideoPortTb, &opts, &mut |_| {}).unwrap();
+    assert!(r.passed, "{:?}", r.failures);
+    let vcd = dir.join("video_port_808.vcd");
+    let rb = waves::check::read_vcd(&vcd).unwrap();
+    for scope in [
+        "texram_802.banks_810",
+        "texram_802.page_registers_824",
+        "texram_802.video_port_808",
+        "texram_802.video_port_808.mipmap_gen_816.level1.fifo_1412",
+        "texram_802.video_port_808.shift_registers_826",
+    ] {
+        let scope = format!("tb.{scope}.");
+        assert!(
+            rb.vars.keys().any(|n| n.starts_with(&scope)),
+            "no scope {scope}"
+        );
+    }
+    assert!(rb
+        .vars
+        .contains_key("tb.texram_802.video_port_808.shift_registers_826.video_slots"));
+    waves::check::check_gtkw(&vcd, &rb).unwrap();
+    std::fs::remove_dir_all(&dir).unwrap();
+}

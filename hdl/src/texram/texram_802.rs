@@ -216,6 +216,8 @@ pub struct Texram802 {
     pub out_fault: Reg,
     /// The components of a colour request finished so far (R top byte).
     acc_rgba: Reg,
+    /// 814: the eight texels' table entries (R top byte) as an index access finishes.
+    pub clut_entries: [Signal; 8],
     /// The bank stage serves `vid_round` segments of the video port (0: a rasterizer access).
     pub vid_round: Reg,
     /// The video port 808 with the generator 816 and shift registers 826, when set up.
@@ -259,6 +261,10 @@ impl Texram802 {
             out_texels: Reg::new("out_texels", Format::uint(64)),
             out_fault: Reg::new("out_fault", Format::uint(1)),
             acc_rgba: Reg::new("acc_rgba", Format::uint(32)),
+            clut_entries: [
+                "entry0", "entry1", "entry2", "entry3", "entry4", "entry5", "entry6", "entry7",
+            ]
+            .map(|n| Signal::new(n, Format::uint(32))),
             vid_round: Reg::new("vid_round", Format::uint(4)),
             video: None,
             held: [
@@ -527,6 +533,9 @@ impl Texram802 {
         let value = trilinear(&texels, a, b, f);
         let part = self.bank.part.q().bits();
         let rgba = if self.bank.index.q().is_high() {
+            for (e, &t) in self.clut_entries.iter_mut().zip(&texels) {
+                e.set_bits(u64::from(u32::from_be_bytes(self.clut.rgba(t))));
+            }
             u32::from_be_bytes(self.clut.filter(&texels, a, b, f))
         } else if self.bank.last.q().is_high() && part == 0 {
             u32::from_be_bytes([value; 4])
@@ -568,6 +577,9 @@ impl Module for Texram802 {
         let busy = self.bank.valid.q().is_high();
         let finishing = busy && self.left.q().bits() == 1;
         self.out_valid.set_next_bool(false);
+        for e in &mut self.clut_entries {
+            e.set_bits(0);
+        }
         let served = self.vid_round.q().bits() as usize;
         if let Some(v) = self.video.as_deref_mut() {
             v.eval(finishing && served > 0);
@@ -679,6 +691,11 @@ impl Module for Texram802 {
         v.enter("banks_810", "banks_810");
         self.bank.visit(v);
         signals!(v; Reg: self.left, self.fault, self.vid_round);
+        v.leave();
+        v.enter("clut_814", "clut_814");
+        for e in &self.clut_entries {
+            v.signal(crate::kernel::Dir::Wire, e);
+        }
         v.leave();
         v.enter("trilinear_818", "trilinear_818");
         v.reg(&self.acc_rgba);
