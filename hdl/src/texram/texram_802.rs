@@ -38,7 +38,7 @@ use super::banks_810::{bank_words, locate, store_level, BANKS, ROW_WORDS};
 use super::clut_814::Clut;
 use super::output_820::{shade, Modulate};
 use super::stub::next_level;
-use super::trilinear_818::trilinear;
+use super::trilinear_818::{trilinear, trilinear_sum};
 use super::video_port_808::{VideoParams, VideoPort808};
 use super::{Border, Config, Drf, DRFS};
 use crate::fx::Format;
@@ -214,6 +214,9 @@ pub struct Texram802 {
     pub out_rgba: Reg,
     pub out_texels: Reg,
     pub out_fault: Reg,
+    /// 818's exact sum before its rounding (luminance: `value * 2^24`, u32), for the
+    /// footprint accumulator.
+    pub out_sum: Reg,
     /// The components of a colour request finished so far (R top byte).
     acc_rgba: Reg,
     /// 814: the eight texels' table entries (R top byte) as an index access finishes.
@@ -260,6 +263,7 @@ impl Texram802 {
             out_rgba: Reg::new("out_rgba", Format::uint(32)),
             out_texels: Reg::new("out_texels", Format::uint(64)),
             out_fault: Reg::new("out_fault", Format::uint(1)),
+            out_sum: Reg::new("out_sum", Format::unsigned(32, 24)),
             acc_rgba: Reg::new("acc_rgba", Format::uint(32)),
             clut_entries: [
                 "entry0", "entry1", "entry2", "entry3", "entry4", "entry5", "entry6", "entry7",
@@ -531,6 +535,7 @@ impl Texram802 {
         let w = self.bank.weights.q().bits().to_le_bytes();
         let (a, b, f) = ([w[0], w[2]], [w[1], w[3]], w[4]);
         let value = trilinear(&texels, a, b, f);
+        let sum = trilinear_sum(&texels, a, b, f);
         let part = self.bank.part.q().bits();
         let rgba = if self.bank.index.q().is_high() {
             for (e, &t) in self.clut_entries.iter_mut().zip(&texels) {
@@ -561,6 +566,7 @@ impl Texram802 {
             self.out_rgba.set_next_bits(u64::from(rgba));
             self.out_texels.set_next_bits(u64::from_le_bytes(texels));
             self.out_fault.set_next_bits(self.fault.q().bits());
+            self.out_sum.set_next_bits(sum);
         }
     }
 }
@@ -665,6 +671,7 @@ impl Module for Texram802 {
             &mut self.out_rgba,
             &mut self.out_texels,
             &mut self.out_fault,
+            &mut self.out_sum,
         ] {
             r.tick(reset);
         }
@@ -701,7 +708,7 @@ impl Module for Texram802 {
         v.reg(&self.acc_rgba);
         v.leave();
         v.enter("output_820", "output_820");
-        signals!(v; Reg: self.out_valid, self.out_value, self.out_rgba, self.out_texels, self.out_fault);
+        signals!(v; Reg: self.out_valid, self.out_value, self.out_rgba, self.out_texels, self.out_fault, self.out_sum);
         v.leave();
         if let Some(port) = &self.video {
             port.visit(v);

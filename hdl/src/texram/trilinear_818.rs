@@ -13,6 +13,12 @@ pub fn bilinear_weights(a: u8, b: u8) -> [u32; 4] {
 /// The interpolated texel: `texels` fine 2x2 then coarse 2x2, `a`, `b` per level, `f` the
 /// coarse level's weight.
 pub fn trilinear(texels: &[u8; 8], a: [u8; 2], b: [u8; 2], f: u8) -> u8 {
+    ((trilinear_sum(texels, a, b, f) + (1 << 23)) >> 24) as u8
+}
+
+/// The exact weighted sum before the rounding: the texel value times `2^24` (u32; footprint
+/// assembly adds these up and rounds once).
+pub fn trilinear_sum(texels: &[u8; 8], a: [u8; 2], b: [u8; 2], f: u8) -> u64 {
     let wf = [256 - u64::from(f), u64::from(f)];
     let mut sum = 0u64;
     for n in 0..2 {
@@ -21,7 +27,7 @@ pub fn trilinear(texels: &[u8; 8], a: [u8; 2], b: [u8; 2], f: u8) -> u8 {
             sum += u64::from(texels[4 * n + t]) * u64::from(w[t]) * wf[n];
         }
     }
-    ((sum + (1 << 23)) >> 24) as u8
+    sum
 }
 
 #[cfg(test)]
