@@ -33,19 +33,21 @@
 //! | page registers 824 | `texram/page_registers_824.rs` | scope `page_registers_824` | `texram_802` | `tb.texram_802.page_registers_824` |
 //! | banks 810 and their address decoders 822: the two-level layout | `texram/banks_810.rs` | scope `banks_810` | `texram_802` | `tb.texram_802.banks_810` |
 //! | trilinear interpolator 818 | `texram/trilinear_818.rs` | scope `trilinear_818` | `texram_802` | `tb.texram_802.trilinear_818` |
-//! | CLUT 814 | `texram/clut_814.rs` | (in 818's arithmetic) | `texram_802`; `tb/tests/texram.rs` | `tb.texram_802.trilinear_818` |
+//! | CLUT 814 | `texram/clut_814.rs` | scope `clut_814` (the eight entries an index access looked up) | `texram_802`; `tb/tests/texram.rs` | `tb.texram_802.clut_814` |
 //! | output and combination stage 820 (eq. 5) | `texram/output_820.rs` | scope `output_820` | `texram_802`; `tb/tests/texram.rs` | `tb.texram_802.output_820` |
 //! | one colour component per chip, four chips 802 in lock-step | `texram/lockstep.rs` | `texram_lockstep`, chips `chip_r` … | `tb/tests/texram.rs` | `texram_lockstep.chip_r` … |
+//! | video port 808 and shift registers 826, with the mipmap generator 816 on the banks | `texram/video_port_808.rs` | scope `video_port_808` | `video_port_808`; `tb/tests/texram_video.rs` | `tb.texram_802.video_port_808`, `….mipmap_gen_816`, `….shift_registers_826` |
 
 pub mod fx;
 pub mod kernel;
 
 /// FIG. 7 of US 2004/0207631: the per-pixel normal pipeline.
 pub mod bump;
+/// Section 10 and Figures 12-13 of Schilling & Knittel: footprint assembly.
+pub mod footprint;
 /// FIG. 14 of Schilling & Knittel: the real-time mipmap generator.
 pub mod mipmap;
 /// Figure 6 of Schilling & Knittel: the texture memory path.
 pub mod texmem;
-/// Figure 8 of Schilling & Knittel: the TEXRAM chip's interface, shared arithmetic and
-/// behavioural stub.
+/// Figure 8 of Schilling & Knittel: the TEXRAM chip, its interface and behavioural stub.
 pub mod texram;

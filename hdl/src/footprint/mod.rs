@@ -1,0 +1,13 @@
+//! Footprint assembly (Schilling & Knittel section 10, Figures 12 and 13): anisotropic
+//! filtering by N trilinear accesses along the longer edge of the pixel's footprint.
+//!
+//! * [`setup_fig12`]: the rasterizer-side setup unit (eqs 19-21): N, the step and the level
+//!   of detail from the screen derivatives, with no square root or division;
+//! * [`assembly_fig12`]: the chip-side sample generator (eq. 22) and accumulator in front of
+//!   the TEXRAM chip 802: N accesses a pixel, the exact sum of their trilinear sums, one
+//!   rounding of the mean, and the same at transaction level over any `TexramAccess`;
+//! * [`footprint_fig12`]: the two together in front of the chip.
+
+pub mod assembly_fig12;
+pub mod footprint_fig12;
+pub mod setup_fig12;
