@@ -1,0 +1,332 @@
+//! The chip side of footprint assembly (section 10, eq. 22): the rasterizer sends `u, v,
+//! lambda` and then `dr = (du, dv)` and `N` (the setup unit's); the sample generator makes the
+//! N sample points `p_n = p + (n/2) dr` for `n = -(N-1), -(N-3), ..., N-1` (eq. 22 prints only
+//! the odd `n` of an even N; N = 1 is `p` itself), one trilinear access of the TEXRAM chip
+//! each, and the accumulator adds the accesses' exact trilinear sums (818 before its
+//! rounding) and rounds their mean once: `(S + 2^(23+k)) >> (24+k)` for `N = 2^k`.
+//!
+//! # Formats
+//! | value | format |
+//! |---|---|
+//! | `u`, `v` | sQ12.8 (the chip's) |
+//! | `du`, `dv` | sQ11.14 (the setup unit's) |
+//! | sample points `p_n` | sQ16.15: `p_0 = p - (N-1) dr/2`, then `+ dr`; exact (dr/2 is sQ11.15) |
+//! | the access's `u`, `v` | `p_n` rounded half up to sQ12.8, held to its range [C] |
+//! | accumulator | uQ14.24 (38 bits): up to 64 sums of at most `255 * 2^24` |
+//! | result | u8, one rounding of the mean, half up |
+//!
+//! Luminance maps only [C] (818's exact sum is the luminance one).
+//!
+//! # Timing
+//! The generator takes a pixel when it holds none (`px_ready`), offers one sample a cycle to
+//! the chip's request port and moves on when the chip takes it (one a slot, when no page
+//! faults); it takes the next pixel in the cycle after its last sample went. The accumulator
+//! counts the chip's results against the N of the pixels in flight (in order, at most four)
+//! and outputs a pixel with its last sample's result: setup of pixel i+1 and assembly of pixel
+//! i overlap, and the chip never waits for the generator.
+
+use super::setup_fig12::{Setup, STEP_FRAC};
+use crate::fx::Format;
+use crate::kernel::{Module, Reg, Signal, Visitor};
+use crate::signals;
+use crate::texram::texram_802::Texram802;
+use crate::texram::trilinear_818::trilinear_sum;
+use crate::texram::{TexramAccess, TexramRequest, FRAC, UV_BITS};
+
+/// Fraction bits of the sample points: the step's plus one (for `dr / 2`).
+pub const POINT_FRAC: u32 = STEP_FRAC + 1;
+/// Pixels in flight at most (the chip holds two accesses; the generator one pixel).
+const IN_FLIGHT: u64 = 4;
+
+/// The first sample point and the step, raw sQ.15: `p - (N-1) dr / 2` and `dr`.
+pub fn first_point(u: i32, du: i32, log2_n: u32) -> (i64, i64) {
+    let n1 = (1i64 << log2_n) - 1;
+    let p = i64::from(u) << (POINT_FRAC - FRAC);
+    // dr in sQ.15 is 2 du (du is sQ.14); (N-1) dr / 2 is (N-1) du.
+    (p - n1 * i64::from(du), 2 * i64::from(du))
+}
+
+/// A sample point rounded half up to the chip's sQ12.8, held to its range.
+pub fn access_coord(p: i64) -> i32 {
+    let half = 1i64 << (POINT_FRAC - FRAC - 1);
+    let lim = 1i64 << (UV_BITS - 1);
+    ((p + half) >> (POINT_FRAC - FRAC)).clamp(-lim, lim - 1) as i32
+}
+
+/// The mean of `2^log2_n` exact trilinear sums, rounded once, half up.
+pub fn mean(sum: u64, log2_n: u32) -> u8 {
+    ((sum + (1u64 << (23 + log2_n))) >> (24 + log2_n)) as u8
+}
+
+/// One assembled pixel.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct Assembled {
+    pub value: u8,
+    /// Samples (accesses), and the slots and bank faults they took.
+    pub n: u32,
+    pub slots: u32,
+    pub faults: u32,
+}
+
+/// The generator and accumulator at transaction level over any [`TexramAccess`] (the stub,
+/// the chip behind `Texram802Access`): what [`FootprintAssembly`] does, access by access.
+pub fn assemble(
+    chip: &mut dyn TexramAccess,
+    drf: u8,
+    (u, v): (i32, i32),
+    s: &Setup,
+) -> Result<Assembled, String> {
+    let (mut pu, du) = first_point(u, s.du, s.log2_n);
+    let (mut pv, dv) = first_point(v, s.dv, s.log2_n);
+    let (mut sum, mut slots, mut faults) = (0u64, 0, 0);
+    for _ in 0..1u32 << s.log2_n {
+        let r = chip.access(TexramRequest {
+            drf,
+            u: access_coord(pu),
+            v: access_coord(pv),
+            lambda: s.lambda,
+        })?;
+        sum += trilinear_sum(&r.texels, r.a, r.b, r.f);
+        slots += r.slots;
+        faults += r.faults;
+        pu += du;
+        pv += dv;
+    }
+    Ok(Assembled {
+        value: mean(sum, s.log2_n),
+        n: 1 << s.log2_n,
+        slots,
+        faults,
+    })
+}
+
+/// The sample generator and accumulator with the chip behind them.
+#[derive(Clone, Debug)]
+pub struct FootprintAssembly {
+    pub chip: Texram802,
+    pub px_valid: Signal,
+    pub px_ready: Signal,
+    pub px_drf: Signal,
+    pub px_u: Signal,
+    pub px_v: Signal,
+    pub px_lambda: Signal,
+    pub px_du: Signal,
+    pub px_dv: Signal,
+    pub px_log2_n: Signal,
+    /// Generator: samples still to send, the point, the step, the pixel's DRF and lambda.
+    left: Reg,
+    pu: Reg,
+    pv: Reg,
+    du: Reg,
+    dv: Reg,
+    drf: Reg,
+    lambda: Reg,
+    /// Accumulator: the pixels in flight (3 bits of log2 N each, oldest lowest), their count,
+    /// the sum and the results counted for the oldest.
+    pend: Reg,
+    pend_n: Reg,
+    sum: Reg,
+    count: Reg,
+    pub out_valid: Reg,
+    pub out_value: Reg,
+    pub out_n: Reg,
+    pub pixels: Reg,
+}
+
+impl FootprintAssembly {
+    pub fn new(chip: Texram802) -> FootprintAssembly {
+        let point = |n| Reg::new(n, Format::signed(32, POINT_FRAC as i32));
+        FootprintAssembly {
+            chip,
+            px_valid: Signal::bit("px_valid"),
+            px_ready: Signal::bit("px_ready"),
+            px_drf: Signal::new("px_drf", Format::uint(3)),
+            px_u: Signal::new("px_u", Format::signed(UV_BITS, FRAC as i32)),
+            px_v: Signal::new("px_v", Format::signed(UV_BITS, FRAC as i32)),
+            px_lambda: Signal::new("px_lambda", Format::signed(14, 8)),
+            px_du: Signal::new("px_du", Format::signed(26, STEP_FRAC as i32)),
+            px_dv: Signal::new("px_dv", Format::signed(26, STEP_FRAC as i32)),
+            px_log2_n: Signal::new("px_log2_n", Format::uint(3)),
+            left: Reg::new("left", Format::uint(7)),
+            pu: point("pu"),
+            pv: point("pv"),
+            du: point("step_u"),
+            dv: point("step_v"),
+            drf: Reg::new("drf", Format::uint(3)),
+            lambda: Reg::new("lambda", Format::signed(14, 8)),
+            pend: Reg::new("pend", Format::uint(3 * IN_FLIGHT as u32)),
+            pend_n: Reg::new("pend_n", Format::uint(3)),
+            sum: Reg::new("sum", Format::unsigned(38, 24)),
+            count: Reg::new("count", Format::uint(7)),
+            out_valid: Reg::new("out_valid", Format::uint(1)),
+            out_value: Reg::new("out_value", Format::uint(8)),
+            out_n: Reg::new("out_n", Format::uint(7)),
+            pixels: Reg::new("pixels", Format::uint(40)),
+        }
+    }
+
+    /// The generator: a pixel taken, or the current sample offered to the chip.
+    fn generate(&mut self) -> Option<u64> {
+        let left = self.left.q().bits();
+        let ready = left == 0;
+        self.px_ready.set_bool(ready);
+        let c = &mut self.chip;
+        c.req_valid.set_bool(left > 0);
+        c.req_drf.set_bits(self.drf.q().bits());
+        c.req_u.set_raw(i64::from(access_coord(self.pu.q().raw())));
+        c.req_v.set_raw(i64::from(access_coord(self.pv.q().raw())));
+        c.req_lambda.set_raw(self.lambda.q().raw());
+        if ready && self.px_valid.is_high() {
+            let k = self.px_log2_n.bits() as u32;
+            let (pu, du) = first_point(self.px_u.raw() as i32, self.px_du.raw() as i32, k);
+            let (pv, dv) = first_point(self.px_v.raw() as i32, self.px_dv.raw() as i32, k);
+            self.left.set_next_bits(1 << k);
+            for (r, x) in [
+                (&mut self.pu, pu),
+                (&mut self.pv, pv),
+                (&mut self.du, du),
+                (&mut self.dv, dv),
+            ] {
+                r.set_next_raw(x);
+            }
+            self.drf.set_next_bits(self.px_drf.bits());
+            self.lambda.set_next_raw(self.px_lambda.raw());
+            return Some(u64::from(k));
+        }
+        None
+    }
+
+    /// After the chip settled: the sample taken moves the generator on.
+    fn advance(&mut self) {
+        if self.left.q().bits() > 0 && self.chip.req_ready.is_high() {
+            self.left.set_next_bits(self.left.q().bits() - 1);
+            let pu = self.pu.q().raw() + self.du.q().raw();
+            let pv = self.pv.q().raw() + self.dv.q().raw();
+            self.pu.set_next_raw(pu);
+            self.pv.set_next_raw(pv);
+        }
+    }
+
+    /// The accumulator: the chip's result added; the oldest pixel out with its last one;
+    /// `taken` the log2 N of a pixel the generator took this cycle.
+    fn accumulate(&mut self, taken: Option<u64>) {
+        let (mut pend, mut n) = (self.pend.q().bits(), self.pend_n.q().bits());
+        self.out_valid.set_next_bool(false);
+        if self.chip.out_valid.q().is_high() && n > 0 {
+            let k = pend & 7;
+            let sum = self.sum.q().bits() + self.chip.out_sum.q().bits();
+            let count = self.count.q().bits() + 1;
+            if count == 1 << k {
+                self.out_valid.set_next_bool(true);
+                self.out_value.set_next_bits(u64::from(mean(sum, k as u32)));
+                self.out_n.set_next_bits(count);
+                self.pixels.set_next_bits(self.pixels.q().bits() + 1);
+                self.sum.set_next_bits(0);
+                self.count.set_next_bits(0);
+                pend >>= 3;
+                n -= 1;
+            } else {
+                self.sum.set_next_bits(sum);
+                self.count.set_next_bits(count);
+            }
+        }
+        if let Some(k) = taken {
+            debug_assert!(n < IN_FLIGHT, "at most four pixels in flight");
+            pend |= k << (3 * n);
+            n += 1;
+        }
+        self.pend.set_next_bits(pend);
+        self.pend_n.set_next_bits(n);
+    }
+}
+
+impl Module for FootprintAssembly {
+    fn instance(&self) -> &str {
+        "footprint_assembly"
+    }
+    fn kind(&self) -> &'static str {
+        "footprint_assembly"
+    }
+    fn eval(&mut self) {
+        let taken = self.generate();
+        self.chip.eval();
+        self.advance();
+        self.accumulate(taken);
+    }
+    fn tick(&mut self, reset: bool) {
+        for r in [
+            &mut self.left,
+            &mut self.pu,
+            &mut self.pv,
+            &mut self.du,
+            &mut self.dv,
+            &mut self.drf,
+            &mut self.lambda,
+            &mut self.pend,
+            &mut self.pend_n,
+            &mut self.sum,
+            &mut self.count,
+            &mut self.out_valid,
+            &mut self.out_value,
+            &mut self.out_n,
+            &mut self.pixels,
+        ] {
+            r.tick(reset);
+        }
+        self.chip.tick(reset);
+    }
+    fn visit(&self, v: &mut dyn Visitor) {
+        v.enter(self.instance(), self.kind());
+        signals!(v;
+            Input: self.px_valid, self.px_drf, self.px_u, self.px_v, self.px_lambda,
+                self.px_du, self.px_dv, self.px_log2_n;
+            Output: self.px_ready);
+        v.enter("generator", "footprint_generator");
+        signals!(v; Reg: self.left, self.pu, self.pv, self.du, self.dv, self.drf, self.lambda);
+        v.leave();
+        v.enter("accumulator", "footprint_accumulator");
+        signals!(v; Reg: self.pend, self.pend_n, self.sum, self.count,
+            self.out_valid, self.out_value, self.out_n, self.pixels);
+        v.leave();
+        self.chip.visit(v);
+        v.leave();
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn sample_points_round_half_up_to_the_chips_grid_and_hold_to_its_range() {
+        // sQ.15 to sQ.8: 128 raw units an LSB, 64 the half.
+        assert_eq!(access_coord(0), 0);
+        assert_eq!(access_coord(63), 0);
+        assert_eq!(access_coord(64), 1);
+        assert_eq!(access_coord(-64), 0);
+        assert_eq!(access_coord(-65), -1);
+        assert_eq!(access_coord(128 * 5 + 64), 6);
+        let lim = 1i64 << 20;
+        assert_eq!(access_coord(lim << 7), (lim - 1) as i32);
+        assert_eq!(access_coord(-(lim << 7) - 1000), -lim as i32);
+    }
+
+    #[test]
+    fn the_mean_rounds_once_half_up() {
+        let one = 1u64 << 24;
+        assert_eq!(mean(0, 0), 0);
+        assert_eq!(mean(255 * one, 0), 255);
+        // (3 + 4) / 2 = 3.5 -> 4; (3 + 3 + 3 + 4) / 4 = 3.25 -> 3.
+        assert_eq!(mean(7 * one, 1), 4);
+        assert_eq!(mean(13 * one, 2), 3);
+        assert_eq!(mean(7 * one - 1, 1), 3);
+        assert_eq!(mean(64 * 255 * one, 6), 255);
+    }
+
+    #[test]
+    fn the_first_point_is_half_the_span_back() {
+        // N = 4, step 1 texel (sQ.14: 16384): p - 1.5 texels, step 1 texel in sQ.15.
+        assert_eq!(first_point(256, 16384, 2), ((256 << 7) - 3 * 16384, 32768));
+        assert_eq!(first_point(-5, -3, 0), (-5 << 7, -6));
+    }
+}

@@ -1,0 +1,61 @@
+//! Footprint assembly end to end (section 10): the rasterizer's setup unit feeding the chip
+//! side's generator and accumulator, which drive the TEXRAM chip 802. The setup unit hands a
+//! pixel over (`u, v, lambda`, then `dr` and `N`, as one transfer here) when the generator
+//! is free, so the setup of pixel i+1 overlaps the assembly of pixel i.
+
+use super::assembly_fig12::FootprintAssembly;
+use super::setup_fig12::{SetupParams, SetupUnit};
+use crate::kernel::{Module, Visitor};
+use crate::texram::texram_802::Texram802;
+
+/// The setup unit and the assembly unit with its chip.
+#[derive(Clone, Debug)]
+pub struct FootprintFig12 {
+    /// Drive its inputs (`in_valid`, `drf`, `u`, `v`, `r1u` ... `r2v`); `in_ready` says it
+    /// took them.
+    pub setup: SetupUnit,
+    /// Its `out_valid`, `out_value`, `out_n` are the pixel's result.
+    pub assembly: FootprintAssembly,
+}
+
+impl FootprintFig12 {
+    pub fn new(p: SetupParams, chip: Texram802) -> Result<FootprintFig12, String> {
+        Ok(FootprintFig12 {
+            setup: SetupUnit::new("footprint_setup", p)?,
+            assembly: FootprintAssembly::new(chip),
+        })
+    }
+}
+
+impl Module for FootprintFig12 {
+    fn instance(&self) -> &str {
+        "footprint_fig12"
+    }
+    fn kind(&self) -> &'static str {
+        "footprint_fig12"
+    }
+    fn eval(&mut self) {
+        let (s, a) = (&self.setup, &mut self.assembly);
+        a.px_valid.follow(s.out_valid.q());
+        a.px_drf.follow(s.out_drf.q());
+        a.px_u.follow(s.out_u.q());
+        a.px_v.follow(s.out_v.q());
+        a.px_lambda.follow(s.lambda.q());
+        a.px_du.follow(s.du.q());
+        a.px_dv.follow(s.dv.q());
+        a.px_log2_n.follow(s.log2_n.q());
+        a.eval();
+        self.setup.out_ready.follow(&self.assembly.px_ready);
+        self.setup.eval();
+    }
+    fn tick(&mut self, reset: bool) {
+        self.setup.tick(reset);
+        self.assembly.tick(reset);
+    }
+    fn visit(&self, v: &mut dyn Visitor) {
+        v.enter(self.instance(), self.kind());
+        self.setup.visit(v);
+        self.assembly.visit(v);
+        v.leave();
+    }
+}
