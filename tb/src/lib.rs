@@ -6,6 +6,7 @@
 pub mod blend_adjust;
 pub mod cosim;
 pub mod dram;
+pub mod footprint;
 pub mod maps;
 pub mod mipmap;
 pub mod normals;

@@ -104,6 +104,23 @@ impl RefMipmap {
         border: RefBorder,
         map: &dyn Fn(u8) -> u8,
     ) -> ([u8; 8], u8) {
+        let (texels, sum) = self.weighed(u, v, lambda, border, map);
+        (texels, ((sum + (1 << 23)) / (1 << 24)) as u8)
+    }
+
+    /// The access's exact weighted sum (the result times `2^24`, before its rounding).
+    pub fn sum(&self, u: i32, v: i32, lambda: i32, border: RefBorder) -> i64 {
+        self.weighed(u, v, lambda, border, &|t| t).1
+    }
+
+    fn weighed(
+        &self,
+        u: i32,
+        v: i32,
+        lambda: i32,
+        border: RefBorder,
+        map: &dyn Fn(u8) -> u8,
+    ) -> ([u8; 8], i64) {
         let l = i64::from(lambda).div_euclid(256);
         let (fine, f) = if l < 0 {
             (0, 0)
@@ -136,8 +153,7 @@ impl RefMipmap {
                 sum += i64::from(map(tex)) * w * wl;
             }
         }
-        let value = (sum + (1 << 23)) / (1 << 24);
-        (texels, value as u8)
+        (texels, sum)
     }
 }
 

@@ -1,0 +1,756 @@
+//! Footprint assembly (Schilling & Knittel section 10): the integer reference (its own setup,
+//! sample points and sums, plain loops over `RefMipmap`), the regress testbench of the
+//! setup unit, generator and accumulator in front of the TEXRAM chip, and the quality harness
+//! (a tilted plane, against the f64 box average over each pixel's exact footprint).
+
+use crate::texram::{test_map, RefBorder, RefMipmap, CYCLE_PS};
+use hdl::footprint::footprint_fig12::FootprintFig12;
+use hdl::footprint::setup_fig12::{NRounding, SetupParams};
+use hdl::kernel::{Sim, Trace};
+use hdl::texram::texram_802::{Texram802, TexramParams};
+use hdl::texram::{Border, Drf};
+use proptest::prelude::*;
+use verif::{
+    run, Coverage, Coverpoint, Ctx, Driver, Event, Monitor, Pacing, RunSpec, Scoreboard, Stimulus,
+    TbResult, Testbench,
+};
+
+pub const NAME: &str = "footprint_fig12";
+
+/// One pixel: its centre (sQ12.8) and screen derivatives r1, r2 (sQ11.8), raw.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct Pixel {
+    pub u: i32,
+    pub v: i32,
+    pub r1: (i32, i32),
+    pub r2: (i32, i32),
+}
+
+/// What the reference (and the unit) give for a pixel.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct Assembled {
+    pub value: u8,
+    pub n: u32,
+}
+
+/// The integer reference's own setup: N and the step (raw sQ.14 along the longer edge), and
+/// lambda (raw sQ5.8) from its own table of `log2(1 + i/64)`.
+pub fn ref_setup(p: &SetupParams, px: &Pixel) -> (u32, (i64, i64), i32) {
+    let (a, b) = (px.r1, px.r2);
+    let sq = |x: i64, y: i64| (x * x + y * y) as u128;
+    let (a0, a1, b0, b1) = (
+        i64::from(a.0),
+        i64::from(a.1),
+        i64::from(b.0),
+        i64::from(b.1),
+    );
+    let lens = [
+        sq(a0, a1),
+        sq(b0, b1),
+        sq(a0 + b0, a1 + b1),
+        sq(a0 - b0, a1 - b1),
+    ];
+    let q2 = *lens.iter().min().expect("four");
+    let m2 = lens[0].max(lens[1]);
+    let mut n = 1u32;
+    if m2 > 0 && q2 == 0 {
+        n = 1 << p.max_log2_n;
+    } else if m2 > 0 {
+        // The power of two nearest m/q: in the log domain compare (m/q)^2 with 2 N^2.
+        let up = |n: u32| match p.rounding {
+            NRounding::Log => m2 >= 2 * q2 * u128::from(n) * u128::from(n),
+            NRounding::Linear => 4 * m2 >= 9 * q2 * u128::from(n) * u128::from(n),
+        };
+        while n < 1 << p.max_log2_n && up(n) {
+            n *= 2;
+        }
+    }
+    let r = if lens[1] > lens[0] { b } else { a };
+    // sQ.8 to sQ.14 divided by N.
+    let step = (
+        i64::from(r.0) * 64 / i64::from(n),
+        i64::from(r.1) * 64 / i64::from(n),
+    );
+    (n, step, ref_lambda(q2 as u64))
+}
+
+/// `1/2 log2(x / 2^16)`: the leading one and six bits after it, the table made in f64 here
+/// (the unit makes it by integer squaring), the sum halved half up, held to -4..10.
+fn ref_lambda(x: u64) -> i32 {
+    if x == 0 {
+        return -4 * 256;
+    }
+    let lead = x.ilog2() as i32;
+    let six = if lead >= 6 {
+        (x >> (lead - 6)) as i32 - 64
+    } else {
+        (x << (6 - lead)) as i32 - 64
+    };
+    let table = (256.0 * (1.0 + f64::from(six) / 64.0).log2()).round() as i32;
+    let full = (lead - 16) * 256 + table;
+    (full + 1).div_euclid(2).clamp(-4 * 256, 10 * 256)
+}
+
+/// The reference's pixel: N sample points `p + (2i - (N - 1)) step / 2` in sQ.15, each
+/// rounded half up to sQ.8, the exact trilinear sums added, their mean rounded once.
+pub fn ref_assemble(
+    map: &RefMipmap,
+    border: RefBorder,
+    p: &SetupParams,
+    px: &Pixel,
+) -> (Assembled, Vec<(i32, i32)>) {
+    let (n, step, lambda) = ref_setup(p, px);
+    let lim = 1i64 << 20;
+    let coord = |c: i32, s: i64, i: u32| {
+        let q15 = i64::from(c) * 128 + (2 * i64::from(i) - (i64::from(n) - 1)) * s;
+        ((q15 + 64).div_euclid(128)).clamp(-lim, lim - 1) as i32
+    };
+    let mut total = 0i64;
+    let mut points = Vec::new();
+    for i in 0..n {
+        let (u, v) = (coord(px.u, step.0, i), coord(px.v, step.1, i));
+        total += map.sum(u, v, lambda, border);
+        points.push((u, v));
+    }
+    let scale = i64::from(n) << 24;
+    let value = ((total + scale / 2) / scale) as u8;
+    (Assembled { value, n }, points)
+}
+
+/// Drives the setup unit's inputs.
+pub struct PixelDriver;
+
+impl Driver<FootprintFig12> for PixelDriver {
+    type Txn = Pixel;
+    fn drive(&mut self, dut: &mut FootprintFig12, t: Option<&Pixel>) {
+        let s = &mut dut.setup;
+        s.in_valid.set_bool(t.is_some());
+        let t = t.copied().unwrap_or(Pixel {
+            u: 0,
+            v: 0,
+            r1: (0, 0),
+            r2: (0, 0),
+        });
+        s.u.set_raw(i64::from(t.u));
+        s.v.set_raw(i64::from(t.v));
+        for (sig, x) in [
+            (&mut s.r1u, t.r1.0),
+            (&mut s.r1v, t.r1.1),
+            (&mut s.r2u, t.r2.0),
+            (&mut s.r2v, t.r2.1),
+        ] {
+            sig.set_raw(i64::from(x));
+        }
+    }
+    fn accepted(&self, dut: &FootprintFig12) -> bool {
+        dut.setup.in_ready.is_high()
+    }
+}
+
+/// Reports each assembled pixel.
+pub struct PixelMonitor;
+
+impl Monitor<FootprintFig12> for PixelMonitor {
+    type Txn = Assembled;
+    fn sample(&mut self, dut: &FootprintFig12) -> Option<Assembled> {
+        let a = &dut.assembly;
+        a.out_valid.q().is_high().then(|| Assembled {
+            value: a.out_value.q().bits() as u8,
+            n: a.out_n.q().bits() as u32,
+        })
+    }
+}
+
+/// Random pixels over a `2^wl x 2^hl` map and beyond it: footprints from a sixteenth of a
+/// texel to 64 texels across, anisotropy 1 to 32, any direction, some shear.
+pub fn pixels(wl: u32, hl: u32, n: usize, stim: &mut Stimulus) -> Vec<Pixel> {
+    let (w, h) = ((1i32 << wl) << 8, (1i32 << hl) << 8);
+    let s = (
+        -512..w + 512,
+        -512..h + 512,
+        -4.0f64..6.0,
+        0.0f64..5.0,
+        0.0f64..std::f64::consts::TAU,
+        -0.6f64..0.6,
+    )
+        .prop_map(|(u, v, size, aniso, angle, shear)| {
+            let (long, short) = ((size + aniso).exp2(), size.exp2());
+            let raw = |x: f64| ((x * 256.0).round() as i32).clamp(-(1 << 19), (1 << 19) - 1);
+            let (c, s) = (angle.cos(), angle.sin());
+            let (c2, s2) = ((angle + shear).cos(), (angle + shear).sin());
+            Pixel {
+                u,
+                v,
+                r1: (raw(long * c), raw(long * s)),
+                r2: (raw(-short * s2), raw(short * c2)),
+            }
+        });
+    stim.draw_n(&s, n)
+}
+
+/// Pixels every configuration gets first: isotropic, Figure 12's two cases, none, collapsed,
+/// the longest, and squares of the last level (`lmax`) 8 to 32 times as long as wide.
+fn directed(lmax: u32) -> Vec<Pixel> {
+    let px = |r1, r2| Pixel {
+        u: 1000,
+        v: 2000,
+        r1,
+        r2,
+    };
+    vec![
+        px((256, 0), (0, 256)),
+        px((512, 0), (0, 256)),
+        px((0, 256), (-1024, 0)),
+        px((0, 0), (0, 0)),
+        px((700, 700), (700, 700)),
+        px((1 << 16, 0), (0, 64)),
+        px((3, 1), (-1, 2)),
+    ]
+    .into_iter()
+    .chain((3..=5).map(|k| {
+        let long = (1i64 << (lmax + k + 8)).min((1 << 19) - 1) as i32;
+        px((long, 0), (0, 1 << (lmax + 8)))
+    }))
+    .collect()
+}
+
+/// The configurations: map size (log2), border, N limit and rounding.
+const CONFIGS: [(u32, u32, Border, u32, NRounding); 4] = [
+    (6, 6, Border::Wrap, 4, NRounding::Log),
+    (8, 8, Border::Mirror, 4, NRounding::Log),
+    (6, 5, Border::Clamp, 6, NRounding::Linear),
+    (5, 3, Border::Colour(40), 2, NRounding::Log),
+];
+
+fn ref_border(b: Border) -> RefBorder {
+    match b {
+        Border::Wrap => RefBorder::Wrap,
+        Border::Clamp => RefBorder::Clamp,
+        Border::Mirror => RefBorder::Mirror,
+        Border::Colour(c) => RefBorder::Colour(c),
+    }
+}
+
+fn coverage_model() -> Coverage {
+    let mut c = Coverage::new();
+    let n = c.add(
+        Coverpoint::new("n")
+            .value("1", 0)
+            .value("2", 1)
+            .value("4", 2)
+            .value("8", 3)
+            .value("16", 4)
+            .bin("32..64", 5, 6),
+    );
+    let l = c.add(
+        Coverpoint::new("lambda")
+            .value("magnified", 0)
+            .value("between_levels", 1)
+            .value("last_level", 2),
+    );
+    c.add(
+        Coverpoint::new("border")
+            .value("wrap", 0)
+            .value("clamp", 1)
+            .value("mirror", 2)
+            .value("colour", 3),
+    );
+    c.add(
+        Coverpoint::new("rounding")
+            .value("log", 0)
+            .value("linear", 1),
+    );
+    c.cross("n_x_lambda", n, l);
+    c
+}
+
+/// The regress testbench: setup unit, generator and accumulator with the chip, pixel by
+/// pixel against the integer reference (value and N, bit-exact) and the f64 mean of the
+/// chip's accesses (error in LSBs, bound 0.5).
+pub struct FootprintTb;
+
+impl Testbench for FootprintTb {
+    fn name(&self) -> &'static str {
+        NAME
+    }
+    fn unit(&self) -> &'static str {
+        "footprint assembly, section 10: setup unit, sample generator and accumulator before the TEXRAM chip 802"
+    }
+    fn configurations(&self) -> Vec<String> {
+        CONFIGS
+            .iter()
+            .map(|(w, h, b, k, r)| {
+                format!(
+                    "{}x{} {}, N <= {}, {r:?} rounding",
+                    1u32 << w,
+                    1u32 << h,
+                    b.name(),
+                    1u32 << k
+                )
+            })
+            .collect()
+    }
+    fn default_count(&self) -> usize {
+        1500
+    }
+    fn count_unit(&self) -> &'static str {
+        "random pixels"
+    }
+    fn coverage(&self) -> Coverage {
+        coverage_model()
+    }
+    fn conclude(&self, merged: &mut TbResult) {
+        let mut table = String::from(
+            "| plane tilt | pixels | RMSE trilinear (LSB) | RMSE footprint assembly (LSB) | mean N | slots | bank faults | M pixels/s |\n|---|---|---|---|---|---|---|---|\n",
+        );
+        for tilt in TILTS {
+            let r = match quality(tilt, &SetupParams::default()) {
+                Ok(r) => r,
+                Err(e) => {
+                    merged
+                        .failures
+                        .push(format!("quality at {tilt} degrees: {e}"));
+                    continue;
+                }
+            };
+            table.push_str(&format!(
+                "| {tilt} | {} | {:.2} | {:.2} | {:.2} | {} | {} | {:.2} |\n",
+                r.pixels,
+                r.rmse_trilinear,
+                r.rmse_footprint,
+                r.mean_n,
+                r.slots,
+                r.faults,
+                r.pixels_per_second / 1e6
+            ));
+            merged.notes.push(format!(
+                "plane at {tilt} degrees: RMSE {:.2} LSB trilinear, {:.2} footprint assembly (mean N {:.2})",
+                r.rmse_trilinear, r.rmse_footprint, r.mean_n
+            ));
+            if tilt >= 75.0 && r.rmse_footprint >= r.rmse_trilinear {
+                merged.failures.push(format!(
+                    "at {tilt} degrees footprint assembly ({:.2} LSB) does not beat trilinear ({:.2})",
+                    r.rmse_footprint, r.rmse_trilinear
+                ));
+            }
+        }
+        merged.tables.push(table);
+    }
+    fn run(&self, ctx: &Ctx) -> Result<TbResult, String> {
+        let (wl, hl, border, k, rounding) = CONFIGS[ctx.index];
+        let p = SetupParams {
+            max_log2_n: k,
+            rounding,
+        };
+        let mut stim = Stimulus::new(ctx.seed);
+        let level0 = test_map(1 << wl, 1 << hl, &mut stim);
+        let mut chip = Texram802::new(TexramParams::default())?;
+        chip.set_drf(0, Drf::new(wl, hl, border))?;
+        chip.load(0, &level0)?;
+        let dut = FootprintFig12::new(p, chip)?;
+        let tracer = ctx.tracer(&format!("{NAME} {}", ctx.label), CYCLE_PS)?;
+        let sim = Sim::maybe_traced(dut, tracer).map_err(|e| e.to_string())?;
+        let reference = RefMipmap::build(1 << wl, 1 << hl, &level0);
+        let mut px = directed(wl.max(hl));
+        px.extend(pixels(wl, hl, ctx.count, &mut stim));
+        let (sim, res) = run_pixels(sim, ctx, (&reference, border, p), px)?;
+        if let Some(w) = &ctx.waves {
+            sim.finish()
+                .map_err(|e| format!("{}: {e}", w.vcd.display()))?;
+            let mut res = res;
+            res.vcd = Some(w.vcd.clone());
+            return Ok(res);
+        }
+        Ok(res)
+    }
+}
+
+/// What a pixel should give: the reference's result, and the f64 mean of the trilinear
+/// accesses at its sample points (truncated weights, as the chip forms them).
+type Expected = (Pixel, Assembled, f64);
+
+fn expect(map: &RefMipmap, border: Border, p: &SetupParams, px: &Pixel) -> Expected {
+    let (want, points) = ref_assemble(map, ref_border(border), p, px);
+    let (_, _, lambda) = ref_setup(p, px);
+    let golden_border = match border {
+        Border::Wrap => golden::texram::Border::Wrap,
+        Border::Clamp => golden::texram::Border::Clamp,
+        Border::Mirror => golden::texram::Border::Mirror,
+        Border::Colour(c) => golden::texram::Border::Colour(f64::from(c)),
+    };
+    let g = golden::texram::Mipmap {
+        width: map.width as usize,
+        height: map.height as usize,
+        levels: &map.levels,
+        border: golden_border,
+    };
+    let lmax = map.levels.len() - 1;
+    let mean = points
+        .iter()
+        .map(|&(u, v)| {
+            let w = golden::texram::Weights::truncated(
+                f64::from(u) / 256.0,
+                f64::from(v) / 256.0,
+                f64::from(lambda) / 256.0,
+                lmax,
+            );
+            golden::texram::trilinear(&g, &w)
+        })
+        .sum::<f64>()
+        / points.len() as f64;
+    (*px, want, mean)
+}
+
+/// Drives the pixels with random gaps and scores each against the reference and golden.
+fn run_pixels<T: Trace>(
+    sim: Sim<FootprintFig12, T>,
+    ctx: &Ctx,
+    (map, border, p): (&RefMipmap, Border, SetupParams),
+    px: Vec<Pixel>,
+) -> Result<(Sim<FootprintFig12, T>, TbResult), String> {
+    let mut res = TbResult::new(NAME, "");
+    let mut cov = coverage_model();
+    let mut sim = sim.check_schedule(ctx.check_schedule);
+    sim.reset(2);
+    let n = px.len() as u64;
+    let mut sb: Scoreboard<Expected, Assembled> =
+        Scoreboard::new(|(_, e, _): &Expected, a: &Assembled| {
+            if e == a {
+                Ok(())
+            } else {
+                Err(format!("got {a:?}, want {e:?}"))
+            }
+        });
+    let lmax = map.levels.len() as i32 - 1;
+    let pacing = Pacing::random(300, ctx.seed.derive(5));
+    let mut spec = RunSpec::new(n, 70 * 64 * n + 1000).pacing(pacing);
+    let r = run(
+        &mut sim,
+        &mut PixelDriver,
+        &mut PixelMonitor,
+        px,
+        &mut spec,
+        |_, ev| match ev {
+            Event::Sent { txn, .. } => sb.expect(expect(map, border, &p, txn)),
+            Event::Received { cycle, txn } => {
+                if let Some((q, _, want)) = sb.observe(cycle, txn).expected {
+                    res.stats.record(f64::from(txn.value), want, 1.0);
+                    let (_, _, lambda) = ref_setup(&p, &q);
+                    let l = if lambda < 0 {
+                        0
+                    } else if lambda >> 8 >= lmax {
+                        2
+                    } else {
+                        1
+                    };
+                    let r = i64::from(p.rounding == NRounding::Linear);
+                    let b = match border {
+                        Border::Wrap => 0,
+                        Border::Clamp => 1,
+                        Border::Mirror => 2,
+                        Border::Colour(_) => 3,
+                    };
+                    cov.sample(&[i64::from(txn.n.trailing_zeros()), l, b, r]);
+                }
+            }
+            Event::Settled { .. } => {}
+        },
+    );
+    res.transactions += n;
+    res.mismatches += sb.mismatch_count();
+    for m in sb.mismatches().iter().take(10) {
+        res.mismatch_log
+            .push(format!("{} (cycle {:?}): {}", m.index, m.cycle, m.detail));
+    }
+    match r {
+        Ok(st) => res.cycles += st.cycles,
+        Err(t) => res.failures.push(t.to_string()),
+    }
+    if res.stats.max_abs_lsb > golden::texram::ERROR_BOUND_LSB {
+        res.failures.push(format!(
+            "error {:.4} LSB against the f64 mean, bound 0.5",
+            res.stats.max_abs_lsb
+        ));
+    }
+    let chip = &sim.dut.assembly.chip;
+    res.notes.push(format!(
+        "{}: {n} pixels, {} accesses in {} slots ({:.2} accesses a pixel)",
+        ctx.label,
+        chip.accesses.q().bits(),
+        chip.slots.q().bits(),
+        chip.accesses.q().bits() as f64 / n as f64
+    ));
+    res.coverage = Some(cov);
+    Ok((sim, res))
+}
+
+// ---------------------------------------------------------------------------------------
+// The quality claim of section 4: footprint assembly against isotropic trilinear filtering.
+
+/// Side of the quality map (level 0).
+pub const QUALITY_LOG2: u32 = 10;
+
+/// A 1024 x 1024 map with detail at every scale: a checker of 16-texel squares and, in
+/// every other 64-texel band, "text": rows of one-texel strokes in 5 x 7 cells.
+pub fn quality_map() -> Vec<u8> {
+    let n = 1u32 << QUALITY_LOG2;
+    (0..n * n)
+        .map(|k| {
+            let (x, y) = (k % n, k / n);
+            let checker = (x / 16 + y / 16) % 2 == 0;
+            let band = (y / 64) % 2 == 1;
+            let (cx, cy) = (x % 6, y % 9);
+            // A stroke pattern that changes from cell to cell, like letters.
+            let cell = (x / 6).wrapping_mul(2_654_435_761) ^ (y / 9).wrapping_mul(40_503);
+            let stroke = cx < 5 && cy < 7 && (cell >> (cx + 5 * (cy % 3))) & 1 == 1;
+            match (band && stroke, checker) {
+                (true, _) => 20,
+                (false, true) => 200,
+                (false, false) => 110,
+            }
+        })
+        .collect()
+}
+
+/// One tilt's measurement.
+#[derive(Clone, Debug, PartialEq)]
+pub struct QualityRow {
+    pub tilt_degrees: f64,
+    pub pixels: usize,
+    /// RMSE against the box average, in LSBs: isotropic trilinear, footprint assembly.
+    pub rmse_trilinear: f64,
+    pub rmse_footprint: f64,
+    pub mean_n: f64,
+    /// Slots (30 ns) and bank faults of the footprint-assembly accesses.
+    pub slots: u64,
+    pub faults: u64,
+    pub pixels_per_second: f64,
+}
+
+/// Screen position to texture position on a plane tilted `tilt` from facing the camera:
+/// focal length 256 pixels, the plane 256 units away, 1.5 texels a pixel where it faces.
+fn plane_uv(x: f64, y: f64, tilt: f64) -> Option<(f64, f64)> {
+    let (f, d, k) = (256.0, 256.0, 1.5);
+    let den = f * tilt.cos() - y * tilt.sin();
+    if den <= 1e-9 {
+        return None;
+    }
+    let t = y * d / den;
+    let s = x * (d + t * tilt.sin()) / f;
+    Some((s * k + 512.0, t * k + 512.0))
+}
+
+/// One pixel of a view: the box average, isotropic trilinear, footprint assembly, N, and the
+/// assembly's slots and bank faults.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct ViewPixel {
+    pub reference: f64,
+    pub trilinear: u8,
+    pub footprint: u8,
+    pub n: u32,
+    pub slots: u32,
+    pub faults: u32,
+}
+
+/// Side of a view in pixels.
+pub const VIEW: usize = 64;
+
+/// A 64 x 64-pixel view of the quality map on a plane at `tilt_degrees`, row by row: every
+/// pixel whose footprint is at most 128 texels long (else `None`): isotropic trilinear (one
+/// access at `log2 m`) and footprint assembly (N accesses at `log2 q`), both on the TEXRAM
+/// stub, and the mean of level 0 over the pixel's exact parallelogram (at least two samples
+/// a texel along each edge).
+pub fn view(tilt_degrees: f64, p: &SetupParams) -> Result<Vec<Option<ViewPixel>>, String> {
+    use hdl::footprint::assembly_fig12::assemble;
+    use hdl::footprint::setup_fig12::{setup, SetupUnit};
+    use hdl::texram::stub::TexramStub;
+    use hdl::texram::{TexramAccess, TexramRequest};
+    let level0 = quality_map();
+    let n = 1usize << QUALITY_LOG2;
+    let map = golden::footprint::Map {
+        width: n,
+        height: n,
+        texels: &level0,
+    };
+    let drf = Drf::new(QUALITY_LOG2, QUALITY_LOG2, Border::Wrap);
+    let (mut iso, mut fa) = (TexramStub::new(), TexramStub::new());
+    for chip in [&mut iso, &mut fa] {
+        chip.set_drf(0, drf)?;
+        chip.load(0, &level0)?;
+    }
+    let table = *SetupUnit::new("setup", *p)?.table();
+    let tilt = tilt_degrees.to_radians();
+    let raw = |x: f64| (x * 256.0).round() as i32;
+    let mut out = Vec::with_capacity(VIEW * VIEW);
+    for py in 0..VIEW {
+        for px in 0..VIEW {
+            let (x, y) = (px as f64 - 31.5, py as f64 - 47.5);
+            let h = 1e-3;
+            let (Some(c), Some(dx), Some(dy)) = (
+                plane_uv(x, y, tilt),
+                plane_uv(x + h, y, tilt),
+                plane_uv(x, y + h, tilt),
+            ) else {
+                out.push(None);
+                continue;
+            };
+            let r1 = ((dx.0 - c.0) / h, (dx.1 - c.1) / h);
+            let r2 = ((dy.0 - c.0) / h, (dy.1 - c.1) / h);
+            let (l1, l2) = (r1.0.hypot(r1.1), r2.0.hypot(r2.1));
+            if l1.max(l2) > 128.0 {
+                out.push(None);
+                continue;
+            }
+            let k = |l: f64| ((2.0 * l).ceil() as usize).max(16);
+            let reference = map.box_average(c, r1, r2, (k(l1), k(l2)));
+            let s = setup(p, (raw(r1.0), raw(r1.1)), (raw(r2.0), raw(r2.1)), &table);
+            let (u, v) = (raw(c.0), raw(c.1));
+            let t = iso.access(TexramRequest {
+                drf: 0,
+                u,
+                v,
+                lambda: s.lambda_iso,
+            })?;
+            let a = assemble(&mut fa, 0, (u, v), &s)?;
+            out.push(Some(ViewPixel {
+                reference,
+                trilinear: t.value,
+                footprint: a.value,
+                n: a.n,
+                slots: a.slots,
+                faults: a.faults,
+            }));
+        }
+    }
+    Ok(out)
+}
+
+/// [`view`] summed up: RMSE of both filters against the box average, mean N, the assembly's
+/// slots, faults and pixel rate.
+pub fn quality(tilt_degrees: f64, p: &SetupParams) -> Result<QualityRow, String> {
+    let v = view(tilt_degrees, p)?;
+    let px: Vec<&ViewPixel> = v.iter().flatten().collect();
+    let c = px.len().max(1) as f64;
+    let rmse = |f: &dyn Fn(&ViewPixel) -> u8| {
+        (px.iter()
+            .map(|q| (f64::from(f(q)) - q.reference).powi(2))
+            .sum::<f64>()
+            / c)
+            .sqrt()
+    };
+    let slots: u64 = px.iter().map(|q| u64::from(q.slots)).sum();
+    Ok(QualityRow {
+        tilt_degrees,
+        pixels: px.len(),
+        rmse_trilinear: rmse(&|q| q.trilinear),
+        rmse_footprint: rmse(&|q| q.footprint),
+        mean_n: px.iter().map(|q| f64::from(q.n)).sum::<f64>() / c,
+        slots,
+        faults: px.iter().map(|q| u64::from(q.faults)).sum(),
+        pixels_per_second: c / (slots as f64 * 30e-9),
+    })
+}
+
+/// The tilts of the quality table.
+pub const TILTS: [f64; 4] = [0.0, 60.0, 75.0, 85.0];
+
+// ---------------------------------------------------------------------------------------
+// `texrtl footprint`: pixels through the cycle-accurate setup, generator, accumulator and chip.
+
+/// What a run of pixels cost.
+#[derive(Clone, Debug, PartialEq, serde::Serialize)]
+pub struct FootprintStats {
+    pub pixels: u64,
+    pub accesses: u64,
+    pub mean_n: f64,
+    pub slots: u64,
+    /// Slots added by page faults, and the banks that missed.
+    pub page_faults: u64,
+    pub bank_misses: u64,
+    pub cycles: u64,
+    pub ns: u64,
+    pub pixels_per_second: f64,
+}
+
+/// Each pixel's result (value, N, lambda raw sQ5.8) and the run's costs.
+pub struct FootprintRun {
+    pub results: Vec<(Assembled, i32)>,
+    pub stats: FootprintStats,
+}
+
+/// `pixels` through [`FootprintFig12`] with the map `level0` in DRF 0, each result checked
+/// against the integer reference (`Err` names the first that differs).
+pub fn run_footprint(
+    drf: Drf,
+    level0: &[u8],
+    p: SetupParams,
+    pixels: &[Pixel],
+    vcd: Option<&std::path::Path>,
+) -> Result<FootprintRun, String> {
+    let mut chip = Texram802::new(TexramParams::default())?;
+    chip.set_drf(0, drf)?;
+    chip.load(0, level0)?;
+    let dut = FootprintFig12::new(p, chip)?;
+    let tracer = match vcd {
+        Some(path) => {
+            let cfg = waves::TraceConfig {
+                period_ps: CYCLE_PS,
+                ..Default::default()
+            };
+            Some(waves::VcdTracer::create(path, NAME, cfg).map_err(|e| e.to_string())?)
+        }
+        None => None,
+    };
+    let mut sim = Sim::maybe_traced(dut, tracer).map_err(|e| e.to_string())?;
+    sim.reset(2);
+    let (w, h) = (1 << drf.width_log2, 1 << drf.height_log2);
+    let reference = RefMipmap::build(w, h, level0);
+    let n = pixels.len() as u64;
+    let mut results = Vec::with_capacity(pixels.len());
+    let mut wrong = None;
+    let mut spec = RunSpec::new(n, 70 * 64 * n + 1000);
+    let st = run(
+        &mut sim,
+        &mut PixelDriver,
+        &mut PixelMonitor,
+        pixels.to_vec(),
+        &mut spec,
+        |_, ev| {
+            if let Event::Received { txn, .. } = ev {
+                let k = results.len();
+                let q = &pixels[k];
+                let (want, _) = ref_assemble(&reference, ref_border(drf.border), &p, q);
+                if txn != want && wrong.is_none() {
+                    wrong = Some(format!(
+                        "pixel {k}: the unit {txn:?}, the reference {want:?}"
+                    ));
+                }
+                results.push((txn, ref_setup(&p, q).2));
+            }
+        },
+    )
+    .map_err(|e| e.to_string())?;
+    if let Some(e) = wrong {
+        return Err(e);
+    }
+    let c = &sim.dut.assembly.chip;
+    let accesses = c.accesses.q().bits();
+    let ns = st.cycles * CYCLE_PS / 1000;
+    let stats = FootprintStats {
+        pixels: n,
+        accesses,
+        mean_n: accesses as f64 / n.max(1) as f64,
+        slots: c.slots.q().bits(),
+        page_faults: c.fault_slots.q().bits(),
+        bank_misses: c.faults.q().bits(),
+        cycles: st.cycles,
+        ns,
+        pixels_per_second: if ns == 0 {
+            0.0
+        } else {
+            n as f64 / ns as f64 * 1e9
+        },
+    };
+    sim.finish().map_err(|e| e.to_string())?;
+    Ok(FootprintRun { results, stats })
+}
