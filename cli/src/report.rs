@@ -166,6 +166,9 @@ pub fn write_report(out: &Path, summary: &Summary) -> Result<(), String> {
     if results.iter().any(|r| r.name == tb::texram::NAME) {
         pictures.push(crate::plots::texram_plot(out)?);
     }
+    if results.iter().any(|r| r.name == tb::footprint::NAME) {
+        pictures.push(footprint_picture(out)?);
+    }
     for r in results.iter().filter(|r| r.stats.count > 0) {
         let f = format!("{}_error_histogram.png", r.name);
         let title = format!("{}: error against golden", r.name);
@@ -231,6 +234,40 @@ fn mipmap_picture(out: &std::path::Path) -> Result<(String, String), String> {
     Ok((
         f.to_string(),
         "Mipmap levels 0-6 of a 64x32 interlaced synthetic frame from the cycle-accurate generator, each scaled to the size of level 0".to_string(),
+    ))
+}
+
+/// The quality map on a plane at 85 degrees: the exact footprint's mean, isotropic
+/// trilinear and footprint assembly, side by side, four times enlarged; pixels whose
+/// footprint is longer than 128 texels (not measured) dark red. Returns `(file, caption)`.
+fn footprint_picture(out: &std::path::Path) -> Result<(String, String), String> {
+    use hdl::footprint::setup_fig12::SetupParams;
+    use tb::footprint::VIEW;
+    let v = tb::footprint::view(85.0, &SetupParams::default())?;
+    let (s, gap) = (4u32, 8u32);
+    let side = VIEW as u32 * s;
+    let mut img = image::RgbImage::new(3 * side + 2 * gap, side);
+    for (k, px) in v.iter().enumerate() {
+        // The view's first rows are the nearest: drawn at the bottom, the horizon up.
+        let (x, y) = ((k % VIEW) as u32, (VIEW - 1 - k / VIEW) as u32);
+        let vals = match px {
+            Some(p) => [p.reference.round() as u8, p.trilinear, p.footprint].map(|t| [t, t, t]),
+            None => [[90, 0, 0]; 3],
+        };
+        for (panel, c) in vals.iter().enumerate() {
+            for dy in 0..s {
+                for dx in 0..s {
+                    let px = panel as u32 * (side + gap) + x * s + dx;
+                    img.put_pixel(px, y * s + dy, image::Rgb(*c));
+                }
+            }
+        }
+    }
+    let f = "footprint_quality.png";
+    write_output(&out.join(f), &formats::png::encode(&img)?).map_err(|e| e.to_string())?;
+    Ok((
+        f.to_string(),
+        "A checker with text on a plane at 85 degrees, 64x64 pixels: the mean over each pixel's exact footprint | isotropic trilinear (blurred along the plane) | footprint assembly, N accesses along the longer edge (section 10); dark red: footprints longer than 128 texels, not measured".to_string(),
     ))
 }
 

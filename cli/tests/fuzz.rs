@@ -46,6 +46,51 @@ fn ppm() -> Vec<u8> {
     formats::netpbm::encode_ppm(16, 16, &rgb)
 }
 
+/// The TEXRAM front ends.
+fn texram_fronts() -> Vec<Front> {
+    vec![
+        Front {
+            name: "texram",
+            args: &[
+                "texram",
+                "--texture",
+                "{h.pgm}",
+                "--requests",
+                "{q.csv}",
+                "--out",
+                "{out}.csv",
+                "--stats",
+                "{out}.json",
+            ],
+            files: vec![
+                ("h.pgm", pgm()),
+                ("q.csv", b"u,v,lambda\n1.5,2,0.5\n-3,9,2\n".to_vec()),
+            ],
+        },
+        Front {
+            name: "footprint",
+            args: &[
+                "footprint",
+                "--texture",
+                "{h.pgm}",
+                "--requests",
+                "{f.csv}",
+                "--out",
+                "{out}.csv",
+                "--stats",
+                "{out}.json",
+            ],
+            files: vec![
+                ("h.pgm", pgm()),
+                (
+                    "f.csv",
+                    b"u,v,dudx,dvdx,dudy,dvdy\n1.5,2,4,0.5,-0.25,1\n-3,9,0,0,0,0\n".to_vec(),
+                ),
+            ],
+        },
+    ]
+}
+
 fn fronts() -> Vec<Front> {
     let ccc = {
         let img = formats::netpbm::parse_ppm(&ppm()).unwrap();
@@ -103,24 +148,6 @@ fn fronts() -> Vec<Front> {
                 "{out}.json",
             ],
             files: vec![("t.ppm", ppm()), ("r.csv", reqs)],
-        },
-        Front {
-            name: "texram",
-            args: &[
-                "texram",
-                "--texture",
-                "{h.pgm}",
-                "--requests",
-                "{q.csv}",
-                "--out",
-                "{out}.csv",
-                "--stats",
-                "{out}.json",
-            ],
-            files: vec![
-                ("h.pgm", pgm()),
-                ("q.csv", b"u,v,lambda\n1.5,2,0.5\n-3,9,2\n".to_vec()),
-            ],
         },
         Front {
             name: "dram",
@@ -204,7 +231,7 @@ fn case(
 #[test]
 fn every_command_front_end_survives_mutated_inputs() {
     let n = std::sync::atomic::AtomicUsize::new(0);
-    for f in fronts() {
+    for f in fronts().into_iter().chain(texram_fronts()) {
         let mut runner = verif::seeded_runner(&format!("fuzz {}", f.name), CASES);
         let strat = (0..f.files.len(), mutations(8));
         runner

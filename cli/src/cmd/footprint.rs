@@ -1,0 +1,188 @@
+//! `texrtl footprint`: anisotropic filtering by footprint assembly (Schilling & Knittel
+//! section 10) through the cycle-accurate setup unit, sample generator and accumulator in
+//! front of the TEXRAM chip.
+
+use super::{input, write_out, CmdError};
+use hdl::footprint::setup_fig12::{NRounding, SetupParams, MAX_LOG2_N};
+use hdl::texram::{Border, Drf};
+use std::fmt::Write;
+use std::path::{Path, PathBuf};
+use tb::footprint::{run_footprint, Pixel};
+
+/// Anisotropic filtering by footprint assembly (section 10) through the TEXRAM chip.
+#[derive(Clone, Debug, clap::Args)]
+pub struct FootprintArgs {
+    /// The texture: an 8-bit PGM (P5 or P2), sides powers of two up to 1024; its mipmap is
+    /// built as the generator 816 rounds, (a+b+c+d+2)>>2.
+    #[arg(long)]
+    pub texture: PathBuf,
+    /// CSV with header u,v,dudx,dvdx,dudy,dvdy: the pixel centre (level-0 texel units,
+    /// -4096..4096, 8 fraction bits) and its screen derivatives (-2048..2048, 8 fraction
+    /// bits), rounded ties to even.
+    #[arg(long)]
+    pub requests: PathBuf,
+    /// CSV: u,v,dudx,dvdx,dudy,dvdy (as quantised), n, lambda, value per pixel in order.
+    #[arg(long)]
+    pub out: PathBuf,
+    /// The most squares a pixel: a power of two, 1..=64.
+    #[arg(long, default_value_t = 16)]
+    pub max_n: u32,
+    /// N rounded to a power of two in the log domain (log) or the linear one (linear).
+    #[arg(long, default_value = "log")]
+    pub rounding: String,
+    /// texram (the chip of Figure 8); texture (the Figure 6 unit) is not modelled yet.
+    #[arg(long, default_value = "texram")]
+    pub unit: String,
+    /// wrap, clamp, mirror or border:N (N 0..=255, the border colour).
+    #[arg(long, default_value = "wrap")]
+    pub border: String,
+    /// JSON: pixels, accesses, mean_n, slots, page_faults (slots they added), bank_misses,
+    /// cycles, ns, pixels_per_second.
+    #[arg(long)]
+    pub stats: Option<PathBuf>,
+    /// Waveform: setup unit, generator, accumulator and the chip's units.
+    #[arg(long)]
+    pub vcd: Option<PathBuf>,
+}
+
+/// Pixels from the CSV, quantised and range-checked.
+fn read_pixels(path: &Path) -> Result<Vec<Pixel>, String> {
+    let t = formats::csv::read(path, &["u,v,dudx,dvdx,dudy,dvdy"])?;
+    let mut v = Vec::with_capacity(t.rows.len());
+    for r in &t.rows {
+        let mut raw = [0i32; 6];
+        for (k, x) in raw.iter_mut().enumerate() {
+            let lim = if k < 2 { 4096.0 } else { 2048.0 };
+            let f = t.finite(r, k)?;
+            let q = (f * 256.0).round_ties_even() / 256.0;
+            if !(-lim..lim).contains(&q) {
+                let name = &t.columns[k];
+                let s = formats::shorten(&r.fields[k]);
+                return Err(t.error(r, format!("{name} {s} outside -{lim}..{lim}")));
+            }
+            *x = (q * 256.0) as i32;
+        }
+        v.push(Pixel {
+            u: raw[0],
+            v: raw[1],
+            r1: (raw[2], raw[3]),
+            r2: (raw[4], raw[5]),
+        });
+    }
+    Ok(v)
+}
+
+/// `texrtl footprint`.
+pub fn run(a: &FootprintArgs) -> Result<String, CmdError> {
+    let mut outs = vec![("--out", a.out.as_path())];
+    outs.extend(a.stats.as_deref().map(|p| ("--stats", p)));
+    outs.extend(a.vcd.as_deref().map(|p| ("--vcd", p)));
+    let ins = [
+        ("--texture", a.texture.as_path()),
+        ("--requests", a.requests.as_path()),
+    ];
+    let guard = super::Outputs::check(&outs, &ins)?;
+    guard.settle(footprint(a))
+}
+
+/// The options into setup parameters and a border.
+fn options(a: &FootprintArgs) -> Result<(SetupParams, Border), CmdError> {
+    if !a.max_n.is_power_of_two() || a.max_n > 1 << MAX_LOG2_N {
+        return Err(input(format!(
+            "--max-n {}: a power of two, 1..=64",
+            a.max_n
+        )));
+    }
+    let rounding = match a.rounding.as_str() {
+        "log" => NRounding::Log,
+        "linear" => NRounding::Linear,
+        r => {
+            let r = formats::shorten(r);
+            return Err(input(format!("--rounding {r}: log or linear")));
+        }
+    };
+    match a.unit.as_str() {
+        "texram" => {}
+        "texture" => {
+            return Err(input(
+                "--unit texture: footprint assembly on the Figure 6 texture unit is not modelled yet (only texram)".into(),
+            ))
+        }
+        u => {
+            let u = formats::shorten(u);
+            return Err(input(format!("--unit {u}: texram or texture")));
+        }
+    }
+    let border = Border::parse(&a.border).ok_or_else(|| {
+        let b = formats::shorten(&a.border);
+        input(format!(
+            "--border {b}: wrap, clamp, mirror or border:N (N 0..=255)"
+        ))
+    })?;
+    let p = SetupParams {
+        max_log2_n: a.max_n.trailing_zeros(),
+        rounding,
+    };
+    Ok((p, border))
+}
+
+/// The command once its outputs are checked.
+fn footprint(a: &FootprintArgs) -> Result<String, CmdError> {
+    let (p, border) = options(a)?;
+    let img = formats::netpbm::read(&a.texture).map_err(input)?;
+    let side = |n: u32, what: &str| {
+        if n.is_power_of_two() && n <= 1024 {
+            Ok(n.trailing_zeros())
+        } else {
+            Err(input(format!(
+                "{}: {what} {n} is not a power of two up to 1024",
+                a.texture.display()
+            )))
+        }
+    };
+    let (wl, hl) = (side(img.width, "width")?, side(img.height, "height")?);
+    if img.maxval != 255 {
+        return Err(input(format!(
+            "{}: maxval {}, 8-bit texels need 255",
+            a.texture.display(),
+            img.maxval
+        )));
+    }
+    let pixels = read_pixels(&a.requests).map_err(input)?;
+    let drf = Drf::new(wl, hl, border);
+    let run =
+        run_footprint(drf, &img.pixels, p, &pixels, a.vcd.as_deref()).map_err(CmdError::Failed)?;
+    let mut csv = String::from("u,v,dudx,dvdx,dudy,dvdy,n,lambda,value\n");
+    let f = |r: i32| f64::from(r) / 256.0;
+    for (q, (r, lambda)) in pixels.iter().zip(&run.results) {
+        let _ = writeln!(
+            csv,
+            "{},{},{},{},{},{},{},{},{}",
+            f(q.u),
+            f(q.v),
+            f(q.r1.0),
+            f(q.r1.1),
+            f(q.r2.0),
+            f(q.r2.1),
+            r.n,
+            f(*lambda),
+            r.value
+        );
+    }
+    write_out(&a.out, csv.as_bytes())?;
+    if let Some(s) = &a.stats {
+        let json = serde_json::to_vec_pretty(&run.stats).map_err(|e| input(e.to_string()))?;
+        write_out(s, &json)?;
+    }
+    let st = &run.stats;
+    Ok(format!(
+        "{} pixels written to {}: {} accesses ({:.2} a pixel) in {} slots, {} page faults, {:.2} M pixels/s",
+        st.pixels,
+        a.out.display(),
+        st.accesses,
+        st.mean_n,
+        st.slots,
+        st.page_faults,
+        st.pixels_per_second / 1e6
+    ))
+}
