@@ -112,11 +112,12 @@ fn bad_input_is_one_line_exit_2_and_no_file() {
     std::fs::write(&nan, "u,v,dudx,dvdx,dudy,dvdy\n1,1,NaN,0,0,1\n").unwrap();
     let o = d.join("o.csv");
     let w = d.join("w.vcd");
-    let cases: [(&Path, &[&str], &str); 8] = [
+    let cases: [(&Path, &[&str], &str); 9] = [
         (&r, &["--max-n", "3"], "--max-n 3"),
         (&r, &["--max-n", "128"], "--max-n 128"),
         (&r, &["--rounding", "up"], "--rounding up"),
-        (&r, &["--unit", "texture"], "not modelled yet"),
+        (&r, &["--unit", "texture"], "neither a .ccc file"),
+        (&r, &["--unit", "texram2"], "--unit texram2"),
         (&r, &["--border", "edge"], "--border edge"),
         (&far, &[], "dudx 3000 outside"),
         (&head, &[], "header"),
@@ -146,4 +147,50 @@ fn bad_input_is_one_line_exit_2_and_no_file() {
             .collect();
         assert!(left.is_empty(), "{a:?} left {left:?}");
     }
+}
+
+/// The Figure 6 texture unit (bilinear, CCC): R, G, B per pixel, the same N as on the chip,
+/// an isotropic footprint at a texel is that texel's (decoded) colour.
+#[test]
+fn the_texture_unit_gives_rgb() {
+    let d = dir("texture");
+    let (_, r, _) = inputs(&d);
+    let (w, h) = (32u32, 16u32);
+    let rgb: Vec<u8> = (0..w * h)
+        .flat_map(|k| [(k % 32 * 8) as u8, (k / 32 * 16) as u8, 128])
+        .collect();
+    let t = d.join("t.ppm");
+    std::fs::write(&t, formats::netpbm::encode_ppm(w, h, &rgb)).unwrap();
+    let (o, st) = (d.join("o.csv"), d.join("s.json"));
+    let out = texrtl(&[
+        "footprint",
+        "--texture",
+        s(&t),
+        "--requests",
+        s(&r),
+        "--out",
+        s(&o),
+        "--unit",
+        "texture",
+        "--stats",
+        s(&st),
+    ]);
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    let csv = std::fs::read_to_string(&o).unwrap();
+    let rows: Vec<&str> = csv.lines().collect();
+    assert_eq!(rows[0], "u,v,dudx,dvdx,dudy,dvdy,n,lambda,r,g,b");
+    assert_eq!(rows.len(), 6);
+    assert!(rows[2].starts_with("10,7,4,0,0,1,4,0,"), "{}", rows[2]);
+    assert_eq!(rows[1].split(',').count(), 11);
+    let j: serde_json::Value = serde_json::from_slice(&std::fs::read(&st).unwrap()).unwrap();
+    assert_eq!(j["pixels"], 5);
+    assert!(
+        j.get("slots").is_none(),
+        "no TEXRAM slots on the texture unit"
+    );
+    assert!(j["page_faults"].as_u64().unwrap() > 0);
 }

@@ -4,6 +4,9 @@
 //! (a tilted plane, against the f64 box average over each pixel's exact footprint).
 
 use crate::texram::{test_map, RefBorder, RefMipmap, CYCLE_PS};
+use crate::texture::reference_sums;
+use formats::ccc::Ccc;
+use hdl::footprint::assembly_fig12::SampleTarget;
 use hdl::footprint::footprint_fig12::FootprintFig12;
 use hdl::footprint::setup_fig12::{NRounding, SetupParams};
 use hdl::kernel::{Sim, Trace};
@@ -31,6 +34,8 @@ pub struct Pixel {
 pub struct Assembled {
     pub value: u8,
     pub n: u32,
+    /// R, G, B (luminance three times).
+    pub rgb: u32,
 }
 
 /// The integer reference's own setup: N and the step (raw sQ.14 along the longer edge), and
@@ -114,15 +119,16 @@ pub fn ref_assemble(
     }
     let scale = i64::from(n) << 24;
     let value = ((total + scale / 2) / scale) as u8;
-    (Assembled { value, n }, points)
+    let rgb = u32::from(value) * 0x01_01_01;
+    (Assembled { value, n, rgb }, points)
 }
 
 /// Drives the setup unit's inputs.
 pub struct PixelDriver;
 
-impl Driver<FootprintFig12> for PixelDriver {
+impl<U: SampleTarget> Driver<FootprintFig12<U>> for PixelDriver {
     type Txn = Pixel;
-    fn drive(&mut self, dut: &mut FootprintFig12, t: Option<&Pixel>) {
+    fn drive(&mut self, dut: &mut FootprintFig12<U>, t: Option<&Pixel>) {
         let s = &mut dut.setup;
         s.in_valid.set_bool(t.is_some());
         let t = t.copied().unwrap_or(Pixel {
@@ -142,7 +148,7 @@ impl Driver<FootprintFig12> for PixelDriver {
             sig.set_raw(i64::from(x));
         }
     }
-    fn accepted(&self, dut: &FootprintFig12) -> bool {
+    fn accepted(&self, dut: &FootprintFig12<U>) -> bool {
         dut.setup.in_ready.is_high()
     }
 }
@@ -150,15 +156,54 @@ impl Driver<FootprintFig12> for PixelDriver {
 /// Reports each assembled pixel.
 pub struct PixelMonitor;
 
-impl Monitor<FootprintFig12> for PixelMonitor {
+impl<U: SampleTarget> Monitor<FootprintFig12<U>> for PixelMonitor {
     type Txn = Assembled;
-    fn sample(&mut self, dut: &FootprintFig12) -> Option<Assembled> {
+    fn sample(&mut self, dut: &FootprintFig12<U>) -> Option<Assembled> {
         let a = &dut.assembly;
         a.out_valid.q().is_high().then(|| Assembled {
             value: a.out_value.q().bits() as u8,
             n: a.out_n.q().bits() as u32,
+            rgb: a.out_rgb.q().bits() as u32,
         })
     }
+}
+
+/// The reference on Figure 6's texture unit 602 (`F` fraction bits): the same sample points,
+/// each less half a texel and rounded half up to the unit's grid, held inside the texture;
+/// the unit reference's exact bilinear sums added per channel, each mean rounded once.
+/// Also returns the exact mean of R (for the error against the mathematics).
+pub fn ref_assemble_texture(
+    t: &Ccc,
+    frac_bits: u32,
+    p: &SetupParams,
+    px: &Pixel,
+) -> (Assembled, f64) {
+    let (n, step, _) = ref_setup(p, px);
+    let f = frac_bits;
+    let coord = |c: i32, s: i64, i: u32, size: u32| {
+        let q15 = i64::from(c) * 128 + (2 * i64::from(i) - (i64::from(n) - 1)) * s - (1 << 14);
+        let unit = 1i64 << (15 - f);
+        let r = (q15 + unit / 2).div_euclid(unit);
+        r.clamp(0, (i64::from(size) << f) - 1) as u32
+    };
+    let mut total = [0u64; 3];
+    for i in 0..n {
+        let (u, v) = (
+            coord(px.u, step.0, i, t.width),
+            coord(px.v, step.1, i, t.height),
+        );
+        for (acc, s) in total.iter_mut().zip(reference_sums(t, u, v, f)) {
+            *acc += s;
+        }
+    }
+    let scale = u64::from(n) << (2 * f);
+    let ch = total.map(|s| ((s + scale / 2) / scale) as u32);
+    let a = Assembled {
+        value: ch[0] as u8,
+        n,
+        rgb: ch[0] << 16 | ch[1] << 8 | ch[2],
+    };
+    (a, total[0] as f64 / scale as f64)
 }
 
 /// Random pixels over a `2^wl x 2^hl` map and beyond it: footprints from a sixteenth of a
@@ -214,12 +259,37 @@ fn directed(lmax: u32) -> Vec<Pixel> {
     .collect()
 }
 
-/// The configurations: map size (log2), border, N limit and rounding.
-const CONFIGS: [(u32, u32, Border, u32, NRounding); 4] = [
-    (6, 6, Border::Wrap, 4, NRounding::Log),
-    (8, 8, Border::Mirror, 4, NRounding::Log),
-    (6, 5, Border::Clamp, 6, NRounding::Linear),
-    (5, 3, Border::Colour(40), 2, NRounding::Log),
+/// What the generator drives.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+enum Unit {
+    /// The TEXRAM chip 802.
+    Texram,
+    /// Figure 6's texture unit 602 with `F` fraction bits, its cache on or off.
+    Texture(u32, bool),
+}
+
+/// The configurations: map size (log2), border, N limit, rounding, unit.
+const CONFIGS: [(u32, u32, Border, u32, NRounding, Unit); 6] = [
+    (6, 6, Border::Wrap, 4, NRounding::Log, Unit::Texram),
+    (8, 8, Border::Mirror, 4, NRounding::Log, Unit::Texram),
+    (6, 5, Border::Clamp, 6, NRounding::Linear, Unit::Texram),
+    (5, 3, Border::Colour(40), 2, NRounding::Log, Unit::Texram),
+    (
+        6,
+        6,
+        Border::Clamp,
+        4,
+        NRounding::Log,
+        Unit::Texture(4, true),
+    ),
+    (
+        5,
+        4,
+        Border::Clamp,
+        6,
+        NRounding::Linear,
+        Unit::Texture(8, false),
+    ),
 ];
 
 fn ref_border(b: Border) -> RefBorder {
@@ -260,7 +330,13 @@ fn coverage_model() -> Coverage {
             .value("log", 0)
             .value("linear", 1),
     );
+    let u = c.add(
+        Coverpoint::new("unit")
+            .value("texram_802", 0)
+            .value("texture_unit_602", 1),
+    );
     c.cross("n_x_lambda", n, l);
+    c.cross("n_x_unit", n, u);
     c
 }
 
@@ -279,12 +355,18 @@ impl Testbench for FootprintTb {
     fn configurations(&self) -> Vec<String> {
         CONFIGS
             .iter()
-            .map(|(w, h, b, k, r)| {
+            .map(|(w, h, b, k, r, unit)| {
+                let on = match unit {
+                    Unit::Texram => format!("texram_802, {}", b.name()),
+                    Unit::Texture(f, cache) => format!(
+                        "texture_unit_602 (CCC, F = {f}, cache {})",
+                        if *cache { "on" } else { "off" }
+                    ),
+                };
                 format!(
-                    "{}x{} {}, N <= {}, {r:?} rounding",
+                    "{}x{} on {on}, N <= {}, {r:?} rounding",
                     1u32 << w,
                     1u32 << h,
-                    b.name(),
                     1u32 << k
                 )
             })
@@ -337,29 +419,63 @@ impl Testbench for FootprintTb {
         merged.tables.push(table);
     }
     fn run(&self, ctx: &Ctx) -> Result<TbResult, String> {
-        let (wl, hl, border, k, rounding) = CONFIGS[ctx.index];
+        let (wl, hl, border, k, rounding, unit) = CONFIGS[ctx.index];
         let p = SetupParams {
             max_log2_n: k,
             rounding,
         };
         let mut stim = Stimulus::new(ctx.seed);
-        let level0 = test_map(1 << wl, 1 << hl, &mut stim);
-        let mut chip = Texram802::new(TexramParams::default())?;
-        chip.set_drf(0, Drf::new(wl, hl, border))?;
-        chip.load(0, &level0)?;
-        let dut = FootprintFig12::new(p, chip)?;
-        let tracer = ctx.tracer(&format!("{NAME} {}", ctx.label), CYCLE_PS)?;
-        let sim = Sim::maybe_traced(dut, tracer).map_err(|e| e.to_string())?;
-        let reference = RefMipmap::build(1 << wl, 1 << hl, &level0);
         let mut px = directed(wl.max(hl));
-        px.extend(pixels(wl, hl, ctx.count, &mut stim));
-        let (sim, res) = run_pixels(sim, ctx, (&reference, border, p), px)?;
+        let tracer = ctx.tracer(&format!("{NAME} {}", ctx.label), CYCLE_PS)?;
+        let cfg = (p, wl.max(hl) as i32, border);
+        let (res, vcd_sim) = match unit {
+            Unit::Texram => {
+                let level0 = test_map(1 << wl, 1 << hl, &mut stim);
+                px.extend(pixels(wl, hl, ctx.count, &mut stim));
+                let mut chip = Texram802::new(TexramParams::default())?;
+                chip.set_drf(0, Drf::new(wl, hl, border))?;
+                chip.load(0, &level0)?;
+                let dut = FootprintFig12::new(p, chip)?;
+                let sim = Sim::maybe_traced(dut, tracer).map_err(|e| e.to_string())?;
+                let reference = RefMipmap::build(1 << wl, 1 << hl, &level0);
+                let expect = |q: &Pixel| expect(&reference, border, &p, q);
+                let (sim, mut res) = run_pixels(sim, ctx, cfg, px, expect)?;
+                let chip = &sim.dut.assembly.chip;
+                res.notes.push(format!(
+                    "{}: {} accesses in {} slots",
+                    ctx.label,
+                    chip.accesses.q().bits(),
+                    chip.slots.q().bits()
+                ));
+                (res, sim.finish().map(|_| ()))
+            }
+            Unit::Texture(f, cache) => {
+                let tex = crate::texture::test_pattern(1 << wl, 1 << hl);
+                px.extend(pixels(wl, hl, ctx.count, &mut stim));
+                let mut tp = hdl::texmem::texture_unit_602::TexParams::new(1 << wl, 1 << hl);
+                tp.frac_bits = f;
+                tp.cache = cache;
+                let words = tex.dram_words(&tp.block_map());
+                let unit = hdl::texmem::texture_unit_602::TextureUnit::new(
+                    "texture_unit_602",
+                    tp,
+                    &tex.clut,
+                    &words,
+                )?;
+                let dut = FootprintFig12::new(p, unit)?;
+                let sim = Sim::maybe_traced(dut, tracer).map_err(|e| e.to_string())?;
+                let expect = |q: &Pixel| {
+                    let (a, mean) = ref_assemble_texture(&tex, f, &p, q);
+                    (*q, a, mean)
+                };
+                let (sim, res) = run_pixels(sim, ctx, cfg, px, expect)?;
+                (res, sim.finish().map(|_| ()))
+            }
+        };
+        let mut res = res;
         if let Some(w) = &ctx.waves {
-            sim.finish()
-                .map_err(|e| format!("{}: {e}", w.vcd.display()))?;
-            let mut res = res;
+            vcd_sim.map_err(|e| format!("{}: {e}", w.vcd.display()))?;
             res.vcd = Some(w.vcd.clone());
-            return Ok(res);
         }
         Ok(res)
     }
@@ -401,13 +517,15 @@ fn expect(map: &RefMipmap, border: Border, p: &SetupParams, px: &Pixel) -> Expec
     (*px, want, mean)
 }
 
-/// Drives the pixels with random gaps and scores each against the reference and golden.
-fn run_pixels<T: Trace>(
-    sim: Sim<FootprintFig12, T>,
+/// Drives the pixels with random gaps and scores each against `expect` (the reference's
+/// result and the exact mean).
+fn run_pixels<U: SampleTarget, T: Trace>(
+    sim: Sim<FootprintFig12<U>, T>,
     ctx: &Ctx,
-    (map, border, p): (&RefMipmap, Border, SetupParams),
+    (p, lmax, border): (SetupParams, i32, Border),
     px: Vec<Pixel>,
-) -> Result<(Sim<FootprintFig12, T>, TbResult), String> {
+    expect: impl Fn(&Pixel) -> Expected,
+) -> Result<(Sim<FootprintFig12<U>, T>, TbResult), String> {
     let mut res = TbResult::new(NAME, "");
     let mut cov = coverage_model();
     let mut sim = sim.check_schedule(ctx.check_schedule);
@@ -421,9 +539,10 @@ fn run_pixels<T: Trace>(
                 Err(format!("got {a:?}, want {e:?}"))
             }
         });
-    let lmax = map.levels.len() as i32 - 1;
+    let unit = i64::from(sim.dut.assembly.chip.channels() == 3);
     let pacing = Pacing::random(300, ctx.seed.derive(5));
-    let mut spec = RunSpec::new(n, 70 * 64 * n + 1000).pacing(pacing);
+    let mut spec = RunSpec::new(n, 200 * 64 * n + 1000).pacing(pacing);
+    let mut samples = 0u64;
     let r = run(
         &mut sim,
         &mut PixelDriver,
@@ -431,8 +550,9 @@ fn run_pixels<T: Trace>(
         px,
         &mut spec,
         |_, ev| match ev {
-            Event::Sent { txn, .. } => sb.expect(expect(map, border, &p, txn)),
+            Event::Sent { txn, .. } => sb.expect(expect(txn)),
             Event::Received { cycle, txn } => {
+                samples += u64::from(txn.n);
                 if let Some((q, _, want)) = sb.observe(cycle, txn).expected {
                     res.stats.record(f64::from(txn.value), want, 1.0);
                     let (_, _, lambda) = ref_setup(&p, &q);
@@ -450,7 +570,7 @@ fn run_pixels<T: Trace>(
                         Border::Mirror => 2,
                         Border::Colour(_) => 3,
                     };
-                    cov.sample(&[i64::from(txn.n.trailing_zeros()), l, b, r]);
+                    cov.sample(&[i64::from(txn.n.trailing_zeros()), l, b, r, unit]);
                 }
             }
             Event::Settled { .. } => {}
@@ -472,13 +592,10 @@ fn run_pixels<T: Trace>(
             res.stats.max_abs_lsb
         ));
     }
-    let chip = &sim.dut.assembly.chip;
     res.notes.push(format!(
-        "{}: {n} pixels, {} accesses in {} slots ({:.2} accesses a pixel)",
+        "{}: {n} pixels, {samples} samples ({:.2} a pixel)",
         ctx.label,
-        chip.accesses.q().bits(),
-        chip.slots.q().bits(),
-        chip.accesses.q().bits() as f64 / n as f64
+        samples as f64 / n.max(1) as f64
     ));
     res.coverage = Some(cov);
     Ok((sim, res))
@@ -661,25 +778,100 @@ pub const TILTS: [f64; 4] = [0.0, 60.0, 75.0, 85.0];
 #[derive(Clone, Debug, PartialEq, serde::Serialize)]
 pub struct FootprintStats {
     pub pixels: u64,
+    /// Samples (accesses of the chip, requests of the texture unit).
     pub accesses: u64,
     pub mean_n: f64,
-    pub slots: u64,
-    /// Slots added by page faults, and the banks that missed.
+    /// TEXRAM: slots, the slots page faults added, the banks that missed. Texture unit 602:
+    /// DRAM page faults (reads that opened another row).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub slots: Option<u64>,
     pub page_faults: u64,
-    pub bank_misses: u64,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub bank_misses: Option<u64>,
     pub cycles: u64,
     pub ns: u64,
     pub pixels_per_second: f64,
 }
 
-/// Each pixel's result (value, N, lambda raw sQ5.8) and the run's costs.
+/// Each pixel's result (value, N, R G B, lambda raw sQ5.8) and the run's costs.
 pub struct FootprintRun {
     pub results: Vec<(Assembled, i32)>,
     pub stats: FootprintStats,
 }
 
-/// `pixels` through [`FootprintFig12`] with the map `level0` in DRF 0, each result checked
-/// against the integer reference (`Err` names the first that differs).
+/// Drives `pixels` through `dut` (traced into `vcd` at `period_ps`), each result checked
+/// against `want(k)`: the results, the cycles, the design after.
+fn drive_pixels<U: SampleTarget>(
+    dut: FootprintFig12<U>,
+    pixels: &[Pixel],
+    (vcd, period_ps): (Option<&std::path::Path>, u64),
+    want: impl Fn(usize) -> Assembled,
+) -> Result<(Vec<Assembled>, u64, FootprintFig12<U>), String> {
+    let tracer = match vcd {
+        Some(path) => {
+            let cfg = waves::TraceConfig {
+                period_ps,
+                ..Default::default()
+            };
+            Some(waves::VcdTracer::create(path, NAME, cfg).map_err(|e| e.to_string())?)
+        }
+        None => None,
+    };
+    let mut sim = Sim::maybe_traced(dut, tracer).map_err(|e| e.to_string())?;
+    sim.reset(2);
+    let n = pixels.len() as u64;
+    let mut results = Vec::with_capacity(pixels.len());
+    let mut wrong = None;
+    let mut spec = RunSpec::new(n, 200 * 64 * n + 1000);
+    let st = run(
+        &mut sim,
+        &mut PixelDriver,
+        &mut PixelMonitor,
+        pixels.to_vec(),
+        &mut spec,
+        |_, ev| {
+            if let Event::Received { txn, .. } = ev {
+                let k = results.len();
+                let w = want(k);
+                if txn != w && wrong.is_none() {
+                    wrong = Some(format!("pixel {k}: the unit {txn:?}, the reference {w:?}"));
+                }
+                results.push(txn);
+            }
+        },
+    )
+    .map_err(|e| e.to_string())?;
+    if let Some(e) = wrong {
+        return Err(e);
+    }
+    let dut = sim.finish().map_err(|e| e.to_string())?;
+    Ok((results, st.cycles, dut))
+}
+
+/// The costs common to both units.
+fn stats_of(results: &[Assembled], cycles: u64, period_ps: u64) -> FootprintStats {
+    let n = results.len() as u64;
+    let accesses: u64 = results.iter().map(|r| u64::from(r.n)).sum();
+    let ns = cycles * period_ps / 1000;
+    FootprintStats {
+        pixels: n,
+        accesses,
+        mean_n: accesses as f64 / n.max(1) as f64,
+        slots: None,
+        page_faults: 0,
+        bank_misses: None,
+        cycles,
+        ns,
+        pixels_per_second: if ns == 0 {
+            0.0
+        } else {
+            n as f64 / ns as f64 * 1e9
+        },
+    }
+}
+
+/// `pixels` through [`FootprintFig12`] with the map `level0` in DRF 0 of the TEXRAM chip,
+/// each result checked against the integer reference (`Err` names the first that differs).
 pub fn run_footprint(
     drf: Drf,
     level0: &[u8],
@@ -691,66 +883,53 @@ pub fn run_footprint(
     chip.set_drf(0, drf)?;
     chip.load(0, level0)?;
     let dut = FootprintFig12::new(p, chip)?;
-    let tracer = match vcd {
-        Some(path) => {
-            let cfg = waves::TraceConfig {
-                period_ps: CYCLE_PS,
-                ..Default::default()
-            };
-            Some(waves::VcdTracer::create(path, NAME, cfg).map_err(|e| e.to_string())?)
-        }
-        None => None,
-    };
-    let mut sim = Sim::maybe_traced(dut, tracer).map_err(|e| e.to_string())?;
-    sim.reset(2);
     let (w, h) = (1 << drf.width_log2, 1 << drf.height_log2);
     let reference = RefMipmap::build(w, h, level0);
-    let n = pixels.len() as u64;
-    let mut results = Vec::with_capacity(pixels.len());
-    let mut wrong = None;
-    let mut spec = RunSpec::new(n, 70 * 64 * n + 1000);
-    let st = run(
-        &mut sim,
-        &mut PixelDriver,
-        &mut PixelMonitor,
-        pixels.to_vec(),
-        &mut spec,
-        |_, ev| {
-            if let Event::Received { txn, .. } = ev {
-                let k = results.len();
-                let q = &pixels[k];
-                let (want, _) = ref_assemble(&reference, ref_border(drf.border), &p, q);
-                if txn != want && wrong.is_none() {
-                    wrong = Some(format!(
-                        "pixel {k}: the unit {txn:?}, the reference {want:?}"
-                    ));
-                }
-                results.push((txn, ref_setup(&p, q).2));
-            }
-        },
-    )
-    .map_err(|e| e.to_string())?;
-    if let Some(e) = wrong {
-        return Err(e);
+    let border = ref_border(drf.border);
+    let want = |k: usize| ref_assemble(&reference, border, &p, &pixels[k]).0;
+    let (results, cycles, dut) = drive_pixels(dut, pixels, (vcd, CYCLE_PS), want)?;
+    let c = &dut.assembly.chip;
+    let mut stats = stats_of(&results, cycles, CYCLE_PS);
+    stats.slots = Some(c.slots.q().bits());
+    stats.page_faults = c.fault_slots.q().bits();
+    stats.bank_misses = Some(c.faults.q().bits());
+    let results = results
+        .into_iter()
+        .zip(pixels)
+        .map(|(r, q)| (r, ref_setup(&p, q).2))
+        .collect();
+    Ok(FootprintRun { results, stats })
+}
+
+/// `pixels` through [`FootprintFig12`] driving Figure 6's texture unit 602 (`tp`) with the
+/// CCC texture `tex`, each result checked against the integer reference.
+pub fn run_footprint_texture(
+    tex: &Ccc,
+    tp: hdl::texmem::texture_unit_602::TexParams,
+    p: SetupParams,
+    pixels: &[Pixel],
+    vcd: Option<&std::path::Path>,
+) -> Result<FootprintRun, String> {
+    use hdl::texmem::texture_unit_602::TextureUnit;
+    if (tex.width, tex.height) != (tp.width, tp.height) {
+        return Err(format!(
+            "texture is {}x{}, the unit is set up for {}x{}",
+            tex.width, tex.height, tp.width, tp.height
+        ));
     }
-    let c = &sim.dut.assembly.chip;
-    let accesses = c.accesses.q().bits();
-    let ns = st.cycles * CYCLE_PS / 1000;
-    let stats = FootprintStats {
-        pixels: n,
-        accesses,
-        mean_n: accesses as f64 / n.max(1) as f64,
-        slots: c.slots.q().bits(),
-        page_faults: c.fault_slots.q().bits(),
-        bank_misses: c.faults.q().bits(),
-        cycles: st.cycles,
-        ns,
-        pixels_per_second: if ns == 0 {
-            0.0
-        } else {
-            n as f64 / ns as f64 * 1e9
-        },
-    };
-    sim.finish().map_err(|e| e.to_string())?;
+    tp.validate()?;
+    let words = tex.dram_words(&tp.block_map());
+    let unit = TextureUnit::new("texture_unit_602", tp, &tex.clut, &words)?;
+    let dut = FootprintFig12::new(p, unit)?;
+    let period = u64::from(tp.dram.cycle_ns) * 1000;
+    let want = |k: usize| ref_assemble_texture(tex, tp.frac_bits, &p, &pixels[k]).0;
+    let (results, cycles, dut) = drive_pixels(dut, pixels, (vcd, period), want)?;
+    let mut stats = stats_of(&results, cycles, period);
+    stats.page_faults = dut.assembly.chip.mem.page_faults;
+    let results = results
+        .into_iter()
+        .zip(pixels)
+        .map(|(r, q)| (r, ref_setup(&p, q).2))
+        .collect();
     Ok(FootprintRun { results, stats })
 }

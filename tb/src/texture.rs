@@ -94,6 +94,17 @@ pub struct TexRun {
 /// does two lerps; the sum is the same exact integer.)
 pub fn reference_filter(t: &Ccc, u: u32, v: u32, frac_bits: u32) -> u32 {
     let f = frac_bits;
+    let sums = reference_sums(t, u, v, f);
+    let mut out = 0;
+    for (s, shift) in sums.into_iter().zip([16, 8, 0]) {
+        out |= (((s + (1 << (2 * f - 1))) >> (2 * f)) as u32) << shift;
+    }
+    out
+}
+
+/// The reference's exact four-weight sums of R, G, B (each the channel times `2^2F`).
+pub fn reference_sums(t: &Ccc, u: u32, v: u32, frac_bits: u32) -> [u64; 3] {
+    let f = frac_bits;
     let one = 1u64 << f;
     let (x0, y0) = (u >> f, v >> f);
     let (fu, fv) = (u64::from(u) & (one - 1), u64::from(v) & (one - 1));
@@ -111,14 +122,11 @@ pub fn reference_filter(t: &Ccc, u: u32, v: u32, frac_bits: u32) -> u32 {
         (one - fu) * fv,
         fu * fv,
     ];
-    let mut out = 0;
-    for shift in [16, 8, 0] {
-        let s: u64 = (0..4)
+    [16, 8, 0].map(|shift| {
+        (0..4)
             .map(|k| w[k] * u64::from(tex[k] >> shift & 0xff))
-            .sum();
-        out |= (((s + (1 << (2 * f - 1))) >> (2 * f)) as u32) << shift;
-    }
-    out
+            .sum()
+    })
 }
 
 /// A CCC texture for tests of any size (multiples of 4): a grey-ramp CLUT, block `i` with

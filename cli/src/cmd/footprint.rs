@@ -7,13 +7,14 @@ use hdl::footprint::setup_fig12::{NRounding, SetupParams, MAX_LOG2_N};
 use hdl::texram::{Border, Drf};
 use std::fmt::Write;
 use std::path::{Path, PathBuf};
-use tb::footprint::{run_footprint, Pixel};
+use tb::footprint::{run_footprint, run_footprint_texture, FootprintRun, Pixel};
 
 /// Anisotropic filtering by footprint assembly (section 10) through the TEXRAM chip.
 #[derive(Clone, Debug, clap::Args)]
 pub struct FootprintArgs {
-    /// The texture: an 8-bit PGM (P5 or P2), sides powers of two up to 1024; its mipmap is
-    /// built as the generator 816 rounds, (a+b+c+d+2)>>2.
+    /// The texture. --unit texram: an 8-bit PGM (P5 or P2), sides powers of two up to 1024,
+    /// its mipmap built as the generator 816 rounds, (a+b+c+d+2)>>2. --unit texture: a .ccc
+    /// file or a PPM (encoded to CCC), sides multiples of 4 up to 4096.
     #[arg(long)]
     pub texture: PathBuf,
     /// CSV with header u,v,dudx,dvdx,dudy,dvdy: the pixel centre (level-0 texel units,
@@ -21,7 +22,8 @@ pub struct FootprintArgs {
     /// bits), rounded ties to even.
     #[arg(long)]
     pub requests: PathBuf,
-    /// CSV: u,v,dudx,dvdx,dudy,dvdy (as quantised), n, lambda, value per pixel in order.
+    /// CSV: u,v,dudx,dvdx,dudy,dvdy (as quantised), n, lambda, then value (texram) or
+    /// r,g,b (texture) per pixel in order.
     #[arg(long)]
     pub out: PathBuf,
     /// The most squares a pixel: a power of two, 1..=64.
@@ -30,14 +32,18 @@ pub struct FootprintArgs {
     /// N rounded to a power of two in the log domain (log) or the linear one (linear).
     #[arg(long, default_value = "log")]
     pub rounding: String,
-    /// texram (the chip of Figure 8); texture (the Figure 6 unit) is not modelled yet.
+    /// texram (the TEXRAM chip of Figure 8: trilinear on a mipmap) or texture (the Figure 6
+    /// texture unit 602: bilinear on a CCC texture, 4 fraction bits, cache and lookahead; the
+    /// document's low-cost system).
     #[arg(long, default_value = "texram")]
     pub unit: String,
-    /// wrap, clamp, mirror or border:N (N 0..=255, the border colour).
+    /// wrap, clamp, mirror or border:N (N 0..=255, the border colour); texram only (the
+    /// texture unit clamps to the edge).
     #[arg(long, default_value = "wrap")]
     pub border: String,
-    /// JSON: pixels, accesses, mean_n, slots, page_faults (slots they added), bank_misses,
-    /// cycles, ns, pixels_per_second.
+    /// JSON: pixels, accesses, mean_n, slots (texram), page_faults (texram: slots they added;
+    /// texture: DRAM reads that opened another row), bank_misses (texram), cycles, ns,
+    /// pixels_per_second.
     #[arg(long)]
     pub stats: Option<PathBuf>,
     /// Waveform: setup unit, generator, accumulator and the chip's units.
@@ -85,8 +91,8 @@ pub fn run(a: &FootprintArgs) -> Result<String, CmdError> {
     guard.settle(footprint(a))
 }
 
-/// The options into setup parameters and a border.
-fn options(a: &FootprintArgs) -> Result<(SetupParams, Border), CmdError> {
+/// The options into setup parameters, a border and the unit (true: texram).
+fn options(a: &FootprintArgs) -> Result<(SetupParams, Border, bool), CmdError> {
     if !a.max_n.is_power_of_two() || a.max_n > 1 << MAX_LOG2_N {
         return Err(input(format!(
             "--max-n {}: a power of two, 1..=64",
@@ -101,18 +107,14 @@ fn options(a: &FootprintArgs) -> Result<(SetupParams, Border), CmdError> {
             return Err(input(format!("--rounding {r}: log or linear")));
         }
     };
-    match a.unit.as_str() {
-        "texram" => {}
-        "texture" => {
-            return Err(input(
-                "--unit texture: footprint assembly on the Figure 6 texture unit is not modelled yet (only texram)".into(),
-            ))
-        }
+    let texram = match a.unit.as_str() {
+        "texram" => true,
+        "texture" => false,
         u => {
             let u = formats::shorten(u);
             return Err(input(format!("--unit {u}: texram or texture")));
         }
-    }
+    };
     let border = Border::parse(&a.border).ok_or_else(|| {
         let b = formats::shorten(&a.border);
         input(format!(
@@ -123,20 +125,41 @@ fn options(a: &FootprintArgs) -> Result<(SetupParams, Border), CmdError> {
         max_log2_n: a.max_n.trailing_zeros(),
         rounding,
     };
-    Ok((p, border))
+    Ok((p, border, texram))
 }
 
 /// The command once its outputs are checked.
 fn footprint(a: &FootprintArgs) -> Result<String, CmdError> {
-    let (p, border) = options(a)?;
-    let img = formats::netpbm::read(&a.texture).map_err(input)?;
+    let (p, border, texram) = options(a)?;
+    let pixels = if texram {
+        let (drf, level0) = read_pgm(&a.texture, border)?;
+        let pixels = read_pixels(&a.requests).map_err(input)?;
+        let run =
+            run_footprint(drf, &level0, p, &pixels, a.vcd.as_deref()).map_err(CmdError::Failed)?;
+        (pixels, run)
+    } else {
+        let tex = super::texread::read_texture(&a.texture).map_err(input)?;
+        let tp = hdl::texmem::texture_unit_602::TexParams::new(tex.width, tex.height);
+        tp.validate()
+            .map_err(|e| input(format!("{}: {e}", a.texture.display())))?;
+        let pixels = read_pixels(&a.requests).map_err(input)?;
+        let run = run_footprint_texture(&tex, tp, p, &pixels, a.vcd.as_deref())
+            .map_err(CmdError::Failed)?;
+        (pixels, run)
+    };
+    write_results(a, &pixels.0, &pixels.1, texram)
+}
+
+/// A PGM as the TEXRAM map of DRF 0.
+fn read_pgm(path: &Path, border: Border) -> Result<(Drf, Vec<u8>), CmdError> {
+    let img = formats::netpbm::read(path).map_err(input)?;
     let side = |n: u32, what: &str| {
         if n.is_power_of_two() && n <= 1024 {
             Ok(n.trailing_zeros())
         } else {
             Err(input(format!(
                 "{}: {what} {n} is not a power of two up to 1024",
-                a.texture.display()
+                path.display()
             )))
         }
     };
@@ -144,20 +167,32 @@ fn footprint(a: &FootprintArgs) -> Result<String, CmdError> {
     if img.maxval != 255 {
         return Err(input(format!(
             "{}: maxval {}, 8-bit texels need 255",
-            a.texture.display(),
+            path.display(),
             img.maxval
         )));
     }
-    let pixels = read_pixels(&a.requests).map_err(input)?;
-    let drf = Drf::new(wl, hl, border);
-    let run =
-        run_footprint(drf, &img.pixels, p, &pixels, a.vcd.as_deref()).map_err(CmdError::Failed)?;
-    let mut csv = String::from("u,v,dudx,dvdx,dudy,dvdy,n,lambda,value\n");
+    Ok((Drf::new(wl, hl, border), img.pixels))
+}
+
+/// The CSV, the stats, the closing line.
+fn write_results(
+    a: &FootprintArgs,
+    pixels: &[Pixel],
+    run: &FootprintRun,
+    texram: bool,
+) -> Result<String, CmdError> {
+    let head = if texram { "value" } else { "r,g,b" };
+    let mut csv = format!("u,v,dudx,dvdx,dudy,dvdy,n,lambda,{head}\n");
     let f = |r: i32| f64::from(r) / 256.0;
     for (q, (r, lambda)) in pixels.iter().zip(&run.results) {
+        let colour = if texram {
+            r.value.to_string()
+        } else {
+            format!("{},{},{}", r.rgb >> 16, r.rgb >> 8 & 0xff, r.rgb & 0xff)
+        };
         let _ = writeln!(
             csv,
-            "{},{},{},{},{},{},{},{},{}",
+            "{},{},{},{},{},{},{},{},{colour}",
             f(q.u),
             f(q.v),
             f(q.r1.0),
@@ -166,7 +201,6 @@ fn footprint(a: &FootprintArgs) -> Result<String, CmdError> {
             f(q.r2.1),
             r.n,
             f(*lambda),
-            r.value
         );
     }
     write_out(&a.out, csv.as_bytes())?;
@@ -176,12 +210,11 @@ fn footprint(a: &FootprintArgs) -> Result<String, CmdError> {
     }
     let st = &run.stats;
     Ok(format!(
-        "{} pixels written to {}: {} accesses ({:.2} a pixel) in {} slots, {} page faults, {:.2} M pixels/s",
+        "{} pixels written to {}: {} accesses ({:.2} a pixel), {} page faults, {:.2} M pixels/s",
         st.pixels,
         a.out.display(),
         st.accesses,
         st.mean_n,
-        st.slots,
         st.page_faults,
         st.pixels_per_second / 1e6
     ))

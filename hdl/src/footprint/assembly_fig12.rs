@@ -15,7 +15,14 @@
 //! | accumulator | uQ14.24 (38 bits): up to 64 sums of at most `255 * 2^24` |
 //! | result | u8, one rounding of the mean, half up |
 //!
-//! Luminance maps only [C] (818's exact sum is the luminance one).
+//! Luminance maps only on the TEXRAM chip [C] (818's exact sum is the luminance one).
+//!
+//! The same generator and accumulator drive Figure 6's texture unit 602 (bilinear on CCC
+//! textures, RGB: the document's low-cost system, "bilinear interpolation, CCC and footprint
+//! assembly", section 4) through [`SampleTarget`]: each point less half a texel, rounded half
+//! up to the unit's `F` fraction bits and held inside the texture; the accumulator adds 622's
+//! exact sums per channel (`2F` fraction bits) and rounds each mean once. There is no mipmap:
+//! lambda is not used.
 //!
 //! # Timing
 //! The generator takes a pixel when it holds none (`px_ready`), offers one sample a cycle to
@@ -35,8 +42,9 @@ use crate::texram::{TexramAccess, TexramRequest, FRAC, UV_BITS};
 
 /// Fraction bits of the sample points: the step's plus one (for `dr / 2`).
 pub const POINT_FRAC: u32 = STEP_FRAC + 1;
-/// Pixels in flight at most (the chip holds two accesses; the generator one pixel).
-const IN_FLIGHT: u64 = 4;
+/// Pixels the accumulator counts at most (the chip holds two accesses, the texture unit three;
+/// the generator one pixel): the generator waits for room.
+const IN_FLIGHT: u64 = 6;
 
 /// The first sample point and the step, raw sQ.15: `p - (N-1) dr / 2` and `dr`.
 pub fn first_point(u: i32, du: i32, log2_n: u32) -> (i64, i64) {
@@ -55,7 +63,7 @@ pub fn access_coord(p: i64) -> i32 {
 
 /// The mean of `2^log2_n` exact trilinear sums, rounded once, half up.
 pub fn mean(sum: u64, log2_n: u32) -> u8 {
-    ((sum + (1u64 << (23 + log2_n))) >> (24 + log2_n)) as u8
+    mean_of(sum, log2_n, 24)
 }
 
 /// One assembled pixel.
@@ -100,10 +108,87 @@ pub fn assemble(
     })
 }
 
-/// The sample generator and accumulator with the chip behind them.
+/// What the generator drives and the accumulator reads: the TEXRAM chip 802 (trilinear,
+/// luminance) or the Figure 6 texture unit 602 (bilinear, RGB; the document's low-cost
+/// system, section 4).
+pub trait SampleTarget: Module {
+    /// Channels of a result (1 luminance, 3 RGB) and the fraction bits of its exact sums.
+    fn channels(&self) -> usize;
+    fn sum_frac(&self) -> u32;
+    /// Offers (or not) a sample at the point `p` (sQ.15, texel centres at k + 1/2).
+    fn present(&mut self, valid: bool, drf: u64, p: (i64, i64), lambda: i64);
+    /// After `eval`: the sample offered was taken.
+    fn taken(&self) -> bool;
+    /// After `eval`: a sample's exact sums, one a channel, in the order samples were taken.
+    fn result(&self) -> Option<[u64; 3]>;
+}
+
+impl SampleTarget for Texram802 {
+    fn channels(&self) -> usize {
+        1
+    }
+    fn sum_frac(&self) -> u32 {
+        24
+    }
+    fn present(&mut self, valid: bool, drf: u64, p: (i64, i64), lambda: i64) {
+        self.req_valid.set_bool(valid);
+        self.req_drf.set_bits(drf);
+        self.req_u.set_raw(i64::from(access_coord(p.0)));
+        self.req_v.set_raw(i64::from(access_coord(p.1)));
+        self.req_lambda.set_raw(lambda);
+    }
+    fn taken(&self) -> bool {
+        self.req_valid.is_high() && self.req_ready.is_high()
+    }
+    fn result(&self) -> Option<[u64; 3]> {
+        self.out_valid
+            .q()
+            .is_high()
+            .then(|| [self.out_sum.q().bits(), 0, 0])
+    }
+}
+
+/// A sample point as the texture unit 602 takes it: texel `(x, y)` at integer coordinates
+/// (the point less half a texel), `F` fraction bits rounded half up, held inside the texture
+/// (`0 ..= size * 2^F - 1`: the unit clamps its footprint to the edge).
+pub fn unit_coord(p: i64, frac_bits: u32, size: u32) -> u32 {
+    let shift = POINT_FRAC - frac_bits;
+    let half = 1i64 << (shift - 1);
+    let q = (p - (1i64 << (POINT_FRAC - 1)) + half) >> shift;
+    q.clamp(0, (i64::from(size) << frac_bits) - 1) as u32
+}
+
+impl SampleTarget for crate::texmem::texture_unit_602::TextureUnit {
+    fn channels(&self) -> usize {
+        3
+    }
+    fn sum_frac(&self) -> u32 {
+        2 * self.params().frac_bits
+    }
+    fn present(&mut self, valid: bool, _drf: u64, p: (i64, i64), _lambda: i64) {
+        let tp = *self.params();
+        self.in_valid.set_bool(valid);
+        self.in_u
+            .set_bits(u64::from(unit_coord(p.0, tp.frac_bits, tp.width)));
+        self.in_v
+            .set_bits(u64::from(unit_coord(p.1, tp.frac_bits, tp.height)));
+        self.in_newline.set_bool(false);
+    }
+    fn taken(&self) -> bool {
+        self.in_valid.is_high() && self.in_ready.is_high()
+    }
+    fn result(&self) -> Option<[u64; 3]> {
+        let b = &self.bilinear;
+        self.out_valid
+            .is_high()
+            .then(|| b.sums.each_ref().map(|s| s.q().bits()))
+    }
+}
+
+/// The sample generator and accumulator with the chip (or unit) behind them.
 #[derive(Clone, Debug)]
-pub struct FootprintAssembly {
-    pub chip: Texram802,
+pub struct FootprintAssembly<T: SampleTarget = Texram802> {
+    pub chip: T,
     pub px_valid: Signal,
     pub px_ready: Signal,
     pub px_drf: Signal,
@@ -122,20 +207,25 @@ pub struct FootprintAssembly {
     drf: Reg,
     lambda: Reg,
     /// Accumulator: the pixels in flight (3 bits of log2 N each, oldest lowest), their count,
-    /// the sum and the results counted for the oldest.
+    /// the sums (one a channel) and the results counted for the oldest.
     pend: Reg,
     pend_n: Reg,
-    sum: Reg,
+    sums: [Reg; 3],
     count: Reg,
     pub out_valid: Reg,
+    /// The first channel (luminance), and R, G, B (luminance three times).
     pub out_value: Reg,
+    pub out_rgb: Reg,
     pub out_n: Reg,
     pub pixels: Reg,
 }
 
-impl FootprintAssembly {
-    pub fn new(chip: Texram802) -> FootprintAssembly {
+impl<T: SampleTarget> FootprintAssembly<T> {
+    pub fn new(chip: T) -> FootprintAssembly<T> {
         let point = |n| Reg::new(n, Format::signed(32, POINT_FRAC as i32));
+        let frac = chip.sum_frac();
+        // Up to 64 sums of at most 255 * 2^frac.
+        let sum = |n| Reg::new(n, Format::unsigned(frac + 14, frac as i32));
         FootprintAssembly {
             chip,
             px_valid: Signal::bit("px_valid"),
@@ -155,27 +245,27 @@ impl FootprintAssembly {
             drf: Reg::new("drf", Format::uint(3)),
             lambda: Reg::new("lambda", Format::signed(14, 8)),
             pend: Reg::new("pend", Format::uint(3 * IN_FLIGHT as u32)),
-            pend_n: Reg::new("pend_n", Format::uint(3)),
-            sum: Reg::new("sum", Format::unsigned(38, 24)),
+            pend_n: Reg::new("pend_n", Format::uint(4)),
+            sums: [sum("sum0"), sum("sum1"), sum("sum2")],
             count: Reg::new("count", Format::uint(7)),
             out_valid: Reg::new("out_valid", Format::uint(1)),
             out_value: Reg::new("out_value", Format::uint(8)),
+            out_rgb: Reg::new("out_rgb", Format::uint(24)),
             out_n: Reg::new("out_n", Format::uint(7)),
             pixels: Reg::new("pixels", Format::uint(40)),
         }
     }
 
-    /// The generator: a pixel taken, or the current sample offered to the chip.
+    /// The generator: a pixel taken (its log2 N), or the current sample offered.
     fn generate(&mut self) -> Option<u64> {
         let left = self.left.q().bits();
-        let ready = left == 0;
+        // A pixel is taken when the last has all its samples out and the accumulator has
+        // room to count it.
+        let ready = left == 0 && self.pend_n.q().bits() < IN_FLIGHT;
         self.px_ready.set_bool(ready);
-        let c = &mut self.chip;
-        c.req_valid.set_bool(left > 0);
-        c.req_drf.set_bits(self.drf.q().bits());
-        c.req_u.set_raw(i64::from(access_coord(self.pu.q().raw())));
-        c.req_v.set_raw(i64::from(access_coord(self.pv.q().raw())));
-        c.req_lambda.set_raw(self.lambda.q().raw());
+        let p = (self.pu.q().raw(), self.pv.q().raw());
+        let (drf, lambda) = (self.drf.q().bits(), self.lambda.q().raw());
+        self.chip.present(left > 0, drf, p, lambda);
         if ready && self.px_valid.is_high() {
             let k = self.px_log2_n.bits() as u32;
             let (pu, du) = first_point(self.px_u.raw() as i32, self.px_du.raw() as i32, k);
@@ -198,7 +288,7 @@ impl FootprintAssembly {
 
     /// After the chip settled: the sample taken moves the generator on.
     fn advance(&mut self) {
-        if self.left.q().bits() > 0 && self.chip.req_ready.is_high() {
+        if self.left.q().bits() > 0 && self.chip.taken() {
             self.left.set_next_bits(self.left.q().bits() - 1);
             let pu = self.pu.q().raw() + self.du.q().raw();
             let pv = self.pv.q().raw() + self.dv.q().raw();
@@ -207,31 +297,47 @@ impl FootprintAssembly {
         }
     }
 
+    /// The oldest pixel complete with `sums`: its result into the output registers.
+    fn emit(&mut self, sums: [u64; 3], k: u32, count: u64) {
+        let frac = self.chip.sum_frac();
+        let ch = sums.map(|s| u64::from(mean_of(s, k, frac)));
+        let rgb = if self.chip.channels() == 1 {
+            ch[0] * 0x01_01_01
+        } else {
+            ch[0] << 16 | ch[1] << 8 | ch[2]
+        };
+        self.out_valid.set_next_bool(true);
+        self.out_value.set_next_bits(ch[0]);
+        self.out_rgb.set_next_bits(rgb);
+        self.out_n.set_next_bits(count);
+        self.pixels.set_next_bits(self.pixels.q().bits() + 1);
+    }
+
     /// The accumulator: the chip's result added; the oldest pixel out with its last one;
     /// `taken` the log2 N of a pixel the generator took this cycle.
     fn accumulate(&mut self, taken: Option<u64>) {
         let (mut pend, mut n) = (self.pend.q().bits(), self.pend_n.q().bits());
         self.out_valid.set_next_bool(false);
-        if self.chip.out_valid.q().is_high() && n > 0 {
-            let k = pend & 7;
-            let sum = self.sum.q().bits() + self.chip.out_sum.q().bits();
+        if let Some(r) = self.chip.result().filter(|_| n > 0) {
+            let k = (pend & 7) as u32;
+            let sums: [u64; 3] = std::array::from_fn(|c| self.sums[c].q().bits() + r[c]);
             let count = self.count.q().bits() + 1;
             if count == 1 << k {
-                self.out_valid.set_next_bool(true);
-                self.out_value.set_next_bits(u64::from(mean(sum, k as u32)));
-                self.out_n.set_next_bits(count);
-                self.pixels.set_next_bits(self.pixels.q().bits() + 1);
-                self.sum.set_next_bits(0);
+                self.emit(sums, k, count);
+                for s in &mut self.sums {
+                    s.set_next_bits(0);
+                }
                 self.count.set_next_bits(0);
                 pend >>= 3;
                 n -= 1;
             } else {
-                self.sum.set_next_bits(sum);
+                for (reg, s) in self.sums.iter_mut().zip(sums) {
+                    reg.set_next_bits(s);
+                }
                 self.count.set_next_bits(count);
             }
         }
         if let Some(k) = taken {
-            debug_assert!(n < IN_FLIGHT, "at most four pixels in flight");
             pend |= k << (3 * n);
             n += 1;
         }
@@ -240,7 +346,12 @@ impl FootprintAssembly {
     }
 }
 
-impl Module for FootprintAssembly {
+/// The mean of `2^k` exact sums with `frac` fraction bits, rounded once, half up.
+pub fn mean_of(sum: u64, k: u32, frac: u32) -> u8 {
+    ((sum + (1u64 << (frac - 1 + k))) >> (frac + k)) as u8
+}
+
+impl<T: SampleTarget> Module for FootprintAssembly<T> {
     fn instance(&self) -> &str {
         "footprint_assembly"
     }
@@ -264,13 +375,16 @@ impl Module for FootprintAssembly {
             &mut self.lambda,
             &mut self.pend,
             &mut self.pend_n,
-            &mut self.sum,
             &mut self.count,
             &mut self.out_valid,
             &mut self.out_value,
+            &mut self.out_rgb,
             &mut self.out_n,
             &mut self.pixels,
         ] {
+            r.tick(reset);
+        }
+        for r in &mut self.sums {
             r.tick(reset);
         }
         self.chip.tick(reset);
@@ -285,8 +399,11 @@ impl Module for FootprintAssembly {
         signals!(v; Reg: self.left, self.pu, self.pv, self.du, self.dv, self.drf, self.lambda);
         v.leave();
         v.enter("accumulator", "footprint_accumulator");
-        signals!(v; Reg: self.pend, self.pend_n, self.sum, self.count,
-            self.out_valid, self.out_value, self.out_n, self.pixels);
+        signals!(v; Reg: self.pend, self.pend_n, self.count);
+        for r in &self.sums[..self.chip.channels()] {
+            v.reg(r);
+        }
+        signals!(v; Reg: self.out_valid, self.out_value, self.out_rgb, self.out_n, self.pixels);
         v.leave();
         self.chip.visit(v);
         v.leave();

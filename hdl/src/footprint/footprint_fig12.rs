@@ -3,23 +3,23 @@
 //! pixel over (`u, v, lambda`, then `dr` and `N`, as one transfer here) when the generator
 //! is free, so the setup of pixel i+1 overlaps the assembly of pixel i.
 
-use super::assembly_fig12::FootprintAssembly;
+use super::assembly_fig12::{FootprintAssembly, SampleTarget};
 use super::setup_fig12::{SetupParams, SetupUnit};
 use crate::kernel::{Module, Visitor};
 use crate::texram::texram_802::Texram802;
 
-/// The setup unit and the assembly unit with its chip.
+/// The setup unit and the assembly unit with its chip (or Figure 6's texture unit).
 #[derive(Clone, Debug)]
-pub struct FootprintFig12 {
+pub struct FootprintFig12<T: SampleTarget = Texram802> {
     /// Drive its inputs (`in_valid`, `drf`, `u`, `v`, `r1u` ... `r2v`); `in_ready` says it
     /// took them.
     pub setup: SetupUnit,
     /// Its `out_valid`, `out_value`, `out_n` are the pixel's result.
-    pub assembly: FootprintAssembly,
+    pub assembly: FootprintAssembly<T>,
 }
 
-impl FootprintFig12 {
-    pub fn new(p: SetupParams, chip: Texram802) -> Result<FootprintFig12, String> {
+impl<T: SampleTarget> FootprintFig12<T> {
+    pub fn new(p: SetupParams, chip: T) -> Result<FootprintFig12<T>, String> {
         Ok(FootprintFig12 {
             setup: SetupUnit::new("footprint_setup", p)?,
             assembly: FootprintAssembly::new(chip),
@@ -27,7 +27,7 @@ impl FootprintFig12 {
     }
 }
 
-impl Module for FootprintFig12 {
+impl<T: SampleTarget> Module for FootprintFig12<T> {
     fn instance(&self) -> &str {
         "footprint_fig12"
     }

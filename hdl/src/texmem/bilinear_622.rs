@@ -18,13 +18,19 @@ use crate::signals;
 /// The arithmetic of one channel (exposed for the unit's exhaustive test).
 #[inline]
 pub fn lerp2(c00: u32, c10: u32, c01: u32, c11: u32, fu: u32, fv: u32, frac_bits: u32) -> u32 {
-    let w = 1u32 << frac_bits;
-    let top = c00 * (w - fu) + c10 * fu;
-    let bot = c01 * (w - fu) + c11 * fu;
-    let sum = u64::from(top) * u64::from(w - fv) + u64::from(bot) * u64::from(fv);
+    let sum = lerp2_sum(c00, c10, c01, c11, fu, fv, frac_bits);
     let out = (sum + (1u64 << (2 * frac_bits - 1))) >> (2 * frac_bits);
     debug_assert!(out <= 255);
     out as u32
+}
+
+/// The exact sum before the rounding: the channel value times `2^2F` (`8 + 2F` bits).
+#[inline]
+pub fn lerp2_sum(c00: u32, c10: u32, c01: u32, c11: u32, fu: u32, fv: u32, frac_bits: u32) -> u64 {
+    let w = 1u32 << frac_bits;
+    let top = c00 * (w - fu) + c10 * fu;
+    let bot = c01 * (w - fu) + c11 * fu;
+    u64::from(top) * u64::from(w - fv) + u64::from(bot) * u64::from(fv)
 }
 
 #[derive(Clone, Debug)]
@@ -37,6 +43,8 @@ pub struct ColorBilinear {
     pub fv: Signal,
     pub valid: Reg,
     pub rgb: Reg,
+    /// The exact sums before the rounding, R, G, B (for footprint assembly).
+    pub sums: [Reg; 3],
 }
 
 impl ColorBilinear {
@@ -57,6 +65,8 @@ impl ColorBilinear {
             fv: Signal::new("fv", Format::unsigned(frac_bits, frac_bits as i32)),
             valid: Reg::new("valid", Format::uint(1)),
             rgb: Reg::new("rgb", Format::uint(24)),
+            sums: ["sum_r", "sum_g", "sum_b"]
+                .map(|n| Reg::new(n, Format::unsigned(8 + 2 * frac_bits, 2 * frac_bits as i32))),
         })
     }
 }
@@ -75,9 +85,12 @@ impl Module for ColorBilinear {
             let c = [0, 1, 2, 3].map(|k| self.c[k].bits() as u32);
             let (fu, fv) = (self.fu.bits() as u32, self.fv.bits() as u32);
             let mut rgb = 0;
-            for shift in [16, 8, 0] {
+            for (k, shift) in [16, 8, 0].into_iter().enumerate() {
                 let ch = c.map(|x| x >> shift & 0xff);
-                rgb |= lerp2(ch[0], ch[1], ch[2], ch[3], fu, fv, self.frac_bits) << shift;
+                let f = self.frac_bits;
+                let sum = lerp2_sum(ch[0], ch[1], ch[2], ch[3], fu, fv, f);
+                self.sums[k].set_next_bits(sum);
+                rgb |= (((sum + (1u64 << (2 * f - 1))) >> (2 * f)) as u32) << shift;
             }
             self.rgb.set_next_bits(u64::from(rgb));
         }
@@ -85,12 +98,15 @@ impl Module for ColorBilinear {
     fn tick(&mut self, reset: bool) {
         self.valid.tick(reset);
         self.rgb.tick(reset);
+        for s in &mut self.sums {
+            s.tick(reset);
+        }
     }
     fn visit(&self, v: &mut dyn Visitor) {
         v.enter(&self.name, self.kind());
         signals!(v;
             Input: self.in_valid, self.c[0], self.c[1], self.c[2], self.c[3], self.fu, self.fv;
-            Reg: self.valid, self.rgb);
+            Reg: self.valid, self.rgb, self.sums[0], self.sums[1], self.sums[2]);
         v.leave();
     }
 }
