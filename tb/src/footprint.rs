@@ -233,16 +233,18 @@ pub fn pixels(wl: u32, hl: u32, n: usize, stim: &mut Stimulus) -> Vec<Pixel> {
     stim.draw_n(&s, n)
 }
 
-/// Pixels every configuration gets first: isotropic, Figure 12's two cases, none, collapsed,
-/// the longest, and squares of the last level (`lmax`) 8 to 32 times as long as wide.
-fn directed(lmax: u32) -> Vec<Pixel> {
+/// Pixels every configuration gets first, so that its coverage does not depend on the
+/// count: isotropic, Figure 12's two cases, none, collapsed, the longest, and for every N up
+/// to `2^max_k` a footprint of squares magnified (q = 1/2 texel), between levels (q = 2) and
+/// of the last level (q = 2^lmax), each as long as the raw format allows.
+fn directed(lmax: u32, max_k: u32) -> Vec<Pixel> {
     let px = |r1, r2| Pixel {
         u: 1000,
         v: 2000,
         r1,
         r2,
     };
-    vec![
+    let mut v = vec![
         px((256, 0), (0, 256)),
         px((512, 0), (0, 256)),
         px((0, 256), (-1024, 0)),
@@ -250,13 +252,14 @@ fn directed(lmax: u32) -> Vec<Pixel> {
         px((700, 700), (700, 700)),
         px((1 << 16, 0), (0, 64)),
         px((3, 1), (-1, 2)),
-    ]
-    .into_iter()
-    .chain((3..=5).map(|k| {
-        let long = (1i64 << (lmax + k + 8)).min((1 << 19) - 1) as i32;
-        px((long, 0), (0, 1 << (lmax + 8)))
-    }))
-    .collect()
+    ];
+    for k in 0..=max_k {
+        for q in [128i64, 512, 256 << lmax] {
+            let long = (q << k).min((1 << 19) - 1) as i32;
+            v.push(px((long, 0), (0, q as i32)));
+        }
+    }
+    v
 }
 
 /// What the generator drives.
@@ -425,7 +428,7 @@ impl Testbench for FootprintTb {
             rounding,
         };
         let mut stim = Stimulus::new(ctx.seed);
-        let mut px = directed(wl.max(hl));
+        let mut px = directed(wl.max(hl), k);
         let tracer = ctx.tracer(&format!("{NAME} {}", ctx.label), CYCLE_PS)?;
         let cfg = (p, wl.max(hl) as i32, border);
         let (res, vcd_sim) = match unit {
