@@ -7,6 +7,7 @@ pub mod blend_adjust;
 pub mod cosim;
 pub mod dram;
 pub mod footprint;
+pub mod footprint_normals;
 pub mod maps;
 pub mod mipmap;
 pub mod normals;

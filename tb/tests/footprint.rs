@@ -191,3 +191,102 @@ fn footprint_assembly_beats_trilinear_on_tilted_planes() {
         }
     }
 }
+
+/// Para. 0081 on the FIG. 7 pipeline: the tangent average handed to normal unit 156 with each
+/// pixel's last sample is, bit for bit, the integer mean of the plain pipeline's tangents at
+/// the reference's sample points; with N = 1 the normals are the plain pipeline's.
+#[test]
+fn the_fig7_tangent_average_is_the_mean_of_the_plain_pipelines_tangents() {
+    use hdl::bump::normal_pipeline_fig7::NormalPipeline;
+    use hdl::bump::params::BumpParams;
+    use hdl::footprint::normals_0081::FootprintNormals;
+    use hdl::kernel::Sim;
+    use tb::footprint_normals::{expectations, npixels, NPixel};
+    let p = BumpParams::default();
+    let map = tb::maps::builtin("noise", 32, 32, p.texel_fmt()).unwrap();
+    let mut stim = verif::seeded_stimulus("footprint fig7");
+    let mut px = npixels(&p, 32, 32, 400, &mut stim);
+    let ones: Vec<NPixel> = px.iter().map(|q| NPixel { log2_n: 0, ..*q }).collect();
+    px.extend(ones.iter().copied());
+    let want = expectations(&p, &map, &px).unwrap();
+    let pipe = NormalPipeline::new("fig7", p, map.clone(), None).unwrap();
+    let mut sim = Sim::new(FootprintNormals::new(pipe)).check_schedule(true);
+    sim.reset(2);
+    let (mut next, mut avgs, mut normals) = (0, Vec::new(), Vec::new());
+    for _ in 0..40 * px.len() {
+        let d = &mut sim.dut;
+        d.px_valid.set_bool(next < px.len());
+        if let Some(q) = px.get(next) {
+            d.px_u.set_raw(q.u);
+            d.px_v.set_raw(q.v);
+            d.px_du.set_raw(i64::from(q.du));
+            d.px_dv.set_raw(i64::from(q.dv));
+            d.px_log2_n.set_bits(u64::from(q.log2_n));
+            d.px_scale.set_raw(q.scale);
+        }
+        sim.eval();
+        let d = &sim.dut;
+        next += usize::from(d.px_valid.is_high() && d.px_ready.is_high());
+        let a = d.pipe.tangent_average().unwrap();
+        if a.last.is_high() && avgs.len() < next {
+            avgs.push([a.du.raw(), a.dv.raw(), a.height.raw()]);
+        }
+        if d.pipe.valid.is_high() {
+            normals.push([d.pipe.nx.raw(), d.pipe.ny.raw(), d.pipe.nz.raw()]);
+        }
+        sim.tick();
+        if normals.len() == px.len() {
+            break;
+        }
+    }
+    assert_eq!(normals.len(), px.len());
+    for (k, (got, (q, avg, _))) in avgs.iter().zip(&want).enumerate() {
+        assert_eq!(got, avg, "pixel {k}: {q:?}");
+    }
+    // N = 1: the plain pipeline's normals at the pixel centres, bit for bit.
+    let mut plain = Sim::new(NormalPipeline::new("plain", p, map, None).unwrap());
+    plain.reset(1);
+    let lat = plain.dut.latency();
+    for (k, q) in ones
+        .iter()
+        .enumerate()
+        .map(|(k, q)| (k + px.len() - ones.len(), q))
+    {
+        let d = &mut plain.dut;
+        d.u.set_raw(q.u);
+        d.v.set_raw(q.v);
+        d.scale.set_raw(q.scale);
+        d.valid_in.set_bool(true);
+        for _ in 0..lat {
+            plain.eval();
+            plain.tick();
+        }
+        plain.eval();
+        let d = &plain.dut;
+        assert_eq!(
+            normals[k],
+            [d.nx.raw(), d.ny.raw(), d.nz.raw()],
+            "pixel {k}"
+        );
+        plain.tick();
+    }
+}
+
+/// The FIG. 7 footprint testbench over its configurations, with the schedule check.
+#[test]
+fn the_fig7_footprint_testbench_passes() {
+    let opts = verif::RunOptions {
+        count: Some(150),
+        check_schedule: true,
+        ..Default::default()
+    };
+    let r = verif::run_testbench(
+        &tb::footprint_normals::FootprintNormalsTb,
+        &opts,
+        &mut |_| {},
+    )
+    .unwrap();
+    assert!(r.passed, "{:?}", r.failures);
+    assert_eq!(r.mismatches, 0);
+    assert!(r.coverage_percent > 99.0, "{}", r.coverage_percent);
+}

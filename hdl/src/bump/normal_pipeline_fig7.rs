@@ -35,6 +35,7 @@ use crate::bump::normal_156::Normal;
 use crate::bump::params::{BumpParams, Filter};
 use crate::bump::replicate_152::Replicate;
 use crate::bump::tangent_155::Tangent;
+use crate::bump::tangent_average_0081::TangentAverage;
 use crate::bump::texel_fetch_151::TexelFetch;
 use crate::fx::Format;
 use crate::kernel::{Delay, Module, Signal, Visitor};
@@ -197,6 +198,12 @@ pub struct NormalPipeline {
     pub normal: Normal,
     height_d: Delay,
     valid_d: Delay,
+    /// Footprint assembly (para. 0081): each sample's `first`, `last` and `log2_n` of its
+    /// pixel, carried 4 stages to the tangent unit's output, and the average before 156.
+    pub fa_first: Signal,
+    pub fa_last: Signal,
+    pub fa_log2_n: Signal,
+    average: Option<(Delay, TangentAverage)>,
 }
 
 impl NormalPipeline {
@@ -267,7 +274,34 @@ impl NormalPipeline {
                 latency,
                 &["valid_d"],
             ),
+            fa_first: Signal::bit("fa_first"),
+            fa_last: Signal::bit("fa_last"),
+            fa_log2_n: Signal::new("fa_log2_n", Format::uint(3)),
+            average: None,
         })
+    }
+
+    /// Para. 0081's tangent average, when the pipeline has one.
+    pub fn tangent_average(&self) -> Option<&TangentAverage> {
+        self.average.as_ref().map(|(_, a)| a)
+    }
+
+    /// The pipeline with para. 0081's tangent average between 155 and 156: the samples of a
+    /// pixel come in one a clock (`valid_in`, `fa_first`, `fa_last`, `fa_log2_n`), and one
+    /// normal a pixel comes out (`valid` with its last sample's).
+    pub fn with_tangent_average(mut self) -> NormalPipeline {
+        let tags = Delay::new(
+            "fa_carry",
+            &[
+                ("first", Format::uint(1)),
+                ("last", Format::uint(1)),
+                ("log2_n", Format::uint(3)),
+            ],
+            4,
+            &["first_d", "last_d", "log2_n_d"],
+        );
+        self.average = Some((tags, TangentAverage::new(&self.params)));
+        self
     }
 
     pub fn params(&self) -> &BumpParams {
@@ -319,13 +353,32 @@ impl Module for NormalPipeline {
         t.scale.follow(&self.side_d.o[0]);
         t.lod.follow(&self.side_d.o[1]);
         t.eval();
-        // Normal unit 156.
-        self.normal.du.follow(&self.tangent.du);
-        self.normal.dv.follow(&self.tangent.dv);
+        // Normal unit 156, through the tangent average when there is one.
+        let (du, dv, h) = match &mut self.average {
+            Some((tags, a)) => {
+                tags.i[0].follow(&self.fa_first);
+                tags.i[1].follow(&self.fa_last);
+                tags.i[2].follow(&self.fa_log2_n);
+                tags.eval();
+                a.first.follow(&tags.o[0]);
+                a.last.follow(&tags.o[1]);
+                a.log2_n.follow(&tags.o[2]);
+                a.du_in.follow(&self.tangent.du);
+                a.dv_in.follow(&self.tangent.dv);
+                a.h_in.follow(&self.tangent.height);
+                a.eval();
+                (&a.du, &a.dv, &a.height)
+            }
+            None => (&self.tangent.du, &self.tangent.dv, &self.tangent.height),
+        };
+        self.normal.du.follow(du);
+        self.normal.dv.follow(dv);
+        self.height_d.i[0].follow(h);
         self.normal.eval();
-        self.height_d.i[0].follow(&self.tangent.height);
         self.height_d.eval();
-        self.valid_d.i[0].follow(&self.valid_in);
+        // With the average, a normal is out for each pixel's last sample.
+        let last = self.average.is_none() || self.fa_last.is_high();
+        self.valid_d.i[0].set_bool(self.valid_in.is_high() && last);
         self.valid_d.eval();
         self.valid.follow(&self.valid_d.o[0]);
         self.nx.follow(&self.normal.nx);
@@ -343,6 +396,10 @@ impl Module for NormalPipeline {
         self.normal.tick(reset);
         self.height_d.tick(reset);
         self.valid_d.tick(reset);
+        if let Some((tags, a)) = &mut self.average {
+            tags.tick(reset);
+            a.tick(reset);
+        }
     }
     fn visit(&self, v: &mut dyn Visitor) {
         v.enter(&self.name, self.kind());
@@ -355,6 +412,11 @@ impl Module for NormalPipeline {
         self.blend_d.visit(v);
         self.side_d.visit(v);
         self.tangent.visit(v);
+        if let Some((tags, a)) = &self.average {
+            signals!(v; Input: self.fa_first, self.fa_last, self.fa_log2_n);
+            tags.visit(v);
+            a.visit(v);
+        }
         self.normal.visit(v);
         self.height_d.visit(v);
         self.valid_d.visit(v);

@@ -6,8 +6,11 @@
 //! * [`assembly_fig12`]: the chip-side sample generator (eq. 22) and accumulator in front of
 //!   the TEXRAM chip 802: N accesses a pixel, the exact sum of their trilinear sums, one
 //!   rounding of the mean, and the same at transaction level over any `TexramAccess`;
-//! * [`footprint_fig12`]: the two together in front of the chip.
+//! * [`footprint_fig12`]: the two together in front of the chip;
+//! * [`normals_0081`]: the generator in front of the FIG. 7 height-map pipeline, whose
+//!   tangents are averaged over the samples and normalised once (Fenney para. 0081).
 
 pub mod assembly_fig12;
 pub mod footprint_fig12;
+pub mod normals_0081;
 pub mod setup_fig12;
