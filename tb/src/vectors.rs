@@ -48,12 +48,13 @@ pub struct VectorFile {
 }
 
 /// Units with vectors.
-pub const UNITS: [&str; 5] = [
+pub const UNITS: [&str; 6] = [
     crate::blend_adjust::NAME,
     crate::normals::NAME,
     crate::mipmap::NAME,
     crate::texture::NAME,
     crate::texram::NAME,
+    crate::footprint::NAME,
 ];
 
 fn f(name: &str, width: u32) -> Field {
@@ -79,6 +80,7 @@ pub fn unit_vectors(unit: &str) -> Result<UnitVectors, String> {
         crate::mipmap::NAME => mipmap(),
         crate::texture::NAME => texture(),
         crate::texram::NAME => texram(),
+        crate::footprint::NAME => footprint(),
         _ => Err(format!(
             "unknown unit '{unit}' (one of {})",
             UNITS.join(", ")
@@ -300,6 +302,74 @@ fn texram() -> Result<UnitVectors, String> {
         description: "TEXRAM chip 802, 32x32 map from an integer formula: wrap, clamp, mirror, border:200 (luminance) and mirror in index mode; 256 hashed requests each".into(),
         inputs: vec![f("config", 3), f("u", 21), f("v", 21), f("lambda", 14)],
         outputs: vec![f("rgba", 32)],
+        rows,
+    })
+}
+
+/// Footprint assembly's vectors: 256 hashed pixels (centre over a 32x32 map and a texel
+/// beyond, derivatives up to 16 texels, any direction) through the setup unit and the
+/// generator and accumulator on the TEXRAM chip (the `texram` vectors' map, wrap and mirror)
+/// and on the texture unit 602 (the `texture` vectors' CCC texture): (config, u, v, r1, r2) ->
+/// N, R, G, B.
+fn footprint() -> Result<UnitVectors, String> {
+    use crate::footprint::{run_footprint, run_footprint_texture, FootprintRun, Pixel};
+    use hdl::footprint::setup_fig12::SetupParams;
+    use hdl::texram::{Border, Drf};
+    let level0: Vec<u8> = (0..32 * 32u32)
+        .map(|k| ((k * 29 + (k >> 5) * 7) % 256) as u8)
+        .collect();
+    let px: Vec<Pixel> = (0..256u32)
+        .map(|k| {
+            let h = k.wrapping_mul(0x9e37_79b9) ^ k.wrapping_mul(0x85eb_ca6b) >> 7;
+            let g = h.wrapping_mul(0x2545_f491);
+            let d = |x: u32| (x % (32 << 8)) as i32 - (16 << 8);
+            Pixel {
+                u: (h % (34 << 8)) as i32 - 256,
+                v: ((h >> 9) % (34 << 8)) as i32 - 256,
+                r1: (d(g), d(g >> 7)),
+                r2: (d(g >> 13) / 8, d(g >> 19) / 8),
+            }
+        })
+        .collect();
+    let p = SetupParams::default();
+    let tex = vector_texture();
+    let tp = hdl::texmem::texture_unit_602::TexParams::new(tex.width, tex.height);
+    let runs: [FootprintRun; 3] = [
+        run_footprint(Drf::new(5, 5, Border::Wrap), &level0, p, &px, None)?,
+        run_footprint(Drf::new(5, 5, Border::Mirror), &level0, p, &px, None)?,
+        run_footprint_texture(&tex, tp, p, &px, None)?,
+    ];
+    let mut rows = Vec::new();
+    for (code, run) in runs.iter().enumerate() {
+        for (q, (a, _)) in px.iter().zip(&run.results) {
+            let raw = |x: i32, w: u32| mask(i64::from(x), w);
+            rows.push((
+                vec![
+                    code as u64,
+                    raw(q.u, 21),
+                    raw(q.v, 21),
+                    raw(q.r1.0, 20),
+                    raw(q.r1.1, 20),
+                    raw(q.r2.0, 20),
+                    raw(q.r2.1, 20),
+                ],
+                vec![u64::from(a.n), u64::from(a.rgb)],
+            ));
+        }
+    }
+    Ok(UnitVectors {
+        unit: crate::footprint::NAME.into(),
+        description: "footprint assembly: setup, generator and accumulator on the TEXRAM chip (32x32 formula map, wrap and mirror) and on texture unit 602 (the texture vectors' CCC texture); 256 hashed pixels each".into(),
+        inputs: vec![
+            f("config", 2),
+            f("u", 21),
+            f("v", 21),
+            f("r1u", 20),
+            f("r1v", 20),
+            f("r2u", 20),
+            f("r2v", 20),
+        ],
+        outputs: vec![f("n", 7), f("rgb", 24)],
         rows,
     })
 }
