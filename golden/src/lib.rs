@@ -9,3 +9,4 @@ pub mod mipmap;
 pub mod rsqrt;
 pub mod texram;
 pub mod texture;
+pub mod volume;

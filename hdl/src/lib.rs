@@ -51,3 +51,5 @@ pub mod mipmap;
 pub mod texmem;
 /// Figure 8 of Schilling & Knittel: the TEXRAM chip, its interface and behavioural stub.
 pub mod texram;
+/// Section 13 and Figure 15 of Schilling & Knittel: the TEXRAM as a ray caster.
+pub mod volume;

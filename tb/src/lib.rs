@@ -16,3 +16,4 @@ pub mod texram;
 pub mod texram_video;
 pub mod texture;
 pub mod vectors;
+pub mod volume;

@@ -1,0 +1,493 @@
+//! Volume rendering on the TEXRAM (section 13): the integer reference of a resample point
+//! (plain loops over the volume array, its own reflection and weights), the regress
+//! testbench of the ray caster, the document's timings from the page-register model, and a
+//! rendered picture of a built-in volume on four chips in lock-step (RGBA, composited by the
+//! golden model, as the document leaves compositing to the host).
+
+use hdl::kernel::{Sim, Trace};
+use hdl::volume::layout::{locate, Mode, Order, VolumeParams, POS_FRAC};
+use hdl::volume::ray_caster_fig15::RayCaster;
+use proptest::prelude::*;
+use verif::{
+    run, Coverage, Coverpoint, Ctx, Driver, Event, Monitor, Pacing, RunSpec, Scoreboard, Stimulus,
+    TbResult, Testbench,
+};
+
+pub const NAME: &str = "ray_caster_fig15";
+/// The chip's clock (5 ns).
+pub const CYCLE_PS: u64 = 5_000;
+
+/// One ray: start and step (raw sQ9.12), samples.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct Ray {
+    pub p: [i32; 3],
+    pub d: [i32; 3],
+    pub steps: u16,
+}
+
+/// One sample out.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct VolSample {
+    pub ray: u32,
+    pub k: u16,
+    pub p: [i64; 3],
+    pub value: u8,
+    pub g: [i64; 3],
+}
+
+/// The reference's voxel: reflected into the volume by walking back and forth.
+fn ref_voxel(vox: &[u8], (nx, ny, nz): (u32, u32, u32), x: i64, y: i64, z: i64) -> i64 {
+    let walk = |mut i: i64, n: u32| -> usize {
+        let n = i64::from(n);
+        if n == 1 {
+            return 0;
+        }
+        loop {
+            if i < 0 {
+                i = -i;
+            } else if i >= n {
+                i = 2 * (n - 1) - i;
+            } else {
+                return i as usize;
+            }
+        }
+    };
+    let (x, y, z) = (walk(x, nx), walk(y, ny), walk(z, nz));
+    i64::from(vox[(z * ny as usize + y) * nx as usize + x])
+}
+
+/// The integer reference of the point `p` (raw sQ.12): the value (u8) and, in gradient
+/// mode, the gradient (raw sQ9.4), each one rounding of the exact weighted sum.
+pub fn ref_sample(vox: &[u8], dims: (u32, u32, u32), p: [i64; 3], mode: Mode) -> (u8, [i64; 3]) {
+    let one = 1i64 << POS_FRAC;
+    let ijk = p.map(|c| c.div_euclid(one));
+    let w8 = p.map(|c| c.rem_euclid(one) / 16);
+    let f = |d: [i64; 3]| ref_voxel(vox, dims, ijk[0] + d[0], ijk[1] + d[1], ijk[2] + d[2]);
+    let (mut s, mut g) = (0i64, [0i64; 3]);
+    for dz in 0..2 {
+        for dy in 0..2 {
+            for dx in 0..2 {
+                let d = [dx, dy, dz];
+                let w: i64 = (0..3)
+                    .map(|c| if d[c] == 1 { w8[c] } else { 256 - w8[c] })
+                    .product();
+                s += w * f(d);
+                for (c, gc) in g.iter_mut().enumerate() {
+                    let (mut up, mut down) = (d, d);
+                    up[c] += 1;
+                    down[c] -= 1;
+                    *gc += w * (f(up) - f(down));
+                }
+            }
+        }
+    }
+    let grad = match mode {
+        Mode::Value => [0; 3],
+        Mode::Gradient => g.map(|x| (x + (1 << 19)).div_euclid(1 << 20)),
+    };
+    (((s + (1 << 23)) / (1 << 24)) as u8, grad)
+}
+
+/// The reference's points of a ray, in order.
+pub fn ray_points(r: &Ray) -> impl Iterator<Item = [i64; 3]> + '_ {
+    (0..i64::from(r.steps))
+        .map(move |k| std::array::from_fn(|c| i64::from(r.p[c]) + k * i64::from(r.d[c])))
+}
+
+/// Accesses, slots and faulting banks of `points` (each with its sample index along its
+/// ray) from the page-register model (own loop: one slot an access, two when a bank it reads
+/// has another row open; the accesses in the order the sequencer alternates).
+pub fn count_slots(
+    p: &VolumeParams,
+    mode: Mode,
+    points: impl Iterator<Item = ([i64; 3], u64)>,
+) -> (u64, u64, u64) {
+    use hdl::volume::layout::access_voxels;
+    let mut open = [u32::MAX; 4];
+    let (mut accesses, mut slots, mut misses) = (0, 0, 0);
+    for (pt, k) in points {
+        let ijk = (pt[0] >> POS_FRAC, pt[1] >> POS_FRAC, pt[2] >> POS_FRAC);
+        let order: &[usize] = match (mode, k % 2) {
+            (Mode::Value, _) => &[0, 1],
+            (Mode::Gradient, 0) => &[0, 1, 6, 7, 2, 3, 4, 5],
+            (Mode::Gradient, _) => &[4, 5, 2, 3, 6, 7, 0, 1],
+        };
+        for &a in order {
+            let mut missed = 0;
+            for (x, y, z) in access_voxels(p, a, ijk) {
+                let (b, w) = locate(p, x, y, z);
+                let row = w / p.row_words;
+                if open[b] != row {
+                    open[b] = row;
+                    missed += 1;
+                }
+            }
+            accesses += 1;
+            slots += 1 + u64::from(missed > 0);
+            misses += missed;
+        }
+    }
+    (accesses, slots, misses)
+}
+
+pub struct RayDriver;
+
+impl Driver<RayCaster> for RayDriver {
+    type Txn = Ray;
+    fn drive(&mut self, dut: &mut RayCaster, t: Option<&Ray>) {
+        dut.ray_valid.set_bool(t.is_some());
+        if let Some(t) = t {
+            for c in 0..3 {
+                dut.ray_p[c].set_raw(i64::from(t.p[c]));
+                dut.ray_d[c].set_raw(i64::from(t.d[c]));
+            }
+            dut.ray_steps.set_bits(u64::from(t.steps));
+        }
+    }
+    fn accepted(&self, dut: &RayCaster) -> bool {
+        dut.ray_ready.is_high()
+    }
+}
+
+pub struct SampleMonitor;
+
+impl Monitor<RayCaster> for SampleMonitor {
+    type Txn = VolSample;
+    fn sample(&mut self, dut: &RayCaster) -> Option<VolSample> {
+        dut.out_valid.q().is_high().then(|| VolSample {
+            ray: dut.out_ray.q().bits() as u32,
+            k: dut.out_k.q().bits() as u16,
+            p: dut.out_p.each_ref().map(|r| r.q().raw()),
+            value: dut.out_value.q().bits() as u8,
+            g: dut.out_g.each_ref().map(|r| r.q().raw()),
+        })
+    }
+}
+
+/// A test volume with structure at every scale: a sphere's distance, a slab, seeded noise.
+pub fn test_volume((nx, ny, nz): (u32, u32, u32), stim: &mut Stimulus) -> Vec<u8> {
+    let noise = stim.draw_n(&(0u8..40), (nx * ny * nz) as usize);
+    (0..nx * ny * nz)
+        .map(|n| {
+            let (x, y, z) = (n % nx, n / nx % ny, n / (nx * ny));
+            let d = |a: u32, m: u32| (2 * a as i64 - m as i64).abs();
+            let sphere = (d(x, nx) + d(y, ny) + d(z, nz)) as u32 * 3;
+            let slab = if (x + 2 * z) % 7 < 2 { 90 } else { 0 };
+            (sphere + slab + u32::from(noise[n as usize])).min(255) as u8
+        })
+        .collect()
+}
+
+/// Random rays through and beside the volume: steps up to 1.5 voxels in any direction,
+/// 1 to 40 samples.
+pub fn rays((nx, ny, nz): (u32, u32, u32), n: usize, stim: &mut Stimulus) -> Vec<Ray> {
+    let one = 1i32 << POS_FRAC;
+    let lim = |m: u32| -one..(m as i32 + 1) * one;
+    let d = -3 * one / 2..3 * one / 2;
+    let s = (
+        (lim(nx), lim(ny), lim(nz)),
+        (d.clone(), d.clone(), d),
+        1u16..=40,
+    )
+        .prop_map(|((x, y, z), (dx, dy, dz), steps)| Ray {
+            p: [x, y, z],
+            d: [dx, dy, dz],
+            steps,
+        });
+    stim.draw_n(&s, n)
+}
+
+/// Voxels along x, y, z.
+type Dims = (u32, u32, u32);
+
+/// The configurations: dimensions, word order, row size, mode.
+const CONFIGS: [(Dims, Order, u32, Mode); 5] = [
+    ((8, 6, 5), Order::ColumnMajor, 64, Mode::Value),
+    ((8, 6, 5), Order::SliceMajor, 16, Mode::Gradient),
+    ((16, 16, 16), Order::ColumnMajor, 512, Mode::Gradient),
+    ((32, 16, 8), Order::SliceMajor, 256, Mode::Value),
+    ((2, 2, 1), Order::ColumnMajor, 16, Mode::Gradient),
+];
+
+fn coverage_model() -> Coverage {
+    let mut c = Coverage::new();
+    let m = c.add(
+        Coverpoint::new("mode")
+            .value("value", 0)
+            .value("gradient", 1),
+    );
+    c.add(
+        Coverpoint::new("order")
+            .value("slice_major", 0)
+            .value("column_major", 1),
+    );
+    let e = c.add(
+        Coverpoint::new("position")
+            .value("interior", 0)
+            .value("at_a_face", 1)
+            .value("outside", 2),
+    );
+    c.add(Coverpoint::new("page").value("hits", 0).value("a_fault", 1));
+    c.cross("mode_x_position", m, e);
+    c
+}
+
+/// Where a point's 2x2x2 lies: inside with its neighbours, touching a face, outside.
+fn position_class(p: [i64; 3], (nx, ny, nz): (u32, u32, u32)) -> i64 {
+    let ijk = p.map(|c| c >> POS_FRAC);
+    let dims = [nx, ny, nz].map(i64::from);
+    if (0..3).any(|c| ijk[c] < 0 || ijk[c] >= dims[c]) {
+        2
+    } else if (0..3).any(|c| ijk[c] < 1 || ijk[c] + 2 >= dims[c]) {
+        1
+    } else {
+        0
+    }
+}
+
+/// The regress testbench of the ray caster.
+pub struct VolumeTb;
+
+/// What a sample should give: the point, the reference's value and gradient, golden's value.
+type VolExpected = ([i64; 3], (u8, [i64; 3]), f64);
+
+impl Testbench for VolumeTb {
+    fn name(&self) -> &'static str {
+        NAME
+    }
+    fn unit(&self) -> &'static str {
+        "TEXRAM ray caster (Schilling & Knittel section 13, Figure 15): stepper, value and gradient accesses, page registers 824, trilinear 818"
+    }
+    fn configurations(&self) -> Vec<String> {
+        CONFIGS
+            .iter()
+            .map(|((x, y, z), o, r, m)| format!("{x}x{y}x{z} {o:?}, rows of {r}, {m:?} mode"))
+            .collect()
+    }
+    fn default_count(&self) -> usize {
+        300
+    }
+    fn count_unit(&self) -> &'static str {
+        "random rays"
+    }
+    fn coverage(&self) -> Coverage {
+        coverage_model()
+    }
+    fn run(&self, ctx: &Ctx) -> Result<TbResult, String> {
+        let (dims, order, row_words, mode) = CONFIGS[ctx.index];
+        let p = VolumeParams {
+            order,
+            row_words,
+            ..VolumeParams::new(dims.0, dims.1, dims.2)
+        };
+        let mut stim = Stimulus::new(ctx.seed);
+        let vox = test_volume(dims, &mut stim);
+        let dut = RayCaster::new(p, mode, &vox)?;
+        let tracer = ctx.tracer(&format!("{NAME} {}", ctx.label), CYCLE_PS)?;
+        let sim = Sim::maybe_traced(dut, tracer).map_err(|e| e.to_string())?;
+        let rs = rays(dims, ctx.count, &mut stim);
+        let (sim, mut res) = run_rays(sim, ctx, (&p, mode, &vox), rs)?;
+        if let Some(w) = &ctx.waves {
+            sim.finish()
+                .map_err(|e| format!("{}: {e}", w.vcd.display()))?;
+            res.vcd = Some(w.vcd.clone());
+        }
+        Ok(res)
+    }
+}
+
+/// Drives the rays; every sample against the reference (bit-exact) and golden (value within
+/// 0.5 LSB at the weight-quantised point); slots against the page-register model.
+fn run_rays<T: Trace>(
+    sim: Sim<RayCaster, T>,
+    ctx: &Ctx,
+    (p, mode, vox): (&VolumeParams, Mode, &[u8]),
+    rs: Vec<Ray>,
+) -> Result<(Sim<RayCaster, T>, TbResult), String> {
+    let mut res = TbResult::new(NAME, "");
+    let mut cov = coverage_model();
+    let mut sim = sim.check_schedule(ctx.check_schedule);
+    sim.reset(2);
+    let dims = p.dims;
+    let expected: Vec<VolExpected> = rs
+        .iter()
+        .flat_map(|r| ray_points(r).collect::<Vec<_>>())
+        .map(|pt| {
+            let q = pt.map(|c| (c >> 4 << 4) as f64 / 4096.0);
+            let g = golden::volume::Volume {
+                dims: (dims.0 as usize, dims.1 as usize, dims.2 as usize),
+                voxels: vox,
+            };
+            (
+                pt,
+                ref_sample(vox, dims, pt, mode),
+                g.value((q[0], q[1], q[2])),
+            )
+        })
+        .collect();
+    let n = expected.len() as u64;
+    let ks = rs.iter().flat_map(|r| 0..u64::from(r.steps));
+    let (_, want_slots, _) = count_slots(p, mode, expected.iter().map(|e| e.0).zip(ks));
+    let mut sb: Scoreboard<VolExpected, VolSample> =
+        Scoreboard::new(|(pt, (v, g), _): &VolExpected, a: &VolSample| {
+            if (a.p, a.value, a.g) == (*pt, *v, *g) {
+                Ok(())
+            } else {
+                Err(format!("got {a:?}, want {pt:?} {v} {g:?}"))
+            }
+        });
+    for e in expected {
+        sb.expect(e);
+    }
+    let per_ray = 16 * mode.accesses() as u64 * 41;
+    let pacing = Pacing::random(300, ctx.seed.derive(11));
+    let mut spec = RunSpec::new(n, per_ray * rs.len() as u64 + 100).pacing(pacing);
+    let (oc, mi) = (
+        i64::from(p.order == Order::ColumnMajor),
+        i64::from(mode == Mode::Gradient),
+    );
+    let mut last_slots = 0;
+    let r = run(
+        &mut sim,
+        &mut RayDriver,
+        &mut SampleMonitor,
+        rs,
+        &mut spec,
+        |s, ev| {
+            if let Event::Received { cycle, txn } = ev {
+                if let Some((pt, _, want)) = sb.observe(cycle, txn).expected {
+                    res.stats.record(f64::from(txn.value), want, 1.0);
+                    let slots = s.dut.slots.q().bits();
+                    let fault = i64::from(slots - last_slots > mode.accesses() as u64);
+                    last_slots = slots;
+                    cov.sample(&[mi, 1 - oc, position_class(pt, dims), fault]);
+                }
+            }
+        },
+    );
+    res.transactions += n;
+    res.mismatches += sb.mismatch_count();
+    for m in sb.mismatches().iter().take(10) {
+        res.mismatch_log
+            .push(format!("{} (cycle {:?}): {}", m.index, m.cycle, m.detail));
+    }
+    match r {
+        Ok(st) => res.cycles += st.cycles,
+        Err(t) => res.failures.push(t.to_string()),
+    }
+    let slots = sim.dut.slots.q().bits();
+    if slots != want_slots {
+        res.failures.push(format!(
+            "{slots} slots, the page-register model counts {want_slots}"
+        ));
+    }
+    if res.stats.max_abs_lsb > 0.5 + 1e-9 {
+        res.failures.push(format!(
+            "value {:.4} LSB from golden, bound 0.5",
+            res.stats.max_abs_lsb
+        ));
+    }
+    res.notes.push(format!(
+        "{}: {n} samples, {} accesses in {slots} slots",
+        ctx.label,
+        sim.dut.accesses.q().bits()
+    ));
+    res.coverage = Some(cov);
+    Ok((sim, res))
+}
+
+// ---------------------------------------------------------------------------------------
+// The document's timings from the page-register model (section 13, timing of section 5).
+
+/// A ray direction for the timing runs: rays along this axis, one resample per voxel.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Axis {
+    X,
+    Y,
+    Z,
+}
+
+/// One timing: what, samples, accesses, slots, milliseconds, the document's.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Timing {
+    pub what: &'static str,
+    pub samples: u64,
+    pub accesses: u64,
+    pub slots: u64,
+    pub ms: f64,
+    pub document_ms: f64,
+}
+
+/// One resample per voxel of `(x0..x1) x Y x Z` at the voxel centres shifted by half a voxel
+/// (so every point interpolates), rays along `axis`, the rays in order of the other two axes;
+/// each point with its index along its ray.
+fn voxel_walk(
+    (x0, x1): (u32, u32),
+    (ny, nz): (u32, u32),
+    axis: Axis,
+) -> impl Iterator<Item = ([i64; 3], u64)> {
+    let half = 1i64 << (POS_FRAC - 1);
+    let at = move |x: u32, y: u32, z: u32| [x, y, z].map(|c| (i64::from(c) << POS_FRAC) + half);
+    let (a, b, c) = match axis {
+        Axis::X => (x1 - x0, ny, nz),
+        Axis::Y => (ny, x1 - x0, nz),
+        Axis::Z => (nz, x1 - x0, ny),
+    };
+    (0..c).flat_map(move |k| {
+        (0..b).flat_map(move |j| {
+            (0..a).map(move |i| {
+                let p = match axis {
+                    Axis::X => at(x0 + i, j, k),
+                    Axis::Y => at(x0 + j, i, k),
+                    Axis::Z => at(x0 + j, k, i),
+                };
+                (p, u64::from(i))
+            })
+        })
+    })
+}
+
+/// Section 13's two timings with the voxel store in `order`, rows of `row_words`, rays along
+/// `axis`: RGBA 64x128x128 pre-classified on four chips in lock-step (each chip one
+/// component, the same addresses, so one chip's time), one resample per voxel in value mode
+/// (document: about 70 ms); the original 256x128x128 with gradients, four chips in parallel,
+/// each holding a slab of 64 + 2 overlap voxels along x (the central differences at the slab
+/// faces need the neighbour's voxels) and resampling its 64 (document: about 0.28 s).
+pub fn timings(order: Order, row_words: u32, axis: Axis) -> Result<[Timing; 2], String> {
+    let p = |x| VolumeParams {
+        order,
+        row_words,
+        ..VolumeParams::new(x, 128, 128)
+    };
+    let rgba = p(64);
+    rgba.validate()?;
+    let slab = p(66);
+    slab.validate()?;
+    let figure = |what, v: &VolumeParams, mode, walk: (u32, u32), document_ms| {
+        let (accesses, slots, _) = count_slots(v, mode, voxel_walk(walk, (128, 128), axis));
+        Timing {
+            what,
+            samples: u64::from(walk.1 - walk.0) * 128 * 128,
+            accesses,
+            slots,
+            ms: slots as f64 * 30e-6,
+            document_ms,
+        }
+    };
+    Ok([
+        figure(
+            "RGBA 64x128x128, 4 chips in lock-step, value mode",
+            &rgba,
+            Mode::Value,
+            (0, 64),
+            70.0,
+        ),
+        figure(
+            "256x128x128 with gradients, 4 chips in parallel (slabs of 64 + 2)",
+            &slab,
+            Mode::Gradient,
+            (1, 65),
+            280.0,
+        ),
+    ])
+}
