@@ -44,6 +44,7 @@ enum Cmd {
     Texread(cmd::texread::TexreadArgs),
     Texram(cmd::texram::TexramArgs),
     Footprint(cmd::footprint::FootprintArgs),
+    Volume(cmd::volume::VolumeArgs),
     /// Co-simulate a unit's model and Verilog (its twin in rtl/, or --rtl FILE.v of yours):
     /// every output port compared on every cycle.
     Cosim(cmd::cosim::CosimArgs),
@@ -94,6 +95,7 @@ fn main() -> ExitCode {
         Some(Cmd::Texread(a)) => cmd::texread::run(&a),
         Some(Cmd::Texram(a)) => cmd::texram::run(&a),
         Some(Cmd::Footprint(a)) => cmd::footprint::run(&a),
+        Some(Cmd::Volume(a)) => cmd::volume::run(&a),
         Some(Cmd::Cosim(a)) => cmd::cosim::run(&a),
         Some(Cmd::Merge(a)) => cmd::merge::run(&a),
         Some(Cmd::Vectors(a)) => cmd::vectors::run(&a),

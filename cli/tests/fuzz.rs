@@ -50,6 +50,29 @@ fn ppm() -> Vec<u8> {
 fn texram_fronts() -> Vec<Front> {
     vec![
         Front {
+            name: "volume",
+            args: &[
+                "volume",
+                "--volume",
+                "{v.raw}",
+                "--dims",
+                "4,2,3",
+                "--rays",
+                "{r.csv}",
+                "--out",
+                "{out}.csv",
+                "--stats",
+                "{out}.json",
+            ],
+            files: vec![
+                ("v.raw", (0..24u8).map(|k| k.wrapping_mul(37)).collect()),
+                (
+                    "r.csv",
+                    b"x0,y0,z0,dx,dy,dz,steps\n1,0.5,1,0.25,0,0.5,3\n".to_vec(),
+                ),
+            ],
+        },
+        Front {
             name: "texram",
             args: &[
                 "texram",

@@ -48,13 +48,14 @@ pub struct VectorFile {
 }
 
 /// Units with vectors.
-pub const UNITS: [&str; 6] = [
+pub const UNITS: [&str; 7] = [
     crate::blend_adjust::NAME,
     crate::normals::NAME,
     crate::mipmap::NAME,
     crate::texture::NAME,
     crate::texram::NAME,
     crate::footprint::NAME,
+    crate::volume::NAME,
 ];
 
 fn f(name: &str, width: u32) -> Field {
@@ -81,6 +82,7 @@ pub fn unit_vectors(unit: &str) -> Result<UnitVectors, String> {
         crate::texture::NAME => texture(),
         crate::texram::NAME => texram(),
         crate::footprint::NAME => footprint(),
+        crate::volume::NAME => volume(),
         _ => Err(format!(
             "unknown unit '{unit}' (one of {})",
             UNITS.join(", ")
@@ -370,6 +372,76 @@ fn footprint() -> Result<UnitVectors, String> {
             f("r2v", 20),
         ],
         outputs: vec![f("n", 7), f("rgb", 24)],
+        rows,
+    })
+}
+
+/// The ray caster's vectors: a 16x8x6 volume from an integer formula (column-major words,
+/// 64-word rows), 64 hashed rays of up to 8 samples anywhere in and around it, in value and in
+/// gradient mode: (mode, x0, y0, z0, dx, dy, dz, steps) -> per sample value, gx, gy, gz.
+fn volume() -> Result<UnitVectors, String> {
+    use crate::volume::{run_volume, Ray};
+    use hdl::volume::layout::{Mode, VolumeParams};
+    let p = VolumeParams {
+        row_words: 64,
+        ..VolumeParams::new(16, 8, 6)
+    };
+    let vox: Vec<u8> = (0..16 * 8 * 6u32)
+        .map(|k| ((k * 53 + (k >> 4) * 11 + (k >> 7) * 29) % 256) as u8)
+        .collect();
+    let rays: Vec<Ray> = (0..64u32)
+        .map(|k| {
+            let h = k.wrapping_mul(0x9e37_79b9) ^ k.wrapping_mul(0x85eb_ca6b) >> 7;
+            let g = h.wrapping_mul(0x2545_f491);
+            let pos = |x: u32, n: i32| (x % ((n as u32 + 2) << 12)) as i32 - 4096;
+            let step = |x: u32| (x % 8192) as i32 - 4096;
+            Ray {
+                p: [pos(h, 16), pos(h >> 5, 8), pos(h >> 11, 6)],
+                d: [step(g), step(g >> 9), step(g >> 17)],
+                steps: (1 + (h >> 27) % 8) as u16,
+            }
+        })
+        .collect();
+    let mut rows = Vec::new();
+    for (code, mode) in [Mode::Value, Mode::Gradient].into_iter().enumerate() {
+        let run = run_volume(p, mode, &vox, &rays, None)?;
+        for s in &run.samples {
+            let r = &rays[s.ray as usize - 1];
+            let raw = |x: i32| mask(i64::from(x), 22);
+            rows.push((
+                vec![
+                    code as u64,
+                    raw(r.p[0]),
+                    raw(r.p[1]),
+                    raw(r.p[2]),
+                    raw(r.d[0]),
+                    raw(r.d[1]),
+                    raw(r.d[2]),
+                    u64::from(s.k),
+                ],
+                vec![
+                    u64::from(s.value),
+                    mask(s.g[0], 14),
+                    mask(s.g[1], 14),
+                    mask(s.g[2], 14),
+                ],
+            ));
+        }
+    }
+    Ok(UnitVectors {
+        unit: crate::volume::NAME.into(),
+        description: "ray caster (section 13): 16x8x6 formula volume, column-major words, 64-word rows; 64 hashed rays in value and gradient mode, one row per sample".into(),
+        inputs: vec![
+            f("mode", 1),
+            f("x0", 22),
+            f("y0", 22),
+            f("z0", 22),
+            f("dx", 22),
+            f("dy", 22),
+            f("dz", 22),
+            f("k", 16),
+        ],
+        outputs: vec![f("value", 8), f("gx", 14), f("gy", 14), f("gz", 14)],
         rows,
     })
 }

@@ -273,6 +273,33 @@ impl Testbench for VolumeTb {
     fn coverage(&self) -> Coverage {
         coverage_model()
     }
+    fn conclude(&self, merged: &mut TbResult) {
+        let mut table = String::from(
+            "| section 13 timing (column-major words, 512-word rows, rays along x) | samples | accesses | slots | ms | document ms |\n|---|---|---|---|---|---|\n",
+        );
+        match timings(Order::ColumnMajor, 512, Axis::X) {
+            Ok(rows) => {
+                for t in rows {
+                    table.push_str(&format!(
+                        "| {} | {} | {} | {} | {:.1} | {:.0} |\n",
+                        t.what, t.samples, t.accesses, t.slots, t.ms, t.document_ms
+                    ));
+                    merged.notes.push(format!(
+                        "{}: {:.1} ms (document about {:.0} ms)",
+                        t.what, t.ms, t.document_ms
+                    ));
+                    if (t.ms / t.document_ms - 1.0).abs() >= 0.15 {
+                        merged.failures.push(format!(
+                            "{}: {:.1} ms, not within 15 % of the document's {:.0}",
+                            t.what, t.ms, t.document_ms
+                        ));
+                    }
+                }
+            }
+            Err(e) => merged.failures.push(e),
+        }
+        merged.tables.push(table);
+    }
     fn run(&self, ctx: &Ctx) -> Result<TbResult, String> {
         let (dims, order, row_words, mode) = CONFIGS[ctx.index];
         let p = VolumeParams {
@@ -490,4 +517,197 @@ pub fn timings(order: Order, row_words: u32, axis: Axis) -> Result<[Timing; 2], 
             280.0,
         ),
     ])
+}
+
+// ---------------------------------------------------------------------------------------
+// A rendered picture: a classified built-in volume on four chips in lock-step.
+
+/// A built-in volume: two nested shells and a bar, values 0..=255.
+pub fn builtin_volume(n: u32) -> Vec<u8> {
+    let c = f64::from(n) / 2.0;
+    (0..n * n * n)
+        .map(|k| {
+            let (x, y, z) = (k % n, k / n % n, k / (n * n));
+            let d = [x, y, z].map(|a| f64::from(a) + 0.5 - c);
+            let r = (d[0] * d[0] + d[1] * d[1] + d[2] * d[2]).sqrt() / c;
+            let shell = |r0: f64, w: f64| (1.0 - ((r - r0) / w).abs()).max(0.0);
+            let bar = if d[0].abs() < c / 6.0 && d[1].abs() < c / 6.0 {
+                0.6
+            } else {
+                0.0
+            };
+            let v = (shell(0.85, 0.12) + 0.8 * shell(0.45, 0.15)).max(bar);
+            (255.0 * v.min(1.0)).round() as u8
+        })
+        .collect()
+}
+
+/// The host's classification (a transfer function): a value's R, G, B, alpha planes.
+pub fn classify(v: &[u8]) -> [Vec<u8>; 4] {
+    let f = |t: fn(u8) -> u8| v.iter().map(|&x| t(x)).collect::<Vec<u8>>();
+    [
+        f(|x| x),
+        f(|x| (255 - x) / 2 + 64),
+        f(|x| if x > 150 { 40 } else { 200 }),
+        f(|x| (u32::from(x.saturating_sub(40)) * 60 / 215) as u8),
+    ]
+}
+
+/// The picture: `side x side` rays through the built-in volume (`n^3`, classified) on four
+/// chips in lock-step, each sample checked against the reference of its plane, composited
+/// front to back by the golden compositor. Returns the RGB pixels and the samples.
+pub fn render(n: u32, side: u32) -> Result<(Vec<[u8; 3]>, u64), String> {
+    use hdl::volume::lockstep::VolumeLockstep;
+    let planes = classify(&builtin_volume(n));
+    let p = VolumeParams::new(n, n, n);
+    let mut sim = Sim::new(VolumeLockstep::new(p, &planes)?);
+    sim.reset(2);
+    let one = 1i64 << POS_FRAC;
+    let steps = 2 * n as u16;
+    let ray = |px: u32, py: u32| -> [i64; 6] {
+        // Slightly oblique rays that stay inside the volume from front to back.
+        let s = |a: u32| (i64::from(a) * (i64::from(n) - 3) * one) / i64::from(side);
+        [s(px), s(py), -one, one / 32, one / 64, one / 2]
+    };
+    let (mut next, mut samples, mut pixels) = (0u32, Vec::new(), Vec::new());
+    let total = side * side;
+    let mut guard = 0u64;
+    while pixels.len() < total as usize {
+        guard += 1;
+        if guard > u64::from(total) * u64::from(steps) * 20 {
+            return Err("the lock-step chips stalled".into());
+        }
+        let d = &mut sim.dut;
+        d.ray_valid.set_bool(next < total);
+        let r = ray(next % side, next / side);
+        for c in 0..3 {
+            d.ray_p[c].set_raw(r[c]);
+            d.ray_d[c].set_raw(r[3 + c]);
+        }
+        d.ray_steps.set_bits(u64::from(steps));
+        sim.eval();
+        let d = &sim.dut;
+        next += u32::from(d.ray_valid.is_high() && d.ray_ready.is_high());
+        if d.out_valid.is_high() {
+            let c = &d.chips[0];
+            let pt = c.out_p.each_ref().map(|r| r.q().raw());
+            let rgba = (d.out_rgba.bits() as u32).to_be_bytes();
+            for (plane, got) in planes.iter().zip(rgba) {
+                let (want, _) = ref_sample(plane, p.dims, pt, Mode::Value);
+                if want != got {
+                    return Err(format!("sample at {pt:?}: chip {got}, reference {want}"));
+                }
+            }
+            samples.push(rgba.map(|x| f64::from(x) / 255.0));
+            if samples.len() == usize::from(steps) {
+                let c = golden::volume::composite(&samples);
+                pixels.push([0, 1, 2].map(|k| (255.0 * c[k]).round().min(255.0) as u8));
+                samples.clear();
+            }
+        }
+        sim.tick();
+    }
+    if sim.dut.out_of_step.q().is_high() {
+        return Err("the four chips fell out of step".into());
+    }
+    Ok((pixels, u64::from(total) * u64::from(steps)))
+}
+
+// ---------------------------------------------------------------------------------------
+// `texrtl volume`: rays through the cycle-accurate ray caster.
+
+/// What a run cost.
+#[derive(Clone, Debug, PartialEq, serde::Serialize)]
+pub struct VolumeStats {
+    pub rays: u64,
+    pub samples: u64,
+    pub accesses: u64,
+    pub slots: u64,
+    /// Slots added by page faults, and the banks that missed.
+    pub fault_slots: u64,
+    pub bank_misses: u64,
+    pub cycles: u64,
+    pub ns: u64,
+    pub samples_per_second: f64,
+}
+
+/// The samples of every ray, in order, and the costs.
+pub struct VolumeRun {
+    pub samples: Vec<VolSample>,
+    pub stats: VolumeStats,
+}
+
+/// `rays` through the ray caster over `vox` (x fastest) in `mode`, each sample checked
+/// against the integer reference (`Err` names the first that differs).
+pub fn run_volume(
+    p: VolumeParams,
+    mode: Mode,
+    vox: &[u8],
+    rs: &[Ray],
+    vcd: Option<&std::path::Path>,
+) -> Result<VolumeRun, String> {
+    let dut = RayCaster::new(p, mode, vox)?;
+    let tracer = match vcd {
+        Some(path) => {
+            let cfg = waves::TraceConfig {
+                period_ps: CYCLE_PS,
+                ..Default::default()
+            };
+            Some(waves::VcdTracer::create(path, NAME, cfg).map_err(|e| e.to_string())?)
+        }
+        None => None,
+    };
+    let mut sim = Sim::maybe_traced(dut, tracer).map_err(|e| e.to_string())?;
+    sim.reset(2);
+    let want: Vec<[i64; 3]> = rs
+        .iter()
+        .flat_map(|r| ray_points(r).collect::<Vec<_>>())
+        .collect();
+    let n = want.len() as u64;
+    let mut samples = Vec::with_capacity(want.len());
+    let mut wrong = None;
+    let per_ray = 16 * mode.accesses() as u64;
+    let mut spec = RunSpec::new(n, per_ray * (n + rs.len() as u64) + 100);
+    let st = run(
+        &mut sim,
+        &mut RayDriver,
+        &mut SampleMonitor,
+        rs.to_vec(),
+        &mut spec,
+        |_, ev| {
+            if let Event::Received { txn, .. } = ev {
+                let k = samples.len();
+                let r = ref_sample(vox, p.dims, want[k], mode);
+                if (txn.p, txn.value, txn.g) != (want[k], r.0, r.1) && wrong.is_none() {
+                    wrong = Some(format!(
+                        "sample {k}: the caster {txn:?}, the reference {r:?}"
+                    ));
+                }
+                samples.push(txn);
+            }
+        },
+    )
+    .map_err(|e| e.to_string())?;
+    if let Some(e) = wrong {
+        return Err(e);
+    }
+    let d = &sim.dut;
+    let ns = st.cycles * CYCLE_PS / 1000;
+    let stats = VolumeStats {
+        rays: rs.len() as u64,
+        samples: n,
+        accesses: d.accesses.q().bits(),
+        slots: d.slots.q().bits(),
+        fault_slots: d.fault_slots.q().bits(),
+        bank_misses: d.bank_misses.q().bits(),
+        cycles: st.cycles,
+        ns,
+        samples_per_second: if ns == 0 {
+            0.0
+        } else {
+            n as f64 / ns as f64 * 1e9
+        },
+    };
+    sim.finish().map_err(|e| e.to_string())?;
+    Ok(VolumeRun { samples, stats })
 }

@@ -101,3 +101,18 @@ fn a_linear_field_gives_exact_gradients_inside() {
         assert_eq!(ref_sample(&vox, dims, *pt, Mode::Gradient), (*v as u8, *g));
     }
 }
+
+/// Pre-classified RGBA on four chips in lock-step: every sample's four components equal the
+/// reference of their planes (checked inside `render`), the chips never fall out of step,
+/// and the composited picture is not empty.
+#[test]
+fn four_chips_in_lock_step_render_the_built_in_volume() {
+    let (px, samples) = tb::volume::render(16, 12).unwrap();
+    assert_eq!(px.len(), 144);
+    assert_eq!(samples, 144 * 32);
+    assert!(px.iter().any(|c| c.iter().any(|&x| x > 30)), "{px:?}");
+    assert!(
+        px.iter().any(|c| c.iter().all(|&x| x < 30)),
+        "background rays stay dark"
+    );
+}

@@ -14,6 +14,7 @@ pub mod sweep;
 pub mod texram;
 pub mod texread;
 pub mod vectors;
+pub mod volume;
 pub mod widths;
 
 use std::path::Path;

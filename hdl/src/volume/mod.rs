@@ -10,11 +10,13 @@
 //!   exhaustively in its tests);
 //! * [`interp`]: the value and gradient arithmetic of one resample point;
 //! * [`ray_caster_fig15`]: the cycle-accurate ray caster: ray port, stepper, accesses through
-//!   the page registers, interpolation, sample port.
+//!   the page registers, interpolation, sample port;
+//! * [`lockstep`]: pre-classified RGBA on four chips in lock-step.
 //!
 //! The document gives the data path and two timings; the rest is [C] (see
 //! `../shared/notes/seed-systems.md` section 3 and the README).
 
 pub mod interp;
 pub mod layout;
+pub mod lockstep;
 pub mod ray_caster_fig15;

@@ -132,6 +132,12 @@ impl RayCaster {
         })
     }
 
+    /// The same caster under another instance name (several chips in one design).
+    pub fn named(mut self, name: &str) -> RayCaster {
+        self.name = name.into();
+        self
+    }
+
     pub fn params(&self) -> &VolumeParams {
         &self.p
     }
