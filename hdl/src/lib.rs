@@ -31,11 +31,18 @@
 //! | TEXRAM chip 802 (Schilling & Knittel Figure 8): request port, units 812, 824, 810, 818 cycle by cycle | `texram/texram_802.rs` | `texram_802` | `texram_802`; `tb/tests/texram.rs` | `tb.texram_802` |
 //! | address and control unit 812: levels, weights, border operations | `texram/address_812.rs` | scope `address_812` | `texram_802` | `tb.texram_802.address_812` |
 //! | page registers 824 | `texram/page_registers_824.rs` | scope `page_registers_824` | `texram_802` | `tb.texram_802.page_registers_824` |
-//! | banks 810 and their address decoders 822: the two-level layout | `texram/banks_810.rs` | scope `banks_810` | `texram_802` | `tb.texram_802.banks_810` |
+//! | banks 810 and their address decoders 822: the two-level layout | `texram/banks_810.rs` | scopes `banks_810`, `banks_810.address_decoders_822` | `texram_802` | `tb.texram_802.banks_810.address_decoders_822` |
 //! | trilinear interpolator 818 | `texram/trilinear_818.rs` | scope `trilinear_818` | `texram_802` | `tb.texram_802.trilinear_818` |
 //! | CLUT 814 | `texram/clut_814.rs` | scope `clut_814` (the eight entries an index access looked up) | `texram_802`; `tb/tests/texram.rs` | `tb.texram_802.clut_814` |
 //! | output and combination stage 820 (eq. 5) | `texram/output_820.rs` | scope `output_820` | `texram_802`; `tb/tests/texram.rs` | `tb.texram_802.output_820` |
 //! | one colour component per chip, four chips 802 in lock-step | `texram/lockstep.rs` | `texram_lockstep`, chips `chip_r` … | `tb/tests/texram.rs` | `texram_lockstep.chip_r` … |
+//! | footprint assembly setup unit (section 10, eqs 19-21) | `footprint/setup_fig12.rs` | `footprint_setup` | `footprint_fig12`; `tb/tests/footprint.rs` | `tb.footprint_fig12.footprint_setup` |
+//! | footprint sample generator and accumulator (eq. 22) | `footprint/assembly_fig12.rs` | `footprint_assembly`, scopes `generator`, `accumulator` | `footprint_fig12` | `tb.footprint_fig12.footprint_assembly.generator` … |
+//! | the two before the chip (or texture unit 602) | `footprint/footprint_fig12.rs` | `footprint_fig12` | `footprint_fig12` | `tb.footprint_fig12` |
+//! | tangent average of para. 0081 (Fenney FIG. 7, between 155 and 156) | `bump/tangent_average_0081.rs` | scope `tangent_average_0081` | `footprint_normals_0081` | `tb.footprint_normals_0081.normal_pipeline_fig7.tangent_average_0081` |
+//! | footprint generator before the FIG. 7 pipeline (para. 0081) | `footprint/normals_0081.rs` | `footprint_normals_0081` | `footprint_normals_0081` | `tb.footprint_normals_0081.generator` |
+//! | ray caster (section 13, Figure 15) | `volume/ray_caster_fig15.rs` (`layout.rs`, `interp.rs`) | `ray_caster_fig15`, scopes `stepper`, `page_registers_824`, `trilinear_818` | `ray_caster_fig15`; `tb/tests/volume.rs` | `tb.ray_caster_fig15.stepper` … |
+//! | RGBA on four ray casters in lock-step | `volume/lockstep.rs` | `volume_lockstep`, chips `chip_r` … | `tb/tests/volume.rs` | `volume_lockstep.chip_r` … |
 //! | video port 808 and shift registers 826, with the mipmap generator 816 on the banks | `texram/video_port_808.rs` | scope `video_port_808` | `video_port_808`; `tb/tests/texram_video.rs` | `tb.texram_802.video_port_808`, `….mipmap_gen_816`, `….shift_registers_826` |
 
 pub mod fx;

@@ -262,6 +262,7 @@ fn the_chip_waveform_has_one_scope_per_unit() {
         "address_812",
         "page_registers_824",
         "banks_810",
+        "banks_810.address_decoders_822",
         "clut_814",
         "trilinear_818",
         "output_820",

@@ -173,6 +173,30 @@ impl Access {
             v.reg(r);
         }
     }
+
+    /// The bank stage: its decoded bank words and which it reads in the scope of the
+    /// address decoders 822, the rest beside them.
+    fn visit_banks(&self, v: &mut dyn Visitor) {
+        v.enter("address_decoders_822", "address_decoders_822");
+        v.reg(&self.read);
+        for r in &self.word {
+            v.reg(r);
+        }
+        v.leave();
+        v.reg(&self.valid);
+        for r in [
+            &self.src,
+            &self.weights,
+            &self.colour,
+            &self.index,
+            &self.part,
+            &self.last,
+            &self.illum,
+            &self.modulate,
+        ] {
+            v.reg(r);
+        }
+    }
 }
 
 /// The chip: request port, units 812, 824, 810, 818, and its DRFs and bank contents.
@@ -696,7 +720,7 @@ impl Module for Texram802 {
         signals!(v; Reg: self.slots, self.faults, self.accesses, self.fault_slots);
         v.leave();
         v.enter("banks_810", "banks_810");
-        self.bank.visit(v);
+        self.bank.visit_banks(v);
         signals!(v; Reg: self.left, self.fault, self.vid_round);
         v.leave();
         v.enter("clut_814", "clut_814");
