@@ -1,25 +1,13 @@
 //! `texrtl footprint` run as a user runs it: results against the integer reference, the
 //! statistics, the waveform's scopes, and bad input refused with one line, exit 2, no file.
 
+mod common;
+
+use common::{assert_refused, s, texrtl};
 use std::path::{Path, PathBuf};
-use std::process::{Command, Output};
 
 fn dir(name: &str) -> PathBuf {
-    let d = std::env::temp_dir().join(format!("texrtl-footprint-{}-{name}", std::process::id()));
-    let _ = std::fs::remove_dir_all(&d);
-    std::fs::create_dir_all(&d).unwrap();
-    d
-}
-
-fn texrtl(args: &[&str]) -> Output {
-    Command::new(env!("CARGO_BIN_EXE_texrtl"))
-        .args(args)
-        .output()
-        .expect("runs")
-}
-
-fn s(p: &Path) -> &str {
-    p.to_str().unwrap()
+    common::dir("footprint", name)
 }
 
 /// A 64 x 32 PGM and five pixels in `d`.
@@ -135,17 +123,7 @@ fn bad_input_is_one_line_exit_2_and_no_file() {
         ];
         a.extend_from_slice(extra);
         a.extend(["--vcd", s(&w)]);
-        let out = texrtl(&a);
-        let err = String::from_utf8_lossy(&out.stderr);
-        assert_eq!(out.status.code(), Some(2), "{a:?}: {err}");
-        assert_eq!(err.trim_end().lines().count(), 1, "{err}");
-        assert!(err.contains(needle), "{needle}: {err}");
-        let left: Vec<_> = std::fs::read_dir(&d)
-            .unwrap()
-            .map(|e| e.unwrap().file_name().to_string_lossy().into_owned())
-            .filter(|n| n.starts_with("o.") || n.starts_with("w."))
-            .collect();
-        assert!(left.is_empty(), "{a:?} left {left:?}");
+        assert_refused(&a, needle, &d, &["o.", "w."]);
     }
 }
 

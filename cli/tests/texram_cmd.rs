@@ -2,25 +2,14 @@
 //! the statistics, the waveform's scopes, and bad input refused with one line, exit 2 and no
 //! file.
 
+mod common;
+
+use common::{assert_refused, s, texrtl};
 use std::path::{Path, PathBuf};
-use std::process::{Command, Output};
+use std::process::Output;
 
 fn dir(name: &str) -> PathBuf {
-    let d = std::env::temp_dir().join(format!("texrtl-texram-{}-{name}", std::process::id()));
-    let _ = std::fs::remove_dir_all(&d);
-    std::fs::create_dir_all(&d).unwrap();
-    d
-}
-
-fn texrtl(args: &[&str]) -> Output {
-    Command::new(env!("CARGO_BIN_EXE_texrtl"))
-        .args(args)
-        .output()
-        .expect("runs")
-}
-
-fn s(p: &Path) -> &str {
-    p.to_str().unwrap()
+    common::dir("texram", name)
 }
 
 /// `texrtl texram --texture t --requests r --out o --config config`.
@@ -146,17 +135,7 @@ fn bad_input_is_one_line_exit_2_and_no_file() {
         ];
         a.extend_from_slice(extra);
         a.extend(["--vcd", s(&w)]);
-        let out = texrtl(&a);
-        let err = String::from_utf8_lossy(&out.stderr);
-        assert_eq!(out.status.code(), Some(2), "{a:?}: {err}");
-        assert_eq!(err.trim_end().lines().count(), 1, "{err}");
-        assert!(err.contains(needle), "{needle}: {err}");
-        let left: Vec<_> = std::fs::read_dir(&d)
-            .unwrap()
-            .map(|e| e.unwrap().file_name().to_string_lossy().into_owned())
-            .filter(|n| n.starts_with("o.") || n.starts_with("w."))
-            .collect();
-        assert!(left.is_empty(), "{a:?} left {left:?}");
+        assert_refused(&a, needle, &d, &["o.", "w."]);
     }
 }
 

@@ -1,25 +1,13 @@
 //! `texrtl volume` run as a user runs it: samples of a linear field, the statistics, the
 //! waveform, and bad input refused with one line, exit 2 and no file.
 
+mod common;
+
+use common::{assert_refused, s, texrtl};
 use std::path::{Path, PathBuf};
-use std::process::{Command, Output};
 
 fn dir(name: &str) -> PathBuf {
-    let d = std::env::temp_dir().join(format!("texrtl-volume-{}-{name}", std::process::id()));
-    let _ = std::fs::remove_dir_all(&d);
-    std::fs::create_dir_all(&d).unwrap();
-    d
-}
-
-fn texrtl(args: &[&str]) -> Output {
-    Command::new(env!("CARGO_BIN_EXE_texrtl"))
-        .args(args)
-        .output()
-        .expect("runs")
-}
-
-fn s(p: &Path) -> &str {
-    p.to_str().unwrap()
+    common::dir("volume", name)
 }
 
 /// An 8x6x5 volume of the linear field 3x + 5y + 7z + 9, and two rays.
@@ -133,16 +121,6 @@ fn bad_input_is_one_line_exit_2_and_no_file() {
         ];
         a.extend_from_slice(extra);
         a.extend(["--vcd", s(&w)]);
-        let out = texrtl(&a);
-        let err = String::from_utf8_lossy(&out.stderr);
-        assert_eq!(out.status.code(), Some(2), "{a:?}: {err}");
-        assert_eq!(err.trim_end().lines().count(), 1, "{err}");
-        assert!(err.contains(needle), "{needle}: {err}");
-        let left: Vec<_> = std::fs::read_dir(&d)
-            .unwrap()
-            .map(|e| e.unwrap().file_name().to_string_lossy().into_owned())
-            .filter(|n| n.starts_with("o.") || n.starts_with("w."))
-            .collect();
-        assert!(left.is_empty(), "{a:?} left {left:?}");
+        assert_refused(&a, needle, &d, &["o.", "w."]);
     }
 }

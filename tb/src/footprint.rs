@@ -579,16 +579,8 @@ fn run_pixels<U: SampleTarget, T: Trace>(
             Event::Settled { .. } => {}
         },
     );
-    res.transactions += n;
-    res.mismatches += sb.mismatch_count();
-    for m in sb.mismatches().iter().take(10) {
-        res.mismatch_log
-            .push(format!("{} (cycle {:?}): {}", m.index, m.cycle, m.detail));
-    }
-    match r {
-        Ok(st) => res.cycles += st.cycles,
-        Err(t) => res.failures.push(t.to_string()),
-    }
+    res.score(&sb);
+    res.ran(&r);
     if res.stats.max_abs_lsb > golden::texram::ERROR_BOUND_LSB {
         res.failures.push(format!(
             "error {:.4} LSB against the f64 mean, bound 0.5",

@@ -334,16 +334,8 @@ fn run_npixels<T: Trace>(
             Event::Settled { .. } => {}
         },
     );
-    res.transactions += n;
-    res.mismatches += sb.mismatch_count();
-    for m in sb.mismatches().iter().take(10) {
-        res.mismatch_log
-            .push(format!("{} (cycle {:?}): {}", m.index, m.cycle, m.detail));
-    }
-    match r {
-        Ok(st) => res.cycles += st.cycles,
-        Err(t) => res.failures.push(t.to_string()),
-    }
+    res.score(&sb);
+    res.ran(&r);
     res.notes.push(format!(
         "{}: {n} pixels, normals within {:.2} LSB of the f64 normal of the averaged tangents (156's tolerance {:.2} LSB)",
         ctx.label,

@@ -614,16 +614,8 @@ fn one_config<T: Trace>(
             Event::Settled { .. } => {}
         },
     );
-    res.transactions += n;
-    res.mismatches += sb.mismatch_count();
-    for m in sb.mismatches().iter().take(10) {
-        res.mismatch_log
-            .push(format!("{} (cycle {:?}): {}", m.index, m.cycle, m.detail));
-    }
-    match r {
-        Ok(st) => res.cycles += st.cycles,
-        Err(t) => res.failures.push(t.to_string()),
-    }
+    res.score(&sb);
+    res.ran(&r);
     settle_config(
         &mut res,
         sim.dut.slots.q().bits(),

@@ -380,10 +380,7 @@ fn run_video<T: Trace>(
             Event::Settled { .. } => {}
         },
     );
-    match r {
-        Ok(st) => res.cycles += st.cycles,
-        Err(t) => res.failures.push(t.to_string()),
-    }
+    res.ran(&r);
     // The rest of the video, with the request port idle.
     let limit = sim.cycle() + 2 * video_cycles + 10_000;
     while (!source.done() || source.frames_checked() < frames.len()) && sim.cycle() < limit {
@@ -393,12 +390,7 @@ fn run_video<T: Trace>(
         source.settled(&sim.dut, cycle);
         sim.tick();
     }
-    res.transactions += n;
-    res.mismatches += sb.mismatch_count();
-    for m in sb.mismatches().iter().take(10) {
-        res.mismatch_log
-            .push(format!("{} (cycle {:?}): {}", m.index, m.cycle, m.detail));
-    }
+    res.score(&sb);
     settle(&mut res, &sim.dut, &source, (c, maps), frames.len());
     res.coverage = Some(std::mem::replace(&mut source.cov, coverage_model()));
     Ok((sim, res))

@@ -392,16 +392,8 @@ fn run_rays<T: Trace>(
             }
         },
     );
-    res.transactions += n;
-    res.mismatches += sb.mismatch_count();
-    for m in sb.mismatches().iter().take(10) {
-        res.mismatch_log
-            .push(format!("{} (cycle {:?}): {}", m.index, m.cycle, m.detail));
-    }
-    match r {
-        Ok(st) => res.cycles += st.cycles,
-        Err(t) => res.failures.push(t.to_string()),
-    }
+    res.score(&sb);
+    res.ran(&r);
     let slots = sim.dut.slots.q().bits();
     if slots != want_slots {
         res.failures.push(format!(

@@ -182,6 +182,14 @@ impl TbResult {
         }
     }
 
+    /// Adds a run's outcome: its cycles, or the timeout as a failure.
+    pub fn ran(&mut self, r: &Result<crate::RunStats, crate::Timeout>) {
+        match r {
+            Ok(st) => self.cycles += st.cycles,
+            Err(t) => self.failures.push(t.to_string()),
+        }
+    }
+
     /// The records of one row type (those that do not parse as `T` are skipped).
     pub fn records_of<T: serde::de::DeserializeOwned>(&self) -> Vec<T> {
         self.records
