@@ -443,3 +443,49 @@ fn widening_past_the_word() {
         );
     }
 }
+
+/// The fast paths of `quantise` cover what they are meant to, no more and no less (a path
+/// that is taken too rarely is still exact, so only the path shows it): each case with its
+/// value (against the reference) and its path.
+#[test]
+fn quantise_takes_the_path_meant_for_each_input() {
+    use crate::fx::value::{quantise, PATH};
+    let s = |w, f| Format::signed(w, f);
+    let u = |w, f| Format::unsigned(w, f);
+    let (q, sym, sat) = (
+        Quant::RoundHalfUp,
+        Overflow::SaturateSymmetric,
+        Overflow::Saturate,
+    );
+    // (raw, source fraction bits, destination, overflow, path)
+    let cases: [(i128, i32, Format, Overflow, u8); 14] = [
+        (5, 4, s(12, 4), sym, 1),
+        (0, 4, u(12, 4), sym, 1),
+        (-7, 4, s(12, 4), sat, 1),
+        (1234, 14, s(16, 4), sat, 2),
+        (1234, 14, s(16, 4), sym, 2),
+        (-1234, 73, s(16, 10), sat, 3),
+        (99_999, 16, s(62, 8), sat, 2),
+        (99_999, 16, s(63, 8), sat, 4),
+        ((1 << 70) + 12345, 40, s(40, 0), sym, 3),
+        ((1 << 70) + 12345, 40, s(40, 0), sat, 3),
+        (-(1 << 70), 40, s(63, 0), sat, 4),
+        ((1 << 120) + 3, 100, s(40, 0), sat, 4),
+        ((1 << 126) + 3, 127, s(8, 0), sat, 5),
+        (77, -3, s(40, 0), sat, 5),
+    ];
+    for (raw, frac, dst, o, path) in cases {
+        let v = quantise(raw, frac, dst, q, o);
+        let d = dst.frac() - frac;
+        let want = if d >= 0 {
+            ref_overflow(raw << d, dst, o)
+        } else if d > -127 {
+            ref_overflow(ref_round(raw, 1i128 << -d, q), dst, o)
+        } else {
+            // 2^126 + 3 in units of 2^-127: just over one half, which rounds up to 1.
+            1
+        };
+        assert_eq!(v, want, "{raw} {frac} {dst} {o:?}");
+        assert_eq!(PATH.with(|p| p.get()), path, "{raw} {frac} {dst} {o:?}");
+    }
+}

@@ -69,6 +69,20 @@ fn any_low(raw: i128, n: u32) -> bool {
     }
 }
 
+// Which path the last `quantise` of this thread took (tests only, to hold the fast paths
+// to the inputs they are meant to cover): 1 nothing dropped, 2 the 64-bit path, 3 a wide
+// value with a word-sized result, 4 the i128 path, 5 the general one.
+#[cfg(test)]
+thread_local! {
+    pub(crate) static PATH: std::cell::Cell<u8> = const { std::cell::Cell::new(0) };
+}
+
+#[inline(always)]
+fn took(_path: u8) {
+    #[cfg(test)]
+    PATH.with(|p| p.set(_path));
+}
+
 /// The core of every narrowing: `raw * 2^-src_frac` into `dst`, rounding by `q`, then
 /// resolving overflow by `o`; returns the raw integer of `dst`. Works for any shift, so floats
 /// with tiny or huge exponents quantise exactly too. Datapath models call it directly on raw
@@ -83,6 +97,7 @@ pub fn quantise(raw: i128, src_frac: i32, dst: Format, q: Quant, o: Overflow) ->
             && !(o == Overflow::SaturateSymmetric && dst.is_signed() && v == dst.min_raw())
     };
     if shift == 0 && in_range(raw) {
+        took(1);
         return raw;
     }
     // 64-bit path for values and shifts that fit a machine word.
@@ -96,6 +111,7 @@ pub fn quantise(raw: i128, src_frac: i32, dst: Format, q: Quant, o: Overflow) ->
             v >> w == 0
         };
         if fits {
+            took(2);
             return i128::from(v);
         }
     }
@@ -123,6 +139,7 @@ fn quantise_wide(raw: i128, shift: i32, src_frac: i32, dst: Format, q: Quant, o:
             );
             let v = floor + i128::from(inc);
             if in_range(v) {
+                took(3);
                 return v;
             }
         }
@@ -130,9 +147,11 @@ fn quantise_wide(raw: i128, shift: i32, src_frac: i32, dst: Format, q: Quant, o:
     if shift > 0 && shift < 127 {
         let v = round_shift(raw, shift as u32, q);
         if in_range(v) {
+            took(4);
             return v;
         }
     }
+    took(5);
     quantise_general(raw, src_frac, dst, q, o)
 }
 
