@@ -3,6 +3,12 @@
 //! and the reference the quality claim is measured against: the mean of level 0 over the
 //! pixel's exact footprint (the parallelogram spanned by r1 and r2), by stratified sampling.
 
+/// How far the setup unit's lambda may be from `log2 q` (in levels): its table holds
+/// `log2(1 + i/64)` for the six mantissa bits after the leading one, truncated, so half the
+/// widest table interval, `log2(1 + 1/64) / 2 = 0.011184`, plus half the table's rounding
+/// (1/1024) plus the halving's rounding (1/512).
+pub const LAMBDA_BOUND: f64 = 0.011184 + 1.0 / 1024.0 + 1.0 / 512.0;
+
 /// The setup of one pixel.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Setup {

@@ -2,8 +2,9 @@
 //! invariants, the assembled pixel against the integer reference on the stub and the chip,
 //! the regress testbench, and the quality claim measured.
 
+use golden::footprint::LAMBDA_BOUND;
 use hdl::footprint::assembly_fig12::{assemble, first_point};
-use hdl::footprint::setup_fig12::{setup, NRounding, SetupParams, SetupUnit, LAMBDA_BOUND};
+use hdl::footprint::setup_fig12::{setup, NRounding, SetupParams, SetupUnit};
 use hdl::texram::stub::TexramStub;
 use hdl::texram::{Border, Drf, TexramAccess, TexramRequest};
 use tb::footprint::{pixels, ref_assemble, ref_setup, Pixel};

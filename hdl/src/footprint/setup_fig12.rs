@@ -37,7 +37,7 @@
 //! | `du`, `dv` | sQ11.14 (`r << (6 - k)`: exact for `N <= 64`) |
 //! | `lambda`, `lambda_iso` | sQ5.8, `-4.0 ..= 10.0` (the TEXRAM's) |
 //!
-//! `lambda` is within [`LAMBDA_BOUND`] of `1/2 log2 q^2` (derived in the tests). One
+//! `lambda` is within `golden::footprint::LAMBDA_BOUND` of `1/2 log2 q^2` (derived there). One
 //! register stage with the pixel's `drf`, `u`, `v` carried along: latency 1, a pixel a cycle,
 //! held while `out_ready` is low (`in_ready` then low too).
 
@@ -56,10 +56,6 @@ pub const STEP_FRAC: u32 = 14;
 pub const MAX_LOG2_N: u32 = 6;
 /// Mantissa bits indexing the log table.
 const LUT_BITS: u32 = 6;
-/// `|lambda - 1/2 log2 q^2|` at most this (in levels): half the widest table interval,
-/// `log2(1 + 1/64) / 2 = 0.011184` (the mantissa is truncated), plus half the table's
-/// rounding (1/1024) plus the halving's rounding (1/512).
-pub const LAMBDA_BOUND: f64 = 0.011184 + 1.0 / 1024.0 + 1.0 / 512.0;
 
 /// How eq. 20's ratio becomes a power of two.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
