@@ -4,6 +4,7 @@
 
 pub mod blend_adjust;
 pub mod bump;
+pub mod envmap;
 pub mod footprint;
 pub mod mipmap;
 pub mod rsqrt;

@@ -50,6 +50,8 @@ pub mod kernel;
 
 /// FIG. 7 of US 2004/0207631: the per-pixel normal pipeline.
 pub mod bump;
+/// Section 7 of Schilling & Knittel: environment mapping (the cube-face unit so far).
+pub mod envmap;
 /// Section 10 and Figures 12-13 of Schilling & Knittel: footprint assembly.
 pub mod footprint;
 /// FIG. 14 of Schilling & Knittel: the real-time mipmap generator.
