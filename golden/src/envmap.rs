@@ -34,6 +34,13 @@ pub fn face_st(w: [f64; 3]) -> (u8, f64, f64) {
     )
 }
 
+/// Eq. 4 with the perturbed normal: `2 n_b (n_b . v) - v |n_b|^2`.
+pub fn reflect(nb: [f64; 3], v: [f64; 3]) -> [f64; 3] {
+    let d: f64 = (0..3).map(|c| nb[c] * v[c]).sum();
+    let nn: f64 = nb.iter().map(|x| x * x).sum();
+    std::array::from_fn(|c| 2.0 * nb[c] * d - v[c] * nn)
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

@@ -62,3 +62,62 @@ fn the_unit_registers_the_function() {
     );
     assert_eq!(f, 2, "+y is the major axis");
 }
+
+/// Eq. 4 against f64 on 100,000 random perturbed normals (`n + e1 b1 + e2 b2` with
+/// |b_i| < 1, so |n_b|^2 < 3) and unit eye vectors: within half an LSB of sQ3.16 (one
+/// rounding of the exact value); the angle to n_b is the eye's; chained into the cube-face
+/// unit, the face is f64's unless the two largest components are within 2^-12 relative.
+#[test]
+fn the_reflection_vector_is_eq4_with_one_rounding() {
+    use hdl::envmap::reflect_eq4::reflect;
+    let mut stim = verif::seeded_stimulus("reflect eq4");
+    let tab = *CubeFace::new().table();
+    let unit = |a: [f64; 3]| {
+        let l = (a[0] * a[0] + a[1] * a[1] + a[2] * a[2]).sqrt();
+        a.map(|c| c / l)
+    };
+    let q = |a: [f64; 3], f: f64| a.map(|c| (c * f).round() as i64);
+    let s = proptest::array::uniform3(-1.0f64..1.0);
+    let (mut worst, mut near) = (0.0f64, 0);
+    for _ in 0..100_000 {
+        let (a, b, e) = (stim.draw(&s), stim.draw(&s), stim.draw(&(-0.99f64..0.99)));
+        let n = unit(a);
+        // A tangent e1 and e2 = n x e1, the bump b1 = e[0], b2 = e[0] / 2.
+        let t = unit([
+            b[1] * n[2] - b[2] * n[1],
+            b[2] * n[0] - b[0] * n[2],
+            b[0] * n[1] - b[1] * n[0],
+        ]);
+        let t2 = [
+            n[1] * t[2] - n[2] * t[1],
+            n[2] * t[0] - n[0] * t[2],
+            n[0] * t[1] - n[1] * t[0],
+        ];
+        let nb = std::array::from_fn(|c| n[c] + e * t[c] + e / 2.0 * t2[c]);
+        let v = unit(b);
+        let (nbq, vq) = (q(nb, 16384.0), q(v, 16384.0));
+        let w = reflect(nbq, vq);
+        let g = golden::envmap::reflect(
+            nbq.map(|x| x as f64 / 16384.0),
+            vq.map(|x| x as f64 / 16384.0),
+        );
+        for c in 0..3 {
+            let err = (w[c] as f64 / 65536.0 - g[c]).abs() * 65536.0;
+            worst = worst.max(err);
+            assert!(err <= 0.5 + 1e-9, "{nbq:?} {vq:?}: {w:?} vs {g:?}");
+        }
+        let (face, _, _) = face_st(w, &tab);
+        let (gf, _, _) = golden::envmap::face_st(g);
+        if face != gf {
+            let mut m = g.map(f64::abs);
+            m.sort_by(|x, y| y.total_cmp(x));
+            assert!(
+                (m[0] - m[1]) / m[0] < 1.0 / 4096.0,
+                "{g:?}: face {face} vs {gf}"
+            );
+            near += 1;
+        }
+    }
+    eprintln!("eq. 4: worst {worst:.4} LSB; {near} faces decided at a near tie");
+    assert!(worst > 0.4);
+}

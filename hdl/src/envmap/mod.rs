@@ -1,5 +1,6 @@
-//! Environment mapping (Schilling & Knittel section 7, issue 15): so far the cube-face
-//! selection unit; the reflection vector of eq. 4, the face's mipmap through DRF 7 and the
-//! chain walker are the rest of the issue.
+//! Environment mapping (Schilling & Knittel section 7, issue 15): so far the reflection
+//! vector of eq. 4 and the cube-face selection; the local frame of eqs 2-3, the face's mipmap
+//! through DRF 7 and the chain walker are the rest of the issue.
 
 pub mod cube_face;
+pub mod reflect_eq4;

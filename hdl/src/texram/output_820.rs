@@ -43,6 +43,34 @@ pub fn shade(m: Modulate, illumination: [u8; 4], texture: [u8; 4]) -> [u8; 4] {
     out
 }
 
+/// `a + b` held to 255: the sums of eqs 6 and 7 saturate [C].
+#[inline]
+fn add_sat(a: u8, b: u8) -> u8 {
+    a.saturating_add(b)
+}
+
+/// Eq. 6, environment mapping: `C = (C_d | I_d) + k_s . E` on R, G and B, `k_s` a DRF
+/// register, `base` the DRF's choice of the shaded texture colour or the illumination; alpha,
+/// [C], the base's.
+pub fn environment(base: [u8; 4], ks: u8, env: [u8; 4]) -> [u8; 4] {
+    let mut out = base;
+    for c in 0..3 {
+        out[c] = add_sat(base[c], mul255(ks, env[c]));
+    }
+    out
+}
+
+/// Eq. 7, reflectance mapping: `C = (C_d | I_d) + R . (E | I_s)` on R, G and B, `R` the
+/// reflectance map's colour (the seed's `C_c` read as `C_d`, as in eq. 6), `light` the
+/// environment colour or the external specular term; alpha the base's.
+pub fn reflectance(base: [u8; 4], r: [u8; 4], light: [u8; 4]) -> [u8; 4] {
+    let mut out = base;
+    for c in 0..3 {
+        out[c] = add_sat(base[c], mul255(r[c], light[c]));
+    }
+    out
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -67,5 +95,19 @@ mod tests {
             assert_eq!(combine(Modulate::Illumination, 255, t), t);
         }
         assert_eq!(combine(Modulate::Constant(128), 0, 200), 100);
+    }
+
+    /// A constant reflectance k gives exactly eq. 6 with k_s = k; sums saturate; 0 adds
+    /// nothing; alpha is the base's.
+    #[test]
+    fn a_constant_reflectance_is_environment_mapping() {
+        let base = [10, 200, 255, 77];
+        let env = [255, 100, 3, 9];
+        for k in [0u8, 1, 128, 254, 255] {
+            assert_eq!(reflectance(base, [k; 4], env), environment(base, k, env));
+        }
+        assert_eq!(environment(base, 0, env), base);
+        assert_eq!(environment(base, 255, env), [255, 255, 255, 77]);
+        assert_eq!(environment([0; 4], 128, [200; 4]), [100, 100, 100, 0]);
     }
 }

@@ -1,0 +1,127 @@
+//! The reflection vector of eq. 4 (Schilling & Knittel section 7) with the perturbed normal:
+//! `w = 2 n_b (n_b . v) - v |n_b|^2`, the reflection of the eye vector `v` about `n_b` scaled
+//! by `|n_b|^2` (no normalisation: the cube-face unit divides by the major axis anyway).
+//! The seed prints `n` where the text says the new normal: read `n_b` [C, see
+//! `../shared/notes/seed-systems.md` section 4].
+//!
+//! # Arithmetic
+//! Exact products and sums (`n_b . v`, `n_b . n_b` with 28 fraction bits; `w` with 42), one
+//! rounding to sQ3.16, ties to even, saturating (`|w| = |n_b|^2 < 3` for `|b| < 1`, so the
+//! saturation is never reached in range).
+//!
+//! # Formats
+//! | port | format |
+//! |---|---|
+//! | `nb` (perturbed normal, `|n_b|^2 = 1 + b1^2 + b2^2`) | sQ2.14 |
+//! | `v` (unit, surface to eye) | sQ1.14 |
+//! | `w` | sQ3.16, the cube-face unit's input |
+//!
+//! One register stage.
+
+use crate::fx::{quantise, Format, Overflow, Quant};
+use crate::kernel::{Module, Reg, Signal, Visitor};
+use crate::signals;
+
+/// Fraction bits of the vectors in.
+pub const VEC_FRAC: u32 = 14;
+
+/// `w` (raw sQ3.16) of `nb` (raw sQ2.14) and `v` (raw sQ1.14).
+pub fn reflect(nb: [i64; 3], v: [i64; 3]) -> [i64; 3] {
+    let dot = |a: [i64; 3], b: [i64; 3]| -> i128 {
+        (0..3).map(|c| i128::from(a[c]) * i128::from(b[c])).sum()
+    };
+    let (d, nn) = (dot(nb, v), dot(nb, nb));
+    let out = Format::signed(20, 16);
+    std::array::from_fn(|c| {
+        // 2 nb d - v nn, exact in units of 2^-42.
+        let x = 2 * i128::from(nb[c]) * d - i128::from(v[c]) * nn;
+        quantise(x, 42, out, Quant::RoundHalfEven, Overflow::Saturate) as i64
+    })
+}
+
+/// The unit: one register stage.
+#[derive(Clone, Debug)]
+pub struct Reflect {
+    pub valid_in: Signal,
+    pub nb: [Signal; 3],
+    pub v: [Signal; 3],
+    pub valid: Reg,
+    pub w: [Reg; 3],
+}
+
+impl Default for Reflect {
+    fn default() -> Self {
+        Reflect::new()
+    }
+}
+
+impl Reflect {
+    pub fn new() -> Reflect {
+        let (nb, v, w) = (
+            Format::signed(17, VEC_FRAC as i32),
+            Format::signed(16, VEC_FRAC as i32),
+            Format::signed(20, 16),
+        );
+        Reflect {
+            valid_in: Signal::bit("valid_in"),
+            nb: ["nbx", "nby", "nbz"].map(|n| Signal::new(n, nb)),
+            v: ["vx", "vy", "vz"].map(|n| Signal::new(n, v)),
+            valid: Reg::new("valid", Format::uint(1)),
+            w: ["wx", "wy", "wz"].map(|n| Reg::new(n, w)),
+        }
+    }
+}
+
+impl Module for Reflect {
+    fn instance(&self) -> &str {
+        "reflect_eq4"
+    }
+    fn kind(&self) -> &'static str {
+        "reflect_eq4"
+    }
+    fn eval(&mut self) {
+        let valid = self.valid_in.is_high();
+        self.valid.set_next_bool(valid);
+        if valid {
+            let w = reflect(
+                self.nb.each_ref().map(|s| s.raw()),
+                self.v.each_ref().map(|s| s.raw()),
+            );
+            for (r, x) in self.w.iter_mut().zip(w) {
+                r.set_next_raw(x);
+            }
+        }
+    }
+    fn tick(&mut self, reset: bool) {
+        self.valid.tick(reset);
+        for r in &mut self.w {
+            r.tick(reset);
+        }
+    }
+    fn visit(&self, vis: &mut dyn Visitor) {
+        vis.enter(self.instance(), self.kind());
+        let [nx, ny, nz] = &self.nb;
+        let [vx, vy, vz] = &self.v;
+        let [wx, wy, wz] = &self.w;
+        signals!(vis;
+            Input: self.valid_in, nx, ny, nz, vx, vy, vz;
+            Reg: self.valid, wx, wy, wz);
+        vis.leave();
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// Seen along the normal, the eye's reflection is the normal itself, exactly.
+    #[test]
+    fn looking_along_the_normal_reflects_onto_it() {
+        let one = 1i64 << VEC_FRAC;
+        for n in [[0, 0, one], [one, 0, 0], [0, -one, 0]] {
+            assert_eq!(reflect(n, n), n.map(|c| c << 2));
+        }
+        // A grazing eye in the tangent plane reflects to its opposite.
+        assert_eq!(reflect([0, 0, one], [one, 0, 0]), [-one << 2, 0, 0]);
+    }
+}
