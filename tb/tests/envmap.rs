@@ -121,3 +121,78 @@ fn the_reflection_vector_is_eq4_with_one_rounding() {
     eprintln!("eq. 4: worst {worst:.4} LSB; {near} faces decided at a near tie");
     assert!(worst > 0.4);
 }
+
+/// Eqs 2-3 on 50,000 random interpolated normals (lengths 0.25 to 1.9), reference directions
+/// and bumps: `n` within its derived bound of `n1/|n1|` (half an LSB plus the inverse square
+/// root's and the mantissa truncation's relative errors); `e1` and `e2` of unit length and
+/// orthogonal to `n` and each other within their derived bound; `n_b` within half an LSB of
+/// `n + e1 b1 + e2 b2` of the unit's own vectors; a random `h` is never parallel.
+#[test]
+fn the_local_frame_is_orthonormal_within_its_bound() {
+    use hdl::envmap::frame_eq2::FrameUnit;
+    let unit = FrameUnit::new();
+    let p = hdl::bump::params::RsqrtParams::default();
+    let eps = golden::rsqrt::error_bound_ulps(p.table_bits, p.iterations, p.y_frac)
+        * 2.0
+        * (-(p.y_frac as f64)).exp2()
+        + (-(p.mant_frac as f64 + 1.0)).exp2();
+    let lsb = 1.0 / 16384.0;
+    let bound_n = 0.5 * lsb + eps;
+    // A vector normalised by the unit is off unit length by at most d = eps + sqrt(3)/2 LSB
+    // (the reciprocal's error and three component roundings of half an LSB). e1 is h x n
+    // normalised: orthogonal to the unit's n before its rounding, so e1.n <= sqrt(3)/2 LSB;
+    // e2 = n x e1 is orthogonal to both before its rounding, and its length (1 + d)^2 ~
+    // 1 + 2d: so every quantity below within 2d + sqrt(3)/2 LSB.
+    let half3 = 3f64.sqrt() / 2.0 * lsb;
+    let bound_e = 2.0 * (eps + half3) + half3 + 1e-9;
+    let mut stim = verif::seeded_stimulus("local frame");
+    let s3 = proptest::array::uniform3(-1.0f64..1.0);
+    let (mut worst_n, mut worst_e, mut tested) = (0.0f64, 0.0f64, 0);
+    for _ in 0..50_000 {
+        let (a, hh, len, b) = (
+            stim.draw(&s3),
+            stim.draw(&s3),
+            stim.draw(&(0.25f64..1.9)),
+            stim.draw(&(-127i64..128, -127i64..128)),
+        );
+        let la = (a[0] * a[0] + a[1] * a[1] + a[2] * a[2]).sqrt();
+        let lh = (hh[0] * hh[0] + hh[1] * hh[1] + hh[2] * hh[2]).sqrt();
+        if la < 0.1 || lh < 0.1 {
+            continue;
+        }
+        let n1 = a.map(|c| (c / la * len * 16384.0).round() as i64);
+        let h = hh.map(|c| (c / lh * 16384.0).round() as i64);
+        let f = unit.frame(n1, h, b).unwrap();
+        let v = |x: [i64; 3]| x.map(|c| c as f64 * lsb);
+        let (n, e1, e2) = (v(f.n), v(f.e1), v(f.e2));
+        let dot = |x: [f64; 3], y: [f64; 3]| x[0] * y[0] + x[1] * y[1] + x[2] * y[2];
+        let n1f = v(n1);
+        let l1 = dot(n1f, n1f).sqrt();
+        for c in 0..3 {
+            let e = (n[c] - n1f[c] / l1).abs();
+            worst_n = worst_n.max(e / lsb);
+            assert!(e <= bound_n, "{n1:?}: n {n:?}");
+        }
+        tested += 1;
+        for (what, x) in [
+            ("|e1|", dot(e1, e1).sqrt() - 1.0),
+            ("|e2|", dot(e2, e2).sqrt() - 1.0),
+            ("e1.n", dot(e1, n)),
+            ("e2.n", dot(e2, n)),
+            ("e1.e2", dot(e1, e2)),
+        ] {
+            worst_e = worst_e.max(x.abs() / lsb);
+            assert!(x.abs() <= bound_e, "{n1:?} {h:?}: {what} = {x:e}");
+        }
+        for c in 0..3 {
+            let want = n[c] + e1[c] * b.0 as f64 / 128.0 + e2[c] * b.1 as f64 / 128.0;
+            assert!(
+                (f.nb[c] as f64 * lsb - want).abs() <= 0.5 * lsb + 1e-12,
+                "{n1:?}: n_b"
+            );
+        }
+        assert!(!f.parallel);
+    }
+    eprintln!("frame: n within {worst_n:.3} LSB, e1/e2 within {worst_e:.3} LSB ({tested} frames)");
+    assert!(tested > 40_000);
+}

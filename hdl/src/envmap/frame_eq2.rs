@@ -1,0 +1,161 @@
+//! The local frame of eqs 2-3 (Schilling & Knittel section 5 end, section 7: bump mapping
+//! before environment mapping): from the interpolated normal `n1` and a reference direction
+//! `h`, the unit normal `n = n1/|n1|`, the tangents `e1 = (h x n)/|h x n|` and `e2 = n x e1`
+//! (right-handed, `e2` needs no normalisation), and the perturbed normal
+//! `n_b = n + e1 b1 + e2 b2` with the bump map's offsets (eq. 3).
+//!
+//! # Arithmetic [C]
+//! Lengths by the inverse square root of normal unit 156 (its table and Newton step,
+//! [`crate::bump::rsqrt_156::rsqrt`], default parameters): `s = m 4^k` with the mantissa `m` in
+//! [1, 4) truncated to 22 fraction bits, `1/sqrt(s) = rsqrt(m) 2^-k`; each component the exact
+//! product rounded once to sQ1.14, ties to even. Cross products exact. `n_b`'s sum exact, one
+//! rounding to sQ2.14. When `h` is parallel to `n` (`h x n = 0`) the unit uses the x axis, or
+//! the y axis if that is parallel too, and raises `parallel` [C].
+//!
+//! # Formats
+//! | port | format |
+//! |---|---|
+//! | `n1` (not unit, `0 < |n1| < 2`), `h` | sQ1.14 |
+//! | `b1`, `b2` | sQ1.7 (the bump map's offsets, a DRF scale of 1 [C]) |
+//! | `n`, `e1`, `e2` | sQ1.14 |
+//! | `nb` | sQ2.14 (reflection unit's input) |
+
+use crate::bump::params::{RsqrtParams, ROUND, SAT};
+use crate::bump::rsqrt_156::{rsqrt, RsqrtTable};
+use crate::fx::{quantise, Format};
+
+/// Fraction bits of the vectors.
+pub const FRAC: u32 = 14;
+
+/// `(k, m)` with `s 2^-frac = m 4^k`, `m` in [1, 4) truncated to `mf` fraction bits, for any
+/// `s > 0`.
+fn normalise(s: u128, frac: u32, mf: u32) -> (i32, u64) {
+    let l = 128 - s.leading_zeros() as i32; // bit length
+                                            // Value exponent of the leading one: l - 1 - frac; k = floor of half of it.
+    let k = (l - 1 - frac as i32).div_euclid(2);
+    let shift = frac as i32 + 2 * k - mf as i32;
+    let m = if shift >= 0 { s >> shift } else { s << -shift };
+    (k, m as u64)
+}
+
+/// `v / |v|` for `v` raw with `frac` fraction bits (not zero), each component rounded once
+/// to sQ1.14.
+fn unit(v: [i128; 3], frac: u32, table: &RsqrtTable, p: &RsqrtParams) -> [i64; 3] {
+    let s: u128 = v.iter().map(|c| (c * c) as u128).sum();
+    let (k, m) = normalise(s, 2 * frac, p.mant_frac);
+    let y = i128::from(rsqrt(table, m));
+    let out = Format::signed(16, FRAC as i32);
+    // c y 2^-k: fraction bits frac + y_frac + k.
+    v.map(|c| quantise(c * y, frac as i32 + p.y_frac as i32 + k, out, ROUND, SAT) as i64)
+}
+
+fn cross(a: [i128; 3], b: [i128; 3]) -> [i128; 3] {
+    [
+        a[1] * b[2] - a[2] * b[1],
+        a[2] * b[0] - a[0] * b[2],
+        a[0] * b[1] - a[1] * b[0],
+    ]
+}
+
+/// The frame's results.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct Frame {
+    pub n: [i64; 3],
+    pub e1: [i64; 3],
+    pub e2: [i64; 3],
+    pub nb: [i64; 3],
+    /// `h` was parallel to `n` and an axis stood in for it.
+    pub parallel: bool,
+}
+
+/// The frame unit as a function: raw `n1`, `h` (sQ1.14), `b1`, `b2` (sQ1.7).
+pub struct FrameUnit {
+    p: RsqrtParams,
+    table: RsqrtTable,
+}
+
+impl Default for FrameUnit {
+    fn default() -> Self {
+        FrameUnit::new()
+    }
+}
+
+impl FrameUnit {
+    pub fn new() -> FrameUnit {
+        let p = RsqrtParams::default();
+        FrameUnit {
+            table: RsqrtTable::new(p).expect("the default parameters are valid"),
+            p,
+        }
+    }
+
+    /// `None` for a zero `n1`.
+    pub fn frame(&self, n1: [i64; 3], h: [i64; 3], b: (i64, i64)) -> Option<Frame> {
+        let n1 = n1.map(i128::from);
+        if n1 == [0; 3] {
+            return None;
+        }
+        let n = unit(n1, FRAC, &self.table, &self.p);
+        let nw = n.map(i128::from);
+        let one = 1i128 << FRAC;
+        let mut c = cross(h.map(i128::from), nw);
+        let mut parallel = false;
+        for axis in [[one, 0, 0], [0, one, 0]] {
+            if c != [0; 3] {
+                break;
+            }
+            parallel = true;
+            c = cross(axis, nw);
+        }
+        let e1 = unit(c, 2 * FRAC, &self.table, &self.p);
+        let e2w = cross(nw, e1.map(i128::from));
+        let out = Format::signed(16, FRAC as i32);
+        let e2 = e2w.map(|x| quantise(x, 2 * FRAC as i32, out, ROUND, SAT) as i64);
+        // n + e1 b1 + e2 b2 in units of 2^-21, rounded to sQ2.14.
+        let nb_fmt = Format::signed(17, FRAC as i32);
+        let nb = std::array::from_fn(|i| {
+            let x = (i128::from(n[i]) << 7)
+                + i128::from(e1[i]) * i128::from(b.0)
+                + i128::from(e2[i]) * i128::from(b.1);
+            quantise(x, 21, nb_fmt, ROUND, SAT) as i64
+        });
+        Some(Frame {
+            n,
+            e1,
+            e2,
+            nb,
+            parallel,
+        })
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn normalise_covers_values_below_one() {
+        // 1/4 = 1 * 4^-1; 3 = 3 * 4^0; 16 = 1 * 4^2 (frac 8, mf 4).
+        assert_eq!(normalise(64, 8, 4), (-1, 16));
+        assert_eq!(normalise(3 << 8, 8, 4), (0, 48));
+        assert_eq!(normalise(16 << 8, 8, 4), (2, 16));
+    }
+
+    #[test]
+    fn the_axes_give_the_axes() {
+        let u = FrameUnit::new();
+        let one = 1i64 << FRAC;
+        let f = u.frame([0, 0, one / 2], [one, 0, 0], (0, 0)).unwrap();
+        assert_eq!(f.n, [0, 0, one]);
+        // e1 = x cross z = -y; e2 = z cross -y = x.
+        assert_eq!(f.e1, [0, -one, 0]);
+        assert_eq!(f.e2, [one, 0, 0]);
+        assert_eq!(f.nb, [0, 0, one]);
+        assert!(!f.parallel);
+        let p = u.frame([0, 0, one], [0, 0, one], (64, 0)).unwrap();
+        assert!(p.parallel);
+        // With x standing in for h: e1 = -y as above; b1 = 1/2 moves n_b along -y.
+        assert_eq!(p.nb, [0, -one / 2, one]);
+        assert!(u.frame([0, 0, 0], [one, 0, 0], (0, 0)).is_none());
+    }
+}
