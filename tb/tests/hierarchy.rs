@@ -102,3 +102,72 @@ fn fig14_generator_visits_every_level_and_fifo() {
     ];
     assert_eq!(kinds(&top), own(&want));
 }
+
+/// The signal paths of `top` containing `part`, counted.
+fn paths_with(top: &dyn Module, part: &str) -> usize {
+    hdl::kernel::signal_paths(top)
+        .iter()
+        .filter(|p| p.contains(part))
+        .count()
+}
+
+/// The units of issues 13-15: every scope their waveforms are read by, with its signals.
+#[test]
+fn the_texram_side_units_visit_every_scope() {
+    use hdl::envmap::cube_face::CubeFace;
+    use hdl::envmap::reflect_eq4::Reflect;
+    use hdl::footprint::footprint_fig12::FootprintFig12;
+    use hdl::footprint::normals_0081::FootprintNormals;
+    use hdl::footprint::setup_fig12::SetupParams;
+    use hdl::texram::texram_802::{Texram802, TexramParams};
+    use hdl::volume::layout::{Mode, VolumeParams};
+    use hdl::volume::lockstep::VolumeLockstep;
+    use hdl::volume::ray_caster_fig15::RayCaster;
+    let chip = Texram802::new(TexramParams::default()).unwrap();
+    let fa = FootprintFig12::new(SetupParams::default(), chip).unwrap();
+    for (part, n) in [
+        // 9 inputs, in_ready, 9 registers, 4 wires.
+        ("footprint_setup.", 23),
+        ("footprint_assembly.generator.", 7),
+        ("footprint_assembly.accumulator.", 9),
+        ("footprint_assembly.texram_802.address_812.", 47),
+        ("footprint_assembly.px_", 9),
+    ] {
+        assert_eq!(paths_with(&fa, part), n, "{part}");
+    }
+    let p = BumpParams::default();
+    let map = tb::maps::builtin("noise", 8, 8, p.texel_fmt()).unwrap();
+    let fig7 = NormalPipeline::new("normal_pipeline_fig7", p, map, None).unwrap();
+    let fn7 = FootprintNormals::new(fig7);
+    for (part, n) in [
+        ("footprint_normals_0081.generator.", 8),
+        ("tangent_average_0081.", 12),
+        ("fa_carry.", 6),
+        // fa_first, fa_last, fa_log2_n and the six of the fa_carry delay line.
+        ("normal_pipeline_fig7.fa_", 9),
+    ] {
+        assert_eq!(paths_with(&fn7, part), n, "{part}");
+    }
+    let vp = VolumeParams::new(4, 4, 4);
+    let rc = RayCaster::new(vp, Mode::Gradient, &[0; 64]).unwrap();
+    for (part, n) in [
+        ("ray_caster_fig15.stepper.", 9),
+        ("ray_caster_fig15.page_registers_824.", 11),
+        ("ray_caster_fig15.trilinear_818.", 11),
+        ("ray_caster_fig15.ray_", 9),
+    ] {
+        assert_eq!(paths_with(&rc, part), n, "{part}");
+    }
+    let ls =
+        VolumeLockstep::new(vp, &[vec![0; 64], vec![0; 64], vec![0; 64], vec![0; 64]]).unwrap();
+    for chip in ["chip_r.", "chip_g.", "chip_b.", "chip_a."] {
+        assert_eq!(
+            paths_with(&ls, chip),
+            paths_with(&rc, "ray_caster_fig15."),
+            "{chip}"
+        );
+    }
+    assert_eq!(paths_with(&ls, "volume_lockstep.out_"), 3);
+    assert_eq!(paths_with(&CubeFace::new(), "cube_face."), 8);
+    assert_eq!(paths_with(&Reflect::new(), "reflect_eq4."), 11);
+}
