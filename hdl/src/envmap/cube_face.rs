@@ -221,6 +221,30 @@ mod tests {
         assert!(worst >= 1, "a bound that is never approached");
     }
 
+    /// Every table entry is 2^33 / midpoint rounded half up, by quotient and remainder.
+    #[test]
+    fn the_table_holds_the_rounded_reciprocals_of_the_midpoints() {
+        for (i, e) in table().iter().enumerate() {
+            let mid = (1u64 << 17) + ((2 * i as u64 + 1) << 10);
+            let (q, r) = ((1u64 << 33) / mid, (1u64 << 33) % mid);
+            assert_eq!(*e, q + u64::from(2 * r >= mid), "entry {i}");
+        }
+    }
+
+    /// Ties go to the even neighbour; anything else to the nearest.
+    #[test]
+    fn round_even_rounds_ties_to_even() {
+        // 2.5 -> 2, 3.5 -> 4, 2.25 -> 2, 2.75 -> 3, 5.5 -> 6, 4.5 -> 4 (halves of 4 bits).
+        assert_eq!(round_even(0b101, 1), 2);
+        assert_eq!(round_even(0b111, 1), 4);
+        assert_eq!(round_even(0b1001, 2), 2);
+        assert_eq!(round_even(0b1011, 2), 3);
+        assert_eq!(round_even(0b1011, 1), 6);
+        assert_eq!(round_even(0b1001, 1), 4);
+        assert_eq!(round_even(0b1000, 3), 1);
+        assert_eq!(round_even(0b11000, 4), 2);
+    }
+
     #[test]
     fn faces_follow_the_major_axis_with_ties_to_x_then_y() {
         let tab = table();
