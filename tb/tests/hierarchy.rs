@@ -170,4 +170,38 @@ fn the_texram_side_units_visit_every_scope() {
     assert_eq!(paths_with(&ls, "volume_lockstep.out_"), 3);
     assert_eq!(paths_with(&CubeFace::new(), "cube_face."), 8);
     assert_eq!(paths_with(&Reflect::new(), "reflect_eq4."), 11);
+    // Every instance's kind, by hand from the modules' documentation.
+    assert_eq!(kinds(&CubeFace::new()), own(&[("cube_face", 1)]));
+    assert_eq!(kinds(&Reflect::new()), own(&[("reflect_eq4", 1)]));
+    let caster = [
+        ("ray_caster_fig15", 1),
+        ("volume_stepper", 1),
+        ("page_registers_824", 1),
+        ("trilinear_818", 1),
+    ];
+    assert_eq!(kinds(&rc), own(&caster));
+    let four = caster.map(|(k, n)| (k, 4 * n));
+    let mut lock = four.to_vec();
+    lock.push(("volume_lockstep", 1));
+    assert_eq!(kinds(&ls), own(&lock));
+    let k = kinds(&fa);
+    for kind in [
+        "footprint_fig12",
+        "footprint_setup",
+        "footprint_assembly",
+        "footprint_generator",
+        "footprint_accumulator",
+        "texram_802",
+    ] {
+        assert!(k.iter().any(|(x, n)| x == kind && *n == 1), "{kind}: {k:?}");
+    }
+    let k = kinds(&fn7);
+    for kind in [
+        "footprint_normals_0081",
+        "footprint_generator",
+        "tangent_average_0081",
+        "normal_pipeline_fig7",
+    ] {
+        assert!(k.iter().any(|(x, n)| x == kind && *n == 1), "{kind}: {k:?}");
+    }
 }

@@ -118,8 +118,8 @@ pub fn face_st(w: [i64; 3], tab: &[u64; 64]) -> (u8, u64, u64) {
         let scaled = if e >= 0 { p >> e } else { p << -e };
         let v = scaled + (1i128 << 32);
         let max = (1i128 << 33) - (1 << (33 - ST_FRAC));
-        let v = v.clamp(0, max) as u128;
-        (round_even(v, 33 - ST_FRAC) as u64).min((1 << ST_FRAC) - 1)
+        // Held below 1: the largest value rounds to 1 - 2^-12.
+        round_even(v.clamp(0, max) as u128, 33 - ST_FRAC) as u64
     };
     let face = 2 * axis as u8 + u8::from(neg);
     (face, coord(sc), coord(tc))
