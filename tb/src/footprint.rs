@@ -3,7 +3,7 @@
 //! setup unit, generator and accumulator in front of the TEXRAM chip, and the quality harness
 //! (a tilted plane, against the f64 box average over each pixel's exact footprint).
 
-use crate::texram::{test_map, RefBorder, RefMipmap, CYCLE_PS};
+use crate::texram::{border_class, ref_border, test_map, RefBorder, RefMipmap, CYCLE_PS};
 use crate::texture::reference_sums;
 use formats::ccc::Ccc;
 use hdl::footprint::assembly_fig12::SampleTarget;
@@ -295,15 +295,6 @@ const CONFIGS: [(u32, u32, Border, u32, NRounding, Unit); 6] = [
     ),
 ];
 
-fn ref_border(b: Border) -> RefBorder {
-    match b {
-        Border::Wrap => RefBorder::Wrap,
-        Border::Clamp => RefBorder::Clamp,
-        Border::Mirror => RefBorder::Mirror,
-        Border::Colour(c) => RefBorder::Colour(c),
-    }
-}
-
 fn coverage_model() -> Coverage {
     let mut c = Coverage::new();
     let n = c.add(
@@ -567,12 +558,7 @@ fn run_pixels<U: SampleTarget, T: Trace>(
                         1
                     };
                     let r = i64::from(p.rounding == NRounding::Linear);
-                    let b = match border {
-                        Border::Wrap => 0,
-                        Border::Clamp => 1,
-                        Border::Mirror => 2,
-                        Border::Colour(_) => 3,
-                    };
+                    let b = border_class(border);
                     cov.sample(&[i64::from(txn.n.trailing_zeros()), l, b, r, unit]);
                 }
             }

@@ -309,12 +309,7 @@ fn run_npixels<T: Trace>(
         Filter::Blinn => 1,
         Filter::Bezier => 2,
     };
-    let bi = match border {
-        Border::Wrap => 0,
-        Border::Clamp => 1,
-        Border::Mirror => 2,
-        Border::Constant(_) => 3,
-    };
+    let bi = crate::normals::border_id(&BumpParams { border, ..*p });
     let r = run(
         &mut sim,
         &mut NDriver,

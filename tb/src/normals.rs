@@ -284,7 +284,8 @@ fn variant_id(p: &BumpParams) -> i64 {
     }
 }
 
-fn border_id(p: &BumpParams) -> i64 {
+/// A border operation's coverage bin: wrap 0, clamp 1, mirror 2, constant 3.
+pub fn border_id(p: &BumpParams) -> i64 {
     match p.border {
         Border::Wrap => 0,
         Border::Clamp => 1,

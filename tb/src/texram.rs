@@ -256,7 +256,8 @@ fn config_class(c: Config) -> i64 {
     }
 }
 
-fn ref_border(b: Border) -> RefBorder {
+/// The reference's border operation of a DRF's.
+pub fn ref_border(b: Border) -> RefBorder {
     match b {
         Border::Wrap => RefBorder::Wrap,
         Border::Clamp => RefBorder::Clamp,
@@ -370,7 +371,8 @@ fn lambda_class(lambda: i32, lmax: u32) -> i64 {
     }
 }
 
-fn border_class(b: Border) -> i64 {
+/// A border operation's coverage bin: wrap 0, clamp 1, mirror 2, colour 3.
+pub fn border_class(b: Border) -> i64 {
     match b {
         Border::Wrap => 0,
         Border::Clamp => 1,

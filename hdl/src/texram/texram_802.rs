@@ -362,9 +362,11 @@ impl Texram802 {
     }
 
     /// 824 for a video round starting: the rows its segments write or read, the slots it
-    /// takes (one, two if any bank has another row open). Returns the segments served.
-    fn video_round(&mut self) -> Option<usize> {
-        let v = self.video.as_deref_mut()?;
+    /// takes (one, two if any bank has another row open). False when there is none to start.
+    fn video_round(&mut self) -> bool {
+        let Some(v) = self.video.as_deref_mut() else {
+            return false;
+        };
         let (mut n, mut missed) = (0, 0u64);
         for s in v.round().into_iter().flatten() {
             let row = u64::from(s.word / ROW_WORDS) + 1;
@@ -376,7 +378,7 @@ impl Texram802 {
             n += 1;
         }
         if n == 0 {
-            return None;
+            return false;
         }
         let slots = if missed > 0 { 2 } else { 1 };
         v.start(slots);
@@ -384,7 +386,7 @@ impl Texram802 {
             .set_next_bits(slots * u64::from(self.p.slot_cycles));
         self.slots.set_next_bits(self.slots.q().bits() + slots);
         self.vid_round.set_next_bits(n as u64);
-        Some(n)
+        true
     }
 
     /// Loads the CLUT 814.
@@ -619,7 +621,7 @@ impl Module for Texram802 {
         }
         let waiting = self.addr.valid.q().is_high();
         // The video port goes first at a slot boundary: video cannot wait.
-        let video = (!busy || finishing) && self.video_round().is_some();
+        let video = (!busy || finishing) && self.video_round();
         let move_on = waiting && (!busy || finishing) && !video;
         if video {
             self.bank.valid.set_next_bool(true);
