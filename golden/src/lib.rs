@@ -6,6 +6,7 @@ pub mod blend_adjust;
 pub mod bump;
 pub mod envmap;
 pub mod footprint;
+pub mod mapchain;
 pub mod mipmap;
 pub mod rsqrt;
 pub mod texram;

@@ -54,6 +54,8 @@ pub mod bump;
 pub mod envmap;
 /// Section 10 and Figures 12-13 of Schilling & Knittel: footprint assembly.
 pub mod footprint;
+/// Map linking, detail, reflectance and environment maps (TEXRAM sections 7-9, 14).
+pub mod mapchain;
 /// FIG. 14 of Schilling & Knittel: the real-time mipmap generator.
 pub mod mipmap;
 /// Figure 6 of Schilling & Knittel: the texture memory path.

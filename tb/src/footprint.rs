@@ -482,12 +482,7 @@ type Expected = (Pixel, Assembled, f64);
 fn expect(map: &RefMipmap, border: Border, p: &SetupParams, px: &Pixel) -> Expected {
     let (want, points) = ref_assemble(map, ref_border(border), p, px);
     let (_, _, lambda) = ref_setup(p, px);
-    let golden_border = match border {
-        Border::Wrap => golden::texram::Border::Wrap,
-        Border::Clamp => golden::texram::Border::Clamp,
-        Border::Mirror => golden::texram::Border::Mirror,
-        Border::Colour(c) => golden::texram::Border::Colour(f64::from(c)),
-    };
+    let golden_border = crate::texram::golden_border(border);
     let g = golden::texram::Mipmap {
         width: map.width as usize,
         height: map.height as usize,

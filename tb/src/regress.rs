@@ -22,7 +22,8 @@ pub fn registry() -> Registry {
         .register(Box::new(crate::texram_video::VideoPortTb))
         .register(Box::new(crate::footprint::FootprintTb))
         .register(Box::new(crate::footprint_normals::FootprintNormalsTb))
-        .register(Box::new(crate::volume::VolumeTb));
+        .register(Box::new(crate::volume::VolumeTb))
+        .register(Box::new(crate::mapchain::WalkerTb));
     r
 }
 

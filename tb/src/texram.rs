@@ -259,16 +259,20 @@ fn config_class(c: Config) -> i64 {
 /// The reference's border operation of a DRF's.
 pub fn ref_border(b: Border) -> RefBorder {
     match b {
-        Border::Wrap => RefBorder::Wrap,
+        // A tile border is the wrap at the map's edge; its fold inside the tile needs the
+        // sample point and is checked by the map chain's testbench (`walker_812`).
+        Border::Wrap | Border::Tile(_) => RefBorder::Wrap,
         Border::Clamp => RefBorder::Clamp,
         Border::Mirror => RefBorder::Mirror,
         Border::Colour(c) => RefBorder::Colour(c),
     }
 }
 
-fn golden_border(b: Border) -> golden::texram::Border {
+/// The golden model's border operation of a DRF's (a tile border: the wrap at the map's
+/// edge, see [`ref_border`]).
+pub fn golden_border(b: Border) -> golden::texram::Border {
     match b {
-        Border::Wrap => golden::texram::Border::Wrap,
+        Border::Wrap | Border::Tile(_) => golden::texram::Border::Wrap,
         Border::Clamp => golden::texram::Border::Clamp,
         Border::Mirror => golden::texram::Border::Mirror,
         Border::Colour(c) => golden::texram::Border::Colour(f64::from(c)),
@@ -371,10 +375,10 @@ fn lambda_class(lambda: i32, lmax: u32) -> i64 {
     }
 }
 
-/// A border operation's coverage bin: wrap 0, clamp 1, mirror 2, colour 3.
+/// A border operation's coverage bin: wrap (and tile) 0, clamp 1, mirror 2, colour 3.
 pub fn border_class(b: Border) -> i64 {
     match b {
-        Border::Wrap => 0,
+        Border::Wrap | Border::Tile(_) => 0,
         Border::Clamp => 1,
         Border::Mirror => 2,
         Border::Colour(_) => 3,

@@ -22,6 +22,11 @@ pub enum Border {
     Mirror,
     /// The DRF's border colour; no bank is read.
     Colour(u8),
+    /// Wrapped inside aligned tiles of `2^t` texels at level 0 (`2^(t-k)` at level k, at
+    /// least 1), the tile being the one the sample point lies in; then wrapped at the map's
+    /// edge. A detail map's tiles (section 9): each level-0 texel of the texture owns one
+    /// tile of the detail map, which repeats inside it [C].
+    Tile(u8),
 }
 
 impl Border {
@@ -31,28 +36,34 @@ impl Border {
             Border::Clamp => "clamp".into(),
             Border::Mirror => "mirror".into(),
             Border::Colour(c) => format!("border:{c}"),
+            Border::Tile(t) => format!("tile:{t}"),
         }
     }
 
-    /// `wrap`, `clamp`, `mirror` or `border:N` (N 0..=255).
+    /// `wrap`, `clamp`, `mirror`, `border:N` (N 0..=255) or `tile:T` (T 0..=10).
     pub fn parse(s: &str) -> Option<Border> {
         match s {
             "wrap" => Some(Border::Wrap),
             "clamp" => Some(Border::Clamp),
             "mirror" => Some(Border::Mirror),
-            _ => s
-                .strip_prefix("border:")
-                .and_then(|n| n.parse().ok())
-                .map(Border::Colour),
+            _ => {
+                if let Some(t) = s.strip_prefix("tile:") {
+                    return t.parse().ok().filter(|t| *t <= 10).map(Border::Tile);
+                }
+                s.strip_prefix("border:")
+                    .and_then(|n| n.parse().ok())
+                    .map(Border::Colour)
+            }
         }
     }
 
     /// The texel index `i` of an axis of `size` texels (a power of two) becomes, or `None`
-    /// for the border colour.
+    /// for the border colour. A tile border here is the map's wrap (the tile needs the
+    /// sample point: [`Border::pair`]).
     pub fn remap(self, i: i32, size: u32) -> Option<u32> {
         let n = size as i32;
         match self {
-            Border::Wrap => Some((i & (n - 1)) as u32),
+            Border::Wrap | Border::Tile(_) => Some((i & (n - 1)) as u32),
             Border::Clamp => Some(i.clamp(0, n - 1) as u32),
             Border::Mirror => {
                 let m = i & (2 * n - 1);
@@ -60,6 +71,20 @@ impl Border {
             }
             Border::Colour(_) => (0..n).contains(&i).then_some(i as u32),
         }
+    }
+}
+
+impl Border {
+    /// The pair `i`, `i + 1` of an axis of `size` texels at level `k`, whose weight toward
+    /// `i + 1` is `a` (the sample point is at `i + 1/2 + a/256`).
+    pub fn pair(self, i: i32, a: u8, size: u32, k: u32) -> [Option<u32>; 2] {
+        let Border::Tile(t) = self else {
+            return [self.remap(i, size), self.remap(i + 1, size)];
+        };
+        let tile = 1i32 << u32::from(t).saturating_sub(k);
+        // The tile the sample point lies in: i's when a < 1/2, else i + 1's.
+        let base = (i + i32::from(a >= 128)) & !(tile - 1);
+        [i, i + 1].map(|x| self.remap(base + ((x - base) & (tile - 1)), size))
     }
 }
 
@@ -111,8 +136,8 @@ impl Footprint {
             let (w, h) = drf.level_size(k);
             let (i, a) = axis(u, k);
             let (j, b) = axis(v, k);
-            let xs = [drf.border.remap(i, w), drf.border.remap(i + 1, w)];
-            let ys = [drf.border.remap(j, h), drf.border.remap(j + 1, h)];
+            let xs = drf.border.pair(i, a, w, k);
+            let ys = drf.border.pair(j, b, h, k);
             for (t, (dx, dy)) in [(0, 0), (1, 0), (0, 1), (1, 1)].into_iter().enumerate() {
                 fp.texels[n][t] = xs[dx].zip(ys[dy]);
             }
@@ -136,7 +161,40 @@ mod tests {
                 Some(if m < n { m } else { 2 * n - 1 - m })
             }
             Border::Colour(_) => (0 <= i && i < n).then_some(i),
+            Border::Tile(_) => Some(i.rem_euclid(n)),
         }
+    }
+
+    /// A tile border keeps both texels in the tile of the sample point, whatever the level
+    /// and weight: exhaustively over a 64-texel axis with 16-texel tiles at levels 0-5.
+    #[test]
+    fn a_tile_border_wraps_inside_the_sample_points_tile() {
+        let b = Border::Tile(4);
+        for k in 0..=5u32 {
+            let size = 64 >> k;
+            let tile = (16i64 >> k).max(1);
+            for i in -3..size as i32 + 3 {
+                for a in [0u8, 1, 127, 128, 200, 255] {
+                    // The sample point's texel: floor(i + 1/2 + a/256).
+                    let at = (256 * i64::from(i) + 128 + i64::from(a)).div_euclid(256);
+                    let t0 = at.div_euclid(tile) * tile;
+                    let got = b.pair(i, a, size, k);
+                    for (n, x) in [i, i + 1].into_iter().enumerate() {
+                        let want =
+                            (t0 + (i64::from(x) - t0).rem_euclid(tile)).rem_euclid(size.into());
+                        assert_eq!(got[n].map(i64::from), Some(want), "k {k} i {i} a {a}");
+                    }
+                    // Two texels of one tile differ in parity (no bank conflict) unless the
+                    // tile is a single texel.
+                    let same = got[0] == got[1];
+                    assert_eq!(same, tile == 1, "k {k} i {i} a {a}");
+                }
+            }
+        }
+        // The printed pairs: level 0, texel 15 of tile 0 at weight < 1/2 pairs with texel 0.
+        assert_eq!(b.pair(15, 10, 64, 0), [Some(15), Some(0)]);
+        assert_eq!(b.pair(15, 130, 64, 0), [Some(31), Some(16)]);
+        assert_eq!(Border::Wrap.pair(63, 10, 64, 0), [Some(63), Some(0)]);
     }
 
     #[test]
@@ -196,9 +254,11 @@ mod tests {
             Border::Clamp,
             Border::Mirror,
             Border::Colour(200),
+            Border::Tile(4),
         ] {
             assert_eq!(Border::parse(&b.name()), Some(b));
         }
+        assert_eq!(Border::parse("tile:11"), None);
         assert_eq!(Border::parse("border:256"), None);
         assert_eq!(Border::parse("repeat"), None);
     }

@@ -230,6 +230,43 @@ pub trait TexramAccess {
     fn access(&mut self, req: TexramRequest) -> Result<TexramReply, String>;
     /// Slots taken since the start (accesses, their faults and anything else the chip did).
     fn slots(&self) -> u64;
+    /// Writes the map `drf` describes (level 0 given, the levels above made as
+    /// [`stub::next_level`] makes them) wherever its bases say, with or without a DRF
+    /// pointing at it (an offset map's second plane, a cube face).
+    fn load_map(&mut self, drf: &Drf, level0: &[u8]) -> Result<(), String>;
+    /// One access through 812's working descriptor [`WORKING`]: the map the chain walker
+    /// selected (a cube face, an offset plane, a detail map) loaded for this access only.
+    fn access_with(
+        &mut self,
+        drf: &Drf,
+        u: i32,
+        v: i32,
+        lambda: i32,
+    ) -> Result<TexramReply, String>;
+}
+
+/// The request pointer of 812's working descriptor: the DRF the chain walker fills for one
+/// access. The rasterizer's requests name DRFs `0 .. DRFS` only.
+pub const WORKING: u8 = DRFS as u8;
+
+/// Writes every level of `drf`'s map, from level 0 up, with `store`.
+pub fn load_levels(
+    drf: &Drf,
+    level0: &[u8],
+    mut store: impl FnMut(u32, &[u8]) -> Result<(), String>,
+) -> Result<(), String> {
+    drf.validate()?;
+    let (w, h) = drf.level_size(0);
+    if level0.len() != (w * h) as usize {
+        return Err(format!("map of {w}x{h}: {} texels given", level0.len()));
+    }
+    let mut level = level0.to_vec();
+    for k in 0..=drf.max_level() {
+        store(k, &level)?;
+        let (w, h) = drf.level_size(k);
+        level = stub::next_level(w, h, &level);
+    }
+    Ok(())
 }
 
 #[cfg(test)]

@@ -204,6 +204,40 @@ impl TexramAccess for TexramStub {
     fn access(&mut self, req: TexramRequest) -> Result<TexramReply, String> {
         req.validate()?;
         let d = self.drf(usize::from(req.drf))?;
+        Ok(self.access_drf(d, req))
+    }
+
+    fn slots(&self) -> u64 {
+        self.slots
+    }
+
+    fn load_map(&mut self, drf: &Drf, level0: &[u8]) -> Result<(), String> {
+        let banks = &mut self.banks;
+        super::load_levels(drf, level0, |k, t| store_level(banks, drf, k, t))
+    }
+
+    fn access_with(
+        &mut self,
+        drf: &Drf,
+        u: i32,
+        v: i32,
+        lambda: i32,
+    ) -> Result<TexramReply, String> {
+        drf.validate()?;
+        let req = TexramRequest {
+            drf: super::WORKING,
+            u,
+            v,
+            lambda,
+        };
+        TexramRequest { drf: 0, ..req }.validate()?;
+        Ok(self.access_drf(*drf, req))
+    }
+}
+
+impl TexramStub {
+    /// One access of `req` on the map of `d`.
+    fn access_drf(&mut self, d: Drf, req: TexramRequest) -> TexramReply {
         let colour = match d.border {
             Border::Colour(c) => c,
             _ => 0,
@@ -234,7 +268,7 @@ impl TexramAccess for TexramStub {
         self.slots += u64::from(slots);
         self.accesses += 1;
         self.faults += u64::from(faults);
-        Ok(TexramReply {
+        TexramReply {
             fine: fp.fine,
             coarse: fp.coarse,
             texels,
@@ -245,11 +279,7 @@ impl TexramAccess for TexramStub {
             rgba,
             slots,
             faults,
-        })
-    }
-
-    fn slots(&self) -> u64 {
-        self.slots
+        }
     }
 }
 

@@ -205,6 +205,9 @@ pub struct Texram802 {
     name: String,
     p: TexramParams,
     drfs: [Option<Drf>; DRFS],
+    /// 812's working descriptor (request pointer [`super::WORKING`]): the map the chain
+    /// walker selected for its next access.
+    working: Option<Drf>,
     banks: Vec<Vec<u8>>,
     clut: Clut,
     pub req_valid: Signal,
@@ -258,6 +261,7 @@ impl Texram802 {
             name: "texram_802".into(),
             p,
             drfs: [None; DRFS],
+            working: None,
             banks: (0..BANKS)
                 .map(|b| vec![0; bank_words(b) as usize])
                 .collect(),
@@ -411,6 +415,19 @@ impl Texram802 {
         store_level(&mut self.banks, &d, lv, texels).map_err(|e| format!("drf {k}: {e}"))
     }
 
+    /// Writes the map `d` describes, every level, wherever its bases say.
+    pub fn load_map(&mut self, d: &Drf, level0: &[u8]) -> Result<(), String> {
+        let banks = &mut self.banks;
+        super::load_levels(d, level0, |k, t| store_level(banks, d, k, t))
+    }
+
+    /// Sets 812's working descriptor (what request pointer [`super::WORKING`] reads).
+    pub fn set_working(&mut self, d: &Drf) -> Result<(), String> {
+        d.validate()?;
+        self.working = Some(*d);
+        Ok(())
+    }
+
     /// Loads level 0 of DRF `k`'s map and the levels above it (as the stub does).
     pub fn load(&mut self, k: usize, level0: &[u8]) -> Result<(), String> {
         let d = self
@@ -432,7 +449,11 @@ impl Texram802 {
     /// registers: its footprint, on the component's map for the colour layouts.
     fn address(&mut self, part: u32, k: usize, (u, v, l): (i32, i32, i32)) {
         // An unset DRF reads nothing: every texel is 0 (the testbench checks DRFs are set).
-        let d = self.drfs.get(k).copied().flatten();
+        let d = if k == usize::from(super::WORKING) {
+            self.working
+        } else {
+            self.drfs.get(k).copied().flatten()
+        };
         let colour_map = d.is_some_and(|d| matches!(d.config, Config::Planar | Config::Literal));
         self.addr.part.set_next_bits(u64::from(part));
         self.addr.last.set_next_bool(!colour_map || part == 3);
@@ -774,6 +795,44 @@ impl super::TexramAccess for Texram802Access {
         req.validate()?;
         let d =
             self.sim.dut.drfs[usize::from(req.drf)].ok_or(format!("drf {}: not set", req.drf))?;
+        self.run(d, req)
+    }
+
+    fn load_map(&mut self, drf: &Drf, level0: &[u8]) -> Result<(), String> {
+        self.sim.dut.load_map(drf, level0)
+    }
+
+    fn access_with(
+        &mut self,
+        drf: &Drf,
+        u: i32,
+        v: i32,
+        lambda: i32,
+    ) -> Result<super::TexramReply, String> {
+        let req = super::TexramRequest {
+            drf: 0,
+            u,
+            v,
+            lambda,
+        };
+        req.validate()?;
+        self.sim.dut.set_working(drf)?;
+        let req = super::TexramRequest {
+            drf: super::WORKING,
+            ..req
+        };
+        self.run(*drf, req)
+    }
+
+    fn slots(&self) -> u64 {
+        self.sim.dut.slots.q().bits()
+    }
+}
+
+impl Texram802Access {
+    /// Drives `req` (on the map `d`) into the request port and clocks the chip until its
+    /// result comes out.
+    fn run(&mut self, d: Drf, req: super::TexramRequest) -> Result<super::TexramReply, String> {
         let (slots0, faults0) = (
             self.sim.dut.slots.q().bits(),
             self.sim.dut.faults.q().bits(),
@@ -815,9 +874,5 @@ impl super::TexramAccess for Texram802Access {
             self.sim.tick();
         }
         Err("the chip gave no result in 1000 cycles".into())
-    }
-
-    fn slots(&self) -> u64 {
-        self.sim.dut.slots.q().bits()
     }
 }
