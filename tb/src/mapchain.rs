@@ -595,6 +595,9 @@ impl Testbench for WalkerTb {
     fn coverage(&self) -> Coverage {
         coverage_model()
     }
+    fn conclude(&self, merged: &mut TbResult) {
+        conclude_timings(merged);
+    }
     fn run(&self, ctx: &Ctx) -> Result<TbResult, String> {
         let (shape, on_chip) = CONFIGS[ctx.index];
         let mut stim = Stimulus::new(ctx.seed);
@@ -709,4 +712,120 @@ fn run_pixels<A: TexramAccess, T: Trace>(
         res.vcd = Some(w.vcd.clone());
     }
     Ok(res)
+}
+
+/// One of section 14's timing claims, measured on the clocked walker.
+#[derive(Clone, Debug)]
+pub struct Timing {
+    pub what: &'static str,
+    pub pixels: usize,
+    pub accesses: f64,
+    pub faults: f64,
+    pub ns: f64,
+    /// The document's figure, when it gives one.
+    pub document_ns: Option<f64>,
+}
+
+/// The clocked walker over the stub at full rate: the cycles from the first pixel taken to
+/// the last result, and the results.
+pub fn clocked(sc: &Scene, px: &[ChainRequest]) -> Result<(u64, Vec<ChainResult>), String> {
+    let mut sim = Sim::new(MapChain812::new(sc.file.clone(), sc.stub()?, SLOT_CYCLES)?);
+    sim.reset(2);
+    let (mut next, mut out, mut first) = (0usize, Vec::with_capacity(px.len()), None);
+    for _ in 0..200 * (px.len() as u64 + 1) {
+        sim.dut.drive(px.get(next));
+        sim.eval();
+        if next < px.len() && sim.dut.req_ready.is_high() {
+            first.get_or_insert(sim.cycle());
+            next += 1;
+        }
+        if sim.dut.out_valid.q().is_high() {
+            out.push(sim.dut.result());
+            if out.len() == px.len() {
+                return Ok((sim.cycle() - first.unwrap_or(0), out));
+            }
+        }
+        sim.tick();
+    }
+    Err("the walker stalled".into())
+}
+
+/// Pixels along a texture row at `lambda`, a third of a texel apart, looking at one face.
+fn scanline(n: usize, lambda: i32) -> Vec<ChainRequest> {
+    (0..n)
+        .map(|i| ChainRequest {
+            drf: 0,
+            u: 300 + 85 * i as i32,
+            v: 9 << 8 | 0x40,
+            lambda,
+            n: [1200, -800, 16000],
+            eye: [2000, 1500, 16100],
+            face: 0,
+            i_d: 200,
+            i_s: 0,
+        })
+        .collect()
+}
+
+/// The chains of section 14's claims and the document's figures: texture + detail (4
+/// accesses, about 240 ns) and the longest chain (9 accesses, about 540 ns); beside them
+/// texture alone and texture + environment, for which the document gives accesses only.
+pub fn timings() -> Result<Vec<Timing>, String> {
+    let maps = Maps::new(&mut Stimulus::new(verif::Seed(15)));
+    let cases = [
+        ("texture, lambda 0.5", Shape::Texture, 128, None),
+        ("texture + environment, lambda 0.5", Shape::Environment, 128, None),
+        ("texture + detail, lambda -2.5", Shape::Detail, -640, Some(240.0)),
+        ("longest chain, lambda -2.5", Shape::Longest, -640, Some(540.0)),
+    ];
+    let n = 256;
+    cases
+        .into_iter()
+        .map(|(what, shape, lambda, document_ns)| {
+            let sc = scene(shape, &maps)?;
+            let (cycles, out) = clocked(&sc, &scanline(n, lambda))?;
+            let sum = |f: fn(&ChainResult) -> u32| out.iter().map(|r| f64::from(f(r))).sum::<f64>();
+            Ok(Timing {
+                what,
+                pixels: n,
+                accesses: sum(|r| r.accesses) / n as f64,
+                faults: sum(|r| r.faults) / n as f64,
+                ns: cycles as f64 * CYCLE_PS as f64 / 1000.0 / n as f64,
+                document_ns,
+            })
+        })
+        .collect()
+}
+
+/// The timings as a report table, notes and (outside 10 % of the document) failures.
+pub fn conclude_timings(merged: &mut TbResult) {
+    let mut table = String::from(
+        "| section 14 chain (pixels along a row) | accesses a pixel | faulting accesses a pixel | ns a pixel | M pixels/s | document |\n|---|---|---|---|---|---|\n",
+    );
+    let rows = match timings() {
+        Ok(r) => r,
+        Err(e) => return merged.failures.push(e),
+    };
+    for t in rows {
+        let doc = t.document_ns.map_or("-".into(), |d| format!("about {d:.0} ns"));
+        table.push_str(&format!(
+            "| {} | {:.2} | {:.2} | {:.1} | {:.2} | {doc} |\n",
+            t.what,
+            t.accesses,
+            t.faults,
+            t.ns,
+            1e3 / t.ns
+        ));
+        merged.notes.push(format!(
+            "{}: {:.1} ns a pixel, {:.2} accesses of which {:.2} faulted",
+            t.what, t.ns, t.accesses, t.faults
+        ));
+        if let Some(d) = t.document_ns.filter(|d| (t.ns / d - 1.0).abs() > 0.10) {
+            merged.failures.push(format!(
+                "{}: {:.1} ns a pixel, not within 10 % of the document's {d:.0}",
+                t.what, t.ns
+            ));
+        }
+    }
+    merged.tables.push(table);
 }

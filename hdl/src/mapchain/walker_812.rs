@@ -5,14 +5,17 @@
 //!
 //! # Timing ([C]; the document gives the 30 ns slot and "a linked-map access will most
 //! probably cause a page fault")
-//! The clock is 5 ns. A pixel is taken in a cycle where `req_ready` is high (idle, or the
-//! cycle its predecessor's result is out). An access is issued on `acc_*` in the cycle the
+//! The clock is 5 ns. A pixel is taken in a cycle where `req_ready` is high (idle, the
+//! cycle a result is out, or the last cycle of a pixel's last access). An access is issued on `acc_*` in the cycle the
 //! walker decides it and read at that clock edge; the walker stays in the access's state for
 //! its slots (one, two after a page fault, from the banks' open rows) times `slot_cycles`.
 //! Computing an environment map's coordinates (eq. 4 and the cube face) takes one cycle
-//! (`ENV_COORDS`); the result is out in the `COMBINE` (or `ERROR`) cycle: `out_valid` with
-//! `out_colour`, the pixel's `out_accesses`, `out_slots`, `out_faults` (accesses that
-//! faulted) and `out_error`.
+//! (`ENV_COORDS`); the result is out in the cycle after the last access (`COMBINE`, or
+//! `ERROR`): `out_valid` with `out_colour`, the pixel's `out_accesses`, `out_slots`,
+//! `out_faults` (accesses that faulted) and `out_error`. The next pixel is taken in the last
+//! access's last cycle already, so back-to-back pixels of one access each come one a slot
+//! (the chip's 33.3 M per second); the walker then goes from that access straight to the
+//! next pixel's, and `COMBINE` shows only when no pixel waits.
 //!
 //! | port | format |
 //! |---|---|
@@ -341,6 +344,25 @@ impl<T: TexramAccess> MapChain812<T> {
         }
     }
 
+    /// In the cycle a pixel's last access ends, the next pixel is taken if its first DRF
+    /// reads the banks (its access then follows without a gap); one that would end at once
+    /// (an unset DRF) waits for the next cycle, so that two results never meet.
+    fn overlap(&mut self) {
+        if !self.req_valid.is_high() {
+            return;
+        }
+        let px = request_of(self.req.each_ref().map(|s| s.raw()));
+        let prog = Program {
+            file: &self.file,
+            px: &px,
+            tab: &self.tab,
+        };
+        if prog.begin().1.is_some() {
+            self.req_ready.set_bool(true);
+            self.begin();
+        }
+    }
+
     /// A new pixel from the port: held, and its first DRF visited.
     fn begin(&mut self) {
         let raw = self.req.each_ref().map(|s| s.raw());
@@ -398,7 +420,11 @@ impl<T: TexramAccess> Module for MapChain812<T> {
             tab: &tab,
         };
         let (w, f) = prog.advance(w, self.rd_value.q().bits() as u8);
+        let done = matches!(w.state, State::Combine | State::Error);
         self.apply(&prog, w, f, counts);
+        if done {
+            self.overlap();
+        }
     }
 
     fn tick(&mut self, reset: bool) {
