@@ -388,13 +388,15 @@ fn fixed(v: [f64; 3], len: f64) -> [i64; 3] {
 }
 
 /// Random pixels: u, v over the map and a texel beyond, lambda over -4 ..= 10 (half of them
-/// below 0, every eighth exactly on an integer), perturbed normals of length 0.7 to 1.3 facing
+/// below 0, every eighth exactly on an integer, the first six one in each unit from -4 to 2), perturbed normals of length 0.7 to 1.3 facing
 /// +z, unit eye vectors facing +z, random I_d and I_s.
 pub fn pixels(n: usize, stim: &mut Stimulus) -> Vec<ChainRequest> {
     let side = 256i32 << TEX_LOG2;
     (0..n)
         .map(|i| {
+            // The first six cover every coverage range of lambda whatever the count.
             let lambda = match i % 8 {
+                _ if i < 6 => ((i as i32 - 4) << 8) + stim.draw(&(0i32..256)),
                 0 => stim.draw(&(-4i32..=10)) << 8,
                 1..=4 => stim.draw(&(-1024i32..0)),
                 _ => stim.draw(&(-1024i32..=2560)),
@@ -774,9 +776,24 @@ pub fn timings() -> Result<Vec<Timing>, String> {
     let maps = Maps::new(&mut Stimulus::new(verif::Seed(15)));
     let cases = [
         ("texture, lambda 0.5", Shape::Texture, 128, None),
-        ("texture + environment, lambda 0.5", Shape::Environment, 128, None),
-        ("texture + detail, lambda -2.5", Shape::Detail, -640, Some(240.0)),
-        ("longest chain, lambda -2.5", Shape::Longest, -640, Some(540.0)),
+        (
+            "texture + environment, lambda 0.5",
+            Shape::Environment,
+            128,
+            None,
+        ),
+        (
+            "texture + detail, lambda -2.5",
+            Shape::Detail,
+            -640,
+            Some(240.0),
+        ),
+        (
+            "longest chain, lambda -2.5",
+            Shape::Longest,
+            -640,
+            Some(540.0),
+        ),
     ];
     let n = 256;
     cases
@@ -807,7 +824,9 @@ pub fn conclude_timings(merged: &mut TbResult) {
         Err(e) => return merged.failures.push(e),
     };
     for t in rows {
-        let doc = t.document_ns.map_or("-".into(), |d| format!("about {d:.0} ns"));
+        let doc = t
+            .document_ns
+            .map_or("-".into(), |d| format!("about {d:.0} ns"));
         table.push_str(&format!(
             "| {} | {:.2} | {:.2} | {:.1} | {:.2} | {doc} |\n",
             t.what,
