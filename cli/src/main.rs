@@ -45,6 +45,9 @@ enum Cmd {
     Texram(cmd::texram::TexramArgs),
     Footprint(cmd::footprint::FootprintArgs),
     Volume(cmd::volume::VolumeArgs),
+    /// Pixels through the map chain walker of 812 (section 14): linked texture, offset,
+    /// detail, reflectance and environment maps, eqs 5-7.
+    Mapchain(cmd::mapchain::MapchainArgs),
     /// Co-simulate a unit's model and Verilog (its twin in rtl/, or --rtl FILE.v of yours):
     /// every output port compared on every cycle.
     Cosim(cmd::cosim::CosimArgs),
@@ -96,6 +99,7 @@ fn main() -> ExitCode {
         Some(Cmd::Texram(a)) => cmd::texram::run(&a),
         Some(Cmd::Footprint(a)) => cmd::footprint::run(&a),
         Some(Cmd::Volume(a)) => cmd::volume::run(&a),
+        Some(Cmd::Mapchain(a)) => cmd::mapchain::run(&a),
         Some(Cmd::Cosim(a)) => cmd::cosim::run(&a),
         Some(Cmd::Merge(a)) => cmd::merge::run(&a),
         Some(Cmd::Vectors(a)) => cmd::vectors::run(&a),

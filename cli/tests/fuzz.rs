@@ -91,6 +91,35 @@ fn texram_fronts() -> Vec<Front> {
             ],
         },
         Front {
+            name: "mapchain",
+            args: &[
+                "mapchain",
+                "--maps",
+                "{m.json}",
+                "--requests",
+                "{r.csv}",
+                "--out",
+                "{out}.csv",
+                "--stats",
+                "{out}.json",
+            ],
+            files: vec![
+                (
+                    "m.json",
+                    br#"{"drfs": [{"drf": 0, "kind": "texture", "maps": ["t.pgm"], "link": 1},
+ {"drf": 1, "kind": "offset", "maps": ["t.pgm", "t.pgm"], "link": 2},
+ {"drf": 2, "kind": "detail", "maps": ["t.pgm"], "detail": "add-signed"}]}"#
+                        .to_vec(),
+                ),
+                ("t.pgm", pgm()),
+                (
+                    "r.csv",
+                    b"drf,u,v,lambda,nx,ny,nz,id\n0,1.5,2,-2.5,0,0.5,1,200\n0,-3,9,1,0,0,1,9\n"
+                        .to_vec(),
+                ),
+            ],
+        },
+        Front {
             name: "footprint",
             args: &[
                 "footprint",

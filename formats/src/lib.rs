@@ -4,11 +4,13 @@
 //! * [`csv`]: the request and trace tables the commands read (a header naming the columns,
 //!   one row per line), with errors that name the file, the line and the column;
 //! * [`ccc`]: the `.ccc` colour-cell-compressed texture format and its offline encoder;
+//! * [`maps_json`]: the map chain's description (its DRFs and the map files they name);
 //! * [`png`]: PNG encoding of pictures;
 //! * [`output`]: writing a file so that no partial file is ever left behind.
 
 pub mod ccc;
 pub mod csv;
+pub mod maps_json;
 pub mod netpbm;
 pub mod output;
 pub mod png;

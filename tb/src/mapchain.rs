@@ -38,8 +38,8 @@ impl Scene {
         Scene::default()
     }
 
-    /// Adds DRF `k` of `kind` over square-or-not planes of `2^wl x 2^hl` (one plane's
-    /// texels each) with `border`; returns the DRF to refine.
+    /// Adds DRF `k` of `kind` over planes of `2^wl x 2^hl` (one plane's texels each) with
+    /// `border`; returns the DRF to refine.
     pub fn add(
         &mut self,
         k: usize,
@@ -48,15 +48,31 @@ impl Scene {
         border: Border,
         planes: Vec<Vec<u8>>,
     ) -> Result<&mut ChainDrf, String> {
-        let mut drf = ChainDrf::new(kind, Drf::new(wl, hl, border));
+        self.add_drf(k, ChainDrf::new(kind, Drf::new(wl, hl, border)), planes)
+    }
+
+    /// Adds DRF `k` as `drf` says, its planes placed after the maps before.
+    pub fn add_drf(
+        &mut self,
+        k: usize,
+        mut drf: ChainDrf,
+        planes: Vec<Vec<u8>>,
+    ) -> Result<&mut ChainDrf, String> {
         if planes.len() != drf.plane_count() {
             return Err(format!(
                 "drf {k}: a {} map has {} planes, {} given",
-                kind.name(),
+                drf.kind.name(),
                 drf.plane_count(),
                 planes.len()
             ));
         }
+        let (wl, hl) = (drf.map.width_log2, drf.map.height_log2);
+        drf.validate().map_err(|e| format!("drf {k}: {e}"))?;
+        let slot = self
+            .file
+            .drfs
+            .get_mut(k)
+            .ok_or_else(|| format!("drf {k}: 0..7"))?;
         for (p, texels) in planes.into_iter().enumerate() {
             let (e, o) = self.placer.place(wl, hl)?;
             if p == 0 {
@@ -66,13 +82,17 @@ impl Scene {
             }
             self.maps.push((drf.plane(p), texels));
         }
-        drf.validate().map_err(|e| format!("drf {k}: {e}"))?;
-        let slot = self
-            .file
-            .drfs
-            .get_mut(k)
-            .ok_or_else(|| format!("drf {k}: 0..7"))?;
         Ok(slot.insert(drf))
+    }
+
+    /// The scene a maps file describes.
+    pub fn from_specs(specs: Vec<formats::maps_json::DrfSpec>) -> Result<Scene, String> {
+        let mut s = Scene::new();
+        for d in specs {
+            s.add_drf(d.index, d.drf, d.planes)?;
+        }
+        s.file.validate()?;
+        Ok(s)
     }
 
     /// Writes every map into `t`'s banks.
@@ -731,7 +751,15 @@ pub struct Timing {
 /// The clocked walker over the stub at full rate: the cycles from the first pixel taken to
 /// the last result, and the results.
 pub fn clocked(sc: &Scene, px: &[ChainRequest]) -> Result<(u64, Vec<ChainResult>), String> {
-    let mut sim = Sim::new(MapChain812::new(sc.file.clone(), sc.stub()?, SLOT_CYCLES)?);
+    let sim = Sim::new(MapChain812::new(sc.file.clone(), sc.stub()?, SLOT_CYCLES)?);
+    clocked_sim(sim, px).map(|(c, r, _)| (c, r))
+}
+
+/// [`clocked`] on a given (perhaps traced) simulation, which it hands back.
+pub fn clocked_sim<T: Trace>(
+    mut sim: Sim<MapChain812<TexramStub>, T>,
+    px: &[ChainRequest],
+) -> Result<(u64, Vec<ChainResult>, Sim<MapChain812<TexramStub>, T>), String> {
     sim.reset(2);
     let (mut next, mut out, mut first) = (0usize, Vec::with_capacity(px.len()), None);
     for _ in 0..200 * (px.len() as u64 + 1) {
@@ -743,13 +771,69 @@ pub fn clocked(sc: &Scene, px: &[ChainRequest]) -> Result<(u64, Vec<ChainResult>
         }
         if sim.dut.out_valid.q().is_high() {
             out.push(sim.dut.result());
-            if out.len() == px.len() {
-                return Ok((sim.cycle() - first.unwrap_or(0), out));
-            }
         }
         sim.tick();
+        if out.len() == px.len() {
+            let cycles = sim.cycle() - 1 - first.unwrap_or(0);
+            return Ok((cycles, out, sim));
+        }
     }
     Err("the walker stalled".into())
+}
+
+/// What `texrtl mapchain` writes to its statistics.
+#[derive(Clone, Debug, Default, serde::Serialize)]
+pub struct ChainStats {
+    pub pixels: u64,
+    pub accesses: u64,
+    /// Accesses that found a bank's row closed (each took a second slot).
+    pub page_faults: u64,
+    pub slots: u64,
+    pub errors: u64,
+    pub cycles: u64,
+    pub ns: f64,
+    pub ns_per_pixel: f64,
+}
+
+/// The requests through the clocked walker over the stub loaded with `sc`'s maps, traced to
+/// `vcd` if given: each pixel's result and the statistics.
+pub fn run_mapchain(
+    sc: &Scene,
+    px: &[ChainRequest],
+    vcd: Option<&std::path::Path>,
+) -> Result<(Vec<ChainResult>, ChainStats), String> {
+    let tracer = match vcd {
+        Some(p) => {
+            let cfg = waves::TraceConfig {
+                period_ps: CYCLE_PS,
+                ..Default::default()
+            };
+            Some(waves::VcdTracer::create(p, NAME, cfg).map_err(|e| e.to_string())?)
+        }
+        None => None,
+    };
+    let dut = MapChain812::new(sc.file.clone(), sc.stub()?, SLOT_CYCLES)?;
+    let sim = Sim::maybe_traced(dut, tracer).map_err(|e| e.to_string())?;
+    let (cycles, out, mut sim) = clocked_sim(sim, px)?;
+    if let Some(e) = sim.dut.access_error.take() {
+        return Err(format!("the banks refused an access: {e}"));
+    }
+    if let Some(p) = vcd {
+        sim.finish().map_err(|e| format!("{}: {e}", p.display()))?;
+    }
+    let sum = |f: fn(&ChainResult) -> u32| out.iter().map(|r| u64::from(f(r))).sum::<u64>();
+    let ns = cycles as f64 * CYCLE_PS as f64 / 1000.0;
+    let st = ChainStats {
+        pixels: px.len() as u64,
+        accesses: sum(|r| r.accesses),
+        page_faults: sum(|r| r.faults),
+        slots: sum(|r| r.slots),
+        errors: sum(|r| u32::from(r.error)),
+        cycles,
+        ns,
+        ns_per_pixel: ns / px.len().max(1) as f64,
+    };
+    Ok((out, st))
 }
 
 /// Pixels along a texture row at `lambda`, a third of a texel apart, looking at one face.

@@ -4,6 +4,7 @@ pub mod ccc;
 pub mod cosim;
 pub mod dram;
 pub mod footprint;
+pub mod mapchain;
 pub mod merge;
 pub mod mipmap;
 pub mod normals;

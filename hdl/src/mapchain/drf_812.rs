@@ -205,15 +205,22 @@ impl DrfFile {
         self.drfs.get(usize::from(k)).and_then(Option::as_ref)
     }
 
-    /// Every DRF valid and every link to a set DRF.
+    /// Every DRF valid, every link to a set DRF, offset maps linked to a detail map.
     pub fn validate(&self) -> Result<(), String> {
         for (k, d) in self.drfs.iter().enumerate() {
             let Some(d) = d else { continue };
             d.validate().map_err(|e| format!("drf {k}: {e}"))?;
             if let Some(l) = d.link {
-                if self.get(l).is_none() {
+                let Some(next) = self.get(l) else {
                     return Err(format!("drf {k}: link to drf {l}, which is not set"));
+                };
+                if d.kind == Kind::Offset && next.kind != Kind::Detail {
+                    return Err(format!(
+                        "drf {k}: offsets link to a detail map, not drf {l}"
+                    ));
                 }
+            } else if d.kind == Kind::Offset {
+                return Err(format!("drf {k}: offsets link to a detail map"));
             }
         }
         Ok(())

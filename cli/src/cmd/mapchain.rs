@@ -1,0 +1,192 @@
+//! `texrtl mapchain`: pixels through the chain walker of unit 812 (Schilling & Knittel
+//! section 14) over linked texture, offset, detail, reflectance and environment maps.
+
+use super::{input, write_out, CmdError};
+use hdl::mapchain::program::ChainRequest;
+use std::fmt::Write;
+use std::path::{Path, PathBuf};
+use tb::mapchain::{run_mapchain, Scene};
+
+/// Pixels through the map chain walker of 812 (section 14, Fig. 16).
+#[derive(Clone, Debug, clap::Args)]
+pub struct MapchainArgs {
+    /// JSON: the DRFs and their PGM maps (see the README's map chain section):
+    /// {"drfs": [{"drf": 0, "kind": "texture", "maps": ["t.pgm"], "link": 1}, ...]}.
+    #[arg(long)]
+    pub maps: PathBuf,
+    /// CSV with header drf,u,v,lambda and any of nx,ny,nz (the perturbed normal, |c| < 4),
+    /// vx,vy,vz (unit vector to the eye, |c| < 2), face (0..=5), id, is (0..=255): u, v in
+    /// level-0 texels (-4096..4096, 8 fraction bits), lambda -4..=10, vectors 14 fraction
+    /// bits (rounded ties to even); defaults n = v = (0, 0, 1), face 0, id 255, is 0.
+    #[arg(long)]
+    pub requests: PathBuf,
+    /// CSV: drf,u,v,lambda,colour,accesses,faults,error per request in order.
+    #[arg(long)]
+    pub out: PathBuf,
+    /// JSON: pixels, accesses, page_faults, slots, errors, cycles, ns, ns_per_pixel.
+    #[arg(long)]
+    pub stats: Option<PathBuf>,
+    /// Waveform of the walker (its state by name).
+    #[arg(long)]
+    pub vcd: Option<PathBuf>,
+}
+
+/// `texrtl mapchain`.
+pub fn run(a: &MapchainArgs) -> Result<String, CmdError> {
+    let mut outs = vec![("--out", a.out.as_path())];
+    outs.extend(a.stats.as_deref().map(|p| ("--stats", p)));
+    outs.extend(a.vcd.as_deref().map(|p| ("--vcd", p)));
+    let ins = [
+        ("--maps", a.maps.as_path()),
+        ("--requests", a.requests.as_path()),
+    ];
+    let guard = super::Outputs::check(&outs, &ins)?;
+    guard.settle(mapchain(a, &outs))
+}
+
+/// The optional columns: name, scale (fraction bits), lower and upper limit (exclusive for
+/// the vectors), default raw value.
+const OPTIONAL: [(&str, i32, f64, f64, i64); 9] = [
+    ("nx", 14, -4.0, 4.0, 0),
+    ("ny", 14, -4.0, 4.0, 0),
+    ("nz", 14, -4.0, 4.0, 1 << 14),
+    ("vx", 14, -2.0, 2.0, 0),
+    ("vy", 14, -2.0, 2.0, 0),
+    ("vz", 14, -2.0, 2.0, 1 << 14),
+    ("face", 0, 0.0, 5.0, 0),
+    ("id", 0, 0.0, 255.0, 255),
+    ("is", 0, 0.0, 255.0, 0),
+];
+
+/// The header, checked: drf,u,v,lambda then optional columns, each at most once.
+fn header(path: &Path, text: &str) -> Result<String, String> {
+    let head = text.lines().next().unwrap_or("").trim();
+    let cols: Vec<&str> = head.split(',').map(str::trim).collect();
+    let bad = || {
+        format!(
+            "{}:1: header '{}' is not drf,u,v,lambda followed by any of nx,ny,nz,vx,vy,vz,face,id,is",
+            path.display(),
+            formats::shorten(head)
+        )
+    };
+    if cols.len() < 4 || cols[..4] != ["drf", "u", "v", "lambda"] {
+        return Err(bad());
+    }
+    for (k, c) in cols.iter().enumerate().skip(4) {
+        if !OPTIONAL.iter().any(|o| o.0 == *c) || cols[..k].contains(c) {
+            return Err(bad());
+        }
+    }
+    Ok(cols.join(","))
+}
+
+/// `x` rounded to `frac` fraction bits (ties to even) as a raw integer, within `lo..hi`
+/// (`..=hi` when `closed`), or a message naming the column.
+fn quantise(x: f64, frac: i32, (lo, hi): (f64, f64), closed: bool) -> Option<i64> {
+    let s = 2f64.powi(frac);
+    let q = (x * s).round_ties_even() / s;
+    let inside = q >= lo && (q < hi || closed && q == hi);
+    (inside && (frac > 0 || q == x)).then(|| (q * s) as i64)
+}
+
+/// The requests of `path`, every field range-checked.
+fn read_requests(path: &Path) -> Result<Vec<ChainRequest>, String> {
+    let text = std::fs::read_to_string(path).map_err(|e| format!("{}: {e}", path.display()))?;
+    let head = header(path, &text)?;
+    let t = formats::csv::parse(&path.display().to_string(), &text, &[&head])?;
+    let mut out = Vec::with_capacity(t.rows.len());
+    for r in &t.rows {
+        let mut raw = [0i64; 4 + OPTIONAL.len()];
+        for (k, o) in OPTIONAL.iter().enumerate() {
+            raw[4 + k] = o.4;
+        }
+        for (col, name) in t.columns.iter().enumerate() {
+            let x = t.finite(r, col)?;
+            let (slot, frac, range, closed) = match name.as_str() {
+                "drf" => (0, 0, (0.0, 6.0), true),
+                "u" => (1, 8, (-4096.0, 4096.0), false),
+                "v" => (2, 8, (-4096.0, 4096.0), false),
+                "lambda" => (3, 8, (-4.0, 10.0), true),
+                n => {
+                    let k = OPTIONAL.iter().position(|o| o.0 == n).unwrap_or(0);
+                    let o = OPTIONAL[k];
+                    (4 + k, o.1, (o.2, o.3), o.1 == 0)
+                }
+            };
+            raw[slot] = quantise(x, frac, range, closed).ok_or_else(|| {
+                let f = formats::shorten(&r.fields[col]);
+                let what = if frac == 0 { "an integer in" } else { "in" };
+                let end = if closed { "]" } else { ")" };
+                t.error(
+                    r,
+                    format!("{name} {f}: not {what} [{}, {}{end}", range.0, range.1),
+                )
+            })?;
+        }
+        out.push(ChainRequest {
+            drf: raw[0] as u8,
+            u: raw[1] as i32,
+            v: raw[2] as i32,
+            lambda: raw[3] as i32,
+            n: [raw[4], raw[5], raw[6]],
+            eye: [raw[7], raw[8], raw[9]],
+            face: raw[10] as u8,
+            i_d: raw[11] as u8,
+            i_s: raw[12] as u8,
+        });
+    }
+    Ok(out)
+}
+
+/// The command once its outputs are checked.
+fn mapchain(a: &MapchainArgs, outs: &[(&str, &Path)]) -> Result<String, CmdError> {
+    let specs = formats::maps_json::read(&a.maps).map_err(input)?;
+    for (opt, o) in outs {
+        let map = specs
+            .iter()
+            .flat_map(|s| &s.paths)
+            .find(|m| super::same_file(o, m));
+        if let Some(m) = map {
+            return Err(input(format!(
+                "{opt} {}: the same file as the map {}: choose another",
+                o.display(),
+                m.display()
+            )));
+        }
+    }
+    let scene =
+        Scene::from_specs(specs).map_err(|e| input(format!("{}: {e}", a.maps.display())))?;
+    let reqs = read_requests(&a.requests).map_err(input)?;
+    let (res, st) = run_mapchain(&scene, &reqs, a.vcd.as_deref()).map_err(input)?;
+    let mut csv = String::from("drf,u,v,lambda,colour,accesses,faults,error\n");
+    for (q, r) in reqs.iter().zip(&res) {
+        let f = |x: i32| f64::from(x) / 256.0;
+        let _ = writeln!(
+            csv,
+            "{},{},{},{},{},{},{},{}",
+            q.drf,
+            f(q.u),
+            f(q.v),
+            f(q.lambda),
+            r.colour,
+            r.accesses,
+            r.faults,
+            u8::from(r.error)
+        );
+    }
+    write_out(&a.out, csv.as_bytes())?;
+    if let Some(s) = &a.stats {
+        let json = serde_json::to_vec_pretty(&st).map_err(|e| input(e.to_string()))?;
+        write_out(s, &json)?;
+    }
+    Ok(format!(
+        "{} pixels written to {}: {} accesses, {} page faults, {} flagged chains, {:.1} ns a pixel ({:.2} M pixels/s)",
+        st.pixels,
+        a.out.display(),
+        st.accesses,
+        st.page_faults,
+        st.errors,
+        st.ns_per_pixel,
+        1e3 / st.ns_per_pixel.max(1e-9)
+    ))
+}
