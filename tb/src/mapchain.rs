@@ -237,7 +237,27 @@ pub const DETAIL_LOG2: u32 = 8;
 pub const FACE_LOG2: u32 = 5;
 
 impl Maps {
+    /// The maps with seeded tiles and noise.
     pub fn new(stim: &mut Stimulus) -> Maps {
+        let n = 1usize << TEX_LOG2;
+        let d = 1usize << DETAIL_LOG2;
+        let tiles = stim.draw_n(&(0u8..16), 2 * n * n);
+        let noise = stim.draw_n(&(0u8..=255), d * d);
+        Maps::with(&tiles, &noise)
+    }
+
+    /// The maps from integer formulas only (for the bit-accuracy vectors).
+    pub fn formula() -> Maps {
+        let hash = |k: usize| (k as u32).wrapping_mul(0x9e37_79b9) >> 13;
+        let n = 1usize << TEX_LOG2;
+        let d = 1usize << DETAIL_LOG2;
+        let tiles: Vec<u8> = (0..2 * n * n).map(|k| (hash(k) % 16) as u8).collect();
+        let noise: Vec<u8> = (0..d * d).map(|k| (hash(k + 7) % 256) as u8).collect();
+        Maps::with(&tiles, &noise)
+    }
+
+    /// The maps with the offsets' tiles (`2 n^2`, 0..16) and the detail's noise given.
+    fn with(tiles: &[u8], noise: &[u8]) -> Maps {
         let n = 1usize << TEX_LOG2;
         let smooth = |a: usize, b: usize, x: usize, y: usize| -> u8 {
             let t = ((x * a + y * b) % 128) as i64;
@@ -245,7 +265,6 @@ impl Maps {
         };
         let texture = (0..n * n).map(|i| smooth(3, 1, i % n, i / n)).collect();
         let reflectance = (0..n * n).map(|i| smooth(1, 2, i % n, i / n)).collect();
-        let tiles = stim.draw_n(&(0u8..16), 2 * n * n);
         let offsets = [0, 1].map(|p| {
             tiles[p * n * n..(p + 1) * n * n]
                 .iter()
@@ -253,7 +272,6 @@ impl Maps {
                 .collect()
         });
         let d = 1usize << DETAIL_LOG2;
-        let noise = stim.draw_n(&(0u8..=255), d * d);
         // Detail: texels varying inside each tile (a tile's own ramp plus noise).
         let detail = (0..d * d)
             .map(|i| {

@@ -48,7 +48,7 @@ pub struct VectorFile {
 }
 
 /// Units with vectors.
-pub const UNITS: [&str; 7] = [
+pub const UNITS: [&str; 8] = [
     crate::blend_adjust::NAME,
     crate::normals::NAME,
     crate::mipmap::NAME,
@@ -56,6 +56,7 @@ pub const UNITS: [&str; 7] = [
     crate::texram::NAME,
     crate::footprint::NAME,
     crate::volume::NAME,
+    crate::mapchain::NAME,
 ];
 
 fn f(name: &str, width: u32) -> Field {
@@ -83,6 +84,7 @@ pub fn unit_vectors(unit: &str) -> Result<UnitVectors, String> {
         crate::texram::NAME => texram(),
         crate::footprint::NAME => footprint(),
         crate::volume::NAME => volume(),
+        crate::mapchain::NAME => mapchain(),
         _ => Err(format!(
             "unknown unit '{unit}' (one of {})",
             UNITS.join(", ")
@@ -442,6 +444,79 @@ fn volume() -> Result<UnitVectors, String> {
             f("k", 16),
         ],
         outputs: vec![f("value", 8), f("gx", 14), f("gy", 14), f("gz", 14)],
+        rows,
+    })
+}
+
+/// The map chain: every shape of the testbench over the formula maps, 48 hashed pixels each
+/// (lambda over -4 ..= 4, vectors facing +z), through the clocked walker on the stub.
+fn mapchain() -> Result<UnitVectors, String> {
+    use crate::mapchain::{clocked, scene, Maps, Shape};
+    use hdl::mapchain::program::ChainRequest;
+    let maps = Maps::formula();
+    let mut rows = Vec::new();
+    for (code, shape) in Shape::ALL.into_iter().enumerate() {
+        let sc = scene(shape, &maps)?;
+        let px: Vec<ChainRequest> = (0..48u32)
+            .map(|k| {
+                let h = (k + 64 * code as u32).wrapping_mul(0x9e37_79b9);
+                let g = h.wrapping_mul(0x2545_f491) ^ h >> 15;
+                let c = |x: u32, r: i64| i64::from(x % (2 * r as u32)) - r;
+                ChainRequest {
+                    drf: 0,
+                    u: (h % (80 << 8)) as i32 - (8 << 8),
+                    v: (g % (80 << 8)) as i32 - (8 << 8),
+                    lambda: ((h >> 7) % (8 << 8)) as i32 - (4 << 8),
+                    n: [c(h >> 3, 6000), c(g >> 5, 6000), 12000 + c(h >> 11, 4000)],
+                    eye: [c(g >> 2, 5000), c(h >> 9, 5000), 14000],
+                    face: 0,
+                    i_d: (h >> 24) as u8,
+                    i_s: (g >> 24) as u8,
+                }
+            })
+            .collect();
+        let (_, out) = clocked(&sc, &px)?;
+        for (q, r) in px.iter().zip(out) {
+            let m = |x: i64, w: u32| mask(x, w);
+            let mut inp = vec![code as u64, m(q.u.into(), 21), m(q.v.into(), 21)];
+            inp.push(m(q.lambda.into(), 14));
+            inp.extend(q.n.map(|x| m(x, 17)));
+            inp.extend(q.eye.map(|x| m(x, 16)));
+            inp.extend([u64::from(q.i_d), u64::from(q.i_s)]);
+            let out = [
+                r.colour.into(),
+                r.accesses,
+                r.slots,
+                r.faults,
+                r.error.into(),
+            ];
+            rows.push((inp, out.map(u64::from).to_vec()));
+        }
+    }
+    Ok(UnitVectors {
+        unit: crate::mapchain::NAME.into(),
+        description: "chain walker of 812 (section 14): the testbench's seven chain shapes over integer-formula maps (64x64 texture, offsets and reflectance, 256x256 detail, 32x32 faces), 48 hashed pixels each, results of the clocked walker on the stub".into(),
+        inputs: vec![
+            f("shape", 3),
+            f("u", 21),
+            f("v", 21),
+            f("lambda", 14),
+            f("nx", 17),
+            f("ny", 17),
+            f("nz", 17),
+            f("ex", 16),
+            f("ey", 16),
+            f("ez", 16),
+            f("i_d", 8),
+            f("i_s", 8),
+        ],
+        outputs: vec![
+            f("colour", 8),
+            f("accesses", 4),
+            f("slots", 5),
+            f("faults", 4),
+            f("error", 1),
+        ],
         rows,
     })
 }
