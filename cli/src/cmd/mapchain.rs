@@ -80,13 +80,13 @@ fn header(path: &Path, text: &str) -> Result<String, String> {
     Ok(cols.join(","))
 }
 
-/// `x` rounded to `frac` fraction bits (ties to even) as a raw integer, within `lo..hi`
-/// (`..=hi` when `closed`), or a message naming the column.
+/// `x` rounded to `frac` fraction bits (ties to even) as a raw integer if within `lo..hi`
+/// (`..=hi` when `closed`); an integer column (`frac` 0) must be given as one.
 fn quantise(x: f64, frac: i32, (lo, hi): (f64, f64), closed: bool) -> Option<i64> {
     let s = 2f64.powi(frac);
     let q = (x * s).round_ties_even() / s;
     let inside = q >= lo && (q < hi || closed && q == hi);
-    (inside && (frac > 0 || q == x)).then(|| (q * s) as i64)
+    (inside && (frac > 0 || q == x)).then_some((q * s) as i64)
 }
 
 /// The requests of `path`, every field range-checked.
