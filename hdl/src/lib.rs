@@ -44,13 +44,17 @@
 //! | ray caster (section 13, Figure 15) | `volume/ray_caster_fig15.rs` (`layout.rs`, `interp.rs`) | `ray_caster_fig15`, scopes `stepper`, `page_registers_824`, `trilinear_818` | `ray_caster_fig15`; `tb/tests/volume.rs` | `tb.ray_caster_fig15.stepper` … |
 //! | RGBA on four ray casters in lock-step | `volume/lockstep.rs` | `volume_lockstep`, chips `chip_r` … | `tb/tests/volume.rs` | `volume_lockstep.chip_r` … |
 //! | video port 808 and shift registers 826, with the mipmap generator 816 on the banks | `texram/video_port_808.rs` | scope `video_port_808` | `video_port_808`; `tb/tests/texram_video.rs` | `tb.texram_802.video_port_808`, `….mipmap_gen_816`, `….shift_registers_826` |
+//! | reflection vector, eq. 4, and cube-face selection (section 7) | `envmap/reflect_eq4.rs`, `envmap/cube_face.rs` | `reflect_eq4`, `cube_face`; in the walker's `ENV_COORDS` state | `walker_812`; `tb/tests/envmap.rs` | `tb.walker_812` (`face`, `s`, `t`) |
+//! | description register files of 812 (section 14) | `mapchain/drf_812.rs` | (registers of the walker) | `walker_812` | - |
+//! | chain walker of 812 with the output stage 820's eqs 5-7 | `mapchain/walker_812.rs`, `mapchain/program.rs` | `walker_812` | `walker_812`; `tb/tests/mapchain.rs` | `tb.walker_812` |
+//! | detail path, units 902-914 (Figs 9a/9b) | `mapchain/detail_fig9.rs` | (the walker's offset and detail states) | `walker_812` | `tb.walker_812` |
 
 pub mod fx;
 pub mod kernel;
 
 /// FIG. 7 of US 2004/0207631: the per-pixel normal pipeline.
 pub mod bump;
-/// Section 7 of Schilling & Knittel: environment mapping (the cube-face unit so far).
+/// Section 7 of Schilling & Knittel: environment mapping (frame, reflection, cube face).
 pub mod envmap;
 /// Section 10 and Figures 12-13 of Schilling & Knittel: footprint assembly.
 pub mod footprint;

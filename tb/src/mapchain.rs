@@ -426,9 +426,34 @@ fn fixed(v: [f64; 3], len: f64) -> [i64; 3] {
 }
 
 /// Random pixels: u, v over the map and a texel beyond, lambda over -4 ..= 10 (half of them
-/// below 0, every eighth exactly on an integer, the first six one in each unit from -4 to 2), perturbed normals of length 0.7 to 1.3 facing
-/// +z, unit eye vectors facing +z, random I_d and I_s.
+/// below 0, every eighth exactly on an integer, the first six one in each unit from -4 to 2),
+/// perturbed normals of length 0.7 to 1.3 facing +z, unit eye vectors facing +z, random I_d
+/// and I_s; then six whose reflection points to each face in turn (at least twelve pixels,
+/// so that every coverage bin is hit whatever the count).
 pub fn pixels(n: usize, stim: &mut Stimulus) -> Vec<ChainRequest> {
+    let mut px = random_pixels(n.max(6), stim);
+    let one = 1i64 << 14;
+    let (a, b) = (16220i64, 2290i64);
+    // Normal, eye: w = 2 n (n . v) - v |n|^2 points to +x, -x, +y, -y, +z, -z.
+    let faces = [
+        ([0, 0, one], [-a, 0, b]),
+        ([0, 0, one], [a, 0, b]),
+        ([0, 0, one], [0, -a, b]),
+        ([0, 0, one], [0, a, b]),
+        ([0, 0, one], [0, 0, one]),
+        ([one, 0, 0], [0, 0, one]),
+    ];
+    for (k, (nrm, eye)) in faces.into_iter().enumerate() {
+        px.push(ChainRequest {
+            n: nrm,
+            eye,
+            ..px[k]
+        });
+    }
+    px
+}
+
+fn random_pixels(n: usize, stim: &mut Stimulus) -> Vec<ChainRequest> {
     let side = 256i32 << TEX_LOG2;
     (0..n)
         .map(|i| {
@@ -631,6 +656,10 @@ impl Testbench for WalkerTb {
     }
     fn count_unit(&self) -> &'static str {
         "random pixels"
+    }
+    /// The waveform of the longest chain on the stub: every state of the walker appears.
+    fn traced(&self) -> usize {
+        5
     }
     fn coverage(&self) -> Coverage {
         coverage_model()

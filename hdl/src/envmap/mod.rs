@@ -1,6 +1,6 @@
-//! Environment mapping (Schilling & Knittel section 7, issue 15): so far the local frame of
-//! eqs 2-3, the reflection vector of eq. 4 and the cube-face selection; the face's mipmap
-//! through DRF 7 and the chain walker are the rest of the issue.
+//! Environment mapping (Schilling & Knittel section 7): the local frame of eqs 2-3, the
+//! reflection vector of eq. 4 and the cube-face selection. The chain walker of 812
+//! ([`crate::mapchain`]) reads the face's mipmap at the coordinates they give.
 
 pub mod cube_face;
 pub mod frame_eq2;
