@@ -6,6 +6,7 @@
 //! * [`ccc`]: the `.ccc` colour-cell-compressed texture format and its offline encoder;
 //! * [`maps_json`]: the map chain's description (its DRFs and the map files they name);
 //! * [`png`]: PNG encoding of pictures;
+//! * [`ptm`]: the `.ptm` occlusion PTM as the hardware stores it;
 //! * [`output`]: writing a file so that no partial file is ever left behind.
 
 pub mod ccc;
@@ -14,6 +15,7 @@ pub mod maps_json;
 pub mod netpbm;
 pub mod output;
 pub mod png;
+pub mod ptm;
 
 /// A value shown in a message, cut to at most 40 characters.
 pub fn shorten(s: &str) -> String {

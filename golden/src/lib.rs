@@ -8,6 +8,7 @@ pub mod envmap;
 pub mod footprint;
 pub mod mapchain;
 pub mod mipmap;
+pub mod ptm;
 pub mod rsqrt;
 pub mod texram;
 pub mod texture;

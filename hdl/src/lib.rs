@@ -62,6 +62,8 @@ pub mod footprint;
 pub mod mapchain;
 /// FIG. 14 of Schilling & Knittel: the real-time mipmap generator.
 pub mod mipmap;
+/// PTM micro-occlusion (001, Fig. 6): the fitter 604, the occlusion PTM 612 and the light shader 608.
+pub mod ptm;
 /// Figure 6 of Schilling & Knittel: the texture memory path.
 pub mod texmem;
 /// Figure 8 of Schilling & Knittel: the TEXRAM chip, its interface and behavioural stub.

@@ -12,6 +12,7 @@ pub mod mapchain;
 pub mod maps;
 pub mod mipmap;
 pub mod normals;
+pub mod ptm;
 pub mod regress;
 pub mod texram;
 pub mod texram_video;

@@ -23,7 +23,9 @@ pub fn registry() -> Registry {
         .register(Box::new(crate::footprint::FootprintTb))
         .register(Box::new(crate::footprint_normals::FootprintNormalsTb))
         .register(Box::new(crate::volume::VolumeTb))
-        .register(Box::new(crate::mapchain::WalkerTb));
+        .register(Box::new(crate::mapchain::WalkerTb))
+        .register(Box::new(crate::ptm::PtmFitterTb))
+        .register(Box::new(crate::ptm::PtmShaderTb));
     r
 }
 

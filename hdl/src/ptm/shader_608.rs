@@ -1,0 +1,123 @@
+//! The PTM's evaluator in the light shader 608 of 001's Fig. 6: the occlusion of a light at
+//! `(u, v)` from a texel's six stored coefficients, `K = (A1 u + A3 v + A2) u + (A5 v + A4) v
+//! + A6` (Horner's form of [0030]), exact, then one rounding to uQ0.8 (half up) held to
+//! `0 ..= 255`, and the visibility `255 - K` handed to the shading. One register stage.
+//!
+//! | port | format |
+//! |---|---|
+//! | `q1` .. `q6` | u8 or u16, with the texture's [`PtmFormat`] |
+//! | `u`, `v` | sQ1.14 |
+//! | `k`, `visibility` | uQ0.8 |
+
+use super::texture_612::PtmFormat;
+use super::UV_FRAC;
+use crate::fx::Format;
+use crate::kernel::{Module, Reg, Signal, Visitor};
+use crate::signals;
+
+/// K (uQ0.8, held) of stored `q` at raw `(u, v)`.
+pub fn occlusion_at(fmt: &PtmFormat, q: &[u64; 6], u: i64, v: i64) -> u8 {
+    let a: [i128; 6] = std::array::from_fn(|j| i128::from(fmt.coefficient(j, q[j])));
+    let (u, v) = (i128::from(u), i128::from(v));
+    // Units: A 2^-20, u and v 2^-14; each sum in 2^-48.
+    let first = (a[0] * u + a[2] * v + (a[1] << UV_FRAC)) * u;
+    let second = (a[4] * v + (a[3] << UV_FRAC)) * v;
+    let k = first + second + (a[5] << (2 * UV_FRAC));
+    let r = (k + (1 << 39)) >> 40;
+    r.clamp(0, 255) as u8
+}
+
+/// The unit.
+#[derive(Clone, Debug)]
+pub struct Shader608 {
+    fmt: PtmFormat,
+    pub in_valid: Signal,
+    pub q: [Signal; 6],
+    pub u: Signal,
+    pub v: Signal,
+    pub out_valid: Reg,
+    pub k: Reg,
+    pub visibility: Reg,
+}
+
+impl Shader608 {
+    pub fn new(fmt: PtmFormat) -> Result<Shader608, String> {
+        fmt.validate()?;
+        const Q: [&str; 6] = ["q1", "q2", "q3", "q4", "q5", "q6"];
+        let uv = Format::signed(16, UV_FRAC as i32);
+        let u8f = Format::unsigned(8, 8);
+        Ok(Shader608 {
+            fmt,
+            in_valid: Signal::bit("in_valid"),
+            q: Q.map(|n| Signal::new(n, Format::uint(fmt.bits))),
+            u: Signal::new("u", uv),
+            v: Signal::new("v", uv),
+            out_valid: Reg::new("out_valid", Format::uint(1)),
+            k: Reg::new("k", u8f),
+            visibility: Reg::new("visibility", u8f),
+        })
+    }
+}
+
+impl Module for Shader608 {
+    fn kind(&self) -> &'static str {
+        "ptm_shader_608"
+    }
+
+    fn eval(&mut self) {
+        let valid = self.in_valid.is_high();
+        self.out_valid.set_next_bool(valid);
+        if valid {
+            let q = self.q.each_ref().map(|s| s.bits());
+            let k = occlusion_at(&self.fmt, &q, self.u.raw(), self.v.raw());
+            self.k.set_next_bits(u64::from(k));
+            self.visibility.set_next_bits(u64::from(255 - k));
+        }
+    }
+
+    fn tick(&mut self, reset: bool) {
+        for r in [&mut self.out_valid, &mut self.k, &mut self.visibility] {
+            r.tick(reset);
+        }
+    }
+
+    fn visit(&self, vis: &mut dyn Visitor) {
+        vis.enter(self.instance(), self.kind());
+        let [a, b, c, d, e, f] = &self.q;
+        signals!(vis;
+            Input: self.in_valid, a, b, c, d, e, f, self.u, self.v;
+            Reg: self.out_valid, self.k, self.visibility);
+        vis.leave();
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// A6 alone (the other coefficients 0) gives A6 at any light, rounded and held.
+    #[test]
+    fn a_constant_ptm_is_its_constant() {
+        let fmt = PtmFormat {
+            bits: 8,
+            exp: [12; 6],
+            bias: [0; 6],
+        };
+        // A6 = q 2^12 units of 2^-20 = q/256: K = q exactly.
+        for q6 in [0u64, 1, 100, 255] {
+            for (u, v) in [(0, 0), (16000, -3000), (-8000, 8000)] {
+                assert_eq!(
+                    u64::from(occlusion_at(&fmt, &[0, 0, 0, 0, 0, q6], u, v)),
+                    q6
+                );
+            }
+        }
+        // A1 = 1 (q 256 ... held by the format to 255: 255/256): K = u^2.
+        let fmt = PtmFormat {
+            exp: [12; 6],
+            ..fmt
+        };
+        let half = 1 << 13;
+        assert_eq!(occlusion_at(&fmt, &[255, 0, 0, 0, 0, 0], half, 0), 64);
+    }
+}
