@@ -133,6 +133,7 @@ fn householder(a: &[Vec<f64>], rhs: &mut [Vec<f64>]) -> Option<Vec<Vec<f64>>> {
         let mut v: Vec<f64> = (k..m).map(|i| r[i][k]).collect();
         v[0] -= alpha;
         let vv: f64 = v.iter().map(|x| x * x).sum();
+        #[allow(clippy::needless_range_loop)] // column j of the rows below k
         for j in k..n {
             let f = 2.0 * (k..m).map(|i| v[i - k] * r[i][j]).sum::<f64>() / vv;
             for i in k..m {

@@ -395,9 +395,9 @@ pub fn ref_k(fmt: &PtmFormat, q: &[u64; 6], u: i64, v: i64) -> u8 {
     let (u, v) = (i128::from(u), i128::from(v));
     // A in 2^-20, u and v 2^-14: every term in 2^-48.
     let k = a[0] * u * u
-        + (a[1] * u << 14)
+        + ((a[1] * u) << 14)
         + a[2] * u * v
-        + (a[3] * v << 14)
+        + ((a[3] * v) << 14)
         + a[4] * v * v
         + (a[5] << 28);
     let unit = 1i128 << 40;

@@ -47,7 +47,7 @@ impl Fitter604 {
     pub fn new(p: [Vec<i32>; 6], fmt: PtmFormat) -> Result<Fitter604, String> {
         fmt.validate()?;
         let l = p[0].len();
-        if l < 6 || l > MAX_LIGHTS || p.iter().any(|r| r.len() != l) {
+        if !(6..=MAX_LIGHTS).contains(&l) || p.iter().any(|r| r.len() != l) {
             return Err(format!("P: 6 rows of 6..={MAX_LIGHTS} entries"));
         }
         let acc = Format::signed(ACC_BITS, 28);

@@ -51,9 +51,9 @@ impl PtmFormat {
             bias: [0; 6],
         };
         let max = (1i64 << bits) - 1;
-        for j in 0..6 {
-            let lo: i64 = p[j].iter().map(|&x| i64::from(x.min(0))).sum();
-            let hi: i64 = p[j].iter().map(|&x| i64::from(x.max(0))).sum();
+        for (j, row) in p.iter().enumerate() {
+            let lo: i64 = row.iter().map(|&x| i64::from(x.min(0))).sum();
+            let hi: i64 = row.iter().map(|&x| i64::from(x.max(0))).sum();
             let mut e = 0;
             while (hi - lo) > max << e {
                 e += 1;
@@ -106,16 +106,16 @@ mod tests {
     fn every_fit_fits_the_format() {
         let p: [Vec<i32>; 6] = std::array::from_fn(|j| {
             (0..12)
-                .map(|i| ((i as i32 * 7919 + j as i32 * 104_729) % 300_000) - 150_000)
+                .map(|i| ((i * 7919 + j as i32 * 104_729) % 300_000) - 150_000)
                 .collect()
         });
         for bits in [8, 16] {
             let f = PtmFormat::for_pinv(&p, bits).unwrap();
-            for j in 0..6 {
+            for (j, row) in p.iter().enumerate() {
                 // The extreme fits (K = 1 is 256 in uQ1.8, accumulators in 2^-28): every
                 // negative entry's light occluded and none of the others, and the reverse.
-                let lo: i64 = p[j].iter().map(|&x| i64::from(x.min(0))).sum();
-                let hi: i64 = p[j].iter().map(|&x| i64::from(x.max(0))).sum();
+                let lo: i64 = row.iter().map(|&x| i64::from(x.min(0))).sum();
+                let hi: i64 = row.iter().map(|&x| i64::from(x.max(0))).sum();
                 assert_eq!(f.quantise(j, lo << 8), 0);
                 let top = f.coefficient(j, f.max_q());
                 assert!(top >= hi, "{j}: {top} < {hi}");
