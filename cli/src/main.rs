@@ -48,6 +48,10 @@ enum Cmd {
     /// Pixels through the map chain walker of 812 (section 14): linked texture, offset,
     /// detail, reflectance and environment maps, eqs 5-7.
     Mapchain(cmd::mapchain::MapchainArgs),
+    /// PTM micro-occlusion (001): fit a height map's occlusion under a dome of lights through
+    /// the fitter 604; evaluate a PTM through the light shader 608.
+    #[command(subcommand)]
+    Ptm(cmd::ptm::PtmCmd),
     /// Co-simulate a unit's model and Verilog (its twin in rtl/, or --rtl FILE.v of yours):
     /// every output port compared on every cycle.
     Cosim(cmd::cosim::CosimArgs),
@@ -100,6 +104,7 @@ fn main() -> ExitCode {
         Some(Cmd::Footprint(a)) => cmd::footprint::run(&a),
         Some(Cmd::Volume(a)) => cmd::volume::run(&a),
         Some(Cmd::Mapchain(a)) => cmd::mapchain::run(&a),
+        Some(Cmd::Ptm(c)) => cmd::ptm::run(&c),
         Some(Cmd::Cosim(a)) => cmd::cosim::run(&a),
         Some(Cmd::Merge(a)) => cmd::merge::run(&a),
         Some(Cmd::Vectors(a)) => cmd::vectors::run(&a),

@@ -120,6 +120,60 @@ fn texram_fronts() -> Vec<Front> {
             ],
         },
         Front {
+            name: "ptm fit",
+            args: &[
+                "ptm",
+                "fit",
+                "--height",
+                "{h.pgm}",
+                "--lights",
+                "{l.csv}",
+                "--out",
+                "{out}.ptm",
+                "--stats",
+                "{out}.json",
+            ],
+            files: vec![
+                ("h.pgm", pgm()),
+                (
+                    "l.csv",
+                    b"elevation,azimuth\n20,0\n20,120\n20,240\n60,60\n60,180\n60,300\n80,0\n"
+                        .to_vec(),
+                ),
+            ],
+        },
+        Front {
+            name: "ptm eval",
+            args: &[
+                "ptm",
+                "eval",
+                "--ptm",
+                "{t.ptm}",
+                "--queries",
+                "{q.csv}",
+                "--out",
+                "{out}.csv",
+            ],
+            files: vec![
+                ("t.ptm", {
+                    let f = hdl::ptm::texture_612::PtmFormat {
+                        bits: 8,
+                        exp: [9, 8, 9, 8, 9, 7],
+                        bias: [-70_000, -60_000, -90_000, -60_000, -70_000, -20_000],
+                    };
+                    let q = (0..4 * 4 * 6u64).map(|k| k * 37 % 256).collect();
+                    formats::ptm::Ptm {
+                        width: 4,
+                        height: 4,
+                        format: f,
+                        q,
+                    }
+                    .to_bytes()
+                }),
+                ("q.csv", b"x,y,lu,lv\n1,2,0.5,-0.25\n3,0,0,0\n".to_vec()),
+            ],
+        },
+        Front {
             name: "footprint",
             args: &[
                 "footprint",

@@ -9,6 +9,7 @@ pub mod merge;
 pub mod mipmap;
 pub mod normals;
 pub mod outputs;
+pub mod ptm;
 pub mod regress;
 pub mod render;
 pub mod sweep;
