@@ -690,7 +690,7 @@ pub fn swatch_picture() -> Result<(Vec<u8>, usize, PtmQuality), String> {
         };
         let (u, v) = l.uv();
         let (u, v) = ((u * 16384.0).round() as i64, (v * 16384.0).round() as i64);
-        for t in 0..side * side {
+        for (t, qt) in q.iter().enumerate() {
             let (x, y) = (t % side, t / side);
             let truth = if golden::ptm::lit(&sw.heights, side, x, y, l) {
                 255
@@ -698,7 +698,7 @@ pub fn swatch_picture() -> Result<(Vec<u8>, usize, PtmQuality), String> {
                 0
             };
             px[y * w + k * side + x] = truth;
-            px[(side + y) * w + k * side + x] = 255 - ref_k(&fmt, &q[t], u, v);
+            px[(side + y) * w + k * side + x] = 255 - ref_k(&fmt, qt, u, v);
         }
     }
     Ok((px, side, qual))
