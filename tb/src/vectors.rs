@@ -48,7 +48,7 @@ pub struct VectorFile {
 }
 
 /// Units with vectors.
-pub const UNITS: [&str; 8] = [
+pub const UNITS: [&str; 10] = [
     crate::blend_adjust::NAME,
     crate::normals::NAME,
     crate::mipmap::NAME,
@@ -57,6 +57,8 @@ pub const UNITS: [&str; 8] = [
     crate::footprint::NAME,
     crate::volume::NAME,
     crate::mapchain::NAME,
+    crate::ptm::FITTER,
+    crate::ptm::SHADER,
 ];
 
 fn f(name: &str, width: u32) -> Field {
@@ -85,6 +87,8 @@ pub fn unit_vectors(unit: &str) -> Result<UnitVectors, String> {
         crate::footprint::NAME => footprint(),
         crate::volume::NAME => volume(),
         crate::mapchain::NAME => mapchain(),
+        crate::ptm::FITTER => ptm_fitter(),
+        crate::ptm::SHADER => ptm_shader(),
         _ => Err(format!(
             "unknown unit '{unit}' (one of {})",
             UNITS.join(", ")
@@ -517,6 +521,104 @@ fn mapchain() -> Result<UnitVectors, String> {
             f("faults", 4),
             f("error", 1),
         ],
+        rows,
+    })
+}
+
+/// The fitter 604 under a 3 x 8 dome (P from the f64 pseudo-inverse, 8-bit coefficients):
+/// 64 texels of hashed samples (binary and grey), one row per texel.
+fn ptm_fitter() -> Result<UnitVectors, String> {
+    use hdl::kernel::Sim;
+    use hdl::ptm::fitter_604::Fitter604;
+    use hdl::ptm::texture_612::PtmFormat;
+    let lights = golden::ptm::dome(3, 8);
+    let p = crate::ptm::host_pinv(&lights)?;
+    let fmt = PtmFormat::for_pinv(&p, 8)?;
+    let l = lights.len();
+    let samples: Vec<u8> = (0..64 * l as u32)
+        .map(|k| {
+            let h = k.wrapping_mul(0x9e37_79b9) >> 11;
+            if k / l as u32 % 4 == 3 {
+                (h % 256) as u8
+            } else if h % 3 == 0 {
+                0
+            } else {
+                255
+            }
+        })
+        .collect();
+    let (q, _) = crate::ptm::run_fitter(Sim::new(Fitter604::new(p, fmt)?), &samples);
+    let rows = q
+        .iter()
+        .enumerate()
+        .map(|(t, c)| {
+            let s = &samples[t * l..(t + 1) * l];
+            let ins = s
+                .chunks(8)
+                .map(|c| c.iter().fold(0u64, |a, &x| a << 8 | u64::from(x)))
+                .collect();
+            (ins, c.to_vec())
+        })
+        .collect();
+    let mut inputs = vec![];
+    for k in 0..l.div_ceil(8) {
+        inputs.push(f(&format!("samples{k}"), 64));
+    }
+    Ok(UnitVectors {
+        unit: crate::ptm::FITTER.into(),
+        description: "PTM fitter 604 (001): 3 x 8 dome, P in sQ7.20 from the f64 pseudo-inverse, 8-bit coefficients; 64 texels of hashed samples (every fourth grey), 24 samples a texel packed eight to a word (light 0 in the top byte)".into(),
+        inputs,
+        outputs: (1..=6).map(|j| f(&format!("q{j}"), 8)).collect(),
+        rows,
+    })
+}
+
+/// The shader 608 with the 16-bit format of a 4 x 12 dome: 512 hashed coefficient sets and
+/// lights in the unit disc.
+fn ptm_shader() -> Result<UnitVectors, String> {
+    use hdl::kernel::Sim;
+    use hdl::ptm::shader_608::Shader608;
+    use hdl::ptm::texture_612::PtmFormat;
+    let p = crate::ptm::host_pinv(&golden::ptm::dome(4, 12))?;
+    let fmt = PtmFormat::for_pinv(&p, 16)?;
+    let mut sim = Sim::new(Shader608::new(fmt)?);
+    sim.reset(1);
+    let mut rows = Vec::new();
+    for k in 0..512u32 {
+        let h = |i: u32| (k * 7 + i).wrapping_mul(0x9e37_79b9) >> 7;
+        // Stored values near the middle of each range (where real fits lie) and anywhere.
+        let q: [u64; 6] = std::array::from_fn(|j| {
+            let x = u64::from(h(j as u32));
+            if k % 2 == 0 {
+                32768 + x % 4096 - 2048
+            } else {
+                x % 65536
+            }
+        });
+        let (u, v) = (
+            (h(9) % 23170) as i64 - 11585,
+            (h(10) % 23170) as i64 - 11585,
+        );
+        let d = &mut sim.dut;
+        d.in_valid.set_bool(true);
+        for (s, x) in d.q.iter_mut().zip(q) {
+            s.set_bits(x);
+        }
+        d.u.set_raw(u);
+        d.v.set_raw(v);
+        sim.step();
+        let out = vec![sim.dut.k.q().bits(), sim.dut.visibility.q().bits()];
+        let mut ins = q.to_vec();
+        ins.extend([mask(u, 16), mask(v, 16)]);
+        rows.push((ins, out));
+    }
+    let mut inputs: Vec<Field> = (1..=6).map(|j| f(&format!("q{j}"), 16)).collect();
+    inputs.extend([f("u", 16), f("v", 16)]);
+    Ok(UnitVectors {
+        unit: crate::ptm::SHADER.into(),
+        description: format!("PTM shader 608 (001): the 16-bit format of a 4 x 12 dome (exponents {:?}, biases {:?}); 512 hashed coefficient sets and lights inside |u|, |v| < 0.71", fmt.exp, fmt.bias),
+        inputs,
+        outputs: vec![f("k", 8), f("visibility", 8)],
         rows,
     })
 }
