@@ -52,6 +52,8 @@ enum Cmd {
     /// the fitter 604; evaluate a PTM through the light shader 608.
     #[command(subcommand)]
     Ptm(cmd::ptm::PtmCmd),
+    /// Tangent frames of an OBJ mesh per face corner in the 3ds Max, Maya or DirectX way (003).
+    Tangents(cmd::tangents::TangentsArgs),
     /// Co-simulate a unit's model and Verilog (its twin in rtl/, or --rtl FILE.v of yours):
     /// every output port compared on every cycle.
     Cosim(cmd::cosim::CosimArgs),
@@ -105,6 +107,7 @@ fn main() -> ExitCode {
         Some(Cmd::Volume(a)) => cmd::volume::run(&a),
         Some(Cmd::Mapchain(a)) => cmd::mapchain::run(&a),
         Some(Cmd::Ptm(c)) => cmd::ptm::run(&c),
+        Some(Cmd::Tangents(a)) => cmd::tangents::run(&a),
         Some(Cmd::Cosim(a)) => cmd::cosim::run(&a),
         Some(Cmd::Merge(a)) => cmd::merge::run(&a),
         Some(Cmd::Vectors(a)) => cmd::vectors::run(&a),

@@ -174,6 +174,14 @@ fn texram_fronts() -> Vec<Front> {
             ],
         },
         Front {
+            name: "tangents",
+            args: &["tangents", "--mesh", "{m.obj}", "--out", "{out}.csv", "--mode", "directx"],
+            files: vec![(
+                "m.obj",
+                b"v 0 0 0\nv 1 0 0\nv 1 1 0.5\nv 0 1 0\nvt 0 0\nvt 1 0\nvt 1 1\nvt 0 1\ns 1\nf 1/1 2/2 3/3\nf 1/1 3/3 4/4\n".to_vec(),
+            )],
+        },
+        Front {
             name: "footprint",
             args: &[
                 "footprint",

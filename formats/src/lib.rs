@@ -4,6 +4,7 @@
 //! * [`csv`]: the request and trace tables the commands read (a header naming the columns,
 //!   one row per line), with errors that name the file, the line and the column;
 //! * [`ccc`]: the `.ccc` colour-cell-compressed texture format and its offline encoder;
+//! * [`obj`]: Wavefront OBJ meshes for the tangent frames;
 //! * [`maps_json`]: the map chain's description (its DRFs and the map files they name);
 //! * [`png`]: PNG encoding of pictures;
 //! * [`ptm`]: the `.ptm` occlusion PTM as the hardware stores it;
@@ -13,6 +14,7 @@ pub mod ccc;
 pub mod csv;
 pub mod maps_json;
 pub mod netpbm;
+pub mod obj;
 pub mod output;
 pub mod png;
 pub mod ptm;

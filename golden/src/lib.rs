@@ -10,6 +10,7 @@ pub mod mapchain;
 pub mod mipmap;
 pub mod ptm;
 pub mod rsqrt;
+pub mod tangents;
 pub mod texram;
 pub mod texture;
 pub mod volume;

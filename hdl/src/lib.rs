@@ -58,6 +58,8 @@ pub mod bump;
 pub mod envmap;
 /// Section 10 and Figures 12-13 of Schilling & Knittel: footprint assembly.
 pub mod footprint;
+/// Tangent frames (003): the tangent setup unit.
+pub mod frames;
 /// Map linking, detail, reflectance and environment maps (TEXRAM sections 7-9, 14).
 pub mod mapchain;
 /// FIG. 14 of Schilling & Knittel: the real-time mipmap generator.

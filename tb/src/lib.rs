@@ -14,6 +14,7 @@ pub mod mipmap;
 pub mod normals;
 pub mod ptm;
 pub mod regress;
+pub mod tangents;
 pub mod texram;
 pub mod texram_video;
 pub mod texture;

@@ -25,7 +25,8 @@ pub fn registry() -> Registry {
         .register(Box::new(crate::volume::VolumeTb))
         .register(Box::new(crate::mapchain::WalkerTb))
         .register(Box::new(crate::ptm::PtmFitterTb))
-        .register(Box::new(crate::ptm::PtmShaderTb));
+        .register(Box::new(crate::ptm::PtmShaderTb))
+        .register(Box::new(crate::tangents::TangentSetupTb));
     r
 }
 

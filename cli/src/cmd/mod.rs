@@ -13,6 +13,7 @@ pub mod ptm;
 pub mod regress;
 pub mod render;
 pub mod sweep;
+pub mod tangents;
 pub mod texram;
 pub mod texread;
 pub mod vectors;

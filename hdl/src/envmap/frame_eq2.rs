@@ -40,7 +40,7 @@ fn normalise(s: u128, frac: u32, mf: u32) -> (i32, u64) {
 
 /// `v / |v|` for `v` raw with `frac` fraction bits (not zero), each component rounded once
 /// to sQ1.14.
-fn unit(v: [i128; 3], frac: u32, table: &RsqrtTable, p: &RsqrtParams) -> [i64; 3] {
+pub(crate) fn unit(v: [i128; 3], frac: u32, table: &RsqrtTable, p: &RsqrtParams) -> [i64; 3] {
     let s: u128 = v.iter().map(|c| (c * c) as u128).sum();
     let (k, m) = normalise(s, 2 * frac, p.mant_frac);
     let y = i128::from(rsqrt(table, m));

@@ -1,0 +1,384 @@
+//! Tangent frames (003): the host's per-corner frames of a mesh in the seed's three modes
+//! (f64: the tool chain's side), and the testbench of the fixed-point tangent setup unit.
+//!
+//! Host [C]: a polygon's dP/du, dP/dv are the mean of its fan triangles'; its normal the
+//! normalised sum of their cross products. Vertex normals: the OBJ's where given, else the
+//! sum of the face normals (area-weighted) over the faces sharing the position and the
+//! smoothing group (group 0: the face's own). Smoothed tangents: the sum of the faces' unit
+//! dP/du (and dP/dv) over faces sharing position, texture coordinate and group.
+
+use formats::obj::Mesh;
+use golden::tangents::{add, cross, face_tangent, normalize, orthonormal, scale, Frame};
+use hdl::frames::tangent_setup::{TangentSetup, POS_FRAC, VEC_FRAC};
+use hdl::kernel::{Sim, Trace};
+use std::collections::HashMap;
+use verif::{
+    run, Coverage, Coverpoint, Ctx, Driver, Event, Monitor, RunSpec, Scoreboard, Stimulus,
+    TbResult, Testbench,
+};
+
+pub const NAME: &str = "tangent_setup";
+
+/// The seed's three ways of making a corner's frame.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Mode {
+    /// The face normal, the face's T and B orthonormalised.
+    Max,
+    /// The vertex normal, the smoothed T and B as they are (normalised, not orthogonal).
+    Maya,
+    /// The vertex normal, the smoothed T orthogonalised per vertex, B = s n x t.
+    DirectX,
+}
+
+impl Mode {
+    pub fn parse(s: &str) -> Option<Mode> {
+        match s {
+            "max" => Some(Mode::Max),
+            "maya" => Some(Mode::Maya),
+            "directx" => Some(Mode::DirectX),
+            _ => None,
+        }
+    }
+}
+
+/// A polygon's tangents and normal.
+struct FaceGeom {
+    dpdu: [f64; 3],
+    dpdv: [f64; 3],
+    /// Unnormalised (twice the area).
+    area_n: [f64; 3],
+}
+
+fn face_geom(m: &Mesh, f: &formats::obj::Face) -> FaceGeom {
+    let c = &f.corners;
+    let mut g = FaceGeom {
+        dpdu: [0.0; 3],
+        dpdv: [0.0; 3],
+        area_n: [0.0; 3],
+    };
+    for k in 1..c.len() - 1 {
+        let tri = [c[0], c[k], c[k + 1]];
+        let p = tri.map(|x| m.positions[x.p]);
+        let uv = tri.map(|x| m.uvs[x.t]);
+        let ft = face_tangent(p, uv);
+        g.dpdu = add(g.dpdu, ft.dpdu);
+        g.dpdv = add(g.dpdv, ft.dpdv);
+        let e = cross(
+            golden::tangents::sub(p[1], p[0]),
+            golden::tangents::sub(p[2], p[0]),
+        );
+        g.area_n = add(g.area_n, e);
+    }
+    let k = 1.0 / (c.len() - 2) as f64;
+    (g.dpdu, g.dpdv) = (scale(g.dpdu, k), scale(g.dpdv, k));
+    g
+}
+
+/// Summed unit dP/du and dP/dv at a (position, texture coordinate, group).
+type Pair = ([f64; 3], [f64; 3]);
+
+/// One row of the output: face, corner and its frame.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct CornerFrame {
+    pub face: usize,
+    pub corner: usize,
+    pub frame: Frame,
+}
+
+/// Every corner's frame of `m` in `mode`.
+pub fn frames(m: &Mesh, mode: Mode) -> Vec<CornerFrame> {
+    let geom: Vec<FaceGeom> = m.faces.iter().map(|f| face_geom(m, f)).collect();
+    let mut vn: HashMap<(usize, u32), [f64; 3]> = HashMap::new();
+    let mut vt: HashMap<(usize, usize, u32), Pair> = HashMap::new();
+    for (f, g) in m.faces.iter().zip(&geom) {
+        for c in &f.corners {
+            if f.smoothing != 0 {
+                let e = vn.entry((c.p, f.smoothing)).or_insert([0.0; 3]);
+                *e = add(*e, g.area_n);
+            }
+            let e = vt
+                .entry((c.p, c.t, f.smoothing))
+                .or_insert(([0.0; 3], [0.0; 3]));
+            *e = (add(e.0, normalize(g.dpdu).0), add(e.1, normalize(g.dpdv).0));
+        }
+    }
+    let mut out = Vec::new();
+    for (fi, (f, g)) in m.faces.iter().zip(&geom).enumerate() {
+        let face_n = normalize(g.area_n).0;
+        for (ci, c) in f.corners.iter().enumerate() {
+            let vertex_n = match (c.n, f.smoothing) {
+                (Some(k), _) => normalize(m.normals[k]).0,
+                (None, 0) => face_n,
+                (None, s) => normalize(vn[&(c.p, s)]).0,
+            };
+            let (t, b) = vt[&(c.p, c.t, f.smoothing)];
+            let frame = match mode {
+                Mode::Max => orthonormal(face_n, g.dpdu, g.dpdv),
+                Mode::DirectX => orthonormal(vertex_n, t, b),
+                Mode::Maya => {
+                    let (tn, ok) = normalize(t);
+                    Frame {
+                        t: tn,
+                        b: normalize(b).0,
+                        n: vertex_n,
+                        zero: !ok,
+                    }
+                }
+            };
+            out.push(CornerFrame {
+                face: fi,
+                corner: ci,
+                frame,
+            });
+        }
+    }
+    out
+}
+
+/// One triangle for the setup unit: edges (sQ7.16), UV edges (sQ3.16), unit normal
+/// (sQ1.14), raw.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct Tri {
+    pub v: [[i64; 3]; 2],
+    pub d: [[i64; 2]; 2],
+    pub n: [i64; 3],
+}
+
+/// What the unit gives.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct SetupOut {
+    pub t: [i64; 3],
+    pub b: [i64; 3],
+    pub dpdu: [i64; 3],
+    pub degenerate: bool,
+    pub zero: bool,
+}
+
+/// The f64 frame of a triangle as the unit sees it (its quantised inputs) and the bound on
+/// t's and b's components: the inverse square root's relative error, the rounding, and the
+/// direction error of dP/du's rounding (sqrt 3 2^-17 over the length of its part across n).
+pub fn golden_setup(q: &Tri) -> (golden::tangents::FaceTangent, Frame, f64) {
+    let f = |x: i64, k: u32| x as f64 * 2f64.powi(-(k as i32));
+    let p = [
+        [0.0; 3],
+        q.v[0].map(|x| f(x, POS_FRAC)),
+        q.v[1].map(|x| f(x, POS_FRAC)),
+    ];
+    let uv = [
+        [0.0; 2],
+        q.d[0].map(|x| f(x, POS_FRAC)),
+        q.d[1].map(|x| f(x, POS_FRAC)),
+    ];
+    let n = q.n.map(|x| f(x, VEC_FRAC));
+    let ft = face_tangent(p, uv);
+    let fr = orthonormal(n, ft.dpdu, ft.dpdv);
+    let across = {
+        let d = golden::tangents::dot(n, ft.dpdu);
+        let r = golden::tangents::sub(ft.dpdu, scale(n, d));
+        golden::tangents::dot(r, r).sqrt()
+    };
+    let r = hdl::bump::params::RsqrtParams::default();
+    let rs = golden::rsqrt::error_bound_ulps(r.table_bits, r.iterations, r.y_frac)
+        * 2f64.powi(-(r.y_frac as i32));
+    // |n| differs from 1 by its own rounding: up to sqrt 3 2^-15.
+    let bound = 2.0 * rs
+        + 2f64.powi(-15)
+        + 3f64.sqrt() * 2f64.powi(-17) * 4.0 / across.max(1e-30)
+        + 3f64.sqrt() * 2f64.powi(-15);
+    (ft, fr, bound)
+}
+
+struct TriDriver;
+
+impl Driver<TangentSetup> for TriDriver {
+    type Txn = Tri;
+    fn drive(&mut self, dut: &mut TangentSetup, t: Option<&Tri>) {
+        dut.valid_in.set_bool(t.is_some());
+        if let Some(t) = t {
+            for r in 0..2 {
+                for c in 0..3 {
+                    dut.v[r][c].set_raw(t.v[r][c]);
+                }
+                for c in 0..2 {
+                    dut.d[r][c].set_raw(t.d[r][c]);
+                }
+            }
+            for c in 0..3 {
+                dut.n[c].set_raw(t.n[c]);
+            }
+        }
+    }
+}
+
+struct SetupMonitor;
+
+impl Monitor<TangentSetup> for SetupMonitor {
+    type Txn = SetupOut;
+    fn sample(&mut self, d: &TangentSetup) -> Option<SetupOut> {
+        let raw = |r: &[hdl::kernel::Reg; 3]| r.each_ref().map(|x| x.q().raw());
+        d.valid.q().is_high().then(|| SetupOut {
+            t: raw(&d.t),
+            b: raw(&d.b),
+            dpdu: raw(&d.dpdu),
+            degenerate: d.degenerate.q().is_high(),
+            zero: d.zero.q().is_high(),
+        })
+    }
+}
+
+/// Random triangles: positions within 8 units, UVs within 2, the face normal (or a
+/// perturbed one, as a vertex normal); every eighth with UVs on a line, every sixteenth all
+/// equal, and half with the UV triangle mirrored.
+pub fn triangles(n: usize, stim: &mut Stimulus) -> Vec<Tri> {
+    let one = 1i64 << POS_FRAC;
+    (0..n)
+        .map(|i| {
+            let v = [0, 1].map(|_| [0, 1, 2].map(|_| stim.draw(&(-8 * one..8 * one))));
+            let mut d = [0, 1].map(|_| [0, 1].map(|_| stim.draw(&(-2 * one..2 * one))));
+            match i % 16 {
+                7 => d[1] = [d[0][0] * 2, d[0][1] * 2],
+                15 => d = [[0, 0], [0, 0]],
+                k if k % 2 == 1 => d = d.map(|x| [-x[0], x[1]]),
+                _ => {}
+            }
+            let fv = |k: usize| v[k].map(|x| x as f64);
+            let (nf, _) = normalize(cross(fv(0), fv(1)));
+            let jitter = f64::from(stim.draw(&(0u32..3))) * 0.1;
+            let (nv, _) = normalize(add(nf, [jitter, -jitter, 0.0]));
+            let n = nv.map(|c| (c * 16384.0).round() as i64);
+            Tri { v, d, n }
+        })
+        .collect()
+}
+
+fn coverage_model() -> Coverage {
+    let mut c = Coverage::new();
+    // A degenerate triangle has no dP/dv: its handedness is right by definition.
+    c.add(
+        Coverpoint::new("uvs")
+            .value("triangle", 0)
+            .value("on a line", 1)
+            .value("one point", 2),
+    );
+    c.add(
+        Coverpoint::new("handedness")
+            .value("right", 0)
+            .value("left", 1),
+    );
+    c
+}
+
+/// The regress testbench of the tangent setup unit.
+pub struct TangentSetupTb;
+
+impl Testbench for TangentSetupTb {
+    fn name(&self) -> &'static str {
+        NAME
+    }
+    fn unit(&self) -> &'static str {
+        "tangent setup: dP/du, dP/dv by the reciprocal of the UV determinant (table + Newton), Gram-Schmidt and the general handedness (003)"
+    }
+    fn default_count(&self) -> usize {
+        3000
+    }
+    fn count_unit(&self) -> &'static str {
+        "triangles"
+    }
+    fn coverage(&self) -> Coverage {
+        coverage_model()
+    }
+    fn run(&self, ctx: &Ctx) -> Result<TbResult, String> {
+        let mut stim = Stimulus::new(ctx.seed);
+        let tris = triangles(ctx.count.max(32), &mut stim);
+        let tracer = ctx.tracer(&format!("{NAME} {}", ctx.label), 10_000)?;
+        let sim = Sim::maybe_traced(TangentSetup::new(), tracer).map_err(|e| e.to_string())?;
+        run_setup(sim, ctx, tris)
+    }
+}
+
+/// Whether the unit's result is the f64 frame's within the bound.
+fn check(q: &Tri, a: &SetupOut) -> Result<(), String> {
+    let (ft, fr, bound) = golden_setup(q);
+    let lsb = 2f64.powi(-(VEC_FRAC as i32));
+    if a.degenerate != ft.degenerate || a.zero != fr.zero {
+        return Err(format!(
+            "flags {} {}, f64 {} {}",
+            a.degenerate, a.zero, ft.degenerate, fr.zero
+        ));
+    }
+    if a.zero {
+        return if a.t == [0; 3] {
+            Ok(())
+        } else {
+            Err("a zero tangent not zero".into())
+        };
+    }
+    for c in 0..3 {
+        let (t, b) = (a.t[c] as f64 * lsb, a.b[c] as f64 * lsb);
+        if (t - fr.t[c]).abs() > bound || (b - fr.b[c]).abs() > 2.0 * bound + lsb {
+            return Err(format!(
+                "t {:?} b {:?}: f64 {:?} {:?} (bound {bound:.2e})",
+                a.t, a.b, fr.t, fr.b
+            ));
+        }
+    }
+    Ok(())
+}
+
+fn run_setup<T: Trace>(
+    sim: Sim<TangentSetup, T>,
+    ctx: &Ctx,
+    tris: Vec<Tri>,
+) -> Result<TbResult, String> {
+    let mut res = TbResult::new(NAME, "");
+    let mut cov = coverage_model();
+    let mut sim = sim.check_schedule(ctx.check_schedule);
+    sim.reset(2);
+    let mut sb: Scoreboard<Tri, SetupOut> = Scoreboard::new(check);
+    let n = tris.len() as u64;
+    let mut pending = tris.clone().into_iter();
+    let mut spec =
+        RunSpec::new(n, 3 * n + 50).pacing(verif::Pacing::random(200, ctx.seed.derive(5)));
+    let lsb = 2f64.powi(-(VEC_FRAC as i32));
+    let r = run(
+        &mut sim,
+        &mut TriDriver,
+        &mut SetupMonitor,
+        tris,
+        &mut spec,
+        |_, ev| match ev {
+            Event::Sent { .. } => sb.expect(pending.next().expect("one a triangle")),
+            Event::Received { cycle, txn } => {
+                if let Some(q) = sb.observe(cycle, txn).expected {
+                    let (ft, fr, _) = golden_setup(&q);
+                    if !fr.zero {
+                        for c in 0..3 {
+                            res.stats.record(txn.t[c] as f64 * lsb, fr.t[c], lsb);
+                        }
+                    }
+                    let kind = match (ft.degenerate, fr.zero) {
+                        (false, _) => 0,
+                        (true, false) => 1,
+                        (true, true) => 2,
+                    };
+                    let hand = golden::tangents::handedness(fr.n, fr.t, ft.dpdv);
+                    cov.sample(&[kind, i64::from(hand < 0.0)]);
+                }
+            }
+            Event::Settled { .. } => {}
+        },
+    );
+    res.score(&sb);
+    res.ran(&r);
+    res.notes.push(format!(
+        "{}: {n} triangles, t within {:.2} LSB of the f64 Gram-Schmidt frame",
+        ctx.label, res.stats.max_abs_lsb
+    ));
+    res.coverage = Some(cov);
+    if let Some(w) = &ctx.waves {
+        sim.finish()
+            .map_err(|e| format!("{}: {e}", w.vcd.display()))?;
+        res.vcd = Some(w.vcd.clone());
+    }
+    Ok(res)
+}
