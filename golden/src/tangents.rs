@@ -127,9 +127,71 @@ pub fn orthonormal(n: [f64; 3], t: [f64; 3], dpdv: [f64; 3]) -> Frame {
     }
 }
 
+/// The per-pixel frame: optional Gram-Schmidt of `(t, b)` against `n`, then the unit
+/// `a n + gx t + gy b` (`None` when it has no direction).
+pub fn perturb(frame: [[f64; 3]; 3], w: [f64; 3], gram_schmidt: bool) -> Option<[f64; 3]> {
+    let [t, b, n] = frame;
+    let (t, b, n) = if gram_schmidt {
+        let n = normalize(n).0;
+        let f = orthonormal(n, t, cross(n, t));
+        let s = if dot(b, cross(n, f.t)) < 0.0 {
+            -1.0
+        } else {
+            1.0
+        };
+        (f.t, scale(cross(n, f.t), s), n)
+    } else {
+        (t, b, n)
+    };
+    let v = add(add(scale(n, w[0]), scale(t, w[1])), scale(b, w[2]));
+    let (u, ok) = normalize(v);
+    ok.then_some(u)
+}
+
+/// Parallax: `uv + h V.xy / max(V.z, 1/8)`, or `uv + h V.xy` when `limited`.
+pub fn parallax(uv: [f64; 2], h: f64, eye: [f64; 3], limited: bool) -> [f64; 2] {
+    let k = if limited { h } else { h / eye[2].max(0.125) };
+    [uv[0] + k * eye[0], uv[1] + k * eye[1]]
+}
+
+/// 003's bump perturbation as printed: `dM.x dP/du + dM.y dP/dv` (the slope added as it is).
+pub fn printed_bump(dm: [f64; 2], dpdu: [f64; 3], dpdv: [f64; 3]) -> [f64; 3] {
+    add(scale(dpdu, dm[0]), scale(dpdv, dm[1]))
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// 003's bump basis: the perturbation is not a unit vector (N + it must be renormalised)
+    /// and, with dM the height's slope, it tilts the normal up the slope, into the bump; the
+    /// surface's normal tilts away from the rising height (Blinn's -grad).
+    #[test]
+    fn the_printed_bump_perturbation_is_neither_unit_nor_signed_right() {
+        let (dpdu, dpdv, n) = ([1.0, 0.0, 0.0], [0.0, 1.0, 0.0], [0.0, 0.0, 1.0]);
+        // Height rising along +u: slope (0.5, 0).
+        let p = printed_bump([0.5, 0.0], dpdu, dpdv);
+        assert!((dot(p, p).sqrt() - 1.0).abs() > 0.1, "not unit");
+        // The true normal of h = 0.5 u: (-0.5, 0, 1) normalised: x negative.
+        let printed = normalize(add(n, p)).0;
+        let blinn = perturb([dpdu, dpdv, n], [1.0, -0.5, 0.0], false).unwrap();
+        assert!(printed[0] > 0.0 && blinn[0] < 0.0);
+        let truth = normalize([-0.5, 0.0, 1.0]).0;
+        assert!((0..3).all(|c| (blinn[c] - truth[c]).abs() < 1e-12));
+    }
+
+    /// 002's App. A reads a normal-map texel as the vector itself: a flat texel (0.5, 0.5, 1)
+    /// is then tilted 35 degrees; with the range change it is the normal.
+    #[test]
+    fn the_printed_normal_map_read_tilts_a_flat_texel() {
+        let c = [128.0 / 255.0, 128.0 / 255.0, 1.0];
+        let printed = normalize(c).0;
+        let decoded = normalize(c.map(|x| 2.0 * x - 1.0)).0;
+        assert!(printed[2] < 0.85 && decoded[2] > 0.9999);
+        // Its `upVector = tVector ^ sVector` is t x s: inward for a right-handed s, t.
+        let (s, t) = ([1.0, 0.0, 0.0], [0.0, 1.0, 0.0]);
+        assert_eq!(cross(t, s), [0.0, 0.0, -1.0]);
+    }
 
     /// A planar mapping `P = O + u A + v C`: dP/du = A and dP/dv = C exactly.
     #[test]

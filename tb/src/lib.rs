@@ -8,6 +8,7 @@ pub mod cosim;
 pub mod dram;
 pub mod footprint;
 pub mod footprint_normals;
+pub mod frames;
 pub mod mapchain;
 pub mod maps;
 pub mod mipmap;

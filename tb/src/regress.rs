@@ -26,7 +26,9 @@ pub fn registry() -> Registry {
         .register(Box::new(crate::mapchain::WalkerTb))
         .register(Box::new(crate::ptm::PtmFitterTb))
         .register(Box::new(crate::ptm::PtmShaderTb))
-        .register(Box::new(crate::tangents::TangentSetupTb));
+        .register(Box::new(crate::tangents::TangentSetupTb))
+        .register(Box::new(crate::frames::FrameUnitTb))
+        .register(Box::new(crate::frames::ParallaxTb));
     r
 }
 

@@ -1,0 +1,273 @@
+//! The per-pixel frame unit [C] shared by bump maps (003's basis, Blinn's perturbation) and
+//! tangent-space normal maps (002): from the interpolated tangent T, bitangent B and normal
+//! N, an optional Gram-Schmidt (Maya's per-pixel re-orthogonalisation, 003), then
+//! `n' = a N + gx T + gy B` normalised by normal unit 156's inverse square root.
+//!
+//! * Bump: `a = 1`, `(gx, gy)` the height's slope scaled and negated (`-dh/du`, `-dh/dv`:
+//!   003's listing adds `+dM`, which bends the normal into the bump, and calls the sum a unit
+//!   vector, which it is not; `golden::tangents` has both tests).
+//! * Normal map: the texel's RGB8 decoded as `c - 128` [C] (128 is exactly 0, so a flat
+//!   texel (128, 128, 255) gives N exactly; a common factor leaves the direction unchanged),
+//!   or as `2c - 255` ([`Decode::Symmetric`], 0 and 255 symmetric, 128 a little above 0);
+//!   002's `mapVector = vector(sampleColor)` omits the range change and tilts a flat texel.
+//! * Gram-Schmidt: `N^ = N/|N|`, `t = (T - (N^.T) N^)/|...|`, `b = s N^ x t` with `s` the
+//!   sign of `B.(N^ x t)`; without it T, B and N are used as they come.
+//!
+//! Every sum exact, each normalisation rounded once per component to sQ1.14 (ties to even).
+//!
+//! | port | format |
+//! |---|---|
+//! | `t`, `b`, `n` (interpolated, `0 < |v| < 2`) | sQ1.14 |
+//! | `a`, `gx`, `gy` | sQ3.12 |
+//! | `nout`, `tout`, `bout` | sQ1.14 |
+
+use crate::bump::params::{RsqrtParams, ROUND, SAT};
+use crate::bump::rsqrt_156::RsqrtTable;
+use crate::envmap::frame_eq2::unit;
+use crate::fx::{quantise, Format};
+use crate::kernel::{Module, Reg, Signal, Visitor};
+
+/// Fraction bits of the vectors and of the weights.
+pub const VEC_FRAC: u32 = 14;
+pub const W_FRAC: u32 = 12;
+
+/// What the unit gives: the perturbed unit normal and the frame it used.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Default)]
+pub struct FrameOut {
+    pub n: [i64; 3],
+    pub t: [i64; 3],
+    pub b: [i64; 3],
+    /// The perturbed normal was zero (no direction): `n` is N's unit [C].
+    pub zero: bool,
+}
+
+/// The unit's arithmetic.
+pub struct FrameMath {
+    table: RsqrtTable,
+    p: RsqrtParams,
+}
+
+impl Default for FrameMath {
+    fn default() -> Self {
+        FrameMath::new()
+    }
+}
+
+fn cross(a: [i128; 3], b: [i128; 3]) -> [i128; 3] {
+    [
+        a[1] * b[2] - a[2] * b[1],
+        a[2] * b[0] - a[0] * b[2],
+        a[0] * b[1] - a[1] * b[0],
+    ]
+}
+
+fn dot(a: [i128; 3], b: [i128; 3]) -> i128 {
+    (0..3).map(|c| a[c] * b[c]).sum()
+}
+
+impl FrameMath {
+    pub fn new() -> FrameMath {
+        let p = RsqrtParams::default();
+        FrameMath {
+            table: RsqrtTable::new(p).expect("the default parameters are valid"),
+            p,
+        }
+    }
+
+    /// `v / |v|` in sQ1.14 for `v` with `frac` fraction bits, or `None` for zero.
+    fn unit(&self, v: [i128; 3], frac: u32) -> Option<[i64; 3]> {
+        (v != [0; 3]).then(|| unit(v, frac, &self.table, &self.p))
+    }
+
+    /// Gram-Schmidt of `(t, b)` against `n` (all raw sQ1.14): unit N, t, and b = s N x t.
+    pub fn orthonormalise(
+        &self,
+        t: [i64; 3],
+        b: [i64; 3],
+        n: [i64; 3],
+    ) -> ([i64; 3], [i64; 3], [i64; 3]) {
+        let nu = self
+            .unit(n.map(i128::from), VEC_FRAC)
+            .unwrap_or([0, 0, 1 << VEC_FRAC]);
+        let nw = nu.map(i128::from);
+        let tw = t.map(i128::from);
+        // t - (n.t) n in units of 2^-42.
+        let d = dot(nw, tw);
+        let r: [i128; 3] = std::array::from_fn(|c| (tw[c] << 28) - d * nw[c]);
+        let tu = self.unit(r, 3 * VEC_FRAC).unwrap_or([0; 3]);
+        let nt = cross(nw, tu.map(i128::from));
+        let s = if dot(b.map(i128::from), nt) < 0 {
+            -1
+        } else {
+            1
+        };
+        let out = Format::signed(16, VEC_FRAC as i32);
+        let bu = nt.map(|x| quantise(s * x, 2 * VEC_FRAC as i32, out, ROUND, SAT) as i64);
+        (tu, bu, nu)
+    }
+
+    /// The unit's result for frame `(t, b, n)` (sQ1.14) and weights `(a, gx, gy)` (sQ3.12).
+    pub fn perturb(&self, frame: [[i64; 3]; 3], w: [i64; 3], gram_schmidt: bool) -> FrameOut {
+        let [t, b, n] = frame;
+        let (t, b, n) = if gram_schmidt {
+            self.orthonormalise(t, b, n)
+        } else {
+            (t, b, n)
+        };
+        let [a, gx, gy] = w.map(i128::from);
+        // a N + gx T + gy B in units of 2^-26.
+        let v: [i128; 3] = std::array::from_fn(|c| {
+            a * i128::from(n[c]) + gx * i128::from(t[c]) + gy * i128::from(b[c])
+        });
+        let (out, zero) = match self.unit(v, VEC_FRAC + W_FRAC) {
+            Some(u) => (u, false),
+            None => (
+                self.unit(n.map(i128::from), VEC_FRAC)
+                    .unwrap_or([0, 0, 1 << VEC_FRAC]),
+                true,
+            ),
+        };
+        FrameOut { n: out, t, b, zero }
+    }
+}
+
+/// How an RGB8 normal-map texel becomes a direction.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Default)]
+pub enum Decode {
+    /// `c - 128`: 128 is zero.
+    #[default]
+    Offset,
+    /// `2c - 255`: 0 and 255 are -1 and 1.
+    Symmetric,
+}
+
+/// A normal-map texel as the unit's weights `(a, gx, gy)` in sQ3.12: `(c - 128) 2^-7` or
+/// `(2c - 255) 2^-8`, blue weighting N, red T, green B.
+pub fn decode_rgb8(rgb: [u8; 3], d: Decode) -> [i64; 3] {
+    let x = rgb.map(|c| match d {
+        Decode::Offset => (i64::from(c) - 128) << (W_FRAC - 7),
+        Decode::Symmetric => (2 * i64::from(c) - 255) << (W_FRAC - 8),
+    });
+    [x[2], x[0], x[1]]
+}
+
+const T: [&str; 3] = ["tx", "ty", "tz"];
+const B: [&str; 3] = ["bx", "by", "bz"];
+const N: [&str; 3] = ["nx", "ny", "nz"];
+
+/// The unit: one register stage.
+pub struct FrameUnit {
+    math: FrameMath,
+    pub valid_in: Signal,
+    pub gram_schmidt: Signal,
+    pub frame: [[Signal; 3]; 3],
+    /// a, gx, gy.
+    pub w: [Signal; 3],
+    pub valid: Reg,
+    pub nout: [Reg; 3],
+    pub tout: [Reg; 3],
+    pub bout: [Reg; 3],
+    pub zero: Reg,
+}
+
+impl Default for FrameUnit {
+    fn default() -> Self {
+        FrameUnit::new()
+    }
+}
+
+impl FrameUnit {
+    pub fn new() -> FrameUnit {
+        let (vf, wf) = (Format::signed(16, 14), Format::signed(16, 12));
+        FrameUnit {
+            math: FrameMath::new(),
+            valid_in: Signal::bit("valid_in"),
+            gram_schmidt: Signal::bit("gram_schmidt"),
+            frame: [T, B, N].map(|r| r.map(|x| Signal::new(x, vf))),
+            w: ["a", "gx", "gy"].map(|x| Signal::new(x, wf)),
+            valid: Reg::new("valid", Format::uint(1)),
+            nout: ["nout_x", "nout_y", "nout_z"].map(|x| Reg::new(x, vf)),
+            tout: ["tout_x", "tout_y", "tout_z"].map(|x| Reg::new(x, vf)),
+            bout: ["bout_x", "bout_y", "bout_z"].map(|x| Reg::new(x, vf)),
+            zero: Reg::new("zero", Format::uint(1)),
+        }
+    }
+}
+
+impl Module for FrameUnit {
+    fn kind(&self) -> &'static str {
+        "frame_unit"
+    }
+
+    fn eval(&mut self) {
+        let valid = self.valid_in.is_high();
+        self.valid.set_next_bool(valid);
+        if !valid {
+            return;
+        }
+        let f = self.frame.each_ref().map(|r| r.each_ref().map(|s| s.raw()));
+        let w = self.w.each_ref().map(|s| s.raw());
+        let o = self.math.perturb(f, w, self.gram_schmidt.is_high());
+        for c in 0..3 {
+            self.nout[c].set_next_raw(o.n[c]);
+            self.tout[c].set_next_raw(o.t[c]);
+            self.bout[c].set_next_raw(o.b[c]);
+        }
+        self.zero.set_next_bool(o.zero);
+    }
+
+    fn tick(&mut self, reset: bool) {
+        let regs = self
+            .nout
+            .iter_mut()
+            .chain(&mut self.tout)
+            .chain(&mut self.bout);
+        for r in regs.chain([&mut self.valid, &mut self.zero]) {
+            r.tick(reset);
+        }
+    }
+
+    fn visit(&self, v: &mut dyn Visitor) {
+        use crate::kernel::Dir;
+        v.enter(self.instance(), self.kind());
+        v.signal(Dir::Input, &self.valid_in);
+        v.signal(Dir::Input, &self.gram_schmidt);
+        for s in self.frame.iter().flatten().chain(&self.w) {
+            v.signal(Dir::Input, s);
+        }
+        let regs = self.nout.iter().chain(&self.tout).chain(&self.bout);
+        for r in regs.chain([&self.valid, &self.zero]) {
+            v.reg(r);
+        }
+        v.leave();
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// A flat normal-map texel (128, 128, 255) gives N exactly; the axes frame passes
+    /// through Gram-Schmidt unchanged; 002's printed decode (the sample as the vector) does
+    /// not give N.
+    #[test]
+    fn a_flat_texel_gives_the_normal() {
+        let m = FrameMath::new();
+        let one = 1i64 << VEC_FRAC;
+        let frame = [[one, 0, 0], [0, one, 0], [0, 0, one]];
+        for gs in [false, true] {
+            let o = m.perturb(frame, decode_rgb8([128, 128, 255], Decode::Offset), gs);
+            assert_eq!(o.n, [0, 0, one]);
+            assert_eq!((o.t, o.b), (frame[0], frame[1]));
+            // The symmetric decode puts 128 at 1/255: a tilt of 64 LSB.
+            let o = m.perturb(frame, decode_rgb8([128, 128, 255], Decode::Symmetric), gs);
+            assert_eq!(o.n, [64, 64, one]);
+            // As 002's listing reads it (no range change), flat is far from flat.
+            let raw = [255, 128, 128].map(|c: i64| c << (W_FRAC - 8));
+            assert!(m.perturb(frame, raw, gs).n[0] > 5000);
+        }
+        // Zero weights: no direction, N's unit, flagged.
+        let o = m.perturb(frame, [0, 0, 0], false);
+        assert!(o.zero && o.n == [0, 0, one]);
+    }
+}
