@@ -4,6 +4,7 @@
 
 pub mod blend_adjust;
 pub mod bump;
+pub mod derivative;
 pub mod envmap;
 pub mod footprint;
 pub mod mapchain;

@@ -5,6 +5,7 @@
 
 pub mod blend_adjust;
 pub mod cosim;
+pub mod derivative;
 pub mod dram;
 pub mod footprint;
 pub mod footprint_normals;

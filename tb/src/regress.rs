@@ -28,7 +28,8 @@ pub fn registry() -> Registry {
         .register(Box::new(crate::ptm::PtmShaderTb))
         .register(Box::new(crate::tangents::TangentSetupTb))
         .register(Box::new(crate::frames::FrameUnitTb))
-        .register(Box::new(crate::frames::ParallaxTb));
+        .register(Box::new(crate::frames::ParallaxTb))
+        .register(Box::new(crate::derivative::DerivativeTb));
     r
 }
 

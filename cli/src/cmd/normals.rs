@@ -4,6 +4,7 @@ use super::widths::Widths;
 use super::{parse_finite, write_out, CmdError};
 use clap::Args;
 use formats::netpbm;
+use hdl::bump::derivative_0086::{DerivFilter, Derivative, DerivativeUnit};
 use hdl::bump::height_map::HeightMap;
 use hdl::bump::params::{Border, BumpParams, Filter};
 use hdl::fx::Fx;
@@ -25,8 +26,11 @@ pub struct NormalsArgs {
     /// Output CSV u,v,nx,ny,nz (exact decimal values of the fixed-point results).
     #[arg(long)]
     pub out: PathBuf,
+    /// The FIG. 7 pipeline's bspline, bezier or blinn; or para. 0086's derivative filters
+    /// central, sobel, prewitt, table (the 5-point taps) or table:c1,..,cK (antisymmetric
+    /// taps in units of 2^-12, K <= 4), whose normals are sQ1.14.
     #[arg(long, default_value = "bspline", value_parser = parse_filter)]
-    pub filter: Filter,
+    pub filter: NormalsFilter,
     /// Height scale factor (quantised to uQ8.8).
     #[arg(long, default_value_t = 1.0, value_parser = parse_finite)]
     pub scale: f64,
@@ -46,8 +50,23 @@ pub struct NormalsArgs {
     pub widths: Widths,
 }
 
-fn parse_filter(s: &str) -> Result<Filter, String> {
-    s.parse()
+/// A pipeline surface or a derivative filter.
+#[derive(Clone, Debug)]
+pub enum NormalsFilter {
+    Pipeline(Filter),
+    Derivative(DerivFilter),
+}
+
+fn parse_filter(s: &str) -> Result<NormalsFilter, String> {
+    if let Some(d) = DerivFilter::parse(s) {
+        return Ok(NormalsFilter::Derivative(d));
+    }
+    s.parse().map(NormalsFilter::Pipeline).map_err(|_| {
+        format!(
+            "unknown filter '{}' (one of bspline, bezier, blinn, central, sobel, prewitt, table, table:c1,..,cK)",
+            formats::shorten(s)
+        )
+    })
 }
 fn parse_border(s: &str) -> Result<Border, String> {
     s.parse()
@@ -90,7 +109,11 @@ fn normals(a: &NormalsArgs) -> Result<String, CmdError> {
         ));
     }
     let mut p = a.widths.params()?;
-    p.filter = a.filter;
+    let filter = match &a.filter {
+        NormalsFilter::Pipeline(f) => *f,
+        NormalsFilter::Derivative(d) => return derivative_normals(a, d, &p),
+    };
+    p.filter = filter;
     p.border = a.border;
     p.trilinear = a.trilinear;
     p.validate()?;
@@ -154,9 +177,95 @@ fn normals(a: &NormalsArgs) -> Result<String, CmdError> {
         "{} normals written to {} ({} filter, latency {} cycles; against golden: max component error {:.3e}, max angle {:.3e} deg)",
         o.outputs.len(),
         a.out.display(),
-        a.filter,
+        filter,
         o.latency,
         o.max_component_err,
         o.max_angle_deg
+    ))
+}
+
+/// `texrtl normals --filter central|sobel|prewitt|table..`: para. 0086's unit, one sample a
+/// cycle, normals sQ1.14.
+fn derivative_normals(
+    a: &NormalsArgs,
+    f: &DerivFilter,
+    p: &BumpParams,
+) -> Result<String, CmdError> {
+    if a.trilinear {
+        return Err(CmdError::Input(format!(
+            "--trilinear: the derivative filter {} reads one level",
+            f.name()
+        )));
+    }
+    if !(0.0..256.0).contains(&a.scale) {
+        return Err(CmdError::Input(format!(
+            "--scale {}: 0 ..< 256 (uQ8.8)",
+            formats::shorten(&a.scale.to_string())
+        )));
+    }
+    let map = read_height(&a.height, p)?;
+    let coords = read_coords(&a.coords)?;
+    let pos = |x: f64, k: usize| -> Result<i64, String> {
+        let r = (x * 65536.0).round_ties_even();
+        if r.abs() < 2f64.powi(31) {
+            Ok(r as i64)
+        } else {
+            Err(format!(
+                "{}:{}: position {} outside +-32768",
+                a.coords.display(),
+                k + 2,
+                formats::shorten(&x.to_string())
+            ))
+        }
+    };
+    let q: Vec<(i64, i64)> = coords
+        .iter()
+        .enumerate()
+        .map(|(k, &(u, v))| Ok((pos(u, k)?, pos(v, k)?)))
+        .collect::<Result<_, String>>()?;
+    let scale = (a.scale * 256.0).round() as i64;
+    let d = Derivative::new(f.clone(), map, a.border, tb::derivative::POS_FRAC);
+    let tracer = match &a.vcd {
+        Some(path) => Some(
+            waves::VcdTracer::create(path, "derivative_0086", TraceConfig::default())
+                .map_err(|e| e.to_string())?,
+        ),
+        None => None,
+    };
+    let mut sim = hdl::kernel::Sim::maybe_traced(DerivativeUnit::new(d), tracer)
+        .map_err(|e| e.to_string())?;
+    sim.reset(1);
+    let mut csv = String::from("u,v,nx,ny,nz\n");
+    for &(u, v) in &q {
+        sim.dut.valid_in.set_bool(true);
+        sim.dut.u.set_raw(u);
+        sim.dut.v.set_raw(v);
+        sim.dut.scale.set_raw(scale);
+        sim.step();
+        let n = sim.dut.n.each_ref().map(|r| r.q().raw());
+        let d = |x: i64, f: i32| {
+            Fx::from_raw(hdl::fx::Format::signed(48, f), i128::from(x)).to_string()
+        };
+        let _ = writeln!(
+            csv,
+            "{},{},{},{},{}",
+            d(u, 16),
+            d(v, 16),
+            d(n[0], 14),
+            d(n[1], 14),
+            d(n[2], 14)
+        );
+    }
+    if let Some(path) = &a.vcd {
+        sim.finish()
+            .map_err(|e| format!("{}: {e}", path.display()))?;
+    }
+    write_out(&a.out, csv.as_bytes())?;
+    Ok(format!(
+        "{} normals written to {} (derivative filter {} of para. 0086, {} texels a sample)",
+        q.len(),
+        a.out.display(),
+        f.name(),
+        f.texels_per_sample()
     ))
 }

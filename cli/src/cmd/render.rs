@@ -91,6 +91,49 @@ pub fn run(a: &RenderArgs) -> Result<String, CmdError> {
 
 /// The four-panel Dot3 picture as PNG bytes, and the worst intensity error of the B-spline
 /// panel against golden.
+/// Dot3 intensities (0..=255) of the FIG. 7 pipeline with `p` at `zoom` samples a texel
+/// under the unit light `l`, row by row.
+pub fn dot3_panel(
+    map: &HeightMap,
+    p: &BumpParams,
+    l: [f64; 3],
+    scale: f64,
+    zoom: u32,
+) -> Result<Vec<u8>, String> {
+    let (w, h) = (map.width() * zoom, map.height() * zoom);
+    let z = f64::from(zoom);
+    let samples: Vec<Sample> = (0..h)
+        .flat_map(|y| (0..w).map(move |x| (x, y)))
+        .map(|(x, y)| Sample {
+            u: (f64::from(x) + 0.5) / z,
+            v: (f64::from(y) + 0.5) / z,
+            scale,
+            lod: 0.0,
+        })
+        .collect();
+    let run = run_normals(&NormalsRun {
+        name: format!("panel {}", p.filter),
+        params: *p,
+        map: map.clone(),
+        samples,
+        idle_per_mille: 0,
+        vcd: None,
+        trace: TraceConfig::default(),
+        check_accuracy: false,
+        check_schedule: false,
+        seed: Seed(0),
+    })?;
+    let nf = p.normal_fmt();
+    Ok(run
+        .outputs
+        .iter()
+        .map(|n| {
+            let i = dot3(n.n.map(|x| tb::normals::real(x, nf)), l);
+            (i * 255.0).round().clamp(0.0, 255.0) as u8
+        })
+        .collect())
+}
+
 pub fn render_png(
     map: &HeightMap,
     p: &BumpParams,

@@ -7,6 +7,7 @@
 pub mod address_150;
 pub mod bilinear_65_68;
 pub mod blend_adjust_153;
+pub mod derivative_0086;
 pub mod height_map;
 pub mod normal_156;
 pub mod normal_pipeline_fig7;

@@ -1,0 +1,251 @@
+//! The derivative filters of para. 0086 (Fenney): the testbench of the unit, its golden
+//! comparison, and the render comparison with the FIG. 7 surfaces (the FIG. 8 comparison
+//! extended).
+
+use golden::derivative::Kernel;
+use hdl::bump::derivative_0086::{five_point, DerivFilter, Derivative, DerivativeUnit};
+use hdl::bump::height_map::HeightMap;
+use hdl::bump::params::{Border, BumpParams};
+use hdl::kernel::{Sim, Trace};
+use verif::{
+    run, Coverage, Coverpoint, Ctx, Driver, Event, Monitor, RunSpec, Scoreboard, Stimulus,
+    TbResult, Testbench,
+};
+
+pub const NAME: &str = "derivative_0086";
+/// Position fraction bits of the unit's u, v.
+pub const POS_FRAC: u32 = 16;
+
+/// The golden kernel of a filter (the table's taps as the integers say).
+pub fn kernel(f: &DerivFilter) -> Kernel {
+    match f {
+        DerivFilter::Central => Kernel::Central,
+        DerivFilter::Sobel => Kernel::Sobel,
+        DerivFilter::Prewitt => Kernel::Prewitt,
+        DerivFilter::Table(c) => Kernel::Taps(c.iter().map(|x| *x as f64 / 4096.0).collect()),
+    }
+}
+
+/// The filters, as the testbench's configurations.
+pub fn filters() -> [DerivFilter; 4] {
+    [
+        DerivFilter::Central,
+        DerivFilter::Sobel,
+        DerivFilter::Prewitt,
+        DerivFilter::Table(five_point()),
+    ]
+}
+
+/// The f64 normal of the unit's inputs (raw u, v, scale uQ8.8).
+pub fn golden_normal(d: &Derivative, u: i64, v: i64, scale: i64, frac: i32) -> [f64; 3] {
+    let h = |x: i64, y: i64| d.height(x, y) as f64 * 2f64.powi(-frac);
+    let p = 2f64.powi(-(POS_FRAC as i32));
+    golden::derivative::normal(
+        &kernel(&d.filter),
+        &h,
+        u as f64 * p,
+        v as f64 * p,
+        scale as f64 / 256.0,
+    )
+}
+
+/// One normalisation's component error (156's rsqrt and the rounding to sQ1.14).
+pub fn bound() -> f64 {
+    let r = hdl::bump::params::RsqrtParams::default();
+    golden::rsqrt::error_bound_ulps(r.table_bits, r.iterations, r.y_frac)
+        * 2f64.powi(-(r.y_frac as i32))
+        + 2f64.powi(-15)
+        + 1e-12
+}
+
+type Query = (i64, i64, i64);
+
+struct QDriver;
+
+impl Driver<DerivativeUnit> for QDriver {
+    type Txn = Query;
+    fn drive(&mut self, d: &mut DerivativeUnit, t: Option<&Query>) {
+        d.valid_in.set_bool(t.is_some());
+        if let Some((u, v, s)) = t {
+            d.u.set_raw(*u);
+            d.v.set_raw(*v);
+            d.scale.set_raw(*s);
+        }
+    }
+}
+
+struct NMonitor;
+
+impl Monitor<DerivativeUnit> for NMonitor {
+    type Txn = [i64; 3];
+    fn sample(&mut self, d: &DerivativeUnit) -> Option<[i64; 3]> {
+        d.valid
+            .q()
+            .is_high()
+            .then(|| d.n.each_ref().map(|r| r.q().raw()))
+    }
+}
+
+fn coverage_model() -> Coverage {
+    let mut c = Coverage::new();
+    c.add(
+        Coverpoint::new("slope")
+            .value("flat", 0)
+            .value("gentle", 1)
+            .value("steep", 2),
+    );
+    c.add(
+        Coverpoint::new("edge")
+            .value("inside", 0)
+            .value("across the border", 1),
+    );
+    c
+}
+
+/// The regress testbench: every filter on the bumps map (wrap) and the noise map (clamp).
+pub struct DerivativeTb;
+
+impl Testbench for DerivativeTb {
+    fn name(&self) -> &'static str {
+        NAME
+    }
+    fn unit(&self) -> &'static str {
+        "derivative filters of para. 0086 (central, Sobel, Prewitt, antisymmetric table) at four texel centres, bilinear, normal by 156's rsqrt (Fenney)"
+    }
+    fn configurations(&self) -> Vec<String> {
+        filters().iter().map(|f| f.name()).collect()
+    }
+    fn default_count(&self) -> usize {
+        2000
+    }
+    fn count_unit(&self) -> &'static str {
+        "samples"
+    }
+    fn coverage(&self) -> Coverage {
+        coverage_model()
+    }
+    fn run(&self, ctx: &Ctx) -> Result<TbResult, String> {
+        let f = filters()[ctx.index].clone();
+        let p = BumpParams::default();
+        let (name, border) = if ctx.index.is_multiple_of(2) {
+            ("bumps", Border::Wrap)
+        } else {
+            ("noise", Border::Clamp)
+        };
+        let map = crate::maps::builtin(name, 32, 32, p.texel_fmt())?;
+        let frac = map.fmt().frac();
+        let mut stim = Stimulus::new(ctx.seed);
+        let side = 32i64 << POS_FRAC;
+        let mut qs: Vec<Query> = (0..ctx.count.max(16))
+            .map(|_| {
+                (
+                    stim.draw(&(-side / 16..side + side / 16)),
+                    stim.draw(&(0..side)),
+                    stim.draw(&(0i64..1024)),
+                )
+            })
+            .collect();
+        // A flat scale and a steep one whatever the count.
+        qs.push((side / 2, side / 3, 0));
+        qs.push((side / 2 + 77, side / 3, 1023));
+        let d = Derivative::new(f, map, border, POS_FRAC);
+        let want: Vec<(Query, [f64; 3])> = qs
+            .iter()
+            .map(|q| (*q, golden_normal(&d, q.0, q.1, q.2, frac)))
+            .collect();
+        let tracer = ctx.tracer(&format!("{NAME} {}", ctx.label), 10_000)?;
+        let sim = Sim::maybe_traced(DerivativeUnit::new(d), tracer).map_err(|e| e.to_string())?;
+        run_queries(sim, ctx, want)
+    }
+}
+
+fn run_queries<T: Trace>(
+    sim: Sim<DerivativeUnit, T>,
+    ctx: &Ctx,
+    want: Vec<(Query, [f64; 3])>,
+) -> Result<TbResult, String> {
+    let mut res = TbResult::new(NAME, "");
+    let mut cov = coverage_model();
+    let mut sim = sim.check_schedule(ctx.check_schedule);
+    sim.reset(2);
+    let lsb = 2f64.powi(-14);
+    let b = bound();
+    let mut sb: Scoreboard<(Query, [f64; 3]), [i64; 3]> =
+        Scoreboard::new(move |(_, g): &(Query, [f64; 3]), a: &[i64; 3]| {
+            let worst = (0..3)
+                .map(|c| (a[c] as f64 * lsb - g[c]).abs())
+                .fold(0.0, f64::max);
+            if worst <= b {
+                Ok(())
+            } else {
+                Err(format!("{a:?} is {worst:.2e} from {g:?}"))
+            }
+        });
+    let n = want.len() as u64;
+    let qs: Vec<Query> = want.iter().map(|w| w.0).collect();
+    let mut pending = want.into_iter();
+    let mut spec =
+        RunSpec::new(n, 3 * n + 50).pacing(verif::Pacing::random(200, ctx.seed.derive(8)));
+    let side = 32i64 << POS_FRAC;
+    let r = run(
+        &mut sim,
+        &mut QDriver,
+        &mut NMonitor,
+        qs,
+        &mut spec,
+        |_, ev| match ev {
+            Event::Sent { .. } => sb.expect(pending.next().expect("one a query")),
+            Event::Received { cycle, txn } => {
+                if let Some((q, g)) = sb.observe(cycle, txn).expected {
+                    for c in 0..3 {
+                        res.stats.record(txn[c] as f64 * lsb, g[c], lsb);
+                    }
+                    let tilt = 1.0 - g[2];
+                    let slope = if tilt < 1e-9 {
+                        0
+                    } else if tilt < 0.05 {
+                        1
+                    } else {
+                        2
+                    };
+                    let near = 2i64 << POS_FRAC;
+                    cov.sample(&[slope, i64::from(q.0 < near || q.0 > side - near)]);
+                }
+            }
+            Event::Settled { .. } => {}
+        },
+    );
+    res.score(&sb);
+    res.ran(&r);
+    res.notes.push(format!(
+        "{}: {n} samples, normals within {:.2} LSB of f64 (bound {:.2})",
+        ctx.label,
+        res.stats.max_abs_lsb,
+        b / lsb
+    ));
+    res.coverage = Some(cov);
+    if let Some(w) = &ctx.waves {
+        sim.finish()
+            .map_err(|e| format!("{}: {e}", w.vcd.display()))?;
+        res.vcd = Some(w.vcd.clone());
+    }
+    Ok(res)
+}
+
+/// Dot3 intensities (0..=255) of `map` at `zoom` samples a texel under light `l` with the
+/// unit and `filter`, row by row.
+pub fn render(map: &HeightMap, filter: DerivFilter, scale: f64, zoom: u32, l: [f64; 3]) -> Vec<u8> {
+    let d = Derivative::new(filter, map.clone(), Border::Wrap, POS_FRAC);
+    let (w, h) = (map.width() * zoom, map.height() * zoom);
+    let s = (scale * 256.0).round() as i64;
+    let mut out = Vec::with_capacity((w * h) as usize);
+    for y in 0..h {
+        for x in 0..w {
+            let c = |k: u32| ((2 * i64::from(k) + 1) << POS_FRAC) / (2 * i64::from(zoom));
+            let n = d.normal(c(x), c(y), s);
+            let i: f64 = (0..3).map(|k| n[k] as f64 / 16384.0 * l[k]).sum();
+            out.push((i.max(0.0) * 255.0).round().min(255.0) as u8);
+        }
+    }
+    out
+}
