@@ -3,6 +3,7 @@
 //! coverage model; [`regress`] holds the registry and runs them all; [`vectors`] keeps the
 //! bit-accuracy vectors.
 
+pub mod biquadratic;
 pub mod blend_adjust;
 pub mod cosim;
 pub mod derivative;

@@ -29,7 +29,8 @@ pub fn registry() -> Registry {
         .register(Box::new(crate::tangents::TangentSetupTb))
         .register(Box::new(crate::frames::FrameUnitTb))
         .register(Box::new(crate::frames::ParallaxTb))
-        .register(Box::new(crate::derivative::DerivativeTb));
+        .register(Box::new(crate::derivative::DerivativeTb))
+        .register(Box::new(crate::biquadratic::BiquadraticTb));
     r
 }
 

@@ -6,11 +6,13 @@
 
 pub mod address_150;
 pub mod bilinear_65_68;
+pub mod biquadratic_0087;
 pub mod blend_adjust_153;
 pub mod derivative_0086;
 pub mod height_map;
 pub mod normal_156;
 pub mod normal_pipeline_fig7;
+pub mod packed_0055;
 pub mod params;
 pub mod replicate_152;
 pub mod rsqrt_156;

@@ -1,0 +1,212 @@
+//! Bi-quadratic colour filtering of para. 0087: the unit's testbench against the f64
+//! B-spline of the same texels (with the declared 8-bit t), within half an LSB.
+
+use hdl::bump::biquadratic_0087::{Biquadratic0087, ColourMap, POS_FRAC};
+use hdl::bump::params::Border;
+use hdl::kernel::{Sim, Trace};
+use verif::{
+    run, Coverage, Coverpoint, Ctx, Driver, Event, Monitor, RunSpec, Scoreboard, Stimulus,
+    TbResult, Testbench,
+};
+
+pub const NAME: &str = "biquadratic_0087";
+
+/// The f64 filter: B0 = (1 - t)^2 / 2, B1 = (1 + 2t - 2t^2) / 2, B2 = t^2 / 2 on each axis, t
+/// the fraction inside the nearest texel truncated to 8 bits.
+pub fn golden(m: &ColourMap, u: i64, v: i64) -> [f64; 3] {
+    let ax = |c: i64| {
+        let x = c as f64 / 65536.0;
+        let i = x.floor();
+        let t = ((x - i) * 256.0).floor() / 256.0;
+        (
+            i as i64,
+            [
+                (1.0 - t) * (1.0 - t) / 2.0,
+                (1.0 + 2.0 * t - 2.0 * t * t) / 2.0,
+                t * t / 2.0,
+            ],
+        )
+    };
+    let ((i, wu), (j, wv)) = (ax(u), ax(v));
+    let mut s = [0.0; 3];
+    for (dy, wy) in wv.iter().enumerate() {
+        for (dx, wx) in wu.iter().enumerate() {
+            let t = m.texel(i + dx as i64 - 1, j + dy as i64 - 1);
+            for c in 0..3 {
+                s[c] += f64::from(t[c]) * wx * wy;
+            }
+        }
+    }
+    s
+}
+
+/// A colour map: smooth ramps in R, a checker in G, noise in B.
+pub fn test_map(n: u32, border: Border, stim: &mut Stimulus) -> ColourMap {
+    let noise = stim.draw_n(&(0u8..=255), (n * n) as usize);
+    let rgb = (0..n * n)
+        .flat_map(|k| {
+            let (x, y) = (k % n, k / n);
+            [
+                (x * 7 + y * 3) as u8,
+                if (x / 2 + y / 2) % 2 == 0 { 230 } else { 20 },
+                noise[k as usize],
+            ]
+        })
+        .collect();
+    ColourMap {
+        width: n,
+        height: n,
+        rgb,
+        border,
+    }
+}
+
+struct UvDriver;
+
+impl Driver<Biquadratic0087> for UvDriver {
+    type Txn = (i64, i64);
+    fn drive(&mut self, d: &mut Biquadratic0087, t: Option<&(i64, i64)>) {
+        d.valid_in.set_bool(t.is_some());
+        if let Some((u, v)) = t {
+            d.u.set_raw(*u);
+            d.v.set_raw(*v);
+        }
+    }
+}
+
+struct RgbMonitor;
+
+impl Monitor<Biquadratic0087> for RgbMonitor {
+    type Txn = [u8; 3];
+    fn sample(&mut self, d: &Biquadratic0087) -> Option<[u8; 3]> {
+        d.valid
+            .q()
+            .is_high()
+            .then(|| d.rgb.each_ref().map(|r| r.q().bits() as u8))
+    }
+}
+
+fn coverage_model() -> Coverage {
+    let mut c = Coverage::new();
+    c.add(Coverpoint::new("t").ranges("t", 0, 255, 4));
+    c.add(
+        Coverpoint::new("edge")
+            .value("inside", 0)
+            .value("across the border", 1),
+    );
+    c
+}
+
+/// The regress testbench: wrap and clamp borders.
+pub struct BiquadraticTb;
+
+impl Testbench for BiquadraticTb {
+    fn name(&self) -> &'static str {
+        NAME
+    }
+    fn unit(&self) -> &'static str {
+        "bi-quadratic B-spline colour filter of para. 0087 over 3 x 3 texels, per channel (Fenney)"
+    }
+    fn configurations(&self) -> Vec<String> {
+        vec!["16x16 wrap".into(), "16x16 clamp".into()]
+    }
+    fn default_count(&self) -> usize {
+        2000
+    }
+    fn count_unit(&self) -> &'static str {
+        "samples"
+    }
+    fn coverage(&self) -> Coverage {
+        coverage_model()
+    }
+    fn run(&self, ctx: &Ctx) -> Result<TbResult, String> {
+        let border = if ctx.index == 0 {
+            Border::Wrap
+        } else {
+            Border::Clamp
+        };
+        let mut stim = Stimulus::new(ctx.seed);
+        let map = test_map(16, border, &mut stim);
+        let side = 16i64 << POS_FRAC;
+        let qs: Vec<(i64, i64)> = (0..ctx.count.max(16))
+            .map(|k| {
+                let u = stim.draw(&(-side / 8..side + side / 8));
+                let v = if k % 8 == 0 {
+                    stim.draw(&(0..side / 16))
+                } else {
+                    stim.draw(&(0..side))
+                };
+                (u, v)
+            })
+            .collect();
+        let tracer = ctx.tracer(&format!("{NAME} {}", ctx.label), 10_000)?;
+        let sim = Sim::maybe_traced(Biquadratic0087::new(map.clone())?, tracer)
+            .map_err(|e| e.to_string())?;
+        run_samples(sim, ctx, &map, qs)
+    }
+}
+
+fn run_samples<T: Trace>(
+    sim: Sim<Biquadratic0087, T>,
+    ctx: &Ctx,
+    map: &ColourMap,
+    qs: Vec<(i64, i64)>,
+) -> Result<TbResult, String> {
+    let mut res = TbResult::new(NAME, "");
+    let mut cov = coverage_model();
+    let mut sim = sim.check_schedule(ctx.check_schedule);
+    sim.reset(2);
+    let m2 = map.clone();
+    let mut sb: Scoreboard<(i64, i64), [u8; 3]> =
+        Scoreboard::new(move |q: &(i64, i64), a: &[u8; 3]| {
+            let g = golden(&m2, q.0, q.1);
+            let worst = (0..3)
+                .map(|c| (f64::from(a[c]) - g[c]).abs())
+                .fold(0.0, f64::max);
+            if worst <= 0.5 + 1e-9 {
+                Ok(())
+            } else {
+                Err(format!("{a:?} is {worst:.3} from {g:?}"))
+            }
+        });
+    let n = qs.len() as u64;
+    let mut pending = qs.clone().into_iter();
+    let mut spec =
+        RunSpec::new(n, 3 * n + 50).pacing(verif::Pacing::random(200, ctx.seed.derive(9)));
+    let side = 16i64 << POS_FRAC;
+    let r = run(
+        &mut sim,
+        &mut UvDriver,
+        &mut RgbMonitor,
+        qs,
+        &mut spec,
+        |_, ev| match ev {
+            Event::Sent { .. } => sb.expect(pending.next().expect("one a sample")),
+            Event::Received { cycle, txn } => {
+                if let Some(q) = sb.observe(cycle, txn).expected {
+                    let g = golden(map, q.0, q.1);
+                    for c in 0..3 {
+                        res.stats.record(f64::from(txn[c]), g[c], 1.0);
+                    }
+                    let edge =
+                        q.0 < 1 << POS_FRAC || q.0 >= side - (1 << POS_FRAC) || q.1 < 1 << POS_FRAC;
+                    cov.sample(&[(q.0 >> (POS_FRAC - 8)) & 255, i64::from(edge)]);
+                }
+            }
+            Event::Settled { .. } => {}
+        },
+    );
+    res.score(&sb);
+    res.ran(&r);
+    res.notes.push(format!(
+        "{}: {n} samples within {:.3} LSB of f64",
+        ctx.label, res.stats.max_abs_lsb
+    ));
+    res.coverage = Some(cov);
+    if let Some(w) = &ctx.waves {
+        sim.finish()
+            .map_err(|e| format!("{}: {e}", w.vcd.display()))?;
+        res.vcd = Some(w.vcd.clone());
+    }
+    Ok(res)
+}
