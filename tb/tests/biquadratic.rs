@@ -60,6 +60,7 @@ fn ramps_constants_and_the_neighbourhood_bound() {
         let (u, v) = (stim.draw(&(0i64..16 << 16)), stim.draw(&(0i64..16 << 16)));
         let got = filter(&m, u, v);
         let (i, j) = (u >> 16, v >> 16);
+        #[allow(clippy::needless_range_loop)] // channel c of the texels and of the result
         for c in 0..3 {
             let near: Vec<u8> = (-1..=1)
                 .flat_map(|dy| (-1..=1).map(move |dx| (dx, dy)))

@@ -6,7 +6,7 @@
 
 /// The words of a `w x h` height map (even sides), row-major by word.
 pub fn pack(w: u32, h: u32, heights: &[u8]) -> Result<Vec<u32>, String> {
-    if w % 2 != 0 || h % 2 != 0 || heights.len() != (w * h) as usize {
+    if !w.is_multiple_of(2) || !h.is_multiple_of(2) || heights.len() != (w * h) as usize {
         return Err(format!(
             "{w}x{h}: even sides and w h heights ({} given)",
             heights.len()
