@@ -75,6 +75,7 @@ fn ramps_constants_and_the_neighbourhood_bound() {
         }
         // At a texel centre: (a + 6b + c)/8 along each axis, i.e. the 1-6-1 tensor.
         let centre = filter(&m, (i << 16) + (1 << 15), (j << 16) + (1 << 15));
+        #[allow(clippy::needless_range_loop)] // channel c of the texels and of the result
         for c in 0..3 {
             let w = [1i64, 6, 1];
             let mut sum = 0;
