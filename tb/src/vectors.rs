@@ -48,7 +48,7 @@ pub struct VectorFile {
 }
 
 /// Units with vectors.
-pub const UNITS: [&str; 10] = [
+pub const UNITS: [&str; 15] = [
     crate::blend_adjust::NAME,
     crate::normals::NAME,
     crate::mipmap::NAME,
@@ -59,6 +59,11 @@ pub const UNITS: [&str; 10] = [
     crate::mapchain::NAME,
     crate::ptm::FITTER,
     crate::ptm::SHADER,
+    crate::tangents::NAME,
+    crate::frames::FRAME,
+    crate::frames::PARALLAX,
+    crate::derivative::NAME,
+    crate::biquadratic::NAME,
 ];
 
 fn f(name: &str, width: u32) -> Field {
@@ -89,6 +94,11 @@ pub fn unit_vectors(unit: &str) -> Result<UnitVectors, String> {
         crate::mapchain::NAME => mapchain(),
         crate::ptm::FITTER => ptm_fitter(),
         crate::ptm::SHADER => ptm_shader(),
+        crate::tangents::NAME => tangent_setup(),
+        crate::frames::FRAME => frame_unit(),
+        crate::frames::PARALLAX => parallax(),
+        crate::derivative::NAME => derivative(),
+        crate::biquadratic::NAME => biquadratic(),
         _ => Err(format!(
             "unknown unit '{unit}' (one of {})",
             UNITS.join(", ")
@@ -619,6 +629,264 @@ fn ptm_shader() -> Result<UnitVectors, String> {
         description: format!("PTM shader 608 (001): the 16-bit format of a 4 x 12 dome (exponents {:?}, biases {:?}); 512 hashed coefficient sets and lights inside |u|, |v| < 0.71", fmt.exp, fmt.bias),
         inputs,
         outputs: vec![f("k", 8), f("visibility", 8)],
+        rows,
+    })
+}
+
+/// A hash of `k` and `i` (no RNG: the vectors depend on no seed).
+fn mix(k: u32, i: u32) -> u32 {
+    (k.wrapping_mul(0x9e37_79b9) ^ i.wrapping_mul(0x85eb_ca6b)).wrapping_mul(0x2545_f491) >> 3
+}
+
+/// A value in `-r..r` from a hash.
+fn signed(h: u32, r: i64) -> i64 {
+    i64::from(h) % (2 * r) - r
+}
+
+/// The tangent setup unit on 256 hashed triangles (every eighth with UVs on a line).
+#[allow(clippy::needless_range_loop)] // the unit's signals index like the vectors
+fn tangent_setup() -> Result<UnitVectors, String> {
+    use hdl::frames::tangent_setup::TangentSetup;
+    let mut sim = hdl::kernel::Sim::new(TangentSetup::new());
+    sim.reset(1);
+    let mut rows = Vec::new();
+    for k in 0..256u32 {
+        let v = [[0, 1, 2], [3, 4, 5]].map(|r| r.map(|i| signed(mix(k, i), 8 << 16)));
+        let mut d = [[6, 7], [8, 9]].map(|r| r.map(|i| signed(mix(k, i), 2 << 16)));
+        if k % 8 == 7 {
+            d[1] = [2 * d[0][0], 2 * d[0][1]];
+        }
+        let n = [0, 0, 1 << 14];
+        let dut = &mut sim.dut;
+        dut.valid_in.set_bool(true);
+        for r in 0..2 {
+            for c in 0..3 {
+                dut.v[r][c].set_raw(v[r][c]);
+            }
+            for c in 0..2 {
+                dut.d[r][c].set_raw(d[r][c]);
+            }
+        }
+        for c in 0..3 {
+            dut.n[c].set_raw(n[c]);
+        }
+        sim.step();
+        let o = &sim.dut;
+        let mut ins: Vec<u64> = v.iter().flatten().map(|&x| mask(x, 24)).collect();
+        ins.extend(d.iter().flatten().map(|&x| mask(x, 20)));
+        let mut out: Vec<u64> =
+            o.t.iter()
+                .chain(&o.b)
+                .map(|r| mask(r.q().raw(), 16))
+                .collect();
+        out.extend(o.dpdu.iter().map(|r| mask(r.q().raw(), 40)));
+        out.extend([o.degenerate.q().bits(), o.zero.q().bits()]);
+        rows.push((ins, out));
+    }
+    let mut inputs: Vec<Field> = ["v1x", "v1y", "v1z", "v2x", "v2y", "v2z"]
+        .iter()
+        .map(|n| f(n, 24))
+        .collect();
+    inputs.extend(["d1u", "d1v", "d2u", "d2v"].iter().map(|n| f(n, 20)));
+    let mut outputs: Vec<Field> = ["tx", "ty", "tz", "bx", "by", "bz"]
+        .iter()
+        .map(|n| f(n, 16))
+        .collect();
+    outputs.extend(["dpdu_x", "dpdu_y", "dpdu_z"].iter().map(|n| f(n, 40)));
+    outputs.extend([f("degenerate", 1), f("zero", 1)]);
+    Ok(UnitVectors {
+        unit: crate::tangents::NAME.into(),
+        description: "tangent setup (003): 256 hashed triangles (edges within 8, UV edges within 2, every eighth with UVs on a line), n = +z".into(),
+        inputs,
+        outputs,
+        rows,
+    })
+}
+
+/// The frame unit on 256 hashed frames and weights, Gram-Schmidt on odd rows.
+#[allow(clippy::needless_range_loop)] // the unit's signals index like the vectors
+fn frame_unit() -> Result<UnitVectors, String> {
+    use hdl::frames::frame_unit::FrameUnit;
+    let mut sim = hdl::kernel::Sim::new(FrameUnit::new());
+    sim.reset(1);
+    let mut rows = Vec::new();
+    for k in 0..256u32 {
+        let one = 1i64 << 14;
+        let jit = |i: u32| signed(mix(k, i), 3000);
+        let frame = [
+            [one + jit(0), jit(1), jit(2)],
+            [jit(3), one + jit(4), jit(5)],
+            [jit(6), jit(7), one + jit(8)],
+        ];
+        let w = [1 << 12, signed(mix(k, 9), 8192), signed(mix(k, 10), 8192)];
+        let gs = k % 2 == 1;
+        let dut = &mut sim.dut;
+        dut.valid_in.set_bool(true);
+        dut.gram_schmidt.set_bool(gs);
+        for r in 0..3 {
+            for c in 0..3 {
+                dut.frame[r][c].set_raw(frame[r][c]);
+            }
+            dut.w[r].set_raw(w[r]);
+        }
+        sim.step();
+        let mut ins: Vec<u64> = frame.iter().flatten().map(|&x| mask(x, 16)).collect();
+        ins.extend(w.iter().map(|&x| mask(x, 16)));
+        ins.push(u64::from(gs));
+        let out = sim.dut.nout.iter().map(|r| mask(r.q().raw(), 16)).collect();
+        rows.push((ins, out));
+    }
+    let mut inputs: Vec<Field> = [
+        "tx", "ty", "tz", "bx", "by", "bz", "nx", "ny", "nz", "a", "gx", "gy",
+    ]
+    .iter()
+    .map(|n| f(n, 16))
+    .collect();
+    inputs.push(f("gram_schmidt", 1));
+    Ok(UnitVectors {
+        unit: crate::frames::FRAME.into(),
+        description: "per-pixel frame unit: 256 hashed near-orthonormal frames, bump weights a = 1, gx, gy within 2; Gram-Schmidt on odd rows".into(),
+        inputs,
+        outputs: ["nx", "ny", "nz"].iter().map(|n| f(n, 16)).collect(),
+        rows,
+    })
+}
+
+/// The parallax unit on 256 hashed queries, limited on odd rows.
+#[allow(clippy::needless_range_loop)] // the unit's signals index like the vectors
+fn parallax() -> Result<UnitVectors, String> {
+    use hdl::frames::parallax::ParallaxUnit;
+    let mut sim = hdl::kernel::Sim::new(ParallaxUnit::new());
+    sim.reset(1);
+    let mut rows = Vec::new();
+    for k in 0..256u32 {
+        let uv = [signed(mix(k, 0), 1 << 18), signed(mix(k, 1), 1 << 18)];
+        let height = (mix(k, 2) % 256) as u8;
+        let (scale, bias) = (signed(mix(k, 3), 8192), signed(mix(k, 4), 4096));
+        let eye = [
+            signed(mix(k, 5), 9000),
+            signed(mix(k, 6), 9000),
+            1000 + i64::from(mix(k, 7) % 15000),
+        ];
+        let limited = k % 2 == 1;
+        let d = &mut sim.dut;
+        d.valid_in.set_bool(true);
+        d.limited.set_bool(limited);
+        d.uv[0].set_raw(uv[0]);
+        d.uv[1].set_raw(uv[1]);
+        d.height.set_bits(u64::from(height));
+        d.scale.set_raw(scale);
+        d.bias.set_raw(bias);
+        for c in 0..3 {
+            d.eye[c].set_raw(eye[c]);
+        }
+        sim.step();
+        let mut ins = vec![
+            mask(uv[0], 21),
+            mask(uv[1], 21),
+            u64::from(height),
+            mask(scale, 16),
+            mask(bias, 16),
+        ];
+        ins.extend(eye.iter().map(|&x| mask(x, 16)));
+        ins.push(u64::from(limited));
+        rows.push((
+            ins,
+            sim.dut.out.iter().map(|r| mask(r.q().raw(), 21)).collect(),
+        ));
+    }
+    let mut inputs = vec![
+        f("u", 21),
+        f("v", 21),
+        f("height", 8),
+        f("scale", 16),
+        f("bias", 16),
+    ];
+    inputs.extend(["vx", "vy", "vz"].iter().map(|n| f(n, 16)));
+    inputs.push(f("limited", 1));
+    Ok(UnitVectors {
+        unit: crate::frames::PARALLAX.into(),
+        description: "parallax: 256 hashed queries (V.z from 1/16 up), offset-limited on odd rows"
+            .into(),
+        inputs,
+        outputs: vec![f("u_out", 21), f("v_out", 21)],
+        rows,
+    })
+}
+
+/// Para. 0086's unit, every filter, on the 16x16 bumps map: 64 hashed samples each.
+fn derivative() -> Result<UnitVectors, String> {
+    use hdl::bump::derivative_0086::{Derivative, DerivativeUnit};
+    use hdl::bump::params::{Border, BumpParams};
+    let map = crate::maps::builtin("bumps", 16, 16, BumpParams::default().texel_fmt())?;
+    let mut rows = Vec::new();
+    for (code, filt) in crate::derivative::filters().into_iter().enumerate() {
+        let d = Derivative::new(filt, map.clone(), Border::Wrap, crate::derivative::POS_FRAC);
+        let mut sim = hdl::kernel::Sim::new(DerivativeUnit::new(d));
+        sim.reset(1);
+        for k in 0..64u32 {
+            let (u, v) = (
+                i64::from(mix(k, code as u32) % (16 << 16)),
+                i64::from(mix(k, 9) % (16 << 16)),
+            );
+            let s = i64::from(mix(k, 11) % 1024);
+            sim.dut.valid_in.set_bool(true);
+            sim.dut.u.set_raw(u);
+            sim.dut.v.set_raw(v);
+            sim.dut.scale.set_raw(s);
+            sim.step();
+            let out = sim.dut.n.iter().map(|r| mask(r.q().raw(), 16)).collect();
+            rows.push((vec![code as u64, mask(u, 32), mask(v, 32), s as u64], out));
+        }
+    }
+    Ok(UnitVectors {
+        unit: crate::derivative::NAME.into(),
+        description: "para. 0086's derivative filters (0 central, 1 Sobel, 2 Prewitt, 3 the 5-point table) on the 16x16 bumps map, wrap: 64 hashed samples each".into(),
+        inputs: vec![f("filter", 2), f("u", 32), f("v", 32), f("scale", 16)],
+        outputs: ["nx", "ny", "nz"].iter().map(|n| f(n, 16)).collect(),
+        rows,
+    })
+}
+
+/// Para. 0087's unit on a formula colour map: 256 hashed samples.
+fn biquadratic() -> Result<UnitVectors, String> {
+    use hdl::bump::biquadratic_0087::{Biquadratic0087, ColourMap};
+    let rgb = (0..16 * 16u32)
+        .flat_map(|k| {
+            [
+                (k * 7 % 256) as u8,
+                (k * 13 % 256) as u8,
+                (k * 29 % 256) as u8,
+            ]
+        })
+        .collect();
+    let map = ColourMap {
+        width: 16,
+        height: 16,
+        rgb,
+        border: hdl::bump::params::Border::Wrap,
+    };
+    let mut sim = hdl::kernel::Sim::new(Biquadratic0087::new(map)?);
+    sim.reset(1);
+    let mut rows = Vec::new();
+    for k in 0..256u32 {
+        let (u, v) = (signed(mix(k, 0), 20 << 16), signed(mix(k, 1), 20 << 16));
+        sim.dut.valid_in.set_bool(true);
+        sim.dut.u.set_raw(u);
+        sim.dut.v.set_raw(v);
+        sim.step();
+        rows.push((
+            vec![mask(u, 32), mask(v, 32)],
+            sim.dut.rgb.iter().map(|r| r.q().bits()).collect(),
+        ));
+    }
+    Ok(UnitVectors {
+        unit: crate::biquadratic::NAME.into(),
+        description:
+            "para. 0087's bi-quadratic colour on a 16x16 formula map, wrap: 256 hashed samples"
+                .into(),
+        inputs: vec![f("u", 32), f("v", 32)],
+        outputs: vec![f("r", 8), f("g", 8), f("b", 8)],
         rows,
     })
 }
