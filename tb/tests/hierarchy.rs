@@ -205,3 +205,77 @@ fn the_texram_side_units_visit_every_scope() {
         assert!(k.iter().any(|(x, n)| x == kind && *n == 1), "{kind}: {k:?}");
     }
 }
+
+/// The units of issues 15-16: each its own scope named after its kind, with every port and
+/// register (counted by hand from the modules' port tables).
+#[test]
+fn the_map_chain_and_per_pixel_units_visit_every_signal() {
+    use hdl::bump::biquadratic_0087::{Biquadratic0087, ColourMap};
+    use hdl::bump::derivative_0086::{DerivFilter, Derivative, DerivativeUnit};
+    use hdl::bump::params::Border;
+    use hdl::frames::frame_unit::FrameUnit;
+    use hdl::frames::parallax::ParallaxUnit;
+    use hdl::frames::tangent_setup::TangentSetup;
+    use hdl::ptm::fitter_604::Fitter604;
+    use hdl::ptm::shader_608::Shader608;
+    use hdl::ptm::texture_612::PtmFormat;
+    let maps = tb::mapchain::Maps::formula();
+    let sc = tb::mapchain::scene(tb::mapchain::Shape::Longest, &maps).unwrap();
+    let walker =
+        hdl::mapchain::walker_812::MapChain812::new(sc.file.clone(), sc.stub().unwrap(), 6)
+            .unwrap();
+    // req_valid, 13 pixel fields, req_ready, acc_valid, 5 access fields, 18 walk registers,
+    // 13 held fields, busy, rd_value, rd_slots, 3 counts, 3 out counts, out_valid, colour,
+    // error.
+    assert_eq!(
+        paths_with(&walker, "walker_812."),
+        1 + 13 + 1 + 1 + 5 + 18 + 13 + 3 + 3 + 3 + 3
+    );
+    assert_eq!(kinds(&walker), own(&[("walker_812", 1)]));
+    let fmt = PtmFormat {
+        bits: 8,
+        exp: [4; 6],
+        bias: [0; 6],
+    };
+    let p: [Vec<i32>; 6] = std::array::from_fn(|_| vec![1; 8]);
+    let fit = Fitter604::new(p, fmt).unwrap();
+    // in_valid, in_sample, k, light, out_valid, six lanes, six q.
+    assert_eq!(paths_with(&fit, "ptm_fitter_604."), 17);
+    // in_valid, q1..q6, u, v, out_valid, k, visibility.
+    assert_eq!(
+        paths_with(&Shader608::new(fmt).unwrap(), "ptm_shader_608."),
+        12
+    );
+    // valid_in, 6 + 4 + 3 inputs, 12 vector registers, valid, degenerate, zero.
+    assert_eq!(
+        paths_with(&TangentSetup::new(), "tangent_setup."),
+        1 + 13 + 12 + 3
+    );
+    // valid_in, gram_schmidt, 9 + 3 inputs, 9 outputs, valid, zero.
+    assert_eq!(paths_with(&FrameUnit::new(), "frame_unit."), 2 + 12 + 9 + 2);
+    // 5 + 2 + 3 inputs, valid, two outputs.
+    assert_eq!(paths_with(&ParallaxUnit::new(), "parallax."), 13);
+    let map = tb::maps::builtin("noise", 8, 8, BumpParams::default().texel_fmt()).unwrap();
+    let d = DerivativeUnit::new(Derivative::new(DerivFilter::Sobel, map, Border::Wrap, 16));
+    assert_eq!(paths_with(&d, "derivative_0086."), 8);
+    let cm = ColourMap {
+        width: 2,
+        height: 2,
+        rgb: vec![0; 12],
+        border: Border::Wrap,
+    };
+    assert_eq!(
+        paths_with(&Biquadratic0087::new(cm).unwrap(), "biquadratic_0087."),
+        7
+    );
+    for (top, kind) in [
+        (&fit as &dyn Module, "ptm_fitter_604"),
+        (&TangentSetup::new(), "tangent_setup"),
+        (&FrameUnit::new(), "frame_unit"),
+        (&ParallaxUnit::new(), "parallax"),
+        (&d, "derivative_0086"),
+    ] {
+        assert_eq!(kinds(top), own(&[(kind, 1)]));
+        assert_eq!(top.instance(), kind);
+    }
+}
