@@ -314,9 +314,29 @@ impl<T: TexramAccess> MapChain812<T> {
         self.slot_cycles
     }
 
+    /// The micro-program's next step for `px`: from its first DRF (`value` `None`) or after
+    /// the access that gave `value`; with the output stage's colour at the chain's end.
+    fn step(&self, px: &ChainRequest, w: Walk, value: Option<u8>) -> (Walk, Option<Fetch>, u8) {
+        let prog = Program {
+            file: &self.file,
+            px,
+            tab: &self.tab,
+        };
+        let (w, f) = match value {
+            None => prog.begin(),
+            Some(v) => prog.advance(w, v),
+        };
+        let colour = if w.state == State::Combine {
+            prog.colour(&w)
+        } else {
+            0
+        };
+        (w, f, colour)
+    }
+
     /// Sets the walk's next registers, the access to issue and, at the chain's end, the
-    /// result. `counts`: the pixel's accesses, slots and faults so far.
-    fn apply(&mut self, prog: &Program, w: Walk, f: Option<Fetch>, mut counts: [u64; 3]) {
+    /// result (`colour`, 0 on an error). `counts`: the pixel's accesses, slots and faults.
+    fn apply(&mut self, (w, f, colour): (Walk, Option<Fetch>, u8), mut counts: [u64; 3]) {
         for (r, x) in self.walk.iter_mut().zip(fields(&w)) {
             r.set_next_bits(x);
         }
@@ -336,7 +356,6 @@ impl<T: TexramAccess> MapChain812<T> {
         if error || w.state == State::Combine {
             self.out_valid.set_next_bool(true);
             self.out_error.set_next_bool(error);
-            let colour = if error { 0 } else { prog.colour(&w) };
             self.out_colour.set_next_bits(u64::from(colour));
             for (r, x) in self.out_acc.iter_mut().zip(counts) {
                 r.set_next_bits(x);
@@ -352,12 +371,7 @@ impl<T: TexramAccess> MapChain812<T> {
             return;
         }
         let px = request_of(self.req.each_ref().map(|s| s.raw()));
-        let prog = Program {
-            file: &self.file,
-            px: &px,
-            tab: &self.tab,
-        };
-        if prog.begin().1.is_some() {
+        if self.step(&px, Walk::start(), None).1.is_some() {
             self.req_ready.set_bool(true);
             self.begin();
         }
@@ -369,15 +383,8 @@ impl<T: TexramAccess> MapChain812<T> {
         for (r, x) in self.held.iter_mut().zip(raw) {
             r.set_next_raw(x);
         }
-        let px = request_of(raw);
-        let (file, tab) = (self.file.clone(), self.tab);
-        let prog = Program {
-            file: &file,
-            px: &px,
-            tab: &tab,
-        };
-        let (w, f) = prog.begin();
-        self.apply(&prog, w, f, [0; 3]);
+        let next = self.step(&request_of(raw), Walk::start(), None);
+        self.apply(next, [0; 3]);
     }
 }
 
@@ -413,15 +420,9 @@ impl<T: TexramAccess> Module for MapChain812<T> {
         }
         let px = request_of(self.held.each_ref().map(|r| r.q().raw()));
         let w = walk_of(std::array::from_fn(|i| self.walk[i].q().bits()));
-        let (file, tab) = (self.file.clone(), self.tab);
-        let prog = Program {
-            file: &file,
-            px: &px,
-            tab: &tab,
-        };
-        let (w, f) = prog.advance(w, self.rd_value.q().bits() as u8);
-        let done = matches!(w.state, State::Combine | State::Error);
-        self.apply(&prog, w, f, counts);
+        let next = self.step(&px, w, Some(self.rd_value.q().bits() as u8));
+        let done = matches!(next.0.state, State::Combine | State::Error);
+        self.apply(next, counts);
         if done {
             self.overlap();
         }
