@@ -3,11 +3,12 @@
 
 use hdl::bump::biquadratic_0087::{Biquadratic0087, ColourMap, POS_FRAC};
 use hdl::bump::params::Border;
-use hdl::kernel::{Sim, Trace};
+use hdl::kernel::Sim;
 use verif::{
     run, Coverage, Coverpoint, Ctx, Driver, Event, Monitor, RunSpec, Scoreboard, Stimulus,
     TbResult, Testbench,
 };
+use waves::VcdTracer;
 
 pub const NAME: &str = "biquadratic_0087";
 
@@ -139,22 +140,24 @@ impl Testbench for BiquadraticTb {
                 (u, v)
             })
             .collect();
-        let tracer = ctx.tracer(&format!("{NAME} {}", ctx.label), 10_000)?;
-        let sim = Sim::maybe_traced(Biquadratic0087::new(map.clone())?, tracer)
-            .map_err(|e| e.to_string())?;
+        let (sim, _) = ctx.sim(
+            Biquadratic0087::new(map.clone())?,
+            &format!("{NAME} {}", ctx.label),
+            10_000,
+            |_| (),
+        )?;
         run_samples(sim, ctx, &map, qs)
     }
 }
 
-fn run_samples<T: Trace>(
-    sim: Sim<Biquadratic0087, T>,
+fn run_samples(
+    mut sim: Sim<Biquadratic0087, VcdTracer>,
     ctx: &Ctx,
     map: &ColourMap,
     qs: Vec<(i64, i64)>,
 ) -> Result<TbResult, String> {
     let mut res = TbResult::new(NAME, "");
     let mut cov = coverage_model();
-    let mut sim = sim.check_schedule(ctx.check_schedule);
     sim.reset(2);
     let m2 = map.clone();
     let mut sb: Scoreboard<(i64, i64), [u8; 3]> =
@@ -203,10 +206,6 @@ fn run_samples<T: Trace>(
         ctx.label, res.stats.max_abs_lsb
     ));
     res.coverage = Some(cov);
-    if let Some(w) = &ctx.waves {
-        sim.finish()
-            .map_err(|e| format!("{}: {e}", w.vcd.display()))?;
-        res.vcd = Some(w.vcd.clone());
-    }
+    ctx.finish(sim, &mut res)?;
     Ok(res)
 }

@@ -6,11 +6,12 @@ use golden::derivative::Kernel;
 use hdl::bump::derivative_0086::{five_point, DerivFilter, Derivative, DerivativeUnit};
 use hdl::bump::height_map::HeightMap;
 use hdl::bump::params::{Border, BumpParams};
-use hdl::kernel::{Sim, Trace};
+use hdl::kernel::Sim;
 use verif::{
     run, Coverage, Coverpoint, Ctx, Driver, Event, Monitor, RunSpec, Scoreboard, Stimulus,
     TbResult, Testbench,
 };
+use waves::VcdTracer;
 
 pub const NAME: &str = "derivative_0086";
 /// Position fraction bits of the unit's u, v.
@@ -153,20 +154,23 @@ impl Testbench for DerivativeTb {
             .iter()
             .map(|q| (*q, golden_normal(&d, q.0, q.1, q.2, frac)))
             .collect();
-        let tracer = ctx.tracer(&format!("{NAME} {}", ctx.label), 10_000)?;
-        let sim = Sim::maybe_traced(DerivativeUnit::new(d), tracer).map_err(|e| e.to_string())?;
+        let (sim, _) = ctx.sim(
+            DerivativeUnit::new(d),
+            &format!("{NAME} {}", ctx.label),
+            10_000,
+            |_| (),
+        )?;
         run_queries(sim, ctx, want)
     }
 }
 
-fn run_queries<T: Trace>(
-    sim: Sim<DerivativeUnit, T>,
+fn run_queries(
+    mut sim: Sim<DerivativeUnit, VcdTracer>,
     ctx: &Ctx,
     want: Vec<(Query, [f64; 3])>,
 ) -> Result<TbResult, String> {
     let mut res = TbResult::new(NAME, "");
     let mut cov = coverage_model();
-    let mut sim = sim.check_schedule(ctx.check_schedule);
     sim.reset(2);
     let lsb = 2f64.powi(-14);
     let b = bound();
@@ -224,11 +228,7 @@ fn run_queries<T: Trace>(
         b / lsb
     ));
     res.coverage = Some(cov);
-    if let Some(w) = &ctx.waves {
-        sim.finish()
-            .map_err(|e| format!("{}: {e}", w.vcd.display()))?;
-        res.vcd = Some(w.vcd.clone());
-    }
+    ctx.finish(sim, &mut res)?;
     Ok(res)
 }
 

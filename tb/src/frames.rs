@@ -5,11 +5,12 @@
 use golden::tangents::{cross, normalize, perturb};
 use hdl::frames::frame_unit::{decode_rgb8, Decode, FrameUnit, VEC_FRAC, W_FRAC};
 use hdl::frames::parallax::ParallaxUnit;
-use hdl::kernel::{Sim, Trace};
+use hdl::kernel::Sim;
 use verif::{
     run, Coverage, Coverpoint, Ctx, Driver, Event, Monitor, RunSpec, Scoreboard, Stimulus,
     TbResult, Testbench,
 };
+use waves::VcdTracer;
 
 pub const FRAME: &str = "frame_unit";
 pub const PARALLAX: &str = "parallax";
@@ -210,20 +211,23 @@ impl Testbench for FrameUnitTb {
     fn run(&self, ctx: &Ctx) -> Result<TbResult, String> {
         let mut stim = Stimulus::new(ctx.seed);
         let px = frame_pixels(ctx.count.max(12), &mut stim);
-        let tracer = ctx.tracer(&format!("{FRAME} {}", ctx.label), 10_000)?;
-        let sim = Sim::maybe_traced(FrameUnit::new(), tracer).map_err(|e| e.to_string())?;
+        let (sim, _) = ctx.sim(
+            FrameUnit::new(),
+            &format!("{FRAME} {}", ctx.label),
+            10_000,
+            |_| (),
+        )?;
         run_frames(sim, ctx, px)
     }
 }
 
-fn run_frames<T: Trace>(
-    sim: Sim<FrameUnit, T>,
+fn run_frames(
+    mut sim: Sim<FrameUnit, VcdTracer>,
     ctx: &Ctx,
     px: Vec<FramePx>,
 ) -> Result<TbResult, String> {
     let mut res = TbResult::new(FRAME, "");
     let mut cov = frame_coverage();
-    let mut sim = sim.check_schedule(ctx.check_schedule);
     sim.reset(2);
     let mut sb: Scoreboard<FramePx, ([i64; 3], bool)> = Scoreboard::new(check_frame);
     let n = px.len() as u64;
@@ -261,11 +265,7 @@ fn run_frames<T: Trace>(
         unit_error() / lsb
     ));
     res.coverage = Some(cov);
-    if let Some(w) = &ctx.waves {
-        sim.finish()
-            .map_err(|e| format!("{}: {e}", w.vcd.display()))?;
-        res.vcd = Some(w.vcd.clone());
-    }
+    ctx.finish(sim, &mut res)?;
     Ok(res)
 }
 
@@ -396,10 +396,8 @@ impl Testbench for ParallaxTb {
     fn run(&self, ctx: &Ctx) -> Result<TbResult, String> {
         let mut stim = Stimulus::new(ctx.seed);
         let qs = parallax_queries(ctx.count.max(20), &mut stim);
-        let tracer = ctx.tracer(&format!("{PARALLAX} {}", ctx.label), 10_000)?;
-        let mut sim = Sim::maybe_traced(ParallaxUnit::new(), tracer)
-            .map_err(|e| e.to_string())?
-            .check_schedule(ctx.check_schedule);
+        let title = format!("{PARALLAX} {}", ctx.label);
+        let (mut sim, _) = ctx.sim(ParallaxUnit::new(), &title, 10_000, |_| ())?;
         sim.reset(2);
         let mut res = TbResult::new(PARALLAX, "");
         let mut cov = parallax_coverage();
@@ -451,11 +449,7 @@ impl Testbench for ParallaxTb {
             ctx.label, res.stats.max_abs_lsb
         ));
         res.coverage = Some(cov);
-        if let Some(w) = &ctx.waves {
-            sim.finish()
-                .map_err(|e| format!("{}: {e}", w.vcd.display()))?;
-            res.vcd = Some(w.vcd.clone());
-        }
+        ctx.finish(sim, &mut res)?;
         Ok(res)
     }
 }

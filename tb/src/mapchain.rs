@@ -19,6 +19,7 @@ use verif::{
     run, Coverage, Coverpoint, Ctx, Driver, Event, Monitor, Pacing, RunSpec, Scoreboard, Stimulus,
     TbResult, Testbench,
 };
+use waves::VcdTracer;
 
 pub const NAME: &str = "walker_812";
 /// The chip's clock, 5 ns; a slot is six cycles (30 ns).
@@ -679,18 +680,16 @@ impl Testbench for WalkerTb {
         };
         let px = pixels(count, &mut stim);
         let want = expectations(&sc, &px)?;
-        let tracer = ctx.tracer(&format!("{NAME} {}", ctx.label), CYCLE_PS)?;
+        let title = format!("{NAME} {}", ctx.label);
         let mut res = if on_chip {
             let mut chip = hdl::texram::texram_802::Texram802::new(Default::default())?;
             sc.load_chip(&mut chip)?;
             let acc = hdl::texram::texram_802::Texram802Access::new(chip);
             let dut = MapChain812::new(sc.file.clone(), acc, SLOT_CYCLES)?;
-            let sim = Sim::maybe_traced(dut, tracer).map_err(|e| e.to_string())?;
-            run_pixels(sim, ctx, shape, want)?
+            run_pixels(ctx.sim(dut, &title, CYCLE_PS, |_| ())?.0, ctx, shape, want)?
         } else {
             let dut = MapChain812::new(sc.file.clone(), sc.stub()?, SLOT_CYCLES)?;
-            let sim = Sim::maybe_traced(dut, tracer).map_err(|e| e.to_string())?;
-            run_pixels(sim, ctx, shape, want)?
+            run_pixels(ctx.sim(dut, &title, CYCLE_PS, |_| ())?.0, ctx, shape, want)?
         };
         res.notes
             .insert(0, format!("{}: {count} pixels", ctx.label));
@@ -709,15 +708,14 @@ impl Scene {
 }
 
 /// Drives the pixels with random gaps and scores them; writes the waveform if traced.
-fn run_pixels<A: TexramAccess, T: Trace>(
-    sim: Sim<MapChain812<A>, T>,
+fn run_pixels<A: TexramAccess>(
+    mut sim: Sim<MapChain812<A>, VcdTracer>,
     ctx: &Ctx,
     shape: Shape,
     want: Vec<Expected>,
 ) -> Result<TbResult, String> {
     let mut res = TbResult::new(NAME, "");
     let mut cov = coverage_model();
-    let mut sim = sim.check_schedule(ctx.check_schedule);
     sim.reset(2);
     let mut sb: Scoreboard<Expected, ChainResult> = Scoreboard::new(compare);
     let n = want.len() as u64;
@@ -775,11 +773,7 @@ fn run_pixels<A: TexramAccess, T: Trace>(
         res.stats.max_abs_lsb
     ));
     res.coverage = Some(cov);
-    if let Some(w) = &ctx.waves {
-        sim.finish()
-            .map_err(|e| format!("{}: {e}", w.vcd.display()))?;
-        res.vcd = Some(w.vcd.clone());
-    }
+    ctx.finish(sim, &mut res)?;
     Ok(res)
 }
 

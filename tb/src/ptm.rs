@@ -17,6 +17,7 @@ use verif::{
     run, Coverage, Coverpoint, Ctx, Driver, Event, Monitor, RunSpec, Scoreboard, Stimulus,
     TbResult, Testbench,
 };
+use waves::VcdTracer;
 
 pub const FITTER: &str = "ptm_fitter_604";
 pub const SHADER: &str = "ptm_shader_608";
@@ -303,9 +304,12 @@ impl Testbench for PtmFitterTb {
         }
         let p = host_pinv(&lights)?;
         let fmt = PtmFormat::for_pinv(&p, bits)?;
-        let tracer = ctx.tracer(&format!("{FITTER} {}", ctx.label), CYCLE_PS)?;
-        let sim = Sim::maybe_traced(Fitter604::new(p.clone(), fmt)?, tracer)
-            .map_err(|e| e.to_string())?;
+        let (sim, _) = ctx.sim(
+            Fitter604::new(p.clone(), fmt)?,
+            &format!("{FITTER} {}", ctx.label),
+            CYCLE_PS,
+            |_| (),
+        )?;
         let mut res = run_fitter_tb(sim, ctx, &sw, &p, &fmt, grey)?;
         res.notes.insert(
             0,
@@ -321,8 +325,8 @@ impl Testbench for PtmFitterTb {
 
 /// Drives a swatch's samples with random gaps; scores each texel bit for bit against the
 /// reference and against the f64 fit within its bound (error in steps of each coefficient).
-fn run_fitter_tb<T: Trace>(
-    sim: Sim<Fitter604, T>,
+fn run_fitter_tb(
+    mut sim: Sim<Fitter604, VcdTracer>,
     ctx: &Ctx,
     sw: &Swatch,
     p: &[Vec<i32>; 6],
@@ -331,7 +335,6 @@ fn run_fitter_tb<T: Trace>(
 ) -> Result<TbResult, String> {
     let mut res = TbResult::new(FITTER, "");
     let mut cov = fitter_coverage();
-    let mut sim = sim.check_schedule(ctx.check_schedule);
     sim.reset(2);
     let l = sw.lights.len();
     let texels = sw.samples.len() / l;
@@ -386,11 +389,7 @@ fn run_fitter_tb<T: Trace>(
         ctx.label, res.stats.max_abs_lsb
     ));
     res.coverage = Some(cov);
-    if let Some(w) = &ctx.waves {
-        sim.finish()
-            .map_err(|e| format!("{}: {e}", w.vcd.display()))?;
-        res.vcd = Some(w.vcd.clone());
-    }
+    ctx.finish(sim, &mut res)?;
     Ok(res)
 }
 
@@ -534,21 +533,24 @@ impl Testbench for PtmShaderTb {
         let p = host_pinv(&lights)?;
         let fmt = PtmFormat::for_pinv(&p, bits)?;
         let qs = queries(&lights, &p, &fmt, ctx.count.max(64), &mut stim);
-        let tracer = ctx.tracer(&format!("{SHADER} {}", ctx.label), CYCLE_PS)?;
-        let sim = Sim::maybe_traced(Shader608::new(fmt)?, tracer).map_err(|e| e.to_string())?;
+        let (sim, _) = ctx.sim(
+            Shader608::new(fmt)?,
+            &format!("{SHADER} {}", ctx.label),
+            CYCLE_PS,
+            |_| (),
+        )?;
         run_shader_tb(sim, ctx, &fmt, qs)
     }
 }
 
-fn run_shader_tb<T: Trace>(
-    sim: Sim<Shader608, T>,
+fn run_shader_tb(
+    mut sim: Sim<Shader608, VcdTracer>,
     ctx: &Ctx,
     fmt: &PtmFormat,
     qs: Vec<Query>,
 ) -> Result<TbResult, String> {
     let mut res = TbResult::new(SHADER, "");
     let mut cov = shader_coverage();
-    let mut sim = sim.check_schedule(ctx.check_schedule);
     sim.reset(2);
     let f = *fmt;
     let mut sb: Scoreboard<Query, (u8, u8)> =
@@ -597,11 +599,7 @@ fn run_shader_tb<T: Trace>(
         ctx.label, res.stats.max_abs_lsb
     ));
     res.coverage = Some(cov);
-    if let Some(w) = &ctx.waves {
-        sim.finish()
-            .map_err(|e| format!("{}: {e}", w.vcd.display()))?;
-        res.vcd = Some(w.vcd.clone());
-    }
+    ctx.finish(sim, &mut res)?;
     Ok(res)
 }
 

@@ -10,12 +10,13 @@
 use formats::obj::Mesh;
 use golden::tangents::{add, cross, face_tangent, normalize, orthonormal, scale, Frame};
 use hdl::frames::tangent_setup::{TangentSetup, POS_FRAC, VEC_FRAC};
-use hdl::kernel::{Sim, Trace};
+use hdl::kernel::Sim;
 use std::collections::HashMap;
 use verif::{
     run, Coverage, Coverpoint, Ctx, Driver, Event, Monitor, RunSpec, Scoreboard, Stimulus,
     TbResult, Testbench,
 };
+use waves::VcdTracer;
 
 pub const NAME: &str = "tangent_setup";
 
@@ -290,8 +291,12 @@ impl Testbench for TangentSetupTb {
     fn run(&self, ctx: &Ctx) -> Result<TbResult, String> {
         let mut stim = Stimulus::new(ctx.seed);
         let tris = triangles(ctx.count.max(32), &mut stim);
-        let tracer = ctx.tracer(&format!("{NAME} {}", ctx.label), 10_000)?;
-        let sim = Sim::maybe_traced(TangentSetup::new(), tracer).map_err(|e| e.to_string())?;
+        let (sim, _) = ctx.sim(
+            TangentSetup::new(),
+            &format!("{NAME} {}", ctx.label),
+            10_000,
+            |_| (),
+        )?;
         run_setup(sim, ctx, tris)
     }
 }
@@ -325,14 +330,13 @@ fn check(q: &Tri, a: &SetupOut) -> Result<(), String> {
     Ok(())
 }
 
-fn run_setup<T: Trace>(
-    sim: Sim<TangentSetup, T>,
+fn run_setup(
+    mut sim: Sim<TangentSetup, VcdTracer>,
     ctx: &Ctx,
     tris: Vec<Tri>,
 ) -> Result<TbResult, String> {
     let mut res = TbResult::new(NAME, "");
     let mut cov = coverage_model();
-    let mut sim = sim.check_schedule(ctx.check_schedule);
     sim.reset(2);
     let mut sb: Scoreboard<Tri, SetupOut> = Scoreboard::new(check);
     let n = tris.len() as u64;
@@ -375,10 +379,6 @@ fn run_setup<T: Trace>(
         ctx.label, res.stats.max_abs_lsb
     ));
     res.coverage = Some(cov);
-    if let Some(w) = &ctx.waves {
-        sim.finish()
-            .map_err(|e| format!("{}: {e}", w.vcd.display()))?;
-        res.vcd = Some(w.vcd.clone());
-    }
+    ctx.finish(sim, &mut res)?;
     Ok(res)
 }
