@@ -289,16 +289,7 @@ fn footprint_picture(out: &std::path::Path) -> Result<(String, String), String> 
 fn volume_picture(out: &std::path::Path) -> Result<(String, String), String> {
     let side = 48u32;
     let (px, samples) = tb::volume::render(24, side)?;
-    let s = 4;
-    let mut img = image::RgbImage::new(side * s, side * s);
-    for (k, c) in px.iter().enumerate() {
-        let (x, y) = (k as u32 % side, k as u32 / side);
-        for dy in 0..s {
-            for dx in 0..s {
-                img.put_pixel(x * s + dx, y * s + dy, image::Rgb(*c));
-            }
-        }
-    }
+    let img = enlarged(&px, side, 4);
     let f = "volume_render.png";
     write_output(&out.join(f), &formats::png::encode(&img)?).map_err(|e| e.to_string())?;
     Ok((
@@ -312,16 +303,7 @@ fn volume_picture(out: &std::path::Path) -> Result<(String, String), String> {
 fn mapchain_picture(out: &std::path::Path) -> Result<(String, String), String> {
     let side = 160u32;
     let px = tb::mapchain::render_quad(side as usize)?;
-    let s = 2;
-    let mut img = image::RgbImage::new(side * s, side * s);
-    for (k, c) in px.iter().enumerate() {
-        let (x, y) = (k as u32 % side, k as u32 / side);
-        for dy in 0..s {
-            for dx in 0..s {
-                img.put_pixel(x * s + dx, y * s + dy, image::Rgb(*c));
-            }
-        }
-    }
+    let img = enlarged(&px, side, 2);
     let f = "mapchain_quad.png";
     write_output(&out.join(f), &formats::png::encode(&img)?).map_err(|e| e.to_string())?;
     Ok((
@@ -334,17 +316,8 @@ fn mapchain_picture(out: &std::path::Path) -> Result<(String, String), String> {
 /// times enlarged. Returns `(file, caption)`.
 fn ptm_picture(out: &std::path::Path) -> Result<(String, String), String> {
     let (px, side, q) = tb::ptm::swatch_picture()?;
-    let (w, h) = (4 * side as u32, 2 * side as u32);
-    let s = 3;
-    let mut img = image::RgbImage::new(w * s, h * s);
-    for (k, &c) in px.iter().enumerate() {
-        let (x, y) = (k as u32 % w, k as u32 / w);
-        for dy in 0..s {
-            for dx in 0..s {
-                img.put_pixel(x * s + dx, y * s + dy, image::Rgb([c, c, c]));
-            }
-        }
-    }
+    let grey: Vec<[u8; 3]> = px.iter().map(|&c| [c; 3]).collect();
+    let img = enlarged(&grey, 4 * side as u32, 3);
     let f = "ptm_swatch.png";
     write_output(&out.join(f), &formats::png::encode(&img)?).map_err(|e| e.to_string())?;
     Ok((
@@ -392,6 +365,21 @@ fn derivative_picture(out: &std::path::Path) -> Result<(String, String), String>
         f.to_string(),
         "FIG. 8 extended: Dot3 lighting of the built-in bumps map (scale 0.5, 4 samples a texel): FIG. 7's B-spline (9 texels a sample) | Blinn (8) | para. 0086's central differences (12) | Sobel (16) | Prewitt (16) | the 5-point table (20), the filters at four texel centres then bilinear".to_string(),
     ))
+}
+
+/// `px` (row by row, `w` wide) enlarged `s` times.
+fn enlarged(px: &[[u8; 3]], w: u32, s: u32) -> image::RgbImage {
+    let h = px.len() as u32 / w;
+    let mut img = image::RgbImage::new(w * s, h * s);
+    for (k, c) in px.iter().enumerate() {
+        let (x, y) = (k as u32 % w, k as u32 / w);
+        for dy in 0..s {
+            for dx in 0..s {
+                img.put_pixel(x * s + dx, y * s + dy, image::Rgb(*c));
+            }
+        }
+    }
+    img
 }
 
 /// The table and a closing line, as `texrtl regress` prints them.

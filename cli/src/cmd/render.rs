@@ -91,15 +91,13 @@ pub fn run(a: &RenderArgs) -> Result<String, CmdError> {
 
 /// The four-panel Dot3 picture as PNG bytes, and the worst intensity error of the B-spline
 /// panel against golden.
-/// Dot3 intensities (0..=255) of the FIG. 7 pipeline with `p` at `zoom` samples a texel
-/// under the unit light `l`, row by row.
-pub fn dot3_panel(
+/// The pipeline's normals of `map` at `zoom` samples a texel (pixel centres), row by row.
+fn zoomed(
     map: &HeightMap,
     p: &BumpParams,
-    l: [f64; 3],
     scale: f64,
     zoom: u32,
-) -> Result<Vec<u8>, String> {
+) -> Result<tb::normals::NormalsOutcome, String> {
     let (w, h) = (map.width() * zoom, map.height() * zoom);
     let z = f64::from(zoom);
     let samples: Vec<Sample> = (0..h)
@@ -111,8 +109,8 @@ pub fn dot3_panel(
             lod: 0.0,
         })
         .collect();
-    let run = run_normals(&NormalsRun {
-        name: format!("panel {}", p.filter),
+    run_normals(&NormalsRun {
+        name: format!("render {}", p.filter),
         params: *p,
         map: map.clone(),
         samples,
@@ -122,7 +120,19 @@ pub fn dot3_panel(
         check_accuracy: false,
         check_schedule: false,
         seed: Seed(0),
-    })?;
+    })
+}
+
+/// Dot3 intensities (0..=255) of the FIG. 7 pipeline with `p` at `zoom` samples a texel
+/// under the unit light `l`, row by row.
+pub fn dot3_panel(
+    map: &HeightMap,
+    p: &BumpParams,
+    l: [f64; 3],
+    scale: f64,
+    zoom: u32,
+) -> Result<Vec<u8>, String> {
+    let run = zoomed(map, p, scale, zoom)?;
     let nf = p.normal_fmt();
     Ok(run
         .outputs
@@ -149,37 +159,14 @@ pub fn render_png(
         let n = (d[0] * d[0] + d[1] * d[1] + d[2] * d[2]).sqrt();
         d.map(|x| x / n)
     };
-    let z = f64::from(zoom);
-    let samples: Vec<Sample> = (0..h)
-        .flat_map(|y| (0..w).map(move |x| (x, y)))
-        .map(|(x, y)| Sample {
-            u: (f64::from(x) + 0.5) / z,
-            v: (f64::from(y) + 0.5) / z,
-            scale,
-            lod: 0.0,
-        })
-        .collect();
-    let run = |filter: Filter| {
-        run_normals(&NormalsRun {
-            name: format!("render {filter}"),
-            params: BumpParams { filter, ..*p },
-            map: map.clone(),
-            samples: samples.clone(),
-            idle_per_mille: 0,
-            vcd: None,
-            trace: TraceConfig::default(),
-            check_accuracy: false,
-            check_schedule: false,
-            seed: Seed(0),
-        })
-    };
+    let run = |filter: Filter| zoomed(map, &BumpParams { filter, ..*p }, scale, zoom);
     let blinn = run(Filter::Blinn)?;
     let bspline = run(Filter::BSpline)?;
     let nf = p.normal_fmt();
     let intensity = |n: &RawNormal| dot3(n.n.map(|x| tb::normals::real(x, nf)), l);
     let mut img = image::RgbImage::new(4 * w + 3 * 4, h);
     let mut worst = 0.0f64;
-    for k in 0..samples.len() {
+    for k in 0..bspline.outputs.len() {
         let (x, y) = (k as u32 % w, k as u32 / w);
         let ib = intensity(&blinn.outputs[k]);
         let is = intensity(&bspline.outputs[k]);
