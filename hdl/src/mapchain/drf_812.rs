@@ -283,8 +283,15 @@ mod tests {
     fn drfs_are_checked() {
         let d = Drf::new(8, 8, Border::Tile(4));
         assert!(ChainDrf::new(Kind::Detail, d).validate().is_ok());
-        let big = Drf::new(9, 8, Border::Wrap);
-        assert!(ChainDrf::new(Kind::Detail, big).validate().is_err());
+        for (w, h, ok) in [(9, 8, false), (8, 9, false), (8, 8, true), (3, 8, true)] {
+            let d = ChainDrf::new(Kind::Detail, Drf::new(w, h, Border::Wrap));
+            assert_eq!(d.validate().is_ok(), ok, "detail {w} {h}");
+        }
+        // Faces: square, 16 x 16 the smallest.
+        for (w, h, ok) in [(4, 4, true), (3, 3, false), (5, 4, false), (10, 10, true)] {
+            let e = ChainDrf::new(Kind::Environment, Drf::new(w, h, Border::Clamp));
+            assert_eq!(e.validate().is_ok(), ok, "faces {w} {h}");
+        }
         let mut t = ChainDrf::new(Kind::Texture, d);
         t.new_coords = true;
         assert!(t.validate().unwrap_err().contains("new_coords"));
