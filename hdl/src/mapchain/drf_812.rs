@@ -280,7 +280,11 @@ mod tests {
         // A map that ends exactly at a bank's last word fits; one word more does not; a map
         // with no odd levels adds nothing to a full odd group.
         let (even, odd) = (bank_words(0), bank_words(4));
-        assert!(Placer { next: [even - 1, 0] }.place(0, 0).is_ok());
+        assert!(Placer {
+            next: [even - 1, 0]
+        }
+        .place(0, 0)
+        .is_ok());
         assert!(Placer { next: [even, 0] }.place(0, 0).is_err());
         assert!(Placer { next: [0, odd] }.place(0, 0).is_ok());
         assert!(Placer { next: [0, odd] }.place(1, 1).is_err());
