@@ -46,13 +46,25 @@ fn a_lit_texel_fits_to_no_occlusion() {
         assert_eq!(occlusion_at(&fmt, &ref_fit(&p, &fmt, &lit), u, v), 0);
         assert_eq!(occlusion_at(&fmt, &ref_fit(&p, &fmt, &dark), u, v), 255);
     }
-    // The printed polarity: K_i = sample_i / 255, the lit texel's fit is 1 everywhere.
-    let (c, _) = golden_fit(&lights, &p, &fmt, &dark);
-    let printed: Vec<f64> = c.to_vec();
+    // The printed polarity, K_i = sample_i / 255: the lit texel fits to K = 1, fully
+    // occluded, against [0036]'s K = 0 for no occlusion.
+    let rows: Vec<Vec<f64>> = lights
+        .iter()
+        .map(|l| {
+            let (u, v) = l.uv();
+            golden::ptm::Basis::Quadratic.row(u, v)
+        })
+        .collect();
+    let printed: Vec<f64> = lit.iter().map(|&x| f64::from(x) / 255.0).collect();
+    let c = golden::ptm::fit(&rows, &printed).unwrap();
+    let (u, v) = lights[0].uv();
+    let k = golden::ptm::evaluate(&[c[0], c[1], c[2], c[3], c[4], c[5]], u, v);
     assert!(
-        (printed[5] - 1.0).abs() < 1e-9,
-        "fitting 1 - 0: A6 = 1 for the dark texel"
+        (k - 1.0).abs() < 1e-9,
+        "the printed polarity calls a lit texel occluded"
     );
+    let (ours, _) = golden_fit(&lights, &p, &fmt, &lit);
+    assert!(golden::ptm::evaluate(&ours, u, v).abs() < 1e-9);
 }
 
 /// One ring of lights (one elevation) is refused with the reason; two rings are not.
