@@ -395,3 +395,66 @@ impl Program<'_> {
         cd
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// Every field against its format, at both sides of each limit.
+    #[test]
+    fn requests_are_checked_against_their_formats() {
+        let ok = ChainRequest {
+            drf: 6,
+            u: 100,
+            v: -100,
+            lambda: -4 << 8,
+            n: [(1 << 16) - 1, -(1 << 16), 0],
+            eye: [(1 << 15) - 1, -(1 << 15), 0],
+            face: 5,
+            i_d: 255,
+            i_s: 0,
+        };
+        assert!(ok.validate().is_ok());
+        let bad = [
+            ChainRequest { drf: 7, ..ok },
+            ChainRequest {
+                lambda: (10 << 8) + 1,
+                ..ok
+            },
+            ChainRequest {
+                n: [1 << 16, 0, 0],
+                ..ok
+            },
+            ChainRequest {
+                n: [0, 0, -(1 << 16) - 1],
+                ..ok
+            },
+            ChainRequest {
+                eye: [0, 1 << 15, 0],
+                ..ok
+            },
+            ChainRequest {
+                eye: [-(1 << 15) - 1, 0, 0],
+                ..ok
+            },
+            ChainRequest { face: 6, ..ok },
+        ];
+        for b in bad {
+            assert!(b.validate().is_err(), "{b:?}");
+        }
+        let e = ChainRequest {
+            n: [1 << 16, 0, 0],
+            ..ok
+        }
+        .validate()
+        .unwrap_err();
+        assert!(e.contains("sQ2.14"), "{e}");
+        let e = ChainRequest {
+            eye: [1 << 15, 0, 0],
+            ..ok
+        }
+        .validate()
+        .unwrap_err();
+        assert!(e.contains("sQ1.14"), "{e}");
+    }
+}
