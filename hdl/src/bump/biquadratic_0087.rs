@@ -153,6 +153,21 @@ impl Module for Biquadratic0087 {
 mod tests {
     use super::*;
 
+    /// Outside the map: the border's texel, or the constant in every channel.
+    #[test]
+    fn borders_of_a_colour_map() {
+        let m = |border| ColourMap {
+            width: 2,
+            height: 1,
+            rgb: vec![1, 2, 3, 4, 5, 6],
+            border,
+        };
+        assert_eq!(m(Border::Constant(9)).texel(-1, 0), [9; 3]);
+        assert_eq!(m(Border::Constant(9)).texel(1, 0), [4, 5, 6]);
+        assert_eq!(m(Border::Clamp).texel(5, -3), [4, 5, 6]);
+        assert_eq!(m(Border::Wrap).texel(2, 0), [1, 2, 3]);
+    }
+
     #[test]
     fn weights_sum_to_one_and_give_a_6_1_at_the_centre() {
         for t in 0..256 {
