@@ -308,6 +308,10 @@ mod tests {
             assert_eq!(DerivFilter::parse(&d.name()), Some(d));
         }
         assert!(DerivFilter::parse("table:1,2,3,4,5").is_none());
+        // Taps below 2^14 in magnitude (sQ1.12 with room for the sums).
+        assert!(DerivFilter::parse("table:16383,-16383").is_some());
+        assert!(DerivFilter::parse("table:16384").is_none());
+        assert!(DerivFilter::parse("table:-16384").is_none());
     }
 
     /// A ramp `h = 3x + 5y` (raw) has the slope (3, 5) by every filter, exactly.
