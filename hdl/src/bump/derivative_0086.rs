@@ -130,7 +130,6 @@ impl DerivFilter {
     /// Distinct texels one sample reads (the four centres' windows together).
     pub fn texels_per_sample(&self) -> usize {
         let mut set = std::collections::BTreeSet::new();
-        let probe = |x: i64, y: i64| -> i64 { x * 1000 + y };
         for (cx, cy) in [(0, 0), (1, 0), (0, 1), (1, 1)] {
             let r = self.reach();
             for y in cy - r..=cy + r {
@@ -139,7 +138,7 @@ impl DerivFilter {
                     let bump = |a: i64, b: i64| i64::from(a == x && b == y);
                     let (dx, dy) = self.at(&bump, cx, cy);
                     if dx != 0 || dy != 0 {
-                        set.insert(probe(x, y));
+                        set.insert((x, y));
                     }
                 }
             }
@@ -312,6 +311,18 @@ mod tests {
         assert!(DerivFilter::parse("table:16383,-16383").is_some());
         assert!(DerivFilter::parse("table:16384").is_none());
         assert!(DerivFilter::parse("table:-16384").is_none());
+    }
+
+    /// Heights outside the map: the border's texel, or the constant.
+    #[test]
+    fn heights_across_the_border() {
+        let fmt = crate::fx::Format::unsigned(8, 2);
+        let map = HeightMap::new(2, 2, fmt, vec![10, 20, 30, 40]).unwrap();
+        let d = |b| Derivative::new(DerivFilter::Central, map.clone(), b, 16);
+        assert_eq!(d(Border::Constant(7)).height(-1, 0), 7);
+        assert_eq!(d(Border::Constant(7)).height(1, 1), 40);
+        assert_eq!(d(Border::Clamp).height(5, -2), 20);
+        assert_eq!(d(Border::Wrap).height(2, 3), 30);
     }
 
     /// A ramp `h = 3x + 5y` (raw) has the slope (3, 5) by every filter, exactly.
