@@ -73,6 +73,10 @@ mod tests {
                 assert_eq!(used.len(), 4);
             }
         }
+        // Even sides and every height given, each checked alone.
         assert!(pack(3, 2, &[0; 6]).is_err());
+        assert!(pack(2, 3, &[0; 6]).is_err());
+        assert!(pack(2, 2, &[0; 3]).is_err());
+        assert!(pack(2, 2, &[0; 4]).is_ok());
     }
 }
