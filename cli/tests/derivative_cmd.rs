@@ -2,7 +2,7 @@
 
 mod common;
 
-use common::{assert_refused, s, texrtl};
+use common::{assert_refused, csv_lines, ran, s};
 
 #[test]
 fn derivative_filters_through_normals() {
@@ -15,7 +15,7 @@ fn derivative_filters_through_normals() {
     std::fs::write(&c, "u,v\n5.5,7.25\n8,3\n").unwrap();
     let o = d.join("n.csv");
     for f in ["central", "sobel", "prewitt"] {
-        let out = texrtl(&[
+        ran(&[
             "normals",
             "--height",
             s(&h),
@@ -28,14 +28,8 @@ fn derivative_filters_through_normals() {
             "--border",
             "clamp",
         ]);
-        assert!(
-            out.status.success(),
-            "{}",
-            String::from_utf8_lossy(&out.stderr)
-        );
-        let csv = std::fs::read_to_string(&o).unwrap();
         // Slope 1 along x at scale 1: n = (-1, 0, 1)/sqrt 2 = -0.7071..: sQ1.14 -11585.
-        for r in csv.lines().skip(1) {
+        for r in csv_lines(&o).iter().skip(1) {
             assert!(
                 r.ends_with(",-0.70709228515625,0,0.70709228515625"),
                 "{f}: {r}"

@@ -3,7 +3,7 @@
 
 mod common;
 
-use common::{assert_refused, s, texrtl};
+use common::{assert_refused, csv_lines, ran, s};
 use std::path::{Path, PathBuf};
 
 fn dir(name: &str) -> PathBuf {
@@ -54,7 +54,7 @@ fn colours_statistics_and_waveform() {
     let d = dir("ok");
     let (m, r) = inputs(&d);
     let (o, st, w) = (d.join("o.csv"), d.join("s.json"), d.join("w.vcd"));
-    let out = texrtl(&[
+    ran(&[
         "mapchain",
         "--maps",
         s(&m),
@@ -67,13 +67,7 @@ fn colours_statistics_and_waveform() {
         "--vcd",
         s(&w),
     ]);
-    assert!(
-        out.status.success(),
-        "{}",
-        String::from_utf8_lossy(&out.stderr)
-    );
-    let csv = std::fs::read_to_string(&o).unwrap();
-    let rows: Vec<&str> = csv.lines().collect();
+    let rows = csv_lines(&o);
     assert_eq!(rows[0], "drf,u,v,lambda,colour,accesses,faults,error");
     // lambda 0.5: texture 100 + environment face +z (90): 190, two accesses.
     assert!(rows[1].starts_with("0,3.5,7.25,0.5,190,2,"), "{}", rows[1]);

@@ -3,7 +3,7 @@
 
 mod common;
 
-use common::{assert_refused, s, texrtl};
+use common::{assert_refused, csv_lines, ran, s};
 use std::path::{Path, PathBuf};
 
 fn dir(name: &str) -> PathBuf {
@@ -41,7 +41,7 @@ fn fit_then_eval() {
     let d = dir("ok");
     let (h, l, q) = inputs(&d);
     let (t, st, o) = (d.join("t.ptm"), d.join("s.json"), d.join("o.csv"));
-    let out = texrtl(&[
+    ran(&[
         "ptm",
         "fit",
         "--height",
@@ -53,18 +53,13 @@ fn fit_then_eval() {
         "--stats",
         s(&st),
     ]);
-    assert!(
-        out.status.success(),
-        "{}",
-        String::from_utf8_lossy(&out.stderr)
-    );
     let ptm = formats::ptm::Ptm::read(&t).unwrap();
     assert_eq!((ptm.width, ptm.height, ptm.format.bits), (16, 16, 8));
     let j: serde_json::Value = serde_json::from_slice(&std::fs::read(&st).unwrap()).unwrap();
     assert_eq!(j["lights"], 24);
     assert_eq!(j["ptm_bytes"], 6 * 256);
     assert!(j["rmse_mean"].as_f64().unwrap() < 0.5);
-    let out = texrtl(&[
+    ran(&[
         "ptm",
         "eval",
         "--ptm",
@@ -74,13 +69,7 @@ fn fit_then_eval() {
         "--out",
         s(&o),
     ]);
-    assert!(
-        out.status.success(),
-        "{}",
-        String::from_utf8_lossy(&out.stderr)
-    );
-    let csv = std::fs::read_to_string(&o).unwrap();
-    let rows: Vec<&str> = csv.lines().collect();
+    let rows = csv_lines(&o);
     assert_eq!(rows[0], "x,y,lu,lv,k,visibility");
     assert_eq!(rows.len(), 4);
     for r in &rows[1..] {
@@ -128,7 +117,7 @@ fn bad_input_is_one_line_exit_2_and_no_file() {
         a.extend_from_slice(extra);
         assert_refused(&a, needle, &d, &["t."]);
     }
-    let good = texrtl(&[
+    ran(&[
         "ptm",
         "fit",
         "--height",
@@ -138,7 +127,6 @@ fn bad_input_is_one_line_exit_2_and_no_file() {
         "--out",
         s(&t),
     ]);
-    assert!(good.status.success());
     let out = d.join("o.csv");
     let outside = write("outside.csv", "x,y,lu,lv\n16,0,0,0\n");
     let disc = write("disc.csv", "x,y,lu,lv\n0,0,0.9,0.9\n");

@@ -40,3 +40,23 @@ pub fn assert_refused(args: &[&str], needle: &str, d: &Path, outputs: &[&str]) {
         .collect();
     assert!(left.is_empty(), "{args:?} left {left:?}");
 }
+
+/// Runs `texrtl` with `args`, which must succeed (stderr shown otherwise).
+pub fn ran(args: &[&str]) -> Output {
+    let out = texrtl(args);
+    assert!(
+        out.status.success(),
+        "{args:?}: {}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    out
+}
+
+/// The lines of the CSV at `path`.
+pub fn csv_lines(path: &Path) -> Vec<String> {
+    std::fs::read_to_string(path)
+        .unwrap()
+        .lines()
+        .map(str::to_string)
+        .collect()
+}
