@@ -256,10 +256,7 @@ pub fn load_levels(
     mut store: impl FnMut(u32, &[u8]) -> Result<(), String>,
 ) -> Result<(), String> {
     drf.validate()?;
-    let (w, h) = drf.level_size(0);
-    if level0.len() != (w * h) as usize {
-        return Err(format!("map of {w}x{h}: {} texels given", level0.len()));
-    }
+    // Each level's size is checked where it is stored (`banks_810::store_level`).
     let mut level = level0.to_vec();
     for k in 0..=drf.max_level() {
         store(k, &level)?;

@@ -85,13 +85,7 @@ impl TexramStub {
     /// Loads level 0 of DRF `drf`'s map and every level above it ([`next_level`]).
     pub fn load(&mut self, drf: usize, level0: &[u8]) -> Result<(), String> {
         let d = self.drf(drf)?;
-        let mut level = level0.to_vec();
-        for k in 0..=d.max_level() {
-            self.write_level(drf, k, &level)?;
-            let (w, h) = d.level_size(k);
-            level = next_level(w, h, &level);
-        }
-        Ok(())
+        super::load_levels(&d, level0, |k, t| self.write_level(drf, k, t))
     }
 
     fn drf(&self, k: usize) -> Result<Drf, String> {

@@ -37,7 +37,6 @@ use super::address_812::Footprint;
 use super::banks_810::{bank_words, locate, store_level, BANKS, ROW_WORDS};
 use super::clut_814::Clut;
 use super::output_820::{shade, Modulate};
-use super::stub::next_level;
 use super::trilinear_818::{trilinear, trilinear_sum};
 use super::video_port_808::{VideoParams, VideoPort808};
 use super::{Border, Config, Drf, DRFS};
@@ -436,13 +435,10 @@ impl Texram802 {
             .copied()
             .flatten()
             .ok_or(format!("drf {k}: not set"))?;
-        let mut level = level0.to_vec();
-        for lv in 0..=d.max_level() {
-            store_level(&mut self.banks, &d, lv, &level).map_err(|e| format!("drf {k}: {e}"))?;
-            let (w, h) = d.level_size(lv);
-            level = next_level(w, h, &level);
-        }
-        Ok(())
+        let banks = &mut self.banks;
+        super::load_levels(&d, level0, |lv, t| {
+            store_level(banks, &d, lv, t).map_err(|e| format!("drf {k}: {e}"))
+        })
     }
 
     /// 812: part `part` of the request (DRF `k`, raw `u`, `v`, `lambda`) into the address
