@@ -489,3 +489,55 @@ fn quantise_takes_the_path_meant_for_each_input() {
         assert_eq!(PATH.with(|p| p.get()), path, "{raw} {frac} {dst} {o:?}");
     }
 }
+
+/// The small accessors, exhaustively over 6-bit formats: sign, zero, each bit of the two's
+/// complement pattern, hex as `{:#x}` prints it, and `fits` against conversion.
+#[test]
+fn accessors_agree_with_the_raw_value() {
+    for f in formats(6, -2..=3) {
+        for raw in all_raw(f) {
+            let x = Fx::from_raw(f, raw);
+            assert_eq!(x.is_negative(), raw < 0, "{f} {raw}");
+            assert_eq!(x.is_zero(), raw == 0, "{f} {raw}");
+            for i in 0..f.width() {
+                assert_eq!(x.bit(i), (raw >> i) & 1 == 1, "{f} {raw} bit {i}");
+            }
+            assert_eq!(x.to_hex(), format!("{x:#x}"), "{f} {raw}");
+            for g in [
+                Format::signed(4, 1),
+                Format::unsigned(3, 0),
+                Format::signed(8, 4),
+            ] {
+                // Exactly representable: truncation and saturation leave the value as it is.
+                let kept = x.convert(g, Quant::Trunc, Overflow::Saturate);
+                let fits = kept.cmp_value(&x) == std::cmp::Ordering::Equal;
+                assert_eq!(x.fits(g), fits, "{x} ({f}) in {g}");
+            }
+        }
+    }
+    let s = Format::signed(4, 1);
+    assert!(Fx::from_f64(s, 0.5, Quant::Trunc, Overflow::Wrap)
+        .unwrap()
+        .fits(s));
+    assert!(!Fx::from_raw(Format::signed(4, 2), 1).fits(s)); // 0.25: a bit too fine
+    assert!(!Fx::from_int(Format::signed(8, 0), 4).fits(s)); // 4: out of range
+    assert_eq!(Fx::from_raw(Format::unsigned(9, 0), 500).to_hex(), "0x1f4");
+}
+
+/// Zero prints without a sign, and compares by value with operands whose binary points are
+/// far apart (alignment by 130 bits and more cannot be done in an i128: zero still can).
+#[test]
+fn zero_prints_unsigned_and_compares_across_far_binary_points() {
+    assert_eq!(Fx::zero(Format::signed(8, 4)).to_string(), "0");
+    assert_eq!(Fx::zero(Format::signed(8, -4)).to_string(), "0");
+    let zero = Fx::zero(Format::signed(8, -10));
+    let tiny = Fx::from_raw(Format::signed(8, 120), 1);
+    assert!(zero < tiny && tiny > zero);
+    assert!(-tiny < zero && zero > -tiny);
+    assert_eq!(
+        zero.cmp_value(&Fx::zero(Format::signed(8, 120))),
+        std::cmp::Ordering::Equal
+    );
+    let big = Fx::from_raw(Format::signed(8, -120), 1);
+    assert!(tiny < big && big > tiny);
+}
