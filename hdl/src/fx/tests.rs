@@ -266,12 +266,15 @@ fn formatting_is_exact() {
 
 #[test]
 fn fixed_crate_interop() {
-    use fixed::types::{I8F8, U0F16};
+    use fixed::types::{I16F0, I8F8, U0F16};
     let x = Fx::from_fixed(I8F8::from_num(-1.25));
     assert_eq!(x.fmt(), Format::signed(16, 8));
     assert_eq!(x.raw(), -320);
     assert_eq!(x.to_fixed::<I8F8>(), Some(I8F8::from_num(-1.25)));
     assert_eq!(x.to_fixed::<U0F16>(), None);
+    // The width is the integer bits plus the fraction bits (a type without fraction bits too).
+    let five = Fx::from_int(Format::signed(8, 0), 5);
+    assert_eq!(five.to_fixed::<I16F0>(), Some(I16F0::from_num(5)));
 }
 
 #[test]
