@@ -251,3 +251,24 @@ fn a_delay_line_is_the_instance_it_was_named() {
         [("align_3".to_string(), "delay".to_string())]
     );
 }
+
+/// A state register's names: each value's name while it holds it, none past the list or for a
+/// plain signal; and the declared width, whatever the value.
+#[test]
+fn state_names_follow_the_value_and_width_is_declared() {
+    let mut s = Signal::new("state", Format::uint(2)).with_states(&["IDLE", "RUN", "DONE"]);
+    assert_eq!(s.width(), 2);
+    assert_eq!(s.states().map(<[_]>::len), Some(3));
+    for (v, name) in [
+        (0, Some("IDLE")),
+        (1, Some("RUN")),
+        (2, Some("DONE")),
+        (3, None),
+    ] {
+        s.set_raw(v);
+        assert_eq!(s.state_name(), name, "value {v}");
+    }
+    let plain = Signal::new("p", Format::signed(13, 4));
+    assert_eq!((plain.width(), plain.state_name()), (13, None));
+    assert_eq!(Signal::bit("b").width(), 1);
+}
