@@ -16,6 +16,18 @@ fn kinds(top: &dyn Module) -> Vec<(String, usize)> {
     m.into_iter().collect()
 }
 
+/// The instance paths under `top`; none has an empty name.
+fn paths(top: &dyn Module) -> Vec<String> {
+    let names: Vec<String> = instances(top).into_iter().map(|(p, _)| p).collect();
+    for n in &names {
+        assert!(
+            n.split('.').all(|s| !s.is_empty()),
+            "an unnamed instance: {n}"
+        );
+    }
+    names
+}
+
 fn own(v: &[(&str, usize)]) -> Vec<(String, usize)> {
     let mut v: Vec<(String, usize)> = v.iter().map(|(k, n)| (k.to_string(), *n)).collect();
     v.sort();
@@ -43,6 +55,22 @@ fn fig7_pipeline_visits_every_unit_and_delay_line() {
     ];
     assert_eq!(kinds(&top), own(&want));
     assert_eq!(instances(&top).len(), 17);
+    // Each unit's scope is its instance name, the figure's numeral (one hop to the module).
+    let names = paths(&top);
+    for unit in [
+        "address_150",
+        "texel_fetch_151",
+        "blend_adjust_153",
+        "replicate_152",
+        "bilinear_65_red",
+        "bilinear_68_alpha",
+        "tangent_155",
+        "normal_156",
+        "normal_156.rsqrt_156",
+    ] {
+        let path = format!("normal_pipeline_fig7.{unit}");
+        assert!(names.contains(&path), "{path} not visited: {names:?}");
+    }
     // Trilinear: a second address, fetch, adjust, replicate and four bilinear units.
     let tri = BumpParams {
         trilinear: true,
@@ -64,7 +92,7 @@ fn figure6_texture_unit_visits_every_unit() {
     let clut = vec![0u32; 256];
     let words = vec![0u16; 2 * 16];
     let top = TextureUnit::new("texture_unit_602", p, &clut, &words).unwrap();
-    let names: Vec<String> = instances(&top).into_iter().map(|(p, _)| p).collect();
+    let names = paths(&top);
     for unit in [
         "texture_unit_602.fill_engine_607",
         "texture_unit_602.lookahead_queue_607",
@@ -101,6 +129,11 @@ fn fig14_generator_visits_every_level_and_fifo() {
         ("fifo_1412", 4),
     ];
     assert_eq!(kinds(&top), own(&want));
+    let names = paths(&top);
+    for unit in ["level1", "level1.fifo_1408", "level4.fifo_1412"] {
+        let path = format!("mipmap_gen_816.{unit}");
+        assert!(names.contains(&path), "{path} not visited: {names:?}");
+    }
 }
 
 /// The signal paths of `top` containing `part`, counted.

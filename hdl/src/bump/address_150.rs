@@ -111,7 +111,7 @@ impl Module for AddressUnit {
         }
     }
     fn visit(&self, v: &mut dyn Visitor) {
-        v.enter(&self.name, self.kind());
+        v.enter(self.instance(), self.kind());
         signals!(v; Input: self.u, self.v, self.colour; Output: self.ui, self.vj, self.ub, self.vb);
         v.leave();
     }

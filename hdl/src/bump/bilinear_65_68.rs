@@ -103,7 +103,7 @@ impl Module for Bilinear {
         self.r.tick(reset);
     }
     fn visit(&self, v: &mut dyn Visitor) {
-        v.enter(&self.name, self.kind());
+        v.enter(self.instance(), self.kind());
         let p = &self.p;
         signals!(v; Input: p[0], p[1], p[2], p[3], self.s, self.t; Output: self.q);
         v.leave();

@@ -199,7 +199,7 @@ impl Module for BlendAdjust {
     }
 
     fn visit(&self, v: &mut dyn Visitor) {
-        v.enter(&self.name, self.kind());
+        v.enter(self.instance(), self.kind());
         let (i, o) = (&self.i, &self.o);
         signals!(v;
             Input: i.valid_in, i.bypass, i.u_in, i.v_in;

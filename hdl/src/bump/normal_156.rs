@@ -163,7 +163,7 @@ impl Module for Normal {
         self.carry.tick(reset);
     }
     fn visit(&self, v: &mut dyn Visitor) {
-        v.enter(&self.name, self.kind());
+        v.enter(self.instance(), self.kind());
         v.signal(Dir::Input, &self.du);
         v.signal(Dir::Input, &self.dv);
         for s in [&self.nx, &self.ny, &self.nz] {

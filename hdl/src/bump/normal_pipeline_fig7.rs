@@ -402,7 +402,7 @@ impl Module for NormalPipeline {
         }
     }
     fn visit(&self, v: &mut dyn Visitor) {
-        v.enter(&self.name, self.kind());
+        v.enter(self.instance(), self.kind());
         signals!(v;
             Input: self.valid_in, self.u, self.v, self.scale, self.lod;
             Output: self.valid, self.nx, self.ny, self.nz, self.height);

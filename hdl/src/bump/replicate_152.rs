@@ -92,7 +92,7 @@ impl Module for Replicate {
     }
     fn tick(&mut self, _: bool) {}
     fn visit(&self, v: &mut dyn Visitor) {
-        v.enter(&self.name, self.kind());
+        v.enter(self.instance(), self.kind());
         for s in &self.h {
             v.signal(Dir::Input, s);
         }

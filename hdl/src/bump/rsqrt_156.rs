@@ -190,7 +190,7 @@ impl Module for Rsqrt {
         }
     }
     fn visit(&self, v: &mut dyn Visitor) {
-        v.enter(&self.name, self.kind());
+        v.enter(self.instance(), self.kind());
         v.signal(Dir::Input, &self.m);
         v.signal(Dir::Output, &self.y);
         for r in &self.y_r {

@@ -227,7 +227,7 @@ impl Module for Tangent {
         }
     }
     fn visit(&self, v: &mut dyn Visitor) {
-        v.enter(&self.name, self.kind());
+        v.enter(self.instance(), self.kind());
         for s in &self.rgba {
             v.signal(Dir::Input, s);
         }

@@ -142,7 +142,7 @@ impl Module for TexelFetch {
         }
     }
     fn visit(&self, v: &mut dyn Visitor) {
-        v.enter(&self.name, self.kind());
+        v.enter(self.instance(), self.kind());
         signals!(v; Input: self.ui, self.vj);
         for s in &self.h {
             v.signal(Dir::Output, s);

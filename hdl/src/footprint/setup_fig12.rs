@@ -314,7 +314,7 @@ impl Module for SetupUnit {
         }
     }
     fn visit(&self, v: &mut dyn Visitor) {
-        v.enter(&self.name, self.kind());
+        v.enter(self.instance(), self.kind());
         signals!(v;
             Input: self.in_valid, self.drf, self.u, self.v, self.r1u, self.r1v, self.r2u,
                 self.r2v, self.out_ready;

@@ -96,7 +96,7 @@ impl Module for Delay {
         }
     }
     fn visit(&self, v: &mut dyn Visitor) {
-        v.enter(&self.name, self.kind());
+        v.enter(self.instance(), self.kind());
         for s in &self.i {
             v.signal(Dir::Input, s);
         }

@@ -149,7 +149,7 @@ impl Module for Fifo {
         }
     }
     fn visit(&self, v: &mut dyn Visitor) {
-        v.enter(self.name, self.kind);
+        v.enter(self.instance(), self.kind());
         signals!(v;
             Input: self.push, self.push_data, self.pop, self.clear;
             Output: self.occupancy, self.error);

@@ -312,7 +312,7 @@ impl Module for Level {
         self.fifo_1412.tick(reset);
     }
     fn visit(&self, v: &mut dyn Visitor) {
-        v.enter(self.name, self.kind());
+        v.enter(self.instance(), self.kind());
         signals!(v;
             Input: self.in_valid, self.in_texel;
             Wire: self.sum1402, self.sum1410;

@@ -486,7 +486,7 @@ impl Module for MipmapGen {
         self.store_level0();
     }
     fn visit(&self, v: &mut dyn Visitor) {
-        v.enter(&self.name, self.kind());
+        v.enter(self.instance(), self.kind());
         signals!(v;
             Input: self.valid, self.texel, self.sof;
             Output: self.error, self.err_code, self.frame_done;

@@ -103,7 +103,7 @@ impl Module for ColorBilinear {
         }
     }
     fn visit(&self, v: &mut dyn Visitor) {
-        v.enter(&self.name, self.kind());
+        v.enter(self.instance(), self.kind());
         signals!(v;
             Input: self.in_valid, self.c[0], self.c[1], self.c[2], self.c[3], self.fu, self.fv;
             Reg: self.valid, self.rgb, self.sums[0], self.sums[1], self.sums[2]);

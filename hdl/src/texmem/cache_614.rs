@@ -125,7 +125,7 @@ impl Module for Entry {
         self.prefetched.tick(reset);
     }
     fn visit(&self, v: &mut dyn Visitor) {
-        v.enter(&self.name, self.kind());
+        v.enter(self.instance(), self.kind());
         signals!(v; Reg: self.valid, self.tag_x, self.tag_y, self.data, self.prefetched);
         v.leave();
     }
@@ -236,7 +236,7 @@ impl Module for TextureCache {
         }
     }
     fn visit(&self, v: &mut dyn Visitor) {
-        v.enter(&self.name, self.kind());
+        v.enter(self.instance(), self.kind());
         signals!(v;
             Input: self.touch, self.invalidate, self.write, self.write_bx, self.write_by,
                    self.write_data, self.write_prefetched);

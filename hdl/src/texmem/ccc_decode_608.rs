@@ -172,7 +172,7 @@ impl Module for CccDecode {
         self.color_a.tick(reset);
     }
     fn visit(&self, v: &mut dyn Visitor) {
-        v.enter(&self.name, self.kind());
+        v.enter(self.instance(), self.kind());
         signals!(v;
             Input: self.word_valid, self.word;
             Wire: self.mux_sel, self.clut_addr, self.clut_data;

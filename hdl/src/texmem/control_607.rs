@@ -192,7 +192,7 @@ impl Module for DramCtrl {
         self.dram.tick(reset);
     }
     fn visit(&self, v: &mut dyn Visitor) {
-        v.enter(&self.name, self.kind());
+        v.enter(self.instance(), self.kind());
         signals!(v;
             Input: self.req_valid, self.req_addr;
             Output: self.ready, self.resp_valid, self.resp_data;
@@ -328,7 +328,7 @@ impl Module for FillEngine {
         self.words_issued.tick(reset);
     }
     fn visit(&self, v: &mut dyn Visitor) {
-        v.enter(self.name, self.kind());
+        v.enter(self.instance(), self.kind());
         signals!(v;
             Input: self.start, self.start_bx, self.start_by, self.start_prefetch,
                    self.word_ready, self.word_resp, self.line_done;
@@ -505,7 +505,7 @@ impl Module for LookaheadQueue {
         self.prev_v.tick(reset);
     }
     fn visit(&self, v: &mut dyn Visitor) {
-        v.enter(self.name, self.kind());
+        v.enter(self.instance(), self.kind());
         signals!(v;
             Input: self.complete, self.u, self.v, self.newline, self.flush, self.engine_free,
                    self.stage0_missing;

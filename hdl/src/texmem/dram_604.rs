@@ -289,7 +289,7 @@ impl Module for Dram {
         self.last = (ras_n, cas_n);
     }
     fn visit(&self, v: &mut dyn Visitor) {
-        v.enter(&self.name, self.kind());
+        v.enter(self.instance(), self.kind());
         signals!(v;
             Input: self.ras_n, self.cas_n, self.we_n, self.oe_n, self.addr;
             Output: self.dq, self.dq_valid;

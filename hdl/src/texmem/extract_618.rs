@@ -108,7 +108,7 @@ impl Module for ColorExtract {
         }
     }
     fn visit(&self, v: &mut dyn Visitor) {
-        v.enter(&self.name, self.kind());
+        v.enter(self.instance(), self.kind());
         signals!(v;
             Input: self.in_valid, self.x0, self.x1, self.y0, self.y1, self.in_fu, self.in_fv;
             Reg: self.valid, self.c00, self.c10, self.c01, self.c11, self.fu, self.fv);

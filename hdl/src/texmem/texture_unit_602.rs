@@ -514,7 +514,7 @@ impl Module for TextureUnit {
     }
 
     fn visit(&self, v: &mut dyn Visitor) {
-        v.enter(&self.name, self.kind());
+        v.enter(self.instance(), self.kind());
         signals!(v;
             Input: self.in_valid, self.in_u, self.in_v, self.in_newline;
             Output: self.in_ready, self.out_valid, self.out_rgb;

@@ -289,7 +289,7 @@ impl Module for RayCaster {
         }
     }
     fn visit(&self, v: &mut dyn Visitor) {
-        v.enter(&self.name, self.kind());
+        v.enter(self.instance(), self.kind());
         let [px, py, pz] = &self.ray_p;
         let [dx, dy, dz] = &self.ray_d;
         signals!(v;
