@@ -535,12 +535,23 @@ fn zero_prints_unsigned_and_compares_across_far_binary_points() {
     assert_eq!(Fx::zero(Format::signed(8, -4)).to_string(), "0");
     let zero = Fx::zero(Format::signed(8, -10));
     let tiny = Fx::from_raw(Format::signed(8, 120), 1);
-    assert!(zero < tiny && tiny > zero);
-    assert!(-tiny < zero && zero > -tiny);
+    use std::cmp::Ordering::{Greater, Less};
+    // Both operand orders: the alignment of either side is tried.
+    assert_eq!(
+        (zero.cmp_value(&tiny), tiny.cmp_value(&zero)),
+        (Less, Greater)
+    );
+    assert_eq!(
+        (zero.cmp_value(&-tiny), (-tiny).cmp_value(&zero)),
+        (Greater, Less)
+    );
     assert_eq!(
         zero.cmp_value(&Fx::zero(Format::signed(8, 120))),
         std::cmp::Ordering::Equal
     );
     let big = Fx::from_raw(Format::signed(8, -120), 1);
-    assert!(tiny < big && big > tiny);
+    assert_eq!(
+        (tiny.cmp_value(&big), big.cmp_value(&tiny)),
+        (Less, Greater)
+    );
 }
