@@ -83,3 +83,38 @@ impl HeightMap {
         HeightMap::new(w, h, self.fmt, t).expect("a downsampled map is valid")
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// The next level against the definition written out: sides halved (at least 2), each texel
+    /// the 2x2 block's mean rounded half up, an odd side's last row or column repeated.
+    #[test]
+    fn downsample_averages_each_block_and_repeats_odd_edges() {
+        for (w, h) in [(8, 4), (5, 3), (2, 7), (9, 2), (4, 4)] {
+            let texels: Vec<u8> = (0..w * h)
+                .map(|i| ((i * 37 + i / w * 11) % 256) as u8)
+                .collect();
+            let map = HeightMap::new(w, h, Format::uint(8), texels.clone()).unwrap();
+            let next = map.downsample();
+            let (nw, nh) = (std::cmp::max(w / 2, 2), std::cmp::max(h / 2, 2));
+            assert_eq!((next.width(), next.height()), (nw, nh), "{w}x{h}");
+            let at = |x: u32, y: u32| u32::from(texels[(y.min(h - 1) * w + x.min(w - 1)) as usize]);
+            for y in 0..nh {
+                for x in 0..nw {
+                    let block = [(0, 0), (1, 0), (0, 1), (1, 1)];
+                    let sum: u32 = block
+                        .iter()
+                        .map(|&(dx, dy)| at(2 * x + dx, 2 * y + dy))
+                        .sum();
+                    let want = (sum + 2) / 4;
+                    assert_eq!(u32::from(next.get(x, y)), want, "{w}x{h} at ({x}, {y})");
+                }
+            }
+        }
+        // A tie rounds up: 1, 2, 1, 2 averages 1.5.
+        let map = HeightMap::new(2, 2, Format::uint(8), vec![1, 2, 1, 2]).unwrap();
+        assert_eq!(map.downsample().get(0, 0), 2);
+    }
+}
