@@ -162,7 +162,7 @@ impl Module for Rsqrt {
     fn eval(&mut self) {
         let m = self.m.bits();
         // Stage 0: table lookup (an input of zero, never produced by unit 156 since its sum of
-        // squares is at least 1, reads entry 0).
+        // squares is at least 1, gives 0).
         let y0 = if m >> self.table.p.mant_frac == 0 {
             0
         } else {
@@ -197,5 +197,58 @@ impl Module for Rsqrt {
             v.reg(r);
         }
         v.leave();
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// Entry `e` of the interval whose midpoint is `mid2 / 2^(M+1)` is `1/sqrt(mid)` rounded to
+    /// nearest at Y fraction bits: `(e - 1/2)^2 <= 2^2Y / mid < (e + 1/2)^2`, checked in integers.
+    fn is_nearest(e: u64, mid2: u128, p: &RsqrtParams) -> bool {
+        let target = 1u128 << (2 * p.y_frac + 2 + p.mant_frac + 1);
+        let (lo, hi) = (2 * u128::from(e) - 1, 2 * u128::from(e) + 1);
+        lo * lo * mid2 <= target && target < hi * hi * mid2
+    }
+
+    #[test]
+    fn every_entry_is_the_nearest_to_its_interval_midpoint() {
+        for (table_bits, mant_frac, y_frac) in [(1, 8, 8), (3, 10, 12), (8, 22, 24), (10, 12, 30)] {
+            let p = RsqrtParams {
+                table_bits,
+                iterations: 0,
+                mant_frac,
+                y_frac,
+            };
+            let t = RsqrtTable::new(p).unwrap();
+            assert_eq!(t.entries().len(), 1 << table_bits, "{p:?}");
+            // Walk the mantissas [1, 4) interval by interval: [1,2) has 2^(table_bits-1)
+            // intervals of 2^-(table_bits-1), [2,4) as many of twice that.
+            let lo_bits = table_bits - 1;
+            for (i, &e) in t.entries().iter().enumerate() {
+                let hi = (i >> lo_bits) as u32;
+                let width = 1u64 << (mant_frac + hi - lo_bits);
+                let start = (1u64 << (mant_frac + hi)) + (i as u64 & ((1 << lo_bits) - 1)) * width;
+                let mid2 = u128::from(2 * start + width);
+                assert!(is_nearest(e, mid2, &p), "{p:?} entry {i} = {e}");
+                for m in [start, start + width / 2, start + width - 1] {
+                    assert_eq!(t.index(m), i, "{p:?} m {m:#x}");
+                    assert_eq!(t.lookup(m), e, "{p:?} m {m:#x}");
+                }
+            }
+        }
+    }
+
+    #[test]
+    fn the_one_bit_table_holds_one_over_root_1_5_and_root_3() {
+        let p = RsqrtParams {
+            table_bits: 1,
+            iterations: 0,
+            mant_frac: 8,
+            y_frac: 8,
+        };
+        // 256/sqrt(1.5) = 209.02, 256/sqrt(3) = 147.80.
+        assert_eq!(RsqrtTable::new(p).unwrap().entries(), &[209, 148]);
     }
 }
