@@ -310,10 +310,6 @@ impl<T: TexramAccess> MapChain812<T> {
         &self.texram
     }
 
-    pub fn slot_cycles(&self) -> u32 {
-        self.slot_cycles
-    }
-
     /// The micro-program's next step for `px`: from its first DRF (`value` `None`) or after
     /// the access that gave `value`; with the output stage's colour at the chain's end.
     fn step(&self, px: &ChainRequest, w: Walk, value: Option<u8>) -> (Walk, Option<Fetch>, u8) {

@@ -29,7 +29,6 @@ struct Ops {
 #[derive(Clone, Debug)]
 pub struct Level {
     name: &'static str,
-    k: usize,
     /// Size of the level read.
     wp: u32,
     hp: u32,
@@ -80,7 +79,6 @@ impl Level {
         let c = |b: u32| Format::uint(b);
         Ok(Level {
             name: NAMES.get(k).ok_or(format!("level {k}: at most 10"))?,
-            k,
             wp,
             hp,
             pair_x: wp > 1,
@@ -106,16 +104,6 @@ impl Level {
             rows_out: 0,
             busy: true,
         })
-    }
-
-    /// Width of the level this one writes.
-    pub fn out_width(&self) -> u32 {
-        (self.wp / 2).max(1)
-    }
-
-    /// Level number.
-    pub fn level(&self) -> usize {
-        self.k
     }
 
     /// The sticky FIFO error: 0 none, 1 overflow, 2 underflow.
