@@ -283,3 +283,85 @@ impl BumpParams {
         Format::signed(2 + self.out_frac, self.out_frac as i32)
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// Every derived format against the notation its doc comment gives.
+    fn formats(p: &BumpParams) -> Vec<String> {
+        [
+            p.pos_fmt(),
+            p.coord_fmt(),
+            p.blend_fmt(),
+            p.adj_fmt(),
+            p.texel_fmt(),
+            p.replicate_fmt(),
+            p.bilinear_fmt(),
+            p.scale_fmt(),
+            p.tangent_fmt(),
+            p.height_out_fmt(),
+            p.normal_fmt(),
+        ]
+        .iter()
+        .map(|f| f.to_string())
+        .collect()
+    }
+
+    #[test]
+    fn the_default_format_table() {
+        let p = BumpParams::default();
+        assert_eq!(p.bilinear_exact_frac(), 4 + 2 * 9);
+        let want = [
+            "sQ16.8", "s17", "uQ0.8", "uQ0.9", "uQ6.2", "uQ6.4", "uQ6.22", "uQ8.8", "sQ16.16",
+            "uQ14.16", "sQ2.16",
+        ];
+        assert_eq!(formats(&p), want);
+    }
+
+    #[test]
+    fn the_format_table_follows_every_width_parameter() {
+        let p = BumpParams {
+            blend_bits: 4,
+            pos_int: 10,
+            pos_frac: 6,
+            height: HeightTexel::Bits4,
+            bilinear_frac: Some(5),
+            tangent_frac: 12,
+            scale_int: 3,
+            scale_frac: 5,
+            out_frac: 10,
+            ..BumpParams::default()
+        };
+        assert_eq!(p.bilinear_exact_frac(), 3 + 2 * 5);
+        // Tangent: texel 3 + scale 3 + 2 headroom integer bits; height: 3 + 3.
+        let want = [
+            "sQ10.6", "s11", "uQ0.4", "uQ0.5", "uQ3.1", "uQ3.3", "uQ3.5", "uQ3.5", "sQ8.12",
+            "uQ6.12", "sQ2.10",
+        ];
+        assert_eq!(formats(&p), want);
+    }
+
+    #[test]
+    fn filter_and_border_names_read_back() {
+        for f in [Filter::BSpline, Filter::Bezier, Filter::Blinn] {
+            assert_eq!(f.to_string().parse::<Filter>(), Ok(f));
+        }
+        let borders = [
+            Border::Wrap,
+            Border::Clamp,
+            Border::Mirror,
+            Border::Constant(0),
+            Border::Constant(255),
+        ];
+        for b in borders {
+            assert_eq!(b.to_string().parse::<Border>(), Ok(b));
+        }
+        assert_eq!("constant".parse::<Border>(), Ok(Border::Constant(0)));
+        assert_eq!("constant:7".parse::<Border>(), Ok(Border::Constant(7)));
+        for bad in ["constant:256", "constant7", "constant:", "repeat", ""] {
+            assert!(bad.parse::<Border>().is_err(), "{bad}");
+        }
+        assert!("gauss".parse::<Filter>().unwrap_err().contains("bspline"));
+    }
+}
