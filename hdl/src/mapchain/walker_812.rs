@@ -305,11 +305,6 @@ impl<T: TexramAccess> MapChain812<T> {
         State::from_bits(self.walk[0].q().bits())
     }
 
-    /// The banks.
-    pub fn texram(&self) -> &T {
-        &self.texram
-    }
-
     /// The micro-program's next step for `px`: from its first DRF (`value` `None`) or after
     /// the access that gave `value`; with the output stage's colour at the chain's end.
     fn step(&self, px: &ChainRequest, w: Walk, value: Option<u8>) -> (Walk, Option<Fetch>, u8) {
