@@ -354,3 +354,44 @@ pub fn merge_shards(shards: &[(PathBuf, Summary)]) -> Result<Summary, String> {
         testbenches: merged,
     })
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use verif::Shard;
+
+    /// The shards of every split deal out each configuration once: their counts add up to the
+    /// whole run's, testbench by testbench and over all.
+    #[test]
+    fn shards_own_every_configuration_once() {
+        let reg = registry();
+        let whole: u64 = reg.iter().map(|t| t.configurations().len() as u64).sum();
+        assert!(
+            whole > reg.names().len() as u64,
+            "some testbench has several"
+        );
+        assert_eq!(reg.owned_configurations(Shard::default(), &[]), whole);
+        for count in [2, 3, 7] {
+            let shards = (1..=count).map(|index| Shard { index, count });
+            let parts: Vec<u64> = shards.map(|s| reg.owned_configurations(s, &[])).collect();
+            assert_eq!(parts.iter().sum::<u64>(), whole, "{count} shards");
+        }
+        for (i, t) in reg.iter().enumerate() {
+            let only = [t.name().to_string()];
+            let n = reg.owned_configurations(Shard::default(), &only);
+            assert_eq!(n, t.configurations().len() as u64, "{}", t.name());
+            assert_eq!(reg.position(t.name()), Some(i));
+        }
+    }
+
+    /// The progress line's unit: the default for a testbench of random transactions, its own
+    /// for one that counts something else.
+    #[test]
+    fn each_testbench_says_what_its_count_counts() {
+        let reg = registry();
+        let unit = |n: &str| reg.get(n).unwrap().count_unit();
+        assert_eq!(unit(crate::blend_adjust::NAME), "random transactions");
+        assert_ne!(unit(crate::texture::NAME), "random transactions");
+        assert!(reg.iter().all(|t| !t.count_unit().is_empty()));
+    }
+}

@@ -256,4 +256,21 @@ mod tests {
         a.absorb(&b, None).unwrap();
         assert_eq!((a.transactions, a.cycles), (6, 8));
     }
+
+    #[test]
+    fn summary_line_latency_column_and_verdict() {
+        let mut r = TbResult::new("rsqrt", "156");
+        assert_eq!((r.latency_text(), r.verdict()), ("-".to_string(), "FAIL"));
+        r.transactions = 12;
+        r.mismatches = 1;
+        r.coverage_percent = 87.54;
+        r.stats.record(1.0, 0.75, 0.125);
+        r.latency = Some(3);
+        assert_eq!(
+            r.summary(),
+            "rsqrt: 12 transactions, 1 mismatches, coverage 87.5 %, max error 2 LSB: FAIL"
+        );
+        r.passed = true;
+        assert_eq!((r.latency_text(), r.verdict()), ("3".to_string(), "PASS"));
+    }
 }

@@ -169,6 +169,24 @@ mod tests {
     }
 
     #[test]
+    fn the_summary_line_names_every_figure() {
+        let mut s = ErrorStats::new();
+        assert_eq!(
+            s.summary(),
+            "n=0 max=0.000 LSB mean=0.0000 LSB exact=0 within±1=0"
+        );
+        let lsb = 1.0 / 256.0;
+        for (d, g) in [(0.5, 0.5), (0.5 + lsb, 0.5), (0.5 - 3.0 * lsb, 0.5)] {
+            s.record(d, g, lsb);
+        }
+        // SQNR: 0.75 / (10 / 65536) = 4915.2, 36.9 dB.
+        assert_eq!(
+            s.summary(),
+            "n=3 max=3.000 LSB mean=1.3333 LSB exact=1 within±1=2 SQNR=36.9 dB"
+        );
+    }
+
+    #[test]
     #[should_panic(expected = "non-finite")]
     fn nan_is_refused() {
         ErrorStats::new().record(0.0, f64::NAN, 1.0);

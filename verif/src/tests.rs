@@ -118,6 +118,13 @@ fn full_rate_latency_two() {
     assert_eq!((st.sent, st.received), (100, 100));
     assert_eq!((st.min_latency, st.max_latency), (Some(2), Some(2)));
     assert_eq!(st.cycles, 102, "one per clock after a 2-cycle fill");
+    assert_eq!(st.throughput(), 100.0 / 102.0);
+    assert_eq!(sb.pending(), 0);
+    assert_eq!(
+        RunStats::default().throughput(),
+        0.0,
+        "no cycles, no division"
+    );
 }
 
 #[test]
@@ -131,7 +138,8 @@ fn random_pacing_keeps_order() {
 
 #[test]
 fn watchdog_stops_a_hung_design() {
-    let (r, _) = bench(true, Pacing::full(), 10);
+    let (r, sb) = bench(true, Pacing::full(), 10);
+    assert_eq!(sb.pending(), 10, "all ten still expected");
     let t = r.unwrap_err();
     assert_eq!(t.received, 0);
     assert_eq!(t.sent, 10);

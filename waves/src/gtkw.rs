@@ -233,9 +233,4 @@ impl Gtkw {
         }
         out
     }
-
-    /// The traces in order (for tests and tools).
-    pub fn items(&self) -> &[Item] {
-        &self.items
-    }
 }

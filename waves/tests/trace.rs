@@ -32,6 +32,7 @@ fn drive<T: hdl::kernel::Trace>(
 fn run(name: &str, cfg: TraceConfig, finish: bool) -> PathBuf {
     let path = tmpdir(name).join("ba.vcd");
     let mut t = VcdTracer::create(&path, "blend adjust", cfg).unwrap();
+    assert_eq!(t.gtkw_path(), path.with_extension("gtkw"));
     let gold = t.probe_real("u0", Some("tb.blend_adjust_153.u0"));
     let dut = BlendAdjust::new("blend_adjust_153", BlendAdjustParams::default()).unwrap();
     let mut sim = Sim::traced(dut, t).unwrap();
@@ -325,9 +326,16 @@ fn long_runs_cross_every_batch_and_chunk_boundary() {
         "several VCD batches"
     );
     let a_name = a.dut.w[3][2].name();
+    let (na, nb) = (
+        a.trace_mut().unwrap().changes(),
+        b.trace_mut().unwrap().changes(),
+    );
     a.finish().unwrap();
     b.finish().unwrap();
     let rv = read_vcd(&vcd).unwrap();
+    // Both writers count the same changes; the file holds them and the clock's 6000 falls.
+    assert_eq!(na, nb);
+    assert_eq!(rv.total_changes() as u64, na + 6000);
     let rf = waves::check::read_fst(&fst).unwrap();
     waves::fst::same_values(&rv, &rf).unwrap();
     let var = format!("tb.replicate_152.{}", a_name);
