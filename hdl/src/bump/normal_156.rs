@@ -177,3 +177,69 @@ impl Module for Normal {
         v.leave();
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::bump::params::RsqrtParams;
+    use crate::kernel::Sim;
+
+    /// `m = floor(s * 2^(M - s_frac) / 4^k)` with `m` in `[2^M, 2^(M+2))`, whichever way the
+    /// mantissa is shifted (right when `s` has more fraction bits than `m`, left when fewer).
+    #[test]
+    fn normalise_takes_out_powers_of_four_both_ways() {
+        for (s_frac, mf) in [(32, 22), (16, 22), (16, 40), (48, 8), (16, 16)] {
+            let ones = [1u128, 2, 3, 4, 5, 15, 16, 17, 1000, 65535, 1 << 20];
+            for s in ones
+                .iter()
+                .map(|&x| x << s_frac)
+                .chain([(1u128 << s_frac) + 1])
+            {
+                let (k, m) = normalise(s, s_frac, mf);
+                let m = u128::from(m);
+                assert!(
+                    (1 << mf..4 << mf).contains(&m),
+                    "s {s:#x}/{s_frac}: m {m:#x}"
+                );
+                // Compare m * 4^k * 2^s_frac with s * 2^M: equal up to the truncation.
+                let (lhs, rhs) = (m << (2 * k + s_frac), s << mf);
+                assert!(
+                    lhs <= rhs && rhs - lhs < 1 << (2 * k + s_frac),
+                    "s {s:#x}/{s_frac}"
+                );
+            }
+        }
+    }
+
+    /// Latency `3 + iterations`: (0, 0) gives (0, 0, 1) exactly that many edges later.
+    #[test]
+    fn latency_follows_the_iterations_and_narrow_tangents_work() {
+        for iterations in 0..=3 {
+            let p = BumpParams {
+                tangent_frac: 8,
+                rsqrt: RsqrtParams {
+                    iterations,
+                    ..RsqrtParams::default()
+                },
+                ..BumpParams::default()
+            };
+            let mut sim = Sim::new(Normal::new("normal_156", &p).unwrap()).check_schedule(true);
+            let lat = sim.dut.latency();
+            assert_eq!(lat, 3 + iterations as usize);
+            sim.reset(1);
+            for c in 0..=lat {
+                sim.dut.du.set_raw(if c == 0 { 0 } else { 200 << 8 });
+                sim.dut.dv.set_raw(0);
+                sim.eval();
+                let nz = sim.dut.nz.raw();
+                if c < lat {
+                    assert_eq!(nz, 0, "iterations {iterations}: cycle {c}");
+                } else {
+                    // The table alone is within 2^-(table_bits+1) relative of 1.
+                    assert!((nz - 65536).abs() <= 65536 >> 9, "{iterations}: nz {nz}");
+                }
+                sim.tick();
+            }
+        }
+    }
+}
