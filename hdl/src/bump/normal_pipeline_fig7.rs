@@ -304,10 +304,6 @@ impl NormalPipeline {
         self
     }
 
-    pub fn params(&self) -> &BumpParams {
-        &self.params
-    }
-
     /// Cycles from a sample's input to its normal.
     pub fn latency(&self) -> usize {
         self.valid_d.depth()

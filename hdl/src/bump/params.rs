@@ -364,4 +364,66 @@ mod tests {
         }
         assert!("gauss".parse::<Filter>().unwrap_err().contains("bspline"));
     }
+
+    /// Each range at both ends: its bounds pass, one beyond fails naming the parameter.
+    #[test]
+    fn validate_takes_each_range_at_both_ends() {
+        type Set = fn(&mut BumpParams, u32);
+        let ranges: [(&str, Set, u32, u32); 11] = [
+            (
+                "blend_bits",
+                |p, v| (p.blend_bits, p.pos_frac) = (v, v.max(8)),
+                4,
+                16,
+            ),
+            ("pos_int", |p, v| p.pos_int = v, 4, 24),
+            ("pos_frac", |p, v| p.pos_frac = v, 8, 24),
+            ("tangent_frac", |p, v| p.tangent_frac = v, 8, 24),
+            ("scale_int", |p, v| p.scale_int = v, 1, 12),
+            ("scale_frac", |p, v| p.scale_frac = v, 0, 16),
+            ("rsqrt.table_bits", |p, v| p.rsqrt.table_bits = v, 3, 14),
+            ("rsqrt.iterations", |p, v| p.rsqrt.iterations = v, 0, 3),
+            ("rsqrt.mant_frac", |p, v| p.rsqrt.mant_frac = v, 8, 40),
+            ("rsqrt.y_frac", |p, v| p.rsqrt.y_frac = v, 8, 40),
+            ("out_frac", |p, v| p.out_frac = v, 8, 24),
+        ];
+        let with = |set: Set, v: u32| {
+            let mut p = BumpParams::default();
+            set(&mut p, v);
+            p.validate()
+        };
+        assert_eq!(BumpParams::default().validate(), Ok(()));
+        for (name, set, lo, hi) in ranges {
+            assert_eq!(with(set, lo), Ok(()), "{name} {lo}");
+            assert_eq!(with(set, hi), Ok(()), "{name} {hi}");
+            let e = with(set, hi + 1).unwrap_err();
+            assert_eq!(e, format!("{name} {} outside {lo}..={hi}", hi + 1));
+            if lo > 0 {
+                assert!(with(set, lo - 1).unwrap_err().starts_with(name), "{name}");
+            }
+        }
+        // pos_frac's floor is blend_bits; bilinear_frac's the replicate format's fraction (4).
+        let p = BumpParams {
+            blend_bits: 10,
+            pos_frac: 9,
+            ..BumpParams::default()
+        };
+        assert_eq!(p.validate().unwrap_err(), "pos_frac 9 outside 10..=24");
+        for (b, ok) in [(3, false), (4, true), (40, true), (41, false)] {
+            let p = BumpParams {
+                bilinear_frac: Some(b),
+                ..BumpParams::default()
+            };
+            assert_eq!(p.validate().is_ok(), ok, "bilinear_frac {b}");
+        }
+        // A border constant must fit the texels: 15 fits 4 bits, 16 does not.
+        for (c, ok) in [(15, true), (16, false)] {
+            let p = BumpParams {
+                height: HeightTexel::Bits4,
+                border: Border::Constant(c),
+                ..BumpParams::default()
+            };
+            assert_eq!(p.validate().is_ok(), ok, "constant {c}");
+        }
+    }
 }
