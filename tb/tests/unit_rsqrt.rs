@@ -77,21 +77,44 @@ fn exhaustive_other_parameters() {
 
 #[test]
 fn module_matches_function_with_latency() {
-    let p = RsqrtParams::default();
-    let mut sim = Sim::new(Rsqrt::new("rsqrt", p).unwrap()).check_schedule(true);
-    let lat = sim.dut.latency();
-    assert_eq!(lat, 2);
-    let t = RsqrtTable::new(p).unwrap();
-    let inputs: Vec<u64> = (0..500u64).map(|k| (1u64 << 22) + k * 25_123).collect();
-    let mut outs = Vec::new();
-    for k in 0..inputs.len() + lat {
-        sim.dut.m.set_bits(*inputs.get(k).unwrap_or(&(1 << 22)));
-        sim.eval();
-        if k >= lat {
-            outs.push(sim.dut.y.bits());
+    // The default; a 12-bit table at 8 fraction bits, whose first entry rounds to exactly 1.0
+    // (the output's integer bit); three iterations on a small table.
+    let sets = [
+        RsqrtParams::default(),
+        RsqrtParams {
+            table_bits: 12,
+            iterations: 0,
+            mant_frac: 12,
+            y_frac: 8,
+        },
+        RsqrtParams {
+            table_bits: 5,
+            iterations: 3,
+            mant_frac: 30,
+            y_frac: 30,
+        },
+    ];
+    for p in sets {
+        let mut sim = Sim::new(Rsqrt::new("rsqrt", p).unwrap()).check_schedule(true);
+        let lat = sim.dut.latency();
+        assert_eq!(lat, 1 + p.iterations as usize);
+        let t = RsqrtTable::new(p).unwrap();
+        let one = 1u64 << p.mant_frac;
+        let step = (3 * one) / 500;
+        let inputs: Vec<u64> = (0..500u64).map(|k| one + k * step).collect();
+        let mut outs = Vec::new();
+        for k in 0..inputs.len() + lat {
+            sim.dut.m.set_bits(*inputs.get(k).unwrap_or(&one));
+            sim.eval();
+            if k >= lat {
+                outs.push(sim.dut.y.bits());
+            }
+            sim.tick();
         }
-        sim.tick();
+        let want: Vec<u64> = inputs.iter().map(|&m| rsqrt(&t, m)).collect();
+        assert_eq!(outs, want, "{p:?}");
+        if p.y_frac == 8 {
+            assert_eq!(outs[0], 1 << 8, "1/sqrt(1) is 1.0 at 8 bits");
+        }
     }
-    let want: Vec<u64> = inputs.iter().map(|&m| rsqrt(&t, m)).collect();
-    assert_eq!(outs, want);
 }
