@@ -78,7 +78,7 @@ fn exhaustive_other_parameters() {
 #[test]
 fn module_matches_function_with_latency() {
     // The default; a 12-bit table at 8 fraction bits, whose first entry rounds to exactly 1.0
-    // (the output's integer bit); three iterations on a small table.
+    // (the output's integer bit); three iterations on a small table; the widest formats.
     let sets = [
         RsqrtParams::default(),
         RsqrtParams {
@@ -92,6 +92,12 @@ fn module_matches_function_with_latency() {
             iterations: 3,
             mant_frac: 30,
             y_frac: 30,
+        },
+        RsqrtParams {
+            table_bits: 14,
+            iterations: 1,
+            mant_frac: 40,
+            y_frac: 40,
         },
     ];
     for p in sets {
