@@ -69,9 +69,7 @@ fn tangent_formulas() {
             let t = Tangent::new("tan", &p);
             let (bl, f, sc) = (p.bilinear_fmt(), p.blend_bits, p.scale_fmt());
             let mut x = TangentIn::default();
-            for k in 0..8 {
-                x.rgba[k] = (raw[k] & bl.max_raw() as u64) as i64;
-            }
+            x.rgba = raw.map(|v| (v & bl.max_raw() as u64) as i64);
             let blend = |k: usize| (factors[k] % (1 << f)) as i64;
             (x.tu, x.tv, x.tu1, x.tv1, x.lod) = (blend(0), blend(1), blend(2), blend(3), blend(4));
             x.scale = (factors[5] & sc.max_raw() as u64) as i64;
