@@ -68,11 +68,16 @@ fn tangent_formulas() {
             prop_assert_eq!(p.validate(), Ok(()));
             let t = Tangent::new("tan", &p);
             let (bl, f, sc) = (p.bilinear_fmt(), p.blend_bits, p.scale_fmt());
-            let mut x = TangentIn::default();
-            x.rgba = raw.map(|v| (v & bl.max_raw() as u64) as i64);
             let blend = |k: usize| (factors[k] % (1 << f)) as i64;
-            (x.tu, x.tv, x.tu1, x.tv1, x.lod) = (blend(0), blend(1), blend(2), blend(3), blend(4));
-            x.scale = (factors[5] & sc.max_raw() as u64) as i64;
+            let x = TangentIn {
+                rgba: raw.map(|v| (v & bl.max_raw() as u64) as i64),
+                tu: blend(0),
+                tv: blend(1),
+                tu1: blend(2),
+                tv1: blend(3),
+                lod: blend(4),
+                scale: (factors[5] & sc.max_raw() as u64) as i64,
+            };
             let (du, dv, h) = t.compute(&x);
             let real = |v: i64, frac: i32| v as f64 / f64::from(frac).exp2();
             let c = x.rgba.map(|v| real(v, bl.frac()));
