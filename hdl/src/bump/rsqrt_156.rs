@@ -161,8 +161,9 @@ impl Module for Rsqrt {
     #[inline]
     fn eval(&mut self) {
         let m = self.m.bits();
-        // Stage 0: table lookup (an input of zero, never produced by unit 156 since its sum of
-        // squares is at least 1, gives 0).
+        // Stage 0: table lookup. An input below 1 (zero, when idle; never from unit 156, whose
+        // sum of squares is at least 1) gives 0 at every stage, as the Verilog twin's
+        // `below_one`.
         let y0 = if m >> self.table.p.mant_frac == 0 {
             0
         } else {
@@ -250,5 +251,33 @@ mod tests {
         };
         // 256/sqrt(1.5) = 209.02, 256/sqrt(3) = 147.80.
         assert_eq!(RsqrtTable::new(p).unwrap().entries(), &[209, 148]);
+    }
+
+    /// Below 1 (outside the mantissa's range) every stage gives 0; from 1 up the table and
+    /// the iterations.
+    #[test]
+    fn inputs_below_one_give_zero_at_every_stage() {
+        use crate::kernel::Sim;
+        // Without iterations the table stage's check alone decides; with them, each stage's.
+        for iterations in [0, 2] {
+            let p = RsqrtParams {
+                iterations,
+                ..RsqrtParams::default()
+            };
+            let mut sim = Sim::new(Rsqrt::new("rsqrt_156", p).unwrap()).check_schedule(true);
+            let one = 1u64 << p.mant_frac;
+            let inputs = [0, 1, one - 1, one, one >> 1, 3 * one, one - 1, 4 * one - 1];
+            let lat = sim.dut.latency();
+            let table = RsqrtTable::new(p).unwrap();
+            for c in 0..inputs.len() + lat {
+                sim.dut.m.set_bits(*inputs.get(c).unwrap_or(&0));
+                sim.eval();
+                if let Some(&m) = c.checked_sub(lat).and_then(|k| inputs.get(k)) {
+                    let want = if m < one { 0 } else { rsqrt(&table, m) };
+                    assert_eq!(sim.dut.y.bits(), want, "{iterations}: m {m:#x}");
+                }
+                sim.tick();
+            }
+        }
     }
 }
