@@ -413,5 +413,12 @@ mod tests {
         };
         assert!(p.validate().unwrap_err().contains("max_log2_n 7"));
         assert!(SetupUnit::new("s", p).is_err());
+        for max_log2_n in [0, MAX_LOG2_N] {
+            let p = SetupParams {
+                max_log2_n,
+                ..Default::default()
+            };
+            assert_eq!(p.validate(), Ok(()), "{max_log2_n}");
+        }
     }
 }
