@@ -315,6 +315,26 @@ fn textures_that_do_not_fit_are_refused() {
     );
     assert!(TexParams::new(6, 8).validate().is_err());
     assert!(TexParams::new(0, 8).validate().is_err());
+    // Sides: multiples of 4 in 4..=4096 (12 coordinate bits); frac_bits 1..=8.
+    for (w, h, ok) in [
+        (4, 4, true),
+        (4096, 4, true),
+        (4, 4096, true),
+        (4100, 4, false),
+    ] {
+        assert_eq!(TexParams::new(w, h).validate().is_ok(), ok, "{w}x{h}");
+    }
+    assert!(TexParams::new(8, 4100)
+        .validate()
+        .unwrap_err()
+        .contains("height 4100"));
+    for (f, ok) in [(0, false), (1, true), (8, true), (9, false)] {
+        let p = TexParams {
+            frac_bits: f,
+            ..TexParams::new(8, 8)
+        };
+        assert_eq!(p.validate().is_ok(), ok, "frac_bits {f}");
+    }
 }
 
 // ---- the command line ----

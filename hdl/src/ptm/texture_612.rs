@@ -142,4 +142,52 @@ mod tests {
         assert_eq!(f.quantise(0, 1 << 30), 255);
         assert_eq!(f.coefficient(0, 7), -72);
     }
+
+    /// The format's ranges at both ends, and what P may be.
+    #[test]
+    fn validate_and_for_pinv_refuse_what_does_not_fit() {
+        let f = |bits: u32, e: u32, b: i64| {
+            let mut f = PtmFormat {
+                bits,
+                exp: [0; 6],
+                bias: [0; 6],
+            };
+            (f.exp[5], f.bias[5]) = (e, b);
+            f.validate()
+        };
+        let big = (1i64 << 40) - 1;
+        for (bits, e, b) in [(8, 0, 0), (16, 40, big), (8, 0, -big)] {
+            assert_eq!(f(bits, e, b), Ok(()), "{bits} {e} {b}");
+        }
+        assert!(f(12, 0, 0).unwrap_err().starts_with("bits 12"));
+        assert!(f(32, 0, 0).unwrap_err().starts_with("bits 32"));
+        assert!(f(8, 41, 0).unwrap_err().starts_with("exponent 41"));
+        assert!(f(8, 0, big + 1).unwrap_err().starts_with("bias"));
+        assert!(f(8, 0, -big - 1).unwrap_err().starts_with("bias"));
+        // P: six rows of one length, 1..=MAX_LIGHTS.
+        let rows = |n: usize| -> [Vec<i32>; 6] { std::array::from_fn(|_| vec![1; n]) };
+        assert!(PtmFormat::for_pinv(&rows(1), 8).is_ok());
+        assert!(PtmFormat::for_pinv(&rows(MAX_LIGHTS), 8).is_ok());
+        assert!(PtmFormat::for_pinv(&rows(0), 8).is_err());
+        assert!(PtmFormat::for_pinv(&rows(MAX_LIGHTS + 1), 8).is_err());
+        let mut ragged = rows(3);
+        ragged[4].pop();
+        assert!(PtmFormat::for_pinv(&ragged, 8).is_err());
+        assert!(PtmFormat::for_pinv(&rows(3), 12).is_err(), "bits checked");
+    }
+
+    /// Entries in units of 2^-40 rounded half up to sQ7.20, inside `[-2^27, 2^27)`.
+    #[test]
+    fn p_raw_rounds_half_up_and_refuses_what_sq7_20_cannot_hold() {
+        let lim = 1i64 << (P_BITS - 1);
+        let one_row = |x: i64| -> [Vec<i64>; 6] { std::array::from_fn(|_| vec![x]) };
+        let got = |x: i64| p_raw(&one_row(x)).map(|r| r[0][0]);
+        assert_eq!(got(3 << 19), Ok(2), "1.5 rounds up");
+        assert_eq!(got((3 << 19) - 1), Ok(1));
+        assert_eq!(got(-3 << 19), Ok(-1), "-1.5 rounds up");
+        assert_eq!(got((lim - 1) << 20), Ok((lim - 1) as i32));
+        assert_eq!(got(-lim << 20), Ok(-lim as i32));
+        assert!(got(lim << 20).unwrap_err().contains("outside sQ7.20"));
+        assert!(got((-lim - 1) << 20).is_err());
+    }
 }

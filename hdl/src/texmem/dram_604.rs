@@ -297,3 +297,48 @@ impl Module for Dram {
         v.leave();
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn check(set: impl Fn(&mut DramParams)) -> Result<(), String> {
+        let mut p = DramParams::default();
+        set(&mut p);
+        p.validate()
+    }
+
+    /// Each range at both ends, and one beyond, naming the parameter.
+    #[test]
+    fn validate_takes_each_range_at_both_ends() {
+        assert_eq!(DramParams::default().validate(), Ok(()));
+        assert_eq!(DramParams::one_meg().words(), 1 << 20);
+        for v in [2, 2048] {
+            assert_eq!(check(|p| p.rows = v), Ok(()), "rows {v}");
+            assert_eq!(check(|p| p.cols = v), Ok(()), "cols {v}");
+        }
+        for v in [0, 1, 3, 1536, 4096] {
+            assert!(
+                check(|p| p.rows = v).unwrap_err().starts_with("rows"),
+                "{v}"
+            );
+            assert!(check(|p| p.cols = v).unwrap_err().starts_with("page words"));
+        }
+        type Set = fn(&mut DramParams, u32);
+        let timings: [(&str, Set, u32); 5] = [
+            ("t_rp", |p, v| p.t_rp = v, 1),
+            ("t_rcd", |p, v| p.t_rcd = v, 1),
+            ("t_cp", |p, v| p.t_cp = v, 1),
+            ("cycle_ns", |p, v| p.cycle_ns = v, 1),
+            ("t_cas", |p, v| p.t_cas = v, 2),
+        ];
+        for (name, set, lo) in timings {
+            assert_eq!(check(|p| set(p, lo)), Ok(()), "{name} {lo}");
+            assert_eq!(check(|p| set(p, 1000)), Ok(()), "{name} 1000");
+            for bad in [lo - 1, 1001] {
+                let e = check(|p| set(p, bad)).unwrap_err();
+                assert!(e.starts_with(&format!("{name} {bad}: ")), "{e}");
+            }
+        }
+    }
+}
