@@ -224,7 +224,7 @@ impl Derivative {
             -i128::from(dy) * i128::from(scale),
             z,
         ];
-        unit(vct, 0, &self.table, &self.p)
+        unit(vct, &self.table, &self.p)
     }
 }
 

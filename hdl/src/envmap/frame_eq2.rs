@@ -20,6 +20,7 @@
 //! | `n`, `e1`, `e2` | sQ1.14 |
 //! | `nb` | sQ2.14 (reflection unit's input) |
 
+use crate::bump::normal_156::normalise;
 use crate::bump::params::{RsqrtParams, ROUND, SAT};
 use crate::bump::rsqrt_156::{rsqrt, RsqrtTable};
 use crate::fx::{quantise, Format};
@@ -27,26 +28,17 @@ use crate::fx::{quantise, Format};
 /// Fraction bits of the vectors.
 pub const FRAC: u32 = 14;
 
-/// `(k, m)` with `s 2^-frac = m 4^k`, `m` in [1, 4) truncated to `mf` fraction bits, for any
-/// `s > 0`.
-fn normalise(s: u128, frac: u32, mf: u32) -> (i32, u64) {
-    let l = 128 - s.leading_zeros() as i32; // bit length
-                                            // Value exponent of the leading one: l - 1 - frac; k = floor of half of it.
-    let k = (l - 1 - frac as i32).div_euclid(2);
-    let shift = frac as i32 + 2 * k - mf as i32;
-    let m = if shift >= 0 { s >> shift } else { s << -shift };
-    (k, m as u64)
-}
-
-/// `v / |v|` for `v` raw with `frac` fraction bits (not zero), each component rounded once
-/// to sQ1.14.
-pub(crate) fn unit(v: [i128; 3], frac: u32, table: &RsqrtTable, p: &RsqrtParams) -> [i64; 3] {
+/// `v / |v|`, each component rounded once to sQ1.14, for any nonzero `v`. The quotient has
+/// no units, so `v`'s binary point does not matter and `v` is read as an integer:
+/// `|v|^2 = m 4^k` with `m` in [1, 4) (unit 156's `normalise`), `y = rsqrt(m)`, then
+/// `v_c y 2^-k`.
+pub(crate) fn unit(v: [i128; 3], table: &RsqrtTable, p: &RsqrtParams) -> [i64; 3] {
     let s: u128 = v.iter().map(|c| (c * c) as u128).sum();
-    let (k, m) = normalise(s, 2 * frac, p.mant_frac);
+    let (k, m) = normalise(s, 0, p.mant_frac);
     let y = i128::from(rsqrt(table, m));
     let out = Format::signed(16, FRAC as i32);
-    // c y 2^-k: fraction bits frac + y_frac + k.
-    v.map(|c| quantise(c * y, frac as i32 + p.y_frac as i32 + k, out, ROUND, SAT) as i64)
+    // v_c y 2^-k: fraction bits y_frac + k.
+    v.map(|c| quantise(c * y, (p.y_frac + k) as i32, out, ROUND, SAT) as i64)
 }
 
 fn cross(a: [i128; 3], b: [i128; 3]) -> [i128; 3] {
@@ -95,7 +87,7 @@ impl FrameUnit {
         if n1 == [0; 3] {
             return None;
         }
-        let n = unit(n1, FRAC, &self.table, &self.p);
+        let n = unit(n1, &self.table, &self.p);
         let nw = n.map(i128::from);
         let one = 1i128 << FRAC;
         let mut c = cross(h.map(i128::from), nw);
@@ -107,7 +99,7 @@ impl FrameUnit {
             parallel = true;
             c = cross(axis, nw);
         }
-        let e1 = unit(c, 2 * FRAC, &self.table, &self.p);
+        let e1 = unit(c, &self.table, &self.p);
         let e2w = cross(nw, e1.map(i128::from));
         let out = Format::signed(16, FRAC as i32);
         let e2 = e2w.map(|x| quantise(x, 2 * FRAC as i32, out, ROUND, SAT) as i64);
@@ -132,14 +124,6 @@ impl FrameUnit {
 #[cfg(test)]
 mod tests {
     use super::*;
-
-    #[test]
-    fn normalise_covers_values_below_one() {
-        // 1/4 = 1 * 4^-1; 3 = 3 * 4^0; 16 = 1 * 4^2 (frac 8, mf 4).
-        assert_eq!(normalise(64, 8, 4), (-1, 16));
-        assert_eq!(normalise(3 << 8, 8, 4), (0, 48));
-        assert_eq!(normalise(16 << 8, 8, 4), (2, 16));
-    }
 
     #[test]
     fn the_axes_give_the_axes() {

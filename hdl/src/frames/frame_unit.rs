@@ -74,9 +74,9 @@ impl FrameMath {
         }
     }
 
-    /// `v / |v|` in sQ1.14 for `v` with `frac` fraction bits, or `None` for zero.
-    fn unit(&self, v: [i128; 3], frac: u32) -> Option<[i64; 3]> {
-        (v != [0; 3]).then(|| unit(v, frac, &self.table, &self.p))
+    /// `v / |v|` in sQ1.14 (at any binary point of `v`), or `None` for zero.
+    fn unit(&self, v: [i128; 3]) -> Option<[i64; 3]> {
+        (v != [0; 3]).then(|| unit(v, &self.table, &self.p))
     }
 
     /// Gram-Schmidt of `(t, b)` against `n` (all raw sQ1.14): unit N, t, and b = s N x t.
@@ -87,14 +87,14 @@ impl FrameMath {
         n: [i64; 3],
     ) -> ([i64; 3], [i64; 3], [i64; 3]) {
         let nu = self
-            .unit(n.map(i128::from), VEC_FRAC)
+            .unit(n.map(i128::from))
             .unwrap_or([0, 0, 1 << VEC_FRAC]);
         let nw = nu.map(i128::from);
         let tw = t.map(i128::from);
         // t - (n.t) n in units of 2^-42.
         let d = dot(nw, tw);
         let r: [i128; 3] = std::array::from_fn(|c| (tw[c] << 28) - d * nw[c]);
-        let tu = self.unit(r, 3 * VEC_FRAC).unwrap_or([0; 3]);
+        let tu = self.unit(r).unwrap_or([0; 3]);
         let nt = cross(nw, tu.map(i128::from));
         let s = if dot(b.map(i128::from), nt) < 0 {
             -1
@@ -119,10 +119,10 @@ impl FrameMath {
         let v: [i128; 3] = std::array::from_fn(|c| {
             a * i128::from(n[c]) + gx * i128::from(t[c]) + gy * i128::from(b[c])
         });
-        let (out, zero) = match self.unit(v, VEC_FRAC + W_FRAC) {
+        let (out, zero) = match self.unit(v) {
             Some(u) => (u, false),
             None => (
-                self.unit(n.map(i128::from), VEC_FRAC)
+                self.unit(n.map(i128::from))
                     .unwrap_or([0, 0, 1 << VEC_FRAC]),
                 true,
             ),

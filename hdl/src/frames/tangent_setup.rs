@@ -129,7 +129,7 @@ impl TangentMath {
             s.zero = true;
             return;
         }
-        s.t = unit(r, POS_FRAC + 28, &self.rsqrt, &self.p);
+        s.t = unit(r, &self.rsqrt, &self.p);
         let nt = cross(n, s.t.map(i128::from));
         let dv = s.dpdv.map(i128::from);
         let sign = if (0..3).map(|c| nt[c] * dv[c]).sum::<i128>() < 0 {
