@@ -63,6 +63,37 @@ fn the_unit_registers_the_function() {
     assert_eq!(f, 2, "+y is the major axis");
 }
 
+/// The reflection unit: one register stage holding `reflect` of what it was given while
+/// `valid_in` was high, and holding it through a cycle without.
+#[test]
+fn the_reflection_unit_registers_the_function_and_holds() {
+    use hdl::envmap::reflect_eq4::{reflect, Reflect};
+    let mut sim = Sim::new(Reflect::new()).check_schedule(true);
+    sim.reset(1);
+    let (nb, v) = ([3_000i64, -20_000, 9_000], [-5_000i64, 7_000, 14_000]);
+    let want = reflect(nb, v);
+    for c in 0..3 {
+        sim.dut.nb[c].set_raw(nb[c]);
+        sim.dut.v[c].set_raw(v[c]);
+    }
+    sim.dut.valid_in.set_bool(true);
+    sim.eval();
+    assert!(!sim.dut.valid.q().is_high());
+    sim.tick();
+    // The inputs change but valid_in is low: the result stays, valid falls a cycle later.
+    sim.dut.valid_in.set_bool(false);
+    sim.dut.v[0].set_raw(1);
+    sim.eval();
+    let got = |d: &Reflect| d.w.each_ref().map(|r| r.q().raw());
+    assert!(sim.dut.valid.q().is_high());
+    assert_eq!(got(&sim.dut), want);
+    assert_ne!(want, [0; 3]);
+    sim.tick();
+    sim.eval();
+    assert!(!sim.dut.valid.q().is_high());
+    assert_eq!(got(&sim.dut), want);
+}
+
 /// Eq. 4 against f64 on 100,000 random perturbed normals (`n + e1 b1 + e2 b2` with
 /// |b_i| < 1, so |n_b|^2 < 3) and unit eye vectors: within half an LSB of sQ3.16 (one
 /// rounding of the exact value); the angle to n_b is the eye's; chained into the cube-face
