@@ -109,4 +109,19 @@ fn sizes_are_checked() {
         };
         assert!(MipmapGen::new("m", p).is_err(), "{w}x{h}");
     }
+    // The ends that pass: 1 and 1024 on either side; two lines are enough for interlace.
+    for (w, h, scan) in [
+        (1, 1, Scan::Progressive),
+        (1024, 1, Scan::Progressive),
+        (1, 1024, Scan::Progressive),
+        (8, 2, Scan::InterlacedBottom),
+    ] {
+        let p = MipmapParams {
+            width: w,
+            height: h,
+            scan,
+            rounding: Rounding::Round,
+        };
+        assert_eq!(p.validate(), Ok(()), "{w}x{h}");
+    }
 }
