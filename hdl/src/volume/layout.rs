@@ -254,5 +254,25 @@ mod tests {
         p.row_words = 64;
         p.slot_cycles = 0;
         assert!(e(p).contains("slot_cycles 0"));
+        // Each range's ends pass, one beyond fails.
+        let room = (0..4).map(|b| u64::from(bank_words(b))).min().unwrap();
+        let z_max = (room / (128 * 128)) as u32;
+        for (x, y, z) in [(2, 2, 1), (2, 256, 256), (256, 2, 256), (256, 256, z_max)] {
+            assert_eq!(VolumeParams::new(x, y, z).validate(), Ok(()), "{x}x{y}x{z}");
+        }
+        assert!(e(VolumeParams::new(256, 256, z_max + 1)).contains("words a bank"));
+        assert!(e(VolumeParams::new(0, 4, 4)).contains("x size 0"));
+        assert!(e(VolumeParams::new(4, 4, 257)).contains("z size 257"));
+        let with = |rw: u32, sc: u32| {
+            let mut p = VolumeParams::new(4, 4, 4);
+            (p.row_words, p.slot_cycles) = (rw, sc);
+            p.validate()
+        };
+        for (rw, sc) in [(16, 1), (65536, 15)] {
+            assert_eq!(with(rw, sc), Ok(()), "{rw} {sc}");
+        }
+        assert!(with(8, 6).unwrap_err().contains("row_words 8"));
+        assert!(with(131072, 6).unwrap_err().contains("row_words 131072"));
+        assert!(with(64, 16).unwrap_err().contains("slot_cycles 16"));
     }
 }
