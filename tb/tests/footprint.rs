@@ -102,7 +102,12 @@ fn assembly_matches_the_integer_reference_on_the_stub_and_the_chip() {
     let p = SetupParams::default();
     for q in pixels(wl, hl, 2000, &mut stim) {
         let s = setup(&p, q.r1, q.r2, &t);
+        let (slots0, (n0, faults0)) = (stub.slots(), stub.counts());
         let a = assemble(&mut stub, 0, (q.u, q.v), &s).unwrap();
+        // The pixel's accesses, slots and faults are what the chip counted for it.
+        let (n1, faults1) = stub.counts();
+        let took = (stub.slots() - slots0, n1 - n0, faults1 - faults0);
+        assert_eq!(took, (a.slots.into(), a.n.into(), a.faults.into()), "{q:?}");
         let c = assemble(&mut chip, 0, (q.u, q.v), &s).unwrap();
         assert_eq!(a, c, "{q:?}");
         let (want, points) = ref_assemble(&reference, RefBorder::Mirror, &p, &q);
@@ -121,6 +126,7 @@ fn assembly_matches_the_integer_reference_on_the_stub_and_the_chip() {
         );
     }
     assert_eq!(stub.slots(), chip.slots());
+    assert!(stub.counts().1 > 0, "some pixel faulted");
 }
 
 /// An isotropic footprint (r1 perpendicular to r2, equal lengths) is one access: N = 1 and
