@@ -562,6 +562,14 @@ fn run_pixels<U: SampleTarget, T: Trace>(
     );
     res.score(&sb);
     res.ran(&r);
+    // The assembly's pixel counter (a waveform aid) counts the pixels that came out.
+    let counted = sim.dut.assembly.pixels.q().bits();
+    if counted != res.transactions {
+        res.failures.push(format!(
+            "{}: the pixel counter says {counted}, {} pixels came out",
+            ctx.label, res.transactions
+        ));
+    }
     if res.stats.max_abs_lsb > golden::texram::ERROR_BOUND_LSB {
         res.failures.push(format!(
             "error {:.4} LSB against the f64 mean, bound 0.5",
