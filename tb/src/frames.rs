@@ -16,14 +16,15 @@ pub const FRAME: &str = "frame_unit";
 pub const PARALLAX: &str = "parallax";
 
 /// A pixel for the frame unit: frame (T, B, N raw sQ1.14), weights (a, gx, gy raw sQ3.12),
-/// Gram-Schmidt, and the coverage class of the weights (0 bump, 1 offset decode, 2
-/// symmetric decode).
+/// Gram-Schmidt, the coverage class of the weights (0 bump, 1 offset decode, 2
+/// symmetric decode), and whether the frame is left-handed (B along T x N: mirrored UVs).
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub struct FramePx {
     pub frame: [[i64; 3]; 3],
     pub w: [i64; 3],
     pub gs: bool,
     pub kind: i64,
+    pub left: bool,
 }
 
 /// The component error of one normalisation by 156's rsqrt, rounded to sQ1.14.
@@ -46,7 +47,7 @@ pub fn golden_frame(p: &FramePx) -> Option<([f64; 3], f64)> {
     if !p.gs {
         return Some((n, e));
     }
-    let [t, _, nn] = frame;
+    let [t, b, nn] = frame;
     let nu = normalize(nn).0;
     let along: f64 = (0..3).map(|c| nu[c] * t[c]).sum();
     let perp = (0..3)
@@ -58,7 +59,7 @@ pub fn golden_frame(p: &FramePx) -> Option<([f64; 3], f64)> {
     let dt = s3 * e + 2.0 * dn * (t.iter().map(|x| x * x).sum::<f64>()).sqrt() / perp.max(1e-9);
     let db = 2f64.sqrt() * (dn + dt) + s3 * 2f64.powi(-15);
     let v = perturb(frame, w, true).map(|_| {
-        let f = golden::tangents::orthonormal(nu, t, cross(nu, t));
+        let f = golden::tangents::orthonormal(nu, t, b);
         (0..3)
             .map(|c| (w[0] * nu[c] + w[1] * f.t[c] + w[2] * f.b[c]).powi(2))
             .sum::<f64>()
@@ -69,14 +70,16 @@ pub fn golden_frame(p: &FramePx) -> Option<([f64; 3], f64)> {
 }
 
 /// Random frames near orthonormal (lengths 0.8 to 1.2, a little skew), weights of a bump
-/// (a = 1, slopes within 2) or a normal-map texel (either decode), Gram-Schmidt half the time.
+/// (a = 1, slopes within 2) or a normal-map texel (either decode), Gram-Schmidt half the time,
+/// left-handed (B = T x N, as where a mesh's UVs are mirrored) every other pair.
 pub fn frame_pixels(n: usize, stim: &mut Stimulus) -> Vec<FramePx> {
     (0..n)
         .map(|i| {
             let mut dir = || [0, 1, 2].map(|_| f64::from(stim.draw(&(-1000i32..=1000))));
             let (a, b0) = (normalize(dir()).0, dir());
             let t = normalize(cross(a, b0)).0;
-            let b = cross(a, t);
+            let left = i % 4 >= 2;
+            let b = if left { cross(t, a) } else { cross(a, t) };
             let len = f64::from(stim.draw(&(80i32..=120))) / 100.0;
             let skew = f64::from(stim.draw(&(-10i32..=10))) / 100.0;
             let q = |v: [f64; 3], s: f64| v.map(|c| (c * s * 16384.0).round() as i64);
@@ -116,6 +119,7 @@ pub fn frame_pixels(n: usize, stim: &mut Stimulus) -> Vec<FramePx> {
                 w,
                 gs: i % 2 == 1,
                 kind,
+                left,
             }
         })
         .collect()
@@ -165,6 +169,12 @@ fn frame_coverage() -> Coverage {
             .value("on", 1),
     );
     c.cross("weights_x_gram_schmidt", k, g);
+    let h = c.add(
+        Coverpoint::new("handedness")
+            .value("right", 0)
+            .value("left", 1),
+    );
+    c.cross("handedness_x_gram_schmidt", h, g);
     c
 }
 
@@ -250,7 +260,7 @@ fn run_frames(
                             res.stats.record(*x as f64 * lsb, gc, lsb);
                         }
                     }
-                    cov.sample(&[p.kind, i64::from(p.gs)]);
+                    cov.sample(&[p.kind, i64::from(p.gs), i64::from(p.left)]);
                 }
             }
             Event::Settled { .. } => {}

@@ -2,11 +2,11 @@
 //! testbench, the document's timings, and the detail path's properties.
 
 use hdl::mapchain::drf_812::{DetailMode, Kind};
-use hdl::mapchain::program::{ChainRequest, Program, State};
+use hdl::mapchain::program::{ChainRequest, Fetch, Program, State};
 use hdl::mapchain::walker_812::walk_pixel;
 use hdl::texram::output_820::mul255;
 use hdl::texram::{Border, TexramAccess};
-use tb::mapchain::{pixels, scene, timings, Maps, Scene, Shape, WalkerTb};
+use tb::mapchain::{expectations, pixels, scene, timings, Maps, Scene, Shape, WalkerTb};
 use verif::{Seed, Stimulus};
 
 fn maps() -> Maps {
@@ -222,6 +222,70 @@ fn chains_that_cannot_end_are_flagged() {
     }
     let q = ChainRequest { drf: 5, ..px[0] };
     assert!(colours(&sc, &[q])[0].2);
+}
+
+/// An environment DRF without `new_coords` reads the face the rasterizer gives, at the
+/// pixel's own (u, v) and lambda held at 0 or above; a face beyond 5 (the 3-bit field's 6 and
+/// 7) ends the walk flagged, with no access.
+#[test]
+fn a_given_face_is_read_where_the_rasterizer_says() {
+    let m = maps();
+    let mut sc = scene(Shape::Environment, &m).unwrap();
+    sc.file.drfs[6].as_mut().unwrap().new_coords = false;
+    let tab = *hdl::envmap::cube_face::CubeFace::new().table();
+    let px = pixels(240, &mut Stimulus::new(Seed(7)));
+    for (i, q) in px.iter().enumerate() {
+        let q = ChainRequest {
+            face: (i % 8) as u8,
+            ..*q
+        };
+        let prog = Program {
+            file: &sc.file,
+            px: &q,
+            tab: &tab,
+        };
+        let (w, first) = prog.begin();
+        assert_eq!((w.state, first.map(|f| f.drf)), (State::Texture, Some(0)));
+        let (w, f) = prog.advance(w, 0);
+        if q.face > 5 {
+            assert_eq!((w.state, f), (State::Error, None), "{q:?}");
+        } else {
+            let at = Fetch {
+                drf: 6,
+                plane: q.face,
+                u: q.u,
+                v: q.v,
+                lambda: q.lambda.max(0),
+            };
+            assert_eq!((w.state, f), (State::Environment, Some(at)), "{q:?}");
+        }
+        let (_, n, err) = colours(&sc, &[q])[0];
+        assert_eq!((n, err), if q.face > 5 { (1, true) } else { (2, false) });
+    }
+}
+
+/// Eq. 6 with the environment map's `base_texture` off takes I_d for C_d, not the texture's
+/// colour: the walk within the golden model's bound of that reading (the texture modulates
+/// I_d, so the two readings differ by far more than the bound on most pixels).
+#[test]
+fn without_base_texture_eq6_takes_the_illumination() {
+    let m = maps();
+    let mut sc = scene(Shape::Environment, &m).unwrap();
+    sc.file.drfs[6].as_mut().unwrap().base_texture = false;
+    let px = pixels(300, &mut Stimulus::new(Seed(8)));
+    let (mut checked, mut apart) = (0, 0);
+    for e in expectations(&sc, &px).unwrap() {
+        let g = e.golden.expect("the chain ends");
+        if e.ambiguous {
+            continue;
+        }
+        let got = f64::from(e.reference.colour);
+        assert!((got - g.x).abs() <= g.e, "{} vs {} +- {}", got, g.x, g.e);
+        checked += 1;
+        let with_texture = colours(&scene(Shape::Environment, &m).unwrap(), &[e.px])[0].0;
+        apart += usize::from((f64::from(with_texture) - g.x).abs() > g.e);
+    }
+    assert!(checked > 250 && apart > checked / 2, "{checked} {apart}");
 }
 
 /// The walker's face is the f64 face unless the two largest components of eq. 4's vector are

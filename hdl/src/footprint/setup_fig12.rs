@@ -253,10 +253,6 @@ impl SetupUnit {
         })
     }
 
-    pub fn params(&self) -> &SetupParams {
-        &self.p
-    }
-
     /// The log table (for models that call [`setup`] the way this unit does).
     pub fn table(&self) -> &[i32; 64] {
         &self.table

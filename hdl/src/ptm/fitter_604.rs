@@ -69,10 +69,6 @@ impl Fitter604 {
     pub fn lights(&self) -> usize {
         self.p[0].len()
     }
-
-    pub fn format(&self) -> &PtmFormat {
-        &self.fmt
-    }
 }
 
 impl Module for Fitter604 {

@@ -138,14 +138,6 @@ impl RayCaster {
         self
     }
 
-    pub fn params(&self) -> &VolumeParams {
-        &self.p
-    }
-
-    pub fn mode(&self) -> Mode {
-        self.mode
-    }
-
     /// The access in place `n` of sample `k`'s order, of the point `pos` (raw sQ.12),
     /// starts: its four voxels into the buffer, the page registers, its slots.
     fn start_access(&mut self, n: usize, k: u64, pos: [i64; 3]) {
