@@ -566,8 +566,8 @@ fn run_pixels<U: SampleTarget, T: Trace>(
     let counted = sim.dut.assembly.pixels.q().bits();
     if counted != res.transactions {
         res.failures.push(format!(
-            "{}: the pixel counter says {counted}, {} pixels came out",
-            ctx.label, res.transactions
+            "the pixel counter says {counted}, {} pixels came out",
+            res.transactions
         ));
     }
     if res.stats.max_abs_lsb > golden::texram::ERROR_BOUND_LSB {

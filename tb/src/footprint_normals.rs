@@ -301,6 +301,8 @@ fn run_npixels<T: Trace>(
         });
     let n = want.len() as u64;
     let px: Vec<NPixel> = want.iter().map(|w| w.0).collect();
+    let samples: u64 = px.iter().map(|q| 1u64 << q.log2_n).sum();
+    let mut fed = 0u64;
     let mut pending = want.into_iter();
     let pacing = Pacing::random(300, ctx.seed.derive(9));
     let mut spec = RunSpec::new(n, 20 * n + 200).pacing(pacing);
@@ -316,7 +318,7 @@ fn run_npixels<T: Trace>(
         &mut NMonitor,
         px,
         &mut spec,
-        |_, ev| match ev {
+        |sim, ev| match ev {
             Event::Sent { .. } => sb.expect(pending.next().expect("one a pixel")),
             Event::Received { cycle, txn } => {
                 if let Some((q, _, g)) = sb.observe(cycle, txn).expected {
@@ -326,11 +328,17 @@ fn run_npixels<T: Trace>(
                     cov.sample(&[i64::from(q.log2_n), fi, bi]);
                 }
             }
-            Event::Settled { .. } => {}
+            Event::Settled { .. } => fed += u64::from(sim.dut.pipe.valid_in.is_high()),
         },
     );
     res.score(&sb);
     res.ran(&r);
+    // The generator feeds the pipeline a pixel's N samples and nothing between pixels.
+    if fed != samples {
+        res.failures.push(format!(
+            "{fed} samples went into the pipeline, the pixels have {samples}"
+        ));
+    }
     res.notes.push(format!(
         "{}: {n} pixels, normals within {:.2} LSB of the f64 normal of the averaged tangents (156's tolerance {:.2} LSB)",
         ctx.label,

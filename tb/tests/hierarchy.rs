@@ -144,6 +144,12 @@ fn paths_with(top: &dyn Module, part: &str) -> usize {
         .count()
 }
 
+/// Whether every signal of `top` is under its own scope `scope` (the top's instance name).
+fn all_under(top: &dyn Module, scope: &str) -> bool {
+    let paths = hdl::kernel::signal_paths(top);
+    !paths.is_empty() && paths.iter().all(|p| p.starts_with(&format!("{scope}.")))
+}
+
 /// The units of issues 13-15: every scope their waveforms are read by, with its signals.
 #[test]
 fn the_texram_side_units_visit_every_scope() {
@@ -201,6 +207,14 @@ fn the_texram_side_units_visit_every_scope() {
         );
     }
     assert_eq!(paths_with(&ls, "volume_lockstep.out_"), 3);
+    for (top, scope) in [
+        (&fa as &dyn Module, "footprint_fig12"),
+        (&fn7, "footprint_normals_0081"),
+        (&rc, "ray_caster_fig15"),
+        (&ls, "volume_lockstep"),
+    ] {
+        assert!(all_under(top, scope), "{scope}");
+    }
     assert_eq!(paths_with(&CubeFace::new(), "cube_face."), 8);
     assert_eq!(paths_with(&Reflect::new(), "reflect_eq4."), 11);
     // Every instance's kind, by hand from the modules' documentation.

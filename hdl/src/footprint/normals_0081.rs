@@ -188,5 +188,10 @@ mod tests {
             assert_eq!(to_position(from_position(x, 8), f8), x);
             assert_eq!(from_position(x << 5, 20), x);
         }
+        // At the point's own 15 fraction bits both ways are the identity (no rounding).
+        let f15 = Format::signed(30, 15);
+        for x in [-12345i64, -1, 0, 1, (1 << 29) - 1] {
+            assert_eq!((to_position(x, f15), from_position(x, 15)), (x, x));
+        }
     }
 }
