@@ -246,6 +246,94 @@ fn the_cycle_accurate_chip_matches_the_stub_texel_for_texel_and_slot_for_slot() 
     }
 }
 
+/// The three ways of putting a map into the chip (`load`, level by level with
+/// `write_level`, and `load_map` through the `TexramAccess` interface) store the same texels:
+/// each answers 300 requests as the stub does. `write_level` refuses an unset DRF and a level
+/// the map does not have, and takes its top level.
+#[test]
+fn every_way_of_loading_the_chip_stores_the_same_map() {
+    use hdl::texram::texram_802::{Texram802, Texram802Access, TexramParams};
+    let mut stim = verif::seeded_stimulus("texram loads");
+    let (wl, hl, border) = (5, 3, Border::Wrap);
+    let d = Drf::new(wl, hl, border);
+    let (mut stub, reference) = setup(wl, hl, border, stim.seed().0);
+    let chip = || {
+        let mut c = Texram802::new(TexramParams::default()).unwrap();
+        c.set_drf(0, d).unwrap();
+        c
+    };
+    let mut by_levels = chip();
+    for (k, level) in reference.levels.iter().enumerate() {
+        by_levels.write_level(0, k as u32, level).unwrap();
+    }
+    let mut by_levels = Texram802Access::new(by_levels);
+    let mut by_map = Texram802Access::new(chip());
+    by_map.load_map(&d, &reference.levels[0]).unwrap();
+    let mut by_load = chip();
+    by_load.load(0, &reference.levels[0]).unwrap();
+    let mut by_load = Texram802Access::new(by_load);
+    for (u, v, l) in stim.draw_n(&requests(wl, hl), 300) {
+        let want = stub.access(req(u, v, l)).unwrap();
+        for c in [&mut by_levels, &mut by_map, &mut by_load] {
+            let got = c.access(req(u, v, l)).unwrap();
+            assert_eq!(
+                (got.value, got.texels),
+                (want.value, want.texels),
+                "{u} {v} {l}"
+            );
+        }
+    }
+    let mut c = chip();
+    let top = d.max_level();
+    let e = c.write_level(1, 0, &reference.levels[0]).unwrap_err();
+    assert!(e.contains("drf 1: not set"), "{e}");
+    let e = c.write_level(0, top + 1, &[0]).unwrap_err();
+    assert!(e.contains(&format!("levels 0..={top}")), "{e}");
+    assert_eq!(
+        c.write_level(0, top, &reference.levels[top as usize]),
+        Ok(())
+    );
+}
+
+/// A request to an unset DRF reads nothing: all its texels are 0 (the border colour's
+/// source, 0), even straight after an access that left every bank's word on a texel of 7.
+#[test]
+fn an_unset_drf_reads_zeros_whatever_the_banks_hold() {
+    use hdl::kernel::Sim;
+    use hdl::texram::texram_802::{Texram802, TexramParams};
+    let mut chip = Texram802::new(TexramParams::default()).unwrap();
+    chip.set_drf(0, Drf::new(4, 4, Border::Wrap)).unwrap();
+    chip.load(0, &[7; 256]).unwrap();
+    let mut sim = Sim::new(chip).check_schedule(true);
+    sim.reset(2);
+    let mut out = Vec::new();
+    for drf in [0u64, 1, 0, 1] {
+        let d = &mut sim.dut;
+        d.req_drf.set_bits(drf);
+        d.req_u.set_raw(300);
+        d.req_v.set_raw(500);
+        d.req_lambda.set_raw(-256);
+        d.req_valid.set_bool(true);
+        sim.eval();
+        while !sim.dut.req_ready.is_high() {
+            sim.tick();
+            sim.eval();
+        }
+        sim.tick();
+        sim.dut.req_valid.set_bool(false);
+        for _ in 0..100 {
+            sim.eval();
+            if sim.dut.out_valid.q().is_high() {
+                out.push(sim.dut.out_texels.q().bits());
+                sim.tick();
+                break;
+            }
+            sim.tick();
+        }
+    }
+    assert_eq!(out, [0x0707_0707_0707_0707, 0, 0x0707_0707_0707_0707, 0]);
+}
+
 #[test]
 fn the_chip_waveform_has_one_scope_per_unit() {
     use hdl::texram::texram_802::{Texram802, TexramParams};

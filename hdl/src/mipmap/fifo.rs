@@ -178,9 +178,11 @@ mod tests {
     #[test]
     fn order_occupancy_and_errors() {
         let mut sim = Sim::new(Fifo::new("fifo_1408", 3, 9).unwrap()).check_schedule(true);
+        assert!(sim.dut.is_empty());
         assert_eq!(cycle(&mut sim, None, true, false), 2, "pop from empty");
         for v in 1..=3 {
             assert_eq!(cycle(&mut sim, Some(v), false, false), 0);
+            assert!(!sim.dut.is_empty());
         }
         assert_eq!(cycle(&mut sim, Some(4), false, false), 1, "push into full");
         assert_eq!(sim.dut.len(), 3);
@@ -196,6 +198,8 @@ mod tests {
         assert_eq!(cycle(&mut sim, Some(7), false, true), 0, "clear, then push");
         assert_eq!(sim.dut.iter().collect::<Vec<_>>(), vec![7]);
         assert_eq!(sim.dut.max_occupancy(), 3);
+        assert_eq!(cycle(&mut sim, None, true, false), 0);
+        assert!(sim.dut.is_empty() && sim.dut.front().is_none());
         assert!(Fifo::new("fifo_1412", 0, 8).is_err());
     }
 }

@@ -503,3 +503,32 @@ impl Module for MipmapGen {
         v.leave();
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// The command line's names of the scan orders and roundings, each to its own variant;
+    /// anything else refused with the value and the choices.
+    #[test]
+    fn scan_and_rounding_names_parse_to_their_variants() {
+        let scans = [
+            ("progressive", Scan::Progressive),
+            ("interlaced-top", Scan::InterlacedTop),
+            ("interlaced-bottom", Scan::InterlacedBottom),
+        ];
+        for (name, scan) in scans {
+            assert_eq!(name.parse::<Scan>(), Ok(scan));
+        }
+        let e = "interlaced".parse::<Scan>().unwrap_err();
+        assert!(
+            e.contains("'interlaced'") && e.contains("interlaced-bottom"),
+            "{e}"
+        );
+        for (name, r) in [("round", Rounding::Round), ("truncate", Rounding::Truncate)] {
+            assert_eq!(name.parse::<Rounding>(), Ok(r));
+        }
+        let e = "floor".parse::<Rounding>().unwrap_err();
+        assert!(e.contains("'floor'") && e.contains("truncate"), "{e}");
+    }
+}

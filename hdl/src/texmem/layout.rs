@@ -114,6 +114,15 @@ mod tests {
     use super::*;
     use std::collections::HashSet;
 
+    /// Each layout's name parses back to it; other names to nothing.
+    #[test]
+    fn layout_names_parse_back() {
+        for l in [Layout::RowMajor, Layout::Tiled] {
+            assert_eq!(Layout::parse(l.name()), Some(l));
+        }
+        assert_eq!(Layout::parse("Tiled"), None);
+    }
+
     #[test]
     fn layouts_are_injective_and_inside_the_footprint() {
         for layout in [Layout::RowMajor, Layout::Tiled] {
