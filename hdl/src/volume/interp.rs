@@ -38,7 +38,6 @@ fn voxel(
 ) -> i64 {
     let t = |x: usize, y: usize| x + 2 * y;
     let at = match (ox, oy, oz) {
-        (0, 0, 0) => 4 * dz + t(dx, dy),
         // Columns i-1 (slot 0) and i+2 (slot 1) of accesses 3-4: x = -1 or 2.
         (-1, 0, 0) | (1, 0, 0) => {
             let x = dx as i32 + ox;
@@ -56,6 +55,7 @@ fn voxel(
                 16 + 4 * dz + t(dx, usize::from(y == 2))
             }
         }
+        // Along z (and no offset, z = dz): slices k-1 and k+2 beyond the 2x2x2.
         _ => {
             let z = dz as i32 + oz;
             if (0..=1).contains(&z) {
