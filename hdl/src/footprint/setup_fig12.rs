@@ -133,15 +133,13 @@ fn log_table() -> [i32; 1 << LUT_BITS] {
 
 /// `1/2 log2(x / 2^16)` in sQ5.8, held to the TEXRAM's range; `x = 0` gives the least.
 pub fn half_log2(x: u64, table: &[i32; 64]) -> i32 {
-    if x == 0 {
+    // Below 2^6 the result is under 1/2 log2(2^-10) = -5, far below the least lambda (-4):
+    // the mantissa's six bits always lie below the leading one.
+    if x < 1 << LUT_BITS {
         return LAMBDA_MIN;
     }
     let lead = 63 - x.leading_zeros() as i32;
-    let mant = if lead >= LUT_BITS as i32 {
-        (x >> (lead - LUT_BITS as i32)) & 63
-    } else {
-        (x << (LUT_BITS as i32 - lead)) & 63
-    };
+    let mant = (x >> (lead - LUT_BITS as i32)) & 63;
     let full = (lead - 16) * 256 + table[mant as usize];
     ((full + 1) >> 1).clamp(LAMBDA_MIN, LAMBDA_MAX)
 }
@@ -353,6 +351,11 @@ mod tests {
         assert_eq!(half_log2(0, &t), LAMBDA_MIN);
         assert_eq!(half_log2(1 << 60, &t), LAMBDA_MAX);
         assert_eq!(half_log2(1, &t), LAMBDA_MIN, "2^-16 is below -4");
+        // The least x with a mantissa of its own, 2^6 = 2^-10: -5, held to -4; the last above
+        // the least lambda, 2^8 + 2^2: log2(1 + 1/64) / 2 = 0.011, raw 3 above -1024.
+        assert_eq!(half_log2(63, &t), LAMBDA_MIN);
+        assert_eq!(half_log2(64, &t), LAMBDA_MIN);
+        assert_eq!(half_log2((1 << 8) + (1 << 2), &t), LAMBDA_MIN + 3);
     }
 
     /// Figure 12's cases: a 1 x 2 and a 1 x 4 parallelogram give N = 2 and 4 along the longer
