@@ -229,7 +229,8 @@ impl Monitor<TangentSetup> for SetupMonitor {
 
 /// Random triangles: positions within 8 units, UVs within 2, the face normal (or a
 /// perturbed one, as a vertex normal); every eighth with UVs on a line, every sixteenth all
-/// equal, and half with the UV triangle mirrored.
+/// equal, every sixteenth with its first edge a point in UV (the second edge gives dP/du),
+/// and half with the UV triangle mirrored.
 pub fn triangles(n: usize, stim: &mut Stimulus) -> Vec<Tri> {
     let one = 1i64 << POS_FRAC;
     (0..n)
@@ -239,6 +240,7 @@ pub fn triangles(n: usize, stim: &mut Stimulus) -> Vec<Tri> {
             match i % 16 {
                 7 => d[1] = [d[0][0] * 2, d[0][1] * 2],
                 15 => d = [[0, 0], [0, 0]],
+                3 => d[0] = [0, 0],
                 k if k % 2 == 1 => d = d.map(|x| [-x[0], x[1]]),
                 _ => {}
             }
@@ -259,7 +261,8 @@ fn coverage_model() -> Coverage {
         Coverpoint::new("uvs")
             .value("triangle", 0)
             .value("on a line", 1)
-            .value("one point", 2),
+            .value("one point", 2)
+            .value("first edge a point", 3),
     );
     c.add(
         Coverpoint::new("handedness")
@@ -362,6 +365,7 @@ fn run_setup(
                     }
                     let kind = match (ft.degenerate, fr.zero) {
                         (false, _) => 0,
+                        (true, false) if q.d[0] == [0, 0] => 3,
                         (true, false) => 1,
                         (true, true) => 2,
                     };
