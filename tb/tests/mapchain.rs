@@ -224,6 +224,21 @@ fn chains_that_cannot_end_are_flagged() {
     assert!(colours(&sc, &[q])[0].2);
 }
 
+/// The walker's slot length is 1 to 15 cycles (its 5-bit busy counter spans a faulting
+/// access's two slots), both ends taken.
+#[test]
+fn the_slot_length_is_checked_at_both_ends() {
+    use hdl::mapchain::walker_812::MapChain812;
+    let sc = scene(Shape::Texture, &maps()).unwrap();
+    for (cycles, ok) in [(0, false), (1, true), (15, true), (16, false)] {
+        let r = MapChain812::new(sc.file.clone(), sc.stub().unwrap(), cycles);
+        match r {
+            Ok(_) => assert!(ok, "{cycles}"),
+            Err(e) => assert!(!ok && e == format!("slot_cycles {cycles}: 1..=15"), "{e}"),
+        }
+    }
+}
+
 /// An environment DRF without `new_coords` reads the face the rasterizer gives, at the
 /// pixel's own (u, v) and lambda held at 0 or above; a face beyond 5 (the 3-bit field's 6 and
 /// 7) ends the walk flagged, with no access.

@@ -262,6 +262,7 @@ impl Placer {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::texram::Config;
 
     #[test]
     fn maps_placed_one_after_the_other_never_share_a_row() {
@@ -311,12 +312,47 @@ mod tests {
         e.map = Drf::new(4, 4, Border::Clamp);
         e.link = Some(7);
         assert!(e.validate().unwrap_err().contains("link 7"));
+        e.link = Some(6);
+        assert_eq!(e.validate(), Ok(()));
+        // One 8-bit component: every other layout refused.
+        for config in [Config::Index, Config::Planar, Config::Literal] {
+            let mut c = ChainDrf::new(Kind::Texture, d);
+            c.map.config = config;
+            let err = c.validate().unwrap_err();
+            assert!(err.contains("one 8-bit component"), "{config:?}: {err}");
+        }
+        // A detail map needs computed coordinates, an environment map may have either, an
+        // offset map has none.
+        let mut dm = ChainDrf::new(Kind::Detail, d);
+        dm.new_coords = false;
+        assert!(dm.validate().unwrap_err().contains("from the offsets"));
+        e.new_coords = false;
+        assert_eq!(e.validate(), Ok(()));
+        let mut o = ChainDrf::new(Kind::Offset, d);
+        assert_eq!(o.validate(), Ok(()));
+        o.new_coords = true;
+        assert!(o.validate().unwrap_err().contains("offset map is read at"));
         let mut f = DrfFile::default();
         f.drfs[0] = Some(ChainDrf {
             link: Some(3),
             ..ChainDrf::new(Kind::Texture, d)
         });
         assert!(f.validate().unwrap_err().contains("not set"));
+        // Offsets end in a detail map: unlinked, or linked to anything else, refused.
+        f.drfs[3] = Some(ChainDrf::new(Kind::Offset, d));
+        assert_eq!(
+            f.validate().unwrap_err(),
+            "drf 3: offsets link to a detail map"
+        );
+        f.drfs[3].as_mut().unwrap().link = Some(4);
+        f.drfs[4] = Some(ChainDrf::new(Kind::Texture, d));
+        let err = f.validate().unwrap_err();
+        assert!(
+            err.contains("drf 3: offsets link to a detail map, not drf 4"),
+            "{err}"
+        );
+        f.drfs[4] = Some(ChainDrf::new(Kind::Detail, d));
+        assert_eq!(f.validate(), Ok(()));
         for k in Kind::ALL {
             assert_eq!(Kind::parse(k.name()), Some(k));
         }
