@@ -97,3 +97,74 @@ fn the_dram_model_flags_timing_violations() {
     assert!(text.iter().any(|t| t.contains("t_rp")), "{text:?}");
     assert_eq!(d.violations, 3);
 }
+
+/// Drives the pins cycle by cycle: `(ras_n, cas_n, we_n, addr)`; the violations logged.
+fn violations(pins: &[(bool, bool, bool, u64)]) -> Vec<String> {
+    let mut sim = Sim::new(Dram::new("dram", DramParams::default()).unwrap());
+    for &(ras, cas, we, addr) in pins {
+        let d = &mut sim.dut;
+        d.ras_n.set_bool(ras);
+        d.cas_n.set_bool(cas);
+        d.we_n.set_bool(we);
+        d.oe_n.set_bool(true);
+        d.addr.set_bits(addr);
+        sim.step();
+    }
+    assert_eq!(sim.dut.violations, sim.dut.log.len() as u64);
+    sim.dut.log.iter().map(|v| v.what.clone()).collect()
+}
+
+/// The model's other rules, each broken once on its own (512 x 512 words, every timing 3
+/// cycles): a write, a row or a column beyond the array, CAS# with no open row, a short CAS#
+/// precharge; the same cycles with the rules kept log nothing. The back-door load takes
+/// exactly the array and no word more.
+#[test]
+fn the_dram_model_flags_each_rule_it_checks() {
+    let open = |row: u64| [(true, true, true, 0), (false, true, true, row)];
+    let wait = (false, true, true, 0);
+    let cas = |col: u64| [(false, false, true, col); 3];
+    // A read of (row, col) with every timing met: RAS# fall, t_rcd, CAS# low t_cas.
+    let read = |row: u64, col: u64| {
+        let mut v = vec![(true, true, true, 0); 3];
+        v.extend(open(row));
+        v.extend([wait, wait]);
+        v.extend(cas(col));
+        v.push(wait);
+        v
+    };
+    assert_eq!(violations(&read(511, 511)), Vec::<String>::new());
+    let one = |pins: Vec<(bool, bool, bool, u64)>, what: &str| {
+        let v = violations(&pins);
+        assert!(v.len() == 1 && v[0].contains(what), "{what}: {v:?}");
+    };
+    one(read(512, 0), "row 512 beyond 512 rows");
+    one(read(0, 512), "column 512 beyond 512 words per page");
+    let mut write = read(3, 4);
+    write[7].2 = false;
+    one(write, "WE# low");
+    let mut no_row = vec![(true, true, true, 0); 4];
+    no_row.extend([(true, false, true, 0); 3]);
+    no_row.push((true, true, true, 0));
+    one(no_row, "no open row");
+    // Page mode: CAS# high for t_cp cycles between reads is kept, for one cycle it is not.
+    let mut page = read(1, 1);
+    page.extend([wait, wait]);
+    page.extend(cas(2));
+    page.push(wait);
+    assert_eq!(violations(&page), Vec::<String>::new());
+    let mut short = read(1, 1);
+    short.extend(cas(2));
+    short.push(wait);
+    one(short, "CAS# precharge 1 cycles < t_cp 3");
+    let mut d = Dram::new("dram", DramParams::default()).unwrap();
+    let words = DramParams::default().words();
+    assert!(d.load(words - 2, &[1, 2]).is_ok());
+    let e = d.load(words - 2, &[1, 2, 3]).unwrap_err();
+    assert_eq!(
+        e,
+        format!(
+            "3 words from {} do not fit the DRAM's {words} words",
+            words - 2
+        )
+    );
+}
