@@ -293,6 +293,8 @@ fn every_way_of_loading_the_chip_stores_the_same_map() {
         c.write_level(0, top, &reference.levels[top as usize]),
         Ok(())
     );
+    let e = c.write_level(0, 0, &[0; 255]).unwrap_err();
+    assert_eq!(e, "drf 0: level 0: 255 texels for 32x8");
 }
 
 /// A request to an unset DRF reads nothing: all its texels are 0 (the border colour's

@@ -105,6 +105,67 @@ fn a_linear_field_gives_exact_gradients_inside() {
 /// Pre-classified RGBA on four chips in lock-step: every sample's four components equal the
 /// reference of their planes (checked inside `render`), the chips never fall out of step,
 /// and the composited picture is not empty.
+/// The caster takes exactly the volume's voxels: one fewer or one more is refused, naming
+/// both counts.
+#[test]
+fn the_voxel_count_is_the_volumes() {
+    use hdl::volume::ray_caster_fig15::RayCaster;
+    let p = VolumeParams::new(4, 4, 4);
+    assert!(RayCaster::new(p, Mode::Value, &[0; 64]).is_ok());
+    for n in [63, 65] {
+        let e = RayCaster::new(p, Mode::Value, &vec![0; n]).err().unwrap();
+        assert_eq!(e, format!("{n} voxels for a 4x4x4 volume (64)"));
+    }
+}
+
+/// A chip in gradient mode (eight accesses a sample) among three in value mode (two) falls
+/// out of step on the first ray: the group flags it the cycle after they first differ, in
+/// ready or in valid, and keeps the flag.
+#[test]
+fn chips_out_of_step_are_flagged_at_once() {
+    use hdl::kernel::Sim;
+    use hdl::volume::lockstep::VolumeLockstep;
+    use hdl::volume::ray_caster_fig15::RayCaster;
+    let p = VolumeParams::new(8, 8, 8);
+    let planes = [0, 1, 2, 3].map(|c| vec![40 * c as u8; 512]);
+    let mut group = VolumeLockstep::new(p, &planes).unwrap();
+    group.chips[3] = RayCaster::new(p, Mode::Gradient, &planes[3])
+        .unwrap()
+        .named("chip_a");
+    let mut sim = Sim::new(group).check_schedule(true);
+    sim.reset(2);
+    let one = 1i64 << hdl::volume::layout::POS_FRAC;
+    let mut first_apart = None;
+    for _ in 0..200 {
+        let d = &mut sim.dut;
+        d.ray_valid.set_bool(true);
+        for (c, (pos, dir)) in [(2, one / 4), (3, one / 8), (1, one / 2)]
+            .into_iter()
+            .enumerate()
+        {
+            d.ray_p[c].set_raw(pos * one);
+            d.ray_d[c].set_raw(dir);
+        }
+        d.ray_steps.set_bits(8);
+        sim.eval();
+        let c = &sim.dut.chips;
+        let differ = |f: &dyn Fn(&RayCaster) -> bool| c.iter().any(|x| f(x) != f(&c[0]));
+        let apart = differ(&|x| x.ray_ready.is_high()) || differ(&|x| x.out_valid.q().is_high());
+        if apart && first_apart.is_none() {
+            first_apart = Some(sim.cycle());
+        }
+        assert!(!sim.dut.out_of_step.q().is_high() || first_apart.is_some());
+        sim.tick();
+        if let Some(at) = first_apart {
+            assert!(
+                sim.dut.out_of_step.q().is_high(),
+                "apart at {at}, not flagged"
+            );
+        }
+    }
+    assert!(first_apart.is_some(), "the chips never fell out of step");
+}
+
 #[test]
 fn four_chips_in_lock_step_render_the_built_in_volume() {
     let (px, samples) = tb::volume::render(16, 12).unwrap();

@@ -132,4 +132,31 @@ mod tests {
             assert!((255 * k - 256 * x).abs() <= 128, "{s}");
         }
     }
+
+    /// P has six rows of one length L in 6..=MAX_LIGHTS (both ends taken), else it is refused.
+    #[test]
+    fn the_pseudo_inverse_shape_is_checked() {
+        let p = |l: usize| std::array::from_fn(|_| vec![0; l]);
+        let fmt = PtmFormat {
+            bits: 8,
+            exp: [4; 6],
+            bias: [0; 6],
+        };
+        for (l, ok) in [
+            (5, false),
+            (6, true),
+            (MAX_LIGHTS, true),
+            (MAX_LIGHTS + 1, false),
+        ] {
+            let r = Fitter604::new(p(l), fmt);
+            assert_eq!(r.is_ok(), ok, "{l}");
+            if let Ok(f) = r {
+                assert_eq!(f.lights(), l);
+            }
+        }
+        let mut ragged: [Vec<i32>; 6] = p(8);
+        ragged[5].pop();
+        let e = Fitter604::new(ragged, fmt).unwrap_err();
+        assert_eq!(e, format!("P: 6 rows of 6..={MAX_LIGHTS} entries"));
+    }
 }

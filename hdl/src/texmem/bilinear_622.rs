@@ -128,4 +128,14 @@ mod tests {
         assert_eq!(lerp2(0, 1, 0, 0, 8, 8, 4), 0);
         assert_eq!(lerp2(1, 1, 0, 0, 8, 8, 4), 1);
     }
+
+    #[test]
+    fn fraction_bits_are_checked_at_both_ends() {
+        for (f, ok) in [(0, false), (1, true), (12, true), (13, false)] {
+            match ColorBilinear::new("b", f) {
+                Ok(_) => assert!(ok, "{f}"),
+                Err(e) => assert!(!ok && e.contains(&format!("frac_bits {f} outside")), "{e}"),
+            }
+        }
+    }
 }
