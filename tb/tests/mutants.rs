@@ -46,5 +46,7 @@ mod unit_rsqrt;
 mod unit_tangent_normal;
 #[path = "unit_texel_fetch.rs"]
 mod unit_texel_fetch;
+#[path = "vectors.rs"]
+mod vectors;
 #[path = "volume.rs"]
 mod volume;
