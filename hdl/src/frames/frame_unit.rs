@@ -270,4 +270,21 @@ mod tests {
         let o = m.perturb(frame, [0, 0, 0], false);
         assert!(o.zero && o.n == [0, 0, one]);
     }
+
+    /// The frame's degenerate inputs: a zero normal is taken as +z (in Gram-Schmidt, and as
+    /// the answer to zero weights with it); a bitangent with no part along N x t (zero, or
+    /// along t) leaves the frame right-handed; one against N x t makes it left-handed.
+    #[test]
+    fn degenerate_frames_have_defined_results() {
+        let m = FrameMath::new();
+        let one = 1i64 << VEC_FRAC;
+        let (x, y, z) = ([one, 0, 0], [0, one, 0], [0, 0, one]);
+        assert_eq!(m.orthonormalise(x, y, [0; 3]), (x, y, z));
+        let o = m.perturb([x, y, [0; 3]], [0, 0, 0], false);
+        assert!(o.zero && o.n == z, "{o:?}");
+        for b in [[0; 3], x] {
+            assert_eq!(m.orthonormalise(x, b, z), (x, y, z), "{b:?}");
+        }
+        assert_eq!(m.orthonormalise(x, [0, -one, 0], z), (x, [0, -one, 0], z));
+    }
 }
