@@ -271,6 +271,24 @@ mod tests {
         assert!(o.zero && o.n == [0, 0, one]);
     }
 
+    /// Every byte decodes to its documented weight exactly, in sQ3.12: `(c - 128) / 128` or
+    /// `(2c - 255) / 256`; blue weighs N, red t and green b.
+    #[test]
+    fn texels_decode_to_their_weights() {
+        for c in 0..=255u8 {
+            let (o, s) = (
+                decode_rgb8([c; 3], Decode::Offset),
+                decode_rgb8([c; 3], Decode::Symmetric),
+            );
+            let w = |raw: i64| raw as f64 / f64::from(1 << W_FRAC);
+            assert_eq!(w(o[0]), (f64::from(c) - 128.0) / 128.0, "{c}");
+            assert_eq!(w(s[0]), (2.0 * f64::from(c) - 255.0) / 256.0, "{c}");
+            assert!(o.iter().all(|&x| x == o[0]) && s.iter().all(|&x| x == s[0]));
+        }
+        let o = decode_rgb8([129, 130, 131], Decode::Offset);
+        assert_eq!(o, [3 << (W_FRAC - 7), 1 << (W_FRAC - 7), 2 << (W_FRAC - 7)]);
+    }
+
     /// The frame's degenerate inputs: a zero normal is taken as +z (in Gram-Schmidt, and as
     /// the answer to zero weights with it); a bitangent with no part along N x t (zero, or
     /// along t) leaves the frame right-handed; one against N x t makes it left-handed.
