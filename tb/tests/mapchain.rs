@@ -1,7 +1,7 @@
 //! Map linking (section 14) with detail, reflectance and environment maps: the regress
 //! testbench, the document's timings, and the detail path's properties.
 
-use hdl::mapchain::drf_812::{DetailMode, Kind};
+use hdl::mapchain::drf_812::{DetailMode, DrfFile, Kind};
 use hdl::mapchain::program::{ChainRequest, Fetch, Program, State};
 use hdl::mapchain::walker_812::walk_pixel;
 use hdl::texram::output_820::mul255;
@@ -15,10 +15,15 @@ fn maps() -> Maps {
 
 /// The colours (and accesses) of `px` through `sc`, access by access on a fresh stub.
 fn colours(sc: &Scene, px: &[ChainRequest]) -> Vec<(u8, u32, bool)> {
+    colours_of(sc, &sc.file, px)
+}
+
+/// The same through DRFs `file` (which may be broken) over `sc`'s maps.
+fn colours_of(sc: &Scene, file: &DrfFile, px: &[ChainRequest]) -> Vec<(u8, u32, bool)> {
     let mut stub = sc.stub().unwrap();
     px.iter()
         .map(|q| {
-            let r = walk_pixel(&sc.file, &mut stub, q).unwrap();
+            let r = walk_pixel(file, &mut stub, q).unwrap();
             (r.colour, r.accesses, r.error)
         })
         .collect()
@@ -222,6 +227,20 @@ fn chains_that_cannot_end_are_flagged() {
     }
     let q = ChainRequest { drf: 5, ..px[0] };
     assert!(colours(&sc, &[q])[0].2);
+    // Offsets that lead nowhere leave the texture's read waiting for a detail (below level
+    // 0): flagged, and at level 0 or above (the offsets unused) not.
+    let sc = scene(Shape::Detail, &m).unwrap();
+    let mut file = sc.file.clone();
+    file.drfs[1].as_mut().unwrap().link = None;
+    for (q, (_, _, err)) in px.iter().zip(colours_of(&sc, &file, &px)) {
+        assert_eq!(err, q.lambda < 0, "{q:?}");
+    }
+    // A reflectance map lit by the environment with no environment map in the chain.
+    let sc = scene(Shape::Reflectance, &m).unwrap();
+    assert!(colours(&sc, &px).iter().all(|c| !c.2));
+    let mut file = sc.file.clone();
+    file.drfs[3].as_mut().unwrap().light_env = true;
+    assert!(colours_of(&sc, &file, &px).iter().all(|c| c.2));
 }
 
 /// The walker's slot length is 1 to 15 cycles (its 5-bit busy counter spans a faulting
