@@ -490,7 +490,8 @@ pub fn walk_pixel<T: TexramAccess>(
     };
     let (mut w, mut f) = prog.begin();
     let mut res = ChainResult::default();
-    loop {
+    // Seven DRFs of at most four states each: a walk ends well within MAX_STEPS.
+    for _ in 0..MAX_STEPS {
         let value = match f {
             Some(f) => {
                 let d = file.get(f.drf).ok_or("no drf")?;
@@ -500,12 +501,19 @@ pub fn walk_pixel<T: TexramAccess>(
                 res.faults += u32::from(r.slots > 1);
                 r.value
             }
-            None if matches!(w.state, State::Combine | State::Error) => break,
+            None if matches!(w.state, State::Combine | State::Error) => {
+                res.error = w.state == State::Error;
+                res.colour = if res.error { 0 } else { prog.colour(&w) };
+                return Ok(res);
+            }
             None => 0,
         };
         (w, f) = prog.advance(w, value);
     }
-    res.error = w.state == State::Error;
-    res.colour = if res.error { 0 } else { prog.colour(&w) };
-    Ok(res)
+    Err(format!(
+        "the micro-program did not end in {MAX_STEPS} steps"
+    ))
 }
+
+/// The most steps [`walk_pixel`] takes before it calls the micro-program stuck.
+const MAX_STEPS: usize = 64;
