@@ -199,7 +199,11 @@ mod tests {
         assert_eq!(sim.dut.iter().collect::<Vec<_>>(), vec![7]);
         // One short of full, a pop and a push together are no overflow.
         assert_eq!(cycle(&mut sim, Some(8), false, false), 0);
-        assert_eq!(cycle(&mut sim, Some(9), true, false), 0, "pop and push, one short");
+        assert_eq!(
+            cycle(&mut sim, Some(9), true, false),
+            0,
+            "pop and push, one short"
+        );
         assert_eq!(sim.dut.iter().collect::<Vec<_>>(), vec![8, 9]);
         assert_eq!(sim.dut.max_occupancy(), 3);
         assert_eq!(cycle(&mut sim, None, true, false), 0);
