@@ -280,9 +280,10 @@ mod tests {
                 decode_rgb8([c; 3], Decode::Offset),
                 decode_rgb8([c; 3], Decode::Symmetric),
             );
-            let w = |raw: i64| raw as f64 / f64::from(1 << W_FRAC);
-            assert_eq!(w(o[0]), (f64::from(c) - 128.0) / 128.0, "{c}");
-            assert_eq!(w(s[0]), (2.0 * f64::from(c) - 255.0) / 256.0, "{c}");
+            // raw / 2^12 = (c - 128) / 128 and (2c - 255) / 256, cross-multiplied.
+            let c = i64::from(c);
+            assert_eq!(o[0] * 128, (c - 128) << W_FRAC, "{c}");
+            assert_eq!(s[0] * 256, (2 * c - 255) << W_FRAC, "{c}");
             assert!(o.iter().all(|&x| x == o[0]) && s.iter().all(|&x| x == s[0]));
         }
         let o = decode_rgb8([129, 130, 131], Decode::Offset);
