@@ -106,6 +106,12 @@ pub fn run_mipmap(
     run_mipmap_checked(p, frames, vcd, false)
 }
 
+/// The frames through a generator in whatever state `sim` left it (reset first, as every
+/// run is).
+pub fn run_mipmap_on(sim: Sim<MipmapGen>, frames: &[Vec<u8>]) -> Result<MipmapOutcome, String> {
+    drive(sim, frames).map(|(_, o)| o)
+}
+
 /// [`run_mipmap`], with the kernel's schedule and edge checks on every cycle when `check`.
 pub fn run_mipmap_checked(
     p: MipmapParams,

@@ -469,7 +469,9 @@ impl Module for MipmapGen {
         }
         self.cycle += 1;
         if reset {
+            // Frame numbers start again at 0: the record of completed frames with them.
             self.frame0 = 0;
+            self.completed.clear();
             for l in &mut self.levels {
                 l.tick(true);
             }
