@@ -16,15 +16,22 @@ pub const FRAME: &str = "frame_unit";
 pub const PARALLAX: &str = "parallax";
 
 /// A pixel for the frame unit: frame (T, B, N raw sQ1.14), weights (a, gx, gy raw sQ3.12),
-/// Gram-Schmidt, the coverage class of the weights (0 bump, 1 offset decode, 2
-/// symmetric decode), and whether the frame is left-handed (B along T x N: mirrored UVs).
+/// Gram-Schmidt, and the coverage class of the weights (0 bump, 1 offset decode, 2
+/// symmetric decode).
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub struct FramePx {
     pub frame: [[i64; 3]; 3],
     pub w: [i64; 3],
     pub gs: bool,
     pub kind: i64,
-    pub left: bool,
+}
+
+impl FramePx {
+    /// Whether B is against N x T (a left-handed frame, as where UVs are mirrored).
+    pub fn left_handed(&self) -> bool {
+        let [t, b, n] = self.frame.map(|v| v.map(|x| x as f64));
+        golden::tangents::handedness(n, t, b) < 0.0
+    }
 }
 
 /// The component error of one normalisation by 156's rsqrt, rounded to sQ1.14.
@@ -119,7 +126,6 @@ pub fn frame_pixels(n: usize, stim: &mut Stimulus) -> Vec<FramePx> {
                 w,
                 gs: i % 2 == 1,
                 kind,
-                left,
             }
         })
         .collect()
@@ -260,7 +266,7 @@ fn run_frames(
                             res.stats.record(*x as f64 * lsb, gc, lsb);
                         }
                     }
-                    cov.sample(&[p.kind, i64::from(p.gs), i64::from(p.left)]);
+                    cov.sample(&[p.kind, i64::from(p.gs), i64::from(p.left_handed())]);
                 }
             }
             Event::Settled { .. } => {}

@@ -4,7 +4,8 @@
 
 use hdl::kernel::{Module, Sim};
 use hdl::mipmap::{MipmapGen, MipmapParams, Rounding, Scan};
-use tb::mipmap::{reference, run_mipmap, synthetic_video};
+use tb::mipmap::{reference, run_mipmap, synthetic_video, video_stream, VideoDriver};
+use verif::Driver;
 use verif::{seeded_stimulus, Seed};
 
 const SCANS: [Scan; 3] = [
@@ -117,28 +118,30 @@ fn sizes_are_checked() {
     }
 }
 
+/// A reset 16 x 8 generator in `scan`, and two frames of video for it.
+fn generator_16x8(scan: Scan, seed: Seed) -> (MipmapParams, Vec<Vec<u8>>, Sim<MipmapGen>) {
+    let p = MipmapParams {
+        width: 16,
+        height: 8,
+        scan,
+        rounding: Rounding::Round,
+    };
+    let mut sim = Sim::new(MipmapGen::new("mipmap_gen_816", p).unwrap());
+    sim.reset(1);
+    (p, synthetic_video(16, 8, 2, seed), sim)
+}
+
 /// The skipped evaluation is exact: whenever the generator leaves an upper level
 /// unevaluated (nothing arriving, the level `quiescent`), evaluating it would have changed
 /// nothing, ports, registers' next values or store alike; and it is the common case (most
 /// of an upper level's cycles), as its documentation says.
 #[test]
 fn a_quiescent_level_is_left_exactly_as_evaluating_it_would_leave_it() {
-    let p = MipmapParams {
-        width: 16,
-        height: 8,
-        scan: Scan::InterlacedTop,
-        rounding: Rounding::Round,
-    };
-    let frames = synthetic_video(16, 8, 2, Seed(11));
-    let mut sim = Sim::new(MipmapGen::new("mipmap_gen_816", p).unwrap());
-    sim.reset(1);
-    let texels: Vec<u8> = frames.iter().flatten().copied().collect();
+    let (p, frames, mut sim) = generator_16x8(Scan::InterlacedTop, Seed(11));
+    let stream = video_stream(&p, &frames);
     let (mut skipped, mut checked) = (0usize, 0usize);
-    for (i, t) in texels.iter().map(Some).chain([None; 64]).enumerate() {
-        let d = &mut sim.dut;
-        d.valid.set_bool(t.is_some());
-        d.sof.set_bool(i % 128 == 0 && t.is_some());
-        d.texel.set_bits(u64::from(*t.unwrap_or(&0)));
+    for (i, t) in stream.iter().map(Some).chain([None; 64]).enumerate() {
+        VideoDriver.drive(&mut sim.dut, t);
         sim.eval();
         let levels = &sim.dut.levels;
         for k in 1..levels.len() {
@@ -169,23 +172,13 @@ fn a_quiescent_level_is_left_exactly_as_evaluating_it_would_leave_it() {
 /// frames a fresh one gives.
 #[test]
 fn a_reset_part_way_restores_every_level() {
-    let p = MipmapParams {
-        width: 16,
-        height: 8,
-        scan: Scan::Progressive,
-        rounding: Rounding::Round,
-    };
-    let frames = synthetic_video(16, 8, 2, Seed(12));
+    let (p, frames, mut sim) = generator_16x8(Scan::Progressive, Seed(12));
     let fresh = run_mipmap(p, &frames, None).unwrap();
-    let mut sim = Sim::new(MipmapGen::new("mipmap_gen_816", p).unwrap());
-    sim.reset(1);
-    for (i, &t) in frames[0].iter().chain(&frames[1][..40]).enumerate() {
-        sim.dut.valid.set_bool(true);
-        sim.dut.sof.set_bool(i % 128 == 0);
-        sim.dut.texel.set_bits(u64::from(t));
+    for t in &video_stream(&p, &frames)[..128 + 40] {
+        VideoDriver.drive(&mut sim.dut, Some(t));
         sim.step();
     }
-    sim.dut.valid.set_bool(false);
+    VideoDriver.drive(&mut sim.dut, None);
     for _ in 0..50 {
         sim.step();
     }
