@@ -160,13 +160,13 @@ struct Out {
     fault: bool,
 }
 
-/// Runs `reqs` back to back through the cycle-accurate chip (with the illumination
-/// `illum[k]` on request k, 0 past its end; traced to `vcd` when given): its results, its
-/// slot and conflict counts.
+/// Runs `reqs` back to back through the cycle-accurate chip (request k on DRF `drfs[k]` with
+/// the illumination `illum[k]`, each 0 past its end; traced to `vcd` when given): its
+/// results, its slot and conflict counts.
 fn run_chip(
     chip: hdl::texram::texram_802::Texram802,
     reqs: &[(i32, i32, i32)],
-    illum: &[u32],
+    (drfs, illum): (&[u8], &[u32]),
     vcd: Option<&std::path::Path>,
 ) -> (Vec<Out>, u64, u64) {
     use hdl::kernel::Sim;
@@ -187,6 +187,8 @@ fn run_chip(
             d.req_u.set_raw(i64::from(u));
             d.req_v.set_raw(i64::from(v));
             d.req_lambda.set_raw(i64::from(l));
+            d.req_drf
+                .set_bits(u64::from(drfs.get(next).copied().unwrap_or(0)));
             d.req_illum
                 .set_bits(u64::from(illum.get(next).copied().unwrap_or(0)));
         }
@@ -222,7 +224,7 @@ fn the_cycle_accurate_chip_matches_the_stub_texel_for_texel_and_slot_for_slot() 
             chip.set_drf(0, Drf::new(wl, hl, border)).unwrap();
             chip.load(0, &reference.levels[0]).unwrap();
             let reqs = stim.draw_n(&requests(wl, hl), 2000);
-            let (out, slots, _) = run_chip(chip, &reqs, &[], None);
+            let (out, slots, _) = run_chip(chip, &reqs, (&[], &[]), None);
             let mut last = None;
             for (k, &(u, v, lambda)) in reqs.iter().enumerate() {
                 let r = stub.access(req(u, v, lambda)).unwrap();
@@ -301,39 +303,13 @@ fn every_way_of_loading_the_chip_stores_the_same_map() {
 /// source, 0), even straight after an access that left every bank's word on a texel of 7.
 #[test]
 fn an_unset_drf_reads_zeros_whatever_the_banks_hold() {
-    use hdl::kernel::Sim;
     use hdl::texram::texram_802::{Texram802, TexramParams};
     let mut chip = Texram802::new(TexramParams::default()).unwrap();
     chip.set_drf(0, Drf::new(4, 4, Border::Wrap)).unwrap();
     chip.load(0, &[7; 256]).unwrap();
-    let mut sim = Sim::new(chip).check_schedule(true);
-    sim.reset(2);
-    let mut out = Vec::new();
-    for drf in [0u64, 1, 0, 1] {
-        let d = &mut sim.dut;
-        d.req_drf.set_bits(drf);
-        d.req_u.set_raw(300);
-        d.req_v.set_raw(500);
-        d.req_lambda.set_raw(-256);
-        d.req_valid.set_bool(true);
-        sim.eval();
-        while !sim.dut.req_ready.is_high() {
-            sim.tick();
-            sim.eval();
-        }
-        sim.tick();
-        sim.dut.req_valid.set_bool(false);
-        for _ in 0..100 {
-            sim.eval();
-            if sim.dut.out_valid.q().is_high() {
-                out.push(sim.dut.out_texels.q().bits());
-                sim.tick();
-                break;
-            }
-            sim.tick();
-        }
-    }
-    assert_eq!(out, [0x0707_0707_0707_0707, 0, 0x0707_0707_0707_0707, 0]);
+    let (out, _, _) = run_chip(chip, &[(300, 500, -256); 4], (&[0, 1, 0, 1], &[]), None);
+    let texels: Vec<u64> = out.iter().map(|o| u64::from_le_bytes(o.texels)).collect();
+    assert_eq!(texels, [0x0707_0707_0707_0707, 0, 0x0707_0707_0707_0707, 0]);
 }
 
 #[test]
@@ -345,7 +321,12 @@ fn the_chip_waveform_has_one_scope_per_unit() {
     let mut chip = Texram802::new(TexramParams::default()).unwrap();
     chip.set_drf(0, Drf::new(4, 4, Border::Mirror)).unwrap();
     chip.load(0, &[7; 256]).unwrap();
-    let (out, _, _) = run_chip(chip, &[(100, 200, 300), (4000, -90, 0)], &[], Some(&vcd));
+    let (out, _, _) = run_chip(
+        chip,
+        &[(100, 200, 300), (4000, -90, 0)],
+        (&[], &[]),
+        Some(&vcd),
+    );
     assert_eq!(out.len(), 2);
     let rb = waves::check::read_vcd(&vcd).unwrap();
     for unit in [
@@ -430,7 +411,7 @@ fn index_mode_filters_each_component_after_the_lookup() {
         chip.set_drf(0, drf).unwrap();
         chip.load(0, &level0).unwrap();
         chip.set_clut(clut.clone());
-        let (out, _, _) = run_chip(chip, &reqs, &[], None);
+        let (out, _, _) = run_chip(chip, &reqs, (&[], &[]), None);
         for (k, &(u, v, lambda)) in reqs.iter().enumerate() {
             let q = req(u, v, lambda);
             let r = stub.access(q).unwrap();
@@ -679,7 +660,7 @@ fn the_chip_reads_colour_layouts_like_the_stub() {
         chip.set_drf(0, d).unwrap();
         chip.load(0, &level0).unwrap();
         let reqs = stim.draw_n(&requests(5, 5), 1500);
-        let (out, slots, conflicts) = run_chip(chip, &reqs, &[], None);
+        let (out, slots, conflicts) = run_chip(chip, &reqs, (&[], &[]), None);
         for (k, &(u, v, lambda)) in reqs.iter().enumerate() {
             let r = stub.access(req(u, v, lambda)).unwrap();
             assert_eq!(out[k].rgba, r.rgba, "{config:?} request {k}");
@@ -720,7 +701,7 @@ fn the_output_stage_shades_with_illumination_or_a_constant() {
         chip.load(0, &level0).unwrap();
         let reqs = stim.draw_n(&requests(4, 4), 500);
         let illum: Vec<u32> = stim.draw_n(&any::<u32>(), reqs.len());
-        let (out, _, _) = run_chip(chip, &reqs, &illum, None);
+        let (out, _, _) = run_chip(chip, &reqs, (&[], &illum), None);
         let mut plain = TexramStub::new();
         plain
             .set_drf(
