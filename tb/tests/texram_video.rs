@@ -134,3 +134,41 @@ fn the_video_waveform_has_a_scope_per_unit() {
     waves::check::check_gtkw(&vcd, &rb).unwrap();
     std::fs::remove_dir_all(&dir).unwrap();
 }
+
+/// Video one texel wide with a one-cycle line blanking: a frame time of 16 cycles. The banks,
+/// taken each in its own order, have not finished frame 0 when frame 2 starts into the same
+/// map; that is flagged (code 1) instead of frame 0 being reported ready holding frame 2's
+/// texels. With four cycles of blanking the same video is fine.
+#[test]
+fn a_frame_overtaking_the_one_two_before_it_overruns() {
+    // No blanking and every row buffer (two levels' lines then leave in one cycle) as well.
+    let mut fast = VideoConfig::of(1, 8, Scan::Progressive, 1, 0);
+    fast.queue = 64;
+    for c in [VideoConfig::of(1, 8, Scan::Progressive, 1, 1), fast] {
+        let (sim, src) = video_only(&c, 3, 5_000);
+        let v = sim.dut.video().unwrap();
+        assert!(v.error.q().is_high(), "{c:?}");
+        assert_eq!(v.err_code.q().bits(), 1, "{c:?}");
+        assert_eq!(src.frames_checked(), 3, "{c:?}");
+    }
+    let c = VideoConfig::of(1, 8, Scan::Progressive, 1, 4);
+    let (sim, src) = video_only(&c, 3, 5_000);
+    assert!(!sim.dut.video().unwrap().error.q().is_high());
+    assert!(src.mismatches.is_empty(), "{:?}", src.mismatches);
+    assert_eq!(src.frames_checked(), 3);
+}
+
+/// Interlaced video one texel wide, too little blanking for the partner reads: a line's read
+/// is asked for while the last one's is still waiting. An underrun (code 2), and the reads
+/// counted through to the end (no count wraps).
+#[test]
+fn overlapping_partner_reads_underrun() {
+    for scan in [Scan::InterlacedTop, Scan::InterlacedBottom] {
+        let c = VideoConfig::of(1, 8, scan, 1, 4);
+        let (sim, src) = video_only(&c, 3, 5_000);
+        let v = sim.dut.video().unwrap();
+        assert!(v.error.q().is_high(), "{scan:?}");
+        assert_eq!(v.err_code.q().bits(), 2, "{scan:?}");
+        assert_eq!(src.frames_checked(), 3, "{scan:?}");
+    }
+}

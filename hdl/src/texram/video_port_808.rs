@@ -18,7 +18,9 @@
 //!   the oldest waiting segment of every bank (each bank's in the order they came), in one
 //!   slot, two if any of those banks has another row open (the page register then holds the written row, so the
 //!   rasterizer's next access there faults). A segment finishing with every buffer full is an
-//!   **overrun** (sticky error 1).
+//!   **overrun** (sticky error 1); so is a frame's line written while the frame two before,
+//!   in the same map, is not ready (banks taken in their own orders, its last segments can
+//!   still be waiting: the new frame would overwrite what was to be read).
 //! * Interlaced video: before each line of the second field, the partner line of the first
 //!   field (the other line of its pair) is read from the banks into the shift register, two
 //!   read segments through the same buffers. A second-field texel arriving before its partner
@@ -297,11 +299,15 @@ impl VideoPort808 {
                 let line = self.collect.clone();
                 // A map of one level is 1 x 1: its one line completes the frame.
                 let last = (levels == 1).then_some(f);
+                // Frame f goes into frame f - 2's map: that one must be ready by now.
+                if f >= self.frames_ready.len() as u64 + 2 {
+                    self.flag(1);
+                }
                 self.push_line(&drf(f), 0, y, Some(line), last);
             }
         }
         if let Some((f, row)) = self.gen.partner_read() {
-            self.partner_left = self.push_line(&drf(f), 0, row, None, None);
+            self.partner_left += self.push_line(&drf(f), 0, row, None, None);
         }
         let lines: Vec<_> = self.gen.line_writes().collect();
         for (k, f, row, texels) in lines {
