@@ -533,4 +533,47 @@ mod tests {
         let e = "floor".parse::<Rounding>().unwrap_err();
         assert!(e.contains("'floor'") && e.contains("truncate"), "{e}");
     }
+
+    /// Reset at the edge where an upper level's line leaves FIFO 1412 (on the banks, where
+    /// the owner writes what `line_writes` gives): no line goes out again until video comes,
+    /// and the next frame's lines come cycle for cycle as a fresh unit's do.
+    #[test]
+    fn reset_as_an_upper_level_drains_writes_no_line_twice() {
+        let p = MipmapParams {
+            width: 8,
+            height: 8,
+            scan: Scan::Progressive,
+            rounding: Rounding::Round,
+        };
+        let mut g = MipmapGen::new("mipmap_gen_816", p).unwrap().on_banks();
+        let mut fresh = MipmapGen::new("mipmap_gen_816", p).unwrap().on_banks();
+        // Texel n of a frame (none from 64 on), evaluated: the lines going out at the edge.
+        let lines = |g: &mut MipmapGen, n: u32| -> Vec<(u32, u64, u32)> {
+            g.valid.set_bool(n < 64);
+            g.sof.set_bool(n == 0);
+            g.texel.set_bits(u64::from(n * 3 % 256));
+            g.eval();
+            g.line_writes().map(|(k, f, r, _)| (k, f, r)).collect()
+        };
+        let mut n = 0;
+        loop {
+            let upper = lines(&mut g, n).iter().any(|l| l.0 >= 2);
+            g.tick(upper);
+            if upper {
+                break;
+            }
+            n += 1;
+            assert!(n < 64, "no level-2 line in a frame");
+        }
+        for m in 64..80 {
+            assert_eq!(lines(&mut g, m), vec![], "cycle {m} after the reset");
+            g.tick(false);
+        }
+        // A frame after the reset: the lines a fresh generator gives, cycle for cycle.
+        for m in 0..80 {
+            assert_eq!(lines(&mut g, m), lines(&mut fresh, m), "texel {m}");
+            g.tick(false);
+            fresh.tick(false);
+        }
+    }
 }
