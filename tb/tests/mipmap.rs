@@ -186,3 +186,63 @@ fn a_reset_part_way_restores_every_level() {
     assert_eq!(again.frames, fresh.frames);
     assert_eq!(again.error, 0);
 }
+
+/// The rows each page register 824 of the generator's own frame store opens, in order: the
+/// row it holds after each cycle whose access left the row it had open (never two a bank in
+/// a cycle), with the activation count they make.
+fn opened_rows(p: MipmapParams, frames: &[Vec<u8>]) -> [Vec<u32>; 3] {
+    let mut sim = Sim::new(MipmapGen::new("mipmap_gen_816", p).unwrap());
+    sim.reset(1);
+    let mut rows: [Vec<u32>; 3] = Default::default();
+    for t in video_stream(&p, frames).iter().map(Some).chain([None; 256]) {
+        VideoDriver.drive(&mut sim.dut, t);
+        let before = sim.dut.activations;
+        sim.step();
+        for (b, r) in rows.iter_mut().enumerate() {
+            let n = sim.dut.activations[b] - before[b];
+            assert!(n <= 1, "bank {b}: {n} rows opened in a cycle");
+            if n == 1 {
+                r.push(sim.dut.page_row[b].q().bits() as u32);
+            }
+        }
+    }
+    assert_eq!(sim.dut.activations, rows.each_ref().map(|r| r.len() as u64));
+    rows
+}
+
+/// The page registers 824: level-0 line y is written into bank y % 2, row y / 2 (every
+/// texel of a line into one row, consecutive lines into different ones, so each line opens
+/// its row), and interlaced (top field first), before each line 2r + 1 of the second field,
+/// its partner 2r is read back from bank 0, row r. Level k's line r goes to bank 2, row
+/// (k - 1) * 1024 + r, in the order the levels finish them.
+#[test]
+fn the_page_registers_open_the_rows_the_lines_are_in() {
+    for (w, h) in [(8u32, 8u32), (16, 4), (4, 16), (32, 16)] {
+        let frames = synthetic_video(w, h, 3, Seed(7));
+        let per_bank: Vec<u32> = (0..h / 2).collect();
+        let levels = w.max(h).trailing_zeros();
+        let mut bank2: Vec<u32> = (0..levels)
+            .flat_map(|k| (0..(h >> (k + 1)).max(1)).map(move |r| k << 10 | r))
+            .collect();
+        bank2 = bank2.repeat(frames.len());
+        bank2.sort_unstable();
+        for scan in [Scan::Progressive, Scan::InterlacedTop] {
+            let p = MipmapParams {
+                width: w,
+                height: h,
+                scan,
+                rounding: Rounding::Round,
+            };
+            let mut got = opened_rows(p, &frames);
+            let reads = usize::from(scan != Scan::Progressive);
+            assert_eq!(
+                got[0],
+                per_bank.repeat((1 + reads) * frames.len()),
+                "{w}x{h} {scan:?}"
+            );
+            assert_eq!(got[1], per_bank.repeat(frames.len()), "{w}x{h} {scan:?}");
+            got[2].sort_unstable();
+            assert_eq!(got[2], bank2, "{w}x{h} {scan:?}");
+        }
+    }
+}
