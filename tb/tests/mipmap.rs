@@ -189,15 +189,20 @@ fn a_reset_part_way_restores_every_level() {
 
 /// The rows each page register 824 of the generator's own frame store opens, in order: the
 /// row it holds after each cycle whose access left the row it had open (never two a bank in
-/// a cycle), with the activation count they make.
+/// a cycle), with the activation count they make. On the way: each frame completes once,
+/// recorded with its edge's cycle, and no error is flagged.
 fn opened_rows(p: MipmapParams, frames: &[Vec<u8>]) -> [Vec<u32>; 3] {
     let mut sim = Sim::new(MipmapGen::new("mipmap_gen_816", p).unwrap());
     sim.reset(1);
     let mut rows: [Vec<u32>; 3] = Default::default();
     for t in video_stream(&p, frames).iter().map(Some).chain([None; 256]) {
         VideoDriver.drive(&mut sim.dut, t);
-        let before = sim.dut.activations;
+        let (before, done) = (sim.dut.activations, sim.dut.completed.len());
         sim.step();
+        // A frame completes at this edge: recorded with the edge's cycle.
+        if sim.dut.completed.len() > done {
+            assert_eq!(sim.dut.completed[done].1, sim.cycle());
+        }
         for (b, r) in rows.iter_mut().enumerate() {
             let n = sim.dut.activations[b] - before[b];
             assert!(n <= 1, "bank {b}: {n} rows opened in a cycle");
@@ -207,6 +212,9 @@ fn opened_rows(p: MipmapParams, frames: &[Vec<u8>]) -> [Vec<u32>; 3] {
         }
     }
     assert_eq!(sim.dut.activations, rows.each_ref().map(|r| r.len() as u64));
+    assert_eq!(sim.dut.completed.len(), frames.len());
+    // Clean video: no error flagged, with or without a code.
+    assert!(!sim.dut.error.is_high() && sim.dut.err_code.bits() == 0);
     rows
 }
 
