@@ -102,6 +102,28 @@ pub fn p_raw(p40: &[Vec<i64>; 6]) -> Result<[Vec<i32>; 6], String> {
 mod tests {
     use super::*;
 
+    /// Every fit through `p` is in `p`'s format at `bits`, whose exponents are the least
+    /// that do it.
+    fn check_covers_every_fit(p: &[Vec<i32>; 6], bits: u32) {
+        let f = PtmFormat::for_pinv(p, bits).unwrap();
+        for (j, row) in p.iter().enumerate() {
+            // The extreme fits (K = 1 is 256 in uQ1.8, accumulators in 2^-28): every
+            // negative entry's light occluded and none of the others, and the reverse.
+            let lo: i64 = row.iter().map(|&x| i64::from(x.min(0))).sum();
+            let hi: i64 = row.iter().map(|&x| i64::from(x.max(0))).sum();
+            assert_eq!(f.quantise(j, lo << 8), 0);
+            let top = f.coefficient(j, f.max_q());
+            assert!(top >= hi, "{bits} bits, row {j}: {top} < {hi}");
+            // The least exponent: one less would not reach.
+            if f.exp[j] > 0 {
+                assert!(
+                    (f.max_q() as i64) << (f.exp[j] - 1) < hi - lo,
+                    "{bits}, {j}"
+                );
+            }
+        }
+    }
+
     #[test]
     fn every_fit_fits_the_format() {
         let p: [Vec<i32>; 6] = std::array::from_fn(|j| {
@@ -110,19 +132,26 @@ mod tests {
                 .collect()
         });
         for bits in [8, 16] {
-            let f = PtmFormat::for_pinv(&p, bits).unwrap();
-            for (j, row) in p.iter().enumerate() {
-                // The extreme fits (K = 1 is 256 in uQ1.8, accumulators in 2^-28): every
-                // negative entry's light occluded and none of the others, and the reverse.
-                let lo: i64 = row.iter().map(|&x| i64::from(x.min(0))).sum();
-                let hi: i64 = row.iter().map(|&x| i64::from(x.max(0))).sum();
-                assert_eq!(f.quantise(j, lo << 8), 0);
-                let top = f.coefficient(j, f.max_q());
-                assert!(top >= hi, "{j}: {top} < {hi}");
-                // The least exponent: one less would not reach.
-                if f.exp[j] > 0 {
-                    assert!((f.max_q() as i64) << (f.exp[j] - 1) < hi - lo, "{j}");
-                }
+            check_covers_every_fit(&p, bits);
+        }
+    }
+
+    /// Rows whose range is just below, at and just above what the stored values reach at
+    /// an exponent (`max_q << e`): the range at it takes that exponent, one more the next.
+    #[test]
+    fn ranges_at_an_exponents_reach_take_the_least_exponent() {
+        for bits in [8u32, 16] {
+            let max = (1i64 << bits) - 1;
+            for e in [0u32, 1, 3] {
+                let reach = max << e;
+                let p: [Vec<i32>; 6] = std::array::from_fn(|j| {
+                    let r = (reach + j as i64 % 3 - 1) as i32;
+                    // The range split between a positive and a negative entry.
+                    vec![r - r / 3, -(r / 3)]
+                });
+                check_covers_every_fit(&p, bits);
+                let f = PtmFormat::for_pinv(&p, bits).unwrap();
+                assert_eq!(f.exp, [e, e, e + 1, e, e, e + 1], "{bits} bits, e {e}");
             }
         }
     }
