@@ -110,6 +110,20 @@ fn figure6_texture_unit_visits_every_unit() {
             "{unit} not visited: {names:?}"
         );
     }
+    // Figure 6's units once each, the cache's four entries.
+    let want = [
+        ("texture_unit_602", 1),
+        ("fill_engine_607", 1),
+        ("lookahead_queue_607", 1),
+        ("control_607", 1),
+        ("dram_604", 1),
+        ("ccc_decode_608", 1),
+        ("cache_614", 1),
+        ("cache_614_entry", 4),
+        ("extract_618", 1),
+        ("bilinear_622", 1),
+    ];
+    assert_eq!(kinds(&top), own(&want));
 }
 
 #[test]
