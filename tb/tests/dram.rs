@@ -57,12 +57,16 @@ fn random_traces_read_the_right_words_without_violations() {
             t_rcd: 2,
             t_cas: 2,
             t_cp: 1,
+            cycle_ns: 7,
             ..DramParams::default()
         },
     ] {
         let addrs = stim.draw_n(&(0..p.words()), 500);
         let s = run_trace(p, &addrs, None).unwrap();
         assert_eq!(s.reads, 500);
+        // The report's page size and time are the controller's own DRAM's.
+        let ns = s.cycles * u64::from(p.cycle_ns);
+        assert_eq!((s.page_words, s.cycle_ns, s.ns), (p.cols, p.cycle_ns, ns));
         assert_eq!(s.page_hits + s.page_faults, 500);
         assert_eq!((s.violations, s.data_errors), (0, 0), "{p:?}");
         let per = u64::from(p.t_cas + p.t_cp);
