@@ -172,3 +172,27 @@ fn overlapping_partner_reads_underrun() {
         assert_eq!(src.frames_checked(), 3, "{scan:?}");
     }
 }
+
+/// A reset starts the record of ready frames again, as the generator numbers frames from 0
+/// again: after three frames and a reset, video too fast for the banks is flagged as on a
+/// fresh chip, and the frames then reported ready are the new ones.
+#[test]
+fn after_a_reset_a_frame_overtaking_still_overruns() {
+    let slow = VideoConfig::of(1, 8, Scan::Progressive, 1, 4);
+    let (mut sim, src) = video_only(&slow, 3, 5_000);
+    assert_eq!(src.frames_checked(), 3);
+    sim.reset(2);
+    let fast = VideoConfig::of(1, 8, Scan::Progressive, 1, 1);
+    let mut stim = verif::seeded_stimulus("texram video after reset");
+    let frames: Vec<Vec<u8>> = (0..3).map(|_| test_map(1, 8, &mut stim)).collect();
+    let mut src = VideoSource::new(&fast, &frames);
+    while sim.cycle() < 20_000 && src.frames_checked() < frames.len() {
+        src.drive(&mut sim.dut, 0);
+        sim.eval();
+        src.settled(&sim.dut, 0);
+        sim.tick();
+    }
+    let v = sim.dut.video().unwrap();
+    assert!(v.error.q().is_high());
+    assert_eq!(v.err_code.q().bits(), 1);
+}

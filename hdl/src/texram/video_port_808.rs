@@ -231,6 +231,8 @@ impl VideoPort808 {
             self.partner_left = 0;
             self.in_round.clear();
             self.pending_frames.clear();
+            // Frame numbers start again at 0: the record of ready frames with them.
+            self.frames_ready.clear();
         } else {
             if self.finishing {
                 self.complete(banks);
