@@ -40,14 +40,25 @@ fn video_only(
         .collect();
     let mut sim = Sim::new(chip);
     sim.reset(2);
-    let mut src = VideoSource::new(c, &frames);
+    let src = clock_video(&mut sim, c, &frames, limit);
+    (sim, src)
+}
+
+/// `frames` from a new source into the chip until each is ready or the sim's cycle `limit`.
+fn clock_video(
+    sim: &mut Sim<hdl::texram::texram_802::Texram802, hdl::kernel::NoTrace>,
+    c: &VideoConfig,
+    frames: &[Vec<u8>],
+    limit: u64,
+) -> VideoSource {
+    let mut src = VideoSource::new(c, frames);
     while sim.cycle() < limit && src.frames_checked() < frames.len() {
         src.drive(&mut sim.dut, 0);
         sim.eval();
         src.settled(&sim.dut, 0);
         sim.tick();
     }
-    (sim, src)
+    src
 }
 
 /// Interlaced video with no line blanking: the partner line cannot be read before the next
@@ -185,13 +196,8 @@ fn after_a_reset_a_frame_overtaking_still_overruns() {
     let fast = VideoConfig::of(1, 8, Scan::Progressive, 1, 1);
     let mut stim = verif::seeded_stimulus("texram video after reset");
     let frames: Vec<Vec<u8>> = (0..3).map(|_| test_map(1, 8, &mut stim)).collect();
-    let mut src = VideoSource::new(&fast, &frames);
-    while sim.cycle() < 20_000 && src.frames_checked() < frames.len() {
-        src.drive(&mut sim.dut, 0);
-        sim.eval();
-        src.settled(&sim.dut, 0);
-        sim.tick();
-    }
+    let src = clock_video(&mut sim, &fast, &frames, 20_000);
+    assert_eq!(src.frames_checked(), 3);
     let v = sim.dut.video().unwrap();
     assert!(v.error.q().is_high());
     assert_eq!(v.err_code.q().bits(), 1);
