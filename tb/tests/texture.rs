@@ -428,3 +428,82 @@ fn direction_lookahead_never_evicts_a_block_of_the_footprint() {
         );
     }
 }
+
+/// The direction lookahead at the texture's last texel column (row): the footprint is clamped
+/// there, as stage 0 reads it, so it holds one block across; moving left (up) the block two
+/// before the edge block is preloaded, since it shares no entry with the footprint (a
+/// footprint taken one texel past the edge would share one and drop it). Moving right (down)
+/// nothing lies beyond the edge to preload.
+#[test]
+fn direction_lookahead_at_the_last_texel_preloads_back_from_the_edge() {
+    let tex = tb::texture::test_pattern(64, 64);
+    let mut p = TexParams::new(64, 64);
+    p.lookahead = Lookahead::Direction;
+    // Two points in texel 63 (x or y), the second 8/16 further left (up) or right (down);
+    // the other coordinate in block 2.
+    let fills = |vertical: bool, back: bool| {
+        let (a, b) = if back {
+            (63 * 16 + 12, 63 * 16 + 4)
+        } else {
+            (63 * 16 + 4, 63 * 16 + 12)
+        };
+        let r: Vec<TexRequest> = [(a, true), (b, false)]
+            .iter()
+            .map(|&(s, newline)| {
+                let (u, v) = if vertical { (9 << 4, s) } else { (s, 9 << 4) };
+                TexRequest { u, v, newline }
+            })
+            .collect();
+        let s = run_texread(&tex, p, &r, 40, None).unwrap().stats;
+        (s.demand_fills, s.prefetch_fills)
+    };
+    for vertical in [false, true] {
+        assert_eq!(fills(vertical, true), (1, 1), "vertical {vertical}, back");
+        assert_eq!(fills(vertical, false), (1, 0), "vertical {vertical}, on");
+    }
+}
+
+/// Fill engine 607 over one demand fill, cycle by cycle at its ports: the states the waveform
+/// shows, in order (DECODE while 610/612 decode the block into cache 614), and its word
+/// requests to the word controller: two a fill, each held until the controller takes it
+/// (`word_req` with `word_ready`), none raised and then withdrawn.
+#[test]
+fn a_fill_asks_for_two_words_then_decodes() {
+    let tex = tb::texture::test_pattern(64, 64);
+    let p = TexParams::new(64, 64);
+    let words = tex.dram_words(&p.block_map());
+    let unit = TextureUnit::new("texture_unit_602", p, &tex.clut, &words).unwrap();
+    let mut sim = Sim::new(unit);
+    sim.reset(1);
+    let (mut states, mut taken, mut waiting) = (Vec::new(), Vec::new(), None);
+    for c in 0..200u64 {
+        // One request inside block (2, 2), a new scanline (so no lookahead follows).
+        let d = &mut sim.dut;
+        d.in_valid.set_bool(c == 0);
+        d.in_u.set_bits(10 << 4);
+        d.in_v.set_bits(10 << 4);
+        d.in_newline.set_bool(true);
+        sim.eval();
+        let f = &sim.dut.fill;
+        assert!(c > 0 || sim.dut.in_ready.is_high(), "the request is taken");
+        let st = f.state.q().bits();
+        if states.last() != Some(&st) {
+            states.push(st);
+        }
+        let req = f.word_req.is_high().then(|| f.word_addr.bits());
+        if let Some(w) = waiting {
+            assert_eq!(
+                req,
+                Some(w),
+                "cycle {c}: request for word {w} changed before taken"
+            );
+        }
+        let take = req.filter(|_| f.word_ready.is_high());
+        taken.extend(take);
+        waiting = req.filter(|_| take.is_none());
+        sim.tick();
+    }
+    assert_eq!(states, [0, 1, 2, 0], "IDLE, FETCH, DECODE, IDLE");
+    let first = p.block_map().block_addr(2, 2);
+    assert_eq!(taken, [first, first + 1]);
+}
