@@ -308,6 +308,16 @@ mod tests {
         p.validate()
     }
 
+    /// The power-up contents: the top 16 bits of the address times 2^64 / golden ratio
+    /// (values worked out apart), so neighbouring words differ.
+    #[test]
+    fn power_up_words_are_the_top_bits_of_a_fibonacci_hash() {
+        let p = DramParams::pattern;
+        assert_eq!((p(0), p(1), p(2), p(1 << 20)), (0, 0x9e37, 0x3c6e, 0x9b97));
+        let words: std::collections::HashSet<u16> = (0..256).map(p).collect();
+        assert_eq!(words.len(), 256);
+    }
+
     /// Each range at both ends, and one beyond, naming the parameter.
     #[test]
     fn validate_takes_each_range_at_both_ends() {

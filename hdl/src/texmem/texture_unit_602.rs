@@ -555,3 +555,19 @@ impl TextureUnit {
         add(&mut s.stall_cycles, ev.stall);
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// Inside means texel column below the width and row below the height (raw `uQ12.F`).
+    #[test]
+    fn in_range_ends_at_the_last_texel() {
+        let p = TexParams::new(64, 32);
+        let f = p.frac_bits;
+        assert!(p.in_range(0, 0));
+        assert!(p.in_range((64 << f) - 1, (32 << f) - 1));
+        assert!(!p.in_range(64 << f, 0));
+        assert!(!p.in_range(0, 32 << f));
+    }
+}
