@@ -318,6 +318,74 @@ mod tests {
         assert_eq!(words.len(), 256);
     }
 
+    /// One cycle at the pins (`true` = asserted, i.e. the pin low): the word on DQ if
+    /// `dq_valid`.
+    fn pins(d: &mut Dram, ras: bool, cas: bool, oe: bool, a: u64) -> Option<u16> {
+        d.ras_n.set_bool(!ras);
+        d.cas_n.set_bool(!cas);
+        d.oe_n.set_bool(!oe);
+        d.addr.set_bits(a);
+        d.eval();
+        let out = d.dq_valid.is_high().then(|| d.dq.bits() as u16);
+        d.tick(false);
+        out
+    }
+
+    /// DQ is driven only from the t_cas-th cycle of CAS# low on, with RAS# low (a row open)
+    /// and OE# low; never when idle, when CAS# rises, with OE# high, or with no row open.
+    #[test]
+    fn dq_is_valid_only_in_a_whole_cas_cycle_with_a_row_open_and_oe_low() {
+        let p = DramParams::default();
+        let mut d = Dram::new("dram_604", p).unwrap();
+        let word = DramParams::pattern(7 * u64::from(p.cols) + 5);
+        let mut seen = Vec::new();
+        for _ in 0..3 {
+            seen.push(pins(&mut d, false, false, true, 0)); // idle
+        }
+        for _ in 0..3 {
+            seen.push(pins(&mut d, true, false, true, 7)); // RAS# low with row 7
+        }
+        for _ in 0..4 {
+            seen.push(pins(&mut d, true, true, true, 5)); // CAS# low with column 5
+        }
+        seen.push(pins(&mut d, true, false, true, 5)); // CAS# rises
+        let mut want = vec![None; 8];
+        want.extend([Some(word), Some(word), None]);
+        assert_eq!(seen, want);
+        // The same column again with OE# high: no data.
+        for _ in 0..2 {
+            assert_eq!(pins(&mut d, true, false, false, 5), None);
+        }
+        for _ in 0..4 {
+            assert_eq!(pins(&mut d, true, true, false, 5), None, "OE# high");
+        }
+        assert_eq!(d.violations, 0, "{:?}", d.log);
+        // RAS# high (no row open), CAS# low for long: a violation and no data.
+        for _ in 0..4 {
+            assert_eq!(pins(&mut d, false, false, true, 0), None);
+        }
+        for _ in 0..5 {
+            assert_eq!(pins(&mut d, false, true, true, 5), None, "no row open");
+        }
+        assert_eq!(d.violations, 1, "{:?}", d.log);
+    }
+
+    /// Every violation is counted; the first 20 are described, with their edges.
+    #[test]
+    fn violations_are_counted_and_the_first_twenty_logged() {
+        let mut d = Dram::new("dram_604", DramParams::default()).unwrap();
+        for c in 0..30 {
+            d.we_n.set_bool(!(3..28).contains(&c));
+            pins(&mut d, false, false, false, 0);
+        }
+        assert_eq!(d.violations, 25);
+        assert_eq!(d.log.len(), 20);
+        let cycles: Vec<u64> = d.log.iter().map(|v| v.cycle).collect();
+        // Numbered by the edge that saw them: the edge after cycle c is the model's c + 1.
+        assert_eq!(cycles, (4..24).collect::<Vec<_>>());
+        assert!(d.log[0].what.starts_with("WE# low"), "{:?}", d.log[0]);
+    }
+
     /// Each range at both ends, and one beyond, naming the parameter.
     #[test]
     fn validate_takes_each_range_at_both_ends() {
