@@ -507,3 +507,45 @@ fn a_fill_asks_for_two_words_then_decodes() {
     let first = p.block_map().block_addr(2, 2);
     assert_eq!(taken, [first, first + 1]);
 }
+
+/// The statistics of five small runs, by hand. A cold fill (page fault) takes 19 cycles: a
+/// page-mode fill's 13 (the miss penalty above) and the fault's t_rp + t_rcd = 6.
+/// - No lookahead, one point twice: one demand fill, the second lookup a hit but no prefetch
+///   hit; the first request stalls the 19 cycles.
+/// - Quadrant lookahead, the next point (every cycle) in the block being prefetched: a late
+///   prefetch, and a stall of 19 and then the 12 cycles left of that fill.
+/// - Quadrant, the next point a new scanline hitting the same block: its lookup flushes the
+///   queue, so only the candidate taken as the first request completed is fetched.
+/// - Direction lookahead, a first point with no newline: no direction yet, no prefetch.
+/// - Quadrant lookahead with the cache off: nothing is offered to the queue.
+#[test]
+fn small_runs_count_fills_hits_late_prefetches_and_stalls() {
+    let tex = tb::texture::test_pattern(64, 64);
+    let run = |look: Lookahead, cache: bool, pts: &[(u32, u32, bool)], interval: u32| {
+        let mut p = TexParams::new(64, 64);
+        p.lookahead = look;
+        p.cache = cache;
+        let r: Vec<TexRequest> = pts
+            .iter()
+            .map(|&(x, y, newline)| TexRequest {
+                u: x << 4,
+                v: y << 4,
+                newline,
+            })
+            .collect();
+        let s = run_texread(&tex, p, &r, interval, None).unwrap().stats;
+        let counts = (s.demand_fills, s.prefetch_fills, s.hits, s.prefetch_hits);
+        (counts, s.late_prefetches, s.stall_cycles)
+    };
+    let (a, b) = ((10, 10, false), (13, 10, false));
+    let off = run(Lookahead::Off, true, &[a, a], 80);
+    assert_eq!(off, ((1, 0, 1, 0), 0, 19));
+    let late = run(Lookahead::Quadrant, true, &[a, b], 1);
+    assert_eq!(late, ((1, 3, 0, 0), 1, 31));
+    let flushed = run(Lookahead::Quadrant, true, &[a, (9, 9, true)], 1);
+    assert_eq!(flushed, ((1, 1, 1, 0), 0, 19));
+    let first = run(Lookahead::Direction, true, &[a], 1);
+    assert_eq!(first, ((1, 0, 0, 0), 0, 19));
+    let uncached = run(Lookahead::Quadrant, false, &[a], 1);
+    assert_eq!(uncached.0 .1, 0, "no prefetch without the cache");
+}
