@@ -549,3 +549,31 @@ fn small_runs_count_fills_hits_late_prefetches_and_stalls() {
     let uncached = run(Lookahead::Quadrant, false, &[a], 1);
     assert_eq!(uncached.0 .1, 0, "no prefetch without the cache");
 }
+
+/// The lookup monitor's masks (`need_mask`, `hit_mask`, one bit per cache entry): a cold
+/// footprint across four blocks needs all four entries and hits none; the same point again
+/// needs and hits all four.
+#[test]
+fn the_lookup_masks_show_the_entries_a_footprint_needs_and_hits() {
+    let tex = tb::texture::test_pattern(64, 64);
+    let p = TexParams::new(64, 64);
+    let words = tex.dram_words(&p.block_map());
+    let unit = TextureUnit::new("texture_unit_602", p, &tex.clut, &words).unwrap();
+    let mut sim = Sim::new(unit);
+    sim.reset(1);
+    let mut firsts = Vec::new();
+    for c in 0..200u64 {
+        let d = &mut sim.dut;
+        d.in_valid.set_bool(c == 0 || c == 100);
+        d.in_u.set_bits(3 << 4);
+        d.in_v.set_bits(3 << 4);
+        d.in_newline.set_bool(true);
+        sim.eval();
+        let d = &sim.dut;
+        if d.lookup.first {
+            firsts.push((d.need_mask.bits(), d.hit_mask.bits()));
+        }
+        sim.tick();
+    }
+    assert_eq!(firsts, [(0b1111, 0), (0b1111, 0b1111)]);
+}
