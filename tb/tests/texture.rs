@@ -577,3 +577,62 @@ fn the_lookup_masks_show_the_entries_a_footprint_needs_and_hits() {
     }
     assert_eq!(firsts, [(0b1111, 0), (0b1111, 0b1111)]);
 }
+
+/// A new scanline's first lookup flushes the lookahead queue: the cycle after it no candidate
+/// of the previous scanline is left (the queue's `mask` register, shown in the waveform), and
+/// none starts a prefetch in it. The second request either hits the first's block or misses
+/// far away; its arrival is swept so that some arrivals meet candidates still queued and the
+/// fill engine busy (no demand fill can start, so only the newline flushes) or free.
+#[test]
+fn a_new_scanline_flushes_the_queue() {
+    let tex = tb::texture::test_pattern(64, 64);
+    let p = TexParams::new(64, 64);
+    let words = tex.dram_words(&p.block_map());
+    let (mut busy, mut free) = (0, 0);
+    for (second, k) in [9u64, 40]
+        .into_iter()
+        .flat_map(|x| (1..80u64).map(move |k| (x, k)))
+    {
+        let unit = TextureUnit::new("texture_unit_602", p, &tex.clut, &words).unwrap();
+        let mut sim = Sim::new(unit);
+        sim.reset(1);
+        // (10, 10) on a scanline, then from cycle k (second, second), a new scanline.
+        let (mut sent, mut flushed_at) = (0, None);
+        for c in 0..300u64 {
+            let d = &mut sim.dut;
+            let offer = (sent == 0) || (sent == 1 && c >= k);
+            d.in_valid.set_bool(offer);
+            let x = if sent == 0 { 10 } else { second };
+            d.in_u.set_bits(x << 4);
+            d.in_v.set_bits(x << 4);
+            d.in_newline.set_bool(sent == 1);
+            sim.eval();
+            let d = &sim.dut;
+            if offer && d.in_ready.is_high() {
+                sent += 1;
+            }
+            if flushed_at == Some(c) {
+                let left = d.queue.mask.q().bits();
+                assert_eq!(left, 0, "({second}, {k}) cycle {c}: candidates left");
+            }
+            if d.lookup.first && d.req_newline.q().is_high() {
+                if d.queue.mask.q().bits() != 0 {
+                    *(if d.fill.is_idle() {
+                        &mut free
+                    } else {
+                        &mut busy
+                    }) += 1;
+                }
+                let prefetch = d.fill.start.is_high() && d.fill.start_prefetch.is_high();
+                assert!(!prefetch, "({second}, {k}) cycle {c}: a prefetch started");
+                flushed_at = Some(c + 1);
+            }
+            sim.tick();
+        }
+        assert_eq!(sent, 2);
+    }
+    assert!(
+        busy > 0 && free > 0,
+        "arrivals with candidates queued: {busy} busy, {free} free"
+    );
+}
