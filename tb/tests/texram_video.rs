@@ -202,3 +202,44 @@ fn after_a_reset_a_frame_overtaking_still_overruns() {
     assert!(v.error.q().is_high());
     assert_eq!(v.err_code.q().bits(), 1);
 }
+
+/// A video round holds the banks for its slots: the cycles the bank stage serves the video
+/// port (`vid_round` non-zero) are `slot_cycles` (6) times the slots counted, one slot a round,
+/// two when a bank has another row open (so the first round after a reset takes two: every
+/// row starts closed); progressive and interlaced.
+#[test]
+fn video_rounds_hold_the_banks_six_cycles_a_slot() {
+    for (scan, frames) in [(Scan::Progressive, 2), (Scan::InterlacedTop, 1)] {
+        let c = VideoConfig::of(32, 8, scan, 1, 30);
+        let mut stim = verif::seeded_stimulus("texram video");
+        let level0 = test_map(32, 32, &mut stim);
+        let (chip, _) = video_chip(&c, &level0).unwrap();
+        let frames: Vec<Vec<u8>> = (0..frames)
+            .map(|_| test_map(c.width, c.height, &mut stim))
+            .collect();
+        let mut sim = Sim::new(chip);
+        sim.reset(2);
+        let mut src = VideoSource::new(&c, &frames);
+        let (mut serving, mut first_round) = (0u64, None);
+        while sim.cycle() < 50_000 && src.frames_checked() < frames.len() {
+            src.drive(&mut sim.dut, 0);
+            sim.eval();
+            src.settled(&sim.dut, 0);
+            serving += u64::from(sim.dut.vid_round.q().bits() != 0);
+            sim.tick();
+            let slots = sim.dut.video().unwrap().slots.q().bits();
+            if first_round.is_none() && slots > 0 {
+                first_round = Some(slots);
+            }
+        }
+        assert_eq!(first_round, Some(2), "{scan:?}: every row starts closed");
+        assert_eq!(src.frames_checked(), frames.len(), "{scan:?}");
+        let v = sim.dut.video().unwrap();
+        let slots = v.slots.q().bits();
+        assert!(
+            slots > v.transfers.q().bits() / 4,
+            "{scan:?}: {slots} slots"
+        );
+        assert_eq!(serving, 6 * slots, "{scan:?}");
+    }
+}
