@@ -463,6 +463,15 @@ fn direction_lookahead_at_the_last_texel_preloads_back_from_the_edge() {
     }
 }
 
+/// A texture unit holding `tex`, just out of reset, clocked by hand.
+fn unit_after_reset(tex: &Ccc, p: TexParams) -> Sim<TextureUnit> {
+    let words = tex.dram_words(&p.block_map());
+    let unit = TextureUnit::new("texture_unit_602", p, &tex.clut, &words).unwrap();
+    let mut sim = Sim::new(unit);
+    sim.reset(1);
+    sim
+}
+
 /// Fill engine 607 over one demand fill, cycle by cycle at its ports: the states the waveform
 /// shows, in order (DECODE while 610/612 decode the block into cache 614), and its word
 /// requests to the word controller: two a fill, each held until the controller takes it
@@ -471,10 +480,7 @@ fn direction_lookahead_at_the_last_texel_preloads_back_from_the_edge() {
 fn a_fill_asks_for_two_words_then_decodes() {
     let tex = tb::texture::test_pattern(64, 64);
     let p = TexParams::new(64, 64);
-    let words = tex.dram_words(&p.block_map());
-    let unit = TextureUnit::new("texture_unit_602", p, &tex.clut, &words).unwrap();
-    let mut sim = Sim::new(unit);
-    sim.reset(1);
+    let mut sim = unit_after_reset(&tex, p);
     let (mut states, mut taken, mut waiting) = (Vec::new(), Vec::new(), None);
     for c in 0..200u64 {
         // One request inside block (2, 2), a new scanline (so no lookahead follows).
@@ -557,10 +563,7 @@ fn small_runs_count_fills_hits_late_prefetches_and_stalls() {
 fn the_lookup_masks_show_the_entries_a_footprint_needs_and_hits() {
     let tex = tb::texture::test_pattern(64, 64);
     let p = TexParams::new(64, 64);
-    let words = tex.dram_words(&p.block_map());
-    let unit = TextureUnit::new("texture_unit_602", p, &tex.clut, &words).unwrap();
-    let mut sim = Sim::new(unit);
-    sim.reset(1);
+    let mut sim = unit_after_reset(&tex, p);
     let mut firsts = Vec::new();
     for c in 0..200u64 {
         let d = &mut sim.dut;
@@ -587,15 +590,12 @@ fn the_lookup_masks_show_the_entries_a_footprint_needs_and_hits() {
 fn a_new_scanline_flushes_the_queue() {
     let tex = tb::texture::test_pattern(64, 64);
     let p = TexParams::new(64, 64);
-    let words = tex.dram_words(&p.block_map());
     let (mut busy, mut free) = (0, 0);
     for (second, k) in [9u64, 40]
         .into_iter()
         .flat_map(|x| (1..80u64).map(move |k| (x, k)))
     {
-        let unit = TextureUnit::new("texture_unit_602", p, &tex.clut, &words).unwrap();
-        let mut sim = Sim::new(unit);
-        sim.reset(1);
+        let mut sim = unit_after_reset(&tex, p);
         // (10, 10) on a scanline, then from cycle k (second, second), a new scanline.
         let (mut sent, mut flushed_at) = (0, None);
         for c in 0..300u64 {
