@@ -12,7 +12,8 @@ use hdl::texmem::layout::Layout;
 use hdl::texmem::texture_unit_602::{TexParams, TextureUnit};
 use proptest::prelude::*;
 use tb::texture::reference_filter;
-use tb::texture::{drive, run_texread, TexRequest};
+use tb::texture::{drive, run_texread, RasterDriver, TexRequest};
+use verif::Driver;
 
 fn modes() -> Vec<(Layout, bool, Lookahead, u32)> {
     let mut v = Vec::new();
@@ -463,7 +464,17 @@ fn direction_lookahead_at_the_last_texel_preloads_back_from_the_edge() {
     }
 }
 
-/// A texture unit holding `tex`, just out of reset, clocked by hand.
+/// The request for texel point `(x, y)` (no fraction) of a 4-fraction-bit unit.
+fn point(x: u32, y: u32, newline: bool) -> TexRequest {
+    TexRequest {
+        u: x << 4,
+        v: y << 4,
+        newline,
+    }
+}
+
+/// A texture unit holding `tex`, just out of reset, clocked by hand (requests presented with
+/// [`RasterDriver`]).
 fn unit_after_reset(tex: &Ccc, p: TexParams) -> Sim<TextureUnit> {
     let words = tex.dram_words(&p.block_map());
     let unit = TextureUnit::new("texture_unit_602", p, &tex.clut, &words).unwrap();
@@ -484,11 +495,7 @@ fn a_fill_asks_for_two_words_then_decodes() {
     let (mut states, mut taken, mut waiting) = (Vec::new(), Vec::new(), None);
     for c in 0..200u64 {
         // One request inside block (2, 2), a new scanline (so no lookahead follows).
-        let d = &mut sim.dut;
-        d.in_valid.set_bool(c == 0);
-        d.in_u.set_bits(10 << 4);
-        d.in_v.set_bits(10 << 4);
-        d.in_newline.set_bool(true);
+        RasterDriver.drive(&mut sim.dut, (c == 0).then_some(&point(10, 10, true)));
         sim.eval();
         let f = &sim.dut.fill;
         assert!(c > 0 || sim.dut.in_ready.is_high(), "the request is taken");
@@ -520,8 +527,9 @@ fn a_fill_asks_for_two_words_then_decodes() {
 ///   hit; the first request stalls the 19 cycles.
 /// - Quadrant lookahead, the next point (every cycle) in the block being prefetched: a late
 ///   prefetch, and a stall of 19 and then the 12 cycles left of that fill.
-/// - Quadrant, the next point a new scanline hitting the same block: its lookup flushes the
-///   queue, so only the candidate taken as the first request completed is fetched.
+/// - Quadrant, the next point a new scanline hitting the same block: it completes at once and
+///   its candidates (none, a new scanline's) replace the queue, so only the candidate taken
+///   as the first request completed is fetched.
 /// - Direction lookahead, a first point with no newline: no direction yet, no prefetch.
 /// - Quadrant lookahead with the cache off: nothing is offered to the queue.
 #[test]
@@ -531,14 +539,7 @@ fn small_runs_count_fills_hits_late_prefetches_and_stalls() {
         let mut p = TexParams::new(64, 64);
         p.lookahead = look;
         p.cache = cache;
-        let r: Vec<TexRequest> = pts
-            .iter()
-            .map(|&(x, y, newline)| TexRequest {
-                u: x << 4,
-                v: y << 4,
-                newline,
-            })
-            .collect();
+        let r: Vec<TexRequest> = pts.iter().map(|&(x, y, nl)| point(x, y, nl)).collect();
         let s = run_texread(&tex, p, &r, interval, None).unwrap().stats;
         let counts = (s.demand_fills, s.prefetch_fills, s.hits, s.prefetch_hits);
         (counts, s.late_prefetches, s.stall_cycles)
@@ -566,11 +567,8 @@ fn the_lookup_masks_show_the_entries_a_footprint_needs_and_hits() {
     let mut sim = unit_after_reset(&tex, p);
     let mut firsts = Vec::new();
     for c in 0..200u64 {
-        let d = &mut sim.dut;
-        d.in_valid.set_bool(c == 0 || c == 100);
-        d.in_u.set_bits(3 << 4);
-        d.in_v.set_bits(3 << 4);
-        d.in_newline.set_bool(true);
+        let offer = c == 0 || c == 100;
+        RasterDriver.drive(&mut sim.dut, offer.then_some(&point(3, 3, true)));
         sim.eval();
         let d = &sim.dut;
         if d.lookup.first {
@@ -591,7 +589,7 @@ fn a_new_scanline_flushes_the_queue() {
     let tex = tb::texture::test_pattern(64, 64);
     let p = TexParams::new(64, 64);
     let (mut busy, mut free) = (0, 0);
-    for (second, k) in [9u64, 40]
+    for (second, k) in [9u32, 40]
         .into_iter()
         .flat_map(|x| (1..80u64).map(move |k| (x, k)))
     {
@@ -599,13 +597,9 @@ fn a_new_scanline_flushes_the_queue() {
         // (10, 10) on a scanline, then from cycle k (second, second), a new scanline.
         let (mut sent, mut flushed_at) = (0, None);
         for c in 0..300u64 {
-            let d = &mut sim.dut;
             let offer = (sent == 0) || (sent == 1 && c >= k);
-            d.in_valid.set_bool(offer);
-            let x = if sent == 0 { 10 } else { second };
-            d.in_u.set_bits(x << 4);
-            d.in_v.set_bits(x << 4);
-            d.in_newline.set_bool(sent == 1);
+            let next = [point(10, 10, false), point(second, second, true)];
+            RasterDriver.drive(&mut sim.dut, next.get(sent).filter(|_| offer));
             sim.eval();
             let d = &sim.dut;
             if offer && d.in_ready.is_high() {
