@@ -19,8 +19,8 @@ use serde::{Deserialize, Serialize};
 use std::collections::HashSet;
 use std::path::PathBuf;
 use verif::{
-    run, Coverage, Coverpoint, Ctx, Driver, Event, Monitor, Pacing, ProbeSink, RunSpec, Seed,
-    TbResult, Testbench,
+    run, Coverage, Coverpoint, Ctx, Driver, Event, Handshake, Monitor, Pacing, ProbeSink, RunSpec,
+    Seed, TbResult, Testbench,
 };
 use waves::{ProbeId, TraceConfig, VcdTracer};
 
@@ -321,6 +321,37 @@ impl LookupLog {
     }
 }
 
+/// The unit's two valid/ready handshakes checked at the pins every cycle: the rasterizer's
+/// request into the unit and fill engine 607's word request to the word controller (inside
+/// the unit: results may match while it breaks the rules, see [`Handshake`]).
+struct Handshakes {
+    raster: Handshake,
+    words: Handshake,
+}
+
+impl Handshakes {
+    fn new() -> Handshakes {
+        Handshakes {
+            raster: Handshake::new("texture_unit_602.in_valid"),
+            words: Handshake::new("texture_unit_602.control_607.req_valid"),
+        }
+    }
+
+    fn sample(&mut self, cycle: u64, d: &TextureUnit) {
+        let req = (d.in_u.bits() << 33) | (d.in_v.bits() << 1) | u64::from(d.in_newline.is_high());
+        let ready = d.in_ready.is_high();
+        self.raster.sample(cycle, d.in_valid.is_high(), ready, req);
+        let m = &d.mem;
+        let valid = m.req_valid.is_high();
+        self.words
+            .sample(cycle, valid, m.ready.is_high(), m.req_addr.bits());
+    }
+
+    fn check(&self) -> Result<(), String> {
+        self.raster.check().and(self.words.check())
+    }
+}
+
 /// Drives `reqs` into a unit already in `sim` (see [`run_texread`]); for testbenches that set
 /// the simulator up themselves (e.g. with the schedule check on). With `probes`, each result's
 /// integer reference and a mismatch flag are set on the tracer.
@@ -339,6 +370,7 @@ pub fn drive<T: Trace + ProbeSink>(
         ..LookupLog::default()
     };
     let (mut scanlines, mut sent) = (0u64, 0usize);
+    let mut pins = Handshakes::new();
     // Worst case per request: four blocks, each two reads with a page fault, plus decode.
     let p = *sim.dut.params();
     let per_req = 4 * (2 * u64::from(p.dram.t_rp + p.dram.t_rcd + p.dram.t_cas + p.dram.t_cp) + 8);
@@ -365,7 +397,10 @@ pub fn drive<T: Trace + ProbeSink>(
                 rgb.push(txn);
                 out_cycles.push(cycle - start);
             }
-            Event::Settled { .. } => log.sample(&sim.dut),
+            Event::Settled { cycle } => {
+                log.sample(&sim.dut);
+                pins.sample(cycle, &sim.dut);
+            }
         },
     )
     .map_err(|t| t.to_string())?;
@@ -374,11 +409,14 @@ pub fn drive<T: Trace + ProbeSink>(
     // ends with the last result).
     while !sim.dut.idle() {
         sim.dut.in_valid.set_bool(false);
-        sim.step();
+        sim.eval();
+        pins.sample(sim.cycle(), &sim.dut);
+        sim.tick();
         if sim.cycle() > start + limit {
             return Err("watchdog: the unit did not go idle".into());
         }
     }
+    pins.check()?;
     let stats = read_stats(&sim.dut, interval, cycles, scanlines, log.split);
     Ok((
         sim,

@@ -13,7 +13,7 @@ use hdl::texmem::texture_unit_602::{TexParams, TextureUnit};
 use proptest::prelude::*;
 use tb::texture::reference_filter;
 use tb::texture::{drive, run_texread, RasterDriver, TexRequest};
-use verif::Driver;
+use verif::{Driver, Handshake};
 
 fn modes() -> Vec<(Layout, bool, Lookahead, u32)> {
     let mut v = Vec::new();
@@ -492,7 +492,8 @@ fn a_fill_asks_for_two_words_then_decodes() {
     let tex = tb::texture::test_pattern(64, 64);
     let p = TexParams::new(64, 64);
     let mut sim = unit_after_reset(&tex, p);
-    let (mut states, mut taken, mut waiting) = (Vec::new(), Vec::new(), None);
+    let (mut states, mut taken) = (Vec::new(), Vec::new());
+    let mut words = Handshake::new("fill.word_req");
     for c in 0..200u64 {
         // One request inside block (2, 2), a new scanline (so no lookahead follows).
         RasterDriver.drive(&mut sim.dut, (c == 0).then_some(&point(10, 10, true)));
@@ -503,19 +504,13 @@ fn a_fill_asks_for_two_words_then_decodes() {
         if states.last() != Some(&st) {
             states.push(st);
         }
-        let req = f.word_req.is_high().then(|| f.word_addr.bits());
-        if let Some(w) = waiting {
-            assert_eq!(
-                req,
-                Some(w),
-                "cycle {c}: request for word {w} changed before taken"
-            );
+        let (req, addr) = (f.word_req.is_high(), f.word_addr.bits());
+        if words.sample(c, req, f.word_ready.is_high(), addr) {
+            taken.push(addr);
         }
-        let take = req.filter(|_| f.word_ready.is_high());
-        taken.extend(take);
-        waiting = req.filter(|_| take.is_none());
         sim.tick();
     }
+    assert_eq!(words.check(), Ok(()), "each request held until taken");
     assert_eq!(states, [0, 1, 2, 0], "IDLE, FETCH, DECODE, IDLE");
     let first = p.block_map().block_addr(2, 2);
     assert_eq!(taken, [first, first + 1]);

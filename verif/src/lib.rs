@@ -15,12 +15,15 @@
 //!   [`run_testbench`] runs the configurations a [`Shard`] owns, each with its own seed, merges
 //!   the [`TbResult`]s and decides pass/fail the same way for every testbench; a [`Registry`]
 //!   lists a project's testbenches for regress, merge, the report and the progress bar.
+//! * [`Handshake`]: the valid/ready rules checked at the pins (valid held, payload unchanged,
+//!   until ready), for the handshakes inside a design that no driver or monitor owns.
 //! * [`ProbeSink`]: golden values and mismatch flags shown beside the design in a waveform.
 //! * [`mutate`]: malformed inputs (a valid file with byte-level mutations) for fuzzing.
 
 pub mod coverage;
 pub mod mutate;
 mod probe;
+mod protocol;
 mod random;
 mod result;
 mod run;
@@ -30,6 +33,7 @@ mod testbench;
 
 pub use coverage::{Coverage, Coverpoint, Cross};
 pub use probe::ProbeSink;
+pub use protocol::{Handshake, Violation};
 pub use random::{seeded_runner, seeded_stimulus, Seed, Shard, Stimulus, SEED_ENV};
 pub use result::TbResult;
 pub use run::{
