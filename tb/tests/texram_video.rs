@@ -115,6 +115,23 @@ fn too_few_row_buffers_overrun() {
     assert_eq!(v.err_code.q().bits(), 1);
 }
 
+/// `queue` row buffers hold `queue` segments: video that needs exactly as many (the most a
+/// run buffered, `max_buffered`) is clean, with one fewer it overruns (code 1).
+#[test]
+fn video_needing_exactly_the_row_buffers_there_are_does_not_overrun() {
+    let mut c = VideoConfig::of(16, 4, Scan::Progressive, 1, 0);
+    let (sim, _) = video_only(&c, 2, 50_000);
+    let need = sim.dut.video().unwrap().max_buffered;
+    assert!((2..32).contains(&need), "{need} buffered");
+    for (queue, code) in [(need, 0), (need - 1, 1)] {
+        c.queue = queue;
+        let (sim, _) = video_only(&c, 2, 50_000);
+        let v = sim.dut.video().unwrap();
+        assert_eq!(v.max_buffered, need, "the same run");
+        assert_eq!(v.err_code.q().bits(), code, "{queue} row buffers");
+    }
+}
+
 /// Sections 11-12, "without slowing down the accesses of the rasterizer", cycle by cycle:
 /// interlaced 1024 x 512 video at 25 frames a second (the largest power-of-two frame at least
 /// 768 wide whose two frame buffers fit the chip; 2,559 row transfers a frame) written
@@ -254,5 +271,51 @@ fn video_rounds_hold_the_banks_six_cycles_a_slot() {
             "{scan:?}: {slots} slots"
         );
         assert_eq!(serving, 6 * slots, "{scan:?}");
+    }
+}
+
+/// Frame `f` is ready (`frames_ready`) at the edge its last segment, the top level's one
+/// texel, is written into its map (DRF `f % 2`), and is stamped with the port's cycle (edges
+/// since power-up, the reset's included), so: seen in the cycle after that edge, stamped with
+/// it, the top texel now the frame's and in the cycle before still the map's old one. Frames
+/// of one grey each (10, 60, 110, 160), so a top texel is known without a reference; 16 x 4
+/// progressive with no blanking, so the next frame's rows are already buffered.
+#[test]
+fn a_frame_is_ready_at_the_edge_its_last_segment_is_written() {
+    let c = VideoConfig::of(16, 4, Scan::Progressive, 1, 0);
+    let grey = |f: usize| 10 + 50 * f as u8;
+    let frames: Vec<Vec<u8>> = (0..4).map(|f| vec![grey(f); 64]).collect();
+    let mut stim = verif::seeded_stimulus("texram video");
+    let (chip, _) = video_chip(&c, &test_map(32, 32, &mut stim)).unwrap();
+    let top =
+        |chip: &hdl::texram::texram_802::Texram802, f: usize| chip.read_level(f % 2, 4).unwrap()[0];
+    let mut sim = Sim::new(chip);
+    sim.reset(2);
+    for f in 0..2 {
+        assert_ne!(
+            top(&sim.dut, f),
+            grey(f),
+            "map {f} starts with another top texel"
+        );
+    }
+    let (mut now, mut before, mut seen) = (2u64, None, Vec::new());
+    let src = clock_video_watching(&mut sim, &c, &frames, 50_000, |chip| {
+        let f = seen.len();
+        let v = chip.video().unwrap();
+        if let Some(&(ready, at)) = v.frames_ready.get(f) {
+            seen.push((ready, at, now, before, top(chip, f)));
+        }
+        before = Some(top(chip, seen.len()));
+        now += 1;
+    });
+    assert_eq!(src.frames_checked(), 4);
+    for (f, &(ready, at, now, before, after)) in seen.iter().enumerate() {
+        assert_eq!((ready, at), (f as u64, now), "frame {f}'s stamp");
+        assert_eq!(after, grey(f), "frame {f} ready: its top texel written");
+        assert_ne!(
+            before,
+            Some(grey(f)),
+            "frame {f}: written in the cycle before"
+        );
     }
 }
