@@ -14,8 +14,8 @@ use hdl::texram::texram_802::{Texram802, TexramParams};
 use hdl::texram::{Border, Drf};
 use proptest::prelude::*;
 use verif::{
-    run, Coverage, Coverpoint, Ctx, Driver, Event, Monitor, Pacing, RunSpec, Scoreboard, Stimulus,
-    TbResult, Testbench,
+    run, Coverage, Coverpoint, Ctx, Driver, Event, Handshake, Monitor, Pacing, RunSpec, Scoreboard,
+    Stimulus, TbResult, Testbench,
 };
 
 pub const NAME: &str = "footprint_fig12";
@@ -506,6 +506,25 @@ fn expect(map: &RefMipmap, border: Border, p: &SetupParams, px: &Pixel) -> Expec
     (*px, want, mean)
 }
 
+/// The fields the setup unit hands the assembly unit with `px_valid`: `(drf, u, v, lambda,
+/// du, dv, log2_n)`.
+type Handover = (u64, u64, u64, u64, u64, u64, u64);
+
+/// The pixel hand-over from setup to assembly at the pins: `(valid, ready, fields)`.
+fn handover<U: SampleTarget>(d: &FootprintFig12<U>) -> (bool, bool, Handover) {
+    let a = &d.assembly;
+    let fields = (
+        a.px_drf.bits(),
+        a.px_u.bits(),
+        a.px_v.bits(),
+        a.px_lambda.bits(),
+        a.px_du.bits(),
+        a.px_dv.bits(),
+        a.px_log2_n.bits(),
+    );
+    (a.px_valid.is_high(), a.px_ready.is_high(), fields)
+}
+
 /// Drives the pixels with random gaps and scores each against `expect` (the reference's
 /// result and the exact mean).
 fn run_pixels<U: SampleTarget, T: Trace>(
@@ -532,13 +551,14 @@ fn run_pixels<U: SampleTarget, T: Trace>(
     let pacing = Pacing::random(300, ctx.seed.derive(5));
     let mut spec = RunSpec::new(n, 200 * 64 * n + 1000).pacing(pacing);
     let mut samples = 0u64;
+    let mut pins = Handshake::<Handover>::new("footprint_fig12.footprint_assembly.px_valid");
     let r = run(
         &mut sim,
         &mut PixelDriver,
         &mut PixelMonitor,
         px,
         &mut spec,
-        |_, ev| match ev {
+        |sim, ev| match ev {
             Event::Sent { txn, .. } => sb.expect(expect(txn)),
             Event::Received { cycle, txn } => {
                 samples += u64::from(txn.n);
@@ -557,11 +577,17 @@ fn run_pixels<U: SampleTarget, T: Trace>(
                     cov.sample(&[i64::from(txn.n.trailing_zeros()), l, b, r, unit]);
                 }
             }
-            Event::Settled { .. } => {}
+            Event::Settled { cycle } => {
+                let (valid, ready, fields) = handover(&sim.dut);
+                pins.sample(cycle, valid, ready, fields);
+            }
         },
     );
     res.score(&sb);
     res.ran(&r);
+    if let Err(e) = pins.check() {
+        res.failures.push(e);
+    }
     // The assembly's pixel counter (a waveform aid) counts the pixels that came out.
     let counted = sim.dut.assembly.pixels.q().bits();
     if counted != res.transactions {

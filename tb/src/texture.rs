@@ -325,7 +325,9 @@ impl LookupLog {
 /// request into the unit and fill engine 607's word request to the word controller (inside
 /// the unit: results may match while it breaks the rules, see [`Handshake`]).
 struct Handshakes {
-    raster: Handshake,
+    /// `(u, v, newline)`.
+    raster: Handshake<(u64, u64, bool)>,
+    /// The word address.
     words: Handshake,
 }
 
@@ -338,7 +340,7 @@ impl Handshakes {
     }
 
     fn sample(&mut self, cycle: u64, d: &TextureUnit) {
-        let req = (d.in_u.bits() << 33) | (d.in_v.bits() << 1) | u64::from(d.in_newline.is_high());
+        let req = (d.in_u.bits(), d.in_v.bits(), d.in_newline.is_high());
         let ready = d.in_ready.is_high();
         self.raster.sample(cycle, d.in_valid.is_high(), ready, req);
         let m = &d.mem;

@@ -9,49 +9,49 @@ use std::fmt;
 
 /// A broken rule, with the cycle it was seen in.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub enum Violation {
+pub enum Violation<T> {
     /// `valid` fell in `cycle` while the payload `data` was still waiting for `ready`.
-    Withdrawn { cycle: u64, data: u64 },
+    Withdrawn { cycle: u64, data: T },
     /// The payload changed from `from` to `to` in `cycle` while waiting for `ready`.
-    Changed { cycle: u64, from: u64, to: u64 },
+    Changed { cycle: u64, from: T, to: T },
 }
 
-impl fmt::Display for Violation {
+impl<T: fmt::Debug> fmt::Display for Violation<T> {
     fn fmt(&self, f: &mut fmt::Formatter) -> fmt::Result {
-        match *self {
+        match self {
             Violation::Withdrawn { cycle, data } => {
                 write!(
                     f,
-                    "cycle {cycle}: valid withdrawn before ready (payload {data:#x})"
+                    "cycle {cycle}: valid withdrawn before ready (payload {data:?})"
                 )
             }
             Violation::Changed { cycle, from, to } => write!(
                 f,
-                "cycle {cycle}: payload changed from {from:#x} to {to:#x} before ready"
+                "cycle {cycle}: payload changed from {from:?} to {to:?} before ready"
             ),
         }
     }
 }
 
 /// Watches one handshake (see the module doc). The payload is whatever identifies the
-/// transaction as a `u64` (an address, or several fields packed).
+/// transaction: an address, or a tuple of the fields that travel with `valid`.
 #[derive(Clone, Debug)]
-pub struct Handshake {
+pub struct Handshake<T = u64> {
     name: &'static str,
     /// The payload presented and not yet taken.
-    waiting: Option<u64>,
+    waiting: Option<T>,
     transfers: u64,
-    violations: Vec<Violation>,
-    /// Violations beyond those kept (the first [`Handshake::KEPT`] are kept).
+    violations: Vec<Violation<T>>,
+    /// Violations beyond those kept (the first [`KEPT`] are kept).
     dropped: u64,
 }
 
-impl Handshake {
-    /// Violations kept for the report; later ones are only counted.
-    pub const KEPT: usize = 16;
+/// Violations kept for the report; later ones are only counted.
+pub const KEPT: usize = 16;
 
+impl<T: Copy + PartialEq + fmt::Debug> Handshake<T> {
     /// A checker for the handshake `name` (the valid signal's scope and name, for the message).
-    pub fn new(name: &'static str) -> Handshake {
+    pub fn new(name: &'static str) -> Handshake<T> {
         Handshake {
             name,
             waiting: None,
@@ -62,7 +62,7 @@ impl Handshake {
     }
 
     /// The settled pins of `cycle`; returns whether a transfer happened in it.
-    pub fn sample(&mut self, cycle: u64, valid: bool, ready: bool, data: u64) -> bool {
+    pub fn sample(&mut self, cycle: u64, valid: bool, ready: bool, data: T) -> bool {
         if let Some(from) = self.waiting {
             if !valid {
                 self.record(Violation::Withdrawn { cycle, data: from });
@@ -80,8 +80,8 @@ impl Handshake {
         transfer
     }
 
-    fn record(&mut self, v: Violation) {
-        if self.violations.len() < Handshake::KEPT {
+    fn record(&mut self, v: Violation<T>) {
+        if self.violations.len() < KEPT {
             self.violations.push(v);
         } else {
             self.dropped += 1;
@@ -99,7 +99,7 @@ impl Handshake {
     }
 
     /// The violations kept, in order.
-    pub fn violations(&self) -> &[Violation] {
+    pub fn violations(&self) -> &[Violation<T>] {
         &self.violations
     }
 
@@ -177,7 +177,7 @@ mod tests {
         assert_eq!(
             h.check(),
             Err(
-                "protocol u.req_valid: cycle 1: valid withdrawn before ready (payload 0x12) \
+                "protocol u.req_valid: cycle 1: valid withdrawn before ready (payload 18) \
                  (1 violation(s))"
                     .into()
             )
@@ -200,7 +200,7 @@ mod tests {
         };
         assert_eq!(h.violations(), [want]);
         assert_eq!(h.transfers(), 1);
-        assert!(h.check().unwrap_err().contains("from 0x3 to 0x4"));
+        assert!(h.check().unwrap_err().contains("from 3 to 4"));
     }
 
     #[test]
@@ -217,7 +217,7 @@ mod tests {
             pins.push((true, false, k));
         }
         let h = feed(&pins);
-        assert_eq!(h.violations().len(), Handshake::KEPT);
+        assert_eq!(h.violations().len(), KEPT);
         assert_eq!(h.violation_count(), 39);
         assert!(h.check().unwrap_err().ends_with("(39 violation(s))"));
     }
