@@ -309,3 +309,94 @@ impl Module for RayCaster {
         v.leave();
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::kernel::Sim;
+
+    /// What one ray showed at the pins and in the sequencer: the cycle it was taken, the
+    /// cycles its samples came out, the cycles `fault` was high.
+    struct Seen {
+        taken: u64,
+        outs: Vec<u64>,
+        fault_cycles: u64,
+    }
+
+    /// One ray of `steps` samples from `p` by `d` (raw sQ.12) through a 16 x 16 x 16 volume
+    /// with `slot_cycles`, in `mode`.
+    fn one_ray(
+        mode: Mode,
+        slot_cycles: u32,
+        p: [i64; 3],
+        d: [i64; 3],
+        steps: u64,
+    ) -> (Sim<RayCaster>, Seen) {
+        let mut vp = VolumeParams::new(16, 16, 16);
+        vp.slot_cycles = slot_cycles;
+        let vox: Vec<u8> = (0..16 * 16 * 16).map(|n| (n * 7 % 251) as u8).collect();
+        let mut sim = Sim::new(RayCaster::new(vp, mode, &vox).unwrap());
+        sim.reset(1);
+        let mut seen = Seen {
+            taken: 0,
+            outs: Vec::new(),
+            fault_cycles: 0,
+        };
+        for c in 0..20_000u64 {
+            let dut = &mut sim.dut;
+            dut.ray_valid.set_bool(c == 0);
+            for k in 0..3 {
+                dut.ray_p[k].set_raw(p[k]);
+                dut.ray_d[k].set_raw(d[k]);
+            }
+            dut.ray_steps.set_bits(steps);
+            sim.eval();
+            let dut = &sim.dut;
+            if c == 0 {
+                assert!(dut.ray_ready.is_high(), "an idle caster takes the ray");
+                seen.taken = c;
+            }
+            if dut.out_valid.q().is_high() {
+                seen.outs.push(c);
+            }
+            seen.fault_cycles += u64::from(dut.fault.q().is_high());
+            sim.tick();
+            if seen.outs.len() as u64 == steps {
+                break;
+            }
+        }
+        (sim, seen)
+    }
+
+    /// The sequencer's timing over one ray, in both modes and two slot lengths: the last
+    /// sample leaves `2 + slot_cycles x slots` cycles after the ray was taken (a cycle to start
+    /// the first access, `slot_cycles` a slot, two slots for an access that opens a row, a
+    /// cycle to register the result), and `fault` is high through exactly the faulting
+    /// accesses' two slots each (`fault_slots` counts one each). The ray crosses rows, so some
+    /// accesses fault and most do not.
+    #[test]
+    fn samples_leave_slot_cycles_a_slot_and_fault_marks_the_row_openings() {
+        let (p, d) = ([1 << 12, 2 << 12, 3 << 12], [1 << 12, 1 << 11, 3 << 10]);
+        for (mode, sc) in [(Mode::Value, 6), (Mode::Gradient, 6), (Mode::Value, 3)] {
+            let (sim, s) = one_ray(mode, sc, p, d, 10);
+            let r = |r: &Reg| r.q().bits();
+            let dut = &sim.dut;
+            let (slots, faults) = (r(&dut.slots), r(&dut.fault_slots));
+            assert_eq!(r(&dut.accesses), 10 * mode.accesses() as u64, "{mode:?}");
+            assert_eq!(slots, r(&dut.accesses) + faults, "{mode:?}");
+            assert!(0 < faults && faults < 10, "{mode:?}: {faults} faults");
+            let sc = u64::from(sc);
+            assert_eq!(s.outs.len(), 10);
+            assert_eq!(
+                s.outs[9] - s.taken,
+                2 + sc * slots,
+                "{mode:?}, {sc} cycles a slot"
+            );
+            assert_eq!(
+                s.fault_cycles,
+                2 * sc * faults,
+                "{mode:?}, {sc} cycles a slot"
+            );
+        }
+    }
+}
