@@ -372,7 +372,7 @@ mod tests {
     /// sample leaves `2 + slot_cycles x slots` cycles after the ray was taken (a cycle to start
     /// the first access, `slot_cycles` a slot, two slots for an access that opens a row, a
     /// cycle to register the result), and `fault` is high through exactly the faulting
-    /// accesses' two slots each (`fault_slots` counts one each). The ray crosses rows, so some
+    /// accesses' two slots each (`fault_slots` counts one each); `samples` counts them. The ray crosses rows, so some
     /// accesses fault and most do not.
     #[test]
     fn samples_leave_slot_cycles_a_slot_and_fault_marks_the_row_openings() {
@@ -382,6 +382,7 @@ mod tests {
             let r = |r: &Reg| r.q().bits();
             let dut = &sim.dut;
             let (slots, faults) = (r(&dut.slots), r(&dut.fault_slots));
+            assert_eq!(r(&dut.samples), 10, "{mode:?}");
             assert_eq!(r(&dut.accesses), 10 * mode.accesses() as u64, "{mode:?}");
             assert_eq!(slots, r(&dut.accesses) + faults, "{mode:?}");
             assert!(0 < faults && faults < 10, "{mode:?}: {faults} faults");
