@@ -88,11 +88,6 @@ impl<T: Copy + PartialEq + fmt::Debug> Handshake<T> {
         }
     }
 
-    /// The handshake's name.
-    pub fn name(&self) -> &'static str {
-        self.name
-    }
-
     /// Transfers seen (valid and ready in the same cycle).
     pub fn transfers(&self) -> u64 {
         self.transfers
