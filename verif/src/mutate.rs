@@ -65,7 +65,8 @@ pub enum Mutation {
 }
 
 impl Mutation {
-    /// Applies the change to `b` (positions modulo its length; an empty input only grows).
+    /// Applies the change to `b` (positions modulo its length; an empty input only grows: a
+    /// range of it is empty, so deleting or repeating one changes nothing).
     pub fn apply(&self, b: &mut Vec<u8>) {
         let n = b.len();
         let pos = |at: usize| if n == 0 { 0 } else { at % n };
@@ -73,11 +74,11 @@ impl Mutation {
             Mutation::Flip { at, bit } if n > 0 => b[pos(at)] ^= 1 << (bit % 8),
             Mutation::Set { at, byte } if n > 0 => b[pos(at)] = byte,
             Mutation::Truncate { at } => b.truncate(if n == 0 { 0 } else { at % (n + 1) }),
-            Mutation::Delete { at, len } if n > 0 => {
+            Mutation::Delete { at, len } => {
                 let a = pos(at);
                 b.drain(a..(a + len).min(n));
             }
-            Mutation::Duplicate { at, len } if n > 0 => {
+            Mutation::Duplicate { at, len } => {
                 let a = pos(at);
                 let piece = b[a..(a + len).min(n)].to_vec();
                 let end = a + piece.len();
@@ -128,10 +129,13 @@ mod tests {
         let b = b"abcdef".to_vec();
         let m = |x: Mutation| mutated(&b, &[x]);
         assert_eq!(m(Mutation::Flip { at: 7, bit: 0 }), b"accdef");
+        assert_eq!(m(Mutation::Flip { at: 0, bit: 5 }), b"Abcdef", "a set bit cleared");
+        assert_eq!(m(Mutation::Flip { at: 2, bit: 12 }), b"absdef", "bit 12 is bit 4");
         assert_eq!(m(Mutation::Set { at: 0, byte: b'z' }), b"zbcdef");
         assert_eq!(m(Mutation::Truncate { at: 3 }), b"abc");
         assert_eq!(m(Mutation::Truncate { at: 6 }), b"abcdef");
         assert_eq!(m(Mutation::Delete { at: 4, len: 9 }), b"abcd");
+        assert_eq!(m(Mutation::Delete { at: 1, len: 2 }), b"adef");
         assert_eq!(m(Mutation::Duplicate { at: 1, len: 2 }), b"abcbcdef");
         assert_eq!(m(Mutation::Insert { at: 6, token: 1 }), b"abcdef-1");
     }
