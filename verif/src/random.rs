@@ -43,7 +43,13 @@ impl Seed {
             .duration_since(std::time::UNIX_EPOCH)
             .map(|d| d.as_nanos() as u64)
             .unwrap_or(0);
-        Seed::from_env_or(Seed(splitmix(t ^ u64::from(std::process::id()))))
+        Seed::from_env_or(Seed::fresh(t, std::process::id()))
+    }
+
+    /// The seed of a process `pid` started at `nanos`: test processes started together (one
+    /// a test under nextest) differ in their id, runs of one binary in their time.
+    fn fresh(nanos: u64, pid: u32) -> Seed {
+        Seed(splitmix(nanos ^ u64::from(pid)))
     }
 
     /// A seed derived from this one for an independent stream `k` (shards, sub-benches).
@@ -230,5 +236,50 @@ mod tests {
             Seed(0xdead)
         );
         assert_ne!(Seed(1).derive(0), Seed(1).derive(1));
+    }
+
+    /// Distinct seeds give distinct derived streams, and distinct stream numbers too; so do
+    /// distinct processes and instants for fresh seeds.
+    #[test]
+    fn seeds_apart_stay_apart() {
+        let distinct = |v: Vec<Seed>| {
+            let n = v.len();
+            n == v.into_iter().collect::<std::collections::HashSet<_>>().len()
+        };
+        for k in [0, 1, 5, u64::MAX] {
+            assert!(distinct((0..256).map(|s| Seed(s).derive(k)).collect()), "k {k}");
+            assert!(distinct((0..256).map(|j| Seed(k).derive(j)).collect()), "seed {k}");
+        }
+        for t in [0, 0xff, u64::MAX] {
+            assert!(distinct((0..256).map(|pid| Seed::fresh(t, pid)).collect()), "t {t}");
+            assert!(distinct((0..256).map(|n| Seed::fresh(t ^ n, 77)).collect()), "t {t}");
+        }
+    }
+
+    /// The runner runs the cases asked for and writes no regression file on a failure.
+    #[test]
+    fn a_seeded_runner_runs_the_cases_asked_and_persists_nothing() {
+        let mut r = seeded_runner("a_seeded_runner", 7);
+        assert_eq!(r.config().cases, 7);
+        assert!(r.config().failure_persistence.is_none());
+        let n = std::cell::Cell::new(0);
+        r.run(&(0u8..4), |_| {
+            n.set(n.get() + 1);
+            Ok(())
+        })
+        .unwrap();
+        assert_eq!(n.get(), 7);
+    }
+
+    #[test]
+    fn a_bad_shard_is_quoted_whole_or_cut_at_40_characters() {
+        let e = Shard::parse("a/b").unwrap_err();
+        assert!(e.starts_with("'a/b' is not a shard I/N"), "{e}");
+        let long = format!("1/{}", "9".repeat(38));
+        let e = Shard::parse(&long).unwrap_err();
+        assert!(e.starts_with(&format!("'{long}' is not")), "40 kept: {e}");
+        let longer = format!("{long}9");
+        let e = Shard::parse(&longer).unwrap_err();
+        assert!(e.starts_with(&format!("'{}...' is not", &longer[..37])), "{e}");
     }
 }
