@@ -234,3 +234,91 @@ impl Gtkw {
         out
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn trace(name: &str, style: Style) -> Item {
+        Item::Trace {
+            name: name.into(),
+            style,
+            filter: None,
+        }
+    }
+
+    fn named(name: &str, filter: &str) -> Item {
+        Item::Trace {
+            name: name.into(),
+            style: Style::Named,
+            filter: Some(filter.into()),
+        }
+    }
+
+    /// The flag words of GTKWave's save-file format (module comment), each right-justified.
+    #[test]
+    fn styles_are_gtkwave_flag_words() {
+        assert_eq!(Style::Bin.flags(), 0x28);
+        assert_eq!(Style::Hex.flags(), 0x22);
+        assert_eq!(Style::SignedDec.flags(), 0x424);
+        assert_eq!(Style::Analog.flags(), 0x48020);
+        assert_eq!(Style::Named.flags(), 0x2024);
+    }
+
+    /// A probe goes under its signal and that signal's `_real` companion; one with no such
+    /// signal goes into one "golden" group at the end.
+    #[test]
+    fn probes_are_placed_beside_their_signal_or_in_the_golden_group() {
+        let mut g = Gtkw::new(Path::new("/w/x.vcd"));
+        g.begin_group("u", "tb.u");
+        g.push(trace("tb.u.a[3:0]", Style::Hex));
+        g.push(trace("tb.u.a_real", Style::Analog));
+        g.push(trace("tb.u.b[3:0]", Style::Hex));
+        g.end_group();
+        g.place(trace("tb.golden.a", Style::Analog), Some("tb.u.a"));
+        g.place(trace("tb.golden.b", Style::Analog), Some("tb.u.b"));
+        g.place(trace("tb.golden.p", Style::Analog), None);
+        g.place(trace("tb.golden.q", Style::Analog), Some("tb.u.nothing"));
+        let order: Vec<String> = g
+            .items
+            .iter()
+            .map(|it| match it {
+                Item::Trace { name, .. } => name.clone(),
+                Item::GroupBegin(l) => format!("+{l}"),
+                Item::GroupEnd(l) => format!("-{l}"),
+            })
+            .collect();
+        let want = "+u tb.u.a[3:0] tb.u.a_real tb.golden.a tb.u.b[3:0] tb.golden.b -u \
+                    +golden tb.golden.p tb.golden.q -golden";
+        assert_eq!(order.join(" "), want);
+    }
+
+    /// The whole text: header with the zoom that fits the run, the open scopes, a flags line
+    /// only where the style changes, filter slots by first use, empty groups left out.
+    #[test]
+    fn a_save_file_renders_line_for_line() {
+        let mut g = Gtkw::new(Path::new("/w/x.vcd"));
+        g.set_end_time(1000);
+        g.treeopen("tb");
+        g.begin_group("u", "tb.u");
+        g.push(trace("tb.u.a", Style::Bin));
+        g.push(trace("tb.u.b", Style::Bin));
+        g.push(trace("tb.u.c[7:0]", Style::Hex));
+        g.push(named("tb.u.s[1:0]", "/w/s.txt"));
+        g.push(named("tb.u.t[1:0]", "/w/t.txt"));
+        g.push(named("tb.u.s2[1:0]", "/w/s.txt"));
+        g.end_group();
+        g.begin_group("empty", "tb.e");
+        g.end_group();
+        let want = "[*] texrtl: T\n[dumpfile] \"/w/x.vcd\"\n[savefile] \"/w/x.gtkw\"\n\
+            [timestart] 0\n[size] 1600 900\n[pos] -1 -1\n*-7.714246 0\n\
+            [sst_width] 260\n[signals_width] 300\n[sst_expanded] 1\n[sst_vpaned_height] 260\n\
+            [treeopen] tb.\n[treeopen] tb.u.\n[treeopen] tb.e.\n\
+            @800200\n-u\n@28\ntb.u.a\ntb.u.b\n@22\ntb.u.c[7:0]\n\
+            @2024\n^1 /w/s.txt\ntb.u.s[1:0]\n^2 /w/t.txt\ntb.u.t[1:0]\n^1 /w/s.txt\ntb.u.s2[1:0]\n\
+            @1000200\n-u\n[pattern_trace] 1\n[pattern_trace] 0\n";
+        assert_eq!(g.render("T"), want);
+        g.set_end_time(0);
+        assert!(g.render("T").contains("\n*-1.070389 0\n"), "at least 10 units shown");
+    }
+}
