@@ -8,16 +8,17 @@ pub fn glob_match(pattern: &str, text: &str) -> bool {
     // Position of the last `*` and the text position it was tried at.
     let mut star: Option<(usize, usize)> = None;
     while ti < t.len() {
-        if pi < p.len() && (p[pi] == '?' || p[pi] == t[ti]) {
-            pi += 1;
-            ti += 1;
-        } else if pi < p.len() && p[pi] == '*' {
+        // A `*` first: one in the text is matched by it, not taken literally.
+        if pi < p.len() && p[pi] == '*' {
             star = Some((pi, ti));
             pi += 1;
+        } else if pi < p.len() && (p[pi] == '?' || p[pi] == t[ti]) {
+            pi += 1;
+            ti += 1;
         } else if let Some((sp, st)) = star {
-            pi = sp + 1;
+            // The last `*` takes one more character; it is then tried again from there.
+            pi = sp;
             ti = st + 1;
-            star = Some((sp, st + 1));
         } else {
             return false;
         }
@@ -39,5 +40,10 @@ mod tests {
         assert!(glob_match("*", ""));
         assert!(glob_match("a*b*c", "aXXbYYbc"));
         assert!(!glob_match("a*b*c", "aXXbYYb"));
+        // A `*` in the text is a character like any other.
+        assert!(glob_match("*?", "*"));
+        assert!(glob_match("a*", "a*b"));
+        assert!(glob_match("*b", "ab*b"));
+        assert!(!glob_match("*b", "ab*"));
     }
 }
