@@ -354,8 +354,16 @@ mod tests {
         assert_eq!(c.points[1].bins[5].hi, 254);
         assert_eq!(c.points[0].unbinned, 1);
         let row = |m: usize| c.crosses[0].hits[m].clone();
-        assert_eq!(row(0), [1, 0, 0, 1, 0, 0], "normal with zero, then with mid[1]");
-        assert_eq!(row(1), [0, 1, 0, 0, 0, 0], "bypass with max; mode 7 in no bin");
+        assert_eq!(
+            row(0),
+            [1, 0, 0, 1, 0, 0],
+            "normal with zero, then with mid[1]"
+        );
+        assert_eq!(
+            row(1),
+            [0, 1, 0, 0, 0, 0],
+            "bypass with max; mode 7 in no bin"
+        );
         let (t, h) = c.totals();
         assert_eq!(t, 2 + 6 + 12);
         assert_eq!(h, 2 + 3 + 3);

@@ -129,8 +129,16 @@ mod tests {
         let b = b"abcdef".to_vec();
         let m = |x: Mutation| mutated(&b, &[x]);
         assert_eq!(m(Mutation::Flip { at: 7, bit: 0 }), b"accdef");
-        assert_eq!(m(Mutation::Flip { at: 0, bit: 5 }), b"Abcdef", "a set bit cleared");
-        assert_eq!(m(Mutation::Flip { at: 2, bit: 12 }), b"absdef", "bit 12 is bit 4");
+        assert_eq!(
+            m(Mutation::Flip { at: 0, bit: 5 }),
+            b"Abcdef",
+            "a set bit cleared"
+        );
+        assert_eq!(
+            m(Mutation::Flip { at: 2, bit: 12 }),
+            b"absdef",
+            "bit 12 is bit 4"
+        );
         assert_eq!(m(Mutation::Set { at: 0, byte: b'z' }), b"zbcdef");
         assert_eq!(m(Mutation::Truncate { at: 3 }), b"abc");
         assert_eq!(m(Mutation::Truncate { at: 6 }), b"abcdef");

@@ -264,15 +264,30 @@ mod tests {
     fn seeds_apart_stay_apart() {
         let distinct = |v: Vec<Seed>| {
             let n = v.len();
-            n == v.into_iter().collect::<std::collections::HashSet<_>>().len()
+            n == v
+                .into_iter()
+                .collect::<std::collections::HashSet<_>>()
+                .len()
         };
         for k in [0, 1, 5, u64::MAX] {
-            assert!(distinct((0..256).map(|s| Seed(s).derive(k)).collect()), "k {k}");
-            assert!(distinct((0..256).map(|j| Seed(k).derive(j)).collect()), "seed {k}");
+            assert!(
+                distinct((0..256).map(|s| Seed(s).derive(k)).collect()),
+                "k {k}"
+            );
+            assert!(
+                distinct((0..256).map(|j| Seed(k).derive(j)).collect()),
+                "seed {k}"
+            );
         }
         for t in [0, 0xff, u64::MAX] {
-            assert!(distinct((0..256).map(|pid| Seed::fresh(t, pid)).collect()), "t {t}");
-            assert!(distinct((0..256).map(|n| Seed::fresh(t ^ n, 77)).collect()), "t {t}");
+            assert!(
+                distinct((0..256).map(|pid| Seed::fresh(t, pid)).collect()),
+                "t {t}"
+            );
+            assert!(
+                distinct((0..256).map(|n| Seed::fresh(t ^ n, 77)).collect()),
+                "t {t}"
+            );
         }
     }
 
@@ -300,6 +315,9 @@ mod tests {
         assert!(e.starts_with(&format!("'{long}' is not")), "40 kept: {e}");
         let longer = format!("{long}9");
         let e = Shard::parse(&longer).unwrap_err();
-        assert!(e.starts_with(&format!("'{}...' is not", &longer[..37])), "{e}");
+        assert!(
+            e.starts_with(&format!("'{}...' is not", &longer[..37])),
+            "{e}"
+        );
     }
 }

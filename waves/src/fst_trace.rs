@@ -172,7 +172,7 @@ pub(crate) fn fst_message(e: &FstWriteError) -> String {
 }
 
 impl FstTracer {
-    /// A tracer that will write `path` (a `.fst`).
+    /// A tracer that will write `path` (a `.fst`); `cfg.fst` is not read.
     pub fn create(path: impl AsRef<Path>, cfg: TraceConfig) -> io::Result<Self> {
         let path = path.as_ref().to_path_buf();
         cfg.validate().map_err(|e| {

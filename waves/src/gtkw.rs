@@ -319,6 +319,9 @@ mod tests {
             @1000200\n-u\n[pattern_trace] 1\n[pattern_trace] 0\n";
         assert_eq!(g.render("T"), want);
         g.set_end_time(0);
-        assert!(g.render("T").contains("\n*-1.070389 0\n"), "at least 10 units shown");
+        assert!(
+            g.render("T").contains("\n*-1.070389 0\n"),
+            "at least 10 units shown"
+        );
     }
 }

@@ -254,10 +254,7 @@ impl VcdTracer {
         let fst = match cfg.fst {
             true => Some(crate::FstTracer::create(
                 path.with_extension("fst"),
-                TraceConfig {
-                    fst: false,
-                    ..cfg.clone()
-                },
+                cfg.clone(),
             )?),
             false => None,
         };
@@ -878,6 +875,39 @@ impl Drop for VcdTracer {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// Periods are even, 2 ps to 1 ms; windows hold a cycle.
+    #[test]
+    fn trace_configurations_are_checked_at_both_ends() {
+        let with = |period_ps, window| TraceConfig {
+            period_ps,
+            window,
+            ..TraceConfig::default()
+        };
+        let max = TraceConfig::MAX_PERIOD_PS;
+        for p in [2, 4, max] {
+            assert_eq!(with(p, None).validate(), Ok(()), "{p} ps");
+        }
+        for p in [0, 1, 3, max - 1, max + 1, max + 2] {
+            let e = with(p, None).validate().unwrap_err();
+            assert!(
+                e.starts_with(&format!("clock period {p} ps must be even")),
+                "{e}"
+            );
+        }
+        assert_eq!(with(2, Some((3, 4))).validate(), Ok(()));
+        assert_eq!(
+            with(2, Some((4, 4))).validate(),
+            Err("empty trace window 4..4".into())
+        );
+    }
+
+    /// Probe names become VCD identifiers: letters, digits and `_` kept, the rest `_`.
+    #[test]
+    fn probe_names_are_escaped() {
+        assert_eq!(escape("n_x.gold-1 [ref]"), "n_x_gold_1__ref_");
+        assert_eq!(escape("Ab9"), "Ab9");
+    }
 
     /// The hand-written change is the `vcd` crate's text for every width and for bit patterns
     /// across the byte boundaries.
