@@ -19,11 +19,10 @@ pub fn vcd_to_fst(vcd: &Path, fst: &Path) -> Result<(), String> {
                 .map(|e| e + (t.factor as f64).log10() as i8)
         })
         .unwrap_or(-12);
-    // The dump starts where the VCD does (a trace window may start late): the first values are
-    // then the initial values, with no undefined stretch before them.
-    let start = w.time_table().first().copied().unwrap_or(0);
     let info = FstInfo {
-        start_time: start,
+        // fst-writer writes this into the header's time zero, an offset GTKWave adds to every
+        // time it shows; the VCD's times are absolute (a trace window's too).
+        start_time: 0,
         timescale_exponent: exp,
         version: concat!("texrtl ", env!("CARGO_PKG_VERSION")).into(),
         date: String::new(),
@@ -108,13 +107,21 @@ pub fn vcd_to_fst(vcd: &Path, fst: &Path) -> Result<(), String> {
 }
 
 /// Whether a FST read back holds the VCD's variables, widths and, at every VCD timestamp, the
-/// VCD's values (a FST may carry one extra leading timestamp: fst-writer starts time at 0).
+/// VCD's values, and ends when the VCD ends (a FST may carry one extra leading timestamp:
+/// fst-writer starts time at 0).
 pub fn same_values(
     vcd: &crate::check::Readback,
     fst: &crate::check::Readback,
 ) -> Result<(), String> {
     if vcd.vars.keys().ne(fst.vars.keys()) {
         return Err("different variables".into());
+    }
+    if vcd.times.last() != fst.times.last() {
+        return Err(format!(
+            "the VCD ends at {:?}, the FST at {:?}",
+            vcd.times.last(),
+            fst.times.last()
+        ));
     }
     for (name, v) in &vcd.vars {
         let f = &fst.vars[name];

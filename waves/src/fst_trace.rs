@@ -183,7 +183,9 @@ impl FstTracer {
         })?;
         let out = Staged::new(&path);
         let info = FstInfo {
-            start_time: cfg.window.map_or(0, |(a, _)| a * cfg.period_ps),
+            // fst-writer writes this into the header's time zero, an offset GTKWave adds to
+            // every time it shows; the times here are absolute (a window's too).
+            start_time: 0,
             timescale_exponent: -12,
             version: concat!("texrtl ", env!("CARGO_PKG_VERSION")).into(),
             date: String::new(),
@@ -430,5 +432,23 @@ impl Drop for FstTracer {
             drop(w.join());
         }
         // An uncommitted `out` removes its partial file when it is dropped.
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// An fst-writer I/O error keeps its kind (a full disk stays a full disk for the caller)
+    /// and is named after the file.
+    #[test]
+    fn write_errors_keep_their_kind_and_name_the_file() {
+        let full = io::Error::new(io::ErrorKind::StorageFull, "no space left");
+        let e = fst_err(Path::new("w.fst"), FstWriteError::Io(full));
+        assert_eq!(e.kind(), io::ErrorKind::StorageFull);
+        assert_eq!(e.to_string(), "w.fst: no space left");
+        let e = fst_err(Path::new("w.fst"), FstWriteError::TimeDecrease(5, 4));
+        assert_eq!(e.kind(), io::ErrorKind::Other);
+        assert!(e.to_string().starts_with("w.fst: "), "{e}");
     }
 }

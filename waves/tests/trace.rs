@@ -227,6 +227,7 @@ fn fst_of_a_windowed_trace() {
     waves::fst::vcd_to_fst(&path, &fst).unwrap();
     let a = read_vcd(&path).unwrap();
     let b = waves::check::read_fst(&fst).unwrap();
+    assert_eq!(fst_header(&fst).2, 0, "no time offset");
     // fst-writer always starts its time table at 0: the FST has one extra leading timestamp
     // before the window, and from the window on every value is the VCD's.
     assert!(
@@ -276,7 +277,24 @@ fn direct_fst_holds_the_vcds_values() {
         let r = waves::fst::same_values(&a, &b);
         assert!(r.is_ok(), "{name}: {r:?}");
         assert!(!b.vars.is_empty());
+        let end = window.map_or(22, |(_, b)| b) * 10_000;
+        assert_eq!(
+            fst_header(&fst),
+            (0, end, 0),
+            "{name}: from 0, no time offset"
+        );
     }
+}
+
+/// The FST header's start and end times (fst-reader, wellen's reader) and its time zero, an
+/// offset GTKWave adds to every time it shows (read from the header block's last eight bytes:
+/// one byte of block type, then 321 bytes of fields before it, big-endian).
+fn fst_header(fst: &std::path::Path) -> (u64, u64, u64) {
+    let file = std::io::BufReader::new(std::fs::File::open(fst).unwrap());
+    let h = fst_reader::FstReader::open(file).unwrap().get_header();
+    let bytes = std::fs::read(fst).unwrap();
+    let zero = u64::from_be_bytes(bytes[322..330].try_into().unwrap());
+    (h.start_time, h.end_time, zero)
 }
 
 /// A long run through both writer threads: many VCD batches and 256 KB chunks, many FST
