@@ -186,15 +186,13 @@ fn check_filter(line: &str) -> Result<(), String> {
         .lines()
         .filter(|l| !l.trim().is_empty() && !l.starts_with('#'))
     {
-        let (v, name) = l
+        // Trimmed, a line with a space has a name after it.
+        let (v, _name) = l
             .trim()
             .split_once(' ')
             .ok_or_else(|| format!("filter file {path}: '{l}' is not 'value name'"))?;
         v.parse::<u64>()
             .map_err(|_| format!("filter file {path}: '{v}' is not a decimal value"))?;
-        if name.trim().is_empty() {
-            return Err(format!("filter file {path}: value {v} has no name"));
-        }
     }
     Ok(())
 }
@@ -258,7 +256,11 @@ pub fn check_gtkw(vcd: &Path, rb: &Readback) -> Result<usize, String> {
                 let lsb: u32 = lsb
                     .parse()
                     .map_err(|_| err(format!("bad range in {line}")))?;
-                (b, Some(msb - lsb + 1))
+                let bits = msb.checked_sub(lsb).and_then(|d| d.checked_add(1));
+                (
+                    b,
+                    Some(bits.ok_or_else(|| err(format!("bad range in {line}")))?),
+                )
             }
             None => (line, None),
         };

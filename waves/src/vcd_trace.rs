@@ -10,7 +10,7 @@ use std::fs::File;
 use std::io::{self, BufWriter, Write};
 use std::path::{Path, PathBuf};
 use std::sync::Arc;
-use vcd::{IdCode, ReferenceIndex, TimescaleUnit, Value, VarType};
+use vcd::{IdCode, ReferenceIndex, TimescaleUnit, VarType};
 
 /// The scope every trace starts with; the DUT's instance is inside it, beside `clk`, `rst` and
 /// the testbench's probes.
@@ -676,11 +676,7 @@ impl VcdTracer {
             .iter()
             .filter(|p| matches!(p.value, ProbeValue::Bits(_)));
         for (id, width) in ids.chain(vars).chain(probes.map(|p| (p.id, p.width))) {
-            if width == 1 {
-                w.change_scalar(id, Value::X)?;
-            } else {
-                writeln!(w.writer(), "b{} {id}", "x".repeat(width as usize))?;
-            }
+            writeln!(w.writer(), "b{} {id}", "x".repeat(width as usize))?;
         }
         let reals = self.entries.iter().filter_map(|e| e.real);
         let real_probes = self
@@ -875,6 +871,7 @@ impl Drop for VcdTracer {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use vcd::Value;
 
     /// Periods are even, 2 ps to 1 ms; windows hold a cycle.
     #[test]

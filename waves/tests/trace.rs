@@ -403,3 +403,186 @@ fn a_full_device_is_an_error_naming_it() {
     assert!(!std::path::Path::new("/dev/full.gtkw").exists());
     assert!(!std::path::Path::new("/dev/full.partial").exists());
 }
+
+/// The flags line (`@...`) in effect for trace line `name` of a save file.
+fn flags_of<'a>(gtkw: &'a str, name: &str) -> Option<&'a str> {
+    let mut flags = None;
+    for l in gtkw.lines() {
+        if let Some(f) = l.strip_prefix('@') {
+            flags = Some(f);
+        } else if l == name {
+            return flags;
+        }
+    }
+    None
+}
+
+/// Bit probes of one and eight bits: declared with their widths and listed in the save file
+/// as GTKWave names them (a vector with its range, a bit without), as are the design's.
+#[test]
+fn probes_and_single_bits_are_named_as_gtkwave_names_them() {
+    let path = tmpdir("probes").join("p.vcd");
+    let mut t = VcdTracer::create(&path, "probes", TraceConfig::default()).unwrap();
+    let f = t.probe_bits("f", 1, None);
+    let b = t.probe_bits("b", 8, None);
+    let dut = BlendAdjust::new("blend_adjust_153", BlendAdjustParams::default()).unwrap();
+    let mut sim = Sim::traced(dut, t).unwrap();
+    drive(&mut sim, |sim| {
+        let t = sim.trace_mut().unwrap();
+        t.set_bits(f, 1);
+        t.set_bits(b, 200);
+    });
+    sim.finish().unwrap();
+    let rb = read_vcd(&path).unwrap();
+    assert_eq!(rb.vars["tb.golden.f"].width, Some(1));
+    assert_eq!(rb.vars["tb.golden.b"].width, Some(8));
+    assert_eq!(
+        rb.value_at("tb.golden.b", 50_000).unwrap().as_u64(),
+        Some(200)
+    );
+    check_gtkw(&path, &rb).unwrap();
+    // Declared as GTKWave then names them: a range only on a vector.
+    let vcd = std::fs::read_to_string(&path).unwrap();
+    let declared = |name: &str| {
+        vcd.lines()
+            .find(|l| l.starts_with("$var") && l.split(' ').nth(4) == Some(name))
+            .map(|l| l.split(' ').skip(5).collect::<Vec<_>>().join(" "))
+    };
+    assert_eq!(declared("f").as_deref(), Some("$end"));
+    assert_eq!(declared("b").as_deref(), Some("[7:0] $end"));
+    assert_eq!(declared("valid_in").as_deref(), Some("$end"));
+    assert_eq!(declared("u_in").as_deref(), Some("[7:0] $end"));
+    let g = std::fs::read_to_string(path.with_extension("gtkw")).unwrap();
+    for (name, flags) in [
+        ("tb.golden.f", "22"),
+        ("tb.golden.b[7:0]", "22"),
+        ("tb.blend_adjust_153.valid_in", "28"),
+        ("tb.blend_adjust_153.u_in[7:0]", "22"),
+    ] {
+        assert_eq!(flags_of(&g, name), Some(flags), "{name} in\n{g}");
+    }
+}
+
+/// A window no cycle of the run reaches: a valid dump of unknowns at the window's start.
+#[test]
+fn a_window_past_the_run_dumps_unknowns_at_its_start() {
+    let path = run(
+        "late",
+        TraceConfig {
+            window: Some((100, 110)),
+            ..Default::default()
+        },
+        true,
+    );
+    let rb = read_vcd(&path).unwrap();
+    assert_eq!(rb.times, [1_000_000]);
+    let at = |v: &str| rb.value_at(v, 1_000_000).cloned();
+    assert_eq!(at("tb.clk"), Some(Value::Bits("x".into())));
+    assert_eq!(
+        at("tb.blend_adjust_153.u_in"),
+        Some(Value::Bits("x".repeat(8)))
+    );
+    assert_eq!(at("tb.blend_adjust_153.u0_real"), Some(Value::Real(0.0)));
+    assert_eq!(at("tb.golden.u0"), Some(Value::Real(0.0)));
+    check_gtkw(&path, &rb).unwrap();
+}
+
+/// The FST written beside the VCD (`fst` on) holds the VCD's values.
+#[test]
+fn an_fst_beside_the_vcd_holds_its_values() {
+    let cfg = TraceConfig {
+        fst: true,
+        companions: false,
+        ..Default::default()
+    };
+    let vcd = run("beside", cfg, true);
+    let mut a = read_vcd(&vcd).unwrap();
+    a.vars.retain(|n, _| !n.starts_with("tb.golden"));
+    let b = waves::check::read_fst(&vcd.with_extension("fst")).unwrap();
+    waves::fst::same_values(&a, &b).unwrap();
+}
+
+/// A tracer driven out of order (a cycle again, or an earlier one) is an error naming the
+/// file, not a dump whose time goes backwards.
+#[test]
+fn time_never_goes_backwards() {
+    use hdl::kernel::Trace;
+    let path = tmpdir("order").join("o.vcd");
+    let mut t = VcdTracer::create(&path, "order", TraceConfig::default()).unwrap();
+    let dut = BlendAdjust::new("blend_adjust_153", BlendAdjustParams::default()).unwrap();
+    t.start(&dut).unwrap();
+    t.sample(3, false, &dut).unwrap();
+    for again in [3, 2] {
+        let e = t.sample(again, false, &dut).unwrap_err().to_string();
+        assert!(
+            e.contains("o.vcd") && e.contains("timestamps must increase"),
+            "{e}"
+        );
+    }
+}
+
+/// A hand-written dump (timescale 10 ps, a vector numbered 8..1) and a save file for it with
+/// `lines` after its `[dumpfile]` line: what `check_gtkw` says.
+fn check_written(name: &str, lines: &str) -> Result<usize, String> {
+    let dir = tmpdir("written");
+    let vcd = dir.join(format!("{name}.vcd"));
+    let text = "$timescale 10 ps $end\n$scope module tb $end\n$var wire 1 ! a $end\n\
+                $var wire 8 \" v [8:1] $end\n$upscope $end\n$enddefinitions $end\n\
+                #0\n$dumpvars\n0!\nb101 \"\n$end\n#3\n1!\n";
+    std::fs::write(&vcd, text).unwrap();
+    let rb = read_vcd(&vcd).unwrap();
+    assert_eq!(rb.timescale_exp, Some(-11), "10 ps");
+    assert_eq!(rb.times, [0, 3]);
+    let gtkw = format!("[dumpfile] \"{}\"\n{lines}", vcd.display());
+    std::fs::write(vcd.with_extension("gtkw"), gtkw).unwrap();
+    check_gtkw(&vcd, &rb)
+}
+
+/// What `check_gtkw` refuses in a save file: ranges that do not give the dump's width, and
+/// translate filter files that are missing or not `value name` lines.
+#[test]
+fn save_files_are_checked_line_by_line() {
+    let dir = tmpdir("written");
+    let filter = |name: &str, text: &str| {
+        let p = dir.join(name);
+        std::fs::write(&p, text).unwrap();
+        p.display().to_string()
+    };
+    let good = filter("good.txt", "# states\n\n0 idle\n1 busy\n");
+    assert_eq!(check_written("ok", "@28\ntb.a\n@22\ntb.v[8:1]\n"), Ok(2));
+    assert_eq!(
+        check_written("f", &format!("@2024\n^1 {good}\ntb.a\n")),
+        Ok(1)
+    );
+    for (name, lines, says) in [
+        (
+            "narrow",
+            "tb.v[7:1]\n".to_string(),
+            "the dump says Some(8) bits",
+        ),
+        ("upside", "tb.v[1:8]\n".into(), "bad range in tb.v[1:8]"),
+        ("huge", "tb.v[4294967295:0]\n".into(), "bad range"),
+        ("gone", "tb.w\n".into(), "trace tb.w is not in the dump"),
+        ("slot", format!("^x {good}\n"), "bad filter slot"),
+        (
+            "nofile",
+            "^1 /no/such/filter.txt\n".into(),
+            "filter file /no/such",
+        ),
+        (
+            "noname",
+            format!("^1 {}\n", filter("n.txt", "0 idle\n1\n")),
+            "'1' is not 'value name'",
+        ),
+        (
+            "hex",
+            format!("^1 {}\n", filter("h.txt", "0x1 idle\n")),
+            "'0x1' is not a decimal value",
+        ),
+        ("groups", "@800200\n-g\n".into(), "unbalanced groups"),
+        ("closed", "@1000200\n-g\n".into(), "group closed twice"),
+    ] {
+        let e = check_written(name, &lines).unwrap_err();
+        assert!(e.contains(says), "{name}: {e}");
+    }
+}
