@@ -398,7 +398,8 @@ mod tests {
         let mut hit = model();
         hit.sample(&[1, 0, 0]);
         assert_eq!(model().same_model(&hit), Ok(()), "hits are not shape");
-        let changes: [(&str, fn(&mut Coverage)); 8] = [
+        type Change = (&'static str, fn(&mut Coverage));
+        let changes: [Change; 8] = [
             ("a coverpoint more", |m| {
                 m.add(Coverpoint::new("d"));
             }),
