@@ -257,6 +257,72 @@ mod tests {
         assert_eq!((a.transactions, a.cycles), (6, 8));
     }
 
+    /// The verdict: a mismatch or a failure fails; coverage holes fail a whole run only, and
+    /// deciding again replaces the holes line rather than adding another.
+    #[test]
+    fn finishing_decides_from_mismatches_failures_and_holes() {
+        let mut r = TbResult::new("t", "u");
+        r.finish();
+        assert!(r.passed, "nothing wrong");
+        r.unhit = vec!["p.b".into()];
+        r.finish_with(false);
+        assert!(r.passed, "a shard's holes");
+        r.finish();
+        r.finish();
+        assert!(!r.passed);
+        assert_eq!(r.failures, ["coverage holes (1 bins): p.b"]);
+        r.unhit.clear();
+        r.failures.push("timed out".into());
+        r.finish();
+        assert!(!r.passed);
+        assert_eq!(
+            r.failures,
+            ["timed out"],
+            "the holes line goes, the failure stays"
+        );
+        r.failures.clear();
+        r.mismatches = 1;
+        r.finish();
+        assert!(!r.passed);
+    }
+
+    /// A configuration's failures are carried labelled, its holes line is not (the merged
+    /// result decides its own holes); its scoreboard, runs and conclusions add up.
+    #[test]
+    fn absorbing_carries_failures_and_adds_scores_and_runs() {
+        let mut c = TbResult::new("t", "u");
+        c.failures = vec!["coverage holes (1 bins): p.b".into(), "timed out".into()];
+        let mut sb = crate::Scoreboard::new(|e: &u8, a: &u8| {
+            if e == a {
+                Ok(())
+            } else {
+                Err("differs".into())
+            }
+        });
+        for (e, a) in [(1, 1), (2, 3), (4, 5)] {
+            sb.expect(e);
+            sb.observe(9, a);
+        }
+        c.score(&sb);
+        c.score(&sb);
+        assert_eq!((c.transactions, c.mismatches), (6, 4));
+        let stats = crate::RunStats {
+            cycles: 40,
+            ..Default::default()
+        };
+        c.ran(&Ok(stats.clone()));
+        c.ran(&Ok(stats));
+        assert_eq!(c.cycles, 80);
+        let mut m = TbResult::new("t", "u");
+        m.absorb(&c, Some("w8")).unwrap();
+        assert_eq!(m.failures, ["[w8] timed out"]);
+        assert_eq!((m.transactions, m.mismatches, m.cycles), (6, 4, 80));
+        m.notes = vec!["ran".into(), "concluded".into()];
+        m.own = Some((1, 0));
+        m.strip_conclusions();
+        assert_eq!(m.notes, ["ran"]);
+    }
+
     #[test]
     fn summary_line_latency_column_and_verdict() {
         let mut r = TbResult::new("rsqrt", "156");
