@@ -303,15 +303,23 @@ fn fst_header(fst: &std::path::Path) -> (u64, u64, u64) {
 /// cycles against what the design held).
 #[test]
 fn long_runs_cross_every_batch_and_chunk_boundary() {
+    // 8-bit texels, and 62-bit ones (64-bit windows: the longest change lines) across the
+    // chunk boundaries.
+    for (bits, cycles) in [(8, 6000), (62, 4000)] {
+        long_run(bits, cycles);
+    }
+}
+
+fn long_run(bits: u32, cycles: u64) {
     use hdl::bump::replicate_152::Replicate;
     use hdl::fx::Format;
     let cfg = TraceConfig {
         companions: false,
         ..Default::default()
     };
-    let dir = tmpdir("long");
+    let dir = tmpdir(&format!("long{bits}"));
     let (vcd, fst) = (dir.join("r.vcd"), dir.join("r.fst"));
-    let unit = || Replicate::new("replicate_152", Format::unsigned(8, 2), false);
+    let unit = || Replicate::new("replicate_152", Format::unsigned(bits, 2), false);
     let mut a = Sim::traced(
         unit(),
         VcdTracer::create(&vcd, "long", cfg.clone()).unwrap(),
@@ -323,13 +331,13 @@ fn long_runs_cross_every_batch_and_chunk_boundary() {
     let mut b = Sim::traced(unit(), fst_tracer).unwrap();
     let mut seen = Vec::new();
     let mut x: u64 = 7;
-    for c in 0..6000u64 {
+    for c in 0..cycles {
         for k in 0..9 {
             x = x
                 .wrapping_mul(6364136223846793005)
                 .wrapping_add(1442695040888963407);
-            a.dut.h[k].set_bits(x >> 56);
-            b.dut.h[k].set_bits(x >> 56);
+            a.dut.h[k].set_bits(x >> (64 - bits));
+            b.dut.h[k].set_bits(x >> (64 - bits));
         }
         a.eval();
         b.eval();
@@ -351,9 +359,9 @@ fn long_runs_cross_every_batch_and_chunk_boundary() {
     a.finish().unwrap();
     b.finish().unwrap();
     let rv = read_vcd(&vcd).unwrap();
-    // Both writers count the same changes; the file holds them and the clock's 6000 falls.
+    // Both writers count the same changes; the file holds them and the clock's falls.
     assert_eq!(na, nb);
-    assert_eq!(rv.total_changes() as u64, na + 6000);
+    assert_eq!(rv.total_changes() as u64, na + cycles);
     let rf = waves::check::read_fst(&fst).unwrap();
     waves::fst::same_values(&rv, &rf).unwrap();
     let var = format!("tb.replicate_152.{}", a_name);
