@@ -317,6 +317,16 @@ mod tests {
         m.absorb(&c, Some("w8")).unwrap();
         assert_eq!(m.failures, ["[w8] timed out"]);
         assert_eq!((m.transactions, m.mismatches, m.cycles), (6, 4, 80));
+        // Records come back by row type, from every configuration absorbed.
+        #[derive(Serialize, serde::Deserialize, Debug, PartialEq)]
+        struct Row {
+            width: u32,
+        }
+        c.record(&Row { width: 8 });
+        c.record(&"not a row");
+        m.absorb(&c, Some("w9")).unwrap();
+        assert_eq!(m.records_of::<Row>(), [Row { width: 8 }]);
+        assert_eq!(m.records_of::<String>(), ["not a row"]);
         m.notes = vec!["ran".into(), "concluded".into()];
         m.own = Some((1, 0));
         m.strip_conclusions();
