@@ -167,5 +167,23 @@ mod tests {
         assert_eq!(m[1].cycle, None);
         assert_eq!(m[2].expected, "nothing");
         assert!(!sb.passed());
+        assert_eq!(
+            sb.compared(),
+            4,
+            "matched, differing, never produced, unexpected"
+        );
+    }
+
+    /// Every mismatch is counted; the first hundred are kept in detail.
+    #[test]
+    fn a_hundred_mismatches_are_kept() {
+        let mut sb = Scoreboard::new(|_: &u32, _: &u32| Err("no".into()));
+        for k in 0..150 {
+            sb.expect(k);
+        }
+        sb.drain();
+        assert_eq!((sb.compared(), sb.mismatch_count()), (150, 150));
+        assert_eq!(sb.mismatches().len(), 100);
+        assert_eq!(sb.mismatches()[99].index, 99);
     }
 }

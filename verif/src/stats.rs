@@ -186,6 +186,23 @@ mod tests {
         );
     }
 
+    /// The worst result is the first with the largest error, in one run and across a merge.
+    #[test]
+    fn the_worst_is_the_first_of_equals() {
+        let mut a = ErrorStats::new();
+        a.record(2.0, 0.0, 1.0);
+        a.record(-2.0, 0.0, 1.0);
+        assert_eq!(a.worst, Some((0, 2.0, 0.0)));
+        let mut b = ErrorStats::new();
+        b.record(5.0, 3.0, 1.0);
+        a.merge(&b).unwrap();
+        assert_eq!(
+            a.worst,
+            Some((0, 2.0, 0.0)),
+            "the merged-in equal comes later"
+        );
+    }
+
     #[test]
     #[should_panic(expected = "non-finite")]
     fn nan_is_refused() {

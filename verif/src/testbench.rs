@@ -341,3 +341,216 @@ impl Registry {
             .sum()
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::Coverpoint;
+    use serde::Serialize;
+    use std::sync::Mutex;
+
+    /// A testbench that runs no design: each configuration records what it was given and
+    /// logs its run beside the progress calls.
+    struct Toy {
+        name: &'static str,
+        labels: Option<Vec<String>>,
+        log: Mutex<Vec<String>>,
+    }
+
+    impl Toy {
+        fn new(name: &'static str, labels: &[&str]) -> Toy {
+            Toy {
+                name,
+                labels: (!labels.is_empty())
+                    .then(|| labels.iter().map(|l| l.to_string()).collect()),
+                log: Mutex::new(Vec::new()),
+            }
+        }
+    }
+
+    #[derive(Serialize, serde::Deserialize, Debug, PartialEq)]
+    struct Given {
+        index: usize,
+        label: String,
+        count: usize,
+        seed: u64,
+        vcd: Option<PathBuf>,
+        period_ps: Option<u64>,
+    }
+    impl Testbench for Toy {
+        fn name(&self) -> &'static str {
+            self.name
+        }
+        fn unit(&self) -> &'static str {
+            "none"
+        }
+        fn configurations(&self) -> Vec<String> {
+            self.labels
+                .clone()
+                .unwrap_or_else(|| vec!["default".into()])
+        }
+        fn coverage(&self) -> Coverage {
+            let mut c = Coverage::new();
+            c.add(Coverpoint::new("index").ranges("i", 0, 2, 3));
+            c
+        }
+        fn run(&self, ctx: &Ctx) -> Result<TbResult, String> {
+            self.log.lock().unwrap().push(format!("run {}", ctx.label));
+            let mut r = TbResult::new(self.name, "none");
+            let mut c = self.coverage();
+            c.sample(&[ctx.index as i64]);
+            r.coverage = Some(c);
+            r.record(&Given {
+                index: ctx.index,
+                label: ctx.label.clone(),
+                count: ctx.count,
+                seed: ctx.seed.0,
+                vcd: ctx.waves.as_ref().map(|w| w.vcd.clone()),
+                period_ps: ctx.waves.as_ref().map(|w| w.config(5000).period_ps),
+            });
+            Ok(r)
+        }
+    }
+
+    /// Runs `tb` with `opts`, logging progress calls beside the runs.
+    fn run_logged(tb: &Toy, opts: &RunOptions) -> (TbResult, Vec<String>) {
+        let r = run_testbench(tb, opts, &mut |l| {
+            tb.log.lock().unwrap().push(format!("progress {l}"))
+        })
+        .unwrap();
+        (r, std::mem::take(&mut *tb.log.lock().unwrap()))
+    }
+
+    #[test]
+    fn a_testbench_s_defaults() {
+        struct Plain;
+        impl Testbench for Plain {
+            fn name(&self) -> &'static str {
+                "plain"
+            }
+            fn unit(&self) -> &'static str {
+                "none"
+            }
+            fn coverage(&self) -> Coverage {
+                Coverage::new()
+            }
+            fn run(&self, _: &Ctx) -> Result<TbResult, String> {
+                unreachable!()
+            }
+        }
+        assert_eq!(Plain.configurations(), ["default"]);
+        assert_eq!(Plain.default_count(), 1000);
+        assert_eq!(Plain.count_unit(), "random transactions");
+        assert_eq!(Plain.traced(), 0);
+    }
+
+    /// One after the other: each configuration announced before it runs, with its index,
+    /// label, the testbench's count, its own seed, and the waveform for the traced one only.
+    #[test]
+    fn configurations_run_in_order_with_their_own_seeds() {
+        let tb = Toy::new("toy", &["a", "b", "c"]);
+        let dir = std::env::temp_dir().join(format!("texrtl-toy-{}", std::process::id()));
+        let mut opts = RunOptions::with_waves(&dir);
+        opts.count = Some(7);
+        let (r, log) = run_logged(&tb, &opts);
+        let want = [
+            "progress a",
+            "run a",
+            "progress b",
+            "run b",
+            "progress c",
+            "run c",
+        ];
+        assert_eq!(log, want);
+        assert_eq!(r.configurations, 3);
+        assert!(r.passed, "every bin hit: {:?}", r.failures);
+        let given = r.records_of::<Given>();
+        let seeds: Vec<u64> = (0..3).map(|i| config_seed(Seed(0), "toy", i).0).collect();
+        for (i, g) in given.iter().enumerate() {
+            assert_eq!((g.index, g.count, g.seed), (i, 7, seeds[i]));
+            let traced = (i == 0).then(|| dir.join("toy.vcd"));
+            assert_eq!(g.vcd, traced, "{i}");
+            assert_eq!(
+                g.period_ps,
+                (i == 0).then_some(5000),
+                "the unit's own clock"
+            );
+        }
+        assert!(dir.is_dir(), "the waveform folder is made");
+        std::fs::remove_dir_all(&dir).unwrap();
+        opts.waves = Some((dir.clone(), TraceConfig::default(), Some(2000)));
+        opts.count = None;
+        let (r, _) = run_logged(&tb, &opts);
+        let g = &r.records_of::<Given>()[0];
+        assert_eq!(
+            (g.count, g.period_ps),
+            (1000, Some(2000)),
+            "the default, the user's clock"
+        );
+        std::fs::remove_dir_all(&dir).unwrap();
+    }
+
+    /// On threads: each configuration announced as it finishes, the merged result the same as
+    /// one after the other. A single configuration runs on the caller's thread.
+    #[test]
+    fn configurations_on_threads_merge_as_one_after_the_other() {
+        let tb = Toy::new("toy", &["a", "b", "c"]);
+        let (serial, _) = run_logged(&tb, &RunOptions::default());
+        let opts = RunOptions {
+            jobs: 2,
+            ..RunOptions::default()
+        };
+        let (parallel, log) = run_logged(&tb, &opts);
+        for l in ["a", "b", "c"] {
+            let at = |what: &str| {
+                log.iter()
+                    .position(|x| *x == format!("{what} {l}"))
+                    .unwrap()
+            };
+            assert!(at("run") < at("progress"), "{log:?}");
+        }
+        assert_eq!(parallel.records, serial.records);
+        assert_eq!(parallel.configurations, 3);
+        let one = Toy::new("one", &[]);
+        let (r, log) = run_logged(&one, &opts);
+        assert_eq!(log, ["progress default", "run default"]);
+        assert_eq!(r.configurations, 1);
+    }
+
+    /// Distinct testbench names give distinct seeds (FNV-1a of the name).
+    #[test]
+    fn every_name_seeds_its_own_stream() {
+        let seeds: std::collections::HashSet<Seed> = (0..200)
+            .map(|k| config_seed(Seed(5), &format!("tb{k}"), 0))
+            .collect();
+        assert_eq!(seeds.len(), 200);
+    }
+
+    /// The registry finds testbenches by name and position and counts what a shard runs.
+    #[test]
+    fn the_registry_finds_and_counts() {
+        let mut reg = Registry::new();
+        reg.register(Box::new(Toy::new("x", &["a", "b", "c"])))
+            .register(Box::new(Toy::new("y", &[])));
+        assert_eq!(reg.names(), ["x", "y"]);
+        assert_eq!(reg.iter().count(), 2);
+        assert_eq!(reg.get("y").map(|t| t.name()), Some("y"));
+        assert!(reg.get("z").is_none());
+        assert_eq!((reg.position("x"), reg.position("y")), (Some(0), Some(1)));
+        assert_eq!(reg.position("z"), None);
+        let all = Shard::default();
+        let second = Shard::parse("2/2").unwrap();
+        assert_eq!(reg.owned_configurations(all, &[]), 4);
+        assert_eq!(reg.owned_configurations(second, &[]), 1);
+        assert_eq!(reg.owned_configurations(all, &["y".into()]), 1);
+        assert_eq!(reg.owned_configurations(all, &["x".into()]), 3);
+    }
+
+    #[test]
+    #[should_panic(expected = "testbench 'x' registered twice")]
+    fn a_name_is_registered_once() {
+        let mut reg = Registry::new();
+        reg.register(Box::new(Toy::new("x", &[])));
+        reg.register(Box::new(Toy::new("x", &[])));
+    }
+}

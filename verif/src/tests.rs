@@ -144,6 +144,23 @@ fn watchdog_stops_a_hung_design() {
     assert_eq!(t.received, 0);
     assert_eq!(t.sent, 10);
     assert!(t.to_string().contains("1000 cycles"), "{t}");
+    assert_eq!(t.cycle, 1 + 1000, "a thousand cycles after the reset cycle");
+}
+
+/// The wall-clock limit is read every 1024 cycles, and an exhausted one stops the run.
+#[test]
+fn the_wall_clock_watchdog_fires() {
+    let t0 = std::time::Instant::now() - std::time::Duration::from_millis(5);
+    let w = Watchdog {
+        max_cycles: 1 << 20,
+        max_wall: std::time::Duration::from_millis(1),
+    };
+    assert_eq!(w.check(1023, &t0), Ok(()), "not read between");
+    assert!(w.check(2048, &t0).is_err());
+    assert!(
+        Watchdog::cycles(10).check(2048, &t0).is_err(),
+        "cycles first"
+    );
 }
 
 /// A two-entry elastic buffer that adds 1, with ready/valid on both sides: `in_ready` while
