@@ -226,6 +226,12 @@ impl FstTracer {
         self.changes
     }
 
+    /// Records not yet handed to the writer thread: fewer than the batch size plus one
+    /// cycle's, however long the run (the simulation's memory stays bounded).
+    pub fn pending(&self) -> usize {
+        self.batch.len()
+    }
+
     fn in_window(&self, cycle: u64) -> bool {
         self.cfg.window.is_none_or(|(a, b)| cycle >= a && cycle < b)
     }

@@ -346,6 +346,8 @@ fn long_run(bits: u32, cycles: u64) {
         }
         a.tick();
         b.tick();
+        let pending = b.trace_mut().unwrap().pending();
+        assert!(pending < 1000, "cycle {c}: {pending} records held back");
     }
     assert!(
         a.trace_mut().unwrap().changes() > 100_000,
