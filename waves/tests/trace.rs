@@ -596,3 +596,69 @@ fn save_files_are_checked_line_by_line() {
         assert!(e.contains(says), "{name}: {e}");
     }
 }
+
+/// The co-simulation comparison waveform: model and RTL side by side with a mismatch flag per
+/// port, unknown RTL values as `x`, only changes written, and a save file that opens it with
+/// each port's three traces grouped.
+#[test]
+fn a_comparison_waveform_shows_model_rtl_and_mismatch() {
+    let path = tmpdir("compare").join("c.vcd");
+    let ports = [("ok", 1), ("u", 8)];
+    let model = vec![vec![1, 5], vec![1, 6], vec![0, 6], vec![0, 7]];
+    let rtl = vec![
+        vec![Some(1), Some(5)],
+        vec![Some(1), Some(9)],
+        vec![None, Some(6)],
+        vec![Some(0), None],
+    ];
+    waves::compare::write(&path, "unit", &ports, &model, &rtl).unwrap();
+    let rb = read_vcd(&path).unwrap();
+    assert_eq!(rb.times.last(), Some(&40_000), "four cycles of 10 ns");
+    let w = |n: &str| rb.vars[n].width;
+    assert_eq!(
+        (w("tb.model.u"), w("tb.rtl.u"), w("tb.mismatch.u")),
+        (Some(8), Some(8), Some(1))
+    );
+    assert_eq!(w("tb.rtl.ok"), Some(1));
+    let at = |n: &str, c: u64| match rb.value_at(n, c * 10_000) {
+        Some(Value::Bits(b)) => b.trim_start_matches('0').to_string(),
+        v => panic!("{n}: {v:?}"),
+    };
+    let column = |n: &str| (0..4).map(|c| at(n, c)).collect::<Vec<_>>();
+    assert_eq!(column("tb.model.u"), ["101", "110", "110", "111"]);
+    assert_eq!(column("tb.rtl.u"), ["101", "1001", "110", "xxxxxxxx"]);
+    assert_eq!(column("tb.mismatch.u"), ["", "1", "", "1"]);
+    assert_eq!(column("tb.rtl.ok"), ["1", "1", "x", ""]);
+    assert_eq!(column("tb.mismatch.ok"), ["", "", "1", ""]);
+    // Only changes: the model's `ok` changes once after its initial value.
+    assert_eq!(rb.vars["tb.model.ok"].changes.len(), 2);
+    assert_eq!(rb.vars["tb.model.u"].changes.len(), 3);
+    // One `$dumpvars` block, the first cycle's; a bit declared without a range.
+    let text = std::fs::read_to_string(&path).unwrap();
+    assert_eq!(text.matches("$dumpvars").count(), 1);
+    let (_, after) = text.split_once("#0\n$dumpvars\n").unwrap();
+    assert!(after.split_once("#10000").unwrap().0.ends_with("$end\n"));
+    let body = text.split_once("$enddefinitions $end\n").unwrap().1;
+    assert_eq!(
+        body.lines().filter(|l| *l == "$end").count(),
+        1,
+        "one block closed"
+    );
+    assert!(text
+        .lines()
+        .any(|l| l.starts_with("$var wire 1 ") && l.ends_with(" ok $end")));
+    assert_eq!(check_gtkw(&path, &rb), Ok(6));
+    let g = std::fs::read_to_string(path.with_extension("gtkw")).unwrap();
+    for (name, flags) in [
+        ("+{ok model} tb.model.ok", "28"),
+        ("+{u RTL} tb.rtl.u[7:0]", "22"),
+        ("+{u mismatch} tb.mismatch.u", "28"),
+    ] {
+        assert_eq!(flags_of(&g, name), Some(flags), "{name} in\n{g}");
+    }
+    assert!(g.contains("@800200\n-u\n"), "a group per port");
+    assert!(
+        g.contains("*-13.036174 0\n"),
+        "zoomed to the four cycles:\n{g}"
+    );
+}
