@@ -662,3 +662,106 @@ fn a_comparison_waveform_shows_model_rtl_and_mismatch() {
         "zoomed to the four cycles:\n{g}"
     );
 }
+
+/// A state machine of kind `kind`: one enumerated output.
+struct Fsm {
+    name: &'static str,
+    kind: &'static str,
+    state: hdl::kernel::Signal,
+}
+
+impl hdl::kernel::Module for Fsm {
+    fn instance(&self) -> &str {
+        self.name
+    }
+    fn kind(&self) -> &'static str {
+        self.kind
+    }
+    fn eval(&mut self) {}
+    fn tick(&mut self, _: bool) {}
+    fn visit(&self, v: &mut dyn hdl::kernel::Visitor) {
+        v.enter(self.name, self.kind);
+        v.signal(hdl::kernel::Dir::Output, &self.state);
+        v.leave();
+    }
+}
+
+/// Two machines of one kind and one of another under a top module.
+struct Machines(Vec<Fsm>);
+
+impl hdl::kernel::Module for Machines {
+    fn kind(&self) -> &'static str {
+        "machines"
+    }
+    fn eval(&mut self) {}
+    fn tick(&mut self, _: bool) {}
+    fn visit(&self, v: &mut dyn hdl::kernel::Visitor) {
+        v.enter("machines", "machines");
+        for m in &self.0 {
+            m.visit(v);
+        }
+        v.leave();
+    }
+}
+
+/// State names go to one translate filter file per kind and signal, shared by a kind's
+/// instances; every file is written and named in the save file.
+#[test]
+fn each_kind_of_state_machine_has_its_filter_file() {
+    use hdl::fx::Format;
+    let fsm = |name, kind, names: &'static [&'static str]| Fsm {
+        name,
+        kind,
+        state: hdl::kernel::Signal::new("state", Format::uint(2)).with_states(names),
+    };
+    let dut = Machines(vec![
+        fsm("a0", "ctl", &["IDLE", "RUN"]),
+        fsm("a1", "ctl", &["IDLE", "RUN"]),
+        fsm("b0", "fill", &["WAIT", "LOAD", "DONE"]),
+    ]);
+    let path = tmpdir("fsm").join("m.vcd");
+    let t = VcdTracer::create(&path, "machines", TraceConfig::default()).unwrap();
+    let mut sim = Sim::traced(dut, t).unwrap();
+    sim.reset(1);
+    sim.tick();
+    sim.finish().unwrap();
+    let dir = path.parent().unwrap();
+    let read = |f: &str| std::fs::read_to_string(dir.join(f)).unwrap();
+    let head = "# texrtl: state names, value in decimal\n";
+    assert_eq!(read("m.ctl.state.txt"), format!("{head}0 IDLE\n1 RUN\n"));
+    assert_eq!(
+        read("m.fill.state.txt"),
+        format!("{head}0 WAIT\n1 LOAD\n2 DONE\n")
+    );
+    let rb = read_vcd(&path).unwrap();
+    assert_eq!(check_gtkw(&path, &rb), Ok(2 + 3));
+    let g = read("m.gtkw");
+    let slots: Vec<&str> = g.lines().filter(|l| l.starts_with('^')).collect();
+    assert_eq!(slots.len(), 3, "{g}");
+    assert!(slots[0].starts_with("^1 ") && slots[0].ends_with("m.ctl.state.txt"));
+    assert_eq!(slots[1], slots[0], "a kind's instances share their file");
+    assert!(slots[2].starts_with("^2 ") && slots[2].ends_with("m.fill.state.txt"));
+}
+
+/// The tracer's change count is what the file holds: every change but the clock's falls,
+/// companions and probes included.
+#[test]
+fn the_change_count_is_what_the_file_holds() {
+    let path = tmpdir("count").join("c.vcd");
+    let mut t = VcdTracer::create(&path, "count", TraceConfig::default()).unwrap();
+    let gold = t.probe_real("u0", None);
+    let dut = BlendAdjust::new("blend_adjust_153", BlendAdjustParams::default()).unwrap();
+    let mut sim = Sim::traced(dut, t).unwrap();
+    drive(&mut sim, |sim| {
+        let u = sim.dut.o.u0.fx().to_f64();
+        sim.trace_mut().unwrap().set_real(gold, u);
+    });
+    let n = sim.trace_mut().unwrap().changes();
+    sim.finish().unwrap();
+    let rb = read_vcd(&path).unwrap();
+    assert!(
+        rb.vars.contains_key("tb.blend_adjust_153.u0_real"),
+        "companions on"
+    );
+    assert_eq!(rb.total_changes() as u64, n + 22, "and 22 clock falls");
+}
