@@ -69,14 +69,15 @@ pub fn vcd_to_fst(vcd: &Path, fst: &Path) -> Result<(), String> {
     let times = w.time_table().to_vec();
     // Every change as (time index, variable index, value bytes), in time order.
     let mut changes: Vec<(u32, usize, Vec<u8>)> = Vec::new();
-    for (k, (r, _, real, _)) in ids.iter().enumerate() {
+    for (k, (r, _, _, _)) in ids.iter().enumerate() {
         let sig = w
             .get_signal(*r)
             .ok_or_else(|| err("signal not loaded".into()))?;
         for (ti, v) in sig.iter_changes() {
             let v: SignalValue = v.into();
             let bytes = match SignalValueRef::from(&v) {
-                SignalValueRef::Real(x) if *real => x.to_le_bytes().to_vec(),
+                // Only a real variable has real values.
+                SignalValueRef::Real(x) => x.to_le_bytes().to_vec(),
                 other => other.to_bit_string().unwrap_or_default().into_bytes(),
             };
             changes.push((ti, k, bytes));

@@ -330,6 +330,7 @@ fn long_run(bits: u32, cycles: u64) {
         .with_limits(4096, 1000);
     let mut b = Sim::traced(unit(), fst_tracer).unwrap();
     let mut seen = Vec::new();
+    let mut most = 0;
     let mut x: u64 = 7;
     for c in 0..cycles {
         for k in 0..9 {
@@ -348,7 +349,12 @@ fn long_run(bits: u32, cycles: u64) {
         b.tick();
         let pending = b.trace_mut().unwrap().pending();
         assert!(pending < 1000, "cycle {c}: {pending} records held back");
+        most = most.max(pending);
     }
+    assert!(
+        most > 900,
+        "records are held until a batch is full: at most {most}"
+    );
     assert!(
         a.trace_mut().unwrap().changes() > 100_000,
         "several VCD batches"
@@ -531,15 +537,58 @@ fn time_never_goes_backwards() {
     }
 }
 
-/// A hand-written dump (timescale 10 ps, a vector numbered 8..1) and a save file for it with
-/// `lines` after its `[dumpfile]` line: what `check_gtkw` says.
-fn check_written(name: &str, lines: &str) -> Result<usize, String> {
-    let dir = tmpdir("written");
-    let vcd = dir.join(format!("{name}.vcd"));
+/// A hand-written dump: timescale 10 ps, a bit `tb.a` (0, then 1 at time 3) and a vector
+/// `tb.v` numbered 8..1 (5).
+fn written_vcd(name: &str) -> PathBuf {
+    let vcd = tmpdir("written").join(format!("{name}.vcd"));
     let text = "$timescale 10 ps $end\n$scope module tb $end\n$var wire 1 ! a $end\n\
                 $var wire 8 \" v [8:1] $end\n$upscope $end\n$enddefinitions $end\n\
                 #0\n$dumpvars\n0!\nb101 \"\n$end\n#3\n1!\n";
     std::fs::write(&vcd, text).unwrap();
+    vcd
+}
+
+/// A VCD converts to a FST of the same timescale and values; the comparison used for that
+/// finds each kind of difference.
+#[test]
+fn a_vcd_converts_with_its_timescale_and_differences_are_found() {
+    use waves::fst::same_values;
+    let vcd = written_vcd("convert");
+    let fst = vcd.with_extension("fst");
+    waves::fst::vcd_to_fst(&vcd, &fst).unwrap();
+    let (a, b) = (
+        read_vcd(&vcd).unwrap(),
+        waves::check::read_fst(&fst).unwrap(),
+    );
+    assert_eq!(b.timescale_exp, Some(-11));
+    assert_eq!(same_values(&a, &b), Ok(()));
+    let changed = |f: fn(&mut waves::check::Readback)| {
+        let mut c = b.clone();
+        f(&mut c);
+        same_values(&a, &c).unwrap_err()
+    };
+    let e = changed(|c| drop(c.vars.get_mut("tb.a").unwrap().changes.pop()));
+    assert_eq!(e, "tb.a differs at time 3");
+    let e = changed(|c| c.vars.get_mut("tb.v").unwrap().width = Some(7));
+    assert_eq!(e, "tb.v: width Some(8) vs Some(7)");
+    assert_eq!(
+        changed(|c| drop(c.vars.remove("tb.a"))),
+        "different variables"
+    );
+    assert!(changed(|c| c.times.push(9)).starts_with("the VCD ends at Some(3)"));
+    // A dump that states no timescale is taken as 1 ps, the tracers' own.
+    let bare = vcd.with_file_name("bare.vcd");
+    let text = std::fs::read_to_string(&vcd).unwrap();
+    std::fs::write(&bare, text.replace("$timescale 10 ps $end\n", "")).unwrap();
+    waves::fst::vcd_to_fst(&bare, &fst).unwrap();
+    let b = waves::check::read_fst(&fst).unwrap();
+    assert_eq!(b.timescale_exp, Some(-12));
+}
+
+/// A hand-written dump (timescale 10 ps, a vector numbered 8..1) and a save file for it with
+/// `lines` after its `[dumpfile]` line: what `check_gtkw` says.
+fn check_written(name: &str, lines: &str) -> Result<usize, String> {
+    let vcd = written_vcd(name);
     let rb = read_vcd(&vcd).unwrap();
     assert_eq!(rb.timescale_exp, Some(-11), "10 ps");
     assert_eq!(rb.times, [0, 3]);
@@ -647,6 +696,9 @@ fn a_comparison_waveform_shows_model_rtl_and_mismatch() {
     assert!(text
         .lines()
         .any(|l| l.starts_with("$var wire 1 ") && l.ends_with(" ok $end")));
+    assert!(text
+        .lines()
+        .any(|l| l.starts_with("$var wire 8 ") && l.ends_with(" u [7:0] $end")));
     assert_eq!(check_gtkw(&path, &rb), Ok(6));
     let g = std::fs::read_to_string(path.with_extension("gtkw")).unwrap();
     for (name, flags) in [
