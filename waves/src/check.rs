@@ -104,16 +104,21 @@ pub fn read_vcd(path: &Path) -> Result<Readback, String> {
     read_waves(path)
 }
 
+/// The dump's time step as a power of ten of seconds (`10 ps`: -11), if it states one.
+pub(crate) fn timescale_exp(h: &wellen::Hierarchy) -> Option<i8> {
+    h.timescale().and_then(|t| {
+        t.unit
+            .to_exponent()
+            .map(|e| e + (t.factor as f64).log10() as i8)
+    })
+}
+
 /// The format-independent part: hierarchy, widths, initial values, every change.
 fn read_waves(path: &Path) -> Result<Readback, String> {
     let err = |m: String| format!("{}: {m}", path.display());
     let mut w = simple::read(path).map_err(|e| err(format!("wellen: {e}")))?;
     let h = w.hierarchy();
-    let timescale_exp = h.timescale().and_then(|t| {
-        t.unit
-            .to_exponent()
-            .map(|e| e + (t.factor as f64).log10() as i8)
-    });
+    let timescale_exp = timescale_exp(h);
     if timescale_exp.is_none() {
         return Err(err("no $timescale".into()));
     }
@@ -187,7 +192,7 @@ fn check_filter(line: &str) -> Result<(), String> {
         .filter(|l| !l.trim().is_empty() && !l.starts_with('#'))
     {
         // Trimmed, a line with a space has a name after it.
-        let (v, _name) = l
+        let (v, _) = l
             .trim()
             .split_once(' ')
             .ok_or_else(|| format!("filter file {path}: '{l}' is not 'value name'"))?;

@@ -11,14 +11,7 @@ pub fn vcd_to_fst(vcd: &Path, fst: &Path) -> Result<(), String> {
     let err = |m: String| format!("{}: {m}", fst.display());
     let mut w = simple::read(vcd).map_err(|e| format!("{}: {e}", vcd.display()))?;
     let h = w.hierarchy();
-    let exp = h
-        .timescale()
-        .and_then(|t| {
-            t.unit
-                .to_exponent()
-                .map(|e| e + (t.factor as f64).log10() as i8)
-        })
-        .unwrap_or(-12);
+    let exp = crate::check::timescale_exp(h).unwrap_or(-12);
     let info = FstInfo {
         // fst-writer writes this into the header's time zero, an offset GTKWave adds to every
         // time it shows; the VCD's times are absolute (a trace window's too).
