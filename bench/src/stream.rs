@@ -4,11 +4,11 @@
 //! process's peak resident memory (`VmHWM`), which stays flat however long the run.
 
 use clap::{Parser, ValueEnum};
-use hdl::bump::normal_pipeline_fig7::NormalPipeline;
-use hdl::bump::params::BumpParams;
 use hdl::kernel::{Sim, Trace};
 use std::path::{Path, PathBuf};
 use std::process::ExitCode;
+use units::bump::normal_pipeline_fig7::NormalPipeline;
+use units::bump::params::BumpParams;
 use waves::{FstTracer, TraceConfig, VcdTracer};
 
 #[derive(Clone, Copy, Debug, ValueEnum)]

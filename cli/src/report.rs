@@ -205,7 +205,7 @@ pub fn write_report(out: &Path, summary: &Summary) -> Result<(), String> {
 
 /// The bump-map comparison of the report (FIG. 8a against 8b). Returns `(file, caption)`.
 fn normals_picture(out: &std::path::Path) -> Result<(String, String), String> {
-    use hdl::bump::params::BumpParams;
+    use units::bump::params::BumpParams;
     let p = BumpParams::default();
     let map = tb::maps::builtin("bumps", 48, 48, p.texel_fmt())?;
     let (png, worst) = crate::cmd::render::render_png(&map, &p, [1.0, 1.0, 2.0], 0.5, 4)?;
@@ -221,11 +221,11 @@ fn normals_picture(out: &std::path::Path) -> Result<(String, String), String> {
 
 /// The mipmap levels of a synthetic video frame, for the report. Returns `(file, caption)`.
 fn mipmap_picture(out: &std::path::Path) -> Result<(String, String), String> {
-    let mp = hdl::mipmap::MipmapParams {
+    let mp = units::mipmap::MipmapParams {
         width: 64,
         height: 32,
-        scan: hdl::mipmap::Scan::InterlacedTop,
-        rounding: hdl::mipmap::Rounding::Round,
+        scan: units::mipmap::Scan::InterlacedTop,
+        rounding: units::mipmap::Rounding::Round,
     };
     let frame = tb::mipmap::synthetic_video(64, 32, 1, Seed(3));
     let o = tb::mipmap::run_mipmap(mp, &frame, None)?;
@@ -253,8 +253,8 @@ fn mipmap_picture(out: &std::path::Path) -> Result<(String, String), String> {
 /// trilinear and footprint assembly, side by side, four times enlarged; pixels whose
 /// footprint is longer than 128 texels (not measured) dark red. Returns `(file, caption)`.
 fn footprint_picture(out: &std::path::Path) -> Result<(String, String), String> {
-    use hdl::footprint::setup_fig12::SetupParams;
     use tb::footprint::VIEW;
+    use units::footprint::setup_fig12::SetupParams;
     let v = tb::footprint::view(85.0, &SetupParams::default())?;
     let (s, gap) = (4u32, 8u32);
     let side = VIEW as u32 * s;
@@ -329,7 +329,7 @@ fn ptm_picture(out: &std::path::Path) -> Result<(String, String), String> {
 /// FIG. 8 extended: Dot3 lighting of the bumps map by the FIG. 7 pipeline's B-spline and
 /// Blinn surfaces and by para. 0086's four derivative filters. Returns `(file, caption)`.
 fn derivative_picture(out: &std::path::Path) -> Result<(String, String), String> {
-    use hdl::bump::params::{BumpParams, Filter};
+    use units::bump::params::{BumpParams, Filter};
     let p = BumpParams::default();
     let map = tb::maps::builtin("bumps", 32, 32, p.texel_fmt())?;
     let (zoom, scale, light) = (4u32, 0.5, [1.0, 1.0, 2.0]);

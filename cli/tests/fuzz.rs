@@ -183,7 +183,7 @@ fn later_fronts() -> Vec<Front> {
             ],
             files: vec![
                 ("t.ptm", {
-                    let f = hdl::ptm::texture_612::PtmFormat {
+                    let f = units::ptm::texture_612::PtmFormat {
                         bits: 8,
                         exp: [9, 8, 9, 8, 9, 7],
                         bias: [-70_000, -60_000, -90_000, -60_000, -70_000, -20_000],

@@ -311,7 +311,7 @@ fn every_stats_field_is_documented() {
     let s = serde_json::to_value(
         tb::texture::run_texread(
             &tb::texture::test_pattern(16, 16),
-            hdl::texmem::texture_unit_602::TexParams::new(16, 16),
+            units::texmem::texture_unit_602::TexParams::new(16, 16),
             &[],
             1,
             None,

@@ -36,9 +36,9 @@
 //! The file must be exactly `784 + 4 (width/4) (height/4)` bytes.
 
 use crate::netpbm::Ppm;
-use hdl::texmem::ccc_decode_608::CccBlock;
-use hdl::texmem::layout::BlockMap;
 use std::path::Path;
+use units::texmem::ccc_decode_608::CccBlock;
+use units::texmem::layout::BlockMap;
 
 pub const MAGIC: &[u8; 8] = b"TEXRTLCC";
 pub const VERSION: u16 = 1;

@@ -15,17 +15,7 @@ pub mod csv;
 pub mod maps_json;
 pub mod netpbm;
 pub mod obj;
-pub mod output;
 pub mod png;
 pub mod ptm;
 
-/// A value shown in a message, cut to at most 40 characters.
-pub fn shorten(s: &str) -> String {
-    const MAX: usize = 40;
-    if s.chars().count() <= MAX {
-        s.to_string()
-    } else {
-        let head: String = s.chars().take(MAX - 3).collect();
-        format!("{head}...")
-    }
-}
+pub use waves::output::{self, shorten};

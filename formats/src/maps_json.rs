@@ -28,11 +28,11 @@
 //! Every map's sides are powers of two up to 1024 (a detail map at most 256, faces square
 //! and at least 16, all planes of a DRF one size), maxval 255.
 
-use hdl::mapchain::drf_812::{ChainDrf, DetailMode, Kind};
-use hdl::texram::output_820::Modulate;
-use hdl::texram::{Border, Drf};
 use serde::Deserialize;
 use std::path::Path;
+use units::mapchain::drf_812::{ChainDrf, DetailMode, Kind};
+use units::texram::output_820::Modulate;
+use units::texram::{Border, Drf};
 
 #[derive(Deserialize)]
 #[serde(deny_unknown_fields)]
@@ -188,8 +188,8 @@ pub fn read(path: &Path) -> Result<Vec<DrfSpec>, String> {
     let text = std::fs::read_to_string(path).map_err(|e| format!("{}: {e}", path.display()))?;
     let f: File = serde_json::from_str(&text).map_err(|e| format!("{}: {e}", path.display()))?;
     let dir = path.parent().unwrap_or(Path::new(""));
-    let mut seen = [false; hdl::texram::DRFS];
-    let mut out = Vec::with_capacity(f.drfs.len().min(hdl::texram::DRFS));
+    let mut seen = [false; units::texram::DRFS];
+    let mut out = Vec::with_capacity(f.drfs.len().min(units::texram::DRFS));
     for e in &f.drfs {
         let at = |m: String| format!("{}: drf {}: {m}", path.display(), e.drf);
         let k = usize::from(e.drf);

@@ -8,10 +8,10 @@
 //! ```
 //!
 //! Coefficient j of stored q stands for `q 2^e_j + b_j` units of 2^-20
-//! (`hdl::ptm::texture_612::PtmFormat`). Reading checks the header and the length before it
+//! (`units::ptm::texture_612::PtmFormat`). Reading checks the header and the length before it
 //! allocates anything of the declared size.
 
-use hdl::ptm::texture_612::PtmFormat;
+use units::ptm::texture_612::PtmFormat;
 
 /// A PTM: its size, format and coefficients (`6 W H`, texel-major).
 #[derive(Clone, Debug, PartialEq, Eq)]

@@ -1,5 +1,5 @@
 // Address unit 150 of US 2004/0207631 (Fenney), FIG. 7, para. 0052: the Verilog twin of
-// hdl/src/bump/address_150.rs (same ports, widths, latency and reset).
+// hdl/units/src/bump/address_150.rs (same ports, widths, latency and reset).
 //
 //   U' = U - 1/2 in colour mode (step 51), U' = U otherwise; Ui = floor(U'),
 //   Ublend = U' - Ui truncated to BLEND_BITS fraction bits; the same for V.

@@ -1,5 +1,5 @@
 // Bilinear unit, one of 65-68 of US 2004/0207631 (Fenney), FIG. 7: the Verilog twin of
-// hdl/src/bump/bilinear_65_68.rs (same ports, widths, latency, rounding and reset).
+// hdl/units/src/bump/bilinear_65_68.rs (same ports, widths, latency, rounding and reset).
 //
 //   q = lerp(lerp(p00, p10, s), lerp(p01, p11, s), t),   lerp(a, b, x) = a + x (b - a)
 //

@@ -1,5 +1,5 @@
 // Blend-factor adjust unit 153 of US 2004/0207631 (Fenney), FIG. 7, para. 0058-0061, with the
-// bypass of para. 0085: the Verilog twin of hdl/src/bump/blend_adjust_153.rs (same ports,
+// bypass of para. 0085: the Verilog twin of hdl/units/src/bump/blend_adjust_153.rs (same ports,
 // widths, latency and reset).
 //
 //   u0 = 1/2 + u/2 = {1'b1, u_in}    u1 = u/2 = {1'b0, u_in}    (uQ0.F in, uQ0.(F+1) out)

@@ -1,5 +1,5 @@
 // Normal unit 156 of US 2004/0207631 (Fenney), FIG. 7, para. 0076-0080: the Verilog twin of
-// hdl/src/bump/normal_156.rs (same ports, widths, latency, rounding and reset), around the
+// hdl/units/src/bump/normal_156.rs (same ports, widths, latency, rounding and reset), around the
 // inverse square root of rtl/bump/rsqrt_156.v.
 //
 //   N = (-du, -dv, 1)

@@ -1,5 +1,5 @@
 // The normal-generation pipeline of FIG. 7 of US 2004/0207631 (Fenney), para. 0050-0087: the
-// Verilog twin of hdl/src/bump/normal_pipeline_fig7.rs, built from the units' twins (same
+// Verilog twin of hdl/units/src/bump/normal_pipeline_fig7.rs, built from the units' twins (same
 // ports, widths, latency, instance names and reset).
 //
 //   (u,v) -> address 150 -> texel fetch 151 -> replicate 152 -> bilinear 65..68 -> tangent 155 -> normal 156

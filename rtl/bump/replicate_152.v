@@ -1,5 +1,5 @@
 // Replicate unit 152 of US 2004/0207631 (Fenney), FIG. 7, para. 0056-0057, and its Bezier form
-// (Equation 1, para. 0083): the Verilog twin of hdl/src/bump/replicate_152.rs.
+// (Equation 1, para. 0083): the Verilog twin of hdl/units/src/bump/replicate_152.rs.
 //
 // The 3x3 grid a..k (texels of TEXEL_BITS bits) goes to the four bilinear units as the
 // overlapping 2x2 windows red [a b; d e], green [b c; e f], blue [d e; g h], alpha [e f; h k]

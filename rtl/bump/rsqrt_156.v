@@ -1,5 +1,5 @@
 // Inverse square root inside normal unit 156 of US 2004/0207631 (Fenney), FIG. 7, para. 0080:
-// the Verilog twin of hdl/src/bump/rsqrt_156.rs (same ports, widths, latency, rounding, reset).
+// the Verilog twin of hdl/units/src/bump/rsqrt_156.rs (same ports, widths, latency, rounding, reset).
 //
 // m: uQ2.M_F in [1, 4) (below 1, never produced by unit 156, gives 0); y ~ 1/sqrt(m): uQ1.Y_F.
 // Stage 0 reads a ROM of 2^TABLE_BITS first approximations, indexed by the bit telling [1,2)

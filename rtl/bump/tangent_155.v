@@ -1,5 +1,5 @@
 // Tangent unit 155 of US 2004/0207631 (Fenney), FIG. 7: the Verilog twin of
-// hdl/src/bump/tangent_155.rs (same ports, widths, latency, rounding and reset).
+// hdl/units/src/bump/tangent_155.rs (same ports, widths, latency, rounding and reset).
 //
 //   B-spline / Bezier:  du = 2 lerp(tv, G - R, A - B)     dv = 2 lerp(tu, B - R, A - G)
 //                       h  = lerp(tv, lerp(tu, R, G), lerp(tu, B, A))

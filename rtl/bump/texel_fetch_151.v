@@ -1,5 +1,5 @@
 // Texel fetch unit 151 of US 2004/0207631 (Fenney), FIG. 7, para. 0053: the Verilog twin of
-// hdl/src/bump/texel_fetch_151.rs (same ports, widths, latency, border modes and reset).
+// hdl/units/src/bump/texel_fetch_151.rs (same ports, widths, latency, border modes and reset).
 //
 // The 3x3 height texels around (ui, vj), a..k row by row:
 //   a = (ui-1, vj-1)  b = (ui, vj-1)  c = (ui+1, vj-1)

@@ -1,6 +1,6 @@
 // A synchronous FIFO of DEPTH entries of W bits that reports overflow and underflow instead
 // of wrapping: FIFOs 1408 and 1412 of the mipmap generator (Schilling & Knittel, Figure 14),
-// the Verilog twin of Fifo in hdl/src/mipmap/fifo.rs.
+// the Verilog twin of Fifo in hdl/units/src/mipmap/fifo.rs.
 //
 // The clock edge applies clear (a parallel transfer of the FIFO's line), then pop, then push;
 // a pop from an empty FIFO or a push into a full one is dropped. `error` reports this cycle's

@@ -1,7 +1,7 @@
 // The frame store's level 0 and shift register 826 as mipmap generator 816 uses them
 // (Schilling & Knittel, section 12): a behavioural model for testbenches (the TEXRAM's banks
 // are the chip's memory, not the unit's), the counterpart of the buffers and `sr` of
-// hdl/src/mipmap/mipmap_gen_816.rs.
+// hdl/units/src/mipmap/mipmap_gen_816.rs.
 //
 // At each edge: the video texel (store_*) is written, then, on sr_load, line sr_row is copied
 // into the shift register (with the texel written at the same edge). sr_texel is the shift

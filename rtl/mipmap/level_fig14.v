@@ -1,6 +1,6 @@
 // One level of Figure 14 (Schilling & Knittel, TEXRAM, section 12): level k of the mipmap from
 // the texel stream of level k-1 (WP x HP texels), the Verilog twin of Level in
-// hdl/src/mipmap/level_fig14.rs (same ports, registers, FIFOs and reset).
+// hdl/units/src/mipmap/level_fig14.rs (same ports, registers, FIFOs and reset).
 //
 // Progressive (Figure 14a/b): adder 1402 adds horizontal neighbours, the even column held in
 // register 1404; on even lines the sums go into FIFO 1408 (a line buffer), on odd lines adder

@@ -1,6 +1,6 @@
 // Real-time mipmap generation for (interlaced) video, unit 816 of Schilling & Knittel's
 // TEXRAM (section 12, Figures 14a-b): the Verilog twin of MipmapGen in
-// hdl/src/mipmap/mipmap_gen_816.rs (same ports, counters, levels, error codes and reset).
+// hdl/units/src/mipmap/mipmap_gen_816.rs (same ports, counters, levels, error codes and reset).
 //
 // The video port delivers one texel per valid cycle (`sof` with a frame's first texel),
 // WIDTH x HEIGHT (powers of two up to 1024), SCAN 0 progressive, 1 interlaced with the field

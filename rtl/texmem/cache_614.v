@@ -1,5 +1,5 @@
 // Cache 614 of Schilling & Knittel's TEXRAM (Figures 6 and 7): the Verilog twin of
-// TextureCache in hdl/src/texmem/cache_614.rs (same ports, registers and reset). Four entries
+// TextureCache in hdl/units/src/texmem/cache_614.rs (same ports, registers and reset). Four entries
 // A-D, each a decoded 4x4 block (a 64-bit line), direct mapped with Figure 7's interleave:
 // block (bx, by) lives only in entry {by[0], bx[0]}, tagged (bx >> 1, by >> 1), TAG_BITS bits
 // each (block coordinates have one more).

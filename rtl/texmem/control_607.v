@@ -1,5 +1,5 @@
 // DRAM control unit 607 of Schilling & Knittel's TEXRAM (Figure 6, section 5), its word-read
-// controller: the Verilog twin of DramCtrl in hdl/src/texmem/control_607.rs (same ports,
+// controller: the Verilog twin of DramCtrl in hdl/units/src/texmem/control_607.rs (same ports,
 // widths, states, pin timing and reset), with the page register: the open row.
 //
 // Takes a word read (req_valid + req_addr, accepted while `ready`), keeps the open page and

@@ -1,6 +1,6 @@
 // Page-mode DRAM 604 of Schilling & Knittel's TEXRAM (Figure 6, section 5): a behavioural
 // model for testbenches, like a vendor's (not synthesizable), the twin of Dram in
-// hdl/src/texmem/dram_604.rs.
+// hdl/units/src/texmem/dram_604.rs.
 //
 // ROWS x COLS words of 16 bits behind RAS#, CAS#, WE#, OE# and 11 multiplexed address pins.
 // The falling edge of RAS# latches the row into the page register (page_row, the open row);

@@ -1,5 +1,5 @@
 // The block fetch of DRAM control unit 607 (Schilling & Knittel, Figure 6, section 5): the
-// Verilog twin of FillEngine in hdl/src/texmem/control_607.rs (same ports, registers, states
+// Verilog twin of FillEngine in hdl/units/src/texmem/control_607.rs (same ports, registers, states
 // and reset). Reads a CCC block's two DRAM words (word 0, then word 1, through the word
 // controller, in page mode when the row is open) into register 608, then waits while 610/612
 // decode it until the line is written to cache 614. One fill at a time, never abandoned.
@@ -7,7 +7,7 @@
 // `start` (with start_bx, start_by, start_prefetch) is taken only when idle; a word is asked
 // for (word_req, word_addr: Moore outputs) while fetching and fewer than two were accepted
 // (`word_ready`); the second response (`word_resp`) moves to DECODE; `line_done` back to
-// IDLE. Block addresses (the layout of hdl/src/texmem/layout.rs): LAYOUT 0 row-major, block
+// IDLE. Block addresses (the layout of hdl/units/src/texmem/layout.rs): LAYOUT 0 row-major, block
 // (bx, by) at BASE + 2 (by BW + bx); LAYOUT 1 tiled, TW x TH blocks to a DRAM page of
 // PAGE_WORDS words (TW x TH = PAGE_WORDS / 2, TW = 2^ceil(lg / 2)), tiles row-major, blocks
 // row-major inside a tile. States (state): 0 IDLE, 1 FETCH, 2 DECODE. Synchronous reset.

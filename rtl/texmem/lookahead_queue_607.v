@@ -1,5 +1,5 @@
 // The lookahead queue of DRAM control unit 607 (Schilling & Knittel, Figure 6, section 5):
-// the Verilog twin of LookaheadQueue in hdl/src/texmem/control_607.rs (same ports, widths,
+// the Verilog twin of LookaheadQueue in hdl/units/src/texmem/control_607.rs (same ports, widths,
 // registers and reset). Up to three neighbouring blocks to preload into cache 614, chosen when
 // a request completes, offered to the fill engine one at a time.
 //

@@ -2,16 +2,16 @@
 //! `cargo bench -p texrtl --bench kernel`; figures are recorded in README.md.
 
 use criterion::{criterion_group, criterion_main, BatchSize, Criterion, Throughput};
-use hdl::bump::blend_adjust_153::{BlendAdjust, BlendAdjustParams};
-use hdl::bump::normal_pipeline_fig7::NormalPipeline;
-use hdl::bump::params::BumpParams;
-use hdl::bump::replicate_152::Replicate;
 use hdl::fx::{Format, Fx, Overflow, Quant};
 use hdl::kernel::{Sim, Trace};
-use hdl::mipmap::{MipmapGen, MipmapParams, Rounding, Scan};
 use std::hint::black_box;
 use tb::maps::builtin;
 use tb::mipmap::synthetic_video;
+use units::bump::blend_adjust_153::{BlendAdjust, BlendAdjustParams};
+use units::bump::normal_pipeline_fig7::NormalPipeline;
+use units::bump::params::BumpParams;
+use units::bump::replicate_152::Replicate;
+use units::mipmap::{MipmapGen, MipmapParams, Rounding, Scan};
 use verif::Seed;
 use waves::{FstTracer, TraceConfig, VcdTracer};
 
@@ -200,7 +200,7 @@ fn mipmap(c: &mut Criterion) {
 
 fn dram(c: &mut Criterion) {
     let mut g = c.benchmark_group("dram");
-    let p = hdl::texmem::dram_604::DramParams::default();
+    let p = units::texmem::dram_604::DramParams::default();
     // A scanline-like trace: runs of 8 reads, a page change every 4.
     let trace: Vec<u64> = (0..4096u64).map(|k| (k / 4 % 512) * 512 + k % 4).collect();
     let cycles = tb::dram::run_trace(p, &trace, None).unwrap().cycles;
@@ -219,7 +219,7 @@ fn texture(c: &mut Criterion) {
     use tb::texture::{run_texread, synthetic_texture, trace, TraceKind};
     let orig = synthetic_texture(256, 256, verif::Seed(1));
     let tex = formats::ccc::encode(&orig).unwrap();
-    let p = hdl::texmem::texture_unit_602::TexParams::new(256, 256);
+    let p = units::texmem::texture_unit_602::TexParams::new(256, 256);
     let mut g = c.benchmark_group("texture");
     for kind in [TraceKind::Horizontal, TraceKind::Random] {
         let reqs = trace(kind, 256, 256, 4, 20_000, verif::Seed(2));

@@ -1,9 +1,9 @@
 //! Bi-quadratic colour filtering of para. 0087: the unit's testbench against the f64
 //! B-spline of the same texels (with the declared 8-bit t), within half an LSB.
 
-use hdl::bump::biquadratic_0087::{Biquadratic0087, ColourMap, POS_FRAC};
-use hdl::bump::params::Border;
 use hdl::kernel::Sim;
+use units::bump::biquadratic_0087::{Biquadratic0087, ColourMap, POS_FRAC};
+use units::bump::params::Border;
 use verif::{
     run, Coverage, Coverpoint, Ctx, Driver, Event, Monitor, RunSpec, Scoreboard, Stimulus,
     TbResult, Testbench,

@@ -1,4 +1,4 @@
-//! Testbench of the blend-factor adjust unit 153 (`hdl::bump::blend_adjust_153`).
+//! Testbench of the blend-factor adjust unit 153 (`units::bump::blend_adjust_153`).
 //!
 //! Stimulus, for every blend-factor width F = 4..=16:
 //! * **sweep**: every value of `u` (all 2^F), in both modes (adjust and Blinn bypass), at one
@@ -12,9 +12,9 @@
 //! `u`/`v` classes (zero, max, interior ranges) crossed with the mode. The run at the traced
 //! width (default F = 8) writes `blend_adjust_153.vcd` with the golden values beside the outputs.
 
-use hdl::bump::blend_adjust_153::{BlendAdjust, BlendAdjustParams};
 use hdl::kernel::{Sim, Trace};
 use proptest::prelude::*;
+use units::bump::blend_adjust_153::{BlendAdjust, BlendAdjustParams};
 use verif::{
     run, Coverage, Coverpoint, Ctx, Driver, Event, Monitor, Pacing, ProbeSink, RunSpec, Scoreboard,
     Stimulus, TbResult, Testbench,

@@ -3,10 +3,10 @@
 //! extended).
 
 use golden::derivative::Kernel;
-use hdl::bump::derivative_0086::{five_point, DerivFilter, Derivative, DerivativeUnit};
-use hdl::bump::height_map::HeightMap;
-use hdl::bump::params::{Border, BumpParams};
 use hdl::kernel::Sim;
+use units::bump::derivative_0086::{five_point, DerivFilter, Derivative, DerivativeUnit};
+use units::bump::height_map::HeightMap;
+use units::bump::params::{Border, BumpParams};
 use verif::{
     run, Coverage, Coverpoint, Ctx, Driver, Event, Monitor, RunSpec, Scoreboard, Stimulus,
     TbResult, Testbench,
@@ -52,7 +52,7 @@ pub fn golden_normal(d: &Derivative, u: i64, v: i64, scale: i64, frac: i32) -> [
 
 /// One normalisation's component error (156's rsqrt and the rounding to sQ1.14).
 pub fn bound() -> f64 {
-    let r = hdl::bump::params::RsqrtParams::default();
+    let r = units::bump::params::RsqrtParams::default();
     golden::rsqrt::error_bound_ulps(r.table_bits, r.iterations, r.y_frac)
         * 2f64.powi(-(r.y_frac as i32))
         + 2f64.powi(-15)

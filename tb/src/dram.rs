@@ -2,10 +2,10 @@
 //! checked against the DRAM's power-up contents.
 
 use hdl::kernel::{NoTrace, Sim, Trace};
-use hdl::texmem::control_607::DramCtrl;
-use hdl::texmem::dram_604::DramParams;
 use serde::Serialize;
 use std::path::{Path, PathBuf};
+use units::texmem::control_607::DramCtrl;
+use units::texmem::dram_604::DramParams;
 use verif::{
     run, Coverage, Coverpoint, Ctx, Driver, Event, Monitor, Pacing, RunSpec, TbResult, Testbench,
 };

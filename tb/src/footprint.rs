@@ -6,13 +6,13 @@
 use crate::texram::{border_class, ref_border, test_map, RefBorder, RefMipmap, CYCLE_PS};
 use crate::texture::reference_sums;
 use formats::ccc::Ccc;
-use hdl::footprint::assembly_fig12::SampleTarget;
-use hdl::footprint::footprint_fig12::FootprintFig12;
-use hdl::footprint::setup_fig12::{NRounding, SetupParams};
 use hdl::kernel::{Sim, Trace};
-use hdl::texram::texram_802::{Texram802, TexramParams};
-use hdl::texram::{Border, Drf};
 use proptest::prelude::*;
+use units::footprint::assembly_fig12::SampleTarget;
+use units::footprint::footprint_fig12::FootprintFig12;
+use units::footprint::setup_fig12::{NRounding, SetupParams};
+use units::texram::texram_802::{Texram802, TexramParams};
+use units::texram::{Border, Drf};
 use verif::{
     run, Coverage, Coverpoint, Ctx, Driver, Event, Handshake, Monitor, Pacing, RunSpec, Scoreboard,
     Stimulus, TbResult, Testbench,
@@ -446,11 +446,11 @@ impl Testbench for FootprintTb {
             Unit::Texture(f, cache) => {
                 let tex = crate::texture::test_pattern(1 << wl, 1 << hl);
                 px.extend(pixels(wl, hl, ctx.count, &mut stim));
-                let mut tp = hdl::texmem::texture_unit_602::TexParams::new(1 << wl, 1 << hl);
+                let mut tp = units::texmem::texture_unit_602::TexParams::new(1 << wl, 1 << hl);
                 tp.frac_bits = f;
                 tp.cache = cache;
                 let words = tex.dram_words(&tp.block_map());
-                let unit = hdl::texmem::texture_unit_602::TextureUnit::new(
+                let unit = units::texmem::texture_unit_602::TextureUnit::new(
                     "texture_unit_602",
                     tp,
                     &tex.clut,
@@ -688,10 +688,10 @@ pub const VIEW: usize = 64;
 /// stub, and the mean of level 0 over the pixel's exact parallelogram (at least two samples
 /// a texel along each edge).
 pub fn view(tilt_degrees: f64, p: &SetupParams) -> Result<Vec<Option<ViewPixel>>, String> {
-    use hdl::footprint::assembly_fig12::assemble;
-    use hdl::footprint::setup_fig12::{setup, SetupUnit};
-    use hdl::texram::stub::TexramStub;
-    use hdl::texram::{TexramAccess, TexramRequest};
+    use units::footprint::assembly_fig12::assemble;
+    use units::footprint::setup_fig12::{setup, SetupUnit};
+    use units::texram::stub::TexramStub;
+    use units::texram::{TexramAccess, TexramRequest};
     let level0 = quality_map();
     let n = 1usize << QUALITY_LOG2;
     let map = golden::footprint::Map {
@@ -915,12 +915,12 @@ pub fn run_footprint(
 /// CCC texture `tex`, each result checked against the integer reference.
 pub fn run_footprint_texture(
     tex: &Ccc,
-    tp: hdl::texmem::texture_unit_602::TexParams,
+    tp: units::texmem::texture_unit_602::TexParams,
     p: SetupParams,
     pixels: &[Pixel],
     vcd: Option<&std::path::Path>,
 ) -> Result<FootprintRun, String> {
-    use hdl::texmem::texture_unit_602::TextureUnit;
+    use units::texmem::texture_unit_602::TextureUnit;
     if (tex.width, tex.height) != (tp.width, tp.height) {
         return Err(format!(
             "texture is {}x{}, the unit is set up for {}x{}",

@@ -6,12 +6,12 @@
 //! tolerance of it, and its height equal to the averaged height.
 
 use crate::footprint::pixels;
-use hdl::bump::height_map::HeightMap;
-use hdl::bump::normal_pipeline_fig7::NormalPipeline;
-use hdl::bump::params::{Border, BumpParams, Filter};
-use hdl::footprint::normals_0081::FootprintNormals;
-use hdl::footprint::setup_fig12::{setup, SetupParams, SetupUnit};
 use hdl::kernel::{Sim, Trace};
+use units::bump::height_map::HeightMap;
+use units::bump::normal_pipeline_fig7::NormalPipeline;
+use units::bump::params::{Border, BumpParams, Filter};
+use units::footprint::normals_0081::FootprintNormals;
+use units::footprint::setup_fig12::{setup, SetupParams, SetupUnit};
 use verif::{
     run, Coverage, Coverpoint, Ctx, Driver, Event, Monitor, Pacing, RunSpec, Scoreboard, Stimulus,
     TbResult, Testbench,

@@ -3,9 +3,9 @@
 //! 156's inverse square root and the reciprocal's error.
 
 use golden::tangents::{cross, normalize, perturb};
-use hdl::frames::frame_unit::{decode_rgb8, Decode, FrameUnit, VEC_FRAC, W_FRAC};
-use hdl::frames::parallax::ParallaxUnit;
 use hdl::kernel::Sim;
+use units::frames::frame_unit::{decode_rgb8, Decode, FrameUnit, VEC_FRAC, W_FRAC};
+use units::frames::parallax::ParallaxUnit;
 use verif::{
     run, Coverage, Coverpoint, Ctx, Driver, Event, Monitor, RunSpec, Scoreboard, Stimulus,
     TbResult, Testbench,
@@ -36,7 +36,7 @@ impl FramePx {
 
 /// The component error of one normalisation by 156's rsqrt, rounded to sQ1.14.
 fn unit_error() -> f64 {
-    let r = hdl::bump::params::RsqrtParams::default();
+    let r = units::bump::params::RsqrtParams::default();
     golden::rsqrt::error_bound_ulps(r.table_bits, r.iterations, r.y_frac)
         * 2f64.powi(-(r.y_frac as i32))
         + 2f64.powi(-(VEC_FRAC as i32 + 1))
@@ -451,7 +451,7 @@ impl Testbench for ParallaxTb {
                         }
                         cov.sample(&[
                             i64::from(q.limited),
-                            i64::from(q.eye[2] >= hdl::frames::parallax::VZ_MIN),
+                            i64::from(q.eye[2] >= units::frames::parallax::VZ_MIN),
                         ]);
                     }
                 }

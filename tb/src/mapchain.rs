@@ -9,12 +9,12 @@
 
 use golden::mapchain::{GChain, GDetail, GEnv, GLayer, GMap, GPixel, Mode};
 use hdl::kernel::{Sim, Trace};
-use hdl::mapchain::drf_812::{ChainDrf, DetailMode, DrfFile, Kind, Placer};
-use hdl::mapchain::program::ChainRequest;
-use hdl::mapchain::walker_812::{walk_pixel, ChainResult, MapChain812};
-use hdl::texram::output_820::Modulate;
-use hdl::texram::stub::{next_level, TexramStub};
-use hdl::texram::{Border, Drf, TexramAccess};
+use units::mapchain::drf_812::{ChainDrf, DetailMode, DrfFile, Kind, Placer};
+use units::mapchain::program::ChainRequest;
+use units::mapchain::walker_812::{walk_pixel, ChainResult, MapChain812};
+use units::texram::output_820::Modulate;
+use units::texram::stub::{next_level, TexramStub};
+use units::texram::{Border, Drf, TexramAccess};
 use verif::{
     run, Coverage, Coverpoint, Ctx, Driver, Event, Monitor, Pacing, RunSpec, Scoreboard, Stimulus,
     TbResult, Testbench,
@@ -536,7 +536,7 @@ fn coverage_model() -> Coverage {
             .value("1..10", 5),
     );
     let mut face = Coverpoint::new("face");
-    for (i, f) in hdl::envmap::cube_face::FACES.iter().enumerate() {
+    for (i, f) in units::envmap::cube_face::FACES.iter().enumerate() {
         face = face.value(f, i as i64);
     }
     c.add(face.value("none", 6));
@@ -682,9 +682,9 @@ impl Testbench for WalkerTb {
         let want = expectations(&sc, &px)?;
         let title = format!("{NAME} {}", ctx.label);
         let mut res = if on_chip {
-            let mut chip = hdl::texram::texram_802::Texram802::new(Default::default())?;
+            let mut chip = units::texram::texram_802::Texram802::new(Default::default())?;
             sc.load_chip(&mut chip)?;
-            let acc = hdl::texram::texram_802::Texram802Access::new(chip);
+            let acc = units::texram::texram_802::Texram802Access::new(chip);
             let dut = MapChain812::new(sc.file.clone(), acc, SLOT_CYCLES)?;
             run_pixels(ctx.sim(dut, &title, CYCLE_PS, |_| ())?.0, ctx, shape, want)?
         } else {
@@ -699,7 +699,7 @@ impl Testbench for WalkerTb {
 
 impl Scene {
     /// Writes every map into the chip's banks.
-    pub fn load_chip(&self, chip: &mut hdl::texram::texram_802::Texram802) -> Result<(), String> {
+    pub fn load_chip(&self, chip: &mut units::texram::texram_802::Texram802) -> Result<(), String> {
         for (d, texels) in &self.maps {
             chip.load_map(d, texels)?;
         }

@@ -1,7 +1,7 @@
 //! Built-in height maps, made procedurally, so no input file is needed.
 
-use hdl::bump::height_map::HeightMap;
 use hdl::fx::Format;
+use units::bump::height_map::HeightMap;
 
 /// Names of the built-in maps.
 pub const NAMES: [&str; 7] = [

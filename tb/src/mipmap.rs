@@ -1,4 +1,4 @@
-//! Testbench of the real-time mipmap generator (`hdl::mipmap`, Schilling & Knittel section 12,
+//! Testbench of the real-time mipmap generator (`units::mipmap`, Schilling & Knittel section 12,
 //! Figure 14) and the machinery of `texrtl mipmap`.
 //!
 //! Video goes in at one texel per clock, frames back to back with no idle cycle, `sof` with
@@ -8,9 +8,9 @@
 //! real-valued block averages of `golden::mipmap` against the analytic bound.
 
 use hdl::kernel::{NoTrace, Sim, Trace};
-use hdl::mipmap::{FrameBuffer, MipmapGen, MipmapParams, Rounding, Scan};
 use serde::{Deserialize, Serialize};
 use std::path::PathBuf;
+use units::mipmap::{FrameBuffer, MipmapGen, MipmapParams, Rounding, Scan};
 use verif::{
     run, Coverage, Coverpoint, Ctx, Driver, ErrorStats, Event, Monitor, RunSpec, Scoreboard, Seed,
     Stimulus, TbResult, Testbench,

@@ -1,4 +1,4 @@
-//! Testbench of the FIG. 7 normal pipeline (`hdl::bump::normal_pipeline`) against the surfaces of
+//! Testbench of the FIG. 7 normal pipeline (`units::bump::normal_pipeline`) against the surfaces of
 //! `golden::bump`, and the machinery the `normals`, `render` and `sweep normals` commands use.
 //!
 //! Stimulus is a list of samples (position, height scale, MIP weight). Inputs are quantised to
@@ -10,13 +10,13 @@
 //! component within `2^-13` of the golden normal and every normal within 0.01 degrees of it.
 
 use golden::bump::{self as g, Heights};
-use hdl::bump::height_map::HeightMap;
-use hdl::bump::normal_pipeline_fig7::NormalPipeline;
-use hdl::bump::params::{Border, BumpParams, Filter};
 use hdl::fx::{Format, Fx, Overflow, Quant};
 use hdl::kernel::{NoTrace, Sim, Trace};
 use serde::{Deserialize, Serialize};
 use std::path::PathBuf;
+use units::bump::height_map::HeightMap;
+use units::bump::normal_pipeline_fig7::NormalPipeline;
+use units::bump::params::{Border, BumpParams, Filter};
 use verif::{
     run, Coverage, Coverpoint, Ctx, Driver, ErrorStats, Event, Monitor, Pacing, ProbeSink, RunSpec,
     Scoreboard, TbResult, Testbench,

@@ -10,9 +10,9 @@
 
 use golden::ptm::{Basis, Light};
 use hdl::kernel::{Sim, Trace};
-use hdl::ptm::fitter_604::Fitter604;
-use hdl::ptm::shader_608::Shader608;
-use hdl::ptm::texture_612::{p_raw, PtmFormat};
+use units::ptm::fitter_604::Fitter604;
+use units::ptm::shader_608::Shader608;
+use units::ptm::texture_612::{p_raw, PtmFormat};
 use verif::{
     run, Coverage, Coverpoint, Ctx, Driver, Event, Monitor, RunSpec, Scoreboard, Stimulus,
     TbResult, Testbench,

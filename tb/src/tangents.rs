@@ -9,9 +9,9 @@
 
 use formats::obj::Mesh;
 use golden::tangents::{add, cross, face_tangent, normalize, orthonormal, scale, Frame};
-use hdl::frames::tangent_setup::{TangentSetup, POS_FRAC, VEC_FRAC};
 use hdl::kernel::Sim;
 use std::collections::HashMap;
+use units::frames::tangent_setup::{TangentSetup, POS_FRAC, VEC_FRAC};
 use verif::{
     run, Coverage, Coverpoint, Ctx, Driver, Event, Monitor, RunSpec, Scoreboard, Stimulus,
     TbResult, Testbench,
@@ -178,7 +178,7 @@ pub fn golden_setup(q: &Tri) -> (golden::tangents::FaceTangent, Frame, f64) {
         let r = golden::tangents::sub(ft.dpdu, scale(n, d));
         golden::tangents::dot(r, r).sqrt()
     };
-    let r = hdl::bump::params::RsqrtParams::default();
+    let r = units::bump::params::RsqrtParams::default();
     let rs = golden::rsqrt::error_bound_ulps(r.table_bits, r.iterations, r.y_frac)
         * 2f64.powi(-(r.y_frac as i32));
     // |n| differs from 1 by its own rounding: up to sqrt 3 2^-15.

@@ -1,7 +1,7 @@
 //! The TEXRAM chip's integer reference: plain loops over a mipmap held level by level (no
 //! banks), its own border folding and its own weight arithmetic (integer division, not
-//! shifts), for bit-exact comparison with `hdl::texram` (the stub now, the cycle-accurate
-//! chip later). Its definitions are the module documentation of `hdl::texram`.
+//! shifts), for bit-exact comparison with `units::texram` (the stub now, the cycle-accurate
+//! chip later). Its definitions are the module documentation of `units::texram`.
 
 /// A mipmap held as levels: `levels[k]` row-major, `max(W >> k, 1) x max(H >> k, 1)`.
 #[derive(Clone, Debug)]
@@ -161,10 +161,10 @@ impl RefMipmap {
 // The testbench of the cycle-accurate chip.
 
 use hdl::kernel::{Sim, Trace};
-use hdl::texram::clut_814::Clut;
-use hdl::texram::texram_802::{Texram802, TexramParams};
-use hdl::texram::{Border, Config, Drf};
 use proptest::prelude::*;
+use units::texram::clut_814::Clut;
+use units::texram::texram_802::{Texram802, TexramParams};
+use units::texram::{Border, Config, Drf};
 use verif::{
     run, Coverage, Coverpoint, Ctx, Driver, Event, Monitor, Pacing, RunSpec, Scoreboard, Stimulus,
     TbResult, Testbench,
@@ -482,7 +482,7 @@ impl Testbench for TexramTb {
 /// page fault, the golden model's value.
 struct Oracles<'a> {
     reference: &'a RefMipmap,
-    stub: hdl::texram::stub::TexramStub,
+    stub: units::texram::stub::TexramStub,
     golden: golden::texram::Mipmap<'a>,
     border: Border,
     lmax: u32,
@@ -493,7 +493,7 @@ impl Oracles<'_> {
     /// The expectation of a colour or index request: the stub's colour (the reference and
     /// golden are per component maps, held against the stub in `tb/tests/texram.rs`).
     fn expect_colour(&mut self, q: &TexReq) -> Expected {
-        use hdl::texram::{TexramAccess, TexramRequest};
+        use units::texram::{TexramAccess, TexramRequest};
         let req = TexramRequest {
             drf: 0,
             u: q.u,
@@ -517,7 +517,7 @@ impl Oracles<'_> {
         if self.config != Config::Luminance {
             return self.expect_colour(q);
         }
-        use hdl::texram::{TexramAccess, TexramRequest};
+        use units::texram::{TexramAccess, TexramRequest};
         let (texels, value) = self
             .reference
             .access(q.u, q.v, q.lambda, ref_border(self.border));
@@ -553,14 +553,14 @@ fn one_config<T: Trace>(
     level0: &[u8],
     stim: &mut Stimulus,
 ) -> Result<(Sim<Texram802, T>, TbResult), String> {
-    use hdl::texram::TexramAccess;
+    use units::texram::TexramAccess;
     let (wl, hl, border, config) = (drf.width_log2, drf.height_log2, drf.border, drf.config);
     let mut res = TbResult::new(NAME, "");
     let mut cov = coverage_model();
     let mut sim = sim.check_schedule(ctx.check_schedule);
     sim.reset(2);
     let reference = RefMipmap::build(1 << wl, 1 << hl, level0);
-    let mut stub = hdl::texram::stub::TexramStub::new();
+    let mut stub = units::texram::stub::TexramStub::new();
     stub.set_drf(0, drf)?;
     stub.load(0, level0)?;
     stub.set_clut(clut.clone());
@@ -636,10 +636,10 @@ fn one_config<T: Trace>(
 fn settle_config(
     res: &mut TbResult,
     slots: u64,
-    stub: &hdl::texram::stub::TexramStub,
+    stub: &units::texram::stub::TexramStub,
     label: &str,
 ) {
-    use hdl::texram::TexramAccess;
+    use units::texram::TexramAccess;
     if slots != stub.slots() {
         res.failures
             .push(format!("{slots} slots, the stub took {}", stub.slots()));
@@ -708,8 +708,8 @@ fn figure_chip(log2: u32) -> Texram802 {
     let mut chip = Texram802::new(TexramParams::default()).expect("default parameters");
     let big = Drf::new(log2, log2, Border::Wrap);
     let mut env = Drf::new(8, 8, Border::Clamp);
-    env.base_even = hdl::texram::banks_810::group_words(&big, 0);
-    env.base_odd = hdl::texram::banks_810::group_words(&big, 1);
+    env.base_even = units::texram::banks_810::group_words(&big, 0);
+    env.base_odd = units::texram::banks_810::group_words(&big, 1);
     chip.set_drf(0, big).expect("fits");
     chip.set_drf(1, env).expect("fits");
     let level0: Vec<u8> = (0..1 << 20).map(|k: u32| (k % 251) as u8).collect();
@@ -830,7 +830,7 @@ impl TexramTexture {
         let mut levels = vec![level0.to_vec()];
         for k in 0..drf.max_level() {
             let (w, h) = drf.level_size(k);
-            let next = hdl::texram::stub::next_level(w, h, &levels[k as usize]);
+            let next = units::texram::stub::next_level(w, h, &levels[k as usize]);
             levels.push(next);
         }
         TexramTexture {
@@ -841,11 +841,11 @@ impl TexramTexture {
     }
 
     /// The chip and the stub with the map in DRF 0 (every level) and the CLUT.
-    fn load(&self) -> Result<(Texram802, hdl::texram::stub::TexramStub), String> {
-        use hdl::texram::TexramAccess;
+    fn load(&self) -> Result<(Texram802, units::texram::stub::TexramStub), String> {
+        use units::texram::TexramAccess;
         let mut chip = Texram802::new(TexramParams::default())?;
         chip.set_drf(0, self.drf)?;
-        let mut stub = hdl::texram::stub::TexramStub::new();
+        let mut stub = units::texram::stub::TexramStub::new();
         stub.set_drf(0, self.drf)?;
         for (k, level) in self.levels.iter().enumerate() {
             chip.write_level(0, k as u32, level)?;
@@ -866,7 +866,7 @@ pub fn run_texram(
     reqs: &[TexReq],
     vcd: Option<&std::path::Path>,
 ) -> Result<TexramRun, String> {
-    use hdl::texram::{Config, TexramAccess, TexramRequest};
+    use units::texram::{Config, TexramAccess, TexramRequest};
     let drf = tex.drf;
     let (chip, mut stub) = tex.load()?;
     let level0 = &tex.levels[0];
@@ -965,7 +965,7 @@ impl TexramStats {
 /// texels along u, lambda 2.5) on a 512x512 map (colour layouts: 256x256 components). From the
 /// stub, which the tests hold equal to the chip slot for slot.
 pub fn layout_rows() -> Vec<(String, f64, f64)> {
-    use hdl::texram::{TexramAccess, TexramRequest};
+    use units::texram::{TexramAccess, TexramRequest};
     let configs = [
         ("luminance", Config::Luminance, 9),
         ("index", Config::Index, 9),
@@ -974,7 +974,7 @@ pub fn layout_rows() -> Vec<(String, f64, f64)> {
     ];
     let mut rows = Vec::new();
     for (name, config, log2) in configs {
-        let mut stub = hdl::texram::stub::TexramStub::new();
+        let mut stub = units::texram::stub::TexramStub::new();
         let mut d = Drf::new(log2, log2, Border::Wrap);
         d.config = config;
         stub.set_drf(0, d).expect("fits");

@@ -12,13 +12,13 @@
 use crate::mipmap::{video_stream, VideoTexel};
 use crate::texram::{test_map, RefMipmap, TexDriver, TexMonitor, TexOut, TexReq, CYCLE_PS};
 use hdl::kernel::{Sim, Trace};
-use hdl::mipmap::{MipmapParams, Rounding, Scan};
-use hdl::texram::banks_810::{group_words, locate, ROW_WORDS};
-use hdl::texram::stub::TexramStub;
-use hdl::texram::texram_802::{Texram802, TexramParams};
-use hdl::texram::video_port_808::VideoParams;
-use hdl::texram::{Border, Drf, TexramAccess, TexramRequest};
 use proptest::prelude::*;
+use units::mipmap::{MipmapParams, Rounding, Scan};
+use units::texram::banks_810::{group_words, locate, ROW_WORDS};
+use units::texram::stub::TexramStub;
+use units::texram::texram_802::{Texram802, TexramParams};
+use units::texram::video_port_808::VideoParams;
+use units::texram::{Border, Drf, TexramAccess, TexramRequest};
 use verif::{
     run_beside, Background, Coverage, Coverpoint, Ctx, Event, Pacing, RunSpec, Scoreboard,
     Stimulus, TbResult, Testbench,

@@ -12,12 +12,12 @@
 use formats::ccc::Ccc;
 use formats::netpbm::Ppm;
 use hdl::kernel::{NoTrace, Sim, Trace};
-use hdl::texmem::cache_614::Lookahead;
-use hdl::texmem::layout::Layout;
-use hdl::texmem::texture_unit_602::{TexParams, TextureUnit};
 use serde::{Deserialize, Serialize};
 use std::collections::HashSet;
 use std::path::PathBuf;
+use units::texmem::cache_614::Lookahead;
+use units::texmem::layout::Layout;
+use units::texmem::texture_unit_602::{TexParams, TextureUnit};
 use verif::{
     run, Coverage, Coverpoint, Ctx, Driver, Event, Handshake, Monitor, Pacing, ProbeSink, RunSpec,
     Seed, TbResult, Testbench,
@@ -138,7 +138,7 @@ pub fn test_pattern(w: u32, h: u32) -> Ccc {
         height: h,
         clut: (0..256).map(|i| i * 0x010101).collect(),
         blocks: (0..(w / 4) * (h / 4))
-            .map(|i| hdl::texmem::ccc_decode_608::CccBlock {
+            .map(|i| units::texmem::ccc_decode_608::CccBlock {
                 a: i as u8,
                 b: 255 - i as u8,
                 bits: 0x5a5a,

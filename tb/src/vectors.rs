@@ -7,13 +7,13 @@
 //! after a deliberate change and prints what changed.
 
 use crate::normals::{quantise, run_normals, NormalsRun, Sample};
-use hdl::bump::blend_adjust_153::{BlendAdjust, BlendAdjustParams};
-use hdl::bump::params::{BumpParams, Filter};
 use hdl::kernel::Sim;
-use hdl::mipmap::{MipmapParams, Rounding, Scan};
 use serde::{Deserialize, Serialize};
 use std::fmt::Write;
 use std::path::{Path, PathBuf};
+use units::bump::blend_adjust_153::{BlendAdjust, BlendAdjustParams};
+use units::bump::params::{BumpParams, Filter};
+use units::mipmap::{MipmapParams, Rounding, Scan};
 
 /// A named field of a vector and its width in bits.
 #[derive(Clone, Debug, PartialEq, Eq, Serialize, Deserialize)]
@@ -275,8 +275,8 @@ fn mipmap() -> Result<UnitVectors, String> {
 /// R, G, B, alpha.
 fn texram() -> Result<UnitVectors, String> {
     use crate::texram::{run_texram, TexReq, TexramTexture};
-    use hdl::texram::clut_814::Clut;
-    use hdl::texram::{Border, Config, Drf};
+    use units::texram::clut_814::Clut;
+    use units::texram::{Border, Config, Drf};
     let level0: Vec<u8> = (0..32 * 32u32)
         .map(|k| ((k * 29 + (k >> 5) * 7) % 256) as u8)
         .collect();
@@ -331,8 +331,8 @@ fn texram() -> Result<UnitVectors, String> {
 /// N, R, G, B.
 fn footprint() -> Result<UnitVectors, String> {
     use crate::footprint::{run_footprint, run_footprint_texture, FootprintRun, Pixel};
-    use hdl::footprint::setup_fig12::SetupParams;
-    use hdl::texram::{Border, Drf};
+    use units::footprint::setup_fig12::SetupParams;
+    use units::texram::{Border, Drf};
     let level0: Vec<u8> = (0..32 * 32u32)
         .map(|k| ((k * 29 + (k >> 5) * 7) % 256) as u8)
         .collect();
@@ -351,7 +351,7 @@ fn footprint() -> Result<UnitVectors, String> {
         .collect();
     let p = SetupParams::default();
     let tex = vector_texture();
-    let tp = hdl::texmem::texture_unit_602::TexParams::new(tex.width, tex.height);
+    let tp = units::texmem::texture_unit_602::TexParams::new(tex.width, tex.height);
     let runs: [FootprintRun; 3] = [
         run_footprint(Drf::new(5, 5, Border::Wrap), &level0, p, &px, None)?,
         run_footprint(Drf::new(5, 5, Border::Mirror), &level0, p, &px, None)?,
@@ -397,7 +397,7 @@ fn footprint() -> Result<UnitVectors, String> {
 /// gradient mode: (mode, x0, y0, z0, dx, dy, dz, steps) -> per sample value, gx, gy, gz.
 fn volume() -> Result<UnitVectors, String> {
     use crate::volume::{run_volume, Ray};
-    use hdl::volume::layout::{Mode, VolumeParams};
+    use units::volume::layout::{Mode, VolumeParams};
     let p = VolumeParams {
         row_words: 64,
         ..VolumeParams::new(16, 8, 6)
@@ -466,7 +466,7 @@ fn volume() -> Result<UnitVectors, String> {
 /// (lambda over -4 ..= 4, vectors facing +z), through the clocked walker on the stub.
 fn mapchain() -> Result<UnitVectors, String> {
     use crate::mapchain::{clocked, scene, Maps, Shape};
-    use hdl::mapchain::program::ChainRequest;
+    use units::mapchain::program::ChainRequest;
     let maps = Maps::formula();
     let mut rows = Vec::new();
     for (code, shape) in Shape::ALL.into_iter().enumerate() {
@@ -539,8 +539,8 @@ fn mapchain() -> Result<UnitVectors, String> {
 /// 64 texels of hashed samples (binary and grey), one row per texel.
 fn ptm_fitter() -> Result<UnitVectors, String> {
     use hdl::kernel::Sim;
-    use hdl::ptm::fitter_604::Fitter604;
-    use hdl::ptm::texture_612::PtmFormat;
+    use units::ptm::fitter_604::Fitter604;
+    use units::ptm::texture_612::PtmFormat;
     let lights = golden::ptm::dome(3, 8);
     let p = crate::ptm::host_pinv(&lights)?;
     let fmt = PtmFormat::for_pinv(&p, 8)?;
@@ -587,8 +587,8 @@ fn ptm_fitter() -> Result<UnitVectors, String> {
 /// lights in the unit disc.
 fn ptm_shader() -> Result<UnitVectors, String> {
     use hdl::kernel::Sim;
-    use hdl::ptm::shader_608::Shader608;
-    use hdl::ptm::texture_612::PtmFormat;
+    use units::ptm::shader_608::Shader608;
+    use units::ptm::texture_612::PtmFormat;
     let p = crate::ptm::host_pinv(&golden::ptm::dome(4, 12))?;
     let fmt = PtmFormat::for_pinv(&p, 16)?;
     let mut sim = Sim::new(Shader608::new(fmt)?);
@@ -646,7 +646,7 @@ fn signed(h: u32, r: i64) -> i64 {
 /// The tangent setup unit on 256 hashed triangles (every eighth with UVs on a line).
 #[allow(clippy::needless_range_loop)] // the unit's signals index like the vectors
 fn tangent_setup() -> Result<UnitVectors, String> {
-    use hdl::frames::tangent_setup::TangentSetup;
+    use units::frames::tangent_setup::TangentSetup;
     let mut sim = hdl::kernel::Sim::new(TangentSetup::new());
     sim.reset(1);
     let mut rows = Vec::new();
@@ -706,7 +706,7 @@ fn tangent_setup() -> Result<UnitVectors, String> {
 /// The frame unit on 256 hashed frames and weights, Gram-Schmidt on odd rows.
 #[allow(clippy::needless_range_loop)] // the unit's signals index like the vectors
 fn frame_unit() -> Result<UnitVectors, String> {
-    use hdl::frames::frame_unit::FrameUnit;
+    use units::frames::frame_unit::FrameUnit;
     let mut sim = hdl::kernel::Sim::new(FrameUnit::new());
     sim.reset(1);
     let mut rows = Vec::new();
@@ -755,7 +755,7 @@ fn frame_unit() -> Result<UnitVectors, String> {
 /// The parallax unit on 256 hashed queries, limited on odd rows.
 #[allow(clippy::needless_range_loop)] // the unit's signals index like the vectors
 fn parallax() -> Result<UnitVectors, String> {
-    use hdl::frames::parallax::ParallaxUnit;
+    use units::frames::parallax::ParallaxUnit;
     let mut sim = hdl::kernel::Sim::new(ParallaxUnit::new());
     sim.reset(1);
     let mut rows = Vec::new();
@@ -816,8 +816,8 @@ fn parallax() -> Result<UnitVectors, String> {
 
 /// Para. 0086's unit, every filter, on the 16x16 bumps map: 64 hashed samples each.
 fn derivative() -> Result<UnitVectors, String> {
-    use hdl::bump::derivative_0086::{Derivative, DerivativeUnit};
-    use hdl::bump::params::{Border, BumpParams};
+    use units::bump::derivative_0086::{Derivative, DerivativeUnit};
+    use units::bump::params::{Border, BumpParams};
     let map = crate::maps::builtin("bumps", 16, 16, BumpParams::default().texel_fmt())?;
     let mut rows = Vec::new();
     for (code, filt) in crate::derivative::filters().into_iter().enumerate() {
@@ -850,7 +850,7 @@ fn derivative() -> Result<UnitVectors, String> {
 
 /// Para. 0087's unit on a formula colour map: 256 hashed samples.
 fn biquadratic() -> Result<UnitVectors, String> {
-    use hdl::bump::biquadratic_0087::{Biquadratic0087, ColourMap};
+    use units::bump::biquadratic_0087::{Biquadratic0087, ColourMap};
     let rgb = (0..16 * 16u32)
         .flat_map(|k| {
             [
@@ -864,7 +864,7 @@ fn biquadratic() -> Result<UnitVectors, String> {
         width: 16,
         height: 16,
         rgb,
-        border: hdl::bump::params::Border::Wrap,
+        border: units::bump::params::Border::Wrap,
     };
     let mut sim = hdl::kernel::Sim::new(Biquadratic0087::new(map)?);
     sim.reset(1);
@@ -898,7 +898,7 @@ pub fn vector_texture() -> formats::ccc::Ccc {
         .map(|i| ((i * 37) & 0xff) << 16 | ((i * 91) & 0xff) << 8 | ((i * 13 + 5) & 0xff))
         .collect();
     let blocks = (0..64u32)
-        .map(|n| hdl::texmem::ccc_decode_608::CccBlock {
+        .map(|n| units::texmem::ccc_decode_608::CccBlock {
             a: (n * 7 + 3) as u8,
             b: (n * 11 + 100) as u8,
             bits: (n.wrapping_mul(0x9e37_79b9) >> 16) as u16,
@@ -914,7 +914,7 @@ pub fn vector_texture() -> formats::ccc::Ccc {
 
 fn texture() -> Result<UnitVectors, String> {
     use crate::texture::TexRequest;
-    use hdl::texmem::texture_unit_602::TexParams;
+    use units::texmem::texture_unit_602::TexParams;
     let tex = vector_texture();
     // Two horizontal scanlines, then positions from an integer hash (a `newline` every 16).
     let mut reqs = Vec::new();
@@ -936,7 +936,7 @@ fn texture() -> Result<UnitVectors, String> {
         });
     }
     let mut rows = Vec::new();
-    use hdl::texmem::cache_614::Lookahead;
+    use units::texmem::cache_614::Lookahead;
     for (mode, cache, look) in [
         (0u64, true, Lookahead::Quadrant),
         (1, true, Lookahead::Off),

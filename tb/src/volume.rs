@@ -5,9 +5,9 @@
 //! golden model, as the document leaves compositing to the host).
 
 use hdl::kernel::{Sim, Trace};
-use hdl::volume::layout::{locate, Mode, Order, VolumeParams, POS_FRAC};
-use hdl::volume::ray_caster_fig15::RayCaster;
 use proptest::prelude::*;
+use units::volume::layout::{locate, Mode, Order, VolumeParams, POS_FRAC};
+use units::volume::ray_caster_fig15::RayCaster;
 use verif::{
     run, Coverage, Coverpoint, Ctx, Driver, Event, Monitor, Pacing, RunSpec, Scoreboard, Stimulus,
     TbResult, Testbench,
@@ -102,7 +102,7 @@ pub fn count_slots(
     mode: Mode,
     points: impl Iterator<Item = ([i64; 3], u64)>,
 ) -> (u64, u64, u64) {
-    use hdl::volume::layout::access_voxels;
+    use units::volume::layout::access_voxels;
     let mut open = [u32::MAX; 4];
     let (mut accesses, mut slots, mut misses) = (0, 0, 0);
     for (pt, k) in points {
@@ -549,7 +549,7 @@ pub fn classify(v: &[u8]) -> [Vec<u8>; 4] {
 /// chips in lock-step, each sample checked against the reference of its plane, composited
 /// front to back by the golden compositor. Returns the RGB pixels and the samples.
 pub fn render(n: u32, side: u32) -> Result<(Vec<[u8; 3]>, u64), String> {
-    use hdl::volume::lockstep::VolumeLockstep;
+    use units::volume::lockstep::VolumeLockstep;
     let planes = classify(&builtin_volume(n));
     let p = VolumeParams::new(n, n, n);
     let mut sim = Sim::new(VolumeLockstep::new(p, &planes)?);

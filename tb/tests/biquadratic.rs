@@ -1,8 +1,8 @@
 //! Para. 0087's bi-quadratic colour: the testbench and the properties of a B-spline.
 
-use hdl::bump::biquadratic_0087::{filter, sums, ColourMap, POS_FRAC};
-use hdl::bump::params::Border;
 use tb::biquadratic::{test_map, BiquadraticTb};
+use units::bump::biquadratic_0087::{filter, sums, ColourMap, POS_FRAC};
+use units::bump::params::Border;
 use verif::{Seed, Stimulus};
 
 #[test]

@@ -1,10 +1,10 @@
 //! The blend-adjust testbench itself: it passes on the model, it fails on a one-bit error,
 //! and random single evaluations match the golden model exactly.
 
-use hdl::bump::blend_adjust_153::{BlendAdjust, BlendAdjustParams};
 use hdl::kernel::Sim;
 use proptest::prelude::*;
 use tb::blend_adjust::{golden, BaIn, BlendAdjustTb};
+use units::bump::blend_adjust_153::{BlendAdjust, BlendAdjustParams};
 use verif::{run_testbench, seeded_runner, RunOptions, Seed, TbResult};
 
 /// Runs the testbench through the framework, as `texrtl regress` does.

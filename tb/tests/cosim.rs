@@ -3,18 +3,18 @@
 //! right cycle and port. Without a simulator the tests say so in one line and pass, unless
 //! `TEXRTL_REQUIRE_COSIM=1` (which `.ci/run` sets).
 
-use hdl::bump::blend_adjust_153::BlendAdjustParams;
-use hdl::bump::params::{Border, BumpParams, Filter, HeightTexel, RsqrtParams};
-use hdl::mipmap::mipmap_gen_816::{MipmapParams, Rounding, Scan};
-use hdl::texmem::cache_614::Lookahead;
-use hdl::texmem::dram_604::DramParams;
-use hdl::texmem::layout::Layout;
 use std::path::PathBuf;
 use tb::cosim::{
     run, AddressCosim, BilinearCosim, BlendAdjustCosim, CacheCosim, ControlCosim, CosimUnit,
     FillCosim, LookaheadCosim, MipmapCosim, NormalCosim, PipelineCosim, ReplicateCosim, RsqrtCosim,
     Simulator, TangentCosim, TexelFetchCosim,
 };
+use units::bump::blend_adjust_153::BlendAdjustParams;
+use units::bump::params::{Border, BumpParams, Filter, HeightTexel, RsqrtParams};
+use units::mipmap::mipmap_gen_816::{MipmapParams, Rounding, Scan};
+use units::texmem::cache_614::Lookahead;
+use units::texmem::dram_604::DramParams;
+use units::texmem::layout::Layout;
 use verif::Seed;
 
 /// Whether `sim` can run; without it, fails only when co-simulation is required.
@@ -701,7 +701,7 @@ fn every_twin_is_lint_clean() {
 /// port that differs, as the model's own `split` predicts.
 #[test]
 fn address_bug_is_caught_with_its_cycle_and_port() {
-    use hdl::bump::address_150::AddressUnit;
+    use units::bump::address_150::AddressUnit;
     for sim in [Simulator::Verilator, Simulator::Icarus] {
         if !available(sim) {
             continue;
@@ -771,7 +771,7 @@ fn replicate_bug_is_caught_with_its_cycle_and_port() {
 /// port `q`, as the model's own arithmetic predicts.
 #[test]
 fn bilinear_rounding_bug_is_caught_with_its_cycle_and_port() {
-    use hdl::bump::bilinear_65_68::Bilinear;
+    use units::bump::bilinear_65_68::Bilinear;
     // 4-bit texels (uQ3.3 out of 152), F = 4 (factors uQ0.5): exact fraction 13, rounded
     // to 12: a dropped half is common.
     let u = BilinearCosim {
@@ -850,7 +850,7 @@ fn tangent_rounding_bug_is_caught_with_its_cycle_and_port() {
 /// registered mantissa is at least 1 and indexes an entry whose doubled root `z` is odd.
 #[test]
 fn rsqrt_table_bug_is_caught_with_its_cycle_and_port() {
-    use hdl::bump::rsqrt_156::RsqrtTable;
+    use units::bump::rsqrt_156::RsqrtTable;
     let p = RsqrtParams {
         table_bits: 4,
         iterations: 0,
@@ -885,8 +885,8 @@ fn rsqrt_table_bug_is_caught_with_its_cycle_and_port() {
 /// (first such port), found from the unit's equations with the model's own table and steps.
 #[test]
 fn normal_rounding_bug_is_caught_with_its_cycle_and_port() {
-    use hdl::bump::normal_156::normalise;
-    use hdl::bump::rsqrt_156::{rsqrt, RsqrtTable};
+    use units::bump::normal_156::normalise;
+    use units::bump::rsqrt_156::{rsqrt, RsqrtTable};
     // sQ.8 tangents, uQ1.8 iterates, sQ2.14 out: 8 + 8 + k - 14 = 2 + k dropped bits.
     let p = BumpParams {
         tangent_frac: 8,
@@ -1107,7 +1107,7 @@ fn cache_touch_bug_is_caught_with_its_cycle_and_port() {
 #[test]
 fn lookahead_flush_bug_is_caught_with_its_cycle_and_port() {
     use hdl::kernel::Module;
-    use hdl::texmem::control_607::LookaheadQueue;
+    use units::texmem::control_607::LookaheadQueue;
     let u = LookaheadCosim {
         mode: Lookahead::Quadrant,
         blocks: (16, 16),
@@ -1160,8 +1160,8 @@ fn first_cycle<M: hdl::kernel::Module>(
 /// block that is not the first of its tile.
 #[test]
 fn fill_tiled_address_bug_is_caught_with_its_cycle_and_port() {
-    use hdl::texmem::control_607::FillEngine;
-    use hdl::texmem::layout::BlockMap;
+    use units::texmem::control_607::FillEngine;
+    use units::texmem::layout::BlockMap;
     let u = FillCosim {
         layout: Layout::Tiled,
         blocks: (40, 24),

@@ -1,7 +1,7 @@
 //! Para. 0086's derivative filters: the testbench, and the linearity the patent relies on.
 
-use hdl::bump::derivative_0086::DerivFilter;
 use tb::derivative::{filters, DerivativeTb};
+use units::bump::derivative_0086::DerivFilter;
 use verif::{Seed, Stimulus};
 
 #[test]

@@ -2,8 +2,8 @@
 //! checks of the DRAM model, and `texrtl dram`.
 
 use hdl::kernel::Sim;
-use hdl::texmem::dram_604::{Dram, DramParams};
 use tb::dram::run_trace;
+use units::texmem::dram_604::{Dram, DramParams};
 
 #[test]
 fn page_mode_and_fault_timing_reproduce_the_document() {

@@ -1,8 +1,8 @@
 //! Environment mapping (issue 15, begun): the cube-face unit against f64.
 
-use hdl::envmap::cube_face::{face_st, CubeFace, ST_BOUND_LSB};
 use hdl::kernel::Sim;
 use proptest::prelude::*;
+use units::envmap::cube_face::{face_st, CubeFace, ST_BOUND_LSB};
 
 /// 200,000 random reflection vectors (every magnitude from 2^-16 to 8, every direction, and
 /// the ties of two or three equal components): the face equals f64's (exact compares on the
@@ -67,7 +67,7 @@ fn the_unit_registers_the_function() {
 /// `valid_in` was high, and holding it through a cycle without.
 #[test]
 fn the_reflection_unit_registers_the_function_and_holds() {
-    use hdl::envmap::reflect_eq4::{reflect, Reflect};
+    use units::envmap::reflect_eq4::{reflect, Reflect};
     let mut sim = Sim::new(Reflect::new()).check_schedule(true);
     sim.reset(1);
     let (nb, v) = ([3_000i64, -20_000, 9_000], [-5_000i64, 7_000, 14_000]);
@@ -100,7 +100,7 @@ fn the_reflection_unit_registers_the_function_and_holds() {
 /// unit, the face is f64's unless the two largest components are within 2^-12 relative.
 #[test]
 fn the_reflection_vector_is_eq4_with_one_rounding() {
-    use hdl::envmap::reflect_eq4::reflect;
+    use units::envmap::reflect_eq4::reflect;
     let mut stim = verif::seeded_stimulus("reflect eq4");
     let tab = *CubeFace::new().table();
     let unit = |a: [f64; 3]| {
@@ -160,9 +160,9 @@ fn the_reflection_vector_is_eq4_with_one_rounding() {
 /// `n + e1 b1 + e2 b2` of the unit's own vectors; a random `h` is never parallel.
 #[test]
 fn the_local_frame_is_orthonormal_within_its_bound() {
-    use hdl::envmap::frame_eq2::FrameUnit;
+    use units::envmap::frame_eq2::FrameUnit;
     let unit = FrameUnit::new();
-    let p = hdl::bump::params::RsqrtParams::default();
+    let p = units::bump::params::RsqrtParams::default();
     let eps = golden::rsqrt::error_bound_ulps(p.table_bits, p.iterations, p.y_frac)
         * 2.0
         * (-(p.y_frac as f64)).exp2()

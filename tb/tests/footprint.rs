@@ -3,12 +3,12 @@
 //! the regress testbench, and the quality claim measured.
 
 use golden::footprint::LAMBDA_BOUND;
-use hdl::footprint::assembly_fig12::{assemble, first_point};
-use hdl::footprint::setup_fig12::{setup, NRounding, SetupParams, SetupUnit};
-use hdl::texram::stub::TexramStub;
-use hdl::texram::{Border, Drf, TexramAccess, TexramRequest};
 use tb::footprint::{pixels, ref_assemble, ref_setup, Pixel};
 use tb::texram::{test_map, RefBorder, RefMipmap};
+use units::footprint::assembly_fig12::{assemble, first_point};
+use units::footprint::setup_fig12::{setup, NRounding, SetupParams, SetupUnit};
+use units::texram::stub::TexramStub;
+use units::texram::{Border, Drf, TexramAccess, TexramRequest};
 
 fn table() -> [i32; 64] {
     *SetupUnit::new("s", SetupParams::default()).unwrap().table()
@@ -88,7 +88,7 @@ fn chip_pair(wl: u32, hl: u32, border: Border, level0: &[u8]) -> TexramStub {
 /// result within the min/max of the texels read.
 #[test]
 fn assembly_matches_the_integer_reference_on_the_stub_and_the_chip() {
-    use hdl::texram::texram_802::{Texram802, Texram802Access, TexramParams};
+    use units::texram::texram_802::{Texram802, Texram802Access, TexramParams};
     let mut stim = verif::seeded_stimulus("footprint assembly");
     let t = table();
     let (wl, hl, border) = (7, 6, Border::Mirror);
@@ -204,11 +204,11 @@ fn footprint_assembly_beats_trilinear_on_tilted_planes() {
 /// the reference's sample points; with N = 1 the normals are the plain pipeline's.
 #[test]
 fn the_fig7_tangent_average_is_the_mean_of_the_plain_pipelines_tangents() {
-    use hdl::bump::normal_pipeline_fig7::NormalPipeline;
-    use hdl::bump::params::BumpParams;
-    use hdl::footprint::normals_0081::FootprintNormals;
     use hdl::kernel::Sim;
     use tb::footprint_normals::{expectations, npixels, NPixel};
+    use units::bump::normal_pipeline_fig7::NormalPipeline;
+    use units::bump::params::BumpParams;
+    use units::footprint::normals_0081::FootprintNormals;
     let p = BumpParams::default();
     let map = tb::maps::builtin("noise", 32, 32, p.texel_fmt()).unwrap();
     let mut stim = verif::seeded_stimulus("footprint fig7");

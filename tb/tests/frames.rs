@@ -1,8 +1,8 @@
 //! The per-pixel frame unit and the parallax unit (002, 003): testbenches and properties.
 
-use hdl::frames::frame_unit::{decode_rgb8, Decode, FrameMath};
-use hdl::frames::parallax::Parallax;
 use tb::frames::{golden_parallax, parallax_queries, FrameUnitTb, ParallaxTb};
+use units::frames::frame_unit::{decode_rgb8, Decode, FrameMath};
+use units::frames::parallax::Parallax;
 use verif::{Seed, Stimulus};
 
 #[test]

@@ -1,11 +1,11 @@
 //! Every module's `visit` reaches every child: the instance tree of each top, against the
 //! units its figure says it holds (a module count and the kinds, by hand from the figures).
 
-use hdl::bump::normal_pipeline_fig7::NormalPipeline;
-use hdl::bump::params::BumpParams;
 use hdl::kernel::{instances, Module};
-use hdl::mipmap::{MipmapGen, MipmapParams, Rounding, Scan};
-use hdl::texmem::texture_unit_602::{TexParams, TextureUnit};
+use units::bump::normal_pipeline_fig7::NormalPipeline;
+use units::bump::params::BumpParams;
+use units::mipmap::{MipmapGen, MipmapParams, Rounding, Scan};
+use units::texmem::texture_unit_602::{TexParams, TextureUnit};
 
 /// `(kind, count)` of every instance under `top`, sorted by kind.
 fn kinds(top: &dyn Module) -> Vec<(String, usize)> {
@@ -167,15 +167,15 @@ fn all_under(top: &dyn Module, scope: &str) -> bool {
 /// The units of issues 13-15: every scope their waveforms are read by, with its signals.
 #[test]
 fn the_texram_side_units_visit_every_scope() {
-    use hdl::envmap::cube_face::CubeFace;
-    use hdl::envmap::reflect_eq4::Reflect;
-    use hdl::footprint::footprint_fig12::FootprintFig12;
-    use hdl::footprint::normals_0081::FootprintNormals;
-    use hdl::footprint::setup_fig12::SetupParams;
-    use hdl::texram::texram_802::{Texram802, TexramParams};
-    use hdl::volume::layout::{Mode, VolumeParams};
-    use hdl::volume::lockstep::VolumeLockstep;
-    use hdl::volume::ray_caster_fig15::RayCaster;
+    use units::envmap::cube_face::CubeFace;
+    use units::envmap::reflect_eq4::Reflect;
+    use units::footprint::footprint_fig12::FootprintFig12;
+    use units::footprint::normals_0081::FootprintNormals;
+    use units::footprint::setup_fig12::SetupParams;
+    use units::texram::texram_802::{Texram802, TexramParams};
+    use units::volume::layout::{Mode, VolumeParams};
+    use units::volume::lockstep::VolumeLockstep;
+    use units::volume::ray_caster_fig15::RayCaster;
     let chip = Texram802::new(TexramParams::default()).unwrap();
     let fa = FootprintFig12::new(SetupParams::default(), chip).unwrap();
     for (part, n) in [
@@ -271,19 +271,19 @@ fn the_texram_side_units_visit_every_scope() {
 /// register (counted by hand from the modules' port tables).
 #[test]
 fn the_map_chain_and_per_pixel_units_visit_every_signal() {
-    use hdl::bump::biquadratic_0087::{Biquadratic0087, ColourMap};
-    use hdl::bump::derivative_0086::{DerivFilter, Derivative, DerivativeUnit};
-    use hdl::bump::params::Border;
-    use hdl::frames::frame_unit::FrameUnit;
-    use hdl::frames::parallax::ParallaxUnit;
-    use hdl::frames::tangent_setup::TangentSetup;
-    use hdl::ptm::fitter_604::Fitter604;
-    use hdl::ptm::shader_608::Shader608;
-    use hdl::ptm::texture_612::PtmFormat;
+    use units::bump::biquadratic_0087::{Biquadratic0087, ColourMap};
+    use units::bump::derivative_0086::{DerivFilter, Derivative, DerivativeUnit};
+    use units::bump::params::Border;
+    use units::frames::frame_unit::FrameUnit;
+    use units::frames::parallax::ParallaxUnit;
+    use units::frames::tangent_setup::TangentSetup;
+    use units::ptm::fitter_604::Fitter604;
+    use units::ptm::shader_608::Shader608;
+    use units::ptm::texture_612::PtmFormat;
     let maps = tb::mapchain::Maps::formula();
     let sc = tb::mapchain::scene(tb::mapchain::Shape::Longest, &maps).unwrap();
     let walker =
-        hdl::mapchain::walker_812::MapChain812::new(sc.file.clone(), sc.stub().unwrap(), 6)
+        units::mapchain::walker_812::MapChain812::new(sc.file.clone(), sc.stub().unwrap(), 6)
             .unwrap();
     // req_valid, 13 pixel fields, req_ready, acc_valid, 5 access fields, 18 walk registers,
     // 13 held fields, busy, rd_value, rd_slots, 3 counts, 3 out counts, out_valid, colour,

@@ -1,12 +1,12 @@
 //! Map linking (section 14) with detail, reflectance and environment maps: the regress
 //! testbench, the document's timings, and the detail path's properties.
 
-use hdl::mapchain::drf_812::{DetailMode, DrfFile, Kind};
-use hdl::mapchain::program::{ChainRequest, Fetch, Program, State};
-use hdl::mapchain::walker_812::walk_pixel;
-use hdl::texram::output_820::mul255;
-use hdl::texram::{Border, TexramAccess};
 use tb::mapchain::{expectations, pixels, scene, timings, Maps, Scene, Shape, WalkerTb};
+use units::mapchain::drf_812::{DetailMode, DrfFile, Kind};
+use units::mapchain::program::{ChainRequest, Fetch, Program, State};
+use units::mapchain::walker_812::walk_pixel;
+use units::texram::output_820::mul255;
+use units::texram::{Border, TexramAccess};
 use verif::{Seed, Stimulus};
 
 fn maps() -> Maps {
@@ -247,7 +247,7 @@ fn chains_that_cannot_end_are_flagged() {
 /// access's two slots), both ends taken.
 #[test]
 fn the_slot_length_is_checked_at_both_ends() {
-    use hdl::mapchain::walker_812::MapChain812;
+    use units::mapchain::walker_812::MapChain812;
     let sc = scene(Shape::Texture, &maps()).unwrap();
     for (cycles, ok) in [(0, false), (1, true), (15, true), (16, false)] {
         let r = MapChain812::new(sc.file.clone(), sc.stub().unwrap(), cycles);
@@ -266,7 +266,7 @@ fn a_given_face_is_read_where_the_rasterizer_says() {
     let m = maps();
     let mut sc = scene(Shape::Environment, &m).unwrap();
     sc.file.drfs[6].as_mut().unwrap().new_coords = false;
-    let tab = *hdl::envmap::cube_face::CubeFace::new().table();
+    let tab = *units::envmap::cube_face::CubeFace::new().table();
     let px = pixels(240, &mut Stimulus::new(Seed(7)));
     for (i, q) in px.iter().enumerate() {
         let q = ChainRequest {
@@ -328,7 +328,7 @@ fn without_base_texture_eq6_takes_the_illumination() {
 fn the_walker_picks_the_f64_face() {
     let m = maps();
     let sc = scene(Shape::Environment, &m).unwrap();
-    let tab = *hdl::envmap::cube_face::CubeFace::new().table();
+    let tab = *units::envmap::cube_face::CubeFace::new().table();
     let mut stim = Stimulus::new(Seed(6));
     let mut faces = [0usize; 6];
     for q in pixels(3000, &mut stim) {

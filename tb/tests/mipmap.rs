@@ -3,8 +3,8 @@
 //! frames back to back, errors reported; and the `texrtl mipmap` command.
 
 use hdl::kernel::{Module, Sim};
-use hdl::mipmap::{MipmapGen, MipmapParams, Rounding, Scan};
 use tb::mipmap::{reference, run_mipmap, synthetic_video, video_stream, VideoDriver};
+use units::mipmap::{MipmapGen, MipmapParams, Rounding, Scan};
 use verif::Driver;
 use verif::{seeded_stimulus, Seed};
 

@@ -1,7 +1,7 @@
 //! The FIG. 7 pipeline against the golden surfaces: accuracy on every built-in map, border
 //! modes and variants; Bezier = B-spline bit for bit; latency and throughput.
 
-use hdl::bump::params::{Border, BumpParams, Filter};
+use units::bump::params::{Border, BumpParams, Filter};
 
 use proptest::prelude::*;
 use tb::maps::builtin;
@@ -105,7 +105,7 @@ fn accurate_on_every_builtin_map_and_border() {
     eprintln!("worst component error {:.3e} (tol {COMPONENT_TOL:.3e}), angle {:.3e} deg (tol {ANGLE_TOL_DEG})", worst.0, worst.1);
 }
 
-fn cfg(p: BumpParams, map: hdl::bump::height_map::HeightMap, samples: Vec<Sample>) -> NormalsRun {
+fn cfg(p: BumpParams, map: units::bump::height_map::HeightMap, samples: Vec<Sample>) -> NormalsRun {
     NormalsRun {
         name: "t".into(),
         params: p,
@@ -140,7 +140,7 @@ fn variants_scale_height_and_small_texels() {
             ..BumpParams::default()
         };
         if texel4 {
-            p.height = hdl::bump::params::HeightTexel::Bits4;
+            p.height = units::bump::params::HeightTexel::Bits4;
         }
         for map in ["noise", "smooth", "steps"] {
             let m = builtin(map, 16, 16, p.texel_fmt()).unwrap();
@@ -184,7 +184,7 @@ fn bezier_path_gives_the_same_bits_as_blend_adjust() {
     );
     runner
         .run(&strat, |(texels, pos)| {
-            let m = hdl::bump::height_map::HeightMap::new(
+            let m = units::bump::height_map::HeightMap::new(
                 8,
                 8,
                 BumpParams::default().texel_fmt(),

@@ -2,11 +2,11 @@
 //! that fails on the printed form, and the fit's quality.
 
 use golden::ptm::dome;
-use hdl::ptm::shader_608::occlusion_at;
-use hdl::ptm::texture_612::PtmFormat;
 use tb::ptm::{
     fit_swatch, golden_fit, host_pinv, quality, ref_fit, PtmFitterTb, PtmShaderTb, Swatch,
 };
+use units::ptm::shader_608::occlusion_at;
+use units::ptm::texture_612::PtmFormat;
 
 #[test]
 fn the_testbenches_pass_with_full_coverage() {

@@ -1,14 +1,14 @@
-//! The TEXRAM access (`hdl::texram`, its behavioural stub for now) against the integer
+//! The TEXRAM access (`units::texram`, its behavioural stub for now) against the integer
 //! reference of `tb::texram` (bit-exact on 10^6 random requests over square, rectangular and
 //! 1-wide maps and every border operation) and the f64 golden model of `golden::texram`
 //! (within half an LSB with the chip's truncated weights; inside the min/max of the eight
 //! texels; integer lambda is the bilinear of that level). Seeds are printed; replay with
 //! `TEXRTL_SEED`.
 
-use hdl::texram::stub::TexramStub;
-use hdl::texram::{Border, Drf, TexramAccess, TexramRequest};
 use proptest::prelude::*;
 use tb::texram::{RefBorder, RefMipmap};
+use units::texram::stub::TexramStub;
+use units::texram::{Border, Drf, TexramAccess, TexramRequest};
 
 const MAPS: [(u32, u32); 5] = [(6, 6), (7, 3), (0, 5), (4, 0), (2, 2)];
 
@@ -164,7 +164,7 @@ struct Out {
 /// the illumination `illum[k]`, each 0 past its end; traced to `vcd` when given): its
 /// results, its slot and conflict counts.
 fn run_chip(
-    chip: hdl::texram::texram_802::Texram802,
+    chip: units::texram::texram_802::Texram802,
     reqs: &[(i32, i32, i32)],
     (drfs, illum): (&[u8], &[u32]),
     vcd: Option<&std::path::Path>,
@@ -215,7 +215,7 @@ fn run_chip(
 
 #[test]
 fn the_cycle_accurate_chip_matches_the_stub_texel_for_texel_and_slot_for_slot() {
-    use hdl::texram::texram_802::{Texram802, TexramParams};
+    use units::texram::texram_802::{Texram802, TexramParams};
     let mut stim = verif::seeded_stimulus("texram chip");
     for (wl, hl) in [(6, 6), (10, 10), (0, 5)] {
         for (border, _, _) in borders() {
@@ -254,7 +254,7 @@ fn the_cycle_accurate_chip_matches_the_stub_texel_for_texel_and_slot_for_slot() 
 /// the map does not have, and takes its top level.
 #[test]
 fn every_way_of_loading_the_chip_stores_the_same_map() {
-    use hdl::texram::texram_802::{Texram802, Texram802Access, TexramParams};
+    use units::texram::texram_802::{Texram802, Texram802Access, TexramParams};
     let mut stim = verif::seeded_stimulus("texram loads");
     let (wl, hl, border) = (5, 3, Border::Wrap);
     let d = Drf::new(wl, hl, border);
@@ -303,7 +303,7 @@ fn every_way_of_loading_the_chip_stores_the_same_map() {
 /// source, 0), even straight after an access that left every bank's word on a texel of 7.
 #[test]
 fn an_unset_drf_reads_zeros_whatever_the_banks_hold() {
-    use hdl::texram::texram_802::{Texram802, TexramParams};
+    use units::texram::texram_802::{Texram802, TexramParams};
     let mut chip = Texram802::new(TexramParams::default()).unwrap();
     chip.set_drf(0, Drf::new(4, 4, Border::Wrap)).unwrap();
     chip.load(0, &[7; 256]).unwrap();
@@ -314,7 +314,7 @@ fn an_unset_drf_reads_zeros_whatever_the_banks_hold() {
 
 #[test]
 fn the_chip_waveform_has_one_scope_per_unit() {
-    use hdl::texram::texram_802::{Texram802, TexramParams};
+    use units::texram::texram_802::{Texram802, TexramParams};
     let dir = std::env::temp_dir().join(format!("texrtl-texram-{}", std::process::id()));
     std::fs::create_dir_all(&dir).unwrap();
     let vcd = dir.join("texram_802.vcd");
@@ -385,9 +385,9 @@ fn the_testbench_passes_the_chip_and_reports_full_coverage() {
 /// looked-up component; the cycle-accurate chip agrees with the stub.
 #[test]
 fn index_mode_filters_each_component_after_the_lookup() {
-    use hdl::texram::clut_814::Clut;
-    use hdl::texram::texram_802::{Texram802, TexramParams};
-    use hdl::texram::Config;
+    use units::texram::clut_814::Clut;
+    use units::texram::texram_802::{Texram802, TexramParams};
+    use units::texram::Config;
     let mut stim = verif::seeded_stimulus("texram index");
     let (wl, hl, border) = (6, 5, Border::Mirror);
     let (_, reference) = setup(wl, hl, border, stim.seed().0);
@@ -433,9 +433,9 @@ fn index_mode_filters_each_component_after_the_lookup() {
 #[test]
 fn the_clut_shows_the_entries_it_looked_up() {
     use hdl::kernel::Sim;
-    use hdl::texram::clut_814::Clut;
-    use hdl::texram::texram_802::{Texram802, TexramParams};
-    use hdl::texram::Config;
+    use units::texram::clut_814::Clut;
+    use units::texram::texram_802::{Texram802, TexramParams};
+    use units::texram::Config;
     let mut stim = verif::seeded_stimulus("texram clut scope");
     let entries: Vec<u32> = stim.draw_n(&any::<u32>(), 256);
     let clut = Clut {
@@ -480,9 +480,9 @@ fn the_clut_shows_the_entries_it_looked_up() {
 #[test]
 fn colour_configurations_agree_component_by_component() {
     use hdl::kernel::Sim;
-    use hdl::texram::lockstep::TexramLockstep;
-    use hdl::texram::texram_802::TexramParams;
-    use hdl::texram::Config;
+    use units::texram::lockstep::TexramLockstep;
+    use units::texram::texram_802::TexramParams;
+    use units::texram::Config;
     let mut stim = verif::seeded_stimulus("texram colour");
     let (pl, n) = (5u32, 32usize);
     let planes: [Vec<u8>; 4] = std::array::from_fn(|_| stim.draw_n(&any::<u8>(), n * n));
@@ -581,7 +581,7 @@ fn colour_configurations_agree_component_by_component() {
 /// registers over one frame time of full-rate rasterizer accesses: under 1 % of the slots.
 #[test]
 fn video_at_25_frames_a_second_takes_under_one_percent_of_the_slots() {
-    use hdl::texram::banks_810::locate;
+    use units::texram::banks_810::locate;
     let drf = Drf::new(10, 10, Border::Wrap);
     // The transfers of one frame, in video order: level k's lines as the generator completes
     // them (one per 2^k input lines), two banks per line (x even and odd).
@@ -643,8 +643,8 @@ fn video_at_25_frames_a_second_takes_under_one_percent_of_the_slots() {
 /// slots when no page faults).
 #[test]
 fn the_chip_reads_colour_layouts_like_the_stub() {
-    use hdl::texram::texram_802::{Texram802, TexramParams};
-    use hdl::texram::Config;
+    use units::texram::texram_802::{Texram802, TexramParams};
+    use units::texram::Config;
     let mut stim = verif::seeded_stimulus("texram colour chip");
     for (config, border) in [
         (Config::Planar, Border::Wrap),
@@ -681,9 +681,9 @@ fn the_chip_reads_colour_layouts_like_the_stub() {
 /// texture's), in the chip as in the stub, for luminance and planar colour.
 #[test]
 fn the_output_stage_shades_with_illumination_or_a_constant() {
-    use hdl::texram::output_820::{mul255, Modulate};
-    use hdl::texram::texram_802::{Texram802, TexramParams};
-    use hdl::texram::Config;
+    use units::texram::output_820::{mul255, Modulate};
+    use units::texram::texram_802::{Texram802, TexramParams};
+    use units::texram::Config;
     let mut stim = verif::seeded_stimulus("texram eq5");
     let level0: Vec<u8> = stim.draw_n(&any::<u8>(), 32 * 32);
     for (config, m) in [
@@ -736,8 +736,8 @@ fn the_output_stage_shades_with_illumination_or_a_constant() {
 /// (what the footprint assembly and the map chain will call).
 #[test]
 fn the_chip_behind_the_interface_answers_like_the_stub() {
-    use hdl::texram::texram_802::{Texram802, Texram802Access, TexramParams};
-    use hdl::texram::Config;
+    use units::texram::texram_802::{Texram802, Texram802Access, TexramParams};
+    use units::texram::Config;
     let mut stim = verif::seeded_stimulus("texram interface");
     let level0: Vec<u8> = stim.draw_n(&any::<u8>(), 64 * 64);
     for config in [Config::Luminance, Config::Planar] {

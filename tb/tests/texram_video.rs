@@ -2,9 +2,9 @@
 //! into the banks through the shift registers 826, beside the rasterizer.
 
 use hdl::kernel::Sim;
-use hdl::mipmap::Scan;
 use tb::texram::test_map;
 use tb::texram_video::{video_chip, VideoConfig, VideoPortTb, VideoSource};
+use units::mipmap::Scan;
 use verif::Background;
 
 /// The regress testbench over every configuration: each frame's mipmap in the banks equals
@@ -29,7 +29,7 @@ fn video_only(
     frames: usize,
     limit: u64,
 ) -> (
-    Sim<hdl::texram::texram_802::Texram802, hdl::kernel::NoTrace>,
+    Sim<units::texram::texram_802::Texram802, hdl::kernel::NoTrace>,
     VideoSource,
 ) {
     video_only_watching(c, frames, limit, |_| {})
@@ -40,9 +40,9 @@ fn video_only_watching(
     c: &VideoConfig,
     frames: usize,
     limit: u64,
-    each: impl FnMut(&hdl::texram::texram_802::Texram802),
+    each: impl FnMut(&units::texram::texram_802::Texram802),
 ) -> (
-    Sim<hdl::texram::texram_802::Texram802, hdl::kernel::NoTrace>,
+    Sim<units::texram::texram_802::Texram802, hdl::kernel::NoTrace>,
     VideoSource,
 ) {
     let mut stim = verif::seeded_stimulus("texram video");
@@ -59,7 +59,7 @@ fn video_only_watching(
 
 /// `frames` from a new source into the chip until each is ready or the sim's cycle `limit`.
 fn clock_video(
-    sim: &mut Sim<hdl::texram::texram_802::Texram802, hdl::kernel::NoTrace>,
+    sim: &mut Sim<units::texram::texram_802::Texram802, hdl::kernel::NoTrace>,
     c: &VideoConfig,
     frames: &[Vec<u8>],
     limit: u64,
@@ -69,11 +69,11 @@ fn clock_video(
 
 /// [`clock_video`], showing `each` the chip in every cycle (settled, before the edge).
 fn clock_video_watching(
-    sim: &mut Sim<hdl::texram::texram_802::Texram802, hdl::kernel::NoTrace>,
+    sim: &mut Sim<units::texram::texram_802::Texram802, hdl::kernel::NoTrace>,
     c: &VideoConfig,
     frames: &[Vec<u8>],
     limit: u64,
-    mut each: impl FnMut(&hdl::texram::texram_802::Texram802),
+    mut each: impl FnMut(&units::texram::texram_802::Texram802),
 ) -> VideoSource {
     let mut src = VideoSource::new(c, frames);
     while sim.cycle() < limit && src.frames_checked() < frames.len() {
@@ -139,7 +139,7 @@ fn video_needing_exactly_the_row_buffers_there_are_does_not_overrun() {
 /// registers and slots over one frame time (40 ms): under 1 % of its accesses lost.
 #[test]
 fn video_at_25_frames_a_second_costs_the_rasterizer_under_one_percent() {
-    use hdl::texram::{Border, Drf};
+    use units::texram::{Border, Drf};
     let c = tb::texram_video::video_cost(1024, 512, 25).unwrap();
     eprintln!("{c:?}: {:.3} % of the accesses lost", 100.0 * c.lost());
     assert_eq!(c.error, 0);
@@ -287,8 +287,9 @@ fn a_frame_is_ready_at_the_edge_its_last_segment_is_written() {
     let frames: Vec<Vec<u8>> = (0..4).map(|f| vec![grey(f); 64]).collect();
     let mut stim = verif::seeded_stimulus("texram video");
     let (chip, _) = video_chip(&c, &test_map(32, 32, &mut stim)).unwrap();
-    let top =
-        |chip: &hdl::texram::texram_802::Texram802, f: usize| chip.read_level(f % 2, 4).unwrap()[0];
+    let top = |chip: &units::texram::texram_802::Texram802, f: usize| {
+        chip.read_level(f % 2, 4).unwrap()[0]
+    };
     let mut sim = Sim::new(chip);
     sim.reset(2);
     for f in 0..2 {

@@ -5,14 +5,14 @@
 
 use formats::ccc::Ccc;
 use hdl::kernel::Sim;
-use hdl::texmem::bilinear_622::lerp2;
-use hdl::texmem::cache_614::Lookahead;
-use hdl::texmem::ccc_decode_608::CccBlock;
-use hdl::texmem::layout::Layout;
-use hdl::texmem::texture_unit_602::{TexParams, TextureUnit};
 use proptest::prelude::*;
 use tb::texture::reference_filter;
 use tb::texture::{drive, run_texread, RasterDriver, TexRequest};
+use units::texmem::bilinear_622::lerp2;
+use units::texmem::cache_614::Lookahead;
+use units::texmem::ccc_decode_608::CccBlock;
+use units::texmem::layout::Layout;
+use units::texmem::texture_unit_602::{TexParams, TextureUnit};
 use verif::{Driver, Handshake};
 
 fn modes() -> Vec<(Layout, bool, Lookahead, u32)> {
@@ -307,7 +307,7 @@ fn the_shadow_cache_splits_misses() {
 fn textures_that_do_not_fit_are_refused() {
     let mut p = TexParams::new(4096, 4096);
     assert!(p.validate().unwrap_err().contains("needs DRAM words"));
-    p.dram = hdl::texmem::dram_604::DramParams::one_meg();
+    p.dram = units::texmem::dram_604::DramParams::one_meg();
     assert!(p.validate().is_err(), "4096^2 needs 2M words");
     let p = TexParams::new(2048, 1024);
     assert!(

@@ -1,8 +1,8 @@
 //! Address unit 150: every position of a range, both modes, against floor arithmetic.
 
-use hdl::bump::address_150::AddressUnit;
 use hdl::fx::Format;
 use hdl::kernel::{Module, Sim};
+use units::bump::address_150::AddressUnit;
 
 #[test]
 fn every_position_both_modes() {

@@ -2,9 +2,9 @@
 //! (the result lies between the smallest and largest texel, and is monotonic in each blend
 //! factor), also with a narrowed output that rounds.
 
-use hdl::bump::bilinear_65_68::Bilinear;
 use hdl::fx::Format;
 use proptest::prelude::*;
+use units::bump::bilinear_65_68::Bilinear;
 use verif::seeded_runner;
 
 fn unit(out_frac: Option<u32>) -> Bilinear {

@@ -1,9 +1,9 @@
 //! Replicate unit 152: windows of para. 0056-0057 and Equation 1's Bezier points, computed here
 //! as the matrix product the patent writes.
 
-use hdl::bump::replicate_152::Replicate;
 use hdl::fx::Format;
 use hdl::kernel::Sim;
+use units::bump::replicate_152::Replicate;
 use verif::{Seed, Stimulus};
 
 fn matmul(a: [[f64; 3]; 3], b: [[f64; 3]; 3]) -> [[f64; 3]; 3] {

@@ -1,12 +1,12 @@
 //! The inverse square root of unit 156, exhaustively: every mantissa of the input range against
 //! the exact integer reference `floor(2^Y / sqrt(m))` (integer square roots, no floating
 //! point), for the default parameters and a few others. The measured worst error must stay
-//! within the bound derived in `hdl::bump::rsqrt_156`; it is printed.
+//! within the bound derived in `units::bump::rsqrt_156`; it is printed.
 
 use golden::rsqrt::error_bound_ulps;
-use hdl::bump::params::RsqrtParams;
-use hdl::bump::rsqrt_156::{rsqrt, Rsqrt, RsqrtTable};
 use hdl::kernel::Sim;
+use units::bump::params::RsqrtParams;
+use units::bump::rsqrt_156::{rsqrt, Rsqrt, RsqrtTable};
 
 /// Worst |y - 1/sqrt(m)| in ULPs over every mantissa, measured to 1/256 ULP, and the count of
 /// inputs whose result is the correctly rounded one.

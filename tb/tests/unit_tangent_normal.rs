@@ -2,11 +2,11 @@
 //! and normal unit 156 against f64 normalisation, on seeded random inputs.
 
 use golden::rsqrt::error_bound_ulps;
-use hdl::bump::normal_156::Normal;
-use hdl::bump::params::{BumpParams, Filter, HeightTexel};
-use hdl::bump::tangent_155::{Tangent, TangentIn};
 use hdl::kernel::Sim;
 use proptest::prelude::*;
+use units::bump::normal_156::Normal;
+use units::bump::params::{BumpParams, Filter, HeightTexel};
+use units::bump::tangent_155::{Tangent, TangentIn};
 use verif::{seeded_runner, seeded_stimulus};
 
 /// A parameter at either end of its range or anywhere between.

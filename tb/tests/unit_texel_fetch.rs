@@ -2,11 +2,11 @@
 //! every border mode, against the golden model's border addressing.
 
 use golden::bump::{Border as GB, Heights};
-use hdl::bump::height_map::HeightMap;
-use hdl::bump::params::Border;
-use hdl::bump::texel_fetch_151::TexelFetch;
 use hdl::fx::Format;
 use hdl::kernel::Sim;
+use units::bump::height_map::HeightMap;
+use units::bump::params::Border;
+use units::bump::texel_fetch_151::TexelFetch;
 
 #[test]
 fn grid_in_every_border_mode() {

@@ -1,8 +1,8 @@
 //! Volume rendering on the TEXRAM (section 13): the regress testbench, the document's two
 //! timings from the page-register model, and the linear-field properties.
 
-use hdl::volume::layout::{Mode, Order, VolumeParams};
 use tb::volume::{ref_sample, timings, Axis};
+use units::volume::layout::{Mode, Order, VolumeParams};
 
 /// The testbench over every configuration with the schedule check: bit-exact against the
 /// reference, within 0.5 LSB of golden, slots as the page-register model counts them.
@@ -46,7 +46,7 @@ fn the_documents_timings_from_the_page_registers() {
 #[test]
 fn a_linear_field_gives_exact_gradients_inside() {
     use hdl::kernel::Sim;
-    use hdl::volume::ray_caster_fig15::RayCaster;
+    use units::volume::ray_caster_fig15::RayCaster;
     let dims = (16u32, 12u32, 10u32);
     let (a, b, c, d) = (3i64, 5, 7, 20);
     let vox: Vec<u8> = (0..dims.0 * dims.1 * dims.2)
@@ -109,7 +109,7 @@ fn a_linear_field_gives_exact_gradients_inside() {
 /// both counts.
 #[test]
 fn the_voxel_count_is_the_volumes() {
-    use hdl::volume::ray_caster_fig15::RayCaster;
+    use units::volume::ray_caster_fig15::RayCaster;
     let p = VolumeParams::new(4, 4, 4);
     assert!(RayCaster::new(p, Mode::Value, &[0; 64]).is_ok());
     for n in [63, 65] {
@@ -124,8 +124,8 @@ fn the_voxel_count_is_the_volumes() {
 #[test]
 fn chips_out_of_step_are_flagged_at_once() {
     use hdl::kernel::Sim;
-    use hdl::volume::lockstep::VolumeLockstep;
-    use hdl::volume::ray_caster_fig15::RayCaster;
+    use units::volume::lockstep::VolumeLockstep;
+    use units::volume::ray_caster_fig15::RayCaster;
     let p = VolumeParams::new(8, 8, 8);
     let planes = [0, 1, 2, 3].map(|c| vec![40 * c as u8; 512]);
     let mut group = VolumeLockstep::new(p, &planes).unwrap();
@@ -134,7 +134,7 @@ fn chips_out_of_step_are_flagged_at_once() {
         .named("chip_a");
     let mut sim = Sim::new(group).check_schedule(true);
     sim.reset(2);
-    let one = 1i64 << hdl::volume::layout::POS_FRAC;
+    let one = 1i64 << units::volume::layout::POS_FRAC;
     let mut first_apart = None;
     for _ in 0..200 {
         let d = &mut sim.dut;

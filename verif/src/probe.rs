@@ -34,8 +34,8 @@ impl ProbeSink for NoTrace {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use hdl::bump::blend_adjust_153::{BlendAdjust, BlendAdjustParams};
     use hdl::kernel::Sim;
+    use units::bump::blend_adjust_153::{BlendAdjust, BlendAdjustParams};
     use waves::check::read_vcd;
     use waves::TraceConfig;
 

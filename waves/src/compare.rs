@@ -20,7 +20,7 @@ pub fn write(
     rtl: &[Vec<Option<u64>>],
 ) -> Result<(), String> {
     let err = |e: std::io::Error| format!("{}: {e}", path.display());
-    let out = formats::output::Staged::new(path);
+    let out = crate::output::Staged::new(path);
     let f = out.create().map_err(|e| e.to_string())?;
     let mut w = vcd::Writer::new(BufWriter::new(f));
     let ids = header(&mut w, title, ports).map_err(err)?;

@@ -21,7 +21,7 @@ pub fn vcd_to_fst(vcd: &Path, fst: &Path) -> Result<(), String> {
         date: String::new(),
         file_type: FstFileType::Verilog,
     };
-    let out = formats::output::Staged::new(fst);
+    let out = crate::output::Staged::new(fst);
     let mut hw = fst_writer::open_fst(out.write_path(), &info)
         .map_err(|e| err(crate::fst_trace::fst_message(&e)))?;
     // Hierarchy: walk scopes depth first, declaring each scope's variables.

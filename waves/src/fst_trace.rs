@@ -10,8 +10,8 @@
 //! passes [`FLUSH_BYTES`] (small enough that fst-writer's per-signal walk through it stays in
 //! cache), so a run of any length needs bounded memory.
 
+use crate::output::Staged;
 use crate::TraceConfig;
-use formats::output::Staged;
 use fst_writer::{
     FstBodyWriter, FstFileType, FstHeaderWriter, FstInfo, FstScopeType, FstSignalId, FstSignalType,
     FstVarDirection, FstVarType, FstWriteError,

@@ -204,7 +204,7 @@ impl Gtkw {
 
     /// Writes the save file (via a temporary name, so it is never left half written).
     pub fn write(&self, title: &str) -> io::Result<()> {
-        formats::output::write_output(&self.path, self.render(title).as_bytes())
+        crate::output::write_output(&self.path, self.render(title).as_bytes())
     }
 
     /// The items without the groups that hold no trace (a filtered trace leaves them): a

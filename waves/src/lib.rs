@@ -18,3 +18,5 @@ pub use vcd_trace::{ProbeId, TraceConfig, VcdTracer, ROOT};
 pub mod check;
 pub mod compare;
 pub mod fst;
+/// Writing output files so that no partial file is left behind, and naming values in messages.
+pub mod output;

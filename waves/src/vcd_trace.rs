@@ -2,8 +2,8 @@
 
 use crate::glob::glob_match;
 use crate::gtkw::{Gtkw, Item, Style};
+use crate::output::Staged;
 use crate::vcd_writer::{Code, Rec, WriterThread, BATCH};
-use formats::output::Staged;
 use hdl::fx::Format;
 use hdl::kernel::{Dir, Module, Signal, Trace, Visitor};
 use std::fs::File;
@@ -699,7 +699,7 @@ fn write_filter(path: &Path, names: &[&str]) -> io::Result<()> {
     for (v, n) in names.iter().enumerate() {
         text.push_str(&format!("{v} {n}\n"));
     }
-    formats::output::write_output(path, text.as_bytes())
+    crate::output::write_output(path, text.as_bytes())
 }
 
 impl Trace for VcdTracer {

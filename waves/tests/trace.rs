@@ -1,9 +1,9 @@
 //! Traces a real module, reads the VCD back with wellen and checks hierarchy, widths, values,
 //! companions, probes, filters, windows and the save file.
 
-use hdl::bump::blend_adjust_153::{BlendAdjust, BlendAdjustParams};
 use hdl::kernel::Sim;
 use std::path::PathBuf;
+use units::bump::blend_adjust_153::{BlendAdjust, BlendAdjustParams};
 use waves::check::{check_gtkw, read_vcd, Value};
 use waves::{TraceConfig, VcdTracer};
 
@@ -311,8 +311,8 @@ fn long_runs_cross_every_batch_and_chunk_boundary() {
 }
 
 fn long_run(bits: u32, cycles: u64) {
-    use hdl::bump::replicate_152::Replicate;
     use hdl::fx::Format;
+    use units::bump::replicate_152::Replicate;
     let cfg = TraceConfig {
         companions: false,
         ..Default::default()
@@ -387,8 +387,8 @@ fn long_run(bits: u32, cycles: u64) {
 #[cfg(target_os = "linux")]
 #[test]
 fn a_full_device_is_an_error_naming_it() {
-    use hdl::bump::replicate_152::Replicate;
     use hdl::fx::Format;
+    use units::bump::replicate_152::Replicate;
     let cfg = TraceConfig {
         companions: false,
         ..Default::default()

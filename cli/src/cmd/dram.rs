@@ -64,7 +64,7 @@ fn dram_cmd(
         "1m" => 1024 * 1024,
         _ => return Err(CmdError::Input(format!("--size {size}: 256k or 1m"))),
     };
-    let base = hdl::texmem::dram_604::DramParams::default();
+    let base = units::texmem::dram_604::DramParams::default();
     if !t_fault_ns.is_multiple_of(base.cycle_ns) || t_fault_ns < 2 * base.cycle_ns {
         return Err(CmdError::Input(format!(
             "--t-fault-ns {t_fault_ns}: a multiple of the {} ns cycle, at least {}",
@@ -78,7 +78,7 @@ fn dram_cmd(
         )));
     }
     let fault = t_fault_ns / base.cycle_ns;
-    let p = hdl::texmem::dram_604::DramParams {
+    let p = units::texmem::dram_604::DramParams {
         cols: page_words,
         rows: (words / u64::from(page_words)) as u32,
         t_rp: fault / 2,

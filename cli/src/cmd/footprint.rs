@@ -3,11 +3,11 @@
 //! front of the TEXRAM chip.
 
 use super::{input, write_out, CmdError};
-use hdl::footprint::setup_fig12::{NRounding, SetupParams, MAX_LOG2_N};
-use hdl::texram::{Border, Drf};
 use std::fmt::Write;
 use std::path::{Path, PathBuf};
 use tb::footprint::{run_footprint, run_footprint_texture, FootprintRun, Pixel};
+use units::footprint::setup_fig12::{NRounding, SetupParams, MAX_LOG2_N};
+use units::texram::{Border, Drf};
 
 /// Anisotropic filtering by footprint assembly (section 10) through the TEXRAM chip.
 #[derive(Clone, Debug, clap::Args)]
@@ -139,7 +139,7 @@ fn footprint(a: &FootprintArgs) -> Result<String, CmdError> {
         (pixels, run)
     } else {
         let tex = super::texread::read_texture(&a.texture).map_err(input)?;
-        let tp = hdl::texmem::texture_unit_602::TexParams::new(tex.width, tex.height);
+        let tp = units::texmem::texture_unit_602::TexParams::new(tex.width, tex.height);
         tp.validate()
             .map_err(|e| input(format!("{}: {e}", a.texture.display())))?;
         let pixels = read_pixels(&a.requests).map_err(input)?;

@@ -2,10 +2,10 @@
 //! section 14) over linked texture, offset, detail, reflectance and environment maps.
 
 use super::{input, write_out, CmdError};
-use hdl::mapchain::program::ChainRequest;
 use std::fmt::Write;
 use std::path::{Path, PathBuf};
 use tb::mapchain::{run_mapchain, Scene};
+use units::mapchain::program::ChainRequest;
 
 /// Pixels through the map chain walker of 812 (section 14, Fig. 16).
 #[derive(Clone, Debug, clap::Args)]

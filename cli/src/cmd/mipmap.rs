@@ -3,8 +3,8 @@
 use super::{write_out, CmdError};
 use clap::Args;
 use formats::netpbm;
-use hdl::mipmap::{Rounding, Scan};
 use std::path::{Path, PathBuf};
+use units::mipmap::{Rounding, Scan};
 use waves::TraceConfig;
 
 /// Mipmaps of video frames through the cycle-accurate generator of FIG. 14.
@@ -96,7 +96,7 @@ fn mipmap(a: &MipmapArgs) -> Result<String, CmdError> {
     let mut size = None;
     for path in &a.inputs {
         let img = netpbm::read(path)?;
-        let p = hdl::mipmap::MipmapParams {
+        let p = units::mipmap::MipmapParams {
             width: img.width,
             height: img.height,
             scan: a.scan,
@@ -121,7 +121,7 @@ fn mipmap(a: &MipmapArgs) -> Result<String, CmdError> {
         frames.push(img.pixels);
     }
     let (w, h) = size.expect("at least one frame");
-    let p = hdl::mipmap::MipmapParams {
+    let p = units::mipmap::MipmapParams {
         width: w,
         height: h,
         scan: a.scan,

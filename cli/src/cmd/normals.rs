@@ -4,13 +4,13 @@ use super::widths::Widths;
 use super::{parse_finite, write_out, CmdError};
 use clap::Args;
 use formats::netpbm;
-use hdl::bump::derivative_0086::{DerivFilter, Derivative, DerivativeUnit};
-use hdl::bump::height_map::HeightMap;
-use hdl::bump::params::{Border, BumpParams, Filter};
 use hdl::fx::Fx;
 use std::fmt::Write;
 use std::path::{Path, PathBuf};
 use tb::normals::{quantise, run_normals, NormalsRun, Sample};
+use units::bump::derivative_0086::{DerivFilter, Derivative, DerivativeUnit};
+use units::bump::height_map::HeightMap;
+use units::bump::params::{Border, BumpParams, Filter};
 use verif::Seed;
 use waves::TraceConfig;
 

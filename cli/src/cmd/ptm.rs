@@ -7,9 +7,9 @@ use clap::Subcommand;
 use formats::ptm::Ptm;
 use golden::ptm::Light;
 use hdl::kernel::Sim;
-use hdl::ptm::shader_608::Shader608;
 use std::fmt::Write;
 use std::path::{Path, PathBuf};
+use units::ptm::shader_608::Shader608;
 
 /// PTM micro-occlusion: fit a height map's occlusion, evaluate a PTM.
 #[derive(Subcommand, Debug)]

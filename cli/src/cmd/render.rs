@@ -4,10 +4,10 @@ use super::normals::read_height;
 use super::widths::Widths;
 use super::{parse_finite, write_out, CmdError};
 use clap::Args;
-use hdl::bump::height_map::HeightMap;
-use hdl::bump::params::{BumpParams, Filter};
 use std::path::PathBuf;
 use tb::normals::{run_normals, NormalsRun, RawNormal, Sample};
+use units::bump::height_map::HeightMap;
+use units::bump::params::{BumpParams, Filter};
 use verif::Seed;
 use waves::TraceConfig;
 

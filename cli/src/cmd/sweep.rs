@@ -3,9 +3,9 @@
 use super::widths::Widths;
 use super::CmdError;
 use clap::Subcommand;
-use hdl::bump::params::BumpParams;
 use std::fmt::Write;
 use tb::normals::{run_normals, NormalsRun, Sample};
+use units::bump::params::BumpParams;
 use verif::Seed;
 use waves::TraceConfig;
 

@@ -2,11 +2,11 @@
 //! Figure 8, in the luminance, index, planar and literal ("truecolor") configurations.
 
 use super::{input, write_out, CmdError};
-use hdl::texram::clut_814::Clut;
-use hdl::texram::{Border, Config, Drf};
 use std::fmt::Write;
 use std::path::{Path, PathBuf};
 use tb::texram::{run_texram, TexReq, TexramTexture};
+use units::texram::clut_814::Clut;
+use units::texram::{Border, Config, Drf};
 
 /// Trilinear accesses through the cycle-accurate TEXRAM chip (Figure 8).
 #[derive(Clone, Debug, clap::Args)]

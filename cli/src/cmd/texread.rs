@@ -2,12 +2,12 @@
 
 use super::{input, write_out, CmdError};
 use formats::ccc::{self, Ccc};
-use hdl::texmem::cache_614::Lookahead;
-use hdl::texmem::layout::Layout;
-use hdl::texmem::texture_unit_602::TexParams;
 use std::fmt::Write;
 use std::path::{Path, PathBuf};
 use tb::texture::{run_texread, TexRequest};
+use units::texmem::cache_614::Lookahead;
+use units::texmem::layout::Layout;
+use units::texmem::texture_unit_602::TexParams;
 
 /// The `--stats` fields, shown by `texrtl texread --help` (the README has the same table).
 pub const STATS_HELP: &str = "\
@@ -184,8 +184,8 @@ fn texread(a: &TexreadArgs) -> Result<String, CmdError> {
     };
     p.frac_bits = a.frac_bits;
     p.dram = match a.dram.as_str() {
-        "256k" => hdl::texmem::dram_604::DramParams::default(),
-        "1m" => hdl::texmem::dram_604::DramParams::one_meg(),
+        "256k" => units::texmem::dram_604::DramParams::default(),
+        "1m" => units::texmem::dram_604::DramParams::one_meg(),
         d => return Err(input(format!("--dram {d}: 256k or 1m"))),
     };
     p.validate()

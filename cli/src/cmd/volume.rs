@@ -2,10 +2,10 @@
 //! section 13).
 
 use super::{input, write_out, CmdError};
-use hdl::volume::layout::{Mode, Order, VolumeParams};
 use std::fmt::Write;
 use std::path::{Path, PathBuf};
 use tb::volume::{run_volume, Ray};
+use units::volume::layout::{Mode, Order, VolumeParams};
 
 /// Rays through the TEXRAM as a ray caster (section 13, Figure 15).
 #[derive(Clone, Debug, clap::Args)]

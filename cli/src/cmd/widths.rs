@@ -1,7 +1,7 @@
 //! The bit widths of the FIG. 7 pipeline an architect sets on the command line.
 
 use clap::Args;
-use hdl::bump::params::{BumpParams, HeightTexel, RsqrtParams};
+use units::bump::params::{BumpParams, HeightTexel, RsqrtParams};
 
 /// Bit widths of the FIG. 7 pipeline.
 #[derive(Args, Clone, Debug)]

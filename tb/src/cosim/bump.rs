@@ -2,11 +2,11 @@
 //! twin in `rtl/bump/`, the twin's parameters from the model's and the stimulus.
 
 use super::{field, CosimModel, CosimUnit, ModelSim};
-use hdl::bump::height_map::HeightMap;
-use hdl::bump::params::{Border, BumpParams};
 use hdl::fx::Format;
+use units::bump::height_map::HeightMap;
+use units::bump::params::{Border, BumpParams};
 /// Blend-factor adjust unit 153 against `rtl/bump/blend_adjust_153.v`.
-pub struct BlendAdjustCosim(pub hdl::bump::blend_adjust_153::BlendAdjustParams);
+pub struct BlendAdjustCosim(pub units::bump::blend_adjust_153::BlendAdjustParams);
 
 impl CosimUnit for BlendAdjustCosim {
     fn name(&self) -> &'static str {
@@ -22,7 +22,7 @@ impl CosimUnit for BlendAdjustCosim {
         ]
     }
     fn model(&self) -> Result<Box<dyn CosimModel>, String> {
-        use hdl::bump::blend_adjust_153::BlendAdjust;
+        use units::bump::blend_adjust_153::BlendAdjust;
         let dut = BlendAdjust::new(self.name(), self.0)?;
         Ok(Box::new(ModelSim::new(
             dut,
@@ -77,7 +77,7 @@ impl CosimUnit for AddressCosim {
         ]
     }
     fn model(&self) -> Result<Box<dyn CosimModel>, String> {
-        use hdl::bump::address_150::AddressUnit;
+        use units::bump::address_150::AddressUnit;
         let pos = Format::signed(self.pos_int + self.pos_frac, self.pos_frac as i32);
         let dut = AddressUnit::new(self.name(), pos, self.blend_bits)?;
         Ok(Box::new(ModelSim::new(
@@ -123,7 +123,7 @@ impl CosimUnit for ReplicateCosim {
         false
     }
     fn model(&self) -> Result<Box<dyn CosimModel>, String> {
-        use hdl::bump::replicate_152::Replicate;
+        use units::bump::replicate_152::Replicate;
         let texel = Format::unsigned(self.texel_bits, self.texel_bits as i32 / 4);
         let dut = Replicate::new(self.name(), texel, self.bezier);
         Ok(Box::new(ModelSim::new(
@@ -153,8 +153,8 @@ pub struct BilinearCosim {
 }
 
 impl BilinearCosim {
-    fn params(&self) -> hdl::bump::params::BumpParams {
-        use hdl::bump::params::{BumpParams, HeightTexel};
+    fn params(&self) -> units::bump::params::BumpParams {
+        use units::bump::params::{BumpParams, HeightTexel};
         BumpParams {
             blend_bits: self.blend_bits,
             height: if self.texel_bits == 4 {
@@ -189,7 +189,7 @@ impl CosimUnit for BilinearCosim {
         ]
     }
     fn model(&self) -> Result<Box<dyn CosimModel>, String> {
-        use hdl::bump::bilinear_65_68::Bilinear;
+        use units::bump::bilinear_65_68::Bilinear;
         let p = self.params();
         p.validate()?;
         let dut = Bilinear::new(
@@ -225,7 +225,7 @@ impl CosimUnit for BilinearCosim {
 
 /// Tangent unit 155 against `rtl/bump/tangent_155.v`, in the formats of the FIG. 7 pipeline
 /// built from `params` (one MIP level, or two with `trilinear`).
-pub struct TangentCosim(pub hdl::bump::params::BumpParams);
+pub struct TangentCosim(pub units::bump::params::BumpParams);
 
 impl CosimUnit for TangentCosim {
     fn name(&self) -> &'static str {
@@ -235,7 +235,7 @@ impl CosimUnit for TangentCosim {
         vec!["bump/tangent_155.v"]
     }
     fn parameters(&self) -> Vec<(&'static str, i64)> {
-        use hdl::bump::params::Filter;
+        use units::bump::params::Filter;
         let p = &self.0;
         let (bl, s) = (p.bilinear_fmt(), p.scale_fmt());
         let w = |f: Format| i64::from(f.width());
@@ -253,7 +253,7 @@ impl CosimUnit for TangentCosim {
         ]
     }
     fn model(&self) -> Result<Box<dyn CosimModel>, String> {
-        use hdl::bump::tangent_155::Tangent;
+        use units::bump::tangent_155::Tangent;
         self.0.validate()?;
         let dut = Tangent::new(self.name(), &self.0);
         // Inputs in port order: R, G, B, A (of both levels), tu, tv, scale (, tu1, tv1, lod).
@@ -300,7 +300,7 @@ impl CosimUnit for TangentCosim {
 
 /// The inverse-square-root unit inside normal unit 156 against `rtl/bump/rsqrt_156.v`: its
 /// table (built at elaboration in Verilog, at construction in the model) and Newton steps.
-pub struct RsqrtCosim(pub hdl::bump::params::RsqrtParams);
+pub struct RsqrtCosim(pub units::bump::params::RsqrtParams);
 
 impl CosimUnit for RsqrtCosim {
     fn name(&self) -> &'static str {
@@ -319,7 +319,7 @@ impl CosimUnit for RsqrtCosim {
         ]
     }
     fn model(&self) -> Result<Box<dyn CosimModel>, String> {
-        use hdl::bump::rsqrt_156::Rsqrt;
+        use units::bump::rsqrt_156::Rsqrt;
         let dut = Rsqrt::new(self.name(), self.0)?;
         Ok(Box::new(ModelSim::new(dut, |d: &mut Rsqrt, v: &[u64]| {
             d.m.set_bits(v[0]);
@@ -337,7 +337,7 @@ impl CosimUnit for RsqrtCosim {
 
 /// Normal unit 156 (its rsqrt included) against `rtl/bump/normal_156.v` and
 /// `rtl/bump/rsqrt_156.v`, in the formats of the FIG. 7 pipeline built from `params`.
-pub struct NormalCosim(pub hdl::bump::params::BumpParams);
+pub struct NormalCosim(pub units::bump::params::BumpParams);
 
 impl CosimUnit for NormalCosim {
     fn name(&self) -> &'static str {
@@ -359,7 +359,7 @@ impl CosimUnit for NormalCosim {
         ]
     }
     fn model(&self) -> Result<Box<dyn CosimModel>, String> {
-        use hdl::bump::normal_156::Normal;
+        use units::bump::normal_156::Normal;
         self.0.validate()?;
         let dut = Normal::new(self.name(), &self.0)?;
         Ok(Box::new(ModelSim::new(dut, |d: &mut Normal, v: &[u64]| {
@@ -453,7 +453,7 @@ impl CosimUnit for TexelFetchCosim {
         vec![("height_151.hex".into(), memory_image(&self.map))]
     }
     fn model(&self) -> Result<Box<dyn CosimModel>, String> {
-        use hdl::bump::texel_fetch_151::TexelFetch;
+        use units::bump::texel_fetch_151::TexelFetch;
         self.params.validate()?;
         let p = &self.params;
         let dut = TexelFetch::new(self.name(), self.map.clone(), p.border, p.coord_fmt())?;
@@ -523,7 +523,7 @@ impl CosimUnit for PipelineCosim {
         PIPELINE_RTL.to_vec()
     }
     fn parameters(&self) -> Vec<(&'static str, i64)> {
-        use hdl::bump::params::Filter;
+        use units::bump::params::Filter;
         let p = &self.params;
         let w = |f: Format| i64::from(f.width());
         let (border, value) = border_code(p.border);
@@ -570,7 +570,7 @@ impl CosimUnit for PipelineCosim {
         m
     }
     fn model(&self) -> Result<Box<dyn CosimModel>, String> {
-        use hdl::bump::normal_pipeline_fig7::NormalPipeline;
+        use units::bump::normal_pipeline_fig7::NormalPipeline;
         let dut = NormalPipeline::new(self.name(), self.params, self.map.clone(), self.coarse())?;
         Ok(Box::new(ModelSim::new(
             dut,

@@ -3,7 +3,7 @@
 //! parameters and video stimulus.
 
 use super::{CosimModel, CosimUnit, ModelSim, Port};
-use hdl::mipmap::mipmap_gen_816::{MipmapGen, MipmapParams, Rounding, Scan};
+use units::mipmap::mipmap_gen_816::{MipmapGen, MipmapParams, Rounding, Scan};
 
 /// Mipmap generator 816 against `rtl/mipmap/mipmap_gen_816.v` (with `level_fig14.v`,
 /// `fifo_fig14.v`) writing the behavioural `frame_store_826.v`. Compared besides its ports:

@@ -376,15 +376,15 @@ pub fn unit(name: &str) -> Result<Box<dyn CosimUnit>, String> {
         "control_607" => Ok(Box::new(ControlCosim(Default::default()))),
         "cache_614" => Ok(Box::new(CacheCosim { tag_bits: 9 })),
         "mipmap_gen_816" => Ok(Box::new(MipmapCosim::new(
-            hdl::mipmap::mipmap_gen_816::MipmapParams {
+            units::mipmap::mipmap_gen_816::MipmapParams {
                 width: 16,
                 height: 16,
-                scan: hdl::mipmap::mipmap_gen_816::Scan::Progressive,
-                rounding: hdl::mipmap::mipmap_gen_816::Rounding::Round,
+                scan: units::mipmap::mipmap_gen_816::Scan::Progressive,
+                rounding: units::mipmap::mipmap_gen_816::Rounding::Round,
             },
         ))),
         "fill_engine_607" => Ok(Box::new(FillCosim {
-            layout: hdl::texmem::layout::Layout::RowMajor,
+            layout: units::texmem::layout::Layout::RowMajor,
             blocks: (16, 16),
             base: 0,
             dram: Default::default(),

@@ -3,10 +3,10 @@
 
 use super::{field, CosimModel, CosimUnit, ModelSim, Port};
 use hdl::fx::Format;
-use hdl::texmem::cache_614::{Lookahead, TextureCache};
-use hdl::texmem::control_607::{DramCtrl, FillEngine, LookaheadQueue};
-use hdl::texmem::dram_604::DramParams;
-use hdl::texmem::layout::{BlockMap, Layout};
+use units::texmem::cache_614::{Lookahead, TextureCache};
+use units::texmem::control_607::{DramCtrl, FillEngine, LookaheadQueue};
+use units::texmem::dram_604::DramParams;
+use units::texmem::layout::{BlockMap, Layout};
 
 /// Control unit 607 (word reads, with its page register) driving DRAM 604, against
 /// `rtl/texmem/control_607.v` driving the behavioural `rtl/texmem/dram_604.v`. Compared

@@ -6,8 +6,8 @@
 
 use super::{BlendAdjustCosim, CosimUnit, MipmapCosim, PipelineCosim, RESET_CYCLES};
 use crate::vectors::{mipmap_frame, mipmap_params, normal_samples, MIPMAP_SCANS, NORMAL_GROUPS};
-use hdl::bump::blend_adjust_153::BlendAdjustParams;
-use hdl::bump::params::BumpParams;
+use units::bump::blend_adjust_153::BlendAdjustParams;
+use units::bump::params::BumpParams;
 
 /// One directed run: a name for its folder, the unit in the vectors' configuration, and the
 /// inputs of every cycle (reset first).

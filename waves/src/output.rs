@@ -223,3 +223,15 @@ mod tests {
         );
     }
 }
+
+/// A value shown in a message, cut to at most 40 characters (a long option value or file
+/// name does not flood the one-line message that names it).
+pub fn shorten(s: &str) -> String {
+    const MAX: usize = 40;
+    if s.chars().count() <= MAX {
+        s.to_string()
+    } else {
+        let head: String = s.chars().take(MAX - 3).collect();
+        format!("{head}...")
+    }
+}
