@@ -1,32 +1,18 @@
-//! The `texrtl` command line: one module per subcommand in [`cmd`], each owning its clap
-//! arguments; the report and its plots. With no arguments it runs `texrtl regress`.
+//! The `texrtl` command: the framework's command line (`regress`, the default, `merge`,
+//! `cosim`, `vectors`, `bench`, `list`) run on the texture project, and the texture units' own
+//! commands, one module per subcommand in [`cmd`], each owning its clap arguments.
 
 mod cmd;
-mod plots;
-mod report;
 
-use clap::{Parser, Subcommand};
-use cmd::CmdError;
+use clap::Subcommand;
 use std::process::ExitCode;
 
-#[derive(Parser)]
-#[command(
-    name = "texrtl",
-    version,
-    about = "Bit-exact, cycle-accurate models of texture-mapping hardware: testbenches, waveforms, golden models",
-    args_conflicts_with_subcommands = true
-)]
-struct Cli {
-    #[command(subcommand)]
-    cmd: Option<Cmd>,
-    #[command(flatten)]
-    regress: cmd::regress::RegressArgs,
-}
+/// What `texrtl --help` says it is.
+const ABOUT: &str = "Bit-exact, cycle-accurate models of texture-mapping hardware: testbenches, waveforms, golden models";
 
+/// The texture units' own commands.
 #[derive(Subcommand)]
 enum Cmd {
-    /// Run every testbench on built-in stimulus (the default command).
-    Regress(cmd::regress::RegressArgs),
     /// Normals of a height map at given positions through the FIG. 7 pipeline.
     Normals(cmd::normals::NormalsArgs),
     /// Dot3-lit pictures: Blinn | B-spline (bit-exact) | golden | error heat map.
@@ -54,74 +40,31 @@ enum Cmd {
     Ptm(cmd::ptm::PtmCmd),
     /// Tangent frames of an OBJ mesh per face corner in the 3ds Max, Maya or DirectX way (003).
     Tangents(cmd::tangents::TangentsArgs),
-    /// Co-simulate a unit's model and Verilog (its twin in rtl/, or --rtl FILE.v of yours):
-    /// every output port compared on every cycle.
-    Cosim(cmd::cosim::CosimArgs),
-    /// Combine the summary.json files of all shards of a run into one.
-    Merge(cmd::merge::MergeArgs),
-    /// Export a unit's bit-accuracy vectors as $readmemh files for a Verilog testbench.
-    Vectors(cmd::vectors::VectorsArgs),
     /// Error tables over bit widths, for choosing widths.
     #[command(subcommand)]
     Sweep(cmd::sweep::SweepCmd),
 }
 
-/// Writes to stdout; a closed pipe (`texrtl | head`) is not an error worth a panic.
-fn say(s: &str) {
-    use std::io::Write;
-    let _ = std::io::stdout().lock().write_all(s.as_bytes());
-}
-
-/// Bad input: one line, exit status 2.
-fn fail(msg: impl std::fmt::Display) -> ExitCode {
-    eprintln!("texrtl: {msg}");
-    ExitCode::from(2)
-}
-
 fn main() -> ExitCode {
-    let cli = match Cli::try_parse() {
-        Ok(c) => c,
-        Err(e) => {
-            use clap::error::ErrorKind;
-            if matches!(e.kind(), ErrorKind::DisplayHelp | ErrorKind::DisplayVersion) {
-                let _ = e.print();
-                return ExitCode::SUCCESS;
-            }
-            let text = e.to_string();
-            let first = text.lines().next().unwrap_or("bad arguments");
-            let first = first.strip_prefix("error: ").unwrap_or(first);
-            return fail(format!("{first} (see texrtl --help)"));
-        }
+    let project = tb::project::project();
+    verif::cli::main_with(&project, ABOUT, run)
+}
+
+fn run(c: Cmd) -> ExitCode {
+    let r = match c {
+        Cmd::Normals(a) => cmd::normals::run(&a),
+        Cmd::Render(a) => cmd::render::run(&a),
+        Cmd::Mipmap(a) => cmd::mipmap::run(&a),
+        Cmd::Dram(a) => cmd::dram::run(&a),
+        Cmd::Ccc(c) => cmd::ccc::run(&c),
+        Cmd::Texread(a) => cmd::texread::run(&a),
+        Cmd::Texram(a) => cmd::texram::run(&a),
+        Cmd::Footprint(a) => cmd::footprint::run(&a),
+        Cmd::Volume(a) => cmd::volume::run(&a),
+        Cmd::Mapchain(a) => cmd::mapchain::run(&a),
+        Cmd::Ptm(c) => cmd::ptm::run(&c),
+        Cmd::Tangents(a) => cmd::tangents::run(&a),
+        Cmd::Sweep(c) => cmd::sweep::run(&c),
     };
-    let r = match cli.cmd {
-        Some(Cmd::Regress(a)) => return cmd::regress::run(a),
-        None => return cmd::regress::run(cli.regress),
-        Some(Cmd::Normals(a)) => cmd::normals::run(&a),
-        Some(Cmd::Render(a)) => cmd::render::run(&a),
-        Some(Cmd::Mipmap(a)) => cmd::mipmap::run(&a),
-        Some(Cmd::Dram(a)) => cmd::dram::run(&a),
-        Some(Cmd::Ccc(c)) => cmd::ccc::run(&c),
-        Some(Cmd::Texread(a)) => cmd::texread::run(&a),
-        Some(Cmd::Texram(a)) => cmd::texram::run(&a),
-        Some(Cmd::Footprint(a)) => cmd::footprint::run(&a),
-        Some(Cmd::Volume(a)) => cmd::volume::run(&a),
-        Some(Cmd::Mapchain(a)) => cmd::mapchain::run(&a),
-        Some(Cmd::Ptm(c)) => cmd::ptm::run(&c),
-        Some(Cmd::Tangents(a)) => cmd::tangents::run(&a),
-        Some(Cmd::Cosim(a)) => cmd::cosim::run(&a),
-        Some(Cmd::Merge(a)) => cmd::merge::run(&a),
-        Some(Cmd::Vectors(a)) => cmd::vectors::run(&a),
-        Some(Cmd::Sweep(c)) => cmd::sweep::run(&c),
-    };
-    match r {
-        Ok(msg) => {
-            say(&format!("{msg}\n"));
-            ExitCode::SUCCESS
-        }
-        Err(CmdError::Input(e)) => fail(e),
-        Err(CmdError::Failed(e)) => {
-            eprintln!("texrtl: {e}");
-            ExitCode::from(1)
-        }
-    }
+    verif::cli::finish("texrtl", r)
 }

@@ -6,7 +6,6 @@
 //! * [`ccc`]: the `.ccc` colour-cell-compressed texture format and its offline encoder;
 //! * [`obj`]: Wavefront OBJ meshes for the tangent frames;
 //! * [`maps_json`]: the map chain's description (its DRFs and the map files they name);
-//! * [`png`]: PNG encoding of pictures;
 //! * [`ptm`]: the `.ptm` occlusion PTM as the hardware stores it;
 //! * [`output`]: writing a file so that no partial file is ever left behind.
 
@@ -15,7 +14,6 @@ pub mod csv;
 pub mod maps_json;
 pub mod netpbm;
 pub mod obj;
-pub mod png;
 pub mod ptm;
 
 pub use waves::output::{self, shorten};

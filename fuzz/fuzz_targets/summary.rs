@@ -6,10 +6,10 @@ use std::path::{Path, PathBuf};
 
 fuzz_target!(|data: &[u8]| {
     let p = Path::new("s.json");
-    let Ok(s) = tb::regress::parse_summary(p, data) else {
+    let Ok(s) = verif::regress::parse_summary(p, data) else {
         return;
     };
-    if let Err(e) = tb::regress::merge_shards(&[(PathBuf::from(p), s)]) {
+    if let Err(e) = verif::regress::merge_shards(&tb::project::project(), &[(PathBuf::from(p), s)]) {
         assert!(!e.contains('\n'), "{e}");
     }
 });

@@ -1,7 +1,8 @@
-//! texrtl's testbenches: one module per testbench, named after the unit it verifies, each a
-//! [`verif::Testbench`] with its driver, monitor, golden comparison, integer reference and
-//! coverage model; [`regress`] holds the registry and runs them all; [`vectors`] keeps the
-//! bit-accuracy vectors.
+//! texrtl's testbenches of the texture units: one module per testbench, named after the unit it
+//! verifies, each a [`verif::Testbench`] with its driver, monitor, golden comparison, integer
+//! reference and coverage model; [`cosim`] the units' Verilog twins as co-simulation adapters;
+//! [`vectors`] their bit-accuracy vectors; [`pictures`] their report pictures; and
+//! [`project`] the one list that describes every unit to the framework.
 
 pub mod biquadratic;
 pub mod blend_adjust;
@@ -11,12 +12,14 @@ pub mod dram;
 pub mod footprint;
 pub mod footprint_normals;
 pub mod frames;
+pub mod lighting;
 pub mod mapchain;
 pub mod maps;
 pub mod mipmap;
 pub mod normals;
+pub mod pictures;
+pub mod project;
 pub mod ptm;
-pub mod regress;
 pub mod tangents;
 pub mod texram;
 pub mod texram_video;

@@ -1,112 +1,20 @@
-//! Bit-accuracy regression vectors: the bit-exact outputs of every unit for a fixed set of
-//! stimuli, kept under `golden/vectors/` (a hash of every output bit plus a few readable
-//! vectors), and their export as `$readmemh` files for Verilog testbenches.
+//! The texture units' bit-accuracy vectors: for each unit a fixed set of stimuli and the
+//! bit-exact outputs, made by the function its descriptor names ([`crate::project`]), kept
+//! under `golden/vectors/` and checked by [`verif::vectors`].
 //!
-//! The stimuli do not depend on any seed: a change of a single output bit changes the hash,
-//! which fails `cargo test` (`tb/tests/vectors.rs`); `texrtl regress --bless` rewrites the files
-//! after a deliberate change and prints what changed.
+//! The stimuli do not depend on any seed: a change of a single output bit fails `cargo test`
+//! (`tb/tests/vectors.rs`); `texrtl vectors --bless` rewrites the files after a deliberate
+//! change and prints what changed.
 
 use crate::normals::{quantise, run_normals, NormalsRun, Sample};
 use hdl::kernel::Sim;
-use serde::{Deserialize, Serialize};
-use std::fmt::Write;
 use std::path::{Path, PathBuf};
 use units::bump::blend_adjust_153::{BlendAdjust, BlendAdjustParams};
 use units::bump::params::{BumpParams, Filter};
 use units::mipmap::{MipmapParams, Rounding, Scan};
+use verif::vectors::{mask, Field, UnitVectors};
 
-/// A named field of a vector and its width in bits.
-#[derive(Clone, Debug, PartialEq, Eq, Serialize, Deserialize)]
-pub struct Field {
-    pub name: String,
-    pub width: u32,
-}
-
-/// Stimulus and expected outputs of one unit, one row per transaction.
-#[derive(Clone, Debug, PartialEq, Eq)]
-pub struct UnitVectors {
-    pub unit: String,
-    pub description: String,
-    pub inputs: Vec<Field>,
-    pub outputs: Vec<Field>,
-    /// Raw bit patterns (two's complement within each field's width).
-    pub rows: Vec<(Vec<u64>, Vec<u64>)>,
-}
-
-/// What `golden/vectors/<unit>.json` holds.
-#[derive(Clone, Debug, PartialEq, Eq, Serialize, Deserialize)]
-pub struct VectorFile {
-    pub unit: String,
-    pub description: String,
-    pub inputs: Vec<Field>,
-    pub outputs: Vec<Field>,
-    pub count: usize,
-    /// FNV-1a 64 over every field of every row, as hex.
-    pub hash: String,
-    /// The first rows, readable: `"inputs -> outputs"` in hex.
-    pub first: Vec<String>,
-}
-
-/// Units with vectors.
-pub const UNITS: [&str; 15] = [
-    crate::blend_adjust::NAME,
-    crate::normals::NAME,
-    crate::mipmap::NAME,
-    crate::texture::NAME,
-    crate::texram::NAME,
-    crate::footprint::NAME,
-    crate::volume::NAME,
-    crate::mapchain::NAME,
-    crate::ptm::FITTER,
-    crate::ptm::SHADER,
-    crate::tangents::NAME,
-    crate::frames::FRAME,
-    crate::frames::PARALLAX,
-    crate::derivative::NAME,
-    crate::biquadratic::NAME,
-];
-
-fn f(name: &str, width: u32) -> Field {
-    Field {
-        name: name.into(),
-        width,
-    }
-}
-
-fn mask(v: i64, w: u32) -> u64 {
-    if w >= 64 {
-        v as u64
-    } else {
-        (v as u64) & ((1u64 << w) - 1)
-    }
-}
-
-/// The vectors of `unit` (one of [`UNITS`]).
-pub fn unit_vectors(unit: &str) -> Result<UnitVectors, String> {
-    match unit {
-        crate::blend_adjust::NAME => Ok(blend_adjust()),
-        crate::normals::NAME => normals(),
-        crate::mipmap::NAME => mipmap(),
-        crate::texture::NAME => texture(),
-        crate::texram::NAME => texram(),
-        crate::footprint::NAME => footprint(),
-        crate::volume::NAME => volume(),
-        crate::mapchain::NAME => mapchain(),
-        crate::ptm::FITTER => ptm_fitter(),
-        crate::ptm::SHADER => ptm_shader(),
-        crate::tangents::NAME => tangent_setup(),
-        crate::frames::FRAME => frame_unit(),
-        crate::frames::PARALLAX => parallax(),
-        crate::derivative::NAME => derivative(),
-        crate::biquadratic::NAME => biquadratic(),
-        _ => Err(format!(
-            "unknown unit '{unit}' (one of {})",
-            UNITS.join(", ")
-        )),
-    }
-}
-
-fn blend_adjust() -> UnitVectors {
+pub fn blend_adjust() -> UnitVectors {
     let p = BlendAdjustParams {
         frac_bits: 8,
         registered: false,
@@ -134,8 +42,17 @@ fn blend_adjust() -> UnitVectors {
         description:
             "unit 153, F = 8, combinational: every u in both modes, v = (u * 0x9e5 + 7) mod 256"
                 .into(),
-        inputs: vec![f("bypass", 1), f("u_in", 8), f("v_in", 8)],
-        outputs: vec![f("u0", 9), f("u1", 9), f("v0", 9), f("v1", 9)],
+        inputs: vec![
+            Field::new("bypass", 1),
+            Field::new("u_in", 8),
+            Field::new("v_in", 8),
+        ],
+        outputs: vec![
+            Field::new("u0", 9),
+            Field::new("u1", 9),
+            Field::new("v0", 9),
+            Field::new("v1", 9),
+        ],
         rows,
     }
 }
@@ -176,7 +93,7 @@ pub fn mipmap_params(scan: Scan) -> MipmapParams {
     }
 }
 
-fn normals() -> Result<UnitVectors, String> {
+pub fn normals() -> Result<UnitVectors, String> {
     let mut rows = Vec::new();
     let mut desc = Vec::new();
     for (filter, map) in NORMAL_GROUPS {
@@ -231,22 +148,22 @@ fn normals() -> Result<UnitVectors, String> {
             desc.join(", ")
         ),
         inputs: vec![
-            f("blinn", 1),
-            f("u", p.pos_fmt().width()),
-            f("v", p.pos_fmt().width()),
-            f("scale", p.scale_fmt().width()),
+            Field::new("blinn", 1),
+            Field::new("u", p.pos_fmt().width()),
+            Field::new("v", p.pos_fmt().width()),
+            Field::new("scale", p.scale_fmt().width()),
         ],
         outputs: vec![
-            f("nx", p.normal_fmt().width()),
-            f("ny", p.normal_fmt().width()),
-            f("nz", p.normal_fmt().width()),
-            f("height", p.height_out_fmt().width()),
+            Field::new("nx", p.normal_fmt().width()),
+            Field::new("ny", p.normal_fmt().width()),
+            Field::new("nz", p.normal_fmt().width()),
+            Field::new("height", p.height_out_fmt().width()),
         ],
         rows,
     })
 }
 
-fn mipmap() -> Result<UnitVectors, String> {
+pub fn mipmap() -> Result<UnitVectors, String> {
     let mut rows = Vec::new();
     for scan in MIPMAP_SCANS {
         let code = u64::from(scan != Scan::Progressive);
@@ -263,8 +180,8 @@ fn mipmap() -> Result<UnitVectors, String> {
     Ok(UnitVectors {
         unit: crate::mipmap::NAME.into(),
         description: "FIG. 14 generator, 16x8 synthetic frame (seed 5), round half up, interlaced top-first then progressive: every texel of every level".into(),
-        inputs: vec![f("interlaced", 1), f("level", 4), f("index", 8)],
-        outputs: vec![f("texel", 8)],
+        inputs: vec![Field::new("interlaced", 1), Field::new("level", 4), Field::new("index", 8)],
+        outputs: vec![Field::new("texel", 8)],
         rows,
     })
 }
@@ -273,7 +190,7 @@ fn mipmap() -> Result<UnitVectors, String> {
 /// and the index configuration (a CLUT from an integer formula), 256 requests from an integer
 /// hash over the map and a texel beyond it, every lambda class: (config, u, v, lambda) ->
 /// R, G, B, alpha.
-fn texram() -> Result<UnitVectors, String> {
+pub fn texram() -> Result<UnitVectors, String> {
     use crate::texram::{run_texram, TexReq, TexramTexture};
     use units::texram::clut_814::Clut;
     use units::texram::{Border, Config, Drf};
@@ -318,8 +235,8 @@ fn texram() -> Result<UnitVectors, String> {
     Ok(UnitVectors {
         unit: crate::texram::NAME.into(),
         description: "TEXRAM chip 802, 32x32 map from an integer formula: wrap, clamp, mirror, border:200 (luminance) and mirror in index mode; 256 hashed requests each".into(),
-        inputs: vec![f("config", 3), f("u", 21), f("v", 21), f("lambda", 14)],
-        outputs: vec![f("rgba", 32)],
+        inputs: vec![Field::new("config", 3), Field::new("u", 21), Field::new("v", 21), Field::new("lambda", 14)],
+        outputs: vec![Field::new("rgba", 32)],
         rows,
     })
 }
@@ -329,7 +246,7 @@ fn texram() -> Result<UnitVectors, String> {
 /// generator and accumulator on the TEXRAM chip (the `texram` vectors' map, wrap and mirror)
 /// and on the texture unit 602 (the `texture` vectors' CCC texture): (config, u, v, r1, r2) ->
 /// N, R, G, B.
-fn footprint() -> Result<UnitVectors, String> {
+pub fn footprint() -> Result<UnitVectors, String> {
     use crate::footprint::{run_footprint, run_footprint_texture, FootprintRun, Pixel};
     use units::footprint::setup_fig12::SetupParams;
     use units::texram::{Border, Drf};
@@ -379,15 +296,15 @@ fn footprint() -> Result<UnitVectors, String> {
         unit: crate::footprint::NAME.into(),
         description: "footprint assembly: setup, generator and accumulator on the TEXRAM chip (32x32 formula map, wrap and mirror) and on texture unit 602 (the texture vectors' CCC texture); 256 hashed pixels each".into(),
         inputs: vec![
-            f("config", 2),
-            f("u", 21),
-            f("v", 21),
-            f("r1u", 20),
-            f("r1v", 20),
-            f("r2u", 20),
-            f("r2v", 20),
+            Field::new("config", 2),
+            Field::new("u", 21),
+            Field::new("v", 21),
+            Field::new("r1u", 20),
+            Field::new("r1v", 20),
+            Field::new("r2u", 20),
+            Field::new("r2v", 20),
         ],
-        outputs: vec![f("n", 7), f("rgb", 24)],
+        outputs: vec![Field::new("n", 7), Field::new("rgb", 24)],
         rows,
     })
 }
@@ -395,7 +312,7 @@ fn footprint() -> Result<UnitVectors, String> {
 /// The ray caster's vectors: a 16x8x6 volume from an integer formula (column-major words,
 /// 64-word rows), 64 hashed rays of up to 8 samples anywhere in and around it, in value and in
 /// gradient mode: (mode, x0, y0, z0, dx, dy, dz, steps) -> per sample value, gx, gy, gz.
-fn volume() -> Result<UnitVectors, String> {
+pub fn volume() -> Result<UnitVectors, String> {
     use crate::volume::{run_volume, Ray};
     use units::volume::layout::{Mode, VolumeParams};
     let p = VolumeParams {
@@ -448,23 +365,23 @@ fn volume() -> Result<UnitVectors, String> {
         unit: crate::volume::NAME.into(),
         description: "ray caster (section 13): 16x8x6 formula volume, column-major words, 64-word rows; 64 hashed rays in value and gradient mode, one row per sample".into(),
         inputs: vec![
-            f("mode", 1),
-            f("x0", 22),
-            f("y0", 22),
-            f("z0", 22),
-            f("dx", 22),
-            f("dy", 22),
-            f("dz", 22),
-            f("k", 16),
+            Field::new("mode", 1),
+            Field::new("x0", 22),
+            Field::new("y0", 22),
+            Field::new("z0", 22),
+            Field::new("dx", 22),
+            Field::new("dy", 22),
+            Field::new("dz", 22),
+            Field::new("k", 16),
         ],
-        outputs: vec![f("value", 8), f("gx", 14), f("gy", 14), f("gz", 14)],
+        outputs: vec![Field::new("value", 8), Field::new("gx", 14), Field::new("gy", 14), Field::new("gz", 14)],
         rows,
     })
 }
 
 /// The map chain: every shape of the testbench over the formula maps, 48 hashed pixels each
 /// (lambda over -4 ..= 4, vectors facing +z), through the clocked walker on the stub.
-fn mapchain() -> Result<UnitVectors, String> {
+pub fn mapchain() -> Result<UnitVectors, String> {
     use crate::mapchain::{clocked, scene, Maps, Shape};
     use units::mapchain::program::ChainRequest;
     let maps = Maps::formula();
@@ -511,25 +428,25 @@ fn mapchain() -> Result<UnitVectors, String> {
         unit: crate::mapchain::NAME.into(),
         description: "chain walker of 812 (section 14): the testbench's seven chain shapes over integer-formula maps (64x64 texture, offsets and reflectance, 256x256 detail, 32x32 faces), 48 hashed pixels each, results of the clocked walker on the stub".into(),
         inputs: vec![
-            f("shape", 3),
-            f("u", 21),
-            f("v", 21),
-            f("lambda", 14),
-            f("nx", 17),
-            f("ny", 17),
-            f("nz", 17),
-            f("ex", 16),
-            f("ey", 16),
-            f("ez", 16),
-            f("i_d", 8),
-            f("i_s", 8),
+            Field::new("shape", 3),
+            Field::new("u", 21),
+            Field::new("v", 21),
+            Field::new("lambda", 14),
+            Field::new("nx", 17),
+            Field::new("ny", 17),
+            Field::new("nz", 17),
+            Field::new("ex", 16),
+            Field::new("ey", 16),
+            Field::new("ez", 16),
+            Field::new("i_d", 8),
+            Field::new("i_s", 8),
         ],
         outputs: vec![
-            f("colour", 8),
-            f("accesses", 4),
-            f("slots", 5),
-            f("faults", 4),
-            f("error", 1),
+            Field::new("colour", 8),
+            Field::new("accesses", 4),
+            Field::new("slots", 5),
+            Field::new("faults", 4),
+            Field::new("error", 1),
         ],
         rows,
     })
@@ -537,7 +454,7 @@ fn mapchain() -> Result<UnitVectors, String> {
 
 /// The fitter 604 under a 3 x 8 dome (P from the f64 pseudo-inverse, 8-bit coefficients):
 /// 64 texels of hashed samples (binary and grey), one row per texel.
-fn ptm_fitter() -> Result<UnitVectors, String> {
+pub fn ptm_fitter() -> Result<UnitVectors, String> {
     use hdl::kernel::Sim;
     use units::ptm::fitter_604::Fitter604;
     use units::ptm::texture_612::PtmFormat;
@@ -572,20 +489,20 @@ fn ptm_fitter() -> Result<UnitVectors, String> {
         .collect();
     let mut inputs = vec![];
     for k in 0..l.div_ceil(8) {
-        inputs.push(f(&format!("samples{k}"), 64));
+        inputs.push(Field::new(&format!("samples{k}"), 64));
     }
     Ok(UnitVectors {
         unit: crate::ptm::FITTER.into(),
         description: "PTM fitter 604 (001): 3 x 8 dome, P in sQ7.20 from the f64 pseudo-inverse, 8-bit coefficients; 64 texels of hashed samples (every fourth grey), 24 samples a texel packed eight to a word (light 0 in the top byte)".into(),
         inputs,
-        outputs: (1..=6).map(|j| f(&format!("q{j}"), 8)).collect(),
+        outputs: (1..=6).map(|j| Field::new(&format!("q{j}"), 8)).collect(),
         rows,
     })
 }
 
 /// The shader 608 with the 16-bit format of a 4 x 12 dome: 512 hashed coefficient sets and
 /// lights in the unit disc.
-fn ptm_shader() -> Result<UnitVectors, String> {
+pub fn ptm_shader() -> Result<UnitVectors, String> {
     use hdl::kernel::Sim;
     use units::ptm::shader_608::Shader608;
     use units::ptm::texture_612::PtmFormat;
@@ -622,13 +539,13 @@ fn ptm_shader() -> Result<UnitVectors, String> {
         ins.extend([mask(u, 16), mask(v, 16)]);
         rows.push((ins, out));
     }
-    let mut inputs: Vec<Field> = (1..=6).map(|j| f(&format!("q{j}"), 16)).collect();
-    inputs.extend([f("u", 16), f("v", 16)]);
+    let mut inputs: Vec<Field> = (1..=6).map(|j| Field::new(&format!("q{j}"), 16)).collect();
+    inputs.extend([Field::new("u", 16), Field::new("v", 16)]);
     Ok(UnitVectors {
         unit: crate::ptm::SHADER.into(),
         description: format!("PTM shader 608 (001): the 16-bit format of a 4 x 12 dome (exponents {:?}, biases {:?}); 512 hashed coefficient sets and lights inside |u|, |v| < 0.71", fmt.exp, fmt.bias),
         inputs,
-        outputs: vec![f("k", 8), f("visibility", 8)],
+        outputs: vec![Field::new("k", 8), Field::new("visibility", 8)],
         rows,
     })
 }
@@ -645,7 +562,7 @@ fn signed(h: u32, r: i64) -> i64 {
 
 /// The tangent setup unit on 256 hashed triangles (every eighth with UVs on a line).
 #[allow(clippy::needless_range_loop)] // the unit's signals index like the vectors
-fn tangent_setup() -> Result<UnitVectors, String> {
+pub fn tangent_setup() -> Result<UnitVectors, String> {
     use units::frames::tangent_setup::TangentSetup;
     let mut sim = hdl::kernel::Sim::new(TangentSetup::new());
     sim.reset(1);
@@ -685,15 +602,23 @@ fn tangent_setup() -> Result<UnitVectors, String> {
     }
     let mut inputs: Vec<Field> = ["v1x", "v1y", "v1z", "v2x", "v2y", "v2z"]
         .iter()
-        .map(|n| f(n, 24))
+        .map(|n| Field::new(*n, 24))
         .collect();
-    inputs.extend(["d1u", "d1v", "d2u", "d2v"].iter().map(|n| f(n, 20)));
+    inputs.extend(
+        ["d1u", "d1v", "d2u", "d2v"]
+            .iter()
+            .map(|n| Field::new(*n, 20)),
+    );
     let mut outputs: Vec<Field> = ["tx", "ty", "tz", "bx", "by", "bz"]
         .iter()
-        .map(|n| f(n, 16))
+        .map(|n| Field::new(*n, 16))
         .collect();
-    outputs.extend(["dpdu_x", "dpdu_y", "dpdu_z"].iter().map(|n| f(n, 40)));
-    outputs.extend([f("degenerate", 1), f("zero", 1)]);
+    outputs.extend(
+        ["dpdu_x", "dpdu_y", "dpdu_z"]
+            .iter()
+            .map(|n| Field::new(*n, 40)),
+    );
+    outputs.extend([Field::new("degenerate", 1), Field::new("zero", 1)]);
     Ok(UnitVectors {
         unit: crate::tangents::NAME.into(),
         description: "tangent setup (003): 256 hashed triangles (edges within 8, UV edges within 2, every eighth with UVs on a line), n = +z".into(),
@@ -705,7 +630,7 @@ fn tangent_setup() -> Result<UnitVectors, String> {
 
 /// The frame unit on 256 hashed frames and weights, Gram-Schmidt on odd rows.
 #[allow(clippy::needless_range_loop)] // the unit's signals index like the vectors
-fn frame_unit() -> Result<UnitVectors, String> {
+pub fn frame_unit() -> Result<UnitVectors, String> {
     use units::frames::frame_unit::FrameUnit;
     let mut sim = hdl::kernel::Sim::new(FrameUnit::new());
     sim.reset(1);
@@ -740,21 +665,21 @@ fn frame_unit() -> Result<UnitVectors, String> {
         "tx", "ty", "tz", "bx", "by", "bz", "nx", "ny", "nz", "a", "gx", "gy",
     ]
     .iter()
-    .map(|n| f(n, 16))
+    .map(|n| Field::new(*n, 16))
     .collect();
-    inputs.push(f("gram_schmidt", 1));
+    inputs.push(Field::new("gram_schmidt", 1));
     Ok(UnitVectors {
         unit: crate::frames::FRAME.into(),
         description: "per-pixel frame unit: 256 hashed near-orthonormal frames, bump weights a = 1, gx, gy within 2; Gram-Schmidt on odd rows".into(),
         inputs,
-        outputs: ["nx", "ny", "nz"].iter().map(|n| f(n, 16)).collect(),
+        outputs: ["nx", "ny", "nz"].iter().map(|n| Field::new(*n, 16)).collect(),
         rows,
     })
 }
 
 /// The parallax unit on 256 hashed queries, limited on odd rows.
 #[allow(clippy::needless_range_loop)] // the unit's signals index like the vectors
-fn parallax() -> Result<UnitVectors, String> {
+pub fn parallax() -> Result<UnitVectors, String> {
     use units::frames::parallax::ParallaxUnit;
     let mut sim = hdl::kernel::Sim::new(ParallaxUnit::new());
     sim.reset(1);
@@ -796,26 +721,26 @@ fn parallax() -> Result<UnitVectors, String> {
         ));
     }
     let mut inputs = vec![
-        f("u", 21),
-        f("v", 21),
-        f("height", 8),
-        f("scale", 16),
-        f("bias", 16),
+        Field::new("u", 21),
+        Field::new("v", 21),
+        Field::new("height", 8),
+        Field::new("scale", 16),
+        Field::new("bias", 16),
     ];
-    inputs.extend(["vx", "vy", "vz"].iter().map(|n| f(n, 16)));
-    inputs.push(f("limited", 1));
+    inputs.extend(["vx", "vy", "vz"].iter().map(|n| Field::new(*n, 16)));
+    inputs.push(Field::new("limited", 1));
     Ok(UnitVectors {
         unit: crate::frames::PARALLAX.into(),
         description: "parallax: 256 hashed queries (V.z from 1/16 up), offset-limited on odd rows"
             .into(),
         inputs,
-        outputs: vec![f("u_out", 21), f("v_out", 21)],
+        outputs: vec![Field::new("u_out", 21), Field::new("v_out", 21)],
         rows,
     })
 }
 
 /// Para. 0086's unit, every filter, on the 16x16 bumps map: 64 hashed samples each.
-fn derivative() -> Result<UnitVectors, String> {
+pub fn derivative() -> Result<UnitVectors, String> {
     use units::bump::derivative_0086::{Derivative, DerivativeUnit};
     use units::bump::params::{Border, BumpParams};
     let map = crate::maps::builtin("bumps", 16, 16, BumpParams::default().texel_fmt())?;
@@ -842,14 +767,14 @@ fn derivative() -> Result<UnitVectors, String> {
     Ok(UnitVectors {
         unit: crate::derivative::NAME.into(),
         description: "para. 0086's derivative filters (0 central, 1 Sobel, 2 Prewitt, 3 the 5-point table) on the 16x16 bumps map, wrap: 64 hashed samples each".into(),
-        inputs: vec![f("filter", 2), f("u", 32), f("v", 32), f("scale", 16)],
-        outputs: ["nx", "ny", "nz"].iter().map(|n| f(n, 16)).collect(),
+        inputs: vec![Field::new("filter", 2), Field::new("u", 32), Field::new("v", 32), Field::new("scale", 16)],
+        outputs: ["nx", "ny", "nz"].iter().map(|n| Field::new(*n, 16)).collect(),
         rows,
     })
 }
 
 /// Para. 0087's unit on a formula colour map: 256 hashed samples.
-fn biquadratic() -> Result<UnitVectors, String> {
+pub fn biquadratic() -> Result<UnitVectors, String> {
     use units::bump::biquadratic_0087::{Biquadratic0087, ColourMap};
     let rgb = (0..16 * 16u32)
         .flat_map(|k| {
@@ -885,8 +810,8 @@ fn biquadratic() -> Result<UnitVectors, String> {
         description:
             "para. 0087's bi-quadratic colour on a 16x16 formula map, wrap: 256 hashed samples"
                 .into(),
-        inputs: vec![f("u", 32), f("v", 32)],
-        outputs: vec![f("r", 8), f("g", 8), f("b", 8)],
+        inputs: vec![Field::new("u", 32), Field::new("v", 32)],
+        outputs: vec![Field::new("r", 8), Field::new("g", 8), Field::new("b", 8)],
         rows,
     })
 }
@@ -912,7 +837,7 @@ pub fn vector_texture() -> formats::ccc::Ccc {
     }
 }
 
-fn texture() -> Result<UnitVectors, String> {
+pub fn texture() -> Result<UnitVectors, String> {
     use crate::texture::TexRequest;
     use units::texmem::texture_unit_602::TexParams;
     let tex = vector_texture();
@@ -957,157 +882,13 @@ fn texture() -> Result<UnitVectors, String> {
     Ok(UnitVectors {
         unit: crate::texture::NAME.into(),
         description: "texture unit 602 (Figure 6), 32x32 texture from integer formulas (vectors::vector_texture), 256 requests uQ12.4 offered every cycle, row-major, 512-word pages; mode 0 cache + quadrant lookahead, 1 cache, 2 no cache, 3 cache + direction lookahead; outputs the colour and the cycle it leaves 622 (from the first request)".into(),
-        inputs: vec![f("mode", 2), f("u", 16), f("v", 16), f("newline", 1)],
-        outputs: vec![f("rgb", 24), f("cycle", 20)],
+        inputs: vec![Field::new("mode", 2), Field::new("u", 16), Field::new("v", 16), Field::new("newline", 1)],
+        outputs: vec![Field::new("rgb", 24), Field::new("cycle", 20)],
         rows,
     })
-}
-
-/// FNV-1a 64 over every field value (little-endian bytes).
-pub fn hash(v: &UnitVectors) -> String {
-    let mut h: u64 = 0xcbf2_9ce4_8422_2325;
-    for (i, o) in &v.rows {
-        for x in i.iter().chain(o) {
-            for b in x.to_le_bytes() {
-                h ^= u64::from(b);
-                h = h.wrapping_mul(0x0100_0000_01b3);
-            }
-        }
-    }
-    format!("{h:016x}")
-}
-
-fn hex_row(fields: &[Field], vals: &[u64]) -> String {
-    fields
-        .iter()
-        .zip(vals)
-        .map(|(f, v)| format!("{v:0w$x}", w = (f.width as usize).div_ceil(4)))
-        .collect::<Vec<_>>()
-        .join("_")
-}
-
-impl UnitVectors {
-    /// The file kept under `golden/vectors/`.
-    pub fn file(&self) -> VectorFile {
-        VectorFile {
-            unit: self.unit.clone(),
-            description: self.description.clone(),
-            inputs: self.inputs.clone(),
-            outputs: self.outputs.clone(),
-            count: self.rows.len(),
-            hash: hash(self),
-            first: self
-                .rows
-                .iter()
-                .take(8)
-                .map(|(i, o)| {
-                    format!(
-                        "{} -> {}",
-                        hex_row(&self.inputs, i),
-                        hex_row(&self.outputs, o)
-                    )
-                })
-                .collect(),
-        }
-    }
-
-    /// `$readmemh` files: `<unit>_stimulus.hex` and `<unit>_expected.hex`, each line one
-    /// vector with its fields concatenated MSB first (the header names fields and widths).
-    pub fn write_readmemh(&self, dir: &Path) -> std::io::Result<Vec<PathBuf>> {
-        std::fs::create_dir_all(dir)?;
-        let mut out = Vec::new();
-        for (kind, fields, pick) in [
-            ("stimulus", &self.inputs, 0usize),
-            ("expected", &self.outputs, 1),
-        ] {
-            let total: u32 = fields.iter().map(|f| f.width).sum();
-            let mut s = String::new();
-            let _ = writeln!(s, "// texrtl {} {kind}: {}", self.unit, self.description);
-            let layout: Vec<String> = fields
-                .iter()
-                .map(|f| format!("{}[{}:0]", f.name, f.width - 1))
-                .collect();
-            let _ = writeln!(
-                s,
-                "// {} vectors of {total} bits, fields MSB first: {}",
-                self.rows.len(),
-                layout.join(" ")
-            );
-            for row in &self.rows {
-                let vals = if pick == 0 { &row.0 } else { &row.1 };
-                let mut word: u128 = 0;
-                for (f, v) in fields.iter().zip(vals) {
-                    word = (word << f.width) | u128::from(*v);
-                }
-                let _ = writeln!(s, "{word:0w$x}", w = (total as usize).div_ceil(4));
-            }
-            let path = dir.join(format!("{}_{kind}.hex", self.unit));
-            formats::output::write_output(&path, s.as_bytes())?;
-            out.push(path);
-        }
-        Ok(out)
-    }
 }
 
 /// `golden/vectors/` of this source tree.
 pub fn vectors_dir() -> PathBuf {
     Path::new(env!("CARGO_MANIFEST_DIR")).join("../golden/vectors")
-}
-
-/// Compares every unit's vectors with the kept files; returns one line per difference.
-pub fn check(dir: &Path) -> Result<Vec<String>, String> {
-    let mut diffs = Vec::new();
-    for u in UNITS {
-        let now = unit_vectors(u)?.file();
-        let path = dir.join(format!("{u}.json"));
-        let kept: VectorFile = match std::fs::read(&path) {
-            Ok(b) => serde_json::from_slice(&b).map_err(|e| format!("{}: {e}", path.display()))?,
-            Err(e) => {
-                diffs.push(format!("{}: {e}", path.display()));
-                continue;
-            }
-        };
-        if kept != now {
-            diffs.push(describe(&kept, &now));
-        }
-    }
-    Ok(diffs)
-}
-
-fn describe(kept: &VectorFile, now: &VectorFile) -> String {
-    let mut s = format!(
-        "{}: hash {} -> {} ({} -> {} vectors)",
-        now.unit, kept.hash, now.hash, kept.count, now.count
-    );
-    if let Some((a, b)) = kept.first.iter().zip(&now.first).find(|(a, b)| a != b) {
-        let _ = write!(s, "; first readable change: {a} => {b}");
-    } else if kept.hash != now.hash {
-        s.push_str("; the first readable vectors are unchanged: the change is further in");
-    }
-    s
-}
-
-/// Rewrites the kept files; returns a line per unit that changed.
-pub fn bless(dir: &Path) -> Result<Vec<String>, String> {
-    std::fs::create_dir_all(dir).map_err(|e| format!("{}: {e}", dir.display()))?;
-    let mut changed = Vec::new();
-    for u in UNITS {
-        let now = unit_vectors(u)?.file();
-        let path = dir.join(format!("{u}.json"));
-        let kept: Option<VectorFile> = std::fs::read(&path)
-            .ok()
-            .and_then(|b| serde_json::from_slice(&b).ok());
-        match &kept {
-            Some(k) if *k == now => continue,
-            Some(k) => changed.push(describe(k, &now)),
-            None => changed.push(format!(
-                "{u}: new, {} vectors, hash {}",
-                now.count, now.hash
-            )),
-        }
-        let mut json = serde_json::to_vec_pretty(&now).map_err(|e| e.to_string())?;
-        json.push(b'\n');
-        formats::output::write_output(&path, &json).map_err(|e| e.to_string())?;
-    }
-    Ok(changed)
 }

@@ -5,9 +5,9 @@
 
 use std::path::PathBuf;
 use tb::cosim::{
-    run, AddressCosim, BilinearCosim, BlendAdjustCosim, CacheCosim, ControlCosim, CosimUnit,
-    FillCosim, LookaheadCosim, MipmapCosim, NormalCosim, PipelineCosim, ReplicateCosim, RsqrtCosim,
-    Simulator, TangentCosim, TexelFetchCosim,
+    AddressCosim, BilinearCosim, BlendAdjustCosim, CacheCosim, ControlCosim, FillCosim,
+    LookaheadCosim, MipmapCosim, NormalCosim, PipelineCosim, ReplicateCosim, RsqrtCosim,
+    TangentCosim, TexelFetchCosim,
 };
 use units::bump::blend_adjust_153::BlendAdjustParams;
 use units::bump::params::{Border, BumpParams, Filter, HeightTexel, RsqrtParams};
@@ -15,6 +15,7 @@ use units::mipmap::mipmap_gen_816::{MipmapParams, Rounding, Scan};
 use units::texmem::cache_614::Lookahead;
 use units::texmem::dram_604::DramParams;
 use units::texmem::layout::Layout;
+use verif::cosim::{run, CosimUnit, Simulator};
 use verif::Seed;
 
 /// Whether `sim` can run; without it, fails only when co-simulation is required.
@@ -571,9 +572,9 @@ fn assert_caught(u: &dyn CosimUnit, bug: Bug, n: usize, seed: Seed, want: (usize
         let sources: Vec<PathBuf> = u
             .rtl()
             .into_iter()
-            .map(|f| match f == bug.0 {
+            .map(|f| match f == tb::cosim::rtl_dir().join(bug.0) {
                 true => mutant(&d, bug.0, bug.1, bug.2),
-                false => tb::cosim::rtl_dir().join(f),
+                false => f,
             })
             .collect();
         let r = run(u, sim, &sources, n, seed, &d).unwrap();
@@ -608,9 +609,9 @@ fn first_difference(base: BlendAdjustParams, alt: BlendAdjustParams, n: usize) -
     let (mut ma, mut mb) = (a.model().unwrap(), b.model().unwrap());
     let (_, outs) = ma.ports();
     for (c, s) in stim.iter().enumerate() {
-        let rst = c < tb::cosim::RESET_CYCLES;
+        let rst = c < verif::cosim::RESET_CYCLES;
         let (x, y) = (ma.cycle(rst, s), mb.cycle(rst, s));
-        if c < tb::cosim::FIRST_COMPARED {
+        if c < verif::cosim::FIRST_COMPARED {
             continue;
         }
         if let Some(k) = (0..x.len()).find(|&k| x[k] != y[k]) {
@@ -641,8 +642,8 @@ fn injected_bugs_are_caught_with_their_cycle_and_port() {
         let diff = r.mismatch.expect("the bug is caught");
         // The first cycle after reset whose previous input was not a bypass shows it in u0.
         let stim = u.stimulus(Seed(9), n);
-        let want = (tb::cosim::RESET_CYCLES..n)
-            .find(|&c| stim[c - 1][1] == 0 && c > tb::cosim::RESET_CYCLES)
+        let want = (verif::cosim::RESET_CYCLES..n)
+            .find(|&c| stim[c - 1][1] == 0 && c > verif::cosim::RESET_CYCLES)
             .unwrap();
         assert_eq!(
             (diff.cycle, diff.port.as_str()),
@@ -685,7 +686,7 @@ fn every_twin_is_lint_clean() {
             cmd.arg(format!("-G{k}={v}"));
         }
         for f in u.rtl().into_iter().chain(u.bench_rtl()) {
-            cmd.arg(tb::cosim::rtl_dir().join(f));
+            cmd.arg(f);
         }
         let o = cmd.output().unwrap();
         let err = String::from_utf8_lossy(&o.stderr);
@@ -720,7 +721,7 @@ fn address_bug_is_caught_with_its_cycle_and_port() {
         let model = AddressUnit::new("a", hdl::fx::Format::signed(24, 8), 8).unwrap();
         let raw = |b: u64| ((b << 40) as i64) >> 40;
         let stim = u.stimulus(Seed(4), n);
-        let want = (tb::cosim::RESET_CYCLES + 1..n)
+        let want = (verif::cosim::RESET_CYCLES + 1..n)
             .find_map(|c| {
                 let s = &stim[c - 1];
                 let colour = s[2] == 1;
@@ -786,7 +787,7 @@ fn bilinear_rounding_bug_is_caught_with_its_cycle_and_port() {
         "(rem == half)",
     );
     let stim = u.stimulus(Seed(12), n);
-    let want = (tb::cosim::RESET_CYCLES + 1..n)
+    let want = (verif::cosim::RESET_CYCLES + 1..n)
         .find(|&c| {
             let v = &stim[c - 1];
             let p = [v[0], v[1], v[2], v[3]].map(|x| x as i64);
@@ -828,7 +829,7 @@ fn tangent_rounding_bug_is_caught_with_its_cycle_and_port() {
         "(rem == half)",
     );
     let stim = u.stimulus(Seed(155), n);
-    let want = (tb::cosim::RESET_CYCLES + 1..n)
+    let want = (verif::cosim::RESET_CYCLES + 1..n)
         .find_map(|c| {
             let v: Vec<i128> = stim[c - 1].iter().map(|&x| i128::from(x)).collect();
             let [r, g, b, a, tu, tv, s] = [v[0], v[1], v[2], v[3], v[4], v[5], v[6]];
@@ -871,7 +872,7 @@ fn rsqrt_table_bug_is_caught_with_its_cycle_and_port() {
         let z = ((1u128 << (2 * p.y_frac + p.mant_frac + 3)) / mid2).isqrt();
         z & 1 == 1
     };
-    let want = (tb::cosim::RESET_CYCLES + 1..n)
+    let want = (verif::cosim::RESET_CYCLES + 1..n)
         .find(|&c| {
             let m = stim[c - 1][0];
             m >> p.mant_frac != 0 && z_odd(table.index(m))
@@ -911,7 +912,7 @@ fn normal_rounding_bug_is_caught_with_its_cycle_and_port() {
     let w = p.tangent_fmt().width();
     let signed = |x: u64| ((x << (64 - w)) as i64) >> (64 - w);
     let latency = 3 + p.rsqrt.iterations as usize;
-    let want = (tb::cosim::RESET_CYCLES + latency..n)
+    let want = (verif::cosim::RESET_CYCLES + latency..n)
         .find_map(|c| {
             let (du, dv) = (signed(stim[c - latency][0]), signed(stim[c - latency][1]));
             let s = (du * du + dv * dv) as u128 + (1 << 16);
@@ -947,7 +948,7 @@ fn every_twin_synthesises_where_yosys_is_present() {
         "{table}{}",
         String::from_utf8_lossy(&o.stderr)
     );
-    for u in tb::cosim::UNITS {
+    for u in tb::project::project().twins().map(|t| t.name().to_string()) {
         assert!(
             table.contains(&format!("| {u} |")),
             "{u} not synthesised: {table}"
@@ -988,7 +989,7 @@ fn texel_fetch_wrap_bug_is_caught_with_its_cycle_and_port() {
             .collect()
     };
     // The grid registered at the end of cycle c - 1 shows in cycle c.
-    let want = (tb::cosim::RESET_CYCLES + 1..n)
+    let want = (verif::cosim::RESET_CYCLES + 1..n)
         .find_map(|c| {
             let (ui, vj) = (coord(stim[c - 1][0]), coord(stim[c - 1][1]));
             let (good, bad) = (grid(ui, vj, &wrap), grid(ui, vj, &bugged));
@@ -1013,11 +1014,11 @@ fn pipeline_valid_stage_bug_is_caught_with_its_cycle_and_port() {
     let stim = u.stimulus(seed, n);
     // valid(c) is valid_in(c - depth) once that input was out of reset, else 0.
     let valid = |c: usize, depth: usize| match c.checked_sub(depth) {
-        Some(i) if i >= tb::cosim::RESET_CYCLES => stim[i][0],
+        Some(i) if i >= verif::cosim::RESET_CYCLES => stim[i][0],
         _ => 0,
     };
     let latency = 4 + 3 + BumpParams::default().rsqrt.iterations as usize;
-    let want = (tb::cosim::FIRST_COMPARED..n)
+    let want = (verif::cosim::FIRST_COMPARED..n)
         .find(|&c| valid(c, latency) != valid(c, latency - 1))
         .expect("valid toggles");
     assert_caught(&u, bug, n, seed, (want, "valid"));
@@ -1041,10 +1042,10 @@ fn control_precharge_bug_is_caught_with_its_cycle_port_and_timing_check() {
     let (_, outs) = m.ports();
     let k = outs.iter().position(|p| p.name == "ras_n").unwrap();
     let ras: Vec<u64> = (0..n)
-        .map(|c| m.cycle(c < tb::cosim::RESET_CYCLES, &stim[c])[k])
+        .map(|c| m.cycle(c < verif::cosim::RESET_CYCLES, &stim[c])[k])
         .collect();
     // RAS# falls only when a precharge ends: its last cycle is the one before.
-    let want = (tb::cosim::FIRST_COMPARED..n - 1)
+    let want = (verif::cosim::FIRST_COMPARED..n - 1)
         .find(|&c| ras[c] == 1 && ras[c + 1] == 0)
         .expect("the stimulus opens a row");
     assert_caught(&u, bug, n, seed, (want, "ras_n"));
@@ -1091,7 +1092,7 @@ fn cache_touch_bug_is_caught_with_its_cycle_and_port() {
     let stim = u.stimulus(seed, n);
     // Inputs: touch, invalidate, write, write_bx, write_by, ...
     let written = |s: &[u64]| (s[2] == 1).then_some((s[3] & 1 | (s[4] & 1) << 1) as usize);
-    let want = (tb::cosim::RESET_CYCLES + 1..n)
+    let want = (verif::cosim::RESET_CYCLES + 1..n)
         .find(|&c| {
             let s = &stim[c - 1];
             (0..4).any(|k| s[0] >> k & 1 == 1 && written(s) != Some(k))
@@ -1133,7 +1134,7 @@ fn lookahead_flush_bug_is_caught_with_its_cycle_and_port() {
     assert_caught(&u, bug, n, seed, (want, "take"));
 }
 
-/// The first cycle from [`tb::cosim::FIRST_COMPARED`] at which `hit` holds for the model
+/// The first cycle from [`verif::cosim::FIRST_COMPARED`] at which `hit` holds for the model
 /// `dut` driven with `stim` by `drive` (looked at with the cycle's inputs driven, before its
 /// `eval`; reset as the harness applies it).
 fn first_cycle<M: hdl::kernel::Module>(
@@ -1144,9 +1145,9 @@ fn first_cycle<M: hdl::kernel::Module>(
 ) -> Option<usize> {
     let mut sim = hdl::kernel::Sim::new(dut);
     for (c, s) in stim.iter().enumerate() {
-        sim.set_reset(c < tb::cosim::RESET_CYCLES);
+        sim.set_reset(c < verif::cosim::RESET_CYCLES);
         drive(&mut sim.dut, s);
-        if c >= tb::cosim::FIRST_COMPARED && hit(&sim.dut, s) {
+        if c >= verif::cosim::FIRST_COMPARED && hit(&sim.dut, s) {
             return Some(c);
         }
         sim.eval();
@@ -1237,10 +1238,15 @@ fn regression_vectors_cosimulate_equal() {
         if !available(sim) {
             continue;
         }
-        for u in tb::cosim::vectors::UNITS {
-            for d in tb::cosim::vectors::regression(u).unwrap() {
+        let project = tb::project::project();
+        let directed = project
+            .units()
+            .filter_map(|u| Some((u.name(), u.directed_runs()?)));
+        for (u, runs) in directed {
+            for d in runs().unwrap() {
                 let dir = dir(&format!("vectors-{u}-{}-{}", d.label, sim.name()));
-                let r = tb::cosim::run_with(d.unit.as_ref(), sim, &[], &d.stimulus, &dir).unwrap();
+                let r =
+                    verif::cosim::run_with(d.unit.as_ref(), sim, &[], &d.stimulus, &dir).unwrap();
                 let _ = std::fs::remove_dir_all(&dir);
                 assert!(
                     r.mismatch.is_none(),

@@ -11,8 +11,9 @@ fn summaries_that_once_crashed_merge_now_give_a_clean_answer() {
     for e in std::fs::read_dir(&dir).unwrap() {
         let p = e.unwrap().path();
         let bytes = std::fs::read(&p).unwrap();
-        let r = tb::regress::parse_summary(&p, &bytes)
-            .and_then(|s| tb::regress::merge_shards(&[(PathBuf::from(&p), s)]));
+        let r = verif::regress::parse_summary(&p, &bytes).and_then(|s| {
+            verif::regress::merge_shards(&tb::project::project(), &[(PathBuf::from(&p), s)])
+        });
         if let Err(e) = r {
             assert!(!e.contains('\n'), "{}: {e}", p.display());
         }

@@ -19,17 +19,26 @@
 //!   until ready), for the handshakes inside a design that no driver or monitor owns.
 //! * [`ProbeSink`]: golden values and mismatch flags shown beside the design in a waveform.
 //! * [`mutate`]: malformed inputs (a valid file with byte-level mutations) for fuzzing.
+//! * [`cosim`]: a unit's model against its Verilog in Verilator or Icarus, cycle by cycle.
 
+pub mod bench;
+pub mod cli;
+pub mod cosim;
 pub mod coverage;
 pub mod mutate;
+pub mod plot;
 mod probe;
+pub mod project;
 mod protocol;
 mod random;
+pub mod regress;
+pub mod report;
 mod result;
 mod run;
 mod scoreboard;
 mod stats;
 mod testbench;
+pub mod vectors;
 
 pub use coverage::{Coverage, Coverpoint, Cross};
 pub use probe::ProbeSink;

@@ -11,13 +11,16 @@ use vcd::{IdCode, TimescaleUnit};
 pub type PortDef<'a> = (&'a str, u32);
 
 /// Writes `path` (and its `.gtkw`): `model[c][k]` and `rtl[c][k]` are port `k`'s values in
-/// cycle `c` (`None`: unknown, written as `x`); one cycle per 10 ns.
+/// cycle `c` (`None`: unknown, written as `x`); one cycle per 10 ns. `differs(c, k)` raises
+/// port `k`'s mismatch flag in cycle `c` (the comparison's own rule: a port compared only when
+/// valid, or under a mask, is flagged only where it counts).
 pub fn write(
     path: &Path,
     title: &str,
     ports: &[PortDef],
     model: &[Vec<u64>],
     rtl: &[Vec<Option<u64>>],
+    differs: &dyn Fn(usize, usize) -> bool,
 ) -> Result<(), String> {
     let err = |e: std::io::Error| format!("{}: {e}", path.display());
     let out = crate::output::Staged::new(path);
@@ -31,7 +34,7 @@ pub fn write(
             w.begin(vcd::SimulationCommand::Dumpvars).map_err(err)?;
         }
         for (k, &(_, width)) in ports.iter().enumerate() {
-            let vals = [Some(m[k]), r[k], Some(u64::from(r[k] != Some(m[k])))];
+            let vals = [Some(m[k]), r[k], Some(u64::from(differs(c, k)))];
             for (j, v) in vals.into_iter().enumerate() {
                 let wd = if j == 2 { 1 } else { width };
                 let text = value(v, wd);

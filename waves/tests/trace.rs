@@ -660,7 +660,8 @@ fn a_comparison_waveform_shows_model_rtl_and_mismatch() {
         vec![None, Some(6)],
         vec![Some(0), None],
     ];
-    waves::compare::write(&path, "unit", &ports, &model, &rtl).unwrap();
+    let differs = |c: usize, k: usize| rtl[c][k] != Some(model[c][k]);
+    waves::compare::write(&path, "unit", &ports, &model, &rtl, &differs).unwrap();
     let rb = read_vcd(&path).unwrap();
     assert_eq!(rb.times.last(), Some(&40_000), "four cycles of 10 ns");
     let w = |n: &str| rb.vars[n].width;

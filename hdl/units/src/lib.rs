@@ -7,7 +7,8 @@
 //! # From unit number to waveform, in one hop
 //! Every numbered unit is one file named after it and its number; its module's kind and
 //! instance carry the same name, its testbench (a `verif::Testbench` in `tb/src`)
-//! and its scope in the waveform too:
+//! and its scope in the waveform too. The table is tested against the project's descriptors
+//! (`tb/src/project.rs`): every unit there is a kind here, every testbench here is one there.
 //!
 //! | unit (document) | module (`hdl/units/src/…`) | kind = instance | testbench | waveform scope |
 //! |---|---|---|---|---|
@@ -49,10 +50,10 @@
 //! | description register files of 812 (section 14) | `mapchain/drf_812.rs` | (registers of the walker) | `walker_812` | - |
 //! | chain walker of 812 with the output stage 820's eqs 5-7 | `mapchain/walker_812.rs`, `mapchain/program.rs` | `walker_812` | `walker_812`; `tb/tests/mapchain.rs` | `tb.walker_812` |
 //! | detail path, units 902-914 (Figs 9a/9b) | `mapchain/detail_fig9.rs` | (the walker's offset and detail states) | `walker_812` | `tb.walker_812` |
-//! | PTM fitter 604 and light shader 608 (001, Fig. 6), occlusion PTM 612 | `ptm/fitter_604.rs`, `ptm/shader_608.rs`, `ptm/texture_612.rs` | `ptm_fitter_604`, `ptm_shader_608` | the same; `tb/tests/ptm.rs` | `tb.ptm_fitter_604`, `tb.ptm_shader_608` |
+//! | PTM fitter 604 and light shader 608 (001, Fig. 6), occlusion PTM 612 | `ptm/fitter_604.rs`, `ptm/shader_608.rs`, `ptm/texture_612.rs` | `ptm_fitter_604`, `ptm_shader_608` | `ptm_fitter_604`, `ptm_shader_608`; `tb/tests/ptm.rs` | `tb.ptm_fitter_604`, `tb.ptm_shader_608` |
 //! | tangent setup (003) | `frames/tangent_setup.rs` | `tangent_setup` | `tangent_setup`; `tb/tests/tangents.rs` | `tb.tangent_setup` |
-//! | per-pixel frame unit (003, 002) and parallax (002) | `frames/frame_unit.rs`, `frames/parallax.rs` | `frame_unit`, `parallax` | the same; `tb/tests/frames.rs` | `tb.frame_unit`, `tb.parallax` |
-//! | derivative filters (para. 0086), bi-quadratic colour (0087), packed heights (0055) | `bump/derivative_0086.rs`, `bump/biquadratic_0087.rs`, `bump/packed_0055.rs` | `derivative_0086`, `biquadratic_0087` | the same; `tb/tests/derivative.rs`, `tb/tests/biquadratic.rs` | `tb.derivative_0086`, `tb.biquadratic_0087` |
+//! | per-pixel frame unit (003, 002) and parallax (002) | `frames/frame_unit.rs`, `frames/parallax.rs` | `frame_unit`, `parallax` | `frame_unit`, `parallax`; `tb/tests/frames.rs` | `tb.frame_unit`, `tb.parallax` |
+//! | derivative filters (para. 0086), bi-quadratic colour (0087), packed heights (0055) | `bump/derivative_0086.rs`, `bump/biquadratic_0087.rs`, `bump/packed_0055.rs` | `derivative_0086`, `biquadratic_0087` | `derivative_0086`, `biquadratic_0087`; `tb/tests/derivative.rs`, `tb/tests/biquadratic.rs` | `tb.derivative_0086`, `tb.biquadratic_0087` |
 
 pub use hdl::{fx, kernel, signals};
 

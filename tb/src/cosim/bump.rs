@@ -1,19 +1,21 @@
 //! Co-simulation adapters of the FIG. 7 units (US 2004/0207631): each unit's model, its
 //! twin in `rtl/bump/`, the twin's parameters from the model's and the stimulus.
 
-use super::{field, CosimModel, CosimUnit, ModelSim};
+use super::twin;
 use hdl::fx::Format;
+use std::path::PathBuf;
 use units::bump::height_map::HeightMap;
 use units::bump::params::{Border, BumpParams};
+use verif::cosim::{field, Clocking, CosimModel, CosimUnit, ModelSim};
 /// Blend-factor adjust unit 153 against `rtl/bump/blend_adjust_153.v`.
 pub struct BlendAdjustCosim(pub units::bump::blend_adjust_153::BlendAdjustParams);
 
 impl CosimUnit for BlendAdjustCosim {
-    fn name(&self) -> &'static str {
+    fn name(&self) -> &str {
         "blend_adjust_153"
     }
-    fn rtl(&self) -> Vec<&'static str> {
-        vec!["bump/blend_adjust_153.v"]
+    fn rtl(&self) -> Vec<PathBuf> {
+        twin(vec!["bump/blend_adjust_153.v"])
     }
     fn parameters(&self) -> Vec<(&'static str, i64)> {
         vec![
@@ -63,11 +65,11 @@ impl Default for AddressCosim {
 }
 
 impl CosimUnit for AddressCosim {
-    fn name(&self) -> &'static str {
+    fn name(&self) -> &str {
         "address_150"
     }
-    fn rtl(&self) -> Vec<&'static str> {
-        vec!["bump/address_150.v"]
+    fn rtl(&self) -> Vec<PathBuf> {
+        twin(vec!["bump/address_150.v"])
     }
     fn parameters(&self) -> Vec<(&'static str, i64)> {
         vec![
@@ -107,11 +109,11 @@ pub struct ReplicateCosim {
 }
 
 impl CosimUnit for ReplicateCosim {
-    fn name(&self) -> &'static str {
+    fn name(&self) -> &str {
         "replicate_152"
     }
-    fn rtl(&self) -> Vec<&'static str> {
-        vec!["bump/replicate_152.v"]
+    fn rtl(&self) -> Vec<PathBuf> {
+        twin(vec!["bump/replicate_152.v"])
     }
     fn parameters(&self) -> Vec<(&'static str, i64)> {
         vec![
@@ -119,8 +121,8 @@ impl CosimUnit for ReplicateCosim {
             ("BEZIER", i64::from(self.bezier)),
         ]
     }
-    fn clocked(&self) -> bool {
-        false
+    fn clocking(&self) -> Option<Clocking> {
+        None
     }
     fn model(&self) -> Result<Box<dyn CosimModel>, String> {
         use units::bump::replicate_152::Replicate;
@@ -171,11 +173,11 @@ impl BilinearCosim {
 }
 
 impl CosimUnit for BilinearCosim {
-    fn name(&self) -> &'static str {
+    fn name(&self) -> &str {
         "bilinear_65_68"
     }
-    fn rtl(&self) -> Vec<&'static str> {
-        vec!["bump/bilinear_65_68.v"]
+    fn rtl(&self) -> Vec<PathBuf> {
+        twin(vec!["bump/bilinear_65_68.v"])
     }
     fn parameters(&self) -> Vec<(&'static str, i64)> {
         let p = self.params();
@@ -228,11 +230,11 @@ impl CosimUnit for BilinearCosim {
 pub struct TangentCosim(pub units::bump::params::BumpParams);
 
 impl CosimUnit for TangentCosim {
-    fn name(&self) -> &'static str {
+    fn name(&self) -> &str {
         "tangent_155"
     }
-    fn rtl(&self) -> Vec<&'static str> {
-        vec!["bump/tangent_155.v"]
+    fn rtl(&self) -> Vec<PathBuf> {
+        twin(vec!["bump/tangent_155.v"])
     }
     fn parameters(&self) -> Vec<(&'static str, i64)> {
         use units::bump::params::Filter;
@@ -303,11 +305,11 @@ impl CosimUnit for TangentCosim {
 pub struct RsqrtCosim(pub units::bump::params::RsqrtParams);
 
 impl CosimUnit for RsqrtCosim {
-    fn name(&self) -> &'static str {
+    fn name(&self) -> &str {
         "rsqrt_156"
     }
-    fn rtl(&self) -> Vec<&'static str> {
-        vec!["bump/rsqrt_156.v"]
+    fn rtl(&self) -> Vec<PathBuf> {
+        twin(vec!["bump/rsqrt_156.v"])
     }
     fn parameters(&self) -> Vec<(&'static str, i64)> {
         let p = &self.0;
@@ -340,11 +342,11 @@ impl CosimUnit for RsqrtCosim {
 pub struct NormalCosim(pub units::bump::params::BumpParams);
 
 impl CosimUnit for NormalCosim {
-    fn name(&self) -> &'static str {
+    fn name(&self) -> &str {
         "normal_156"
     }
-    fn rtl(&self) -> Vec<&'static str> {
-        vec!["bump/normal_156.v", "bump/rsqrt_156.v"]
+    fn rtl(&self) -> Vec<PathBuf> {
+        twin(vec!["bump/normal_156.v", "bump/rsqrt_156.v"])
     }
     fn parameters(&self) -> Vec<(&'static str, i64)> {
         let p = &self.0;
@@ -431,11 +433,11 @@ impl TexelFetchCosim {
 }
 
 impl CosimUnit for TexelFetchCosim {
-    fn name(&self) -> &'static str {
+    fn name(&self) -> &str {
         "texel_fetch_151"
     }
-    fn rtl(&self) -> Vec<&'static str> {
-        vec!["bump/texel_fetch_151.v"]
+    fn rtl(&self) -> Vec<PathBuf> {
+        twin(vec!["bump/texel_fetch_151.v"])
     }
     fn parameters(&self) -> Vec<(&'static str, i64)> {
         let p = &self.params;
@@ -516,11 +518,11 @@ const PIPELINE_RTL: [&str; 9] = [
 ];
 
 impl CosimUnit for PipelineCosim {
-    fn name(&self) -> &'static str {
+    fn name(&self) -> &str {
         "normal_pipeline_fig7"
     }
-    fn rtl(&self) -> Vec<&'static str> {
-        PIPELINE_RTL.to_vec()
+    fn rtl(&self) -> Vec<PathBuf> {
+        twin(PIPELINE_RTL.to_vec())
     }
     fn parameters(&self) -> Vec<(&'static str, i64)> {
         use units::bump::params::Filter;

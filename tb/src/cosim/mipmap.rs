@@ -2,8 +2,10 @@
 //! 12): the model, its twin in `rtl/mipmap/` with the behavioural frame store, the twin's
 //! parameters and video stimulus.
 
-use super::{CosimModel, CosimUnit, ModelSim, Port};
+use super::twin;
+use std::path::PathBuf;
 use units::mipmap::mipmap_gen_816::{MipmapGen, MipmapParams, Rounding, Scan};
+use verif::cosim::{CosimModel, CosimUnit, ModelSim, Port};
 
 /// Mipmap generator 816 against `rtl/mipmap/mipmap_gen_816.v` (with `level_fig14.v`,
 /// `fifo_fig14.v`) writing the behavioural `frame_store_826.v`. Compared besides its ports:
@@ -28,24 +30,24 @@ impl MipmapCosim {
 }
 
 impl CosimUnit for MipmapCosim {
-    fn name(&self) -> &'static str {
+    fn name(&self) -> &str {
         "mipmap_gen_816"
     }
-    fn top(&self) -> &'static str {
+    fn top(&self) -> &str {
         "mipmap_gen_816_with_store"
     }
-    fn rtl(&self) -> Vec<&'static str> {
-        vec![
+    fn rtl(&self) -> Vec<PathBuf> {
+        twin(vec![
             "mipmap/mipmap_gen_816.v",
             "mipmap/level_fig14.v",
             "mipmap/fifo_fig14.v",
-        ]
+        ])
     }
-    fn bench_rtl(&self) -> Vec<&'static str> {
-        vec![
+    fn bench_rtl(&self) -> Vec<PathBuf> {
+        twin(vec![
             "mipmap/mipmap_gen_816_with_store.v",
             "mipmap/frame_store_826.v",
-        ]
+        ])
     }
     fn parameters(&self) -> Vec<(&'static str, i64)> {
         let p = &self.params;
@@ -99,7 +101,7 @@ impl CosimUnit for MipmapCosim {
             .map(|c| {
                 let (slot, t) = st.draw(&(0u32..8, texel.clone()));
                 // No texel during reset: the first frame starts after it.
-                if c < super::RESET_CYCLES || slot >= self.rate {
+                if c < verif::cosim::RESET_CYCLES || slot >= self.rate {
                     return vec![0, 0, 0];
                 }
                 let mut sof = sent.is_multiple_of(frame);

@@ -1,12 +1,14 @@
 //! Co-simulation adapters of the Figure 6 memory path (Schilling & Knittel): each unit's
 //! model, its twin in `rtl/texmem/`, the twin's parameters from the model's and the stimulus.
 
-use super::{field, CosimModel, CosimUnit, ModelSim, Port};
+use super::twin;
 use hdl::fx::Format;
+use std::path::PathBuf;
 use units::texmem::cache_614::{Lookahead, TextureCache};
 use units::texmem::control_607::{DramCtrl, FillEngine, LookaheadQueue};
 use units::texmem::dram_604::DramParams;
 use units::texmem::layout::{BlockMap, Layout};
+use verif::cosim::{field, CosimModel, CosimUnit, ModelSim, Port};
 
 /// Control unit 607 (word reads, with its page register) driving DRAM 604, against
 /// `rtl/texmem/control_607.v` driving the behavioural `rtl/texmem/dram_604.v`. Compared
@@ -27,17 +29,17 @@ fn dram_probes() -> Vec<Port> {
 }
 
 impl CosimUnit for ControlCosim {
-    fn name(&self) -> &'static str {
+    fn name(&self) -> &str {
         "control_607"
     }
-    fn top(&self) -> &'static str {
+    fn top(&self) -> &str {
         "control_607_with_dram"
     }
-    fn rtl(&self) -> Vec<&'static str> {
-        vec!["texmem/control_607.v"]
+    fn rtl(&self) -> Vec<PathBuf> {
+        twin(vec!["texmem/control_607.v"])
     }
-    fn bench_rtl(&self) -> Vec<&'static str> {
-        vec!["texmem/control_607_with_dram.v", "texmem/dram_604.v"]
+    fn bench_rtl(&self) -> Vec<PathBuf> {
+        twin(vec!["texmem/control_607_with_dram.v", "texmem/dram_604.v"])
     }
     fn parameters(&self) -> Vec<(&'static str, i64)> {
         let p = &self.0;
@@ -131,11 +133,11 @@ pub struct LookaheadCosim {
 const BLOCK_BITS: u32 = 10;
 
 impl CosimUnit for LookaheadCosim {
-    fn name(&self) -> &'static str {
+    fn name(&self) -> &str {
         "lookahead_queue_607"
     }
-    fn rtl(&self) -> Vec<&'static str> {
-        vec!["texmem/lookahead_queue_607.v"]
+    fn rtl(&self) -> Vec<PathBuf> {
+        twin(vec!["texmem/lookahead_queue_607.v"])
     }
     fn parameters(&self) -> Vec<(&'static str, i64)> {
         let mode = match self.mode {
@@ -220,11 +222,11 @@ fn cache_probes(tag_bits: u32) -> Vec<Port> {
 }
 
 impl CosimUnit for CacheCosim {
-    fn name(&self) -> &'static str {
+    fn name(&self) -> &str {
         "cache_614"
     }
-    fn rtl(&self) -> Vec<&'static str> {
-        vec!["texmem/cache_614.v"]
+    fn rtl(&self) -> Vec<PathBuf> {
+        twin(vec!["texmem/cache_614.v"])
     }
     fn parameters(&self) -> Vec<(&'static str, i64)> {
         vec![("TAG_BITS", self.tag_bits.into())]
@@ -306,11 +308,11 @@ impl FillCosim {
 }
 
 impl CosimUnit for FillCosim {
-    fn name(&self) -> &'static str {
+    fn name(&self) -> &str {
         "fill_engine_607"
     }
-    fn rtl(&self) -> Vec<&'static str> {
-        vec!["texmem/fill_engine_607.v"]
+    fn rtl(&self) -> Vec<PathBuf> {
+        twin(vec!["texmem/fill_engine_607.v"])
     }
     fn parameters(&self) -> Vec<(&'static str, i64)> {
         vec![

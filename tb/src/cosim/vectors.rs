@@ -4,18 +4,11 @@
 //! idle cycles until the last result has left the pipeline. The RTL then meets exactly the
 //! transactions whose outputs the bit-accuracy regression pins.
 
-use super::{BlendAdjustCosim, CosimUnit, MipmapCosim, PipelineCosim, RESET_CYCLES};
+use super::{BlendAdjustCosim, MipmapCosim, PipelineCosim};
 use crate::vectors::{mipmap_frame, mipmap_params, normal_samples, MIPMAP_SCANS, NORMAL_GROUPS};
 use units::bump::blend_adjust_153::BlendAdjustParams;
 use units::bump::params::BumpParams;
-
-/// One directed run: a name for its folder, the unit in the vectors' configuration, and the
-/// inputs of every cycle (reset first).
-pub struct Directed {
-    pub label: String,
-    pub unit: Box<dyn CosimUnit>,
-    pub stimulus: Vec<Vec<u64>>,
-}
+use verif::cosim::{Directed, RESET_CYCLES};
 
 /// Idle cycles after the last transaction: longer than any twin's latency.
 const DRAIN: usize = 16;
@@ -29,26 +22,9 @@ fn framed(width: usize, rows: impl IntoIterator<Item = Vec<u64>>) -> Vec<Vec<u64
     v
 }
 
-/// The directed runs of `unit` (one per configuration its vectors cover).
-pub fn regression(unit: &str) -> Result<Vec<Directed>, String> {
-    match unit {
-        "blend_adjust_153" => Ok(vec![blend_adjust()]),
-        "normal_pipeline_fig7" => pipeline(),
-        "mipmap_gen_816" => Ok(mipmap()),
-        _ => Err(format!(
-            "--unit {}: no regression vectors with a twin (there are: {})",
-            formats::shorten(unit),
-            UNITS.join(", ")
-        )),
-    }
-}
-
-/// Units whose regression vectors co-simulate.
-pub const UNITS: [&str; 3] = ["blend_adjust_153", "normal_pipeline_fig7", "mipmap_gen_816"];
-
 /// Unit 153, F = 8, combinational: every `u` in both modes (the vectors' inputs).
-fn blend_adjust() -> Directed {
-    let v = crate::vectors::unit_vectors("blend_adjust_153").expect("built in");
+pub fn blend_adjust() -> Directed {
+    let v = crate::vectors::blend_adjust();
     let rows = v.rows.iter().map(|(i, _)| vec![1, i[0], i[1], i[2]]);
     Directed {
         label: "vectors".into(),
@@ -61,7 +37,7 @@ fn blend_adjust() -> Directed {
 }
 
 /// The FIG. 7 pipeline on each built-in map of the vectors, its 128 samples back to back.
-fn pipeline() -> Result<Vec<Directed>, String> {
+pub fn pipeline() -> Result<Vec<Directed>, String> {
     NORMAL_GROUPS
         .iter()
         .map(|&(filter, map)| {
@@ -89,7 +65,7 @@ fn pipeline() -> Result<Vec<Directed>, String> {
 }
 
 /// The mipmap generator on the vectors' 16x8 frame, interlaced and progressive.
-fn mipmap() -> Vec<Directed> {
+pub fn mipmap() -> Vec<Directed> {
     let frame = mipmap_frame();
     MIPMAP_SCANS
         .iter()

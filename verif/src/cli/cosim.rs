@@ -1,67 +1,77 @@
-//! `texrtl cosim`: a unit's model against its Verilog twin, or against your own Verilog with
-//! the same ports, on every output port of every cycle.
+//! `cosim`: a unit's model against its Verilog twin, or against your own Verilog with the same
+//! ports, on every output port of every cycle (under the unit's compare rules).
 
 use super::CmdError;
+use crate::cosim::{self, Simulator};
+use crate::project::Project;
+use crate::Seed;
 use clap::Args;
 use std::path::PathBuf;
-use tb::cosim::{self, Simulator};
-use verif::Seed;
+use waves::output::shorten;
 
-/// Co-simulate a unit's model and Verilog (its twin in rtl/, or --rtl FILE.v of yours).
+/// Co-simulate a unit's model and Verilog (its twin, or --rtl FILE.v of yours).
 #[derive(Args, Debug)]
 pub struct CosimArgs {
-    /// The unit (its Verilog module name): address_150, texel_fetch_151, replicate_152,
-    /// blend_adjust_153, bilinear_65_68, tangent_155, rsqrt_156, normal_156,
-    /// normal_pipeline_fig7, control_607, lookahead_queue_607, cache_614, fill_engine_607,
-    /// mipmap_gen_816.
+    /// The unit (its Verilog module name; `list` names the units with a twin).
     #[arg(long)]
     pub unit: String,
     /// verilator or icarus.
     #[arg(long, default_value = "verilator")]
     pub sim: String,
     /// Verilog sources of the unit to check instead of its twin (repeatable; they replace all
-    /// of the twin's files, so a unit built on another, as normal_156 on rsqrt_156, needs both;
-    /// the behavioural DRAM of control_607 and frame store of mipmap_gen_816 stay).
+    /// of the twin's own files, so a unit built on another needs both; the testbench-side
+    /// sources, such as behavioural memories, stay).
     #[arg(long)]
     pub rtl: Vec<PathBuf>,
-    /// Cycles to simulate (1..=10000000), seeded random inputs every cycle after 2 cycles of
-    /// reset (video frames for mipmap_gen_816).
+    /// Cycles to simulate (1..=10000000): the unit's seeded stimulus, after its reset cycles.
     #[arg(long, default_value_t = 100_000)]
     pub count: usize,
     /// Stimulus seed.
     #[arg(long, value_parser = Seed::parse, default_value = "0xc051")]
     pub seed: Seed,
-    /// random (seeded, --count cycles) or vectors: the transactions of the unit's regression
-    /// vectors, in their configuration (blend_adjust_153, normal_pipeline_fig7,
-    /// mipmap_gen_816; one run per configuration, in folders under --out).
+    /// random (seeded, --count cycles) or vectors: the unit's directed runs (the transactions
+    /// of its regression vectors, in their configuration; one run per configuration, in
+    /// folders under --out).
     #[arg(long, default_value = "random")]
     pub stimulus: String,
     /// Folder for the testbench, stimulus, RTL outputs and the waveform (default
-    /// target/texrtl-cosim/UNIT-SIM).
+    /// target/NAME-cosim/UNIT-SIM, NAME the program's).
     #[arg(long)]
     pub out: Option<PathBuf>,
 }
 
 /// Runs it: exit 0 when every port agrees on every cycle, 1 at a difference, 2 bad input.
-pub fn run(a: &CosimArgs) -> Result<String, CmdError> {
+pub fn run(project: &Project, a: &CosimArgs) -> Result<String, CmdError> {
     let vectors = match a.stimulus.as_str() {
         "random" => false,
         "vectors" => true,
-        s => return Err(format!("--stimulus {}: random or vectors", formats::shorten(s)).into()),
+        s => return Err(format!("--stimulus {}: random or vectors", shorten(s)).into()),
     };
-    let unit = cosim::unit(&a.unit)?;
+    let unit = project.twin(&a.unit, "--unit")?;
     let sim = Simulator::parse(&a.sim)
-        .ok_or_else(|| format!("--sim {}: verilator or icarus", formats::shorten(&a.sim)))?;
+        .ok_or_else(|| format!("--sim {}: verilator or icarus", shorten(&a.sim)))?;
     if !(1..=10_000_000).contains(&a.count) {
         return Err(format!("--count {}: 1..=10000000 cycles", a.count).into());
     }
     if let Some(f) = a.rtl.iter().find(|f| !f.is_file()) {
         return Err(format!("--rtl {}: no such file", f.display()).into());
     }
-    let runs = if vectors {
-        cosim::vectors::regression(&a.unit)?
-    } else {
-        Vec::new()
+    let runs = match project.get(&a.unit).and_then(|u| u.directed_runs()) {
+        Some(f) if vectors => f()?,
+        None if vectors => {
+            let with: Vec<&str> = project
+                .units()
+                .filter(|u| u.twin_unit().is_some() && u.directed_runs().is_some())
+                .map(|u| u.name())
+                .collect();
+            return Err(format!(
+                "--unit {}: no directed runs with a twin (there are: {})",
+                shorten(&a.unit),
+                with.join(", ")
+            )
+            .into());
+        }
+        _ => Vec::new(),
     };
     sim.check_installed()?;
     let mut made = super::Outputs::default();
@@ -71,21 +81,22 @@ pub fn run(a: &CosimArgs) -> Result<String, CmdError> {
         }
         made.folder(o);
     }
-    made.settle(simulate(a, sim, unit.as_ref(), &runs))
+    made.settle(simulate(project.name(), a, sim, unit, &runs))
 }
 
 /// The co-simulation runs once the options are checked.
 fn simulate(
+    name: &str,
     a: &CosimArgs,
     sim: Simulator,
     unit: &dyn cosim::CosimUnit,
-    runs: &[cosim::vectors::Directed],
+    runs: &[cosim::Directed],
 ) -> Result<String, CmdError> {
     let vectors = a.stimulus == "vectors";
     let dir = a
         .out
         .clone()
-        .unwrap_or_else(|| PathBuf::from(format!("target/texrtl-cosim/{}-{}", a.unit, sim.name())));
+        .unwrap_or_else(|| PathBuf::from(format!("target/{name}-cosim/{}-{}", a.unit, sim.name())));
     if !vectors {
         let r = cosim::run(unit, sim, &a.rtl, a.count, a.seed, &dir).map_err(CmdError::Input)?;
         let what = format!("{} in {} (seed {})", a.unit, sim.name(), a.seed);
@@ -117,7 +128,7 @@ fn report(what: &str, r: &cosim::CosimResult) -> Result<String, CmdError> {
             view.display()
         )),
         Some(d) => {
-            crate::say(&format!("{d}\n"));
+            super::say(&format!("{d}\n"));
             Err(CmdError::Failed(format!(
                 "{what}: {} differences in {} cycles, the first at cycle {} on port {}; waveform: gtkwave {}",
                 r.differences,

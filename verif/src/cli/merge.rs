@@ -1,6 +1,8 @@
-//! `texrtl merge`: the summaries of every shard of a run combined into one.
+//! `merge`: the summaries of every shard of a run combined into one, concluded by the
+//! project's testbenches as an unsharded run is.
 
 use super::{write_out, CmdError};
+use crate::project::Project;
 use clap::Args;
 use std::path::PathBuf;
 
@@ -16,30 +18,26 @@ pub struct MergeArgs {
 }
 
 /// Merges; exit 1 when the merged run failed.
-pub fn run(a: &MergeArgs) -> Result<String, CmdError> {
+pub fn run(project: &Project, a: &MergeArgs) -> Result<String, CmdError> {
     let ins: Vec<_> = a
         .summaries
         .iter()
         .map(|p| ("a summary", p.as_path()))
         .collect();
     super::check_outputs(&[("--out", a.out.as_path())], &ins)?;
-    merge_cmd(&a.out, &a.summaries)
-}
-
-fn merge_cmd(out: &std::path::Path, paths: &[PathBuf]) -> Result<String, CmdError> {
-    let m = tb::regress::merge(paths).map_err(CmdError::Input)?;
+    let m = crate::regress::merge(project, &a.summaries).map_err(CmdError::Input)?;
     let json = serde_json::to_vec_pretty(&m).map_err(|e| CmdError::Failed(e.to_string()))?;
-    write_out(out, &json)?;
+    write_out(&a.out, &json)?;
     let mut s = crate::report::table(&m.testbenches);
     s.push_str(&format!(
         "merged {} shards into {}",
-        paths.len(),
-        out.display()
+        a.summaries.len(),
+        a.out.display()
     ));
     if m.passed {
         Ok(s)
     } else {
-        crate::say(&format!("{s}\n"));
+        super::say(&format!("{s}\n"));
         Err(CmdError::Failed("merged run failed".into()))
     }
 }

@@ -1,38 +1,16 @@
-//! `texrtl regress`: every registered testbench on built-in stimulus, with waveforms and a
-//! summary.
+//! A project's regression: every testbench on its built-in stimulus, the bit-accuracy vectors
+//! and the co-simulation of every twin, with waveforms and `summary.json`; and the merge of
+//! the summaries of a run's shards into the one an unsharded run writes.
 
 use crate::cosim::Simulator;
-use formats::output::write_output;
+use crate::project::Project;
+use crate::TbResult;
+use crate::{Registry, RunOptions, Seed};
 use serde::{Deserialize, Serialize};
 use std::path::PathBuf;
-use verif::TbResult;
-use verif::{Registry, RunOptions, Seed};
 use waves::check::{check_gtkw, read_vcd};
+use waves::output::write_output;
 use waves::TraceConfig;
-
-/// Every testbench of the project, in the order `texrtl regress` runs and reports them.
-pub fn registry() -> Registry {
-    let mut r = Registry::new();
-    r.register(Box::new(crate::blend_adjust::BlendAdjustTb::default()))
-        .register(Box::new(crate::normals::NormalsTb))
-        .register(Box::new(crate::mipmap::MipmapTb))
-        .register(Box::new(crate::dram::DramTb))
-        .register(Box::new(crate::texture::TextureTb))
-        .register(Box::new(crate::texram::TexramTb))
-        .register(Box::new(crate::texram_video::VideoPortTb))
-        .register(Box::new(crate::footprint::FootprintTb))
-        .register(Box::new(crate::footprint_normals::FootprintNormalsTb))
-        .register(Box::new(crate::volume::VolumeTb))
-        .register(Box::new(crate::mapchain::WalkerTb))
-        .register(Box::new(crate::ptm::PtmFitterTb))
-        .register(Box::new(crate::ptm::PtmShaderTb))
-        .register(Box::new(crate::tangents::TangentSetupTb))
-        .register(Box::new(crate::frames::FrameUnitTb))
-        .register(Box::new(crate::frames::ParallaxTb))
-        .register(Box::new(crate::derivative::DerivativeTb))
-        .register(Box::new(crate::biquadratic::BiquadraticTb));
-    r
-}
 
 /// The name of the bit-accuracy vectors row (a check of fixed stimuli, not a testbench).
 pub const VECTORS: &str = "vectors";
@@ -40,9 +18,10 @@ pub const VECTORS: &str = "vectors";
 /// The prefix of the co-simulation rows (`cosim/<unit>/<simulator>`; `--only cosim`).
 pub const COSIM: &str = "cosim";
 
-/// `summary.json`: every result, the seed, the shard and the tool version.
+/// `summary.json`: every result, the seed, the shard and the project's version.
 #[derive(Clone, Serialize, Deserialize)]
 pub struct Summary {
+    /// The version of the project that wrote it (shards of different versions do not merge).
     pub texrtl: String,
     pub seed: String,
     /// `I/N` when the run was one shard of N.
@@ -62,7 +41,7 @@ pub struct RegressConfig {
     /// The clock period of every waveform; `None`: each testbench's own clock.
     pub period_ps: Option<u64>,
     /// This run's share of the configurations.
-    pub shard: verif::Shard,
+    pub shard: crate::Shard,
     /// Random transactions per configuration (`None`: each testbench's default).
     pub count: Option<usize>,
     /// Also write each waveform as FST (made from the VCD, checked against it).
@@ -120,11 +99,12 @@ impl RegressConfig {
 /// `("", "vectors and waveforms")`). `Err` is for bad options and I/O failures; mismatches
 /// are in the results.
 pub fn regress(
+    project: &Project,
     cfg: &RegressConfig,
     progress: &mut dyn FnMut(&str, &str),
 ) -> Result<Summary, String> {
-    let reg = registry();
-    cfg.validate(&reg)?;
+    let reg = project.registry();
+    cfg.validate(reg)?;
     std::fs::create_dir_all(&cfg.out).map_err(|e| format!("{}: {e}", cfg.out.display()))?;
     let opts = RunOptions {
         seed: cfg.seed,
@@ -139,23 +119,23 @@ pub fn regress(
     let mut results = Vec::new();
     for tb in reg.iter().filter(|t| cfg.selected(t.name())) {
         let name = tb.name();
-        let r = verif::run_testbench(tb, &opts, &mut |label| progress(name, label))?;
+        let r = crate::run_testbench(tb, &opts, &mut |label| progress(name, label))?;
         results.push(r);
     }
     progress("", "vectors and waveforms");
-    // Bit-accuracy vectors of this source tree, when it is there (not for an installed binary);
-    // checked by the first shard.
-    let dir = crate::vectors::vectors_dir();
-    if dir.is_dir() && cfg.shard.index == 1 && cfg.selected(VECTORS) {
-        results.push(vectors_row(&dir));
+    // Bit-accuracy vectors of the project's source tree, when it is there (not for an
+    // installed binary); checked by the first shard.
+    let dir = project.kept_vectors().filter(|d| d.is_dir());
+    if let Some(dir) = dir.filter(|_| cfg.shard.index == 1 && cfg.selected(VECTORS)) {
+        results.push(vectors_row(project, dir));
     }
     if cfg.cosim && cfg.shard.index == 1 && cfg.selected(COSIM) {
         for sim in [Simulator::Verilator, Simulator::Icarus] {
             if sim.check_installed().is_err() {
                 continue;
             }
-            for unit in crate::cosim::UNITS {
-                progress(COSIM, &format!("{unit} in {}", sim.name()));
+            for unit in project.twins() {
+                progress(COSIM, &format!("{} in {}", unit.name(), sim.name()));
                 results.push(cosim_row(unit, sim, cfg)?);
             }
         }
@@ -164,7 +144,7 @@ pub fn regress(
         check_waveform(r, cfg.fst);
     }
     let summary = Summary {
-        texrtl: env!("CARGO_PKG_VERSION").to_string(),
+        texrtl: project.version().to_string(),
         seed: cfg.seed.to_string(),
         shard: (!cfg.shard.is_all()).then(|| cfg.shard.to_string()),
         passed: results.iter().all(|r| r.passed),
@@ -180,16 +160,20 @@ pub fn regress(
 const COSIM_CYCLES: [usize; 2] = [100_000, 20_000];
 
 /// A twin against its model as a row of the table: `cosim/<unit>/<simulator>`.
-fn cosim_row(unit: &str, sim: Simulator, cfg: &RegressConfig) -> Result<TbResult, String> {
-    let u = crate::cosim::unit(unit)?;
+fn cosim_row(
+    u: &dyn crate::cosim::CosimUnit,
+    sim: Simulator,
+    cfg: &RegressConfig,
+) -> Result<TbResult, String> {
+    let unit = u.name();
     let name = format!("{COSIM}/{unit}/{}", sim.name());
     let mut r = TbResult::new(
         &name,
-        "the model against its Verilog twin (rtl/), every output port on every cycle",
+        "the model against its Verilog twin, every output port on every cycle",
     );
     let n = COSIM_CYCLES[usize::from(sim == Simulator::Icarus)];
     let dir = cfg.out.join(COSIM).join(format!("{unit}-{}", sim.name()));
-    let c = crate::cosim::run(u.as_ref(), sim, &[], n, cfg.seed, &dir)?;
+    let c = crate::cosim::run(u, sim, &[], n, cfg.seed, &dir)?;
     r.transactions = c.cycles as u64;
     r.cycles = c.cycles as u64;
     r.mismatches = c.differences;
@@ -211,12 +195,12 @@ fn cosim_row(unit: &str, sim: Simulator, cfg: &RegressConfig) -> Result<TbResult
 }
 
 /// The vectors check as a row of the table.
-fn vectors_row(dir: &std::path::Path) -> TbResult {
-    let mut r = TbResult::new(VECTORS, "bit-accuracy regression vectors (golden/vectors/)");
+fn vectors_row(project: &Project, dir: &std::path::Path) -> TbResult {
+    let mut r = TbResult::new(VECTORS, "bit-accuracy regression vectors (fixed stimuli)");
     r.coverage_percent = 100.0;
-    match crate::vectors::check(dir) {
+    match crate::vectors::check(dir, project.vectors()) {
         Ok(d) => {
-            r.transactions = crate::vectors::UNITS.len() as u64;
+            r.transactions = project.vectors().count() as u64;
             r.mismatches = d.len() as u64;
             r.mismatch_log = d;
         }
@@ -257,36 +241,41 @@ fn fail_waveform(r: &mut TbResult, e: String) {
 /// `texrtl merge`: combines the `summary.json` of every shard of one run into one: counts and
 /// error statistics add up, coverage is merged bin by bin (a hole fails only if no shard hit
 /// it). Errors name the file and the problem.
-pub fn merge(paths: &[PathBuf]) -> Result<Summary, String> {
+pub fn merge(project: &Project, paths: &[PathBuf]) -> Result<Summary, String> {
     let mut shards: Vec<(PathBuf, Summary)> = Vec::new();
     for p in paths {
         let b = std::fs::read(p).map_err(|e| format!("{}: {e}", p.display()))?;
         shards.push((p.clone(), parse_summary(p, &b)?));
     }
-    merge_shards(&shards)
+    merge_shards(project, &shards)
 }
 
 /// A `summary.json`'s bytes (`path` names it in the message).
 pub fn parse_summary(path: &std::path::Path, b: &[u8]) -> Result<Summary, String> {
     let s: Summary = serde_json::from_slice(b).map_err(|e| {
-        let e = formats::shorten(&e.to_string());
+        let e = waves::output::shorten(&e.to_string());
         format!("{}: not a texrtl summary.json: {e}", path.display())
     })?;
     for r in &s.testbenches {
         if let Some(c) = &r.coverage {
-            c.validate()
-                .map_err(|e| format!("{}: {}: {e}", path.display(), formats::shorten(&r.name)))?;
+            c.validate().map_err(|e| {
+                format!(
+                    "{}: {}: {e}",
+                    path.display(),
+                    waves::output::shorten(&r.name)
+                )
+            })?;
         }
     }
     Ok(s)
 }
 
 /// [`merge`] of summaries already read, each with the path its messages name.
-pub fn merge_shards(shards: &[(PathBuf, Summary)]) -> Result<Summary, String> {
+pub fn merge_shards(project: &Project, shards: &[(PathBuf, Summary)]) -> Result<Summary, String> {
     let (first_path, first) = shards.first().ok_or("merge: no summary.json given")?;
-    let parse = |p: &PathBuf, s: &Summary| -> Result<verif::Shard, String> {
+    let parse = |p: &PathBuf, s: &Summary| -> Result<crate::Shard, String> {
         match &s.shard {
-            Some(x) => verif::Shard::parse(x).map_err(|e| format!("{}: {e}", p.display())),
+            Some(x) => crate::Shard::parse(x).map_err(|e| format!("{}: {e}", p.display())),
             None => Err(format!(
                 "{}: not a shard (run with --shard I/N)",
                 p.display()
@@ -302,9 +291,9 @@ pub fn merge_shards(shards: &[(PathBuf, Summary)]) -> Result<Summary, String> {
             return Err(format!(
                 "{}: written by texrtl {}, {} by texrtl {}: merge the shards of one version",
                 p.display(),
-                formats::shorten(&s.texrtl),
+                waves::output::shorten(&s.texrtl),
                 first_path.display(),
-                formats::shorten(&first.texrtl)
+                waves::output::shorten(&first.texrtl)
             ));
         }
         if s.seed != first.seed || sh.count != n {
@@ -324,7 +313,7 @@ pub fn merge_shards(shards: &[(PathBuf, Summary)]) -> Result<Summary, String> {
     if let Some(i) = (1..=n).find(|i| !seen.contains(i)) {
         return Err(format!("merge: shard {i}/{n} is missing"));
     }
-    let reg = registry();
+    let reg = project.registry();
     let mut merged: Vec<TbResult> = Vec::new();
     for (p, s) in shards {
         for r in &s.testbenches {
@@ -342,7 +331,7 @@ pub fn merge_shards(shards: &[(PathBuf, Summary)]) -> Result<Summary, String> {
     merged.sort_by_key(|m| reg.position(&m.name).unwrap_or(usize::MAX));
     for m in &mut merged {
         match reg.get(&m.name) {
-            Some(tb) => verif::conclude(tb, m, true),
+            Some(tb) => crate::conclude(tb, m, true),
             None => m.finish_with(true),
         }
     }
@@ -353,45 +342,4 @@ pub fn merge_shards(shards: &[(PathBuf, Summary)]) -> Result<Summary, String> {
         passed: merged.iter().all(|m| m.passed),
         testbenches: merged,
     })
-}
-
-#[cfg(test)]
-mod tests {
-    use super::*;
-    use verif::Shard;
-
-    /// The shards of every split deal out each configuration once: their counts add up to the
-    /// whole run's, testbench by testbench and over all.
-    #[test]
-    fn shards_own_every_configuration_once() {
-        let reg = registry();
-        let whole: u64 = reg.iter().map(|t| t.configurations().len() as u64).sum();
-        assert!(
-            whole > reg.names().len() as u64,
-            "some testbench has several"
-        );
-        assert_eq!(reg.owned_configurations(Shard::default(), &[]), whole);
-        for count in [2, 3, 7] {
-            let shards = (1..=count).map(|index| Shard { index, count });
-            let parts: Vec<u64> = shards.map(|s| reg.owned_configurations(s, &[])).collect();
-            assert_eq!(parts.iter().sum::<u64>(), whole, "{count} shards");
-        }
-        for (i, t) in reg.iter().enumerate() {
-            let only = [t.name().to_string()];
-            let n = reg.owned_configurations(Shard::default(), &only);
-            assert_eq!(n, t.configurations().len() as u64, "{}", t.name());
-            assert_eq!(reg.position(t.name()), Some(i));
-        }
-    }
-
-    /// The progress line's unit: the default for a testbench of random transactions, its own
-    /// for one that counts something else.
-    #[test]
-    fn each_testbench_says_what_its_count_counts() {
-        let reg = registry();
-        let unit = |n: &str| reg.get(n).unwrap().count_unit();
-        assert_eq!(unit(crate::blend_adjust::NAME), "random transactions");
-        assert_ne!(unit(crate::texture::NAME), "random transactions");
-        assert!(reg.iter().all(|t| !t.count_unit().is_empty()));
-    }
 }

@@ -1,19 +1,23 @@
-//! `texrtl regress` (the default command): every registered testbench on built-in stimulus,
-//! the table, `summary.json`, the pictures and `report.md`.
+//! `regress` (the default command): every testbench of the project on built-in stimulus, the
+//! vectors check, the co-simulation of every twin, the table, `summary.json`, the pictures
+//! and `report.md`.
 
+use super::{fail, say};
+use crate::project::Project;
+use crate::regress::{regress, RegressConfig};
+use crate::{Seed, Shard};
 use clap::Args;
 use std::path::PathBuf;
 use std::process::ExitCode;
-use tb::regress::{regress, RegressConfig};
-use verif::{Seed, Shard};
 use waves::TraceConfig;
 
 /// Run every testbench on built-in stimulus (the default command).
 #[derive(Args, Clone, Debug)]
 pub struct RegressArgs {
-    /// Directory for VCDs, .gtkw files and summary.json.
-    #[arg(long, default_value = "target/texrtl")]
-    out: PathBuf,
+    /// Directory for VCDs, .gtkw files, summary.json and report.md (default target/NAME, NAME
+    /// the program's).
+    #[arg(long)]
+    out: Option<PathBuf>,
     /// Stimulus seed (hex 0x... or decimal); the run prints it, and the same seed replays it.
     #[arg(long, value_parser = Seed::parse, default_value = "0x7e47")]
     seed: Seed,
@@ -34,12 +38,11 @@ pub struct RegressArgs {
     /// testbench's own clock, 10 ns for the FIG. 7 and FIG. 14 units, 5 ns for the memory path).
     #[arg(long)]
     period_ps: Option<u64>,
-    /// Rewrite the bit-accuracy vectors under golden/vectors/ after a deliberate change, and
-    /// print what changed.
+    /// Rewrite the kept bit-accuracy vectors after a deliberate change, and print what changed.
     #[arg(long)]
     bless: bool,
     /// Run only shard I of N (configurations dealt round-robin; merge the summaries with
-    /// `texrtl merge`).
+    /// `merge`).
     #[arg(long, value_parser = Shard::parse, default_value = "1/1")]
     shard: Shard,
     /// Random transactions per configuration (default: each testbench's own).
@@ -79,20 +82,25 @@ fn parse_window(s: &str) -> Result<(u64, u64), String> {
 }
 
 /// Runs the regression; exit 0 all passed, 1 a testbench failed, 2 bad input.
-pub fn run(a: RegressArgs) -> ExitCode {
+pub fn run(project: &Project, a: RegressArgs) -> ExitCode {
+    let name = project.name();
     if a.list {
-        crate::say(&list_testbenches());
+        say(&list_testbenches(project));
         return ExitCode::SUCCESS;
     }
-    if a.out.exists() && !a.out.is_dir() {
-        return crate::fail(format!(
-            "--out {}: exists and is not a directory",
-            a.out.display()
-        ));
+    let out = a
+        .out
+        .clone()
+        .unwrap_or_else(|| PathBuf::from("target").join(name));
+    if out.exists() && !out.is_dir() {
+        return fail(
+            name,
+            format!("--out {}: exists and is not a directory", out.display()),
+        );
     }
     let bless = a.bless;
     let cfg = RegressConfig {
-        out: a.out,
+        out,
         seed: a.seed,
         vcd: !a.no_vcd,
         trace: TraceConfig {
@@ -115,48 +123,67 @@ pub fn run(a: RegressArgs) -> ExitCode {
         }),
     };
     if let Err(e) = cfg.trace.validate() {
-        return crate::fail(format!("--period-ps/--trace-window: {e}"));
+        return fail(name, format!("--period-ps/--trace-window: {e}"));
     }
-    if let Err(e) = cfg.validate(&tb::regress::registry()) {
-        return crate::fail(e);
+    if let Err(e) = cfg.validate(project.registry()) {
+        return fail(name, e);
+    }
+    if bless && project.kept_vectors().is_none() {
+        return fail(
+            name,
+            "--bless: the project keeps no vectors (Project::vectors_dir)",
+        );
     }
     // On an I/O error, what this run made in the output folder goes (a failed testbench
     // keeps its waves and report).
     let mut made = super::Outputs::default();
     made.folder(&cfg.out);
     eprintln!(
-        "texrtl regress: seed {} (replay with --seed {})",
+        "{name} regress: seed {} (replay with --seed {})",
         cfg.seed, cfg.seed
     );
+    run_checked(project, &cfg, bless, &made)
+}
+
+/// The regression once its options are checked: the run, the report, the table and the
+/// blessing; exit 0 all passed, 1 a testbench failed, 2 bad input or an I/O error (which
+/// removes what the run made in the output folder: a failed testbench keeps its waves).
+fn run_checked(
+    project: &Project,
+    cfg: &RegressConfig,
+    bless: bool,
+    made: &super::Outputs,
+) -> ExitCode {
+    let name = project.name();
     // A progress bar on stderr, one step per configuration (hidden when stderr is not a
     // terminal).
-    let reg = tb::regress::registry();
+    let reg = project.registry();
     let bar = indicatif::ProgressBar::new(reg.owned_configurations(cfg.shard, &cfg.only));
     bar.set_style(
         indicatif::ProgressStyle::with_template("{bar:30} {pos}/{len} {msg}")
             .unwrap_or_else(|_| indicatif::ProgressStyle::default_bar()),
     );
-    let done = regress(&cfg, &mut |tb, label| {
+    let done = regress(project, cfg, &mut |tb, label| {
         bar.set_message(format!("{tb}: {label}"));
         if !tb.is_empty() {
             bar.inc(1);
         }
     })
-    .and_then(|s| crate::report::write_report(&cfg.out, &s).map(|_| s));
+    .and_then(|s| crate::report::write_report(project, &cfg.out, &s).map(|_| s));
     bar.finish_and_clear();
     match done {
         Ok(summary) => {
             let results = summary.testbenches;
-            crate::say(&crate::report::render(&results, &cfg));
-            if bless {
-                match tb::vectors::bless(&tb::vectors::vectors_dir()) {
-                    Ok(changed) if changed.is_empty() => crate::say("vectors: unchanged\n"),
+            say(&crate::report::render(&results, cfg));
+            if let Some(dir) = project.kept_vectors().filter(|_| bless) {
+                match crate::vectors::bless(dir, project.vectors()) {
+                    Ok(changed) if changed.is_empty() => say("vectors: unchanged\n"),
                     Ok(changed) => {
                         for c in changed {
-                            crate::say(&format!("vectors blessed: {c}\n"));
+                            say(&format!("vectors blessed: {c}\n"));
                         }
                     }
-                    Err(e) => return crate::fail(e),
+                    Err(e) => return fail(name, e),
                 }
             }
             if results.iter().all(|r| r.passed) {
@@ -167,15 +194,15 @@ pub fn run(a: RegressArgs) -> ExitCode {
         }
         Err(e) => {
             made.remove_new();
-            crate::fail(e)
+            fail(name, e)
         }
     }
 }
 
-/// `texrtl regress --list`.
-fn list_testbenches() -> String {
+/// `regress --list`.
+fn list_testbenches(project: &Project) -> String {
     let mut s = String::new();
-    for tb in tb::regress::registry().iter() {
+    for tb in project.registry().iter() {
         let c = tb.configurations();
         s.push_str(&format!(
             "{}: {}
@@ -196,10 +223,12 @@ fn list_testbenches() -> String {
             ));
         }
     }
-    s.push_str(&format!(
-        "{}: the bit-accuracy vectors under golden/vectors/ (fixed stimuli)
-",
-        tb::regress::VECTORS
-    ));
+    if let Some(dir) = project.kept_vectors() {
+        s.push_str(&format!(
+            "{}: the bit-accuracy vectors kept in {} (fixed stimuli)\n",
+            crate::regress::VECTORS,
+            dir.display()
+        ));
+    }
     s
 }

@@ -1,0 +1,278 @@
+//! The command line as a library: `regress` (the default), `merge`, `cosim`, `vectors`,
+//! `bench` and `list`, for any [`Project`]. A program's `main` is one call:
+//!
+//! ```no_run
+//! use verif::project::{Project, Unit};
+//! fn main() -> std::process::ExitCode {
+//!     let project = Project::new("mychip", env!("CARGO_PKG_VERSION"))
+//!         .unit(Unit::new("alu_7", "the ALU of figure 7"));
+//!     verif::cli::main(&project)
+//! }
+//! ```
+//!
+//! and [`main_with`] adds the program's own subcommands beside them. Exit status: 0 passed,
+//! 1 a check failed (a testbench, a co-simulation, a vectors check), 2 bad input (one line on
+//! stderr naming the option or file). The output files and their names are the same for every
+//! project.
+
+mod bench;
+mod cosim;
+mod merge;
+mod outputs;
+mod regress;
+mod vectors;
+
+pub use bench::{run as bench, BenchArgs};
+pub use cosim::CosimArgs;
+pub use merge::MergeArgs;
+pub use outputs::Outputs;
+pub use regress::RegressArgs;
+pub use vectors::VectorsArgs;
+
+use crate::project::Project;
+use clap::{CommandFactory, FromArgMatches, Parser, Subcommand};
+use std::process::ExitCode;
+
+#[derive(Parser)]
+#[command(args_conflicts_with_subcommands = true)]
+struct Cli<E: Subcommand> {
+    #[command(subcommand)]
+    cmd: Option<Cmd<E>>,
+    #[command(flatten)]
+    regress: RegressArgs,
+}
+
+#[derive(Subcommand)]
+enum Cmd<E: Subcommand> {
+    /// Run every testbench on built-in stimulus, check the vectors, co-simulate every twin (the
+    /// default command).
+    Regress(RegressArgs),
+    /// Combine the summary.json files of all shards of a run into one.
+    Merge(MergeArgs),
+    /// Co-simulate a unit's model and Verilog (its twin, or --rtl FILE.v of yours): every
+    /// output port compared on every cycle.
+    Cosim(CosimArgs),
+    /// Check, bless or export the bit-accuracy vectors.
+    Vectors(VectorsArgs),
+    /// Every twin against Verilator on the same stimulus: cycles per second, untraced and traced.
+    Bench(BenchArgs),
+    /// The project's units: testbenches, twin, vectors.
+    List,
+    #[command(flatten)]
+    Own(E),
+}
+
+/// A program with no subcommands of its own.
+#[derive(Subcommand, Debug)]
+pub enum NoCommands {}
+
+/// Runs the command line of `project`: `regress`, `merge`, `cosim`, `vectors`, `bench`, `list`.
+pub fn main(project: &Project) -> ExitCode {
+    main_with(project, "", |c: NoCommands| match c {})
+}
+
+/// [`main`] with the program's own subcommands `E` beside the framework's, run by `own`;
+/// `about` is the program's one-line description in `--help`.
+pub fn main_with<E: Subcommand>(
+    project: &Project,
+    about: &'static str,
+    own: impl FnOnce(E) -> ExitCode,
+) -> ExitCode {
+    let name = project.name();
+    let cmd = Cli::<E>::command()
+        .name(name)
+        .bin_name(name)
+        .version(project.version())
+        .about(about);
+    let parsed = cmd
+        .try_get_matches()
+        .and_then(|m| Cli::<E>::from_arg_matches(&m));
+    let cli = match parsed {
+        Ok(c) => c,
+        Err(e) => return clap_error(name, e),
+    };
+    match cli.cmd {
+        None => regress::run(project, cli.regress),
+        Some(Cmd::Regress(a)) => regress::run(project, a),
+        Some(Cmd::Merge(a)) => finish(name, merge::run(project, &a)),
+        Some(Cmd::Cosim(a)) => finish(name, cosim::run(project, &a)),
+        Some(Cmd::Vectors(a)) => finish(name, vectors::run(project, &a)),
+        Some(Cmd::Bench(a)) => finish(name, bench::run(project, &a)),
+        Some(Cmd::List) => {
+            say(&list(project));
+            ExitCode::SUCCESS
+        }
+        Some(Cmd::Own(e)) => own(e),
+    }
+}
+
+/// Help and version exit 0; any other parse error is one line, exit 2.
+fn clap_error(name: &str, e: clap::Error) -> ExitCode {
+    use clap::error::ErrorKind;
+    if matches!(e.kind(), ErrorKind::DisplayHelp | ErrorKind::DisplayVersion) {
+        let _ = e.print();
+        return ExitCode::SUCCESS;
+    }
+    let text = e.to_string();
+    let first = text.lines().next().unwrap_or("bad arguments");
+    let first = first.strip_prefix("error: ").unwrap_or(first);
+    fail(name, format!("{first} (see {name} --help)"))
+}
+
+/// A command's result as its exit status: its message on stdout (0), or one line on stderr
+/// (2 for bad input, 1 for a failed check).
+pub fn finish(name: &str, r: Result<String, CmdError>) -> ExitCode {
+    match r {
+        Ok(msg) => {
+            say(&format!("{msg}\n"));
+            ExitCode::SUCCESS
+        }
+        Err(CmdError::Input(e)) => fail(name, e),
+        Err(CmdError::Failed(e)) => {
+            eprintln!("{name}: {}", one_line(&e));
+            ExitCode::from(1)
+        }
+    }
+}
+
+/// Writes to stdout; a closed pipe (`prog | head`) is not an error worth a panic.
+pub fn say(s: &str) {
+    use std::io::Write;
+    let _ = std::io::stdout().lock().write_all(s.as_bytes());
+}
+
+/// Bad input: one line on stderr, exit status 2.
+pub fn fail(name: &str, msg: impl std::fmt::Display) -> ExitCode {
+    eprintln!("{name}: {}", one_line(&msg.to_string()));
+    ExitCode::from(2)
+}
+
+/// A message kept on one line: a newline or other control character in it (a file name can
+/// hold one) is shown escaped.
+pub fn one_line(s: &str) -> String {
+    s.chars()
+        .flat_map(|c| {
+            if c.is_control() {
+                c.escape_default().collect::<Vec<_>>()
+            } else {
+                vec![c]
+            }
+        })
+        .collect()
+}
+
+/// `list`: every unit with its testbenches, twin and vectors.
+pub fn list(project: &Project) -> String {
+    let mut s = String::new();
+    for u in project.units() {
+        let tbs = project.testbenches_of(u.name());
+        let mut has = Vec::new();
+        if !tbs.is_empty() {
+            has.push(format!("testbench {}", tbs.join(", ")));
+        }
+        if let Some(t) = u.twin_unit() {
+            has.push(format!("twin {} ({} files)", t.top(), t.rtl().len()));
+        }
+        if u.vectors_fn().is_some() {
+            has.push("vectors".to_string());
+        }
+        if u.pictures_fn().is_some() {
+            has.push("pictures".to_string());
+        }
+        s.push_str(&format!(
+            "{}: {}\n  {}\n",
+            u.name(),
+            u.about(),
+            has.join("; ")
+        ));
+    }
+    s
+}
+
+use std::path::Path;
+
+/// A command's failure: bad input (exit 2) or a run that failed (exit 1).
+#[derive(Debug)]
+pub enum CmdError {
+    Input(String),
+    Failed(String),
+}
+
+impl From<String> for CmdError {
+    fn from(s: String) -> Self {
+        CmdError::Input(s)
+    }
+}
+
+/// Bad input: a [`CmdError::Input`].
+pub fn input(e: String) -> CmdError {
+    CmdError::Input(e)
+}
+
+/// An output path must not be a directory and its directory must exist.
+pub fn check_out(path: &Path) -> Result<(), CmdError> {
+    if path.is_dir() {
+        return Err(input(format!("{}: is a directory", path.display())));
+    }
+    match path.parent() {
+        Some(d) if !d.as_os_str().is_empty() && !d.is_dir() => Err(input(format!(
+            "{}: directory {} does not exist",
+            path.display(),
+            d.display()
+        ))),
+        _ => Ok(()),
+    }
+}
+
+/// Whether two paths name one file: the same absolute path, or (when both exist) the same
+/// file after links are resolved.
+pub fn same_file(a: &Path, b: &Path) -> bool {
+    let abs = |p: &Path| std::path::absolute(p).ok();
+    if abs(a).is_some() && abs(a) == abs(b) {
+        return true;
+    }
+    matches!((a.canonicalize(), b.canonicalize()), (Ok(x), Ok(y)) if x == y)
+}
+
+/// Every output of a command, checked before any work: each one's folder exists and it is
+/// not a folder, no two are the same file, and none is one of the inputs (which it would
+/// overwrite). `outs` and `ins` pair each path with its option's name, which the one-line
+/// message names.
+pub fn check_outputs(outs: &[(&str, &Path)], ins: &[(&str, &Path)]) -> Result<(), CmdError> {
+    for (k, (opt, path)) in outs.iter().enumerate() {
+        check_out(path).map_err(|e| match e {
+            CmdError::Input(m) => input(format!("{opt} {m}")),
+            other => other,
+        })?;
+        let earlier = outs[..k].iter().chain(ins);
+        if let Some((other, _)) = earlier.clone().find(|(_, q)| same_file(path, q)) {
+            let what = if ins.iter().any(|(o, _)| o == other) {
+                "the input"
+            } else {
+                "the output"
+            };
+            return Err(input(format!(
+                "{opt} {}: the same file as {what} {other}: choose another",
+                path.display()
+            )));
+        }
+    }
+    Ok(())
+}
+
+/// Writes an output file atomically; an I/O error is bad input naming the file.
+pub fn write_out(path: &Path, bytes: &[u8]) -> Result<(), CmdError> {
+    check_out(path)?;
+    waves::output::write_output(path, bytes).map_err(|e| input(e.to_string()))
+}
+
+/// A finite number (a clap value parser).
+pub fn parse_finite(s: &str) -> Result<f64, String> {
+    match s.parse::<f64>() {
+        Ok(x) if x.is_finite() => Ok(x),
+        _ => Err(format!(
+            "'{}' is not a finite number",
+            waves::output::shorten(s)
+        )),
+    }
+}

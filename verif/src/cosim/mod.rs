@@ -1,0 +1,699 @@
+//! Co-simulation: a unit's Rust model and a Verilog implementation with the same ports (a twin
+//! kept beside the model, or anyone's own) driven with the same inputs on every cycle, every
+//! output port compared on every cycle (or only when its qualifier says the value is valid,
+//! under its mask), the first difference reported with its cycle, port, both values and the
+//! inputs that led to it, and one waveform holding both.
+//!
+//! The RTL runs in a generated SystemVerilog testbench that replays the stimulus with
+//! `$readmemh` and writes every output port every cycle with `$fwrite` (Verilator with
+//! `--timing`, its runtime reused between builds, see `verilator.rs`, or Icarus `iverilog
+//! -g2012`); the Rust side then compares. This costs a file per run but needs no C++ glue or
+//! FFI, runs unchanged in both simulators, and leaves the testbench, stimulus and outputs in
+//! the run's folder for the RTL engineer to rerun by hand.
+//!
+//! A unit reaches co-simulation through [`CosimUnit`]: its model (usually a [`ModelSim`] of
+//! its [`Module`]), its Verilog sources and top module, its parameters, its stimulus, and the
+//! [`Clocking`] and [`Compare`] rules of its ports.
+
+use hdl::fx::{Format, Fx};
+use hdl::kernel::{Dir, Module, Signal, Sim, Visitor};
+use std::path::{Path, PathBuf};
+use std::process::Command;
+
+mod rtl;
+mod verilator;
+
+pub use rtl::verilog_range;
+
+/// A port of the unit's top: its name and format.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Port {
+    pub name: String,
+    pub fmt: Format,
+}
+
+impl Port {
+    /// An unsigned integer port of `width` bits.
+    pub fn uint(name: impl Into<String>, width: u32) -> Port {
+        Port {
+            name: name.into(),
+            fmt: Format::uint(width),
+        }
+    }
+}
+
+/// The model's side of a co-simulation: the top's ports and one cycle at a time.
+pub trait CosimModel {
+    /// Input and output ports of the top, in declaration (visit) order.
+    fn ports(&self) -> (Vec<Port>, Vec<Port>);
+    /// One cycle: reset, inputs (raw bits in input-port order), settle, the outputs' bits in
+    /// output-port order, then the clock edge.
+    fn cycle(&mut self, rst: bool, inputs: &[u64]) -> Vec<u64>;
+    /// A benchmark run of the design as built (not as [`CosimModel::cycle`] left it): `stim`
+    /// driven cycle by cycle (the first `resets` in reset), no schedule check, no output read;
+    /// untraced, or traced (every signal, no `real` companions). Returns the time of the cycle
+    /// loop with the trace's final flush.
+    fn bench(
+        &self,
+        stim: &[Vec<u64>],
+        resets: usize,
+        trace: BenchTrace,
+    ) -> Result<std::time::Duration, String>;
+}
+
+/// What a benchmark run writes.
+#[derive(Clone, Copy, Debug)]
+pub enum BenchTrace<'a> {
+    None,
+    Vcd(&'a Path),
+    /// FST written while simulating ([`waves::FstTracer`]).
+    Fst(&'a Path),
+}
+
+/// The cycle loop of a benchmark run; its time, the trace finished.
+fn bench_loop<M: Module, T: hdl::kernel::Trace>(
+    mut sim: Sim<M, T>,
+    stim: &[Vec<u64>],
+    resets: usize,
+    drive: fn(&mut M, &[u64]),
+) -> std::io::Result<std::time::Duration> {
+    // One contiguous array, as the Verilator side replays it: no pointer per cycle.
+    let n = stim.first().map_or(0, Vec::len);
+    let flat: Vec<u64> = stim.iter().flatten().copied().collect();
+    assert_eq!(flat.len(), n * stim.len(), "every cycle drives every input");
+    let t0 = std::time::Instant::now();
+    for c in 0..stim.len() {
+        sim.set_reset(c < resets);
+        drive(&mut sim.dut, &flat[c * n..(c + 1) * n]);
+        sim.eval();
+        sim.tick();
+    }
+    sim.finish()?;
+    Ok(t0.elapsed())
+}
+
+/// A co-simulation model of a [`Module`] whose inputs `drive` sets from raw bits.
+pub struct ModelSim<M: Module> {
+    sim: Sim<M>,
+    /// The design as built, for benchmark runs.
+    pristine: M,
+    drive: fn(&mut M, &[u64]),
+    /// Values inside the model compared as further output ports (see [`ModelSim::probes`]).
+    probes: Vec<Port>,
+    probe: fn(&M) -> Vec<u64>,
+}
+
+impl<M: Module + Clone> ModelSim<M> {
+    pub fn new(dut: M, drive: fn(&mut M, &[u64])) -> Self {
+        ModelSim {
+            pristine: dut.clone(),
+            sim: Sim::new(dut).check_schedule(true),
+            drive,
+            probes: Vec::new(),
+            probe: |_| Vec::new(),
+        }
+    }
+
+    /// Compares `ports` too, after the top's outputs: `probe` reads them from the settled
+    /// model (signals of a child, such as the pins a controller drives, or counters the RTL
+    /// brings out as ports).
+    pub fn probes(mut self, ports: Vec<Port>, probe: fn(&M) -> Vec<u64>) -> Self {
+        self.probes = ports;
+        self.probe = probe;
+        self
+    }
+}
+
+/// The top's own ports (depth 1 of the hierarchy), by direction.
+struct TopPorts {
+    depth: usize,
+    inputs: Vec<Port>,
+    outputs: Vec<Port>,
+    out_bits: Vec<u64>,
+}
+
+impl Visitor for TopPorts {
+    fn enter(&mut self, _: &str, _: &str) {
+        self.depth += 1;
+    }
+    fn leave(&mut self) {
+        self.depth -= 1;
+    }
+    fn signal(&mut self, d: Dir, s: &Signal) {
+        if self.depth != 1 {
+            return;
+        }
+        let p = Port {
+            name: s.name().to_string(),
+            fmt: s.fmt(),
+        };
+        match d {
+            Dir::Input => self.inputs.push(p),
+            Dir::Output => {
+                self.outputs.push(p);
+                self.out_bits.push(s.bits());
+            }
+            _ => {}
+        }
+    }
+}
+
+fn top_ports(m: &dyn Module) -> TopPorts {
+    let mut t = TopPorts {
+        depth: 0,
+        inputs: Vec::new(),
+        outputs: Vec::new(),
+        out_bits: Vec::new(),
+    };
+    m.visit(&mut t);
+    t
+}
+
+impl<M: Module + Clone> CosimModel for ModelSim<M> {
+    fn ports(&self) -> (Vec<Port>, Vec<Port>) {
+        let t = top_ports(&self.sim.dut);
+        let mut outs = t.outputs;
+        outs.extend(self.probes.iter().cloned());
+        (t.inputs, outs)
+    }
+    fn cycle(&mut self, rst: bool, inputs: &[u64]) -> Vec<u64> {
+        self.sim.set_reset(rst);
+        (self.drive)(&mut self.sim.dut, inputs);
+        self.sim.eval();
+        let mut out = top_ports(&self.sim.dut).out_bits;
+        out.extend((self.probe)(&self.sim.dut));
+        self.sim.tick();
+        out
+    }
+    fn bench(
+        &self,
+        stim: &[Vec<u64>],
+        resets: usize,
+        trace: BenchTrace,
+    ) -> Result<std::time::Duration, String> {
+        let dut = self.pristine.clone();
+        let cfg = waves::TraceConfig {
+            companions: false,
+            ..Default::default()
+        };
+        let r = match trace {
+            BenchTrace::None => bench_loop(Sim::new(dut), stim, resets, self.drive),
+            BenchTrace::Vcd(p) => {
+                let title = format!("{} benchmark", self.pristine.kind());
+                waves::VcdTracer::create(p, &title, cfg)
+                    .and_then(|t| Sim::traced(dut, t))
+                    .and_then(|s| bench_loop(s, stim, resets, self.drive))
+            }
+            BenchTrace::Fst(p) => waves::FstTracer::create(p, cfg)
+                .and_then(|t| Sim::traced(dut, t))
+                .and_then(|s| bench_loop(s, stim, resets, self.drive)),
+        };
+        r.map_err(|e| e.to_string())
+    }
+}
+
+/// A unit that has a Verilog implementation to co-simulate against: everything the
+/// generated testbench and the comparison need to know, said by the unit.
+pub trait CosimUnit: Send + Sync {
+    /// The unit's name: its module in Verilog, its kind in the model, its folder's name.
+    fn name(&self) -> &str;
+    /// The Verilog module the testbench instantiates: the unit itself, or the unit with the
+    /// behavioural parts the model holds beside it (a memory controller with its DRAM).
+    fn top(&self) -> &str {
+        self.name()
+    }
+    /// The unit's own Verilog sources (what `cosim --rtl` replaces). A relative path is taken
+    /// from the current folder: give them from your crate's root with
+    /// `Path::new(env!("CARGO_MANIFEST_DIR")).join("rtl/unit.v")`.
+    fn rtl(&self) -> Vec<PathBuf>;
+    /// Testbench-side sources, always compiled (with the unit's own or the user's `--rtl`):
+    /// the top wrapping the unit and the behavioural models it drives.
+    fn bench_rtl(&self) -> Vec<PathBuf> {
+        Vec::new()
+    }
+    /// The Verilog parameters of this configuration (the model's parameters).
+    fn parameters(&self) -> Vec<(&'static str, i64)>;
+    fn model(&self) -> Result<Box<dyn CosimModel>, String>;
+    /// Inputs of `cycles` cycles (raw bits in input-port order), seeded; the first
+    /// [`Clocking::reset_cycles`] are driven in reset.
+    fn stimulus(&self, seed: crate::Seed, cycles: usize) -> Vec<Vec<u64>>;
+    /// The clock and reset ports of the Verilog top and how reset is driven; `None` for a
+    /// combinational unit (no clock, no reset port).
+    fn clocking(&self) -> Option<Clocking> {
+        Some(Clocking::default())
+    }
+    /// Which outputs are compared when, and under which mask; an output with no rule is
+    /// compared whole on every cycle.
+    fn compare(&self) -> Vec<Compare> {
+        Vec::new()
+    }
+    /// Cycles of inputs shown with the first difference, the cycle itself included: enough to
+    /// show the transaction in flight through the unit's deepest pipeline.
+    fn history(&self) -> usize {
+        4
+    }
+    /// Memory images the RTL loads with `$readmemh` (file name, text): written into the run's
+    /// folder, where the simulator runs, before it starts.
+    fn memories(&self) -> Vec<(String, String)> {
+        Vec::new()
+    }
+}
+
+/// The clock and reset of a clocked Verilog top. The model sees reset as the `rst` of
+/// [`CosimModel::cycle`] on the same cycles; only the Verilog side has names and a polarity.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub struct Clocking {
+    /// The clock port, rising edge active.
+    pub clock: String,
+    /// The reset port; `None`: the top has none (the model is still reset on the first
+    /// cycles, which the Verilog must then match from its own initial values).
+    pub reset: Option<String>,
+    /// Reset asserted high (`true`) or low.
+    pub reset_active_high: bool,
+    /// Cycles in reset at the start of every run (at least 1).
+    pub reset_cycles: usize,
+}
+
+impl Default for Clocking {
+    /// `clk`, synchronous `rst` active high for [`RESET_CYCLES`] cycles.
+    fn default() -> Self {
+        Clocking {
+            clock: "clk".into(),
+            reset: Some("rst".into()),
+            reset_active_high: true,
+            reset_cycles: RESET_CYCLES,
+        }
+    }
+}
+
+/// A comparison rule for one output port.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub struct Compare {
+    /// The output port the rule is for.
+    pub port: String,
+    /// Compare it only on cycles where this output (1 bit, itself compared) is 1 in the model:
+    /// data that is valid only with its valid flag.
+    pub when: Option<String>,
+    /// Compare only these bits (all ones: the whole port).
+    pub mask: u64,
+}
+
+impl Compare {
+    /// `port` compared only when the output `valid` is 1.
+    pub fn when(port: impl Into<String>, valid: impl Into<String>) -> Compare {
+        Compare {
+            port: port.into(),
+            when: Some(valid.into()),
+            mask: u64::MAX,
+        }
+    }
+    /// `port` compared on the bits of `mask` only.
+    pub fn masked(port: impl Into<String>, mask: u64) -> Compare {
+        Compare {
+            port: port.into(),
+            when: None,
+            mask,
+        }
+    }
+    /// This rule, also masked.
+    pub fn mask(mut self, mask: u64) -> Compare {
+        self.mask = mask;
+        self
+    }
+}
+
+/// The rules of every output port, by index, checked against the ports.
+#[derive(Clone, Debug)]
+struct Rules {
+    /// Per output: the index of its qualifier and its mask.
+    per_port: Vec<(Option<usize>, u64)>,
+}
+
+impl Rules {
+    fn new(unit: &dyn CosimUnit, outs: &[Port]) -> Result<Rules, String> {
+        let mut per_port: Vec<(Option<usize>, u64)> = outs
+            .iter()
+            .map(|p| (None, width_mask(p.fmt.width())))
+            .collect();
+        let find = |name: &str, what: &str| {
+            outs.iter().position(|p| p.name == name).ok_or_else(|| {
+                format!(
+                    "{}: the compare rule's {what} '{name}' is no output port",
+                    unit.name()
+                )
+            })
+        };
+        for c in unit.compare() {
+            let k = find(&c.port, "port")?;
+            let q = match &c.when {
+                Some(w) => {
+                    let q = find(w, "qualifier")?;
+                    if outs[q].fmt.width() != 1 || q == k {
+                        return Err(format!(
+                            "{}: the qualifier '{w}' of '{}' must be another 1-bit output",
+                            unit.name(),
+                            c.port
+                        ));
+                    }
+                    Some(q)
+                }
+                None => None,
+            };
+            per_port[k] = (q, per_port[k].1 & c.mask);
+        }
+        Ok(Rules { per_port })
+    }
+
+    /// Whether output `k` differs on a cycle whose model outputs are `e` and RTL outputs `g`.
+    fn differs(&self, k: usize, e: &[u64], g: &[Option<u64>]) -> bool {
+        let (q, mask) = self.per_port[k];
+        if q.is_some_and(|q| e[q] == 0) || mask == 0 {
+            return false;
+        }
+        g[k].is_none_or(|g| (g ^ e[k]) & mask != 0)
+    }
+}
+
+fn width_mask(width: u32) -> u64 {
+    if width >= 64 {
+        u64::MAX
+    } else {
+        (1u64 << width) - 1
+    }
+}
+
+/// Cycles of reset at the start of every run.
+pub const RESET_CYCLES: usize = 2;
+
+/// The first cycle compared: cycle 0 shows the registers' power-up values, which Verilog
+/// leaves unknown (`x`) and the model sets to their reset values; from cycle 1 on, the first
+/// reset edge has defined them.
+pub const FIRST_COMPARED: usize = 1;
+
+/// The simulators.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Simulator {
+    Verilator,
+    Icarus,
+}
+
+impl Simulator {
+    pub fn parse(s: &str) -> Option<Simulator> {
+        match s {
+            "verilator" => Some(Simulator::Verilator),
+            "icarus" => Some(Simulator::Icarus),
+            _ => None,
+        }
+    }
+    pub fn name(self) -> &'static str {
+        match self {
+            Simulator::Verilator => "verilator",
+            Simulator::Icarus => "icarus",
+        }
+    }
+    /// `Err` names what to install when the simulator is not on the PATH.
+    pub fn check_installed(self) -> Result<(), String> {
+        let (exe, pkg) = match self {
+            Simulator::Verilator => ("verilator", "verilator"),
+            Simulator::Icarus => ("iverilog", "iverilog"),
+        };
+        match Command::new(exe).arg("-V").output() {
+            Ok(_) => Ok(()),
+            Err(_) => Err(format!(
+                "{exe} not found: install it (Debian: apt-get install {pkg})"
+            )),
+        }
+    }
+}
+
+/// What a co-simulation found.
+#[derive(Clone, Debug)]
+pub struct CosimResult {
+    pub cycles: usize,
+    /// The first difference, if any.
+    pub mismatch: Option<Difference>,
+    /// Differences counted over all cycles and ports.
+    pub differences: u64,
+    pub vcd: PathBuf,
+}
+
+/// The first cycle and port where the RTL and the model part.
+#[derive(Clone, Debug)]
+pub struct Difference {
+    pub cycle: usize,
+    pub port: String,
+    pub fmt: Format,
+    pub model: u64,
+    /// `None`: the RTL drove `x` or `z`.
+    pub rtl: Option<u64>,
+    /// The inputs of the cycles up to this one (the transaction in flight), oldest first.
+    pub inputs: Vec<(usize, String)>,
+}
+
+fn show(bits: u64, fmt: Format) -> String {
+    let w = (fmt.width() as usize).div_ceil(4);
+    format!("0x{bits:0w$x} ({})", Fx::from_bits(fmt, u128::from(bits)))
+}
+
+impl std::fmt::Display for Difference {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        let rtl = self
+            .rtl
+            .map_or("x (unknown)".to_string(), |r| show(r, self.fmt));
+        write!(
+            f,
+            "cycle {}: port {} ({}): model {}, RTL {rtl}",
+            self.cycle,
+            self.port,
+            self.fmt,
+            show(self.model, self.fmt)
+        )?;
+        for (c, i) in &self.inputs {
+            write!(f, "\n  inputs at cycle {c}: {i}")?;
+        }
+        Ok(())
+    }
+}
+
+/// One directed run: a name for its folder, the unit in the configuration the stimulus was made
+/// for, and the inputs of every cycle (reset first): the regression vectors' transactions as
+/// co-simulation stimulus, for example.
+pub struct Directed {
+    pub label: String,
+    pub unit: Box<dyn CosimUnit>,
+    pub stimulus: Vec<Vec<u64>>,
+}
+
+/// Values of a `width`-bit field: its corners (0, 1, the largest, the sign boundary 2^(w-1)
+/// and one below it) a quarter of the time, otherwise uniform. `width` is 1..=64, as every
+/// unit's `validate` guarantees.
+pub fn field(width: u32) -> impl proptest::strategy::Strategy<Value = u64> {
+    use proptest::strategy::Just;
+    let max = if width == 64 {
+        u64::MAX
+    } else {
+        (1u64 << width) - 1
+    };
+    let top = 1u64 << (width - 1);
+    proptest::prop_oneof![
+        1 => proptest::prop_oneof![Just(0u64), Just(1 & max), Just(max), Just(top), Just(top - 1)],
+        3 => 0..=max,
+    ]
+}
+
+/// Runs `unit` in `sim` against `rtl` (its twin when empty) for `cycles` cycles in `dir`.
+/// `Err` is for what stops the run (a simulator missing or failing, bad sources); a difference
+/// is in the result.
+pub fn run(
+    unit: &dyn CosimUnit,
+    sim: Simulator,
+    rtl: &[PathBuf],
+    cycles: usize,
+    seed: crate::Seed,
+    dir: &Path,
+) -> Result<CosimResult, String> {
+    run_with(unit, sim, rtl, &unit.stimulus(seed, cycles), dir)
+}
+
+/// Cycles in reset at the start of `unit`'s runs.
+pub fn reset_cycles(unit: &dyn CosimUnit) -> usize {
+    unit.clocking().map_or(RESET_CYCLES, |c| c.reset_cycles)
+}
+
+/// Runs `unit` as [`run`] does on the given inputs of every cycle (`stim`, the first
+/// [`reset_cycles`] of them in reset): directed stimulus, such as the regression vectors.
+pub fn run_with(
+    unit: &dyn CosimUnit,
+    sim: Simulator,
+    rtl: &[PathBuf],
+    stim: &[Vec<u64>],
+    dir: &Path,
+) -> Result<CosimResult, String> {
+    let cycles = stim.len();
+    if cycles == 0 {
+        return Err(format!("{}: no cycles to simulate", unit.name()));
+    }
+    if unit.clocking().is_some_and(|c| c.reset_cycles == 0) {
+        return Err(format!("{}: reset_cycles must be at least 1", unit.name()));
+    }
+    sim.check_installed()?;
+    let mut model = unit.model()?;
+    let (ins, outs) = model.ports();
+    let rules = Rules::new(unit, &outs)?;
+    let sources = sources(unit, rtl)?;
+    std::fs::create_dir_all(dir).map_err(|e| format!("{}: {e}", dir.display()))?;
+    // The simulator runs inside `dir`: every path it is given is absolute.
+    let dir = &std::path::absolute(dir).map_err(|e| format!("{}: {e}", dir.display()))?;
+    let plain = |c: char| c.is_ascii_alphanumeric() || "._-/".contains(c);
+    if sim == Simulator::Verilator && !dir.to_string_lossy().chars().all(plain) {
+        return Err(format!(
+            "{}: Verilator's build (make) needs a folder path of letters, digits, '.', '_', '-' and '/'",
+            dir.display()
+        ));
+    }
+    let resets = reset_cycles(unit);
+    let expected: Vec<Vec<u64>> = (0..cycles)
+        .map(|c| model.cycle(c < resets, &stim[c]))
+        .collect();
+    rtl::write_stimulus(&dir.join("stim.hex"), &ins, stim, resets)?;
+    for (file, text) in unit.memories() {
+        let path = dir.join(file);
+        std::fs::write(&path, text).map_err(|e| format!("{}: {e}", path.display()))?;
+    }
+    let tb = rtl::testbench(unit, &ins, &outs, cycles, dir);
+    std::fs::write(dir.join("tb.sv"), tb).map_err(|e| format!("{}: {e}", dir.display()))?;
+    let got = rtl::simulate(sim, dir, &sources, &outs)?;
+    if got.len() != cycles {
+        return Err(format!(
+            "{}: the RTL wrote {} cycles of outputs, {cycles} expected",
+            sim.name(),
+            got.len()
+        ));
+    }
+    let history = unit.history().max(1);
+    let found = compare(
+        &ins,
+        &outs,
+        &rules,
+        stim,
+        &expected,
+        &got,
+        (resets, history),
+    );
+    let vcd = dir.join(format!("{}_cosim.vcd", unit.name()));
+    let defs: Vec<(&str, u32)> = outs
+        .iter()
+        .map(|p| (p.name.as_str(), p.fmt.width()))
+        .collect();
+    let differs = |c: usize, k: usize| rules.differs(k, &expected[c], &got[c]);
+    waves::compare::write(&vcd, unit.name(), &defs, &expected, &got, &differs)?;
+    Ok(CosimResult {
+        cycles,
+        mismatch: found.0,
+        differences: found.1,
+        vcd,
+    })
+}
+
+/// The Verilog sources of a run, absolute: the user's `rtl` (the unit's own when empty) and
+/// the unit's testbench-side sources; each must be a file.
+fn sources(unit: &dyn CosimUnit, rtl: &[PathBuf]) -> Result<Vec<PathBuf>, String> {
+    let own = if rtl.is_empty() {
+        unit.rtl()
+    } else {
+        rtl.to_vec()
+    };
+    let all: Vec<PathBuf> = own
+        .into_iter()
+        .chain(unit.bench_rtl())
+        .map(|s| std::path::absolute(&s).unwrap_or(s))
+        .collect();
+    match all.iter().find(|s| !s.is_file()) {
+        Some(s) => Err(format!("{}: no such Verilog file", s.display())),
+        None => Ok(all),
+    }
+}
+
+/// Every output port on every cycle from [`FIRST_COMPARED`], under its rule; the first
+/// difference with the inputs of the `history` cycles up to it. `resets`: cycles in reset.
+fn compare(
+    ins: &[Port],
+    outs: &[Port],
+    rules: &Rules,
+    stim: &[Vec<u64>],
+    expected: &[Vec<u64>],
+    got: &[Vec<Option<u64>>],
+    (resets, history): (usize, usize),
+) -> (Option<Difference>, u64) {
+    let mut first = None;
+    let mut n = 0;
+    for (c, (e, g)) in expected.iter().zip(got).enumerate().skip(FIRST_COMPARED) {
+        for (k, p) in outs.iter().enumerate() {
+            if !rules.differs(k, e, g) {
+                continue;
+            }
+            n += 1;
+            if first.is_none() {
+                let inputs = (c.saturating_sub(history - 1)..=c)
+                    .map(|i| (i, describe_inputs(ins, &stim[i], i < resets)))
+                    .collect();
+                first = Some(Difference {
+                    cycle: c,
+                    port: p.name.clone(),
+                    fmt: p.fmt,
+                    model: e[k],
+                    rtl: g[k],
+                    inputs,
+                });
+            }
+        }
+    }
+    (first, n)
+}
+
+fn describe_inputs(ins: &[Port], v: &[u64], rst: bool) -> String {
+    use std::fmt::Write as _;
+    let mut s = format!("rst={}", u8::from(rst));
+    for (p, x) in ins.iter().zip(v) {
+        let _ = write!(s, " {}={}", p.name, show(*x, p.fmt));
+    }
+    s
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// A stimulus line wider than any machine integer keeps every field in place: reset
+    /// first, then each port MSB first, left-padded to whole hex digits.
+    #[test]
+    fn stimulus_lines_wider_than_128_bits_are_packed_whole() {
+        let port = Port::uint;
+        let ins = [port("a", 60), port("b", 60), port("c", 60), port("d", 3)];
+        let x = (1u64 << 59) | 1;
+        let stim = vec![vec![x, 0, x, 5]; RESET_CYCLES + 1];
+        let dir = std::env::temp_dir().join(format!("texrtl-stim-{}", std::process::id()));
+        std::fs::create_dir_all(&dir).unwrap();
+        let f = dir.join("stim.hex");
+        rtl::write_stimulus(&f, &ins, &stim, RESET_CYCLES).unwrap();
+        let text = std::fs::read_to_string(&f).unwrap();
+        let _ = std::fs::remove_dir_all(&dir);
+        // 1 + 183 = 184 bits = 46 digits; the last line is out of reset.
+        let bits = |rst: bool| {
+            let mut s = String::from(if rst { "1" } else { "0" });
+            let f = |v: u64, w: usize| format!("{v:0w$b}");
+            s += &(f(x, 60) + &f(0, 60) + &f(x, 60) + &f(5, 3));
+            s
+        };
+        let lines: Vec<&str> = text.lines().collect();
+        assert_eq!(lines.len(), RESET_CYCLES + 1);
+        for (c, line) in lines.iter().enumerate() {
+            assert_eq!(line.len(), 46, "{line}");
+            let got: String = line
+                .chars()
+                .map(|d| format!("{:04b}", d.to_digit(16).unwrap()))
+                .collect();
+            assert_eq!(got, bits(c < RESET_CYCLES), "cycle {c}");
+        }
+    }
+}

@@ -1,0 +1,157 @@
+//! PNG charts for a report, drawn with `plotters`: an error histogram and grouped bars. Text
+//! uses a font shipped inside a crate (Hack, from `epaint_default_fonts`), so no system font is
+//! needed.
+
+use plotters::prelude::*;
+use std::collections::BTreeMap;
+use std::sync::Once;
+
+const FONT: &str = "texrtl-sans";
+
+fn register() {
+    static ONCE: Once = Once::new();
+    ONCE.call_once(|| {
+        let _ = plotters::style::register_font(
+            FONT,
+            FontStyle::Normal,
+            epaint_default_fonts::HACK_REGULAR,
+        );
+    });
+}
+
+/// A bar chart of an error histogram (error in LSBs -> count, log-scaled counts), as PNG.
+pub fn histogram_png(title: &str, hist: &BTreeMap<i64, u64>) -> Result<Vec<u8>, String> {
+    register();
+    let (w, h) = (640u32, 360u32);
+    let mut buf = vec![0u8; (w * h * 3) as usize];
+    {
+        let root = BitMapBackend::with_buffer(&mut buf, (w, h)).into_drawing_area();
+        root.fill(&WHITE).map_err(|e| e.to_string())?;
+        let lo = hist.keys().next().copied().unwrap_or(0).min(-1);
+        let hi = hist.keys().last().copied().unwrap_or(0).max(1);
+        let top = hist.values().copied().max().unwrap_or(1).max(1) as f64;
+        let mut chart = ChartBuilder::on(&root)
+            .caption(title, (FONT, 18))
+            .margin(12)
+            .x_label_area_size(36)
+            .y_label_area_size(64)
+            .build_cartesian_2d(
+                (lo as f64 - 1.0)..(hi as f64 + 1.0),
+                (0.5f64..top * 2.0).log_scale(),
+            )
+            .map_err(|e| e.to_string())?;
+        chart
+            .configure_mesh()
+            .x_desc("error (output LSBs, rounded)")
+            .y_desc("results")
+            .x_labels((hi - lo + 3) as usize)
+            .label_style((FONT, 13))
+            .x_label_formatter(&|v| format!("{v:.0}"))
+            .y_label_formatter(&|v| format!("{v:.0}"))
+            .axis_desc_style((FONT, 14))
+            .draw()
+            .map_err(|e| e.to_string())?;
+        chart
+            .draw_series(hist.iter().map(|(&k, &v)| {
+                let k = k as f64;
+                Rectangle::new(
+                    [(k - 0.4, 0.5), (k + 0.4, v as f64)],
+                    RGBColor(40, 90, 170).filled(),
+                )
+            }))
+            .map_err(|e| e.to_string())?;
+        root.present().map_err(|e| e.to_string())?;
+    }
+    let img = image::RgbImage::from_raw(w, h, buf).ok_or("plot buffer")?;
+    png(&img)
+}
+
+/// A grouped bar chart as PNG: one group per label on the x axis, one bar per series in each
+/// group (series named in the legend), values on a linear y axis starting at 0.
+pub fn grouped_bars_png(
+    title: &str,
+    y_desc: &str,
+    groups: &[String],
+    series: &[(String, Vec<f64>)],
+) -> Result<Vec<u8>, String> {
+    register();
+    let (w, h) = (720u32, 380u32);
+    let mut buf = vec![0u8; (w * h * 3) as usize];
+    let colours = [
+        RGBColor(40, 90, 170),
+        RGBColor(220, 120, 30),
+        RGBColor(60, 150, 80),
+        RGBColor(150, 60, 150),
+        RGBColor(120, 170, 220),
+        RGBColor(240, 190, 120),
+    ];
+    {
+        let root = BitMapBackend::with_buffer(&mut buf, (w, h)).into_drawing_area();
+        root.fill(&WHITE).map_err(|e| e.to_string())?;
+        let top = series
+            .iter()
+            .flat_map(|s| s.1.iter().copied())
+            .fold(0.0f64, f64::max)
+            .max(1e-9)
+            // Headroom for the legend above the bars.
+            * (1.25 + 0.06 * series.len() as f64);
+        let n = groups.len().max(1);
+        let mut chart = ChartBuilder::on(&root)
+            .caption(title, (FONT, 18))
+            .margin(12)
+            .x_label_area_size(36)
+            .y_label_area_size(64)
+            .build_cartesian_2d(-0.5f64..(n as f64 - 0.5), 0.0..top)
+            .map_err(|e| e.to_string())?;
+        let names = groups.to_vec();
+        chart
+            .configure_mesh()
+            .disable_x_mesh()
+            .x_labels(n)
+            .x_label_formatter(&|v| {
+                let k = v.round();
+                if (v - k).abs() < 1e-6 && k >= 0.0 {
+                    names.get(k as usize).cloned().unwrap_or_default()
+                } else {
+                    String::new()
+                }
+            })
+            .y_desc(y_desc)
+            .label_style((FONT, 13))
+            .axis_desc_style((FONT, 14))
+            .draw()
+            .map_err(|e| e.to_string())?;
+        let m = series.len().max(1) as f64;
+        let bw = 0.8 / m;
+        for (si, (name, vals)) in series.iter().enumerate() {
+            let c = colours[si % colours.len()];
+            chart
+                .draw_series(vals.iter().enumerate().map(|(g, &v)| {
+                    let x0 = g as f64 - 0.4 + si as f64 * bw;
+                    Rectangle::new([(x0, 0.0), (x0 + bw * 0.9, v)], c.filled())
+                }))
+                .map_err(|e| e.to_string())?
+                .label(name.as_str())
+                .legend(move |(x, y)| Rectangle::new([(x, y - 5), (x + 10, y + 5)], c.filled()));
+        }
+        chart
+            .configure_series_labels()
+            .background_style(WHITE.mix(0.8))
+            .border_style(BLACK)
+            .label_font((FONT, 13))
+            .position(SeriesLabelPosition::UpperRight)
+            .draw()
+            .map_err(|e| e.to_string())?;
+        root.present().map_err(|e| e.to_string())?;
+    }
+    let img = image::RgbImage::from_raw(w, h, buf).ok_or("plot buffer")?;
+    png(&img)
+}
+
+/// PNG bytes of an RGB image.
+pub fn png(img: &image::RgbImage) -> Result<Vec<u8>, String> {
+    let mut png = Vec::new();
+    img.write_to(&mut std::io::Cursor::new(&mut png), image::ImageFormat::Png)
+        .map_err(|e| e.to_string())?;
+    Ok(png)
+}
