@@ -40,6 +40,9 @@ enum Cmd {
     Ptm(cmd::ptm::PtmCmd),
     /// Tangent frames of an OBJ mesh per face corner in the 3ds Max, Maya or DirectX way (003).
     Tangents(cmd::tangents::TangentsArgs),
+    /// Write a user crate of your own: a unit, its golden model, testbench, Verilog twin,
+    /// descriptor and vectors, depending on this texrtl by path.
+    New(cmd::new::NewArgs),
     /// Error tables over bit widths, for choosing widths.
     #[command(subcommand)]
     Sweep(cmd::sweep::SweepCmd),
@@ -65,6 +68,7 @@ fn run(c: Cmd) -> ExitCode {
         Cmd::Ptm(c) => cmd::ptm::run(&c),
         Cmd::Tangents(a) => cmd::tangents::run(&a),
         Cmd::Sweep(c) => cmd::sweep::run(&c),
+        Cmd::New(a) => cmd::new::run(&a),
     };
     verif::cli::finish("texrtl", r)
 }

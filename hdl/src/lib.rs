@@ -11,5 +11,7 @@
 //! [`fx::Format`]; conversions to `f64` exist only at the edges (tracing, golden comparison).
 //! This crate holds no model of its own: texrtl's texture-mapping units are in `texrtl-units`.
 
+#![warn(missing_docs)]
+
 pub mod fx;
 pub mod kernel;

@@ -104,7 +104,7 @@ pub fn render_png(
         worst = worst.max(e);
         img.put_pixel(3 * (w + 4) + x, y, heat(e));
     }
-    Ok((verif::plot::png(&img)?, worst))
+    Ok((crate::pictures::png(&img)?, worst))
 }
 
 /// Log-scale heat colour: black below 2^-24, through blue, red and yellow to white at 2^-8.

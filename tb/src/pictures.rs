@@ -4,10 +4,15 @@
 //! PTM swatch and the derivative filters.
 
 use std::path::Path;
-use verif::plot::{grouped_bars_png, png};
+use verif::plot::grouped_bars_png;
 use verif::project::Picture;
 use verif::Seed;
 use waves::output::write_output;
+
+/// PNG bytes of a picture.
+pub fn png(img: &image::RgbImage) -> Result<Vec<u8>, String> {
+    verif::plot::png(img.width(), img.height(), img.as_raw())
+}
 
 /// `(file, caption)` as a report picture.
 fn picture((file, caption): (String, String)) -> Picture {

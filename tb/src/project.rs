@@ -358,7 +358,7 @@ mod lists {
             .map(|n| format!("\"{n}\" =>"))
             .collect();
         for f in files.iter().filter(|f| !f.ends_with("tb/src/project.rs")) {
-            let text = std::fs::read_to_string(&f).unwrap();
+            let text = std::fs::read_to_string(f).unwrap();
             for bad in ["const UNITS", "fn registry()", "fn unit_vectors("] {
                 assert!(!text.contains(bad), "{}: {bad}", f.display());
             }

@@ -489,13 +489,13 @@ pub fn ptm_fitter() -> Result<UnitVectors, String> {
         .collect();
     let mut inputs = vec![];
     for k in 0..l.div_ceil(8) {
-        inputs.push(Field::new(&format!("samples{k}"), 64));
+        inputs.push(Field::new(format!("samples{k}"), 64));
     }
     Ok(UnitVectors {
         unit: crate::ptm::FITTER.into(),
         description: "PTM fitter 604 (001): 3 x 8 dome, P in sQ7.20 from the f64 pseudo-inverse, 8-bit coefficients; 64 texels of hashed samples (every fourth grey), 24 samples a texel packed eight to a word (light 0 in the top byte)".into(),
         inputs,
-        outputs: (1..=6).map(|j| Field::new(&format!("q{j}"), 8)).collect(),
+        outputs: (1..=6).map(|j| Field::new(format!("q{j}"), 8)).collect(),
         rows,
     })
 }
@@ -539,7 +539,7 @@ pub fn ptm_shader() -> Result<UnitVectors, String> {
         ins.extend([mask(u, 16), mask(v, 16)]);
         rows.push((ins, out));
     }
-    let mut inputs: Vec<Field> = (1..=6).map(|j| Field::new(&format!("q{j}"), 16)).collect();
+    let mut inputs: Vec<Field> = (1..=6).map(|j| Field::new(format!("q{j}"), 16)).collect();
     inputs.extend([Field::new("u", 16), Field::new("v", 16)]);
     Ok(UnitVectors {
         unit: crate::ptm::SHADER.into(),

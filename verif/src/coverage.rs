@@ -7,22 +7,29 @@ use std::fmt::Write;
 /// A bin: an inclusive range of sampled values, with a name and a hit count.
 #[derive(Clone, Debug, Serialize, Deserialize)]
 pub struct Bin {
+    /// The bin's name in reports.
     pub name: String,
+    /// The lowest value it holds.
     pub lo: i64,
+    /// The highest value it holds.
     pub hi: i64,
+    /// Samples that fell in it.
     pub hits: u64,
 }
 
 /// A coverpoint: named bins over one sampled value.
 #[derive(Clone, Debug, Serialize, Deserialize)]
 pub struct Coverpoint {
+    /// The coverpoint's name (what it samples).
     pub name: String,
+    /// Its bins, in the order declared.
     pub bins: Vec<Bin>,
     /// Samples that fell in no bin.
     pub unbinned: u64,
 }
 
 impl Coverpoint {
+    /// A coverpoint with no bin yet.
     pub fn new(name: &str) -> Coverpoint {
         Coverpoint {
             name: name.to_string(),
@@ -72,6 +79,7 @@ impl Coverpoint {
         self.unbinned += u64::from(!any);
     }
 
+    /// Bins hit at least once.
     pub fn hit_bins(&self) -> usize {
         self.bins.iter().filter(|b| b.hits > 0).count()
     }
@@ -80,8 +88,11 @@ impl Coverpoint {
 /// The cross of two coverpoints: one bin per pair of their bins.
 #[derive(Clone, Debug, Serialize, Deserialize)]
 pub struct Cross {
+    /// The cross's name.
     pub name: String,
+    /// The first coverpoint, by index in the model.
     pub a: usize,
+    /// The second coverpoint, by index in the model.
     pub b: usize,
     /// `hits[i][j]`: bin i of `a` with bin j of `b`.
     pub hits: Vec<Vec<u64>>,
@@ -90,11 +101,14 @@ pub struct Cross {
 /// A coverage model: coverpoints and crosses, sampled together.
 #[derive(Clone, Debug, Default, Serialize, Deserialize)]
 pub struct Coverage {
+    /// The coverpoints, each sampled with one value.
     pub points: Vec<Coverpoint>,
+    /// The crosses of pairs of them.
     pub crosses: Vec<Cross>,
 }
 
 impl Coverage {
+    /// An empty model.
     pub fn new() -> Coverage {
         Coverage::default()
     }

@@ -1,4 +1,8 @@
-//! texrtl's testbench framework, in the style of UVM but cycle-based and small:
+//! texrtl's verification framework: testbenches in the style of UVM but cycle-based and small,
+//! and everything a project of units runs on them (co-simulation, vectors, regression, report,
+//! the command line).
+//!
+//! The testbench side:
 //!
 //! * [`Driver`]s turn transactions into pin activity on a module's inputs; [`Monitor`]s turn
 //!   pin activity on its outputs back into transactions.
@@ -19,7 +23,21 @@
 //!   until ready), for the handshakes inside a design that no driver or monitor owns.
 //! * [`ProbeSink`]: golden values and mismatch flags shown beside the design in a waveform.
 //! * [`mutate`]: malformed inputs (a valid file with byte-level mutations) for fuzzing.
-//! * [`cosim`]: a unit's model against its Verilog in Verilator or Icarus, cycle by cycle.
+//!
+//! The project side, for any set of units:
+//!
+//! * [`project`]: a [`project::Unit`] says everything about a unit once (its testbenches, its
+//!   Verilog twin, its vectors, its report pictures); a [`project::Project`] is a list of them.
+//! * [`cosim`]: a unit's model against its Verilog in Verilator or Icarus, cycle by cycle,
+//!   under the unit's clocking and compare rules ([`cosim::CosimUnit`], [`cosim::Twin`]).
+//! * [`vectors`]: bit-accuracy vectors kept, checked to the row, blessed and exported.
+//! * [`regress`]: every testbench, the vectors and every twin, in shards, and the merge;
+//!   [`report`] and [`plot`]: the table, `report.md` and its pictures.
+//! * [`bench`](mod@bench): every twin against Verilator, untraced and traced.
+//! * [`cli`]: the command line (`regress`, `merge`, `cosim`, `vectors`, `bench`, `list`) for
+//!   any project: a program's `main` is one call.
+
+#![warn(missing_docs)]
 
 pub mod bench;
 pub mod cli;

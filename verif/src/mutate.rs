@@ -48,6 +48,8 @@ pub const TOKENS: &[&[u8]] = &[
 ];
 
 /// One change to an input.
+// Each variant's line names its fields.
+#[allow(missing_docs)]
 #[derive(Clone, Debug, PartialEq, Eq)]
 pub enum Mutation {
     /// Flips bit `bit` of byte `at`.

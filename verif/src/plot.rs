@@ -62,8 +62,7 @@ pub fn histogram_png(title: &str, hist: &BTreeMap<i64, u64>) -> Result<Vec<u8>, 
             .map_err(|e| e.to_string())?;
         root.present().map_err(|e| e.to_string())?;
     }
-    let img = image::RgbImage::from_raw(w, h, buf).ok_or("plot buffer")?;
-    png(&img)
+    png(w, h, &buf)
 }
 
 /// A grouped bar chart as PNG: one group per label on the x axis, one bar per series in each
@@ -144,14 +143,18 @@ pub fn grouped_bars_png(
             .map_err(|e| e.to_string())?;
         root.present().map_err(|e| e.to_string())?;
     }
-    let img = image::RgbImage::from_raw(w, h, buf).ok_or("plot buffer")?;
-    png(&img)
+    png(w, h, &buf)
 }
 
-/// PNG bytes of an RGB image.
-pub fn png(img: &image::RgbImage) -> Result<Vec<u8>, String> {
-    let mut png = Vec::new();
-    img.write_to(&mut std::io::Cursor::new(&mut png), image::ImageFormat::Png)
-        .map_err(|e| e.to_string())?;
-    Ok(png)
+/// PNG bytes of an 8-bit RGB image of `width` x `height` pixels, row by row (`rgb` holds
+/// 3 bytes a pixel).
+pub fn png(width: u32, height: u32, rgb: &[u8]) -> Result<Vec<u8>, String> {
+    let mut out = Vec::new();
+    let mut e = ::png::Encoder::new(&mut out, width, height);
+    e.set_color(::png::ColorType::Rgb);
+    e.set_depth(::png::BitDepth::Eight);
+    let mut w = e.write_header().map_err(|e| e.to_string())?;
+    w.write_image_data(rgb).map_err(|e| e.to_string())?;
+    w.finish().map_err(|e| e.to_string())?;
+    Ok(out)
 }

@@ -18,7 +18,9 @@ use std::path::{Path, PathBuf};
 /// A picture of the report: its file (in the report's folder) and caption.
 #[derive(Clone, Debug, PartialEq, Eq)]
 pub struct Picture {
+    /// The file's name in the report's folder.
     pub file: String,
+    /// What it shows, in a sentence.
     pub caption: String,
 }
 
@@ -100,24 +102,31 @@ impl Unit {
         self
     }
 
+    /// The unit's name.
     pub fn name(&self) -> &'static str {
         self.name
     }
+    /// What the unit is, in one line.
     pub fn about(&self) -> &'static str {
         self.about
     }
+    /// Its Verilog twin, if it has one.
     pub fn twin_unit(&self) -> Option<&dyn CosimUnit> {
         self.twin.as_deref()
     }
+    /// Its directed co-simulation runs, if any.
     pub fn directed_runs(&self) -> Option<&DirectedFn> {
         self.directed.as_deref()
     }
+    /// What makes its vectors, if it keeps any.
     pub fn vectors_fn(&self) -> Option<&VectorsFn> {
         self.vectors.as_deref()
     }
+    /// Why it keeps no vectors, when its descriptor says.
     pub fn no_vectors_reason(&self) -> Option<&'static str> {
         self.no_vectors
     }
+    /// What draws its report pictures, if any.
     pub fn pictures_fn(&self) -> Option<&PicturesFn> {
         self.pictures.as_deref()
     }
@@ -144,6 +153,8 @@ struct UnitEntry {
 }
 
 impl Project {
+    /// A project with no unit yet: `name` is the program's (messages, default output folders,
+    /// the report's title), `version` the one its summaries carry.
     pub fn new(name: &'static str, version: &'static str) -> Project {
         Project {
             name,
@@ -185,12 +196,15 @@ impl Project {
         self
     }
 
+    /// The project's name.
     pub fn name(&self) -> &'static str {
         self.name
     }
+    /// The version its summaries carry.
     pub fn version(&self) -> &'static str {
         self.version
     }
+    /// The folder of the kept vectors, if the project keeps them.
     pub fn kept_vectors(&self) -> Option<&Path> {
         self.vectors_dir.as_deref()
     }
@@ -198,12 +212,15 @@ impl Project {
     pub fn registry(&self) -> &Registry {
         &self.registry
     }
+    /// The units, in run order.
     pub fn units(&self) -> impl Iterator<Item = &Unit> {
         self.units.iter().map(|e| &e.unit)
     }
+    /// The units' names, in run order.
     pub fn names(&self) -> Vec<&'static str> {
         self.units().map(Unit::name).collect()
     }
+    /// The unit named `name`.
     pub fn get(&self, name: &str) -> Option<&Unit> {
         self.units().find(|u| u.name == name)
     }

@@ -8,6 +8,8 @@
 use std::fmt;
 
 /// A broken rule, with the cycle it was seen in.
+// Each variant's line names its fields.
+#[allow(missing_docs)]
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum Violation<T> {
     /// `valid` fell in `cycle` while the payload `data` was still waiting for `ready`.

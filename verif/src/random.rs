@@ -105,7 +105,9 @@ fn formats_short(s: &str) -> String {
 /// configuration with the same seed.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
 pub struct Shard {
+    /// This shard, from 1.
     pub index: u32,
+    /// How many shards there are.
     pub count: u32,
 }
 
@@ -172,6 +174,7 @@ pub struct Stimulus {
 }
 
 impl Stimulus {
+    /// A stimulus source replaying `seed`.
     pub fn new(seed: Seed) -> Stimulus {
         Stimulus {
             seed,
@@ -179,6 +182,7 @@ impl Stimulus {
         }
     }
 
+    /// The seed it replays.
     pub fn seed(&self) -> Seed {
         self.seed
     }

@@ -23,20 +23,26 @@ pub const COSIM: &str = "cosim";
 pub struct Summary {
     /// The version of the project that wrote it (shards of different versions do not merge).
     pub texrtl: String,
+    /// The run's seed, as it replays it (`--seed`).
     pub seed: String,
     /// `I/N` when the run was one shard of N.
     pub shard: Option<String>,
+    /// Whether every row passed.
     pub passed: bool,
+    /// Every row: each testbench, the vectors, each co-simulation, in run order.
     pub testbenches: Vec<TbResult>,
 }
 
 /// What `texrtl regress` runs with.
 #[derive(Clone, Debug)]
 pub struct RegressConfig {
+    /// The folder of the waveforms, `summary.json` and `report.md`.
     pub out: PathBuf,
+    /// The run's seed (each configuration draws its own from it).
     pub seed: Seed,
     /// Write a VCD and `.gtkw` per testbench.
     pub vcd: bool,
+    /// What the waveforms trace.
     pub trace: TraceConfig,
     /// The clock period of every waveform; `None`: each testbench's own clock.
     pub period_ps: Option<u64>,

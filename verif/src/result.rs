@@ -12,25 +12,33 @@ const HOLES: &str = "coverage holes";
 /// What one testbench (or one of its configurations) found.
 #[derive(Clone, Debug, Serialize, Deserialize)]
 pub struct TbResult {
+    /// The testbench's name (a row of the table).
     pub name: String,
     /// The hardware unit and where the source document describes it.
     pub unit: String,
     /// Configurations run (of this shard).
     #[serde(default)]
     pub configurations: u64,
+    /// Transactions compared.
     pub transactions: u64,
+    /// Cycles simulated.
     pub cycles: u64,
+    /// Transactions that differed from the golden model beyond the tolerance.
     pub mismatches: u64,
     /// The first mismatches in detail.
     pub mismatch_log: Vec<String>,
     /// Anything else that failed: latency, throughput, watchdog, coverage holes, waveforms.
     pub failures: Vec<String>,
+    /// Share of the coverage bins hit, in percent.
     pub coverage_percent: f64,
+    /// The bins never hit.
     pub unhit: Vec<String>,
     #[serde(skip, default)]
+    /// The coverage model's report (not kept in `summary.json`).
     pub coverage_report: String,
     /// Error against the golden model, in output LSBs.
     pub stats: ErrorStats,
+    /// Cycles from a transaction's input to its output, where the unit has one.
     pub latency: Option<u64>,
     /// Measured figures worth a line in the report.
     pub notes: Vec<String>,
@@ -42,7 +50,9 @@ pub struct TbResult {
     /// into notes, tables and plots.
     #[serde(default)]
     pub records: Vec<serde_json::Value>,
+    /// The seed that replays the run.
     pub seed: Option<String>,
+    /// The waveform written, if any.
     pub vcd: Option<PathBuf>,
     /// The coverage model with its hits, so shards can be merged.
     pub coverage: Option<Coverage>,
@@ -50,10 +60,12 @@ pub struct TbResult {
     /// were added (so merged shards can conclude again from the records).
     #[serde(default)]
     pub own: Option<(usize, usize)>,
+    /// The verdict: no mismatch, no failure and (for a whole run) no coverage hole.
     pub passed: bool,
 }
 
 impl TbResult {
+    /// An empty result of testbench `name` for `unit`.
     pub fn new(name: &str, unit: &str) -> TbResult {
         TbResult {
             name: name.into(),

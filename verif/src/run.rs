@@ -10,6 +10,7 @@ use std::time::{Duration, Instant};
 /// ready/valid handshake: a transaction stays presented (valid held, data unchanged) until the
 /// cycle in which the DUT accepts it.
 pub trait Driver<M> {
+    /// The transaction it drives.
     type Txn;
     /// Drives one cycle: `Some(t)` presents transaction `t`, `None` drives the idle pattern
     /// (valid low).
@@ -25,6 +26,7 @@ pub trait Driver<M> {
 /// transfer (valid, and ready where the DUT has an output handshake), so stalls in either
 /// direction are tolerated.
 pub trait Monitor<M> {
+    /// The transaction it collects.
     type Txn;
     /// Drives the DUT's output `ready` for this cycle, before the design settles (output
     /// backpressure). A DUT without an output handshake ignores it.
@@ -34,6 +36,8 @@ pub trait Monitor<M> {
 }
 
 /// What the cycle loop reports to the testbench.
+// Each variant's line names its fields.
+#[allow(missing_docs)]
 pub enum Event<'a, I, O> {
     /// Transaction `txn` was accepted by the DUT in `cycle` (compute its golden result now).
     Sent { cycle: u64, txn: &'a I },
@@ -104,7 +108,9 @@ impl Pacing {
 /// wall-clock time, whichever comes first. Every run has one.
 #[derive(Clone, Copy, Debug)]
 pub struct Watchdog {
+    /// The cycles a run may take.
     pub max_cycles: u64,
+    /// The wall-clock time a run may take.
     pub max_wall: Duration,
 }
 
@@ -143,10 +149,15 @@ impl Watchdog {
 /// A run the watchdog stopped.
 #[derive(Clone, Debug, PartialEq, Serialize)]
 pub struct Timeout {
+    /// The cycle it stopped at.
     pub cycle: u64,
+    /// Transactions sent by then.
     pub sent: u64,
+    /// Transactions received by then.
     pub received: u64,
+    /// Transactions the run waited for.
     pub expected: u64,
+    /// Why it stopped.
     pub reason: String,
 }
 
@@ -165,10 +176,13 @@ impl std::fmt::Display for Timeout {
 pub struct RunStats {
     /// Cycles the run took (from its first to its last cycle).
     pub cycles: u64,
+    /// Transactions the driver handed over.
     pub sent: u64,
+    /// Transactions the monitor collected.
     pub received: u64,
     /// Cycles from a transaction's input to its output, assuming in-order completion.
     pub min_latency: Option<u64>,
+    /// The longest of them.
     pub max_latency: Option<u64>,
     /// Cycles in which the driver presented a transaction.
     pub busy_cycles: u64,
@@ -193,6 +207,7 @@ pub struct RunSpec {
     pub pacing: Pacing,
     /// When the monitor is ready for one (output backpressure).
     pub sink: Pacing,
+    /// When the run gives up.
     pub watchdog: Watchdog,
 }
 
@@ -207,11 +222,13 @@ impl RunSpec {
         }
     }
 
+    /// The driver's pacing.
     pub fn pacing(mut self, p: Pacing) -> RunSpec {
         self.pacing = p;
         self
     }
 
+    /// The monitor's pacing (output backpressure).
     pub fn sink(mut self, p: Pacing) -> RunSpec {
         self.sink = p;
         self
@@ -245,7 +262,9 @@ where
 /// source beside a request port): it sets its inputs every cycle before the design settles
 /// and may look at the settled design after. It does not end the run; the main stream does.
 pub trait Background<M> {
+    /// Sets its inputs for `cycle`, before the design settles.
     fn drive(&mut self, dut: &mut M, cycle: u64);
+    /// Looks at the settled design in `cycle`.
     fn settled(&mut self, _dut: &M, _cycle: u64) {}
 }
 

@@ -11,7 +11,9 @@ pub struct Mismatch {
     pub index: u64,
     /// Cycle in which the DUT's transaction was seen (`None` for a missing one).
     pub cycle: Option<u64>,
+    /// The golden transaction, as text.
     pub expected: String,
+    /// The DUT's, as text.
     pub actual: String,
     /// What differs.
     pub detail: String,
@@ -23,6 +25,7 @@ pub type Comparator<E, A> = Box<dyn Fn(&E, &A) -> Result<(), String>>;
 /// The result of comparing one DUT transaction.
 #[derive(Clone, Debug, PartialEq)]
 pub struct Outcome<E> {
+    /// Whether it agreed with the golden one.
     pub ok: bool,
     /// The golden transaction it was compared with (`None`: the DUT produced one too many).
     pub expected: Option<E>,
@@ -41,6 +44,7 @@ pub struct Scoreboard<E, A> {
 }
 
 impl<E: Debug, A: Debug> Scoreboard<E, A> {
+    /// A scoreboard comparing with `compare`.
     pub fn new(compare: impl Fn(&E, &A) -> Result<(), String> + 'static) -> Self {
         Scoreboard {
             expected: VecDeque::new(),
@@ -132,9 +136,11 @@ impl<E: Debug, A: Debug> Scoreboard<E, A> {
     pub fn mismatches(&self) -> &[Mismatch] {
         &self.mismatches
     }
+    /// Golden transactions still waiting for the DUT's.
     pub fn pending(&self) -> usize {
         self.expected.len()
     }
+    /// No mismatch and nothing pending.
     pub fn passed(&self) -> bool {
         self.count == 0
     }

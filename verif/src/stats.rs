@@ -11,10 +11,15 @@ use std::collections::BTreeMap;
 /// power).
 #[derive(Clone, Debug, Default, Serialize, Deserialize)]
 pub struct ErrorStats {
+    /// Results measured.
     pub count: u64,
+    /// The largest absolute error, in LSBs.
     pub max_abs_lsb: f64,
+    /// The sum of the absolute errors, in LSBs (for the mean).
     pub sum_abs_lsb: f64,
+    /// Results with no error.
     pub exact: u64,
+    /// Results within one LSB.
     pub within_1_lsb: u64,
     /// Error rounded to whole LSBs (ties away from zero) -> count.
     pub histogram: BTreeMap<i64, u64>,
@@ -25,6 +30,7 @@ pub struct ErrorStats {
 }
 
 impl ErrorStats {
+    /// No result yet.
     pub fn new() -> ErrorStats {
         ErrorStats::default()
     }

@@ -19,6 +19,7 @@ use waves::{TraceConfig, VcdTracer};
 pub struct Ctx {
     /// The configuration's index in [`Testbench::configurations`] and its label.
     pub index: usize,
+    /// The configuration's label.
     pub label: String,
     /// This configuration's own seed (derived from the run's seed, the testbench's name and
     /// the index).
@@ -76,7 +77,9 @@ impl Ctx {
 /// A waveform to write: the VCD's path and what to trace.
 #[derive(Clone, Debug)]
 pub struct WaveOut {
+    /// The VCD's path (its `.gtkw` goes beside it).
     pub vcd: PathBuf,
+    /// What to trace.
     pub trace: TraceConfig,
     /// The clock period the user asked for; `None`: the testbench's own clock.
     pub period_ps: Option<u64>,
@@ -107,6 +110,8 @@ pub trait Testbench: Sync {
     fn default_count(&self) -> usize {
         1000
     }
+    /// What one of `--count` is, in the progress line and `--list` (by default "random
+    /// transactions").
     fn count_unit(&self) -> &'static str {
         "random transactions"
     }
@@ -127,12 +132,15 @@ pub trait Testbench: Sync {
 /// What a regression run applies to every testbench.
 #[derive(Clone, Debug)]
 pub struct RunOptions {
+    /// The run's seed.
     pub seed: Seed,
     /// Random transactions per configuration; `None`: each testbench's default.
     pub count: Option<usize>,
+    /// The share of the configurations this run owns.
     pub shard: Shard,
     /// Write each testbench's waveform into this folder as `<name>.vcd` + `.gtkw`.
     pub waves: Option<(PathBuf, TraceConfig, Option<u64>)>,
+    /// Run the kernel's schedule check on every cycle.
     pub check_schedule: bool,
     /// Configurations run at once, on as many threads (1: one after the other). The merged
     /// result is the same either way: configurations are merged in their order.
@@ -297,6 +305,7 @@ pub struct Registry {
 }
 
 impl Registry {
+    /// An empty registry.
     pub fn new() -> Registry {
         Registry::default()
     }
@@ -312,14 +321,17 @@ impl Registry {
         self
     }
 
+    /// The testbenches, in run order.
     pub fn iter(&self) -> impl Iterator<Item = &dyn Testbench> {
         self.tbs.iter().map(|b| b.as_ref())
     }
 
+    /// The testbench named `name`.
     pub fn get(&self, name: &str) -> Option<&dyn Testbench> {
         self.iter().find(|t| t.name() == name)
     }
 
+    /// Their names, in run order.
     pub fn names(&self) -> Vec<&'static str> {
         self.iter().map(|t| t.name()).collect()
     }

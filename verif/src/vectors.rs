@@ -15,11 +15,14 @@ use waves::output::write_output;
 /// A named field of a vector and its width in bits (1..=64).
 #[derive(Clone, Debug, PartialEq, Eq, Serialize, Deserialize)]
 pub struct Field {
+    /// The field's name (a port's, usually).
     pub name: String,
+    /// Its width in bits, 1..=64.
     pub width: u32,
 }
 
 impl Field {
+    /// A field `name` of `width` bits.
     pub fn new(name: impl Into<String>, width: u32) -> Field {
         Field {
             name: name.into(),
@@ -31,9 +34,13 @@ impl Field {
 /// Stimulus and expected outputs of one unit, one row per transaction.
 #[derive(Clone, Debug, PartialEq, Eq)]
 pub struct UnitVectors {
+    /// The unit's name (the kept files').
     pub unit: String,
+    /// How the stimuli are made, in a sentence (the unit's configuration, the inputs' pattern).
     pub description: String,
+    /// The fields of a row's inputs.
     pub inputs: Vec<Field>,
+    /// The fields of a row's outputs.
     pub outputs: Vec<Field>,
     /// Raw bit patterns (two's complement within each field's width).
     pub rows: Vec<(Vec<u64>, Vec<u64>)>,
@@ -42,10 +49,15 @@ pub struct UnitVectors {
 /// What `<unit>.json` holds.
 #[derive(Clone, Debug, PartialEq, Eq, Serialize, Deserialize)]
 pub struct VectorFile {
+    /// The unit's name.
     pub unit: String,
+    /// How the stimuli are made.
     pub description: String,
+    /// The inputs' fields.
     pub inputs: Vec<Field>,
+    /// The outputs' fields.
     pub outputs: Vec<Field>,
+    /// The number of rows.
     pub count: usize,
     /// FNV-1a 64 over every field of every row, as hex.
     pub hash: String,

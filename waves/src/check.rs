@@ -19,7 +19,9 @@ pub struct VarInfo {
 /// A value read back.
 #[derive(Clone, Debug, PartialEq)]
 pub enum Value {
+    /// A vector or bit, as its binary digits (`x`/`z` kept).
     Bits(String),
+    /// A `real` variable.
     Real(f64),
 }
 
@@ -31,6 +33,7 @@ impl Value {
             Value::Real(_) => None,
         }
     }
+    /// A real's value, or a vector's as an unsigned number (`None` with `x`/`z`).
     pub fn as_f64(&self) -> Option<f64> {
         match self {
             Value::Real(r) => Some(*r),
@@ -44,7 +47,9 @@ impl Value {
 pub struct Readback {
     /// Timescale exponent (-12 for 1 ps).
     pub timescale_exp: Option<i8>,
+    /// Every scope, by its full name.
     pub scopes: Vec<String>,
+    /// Every variable by its full name, with its changes.
     pub vars: BTreeMap<String, VarInfo>,
     /// Every timestamp, in order.
     pub times: Vec<u64>,

@@ -10,6 +10,17 @@ use vcd::{IdCode, TimescaleUnit};
 /// A port: name and width.
 pub type PortDef<'a> = (&'a str, u32);
 
+/// Values shown beside the comparison, not compared: the inputs of every cycle, or signals
+/// inside the model. `values[c][k]` is signal `k`'s value in cycle `c`.
+pub struct Shown<'a> {
+    /// The scope under `tb` (`inputs`, `probes`).
+    pub scope: &'a str,
+    /// The signals' names and widths.
+    pub signals: &'a [PortDef<'a>],
+    /// Their values, cycle by cycle.
+    pub values: &'a [Vec<u64>],
+}
+
 /// Writes `path` (and its `.gtkw`): `model[c][k]` and `rtl[c][k]` are port `k`'s values in
 /// cycle `c` (`None`: unknown, written as `x`); one cycle per 10 ns. `differs(c, k)` raises
 /// port `k`'s mismatch flag in cycle `c` (the comparison's own rule: a port compared only when
@@ -21,13 +32,16 @@ pub fn write(
     model: &[Vec<u64>],
     rtl: &[Vec<Option<u64>>],
     differs: &dyn Fn(usize, usize) -> bool,
+    shown: &[Shown],
 ) -> Result<(), String> {
     let err = |e: std::io::Error| format!("{}: {e}", path.display());
     let out = crate::output::Staged::new(path);
     let f = out.create().map_err(|e| e.to_string())?;
     let mut w = vcd::Writer::new(BufWriter::new(f));
-    let ids = header(&mut w, title, ports).map_err(err)?;
+    let (ids, shown_ids) = header(&mut w, title, ports, shown).map_err(err)?;
     let mut last: Vec<Option<String>> = vec![None; ids.len()];
+    let mut last_shown: Vec<Vec<Option<String>>> =
+        shown.iter().map(|s| vec![None; s.signals.len()]).collect();
     for (c, (m, r)) in model.iter().zip(rtl).enumerate() {
         w.timestamp(c as u64 * 10_000).map_err(err)?;
         if c == 0 {
@@ -45,6 +59,15 @@ pub fn write(
                 }
             }
         }
+        for (i, sh) in shown.iter().enumerate() {
+            for (k, &(_, width)) in sh.signals.iter().enumerate() {
+                let text = value(sh.values.get(c).and_then(|v| v.get(k)).copied(), width);
+                if last_shown[i][k].as_deref() != Some(text.as_str()) {
+                    writeln!(w.writer(), "{text}{}", shown_ids[i][k]).map_err(err)?;
+                    last_shown[i][k] = Some(text);
+                }
+            }
+        }
         if c == 0 {
             w.end().map_err(err)?;
         }
@@ -57,7 +80,7 @@ pub fn write(
     if !beside {
         return Ok(());
     }
-    gtkw(path, title, ports, model.len() as u64 * 10_000)
+    gtkw(path, title, ports, shown, model.len() as u64 * 10_000)
 }
 
 /// `b0101 ` / `1` / `x` text of a value change (the id follows).
@@ -70,11 +93,20 @@ fn value(v: Option<u64>, width: u32) -> String {
     }
 }
 
+/// The ids of the compared ports (model, RTL, mismatch of each) and of each shown scope's.
+type Ids = (Vec<IdCode>, Vec<Vec<IdCode>>);
+
+fn var<W: Write>(w: &mut vcd::Writer<W>, name: &str, width: u32) -> std::io::Result<IdCode> {
+    let idx = (width > 1).then(|| vcd::ReferenceIndex::Range(width as i32 - 1, 0));
+    w.add_var(vcd::VarType::Wire, width, name, idx)
+}
+
 fn header<W: Write>(
     w: &mut vcd::Writer<W>,
     title: &str,
     ports: &[PortDef],
-) -> std::io::Result<Vec<IdCode>> {
+    shown: &[Shown],
+) -> std::io::Result<Ids> {
     w.comment(&format!("texrtl cosim: {title}"))?;
     w.timescale(1, TimescaleUnit::PS)?;
     w.add_module("tb")?;
@@ -82,21 +114,53 @@ fn header<W: Write>(
     for (j, scope) in ["model", "rtl", "mismatch"].into_iter().enumerate() {
         w.add_module(scope)?;
         for (k, &(name, width)) in ports.iter().enumerate() {
-            let wd = if j == 2 { 1 } else { width };
-            let idx = (wd > 1).then(|| vcd::ReferenceIndex::Range(wd as i32 - 1, 0));
-            ids[3 * k + j] = w.add_var(vcd::VarType::Wire, wd, name, idx)?;
+            ids[3 * k + j] = var(w, name, if j == 2 { 1 } else { width })?;
         }
+        w.upscope()?;
+    }
+    let mut shown_ids = Vec::new();
+    for sh in shown {
+        w.add_module(sh.scope)?;
+        let v: std::io::Result<Vec<IdCode>> = sh
+            .signals
+            .iter()
+            .map(|&(name, width)| var(w, name, width))
+            .collect();
+        shown_ids.push(v?);
         w.upscope()?;
     }
     w.upscope()?;
     w.enddefinitions()?;
-    Ok(ids)
+    Ok((ids, shown_ids))
 }
 
-fn gtkw(vcd: &Path, title: &str, ports: &[PortDef], end: u64) -> Result<(), String> {
+fn gtkw(
+    vcd: &Path,
+    title: &str,
+    ports: &[PortDef],
+    shown: &[Shown],
+    end: u64,
+) -> Result<(), String> {
     let mut g = Gtkw::new(vcd);
     g.set_end_time(end);
     g.treeopen("tb");
+    for sh in shown {
+        g.begin_group(sh.scope, "tb");
+        for &(name, width) in sh.signals {
+            let range = if width > 1 {
+                format!("[{}:0]", width - 1)
+            } else {
+                String::new()
+            };
+            let style = if width > 1 { Style::Hex } else { Style::Bin };
+            g.push(Item::Trace {
+                name: format!("tb.{}.{name}{range}", sh.scope),
+                style,
+                filter: None,
+            });
+        }
+        g.end_group();
+    }
     for &(name, width) in ports {
         g.begin_group(name, "tb");
         // Each trace under an alias (`+{u0 model}`): GTKWave shows leaf names, the same in

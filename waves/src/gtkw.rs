@@ -39,6 +39,8 @@ impl Style {
 }
 
 /// One line group of a save file.
+// Each variant's line names its fields.
+#[allow(missing_docs)]
 #[derive(Clone, Debug, PartialEq)]
 pub enum Item {
     /// A signal; `filter` is the translate filter file of a [`Style::Named`] one.
@@ -47,7 +49,9 @@ pub enum Item {
         style: Style,
         filter: Option<PathBuf>,
     },
+    /// The start of a named group.
     GroupBegin(String),
+    /// Its end.
     GroupEnd(String),
 }
 
@@ -85,6 +89,7 @@ impl Gtkw {
         }
     }
 
+    /// Where the save file goes.
     pub fn path(&self) -> &Path {
         &self.path
     }
@@ -112,6 +117,7 @@ impl Gtkw {
         self.items.push(Item::GroupEnd(label));
     }
 
+    /// Adds a trace, blank or group line.
     pub fn push(&mut self, item: Item) {
         self.items.push(item);
     }

@@ -7,6 +7,8 @@
 //! `rst` and `tb.golden` (the testbench's probes). Every fixed-point signal gets a companion
 //! `real` variable `<name>_real` with its value.
 
+#![warn(missing_docs)]
+
 mod fst_trace;
 pub mod glob;
 pub mod gtkw;

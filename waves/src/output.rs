@@ -31,7 +31,9 @@ pub struct Staged {
 
 /// How a path that exists is to be written: atomically at `real`, or through.
 enum Kind {
+    /// Written to this temporary name, renamed into place when complete.
     Atomic(PathBuf),
+    /// Written through as it is (a device, a pipe, a socket).
     Through,
 }
 
@@ -130,6 +132,18 @@ pub fn write_output(path: &Path, contents: &[u8]) -> io::Result<()> {
     out.commit()
 }
 
+/// A value shown in a message, cut to at most 40 characters (a long option value or file
+/// name does not flood the one-line message that names it).
+pub fn shorten(s: &str) -> String {
+    const MAX: usize = 40;
+    if s.chars().count() <= MAX {
+        s.to_string()
+    } else {
+        let head: String = s.chars().take(MAX - 3).collect();
+        format!("{head}...")
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -221,17 +235,5 @@ mod tests {
             e.to_string().starts_with(&format!("{}: ", p.display())),
             "{e}"
         );
-    }
-}
-
-/// A value shown in a message, cut to at most 40 characters (a long option value or file
-/// name does not flood the one-line message that names it).
-pub fn shorten(s: &str) -> String {
-    const MAX: usize = 40;
-    if s.chars().count() <= MAX {
-        s.to_string()
-    } else {
-        let head: String = s.chars().take(MAX - 3).collect();
-        format!("{head}...")
     }
 }

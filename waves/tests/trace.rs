@@ -661,7 +661,14 @@ fn a_comparison_waveform_shows_model_rtl_and_mismatch() {
         vec![Some(0), None],
     ];
     let differs = |c: usize, k: usize| rtl[c][k] != Some(model[c][k]);
-    waves::compare::write(&path, "unit", &ports, &model, &rtl, &differs).unwrap();
+    let stim = vec![vec![1, 3], vec![0, 3], vec![0, 4], vec![0, 4]];
+    let inputs = [("rst", 1), ("a", 4)];
+    let shown = [waves::compare::Shown {
+        scope: "inputs",
+        signals: &inputs,
+        values: &stim,
+    }];
+    waves::compare::write(&path, "unit", &ports, &model, &rtl, &differs, &shown).unwrap();
     let rb = read_vcd(&path).unwrap();
     assert_eq!(rb.times.last(), Some(&40_000), "four cycles of 10 ns");
     let w = |n: &str| rb.vars[n].width;
@@ -700,8 +707,16 @@ fn a_comparison_waveform_shows_model_rtl_and_mismatch() {
     assert!(text
         .lines()
         .any(|l| l.starts_with("$var wire 8 ") && l.ends_with(" u [7:0] $end")));
-    assert_eq!(check_gtkw(&path, &rb), Ok(6));
+    // The inputs beside the comparison, only their changes, in a group of their own first.
+    assert_eq!(column("tb.inputs.a"), ["11", "11", "100", "100"]);
+    assert_eq!(column("tb.inputs.rst"), ["1", "", "", ""]);
+    assert_eq!(rb.vars["tb.inputs.a"].changes.len(), 2);
+    assert_eq!(check_gtkw(&path, &rb), Ok(8));
     let g = std::fs::read_to_string(path.with_extension("gtkw")).unwrap();
+    assert!(
+        g.find("tb.inputs.a[3:0]") < g.find("tb.model.ok"),
+        "inputs first:\n{g}"
+    );
     for (name, flags) in [
         ("+{ok model} tb.model.ok", "28"),
         ("+{u RTL} tb.rtl.u[7:0]", "22"),

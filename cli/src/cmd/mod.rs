@@ -5,6 +5,7 @@ pub mod dram;
 pub mod footprint;
 pub mod mapchain;
 pub mod mipmap;
+pub mod new;
 pub mod normals;
 pub mod ptm;
 pub mod render;

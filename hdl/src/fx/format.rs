@@ -23,9 +23,17 @@ pub struct Format {
 #[derive(Clone, Debug, PartialEq, Eq)]
 pub enum FormatError {
     /// Width 0, or more bits than an `i128` holds.
-    Width { width: u32, signed: bool },
+    Width {
+        /// The width asked for.
+        width: u32,
+        /// Whether it was to be signed.
+        signed: bool,
+    },
     /// Fraction bits outside `-MAX_FRAC..=MAX_FRAC`.
-    Frac { frac: i32 },
+    Frac {
+        /// The fraction bits asked for.
+        frac: i32,
+    },
 }
 
 impl fmt::Display for FormatError {
@@ -94,12 +102,15 @@ impl Format {
         Format::new(width, 0, true)
     }
 
+    /// Bits, sign included.
     pub const fn width(self) -> u32 {
         self.width as u32
     }
+    /// Fraction bits (negative: the LSB weighs more than 1).
     pub const fn frac(self) -> i32 {
         self.frac as i32
     }
+    /// Two's complement or unsigned.
     pub const fn is_signed(self) -> bool {
         self.signed
     }

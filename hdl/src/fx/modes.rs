@@ -24,6 +24,7 @@ pub enum Quant {
 }
 
 impl Quant {
+    /// Every mode, in the order the help lists them.
     pub const ALL: [Quant; 7] = [
         Quant::Trunc,
         Quant::TruncZero,
@@ -34,6 +35,7 @@ impl Quant {
         Quant::RoundHalfEven,
     ];
 
+    /// The mode's name as options and messages spell it.
     pub const fn name(self) -> &'static str {
         match self {
             Quant::Trunc => "trunc",
@@ -81,6 +83,7 @@ pub enum Overflow {
 }
 
 impl Overflow {
+    /// Every mode, in the order the help lists them.
     pub const ALL: [Overflow; 4] = [
         Overflow::Wrap,
         Overflow::Saturate,
@@ -88,6 +91,7 @@ impl Overflow {
         Overflow::SaturateZero,
     ];
 
+    /// The mode's name as options and messages spell it.
     pub const fn name(self) -> &'static str {
         match self {
             Overflow::Wrap => "wrap",

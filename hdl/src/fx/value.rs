@@ -19,9 +19,19 @@ pub struct Fx {
 #[derive(Clone, Debug, PartialEq)]
 pub enum FxError {
     /// The raw integer is outside the format's range.
-    OutOfRange { raw: i128, fmt: Format },
+    OutOfRange {
+        /// The raw integer.
+        raw: i128,
+        /// The format it does not fit.
+        fmt: Format,
+    },
     /// The value is not exactly representable (bits would be lost).
-    Inexact { value: Fx, fmt: Format },
+    Inexact {
+        /// The value.
+        value: Fx,
+        /// The format that cannot hold it exactly.
+        fmt: Format,
+    },
     /// A floating-point input was NaN or infinite.
     NotFinite,
 }
@@ -318,9 +328,11 @@ impl Fx {
         (self.raw as f64) * 2f64.powi(-self.fmt.frac())
     }
 
+    /// The raw integer: the value times 2^frac.
     pub const fn raw(self) -> i128 {
         self.raw
     }
+    /// The value's format.
     pub const fn fmt(self) -> Format {
         self.fmt
     }
@@ -404,9 +416,11 @@ impl Fx {
         }
     }
 
+    /// Below zero.
     pub fn is_negative(self) -> bool {
         self.raw < 0
     }
+    /// Exactly zero.
     pub fn is_zero(self) -> bool {
         self.raw == 0
     }

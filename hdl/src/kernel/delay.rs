@@ -14,7 +14,9 @@ use crate::fx::Format;
 #[derive(Clone, Debug)]
 pub struct Delay {
     name: String,
+    /// The inputs, one a signal.
     pub i: Vec<Signal>,
+    /// The outputs, each its input `depth` cycles later.
     pub o: Vec<Signal>,
     depth: usize,
     /// `depth` slots of `n` values; `head` is the oldest (the stage the outputs show).
@@ -46,6 +48,7 @@ impl Delay {
         }
     }
 
+    /// Cycles of delay.
     pub fn depth(&self) -> usize {
         self.depth
     }

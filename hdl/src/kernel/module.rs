@@ -5,7 +5,9 @@ use super::signal::{Reg, Signal};
 /// What a traced signal is to its module.
 #[derive(Clone, Copy, PartialEq, Eq, Debug, Hash)]
 pub enum Dir {
+    /// Driven from outside the module.
     Input,
+    /// Driven by the module.
     Output,
     /// A register's current value.
     Reg,

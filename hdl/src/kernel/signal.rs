@@ -74,12 +74,15 @@ impl Signal {
         Signal::new(name, Format::uint(1))
     }
 
+    /// The signal's name (its waveform variable's).
     pub fn name(&self) -> &'static str {
         self.name
     }
+    /// Its format.
     pub fn fmt(&self) -> Format {
         self.fmt
     }
+    /// Its width in bits.
     pub fn width(&self) -> u32 {
         self.fmt.width()
     }

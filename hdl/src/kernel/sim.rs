@@ -38,6 +38,7 @@ impl Trace for NoTrace {
 /// outputs, then [`Sim::tick`] (sample for tracing, clock edge, cycle count + 1).
 /// [`Sim::step`] does both when nothing needs to be read in between.
 pub struct Sim<M: Module, T: Trace = NoTrace> {
+    /// The design under test: set its inputs between cycles, read its outputs after `eval`.
     pub dut: M,
     trace: Option<T>,
     cycle: u64,

@@ -23,6 +23,7 @@ pub struct BenchConfig {
     pub units: Vec<String>,
     /// Folder for the harnesses, builds, stimulus and `table.md`.
     pub out: PathBuf,
+    /// The stimulus seed.
     pub seed: Seed,
 }
 

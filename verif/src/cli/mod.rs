@@ -194,7 +194,9 @@ use std::path::Path;
 /// A command's failure: bad input (exit 2) or a run that failed (exit 1).
 #[derive(Debug)]
 pub enum CmdError {
+    /// Bad input: exit 2, the message names the option or file.
     Input(String),
+    /// A check failed: exit 1.
     Failed(String),
 }
 

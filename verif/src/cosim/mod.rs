@@ -21,14 +21,18 @@ use std::path::{Path, PathBuf};
 use std::process::Command;
 
 mod rtl;
+mod twin;
 mod verilator;
 
 pub use rtl::verilog_range;
+pub use twin::{random_inputs, Twin};
 
 /// A port of the unit's top: its name and format.
 #[derive(Clone, Debug, PartialEq)]
 pub struct Port {
+    /// The port's name in the model and in Verilog.
     pub name: String,
+    /// Its width and format (the waveform and the mismatch report show values in it).
     pub fmt: Format,
 }
 
@@ -49,6 +53,16 @@ pub trait CosimModel {
     /// One cycle: reset, inputs (raw bits in input-port order), settle, the outputs' bits in
     /// output-port order, then the clock edge.
     fn cycle(&mut self, rst: bool, inputs: &[u64]) -> Vec<u64>;
+    /// Signals inside the model shown in the co-simulation's waveform beside the comparison,
+    /// not compared (none by default).
+    fn watched(&self) -> Vec<Port> {
+        Vec::new()
+    }
+    /// [`CosimModel::cycle`], also returning the [`CosimModel::watched`] signals' values, read
+    /// when the outputs are.
+    fn cycle_watched(&mut self, rst: bool, inputs: &[u64]) -> (Vec<u64>, Vec<u64>) {
+        (self.cycle(rst, inputs), Vec::new())
+    }
     /// A benchmark run of the design as built (not as [`CosimModel::cycle`] left it): `stim`
     /// driven cycle by cycle (the first `resets` in reset), no schedule check, no output read;
     /// untraced, or traced (every signal, no `real` companions). Returns the time of the cycle
@@ -64,7 +78,9 @@ pub trait CosimModel {
 /// What a benchmark run writes.
 #[derive(Clone, Copy, Debug)]
 pub enum BenchTrace<'a> {
+    /// Untraced.
     None,
+    /// A VCD written while simulating.
     Vcd(&'a Path),
     /// FST written while simulating ([`waves::FstTracer`]).
     Fst(&'a Path),
@@ -101,9 +117,14 @@ pub struct ModelSim<M: Module> {
     /// Values inside the model compared as further output ports (see [`ModelSim::probes`]).
     probes: Vec<Port>,
     probe: fn(&M) -> Vec<u64>,
+    /// Values inside the model shown in the waveform, not compared ([`ModelSim::watch`]).
+    watch: Vec<Port>,
+    watch_fn: fn(&M) -> Vec<u64>,
 }
 
 impl<M: Module + Clone> ModelSim<M> {
+    /// The model `dut` (kept as built for benchmark runs), its inputs set from raw bits in
+    /// input-port order by `drive`.
     pub fn new(dut: M, drive: fn(&mut M, &[u64])) -> Self {
         ModelSim {
             pristine: dut.clone(),
@@ -111,7 +132,18 @@ impl<M: Module + Clone> ModelSim<M> {
             drive,
             probes: Vec::new(),
             probe: |_| Vec::new(),
+            watch: Vec::new(),
+            watch_fn: |_| Vec::new(),
         }
+    }
+
+    /// Shows `ports` in the co-simulation's waveform (scope `tb.watched`) beside the
+    /// comparison, not compared: `f` reads them from the settled model each cycle (a state
+    /// register, a pipeline's valid bits, the culprit's path).
+    pub fn watch(mut self, ports: Vec<Port>, f: fn(&M) -> Vec<u64>) -> Self {
+        self.watch = ports;
+        self.watch_fn = f;
+        self
     }
 
     /// Compares `ports` too, after the top's outputs: `probe` reads them from the settled
@@ -177,13 +209,20 @@ impl<M: Module + Clone> CosimModel for ModelSim<M> {
         (t.inputs, outs)
     }
     fn cycle(&mut self, rst: bool, inputs: &[u64]) -> Vec<u64> {
+        self.cycle_watched(rst, inputs).0
+    }
+    fn watched(&self) -> Vec<Port> {
+        self.watch.clone()
+    }
+    fn cycle_watched(&mut self, rst: bool, inputs: &[u64]) -> (Vec<u64>, Vec<u64>) {
         self.sim.set_reset(rst);
         (self.drive)(&mut self.sim.dut, inputs);
         self.sim.eval();
         let mut out = top_ports(&self.sim.dut).out_bits;
         out.extend((self.probe)(&self.sim.dut));
+        let watched = (self.watch_fn)(&self.sim.dut);
         self.sim.tick();
-        out
+        (out, watched)
     }
     fn bench(
         &self,
@@ -233,6 +272,7 @@ pub trait CosimUnit: Send + Sync {
     }
     /// The Verilog parameters of this configuration (the model's parameters).
     fn parameters(&self) -> Vec<(&'static str, i64)>;
+    /// The model in this configuration, from reset.
     fn model(&self) -> Result<Box<dyn CosimModel>, String>;
     /// Inputs of `cycles` cycles (raw bits in input-port order), seeded; the first
     /// [`Clocking::reset_cycles`] are driven in reset.
@@ -393,11 +433,14 @@ pub const FIRST_COMPARED: usize = 1;
 /// The simulators.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum Simulator {
+    /// Verilator (`--binary --timing`), its runtime reused between builds.
     Verilator,
+    /// Icarus Verilog (`iverilog -g2012`, `vvp`).
     Icarus,
 }
 
 impl Simulator {
+    /// `verilator` or `icarus`.
     pub fn parse(s: &str) -> Option<Simulator> {
         match s {
             "verilator" => Some(Simulator::Verilator),
@@ -405,6 +448,7 @@ impl Simulator {
             _ => None,
         }
     }
+    /// The name `parse` reads.
     pub fn name(self) -> &'static str {
         match self {
             Simulator::Verilator => "verilator",
@@ -429,20 +473,26 @@ impl Simulator {
 /// What a co-simulation found.
 #[derive(Clone, Debug)]
 pub struct CosimResult {
+    /// Cycles simulated, reset included.
     pub cycles: usize,
     /// The first difference, if any.
     pub mismatch: Option<Difference>,
     /// Differences counted over all cycles and ports.
     pub differences: u64,
+    /// The waveform holding the model, the RTL, a mismatch flag per port and the inputs.
     pub vcd: PathBuf,
 }
 
 /// The first cycle and port where the RTL and the model part.
 #[derive(Clone, Debug)]
 pub struct Difference {
+    /// The cycle (from 0, reset included).
     pub cycle: usize,
+    /// The output port.
     pub port: String,
+    /// The port's format.
     pub fmt: Format,
+    /// The model's bits.
     pub model: u64,
     /// `None`: the RTL drove `x` or `z`.
     pub rtl: Option<u64>,
@@ -479,8 +529,11 @@ impl std::fmt::Display for Difference {
 /// for, and the inputs of every cycle (reset first): the regression vectors' transactions as
 /// co-simulation stimulus, for example.
 pub struct Directed {
+    /// The run's name, its folder's.
     pub label: String,
+    /// The unit in the configuration the stimulus was made for.
     pub unit: Box<dyn CosimUnit>,
+    /// The inputs of every cycle, raw bits in input-port order, reset cycles first.
     pub stimulus: Vec<Vec<u64>>,
 }
 
@@ -552,9 +605,9 @@ pub fn run_with(
         ));
     }
     let resets = reset_cycles(unit);
-    let expected: Vec<Vec<u64>> = (0..cycles)
-        .map(|c| model.cycle(c < resets, &stim[c]))
-        .collect();
+    let (expected, watched): (Vec<Vec<u64>>, Vec<Vec<u64>>) = (0..cycles)
+        .map(|c| model.cycle_watched(c < resets, &stim[c]))
+        .unzip();
     rtl::write_stimulus(&dir.join("stim.hex"), &ins, stim, resets)?;
     for (file, text) in unit.memories() {
         let path = dir.join(file);
@@ -586,13 +639,47 @@ pub fn run_with(
         .map(|p| (p.name.as_str(), p.fmt.width()))
         .collect();
     let differs = |c: usize, k: usize| rules.differs(k, &expected[c], &got[c]);
-    waves::compare::write(&vcd, unit.name(), &defs, &expected, &got, &differs)?;
+    let watched_ports = model.watched();
+    let (inputs, watch) = (shown_ports(&ins, true), shown_ports(&watched_ports, false));
+    let stim_rst: Vec<Vec<u64>> = (0..cycles)
+        .map(|c| {
+            std::iter::once(u64::from(c < resets))
+                .chain(stim[c].iter().copied())
+                .collect()
+        })
+        .collect();
+    let shown = [
+        waves::compare::Shown {
+            scope: "inputs",
+            signals: &inputs,
+            values: &stim_rst,
+        },
+        waves::compare::Shown {
+            scope: "watched",
+            signals: &watch,
+            values: &watched,
+        },
+    ];
+    let shown = if watch.is_empty() {
+        &shown[..1]
+    } else {
+        &shown[..]
+    };
+    waves::compare::write(&vcd, unit.name(), &defs, &expected, &got, &differs, shown)?;
     Ok(CosimResult {
         cycles,
         mismatch: found.0,
         differences: found.1,
         vcd,
     })
+}
+
+/// Names and widths of `ports` for the waveform, after a 1-bit `rst` when `with_reset`.
+fn shown_ports(ports: &[Port], with_reset: bool) -> Vec<(&str, u32)> {
+    let rst = with_reset.then_some(("rst", 1));
+    rst.into_iter()
+        .chain(ports.iter().map(|p| (p.name.as_str(), p.fmt.width())))
+        .collect()
 }
 
 /// The Verilog sources of a run, absolute: the user's `rtl` (the unit's own when empty) and
