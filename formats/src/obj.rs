@@ -63,6 +63,13 @@ fn index(w: &str, len: usize, what: &str) -> Result<usize, String> {
 
 fn corner(w: &str, m: &Mesh) -> Result<Corner, String> {
     let parts: Vec<&str> = w.split('/').collect();
+    if parts.len() > 3 {
+        return Err(format!(
+            "corner '{}' has {} indices: at most three (v/vt/vn)",
+            crate::shorten(w),
+            parts.len()
+        ));
+    }
     let t = parts.get(1).copied().filter(|s| !s.is_empty());
     let Some(t) = t else {
         return Err(format!(
@@ -159,6 +166,15 @@ mod tests {
                 "position index 2: 1 defined",
             ),
             ("v 0 0 0\nvt 0 0\nf 1/1 1/1\n", "3 corners"),
+            // Junk after a corner's third index (it was read as v/vt/vn and the rest ignored).
+            (
+                "v 0 0 0\nvt 0 0\nvn 0 0 1\nf 1/1/1/1 1/1/1 1/1/x\n",
+                "corner '1/1/1/1' has 4 indices",
+            ),
+            (
+                "v 0 0 0\nvt 0 0\nvn 0 0 1\nf 1/1/1 1/1/1 1/1/x\n",
+                "normal index",
+            ),
             ("# nothing\n", "no faces"),
         ] {
             let e = parse("x.obj", text).unwrap_err();

@@ -81,11 +81,12 @@ impl Staged {
         &self.write
     }
 
-    /// Whether the output is a regular file, replaced atomically (false for a device, a pipe
-    /// or a link to one). Files that go beside an output (a `.gtkw` beside a `.vcd`) are only
-    /// written beside a regular file.
+    /// Whether the output is a regular file named as the user named it, replaced atomically
+    /// (false for a device, a pipe, or any symbolic link: `/dev/stdout` redirected to a file
+    /// is still `/dev/stdout`). Files that go beside an output (a `.gtkw` beside a `.vcd`) are
+    /// only written beside such a file, never into `/dev` or beside a link.
     pub fn is_file(&self) -> bool {
-        self.rename_to.is_some()
+        self.rename_to.as_deref() == Some(self.path.as_path())
     }
 
     /// An error naming the output as the user named it.

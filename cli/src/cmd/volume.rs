@@ -13,7 +13,7 @@ pub struct VolumeArgs {
     /// Raw 8-bit voxels, x fastest, then y, then z: exactly X*Y*Z bytes.
     #[arg(long)]
     pub volume: PathBuf,
-    /// X,Y,Z: x and y even 2..=256, z 1..=256, X*Y*Z/4 words a bank at most 279,552.
+    /// X,Y,Z: x and y even 2..=256, z 1..=256, X*Y*Z/4 words a bank at most 280,064 (the banks of level 0).
     #[arg(long)]
     pub dims: String,
     /// CSV with header x0,y0,z0,dx,dy,dz,steps: start and step in voxel units (voxel i at
@@ -103,11 +103,18 @@ fn read_rays(path: &Path) -> Result<Vec<Ray>, String> {
             let f = formats::shorten(&r.fields[6]);
             return Err(t.error(r, format!("steps {f}: a whole number 1..=65535")));
         }
-        v.push(Ray {
+        let ray = Ray {
             p: [raw[0], raw[1], raw[2]],
             d: [raw[3], raw[4], raw[5]],
             steps: s as u16,
-        });
+        };
+        if !units::volume::ray_caster_fig15::RayCaster::ray_fits(ray.p, ray.d, ray.steps) {
+            let msg = format!(
+                "steps {s}: the ray leaves the stepper's range (|x0 + steps dx| < 524288 voxels a component)"
+            );
+            return Err(t.error(r, msg));
+        }
+        v.push(ray);
     }
     Ok(v)
 }

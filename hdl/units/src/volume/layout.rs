@@ -89,6 +89,8 @@ impl VolumeParams {
         u64::from(x / 2) * u64::from(y / 2) * u64::from(z)
     }
 
+    /// Checks the dimensions (x, y even 2..=256, z 1..=256, at most [`bank_room`] words a
+    /// bank), the row size and the slot length.
     pub fn validate(&self) -> Result<(), String> {
         let (x, y, z) = self.dims;
         for (n, v) in [("x", x), ("y", y)] {
@@ -99,7 +101,7 @@ impl VolumeParams {
         if !(1..=256).contains(&z) {
             return Err(format!("z size {z}: 1..=256"));
         }
-        let room = (0..4).map(|b| u64::from(bank_words(b))).min().unwrap_or(0);
+        let room = bank_room();
         if self.words() > room {
             return Err(format!(
                 "{x}x{y}x{z} needs {} words a bank, banks 0-3 hold {room}",
@@ -117,6 +119,12 @@ impl VolumeParams {
         }
         Ok(())
     }
+}
+
+/// Words a bank of level 0 holds for a volume: the smallest of banks 0-3 (the one limit of a
+/// volume's size; `texrtl volume --help` states it).
+pub fn bank_room() -> u64 {
+    (0..4).map(|b| u64::from(bank_words(b))).min().unwrap_or(0)
 }
 
 /// The order of a point's accesses (0-based indices of [`access_voxels`]): value mode 0, 1;

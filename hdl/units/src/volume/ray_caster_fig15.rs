@@ -16,7 +16,7 @@
 //! |---|---|
 //! | `ray_x`, `ray_y`, `ray_z`, `ray_dx`, `ray_dy`, `ray_dz` | sQ9.12 |
 //! | `ray_steps` | u16, samples of the ray |
-//! | stepper position | sQ19.12 (32 bits; a ray of 65535 steps of at most 512 stays inside) |
+//! | stepper position | sQ19.12 (32 bits): a ray's points and the position after its last one must lie inside, `\|p + steps d\| < 2^19` voxels per component ([`RayCaster::ray_fits`]; 1100 steps of up to 476 voxels, 65535 of up to 8) |
 //! | `out_x`, `out_y`, `out_z` | sQ19.12, the sample's point |
 //! | `out_value` | u8 |
 //! | `out_gx`, `out_gy`, `out_gz` | sQ9.4 (gradient mode; 0 in value mode) |
@@ -70,6 +70,14 @@ pub struct RayCaster {
 }
 
 impl RayCaster {
+    /// Whether a ray from `p` by `d` (raw sQ.12) for `steps` samples keeps the stepper in its
+    /// 32-bit range: its points and the position after the last (which the stepper computes)
+    /// lie in `-2^31..2^31` raw, each component. The port takes only such rays.
+    pub fn ray_fits(p: [i32; 3], d: [i32; 3], steps: u16) -> bool {
+        let range = i64::from(i32::MIN)..=i64::from(i32::MAX);
+        (0..3).all(|c| range.contains(&(i64::from(p[c]) + i64::from(steps) * i64::from(d[c]))))
+    }
+
     /// The caster over `voxels` (x fastest, then y, then z) of volume `p`, in `mode`.
     pub fn new(p: VolumeParams, mode: Mode, voxels: &[u8]) -> Result<RayCaster, String> {
         p.validate()?;

@@ -1,0 +1,204 @@
+//! Bad input that once went wrong, each reproduced as it was found by the black-box fuzz
+//! campaign: now exit 0 with correct output, or exit 2 with one line naming the option or
+//! file, leaving no file behind and removing none.
+
+mod common;
+use common::{dir, ran, s, texrtl};
+
+/// A valid long ray whose stepper would leave its 32-bit range is refused at validation,
+/// naming the file's row (it panicked in the model); the same ray, shorter, runs.
+#[test]
+fn a_ray_leaving_the_stepper_range_is_refused_not_a_panic() {
+    let d = dir("findings", "ray");
+    let raw = d.join("v.raw");
+    std::fs::write(&raw, [0u8; 240]).unwrap();
+    let rays = d.join("r.csv");
+    std::fs::write(&rays, "x0,y0,z0,dx,dy,dz,steps\n0,0,0,511,0,0,1100\n").unwrap();
+    let o = d.join("o.csv");
+    let args = [
+        "volume",
+        "--volume",
+        s(&raw),
+        "--dims",
+        "8,6,5",
+        "--rays",
+        s(&rays),
+    ];
+    let out = texrtl(&[&args[..], &["--out", s(&o)]].concat());
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert_eq!(out.status.code(), Some(2), "{err}");
+    assert_eq!(err.trim_end().lines().count(), 1, "{err}");
+    assert!(err.contains("r.csv") && err.contains("steps 1100"), "{err}");
+    assert!(!o.exists());
+    // 1025 steps of 511 end at 523775 + 511: inside.
+    std::fs::write(&rays, "x0,y0,z0,dx,dy,dz,steps\n0,0,0,511,0,0,1024\n").unwrap();
+    ran(&[&args[..], &["--out", s(&o)]].concat());
+    assert_eq!(
+        std::fs::read_to_string(&o).unwrap().lines().count(),
+        1 + 1024
+    );
+}
+
+/// `vectors --out` naming a file that exists (or a dangling link) is refused and the file
+/// stays (it was removed).
+#[test]
+fn vectors_keeps_a_file_it_refuses_to_write_into() {
+    let d = dir("findings", "vectors");
+    let f = d.join("vd");
+    std::fs::write(&f, "precious\n").unwrap();
+    let link = d.join("dangling");
+    std::os::unix::fs::symlink(d.join("nowhere"), &link).unwrap();
+    for out in [&f, &link] {
+        let o = texrtl(&["vectors", "--unit", "blend_adjust_153", "--out", s(out)]);
+        let err = String::from_utf8_lossy(&o.stderr);
+        assert_eq!(o.status.code(), Some(2), "{err}");
+        assert!(err.contains("exists and is not a directory"), "{err}");
+    }
+    assert_eq!(std::fs::read_to_string(&f).unwrap(), "precious\n");
+    assert!(std::fs::symlink_metadata(&link)
+        .unwrap()
+        .file_type()
+        .is_symlink());
+}
+
+/// A waveform written to `/dev/stdout` (redirected into a file) or through any link gets no
+/// `.gtkw` or state filter beside the name given: side files go beside a regular file named
+/// as given, never into /dev.
+#[test]
+fn no_side_files_beside_dev_stdout_or_a_link() {
+    let d = dir("findings", "stdout");
+    let mut pgm = b"P5\n4 3\n255\n".to_vec();
+    pgm.extend((0..12u8).map(|k| k * 20));
+    std::fs::write(d.join("h.pgm"), &pgm).unwrap();
+    std::fs::write(d.join("c.csv"), "u,v\n0,0\n1.5,2.25\n").unwrap();
+    let run = |vcd: &str, stdout: std::process::Stdio| {
+        std::process::Command::new(env!("CARGO_BIN_EXE_texrtl"))
+            .args([
+                "normals",
+                "--height",
+                s(&d.join("h.pgm")),
+                "--coords",
+                s(&d.join("c.csv")),
+            ])
+            .args(["--out", s(&d.join("n.csv")), "--vcd", vcd])
+            .stdout(stdout)
+            .output()
+            .unwrap()
+    };
+    let w = std::fs::File::create(d.join("w.vcd")).unwrap();
+    let o = run("/dev/stdout", w.into());
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    assert!(std::fs::read_to_string(d.join("w.vcd"))
+        .unwrap()
+        .contains("$enddefinitions"));
+    let in_dev: Vec<String> = std::fs::read_dir("/dev")
+        .unwrap()
+        .flatten()
+        .map(|e| e.file_name().to_string_lossy().into_owned())
+        .filter(|n| n.starts_with("stdout."))
+        .collect();
+    assert!(in_dev.is_empty(), "written into /dev: {in_dev:?}");
+    std::fs::create_dir_all(d.join("real")).unwrap();
+    std::fs::write(d.join("real/t.vcd"), "").unwrap();
+    std::os::unix::fs::symlink(d.join("real/t.vcd"), d.join("link.vcd")).unwrap();
+    let o = run(s(&d.join("link.vcd")), std::process::Stdio::null());
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    assert!(std::fs::read_to_string(d.join("real/t.vcd"))
+        .unwrap()
+        .contains("$enddefinitions"));
+    for f in [d.join("link.gtkw"), d.join("real/t.gtkw")] {
+        assert!(!f.exists(), "{} written", f.display());
+    }
+}
+
+/// A face corner with more than three indices is refused, naming the corner.
+#[test]
+fn an_obj_corner_has_at_most_three_indices() {
+    let d = dir("findings", "obj");
+    let obj = d.join("m.obj");
+    std::fs::write(
+        &obj,
+        "v 0 0 0\nv 1 0 0\nv 0 1 0\nvt 0 0\nvt 1 0\nvt 0 1\nvn 0 0 1\nf 1/1/1/1 2/2/1/7 3/3/1/x\n",
+    )
+    .unwrap();
+    let o = d.join("t.csv");
+    let out = texrtl(&["tangents", "--mesh", s(&obj), "--out", s(&o)]);
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert_eq!(out.status.code(), Some(2), "{err}");
+    assert!(
+        err.contains("m.obj") && err.contains("at most three"),
+        "{err}"
+    );
+    assert!(!o.exists());
+}
+
+/// The volume size limit is the one the help states and the error names.
+#[test]
+fn the_volume_limit_is_stated_once() {
+    let room = units::volume::layout::bank_room();
+    let help = String::from_utf8_lossy(&texrtl(&["volume", "--help"]).stdout).into_owned();
+    let stated = format!("at most {}", group(room));
+    assert!(help.contains(&stated), "{stated} not in the help:\n{help}");
+    let d = dir("findings", "limit");
+    // 18 x 244 x 255: 279,990 words a bank, inside; one slice more is over.
+    for (z, ok) in [
+        (255u64, 9 * 122 * 255 <= room),
+        (256, 9 * 122 * 256 <= room),
+    ] {
+        let dims = format!("18,244,{z}");
+        let raw = d.join("v.raw");
+        std::fs::write(&raw, vec![0u8; (18 * 244 * z) as usize]).unwrap();
+        let rays = d.join("r.csv");
+        std::fs::write(&rays, "x0,y0,z0,dx,dy,dz,steps\n1,1,1,0,0,1,2\n").unwrap();
+        let out = texrtl(&[
+            "volume",
+            "--volume",
+            s(&raw),
+            "--dims",
+            &dims,
+            "--rays",
+            s(&rays),
+            "--out",
+            s(&d.join("o.csv")),
+        ]);
+        let err = String::from_utf8_lossy(&out.stderr);
+        assert_eq!(out.status.success(), ok, "{dims}: {err}");
+        if !ok {
+            assert!(err.contains(&format!("hold {room}")), "{err}");
+        }
+    }
+}
+
+fn group(n: u64) -> String {
+    let s = n.to_string();
+    let mut out = String::new();
+    for (i, c) in s.chars().enumerate() {
+        if i > 0 && (s.len() - i) % 3 == 0 {
+            out.push(',');
+        }
+        out.push(c);
+    }
+    out
+}
+
+/// A long option value is shortened in the message, and a newline in a file name is shown
+/// escaped: every message stays one line.
+#[test]
+fn messages_stay_one_short_line() {
+    let long = "u".repeat(5000);
+    let out = texrtl(&["vectors", "--unit", &long, "--out", "/tmp"]);
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert_eq!(out.status.code(), Some(2), "{err}");
+    assert!(err.len() < 400, "{} characters", err.len());
+    let out = texrtl(&[
+        "tangents",
+        "--mesh",
+        "/tmp/no\nsuch.obj",
+        "--out",
+        "/tmp/texrtl-findings-t.csv",
+    ]);
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert_eq!(out.status.code(), Some(2), "{err}");
+    assert_eq!(err.trim_end().lines().count(), 1, "{err}");
+    assert!(err.contains("no\\nsuch.obj"), "{err}");
+}
