@@ -173,7 +173,7 @@ fn group(n: u64) -> String {
     let s = n.to_string();
     let mut out = String::new();
     for (i, c) in s.chars().enumerate() {
-        if i > 0 && (s.len() - i) % 3 == 0 {
+        if i > 0 && (s.len() - i).is_multiple_of(3) {
             out.push(',');
         }
         out.push(c);
@@ -201,4 +201,73 @@ fn messages_stay_one_short_line() {
     assert_eq!(out.status.code(), Some(2), "{err}");
     assert_eq!(err.trim_end().lines().count(), 1, "{err}");
     assert!(err.contains("no\\nsuch.obj"), "{err}");
+}
+
+/// A tile border, which only a map chain's detail maps have, is refused by the commands
+/// whose help lists wrap, clamp, mirror and border:N (it failed inside, or passed by chance).
+#[test]
+fn texram_and_footprint_refuse_a_tile_border() {
+    let d = dir("findings", "tile");
+    let mut pgm = b"P5\n8 8\n255\n".to_vec();
+    pgm.extend(0..64u8);
+    let tex = d.join("t.pgm");
+    std::fs::write(&tex, &pgm).unwrap();
+    let texram_reqs = d.join("tr.csv");
+    std::fs::write(&texram_reqs, "u,v,lambda\n1.5,2.5,0\n").unwrap();
+    let fp_reqs = d.join("fr.csv");
+    std::fs::write(&fp_reqs, "u,v,dudx,dvdx,dudy,dvdy\n1.5,2.5,1,0,0,1\n").unwrap();
+    for tile in ["tile:0", "tile:4"] {
+        for (cmd, reqs) in [("texram", &texram_reqs), ("footprint", &fp_reqs)] {
+            let o = d.join("o.csv");
+            let args = [
+                cmd,
+                "--texture",
+                s(&tex),
+                "--requests",
+                s(reqs),
+                "--out",
+                s(&o),
+                "--border",
+                tile,
+            ];
+            common::assert_refused(&args, &format!("--border {tile}"), &d, &["o.csv"]);
+        }
+    }
+}
+
+/// A waveform that cannot be written is bad output naming `--vcd` (exit 2), in every command
+/// that writes one (footprint and volume said exit 1 and named only the file).
+#[test]
+fn an_unwritable_waveform_names_vcd() {
+    let d = dir("findings", "full");
+    let raw = d.join("v.raw");
+    std::fs::write(&raw, [0u8; 240]).unwrap();
+    let rays = d.join("r.csv");
+    std::fs::write(&rays, "x0,y0,z0,dx,dy,dz,steps\n0,0,0,1,0,0,3\n").unwrap();
+    let mut pgm = b"P5\n8 8\n255\n".to_vec();
+    pgm.extend(0..64u8);
+    let tex = d.join("t.pgm");
+    std::fs::write(&tex, &pgm).unwrap();
+    let reqs = d.join("fr.csv");
+    std::fs::write(&reqs, "u,v,dudx,dvdx,dudy,dvdy\n1.5,2.5,1,0,0,1\n").unwrap();
+    let o = d.join("o.csv");
+    let vol = [
+        "volume",
+        "--volume",
+        s(&raw),
+        "--dims",
+        "8,6,5",
+        "--rays",
+        s(&rays),
+    ];
+    let fp = ["footprint", "--texture", s(&tex), "--requests", s(&reqs)];
+    for cmd in [&vol[..], &fp[..]] {
+        let args = [cmd, &["--out", s(&o), "--vcd", "/dev/full"]].concat();
+        common::assert_refused(
+            &args,
+            "--vcd /dev/full: No space left on device",
+            &d,
+            &["o.csv"],
+        );
+    }
 }

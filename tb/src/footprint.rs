@@ -816,18 +816,19 @@ fn drive_pixels<U: SampleTarget>(
     pixels: &[Pixel],
     (vcd, period_ps): (Option<&std::path::Path>, u64),
     want: impl Fn(usize) -> Assembled,
-) -> Result<(Vec<Assembled>, u64, FootprintFig12<U>), String> {
+) -> Result<(Vec<Assembled>, u64, FootprintFig12<U>), crate::RunError> {
+    let bad = |e: std::io::Error| crate::waveform_error(vcd.unwrap_or(std::path::Path::new("")), e);
     let tracer = match vcd {
         Some(path) => {
             let cfg = waves::TraceConfig {
                 period_ps,
                 ..Default::default()
             };
-            Some(waves::VcdTracer::create(path, NAME, cfg).map_err(|e| e.to_string())?)
+            Some(waves::VcdTracer::create(path, NAME, cfg).map_err(bad)?)
         }
         None => None,
     };
-    let mut sim = Sim::maybe_traced(dut, tracer).map_err(|e| e.to_string())?;
+    let mut sim = Sim::maybe_traced(dut, tracer).map_err(bad)?;
     sim.reset(2);
     let n = pixels.len() as u64;
     let mut results = Vec::with_capacity(pixels.len());
@@ -852,9 +853,9 @@ fn drive_pixels<U: SampleTarget>(
     )
     .map_err(|e| e.to_string())?;
     if let Some(e) = wrong {
-        return Err(e);
+        return Err(e.into());
     }
-    let dut = sim.finish().map_err(|e| e.to_string())?;
+    let dut = sim.finish().map_err(bad)?;
     Ok((results, st.cycles, dut))
 }
 
@@ -888,7 +889,7 @@ pub fn run_footprint(
     p: SetupParams,
     pixels: &[Pixel],
     vcd: Option<&std::path::Path>,
-) -> Result<FootprintRun, String> {
+) -> Result<FootprintRun, crate::RunError> {
     let mut chip = Texram802::new(TexramParams::default())?;
     chip.set_drf(0, drf)?;
     chip.load(0, level0)?;
@@ -919,13 +920,14 @@ pub fn run_footprint_texture(
     p: SetupParams,
     pixels: &[Pixel],
     vcd: Option<&std::path::Path>,
-) -> Result<FootprintRun, String> {
+) -> Result<FootprintRun, crate::RunError> {
     use units::texmem::texture_unit_602::TextureUnit;
     if (tex.width, tex.height) != (tp.width, tp.height) {
         return Err(format!(
             "texture is {}x{}, the unit is set up for {}x{}",
             tex.width, tex.height, tp.width, tp.height
-        ));
+        )
+        .into());
     }
     tp.validate()?;
     let words = tex.dram_words(&tp.block_map());

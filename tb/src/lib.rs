@@ -27,6 +27,41 @@ pub mod texture;
 pub mod vectors;
 pub mod volume;
 
+/// What stops a run of a unit on a command's input: its waveform could not be written (the
+/// command names its option: bad output, exit 2) or the run itself failed (a check inside).
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub enum RunError {
+    /// The waveform's file could not be created or written; the message names the file.
+    Waveform(String),
+    /// Anything else.
+    Failed(String),
+}
+
+impl From<String> for RunError {
+    fn from(s: String) -> Self {
+        RunError::Failed(s)
+    }
+}
+
+impl From<RunError> for String {
+    fn from(e: RunError) -> Self {
+        match e {
+            RunError::Waveform(m) | RunError::Failed(m) => m,
+        }
+    }
+}
+
+/// A waveform's I/O error, naming the file.
+pub fn waveform_error(path: &std::path::Path, e: impl std::fmt::Display) -> RunError {
+    let e = e.to_string();
+    let shown = path.display().to_string();
+    RunError::Waveform(if e.starts_with(&shown) {
+        e
+    } else {
+        format!("{shown}: {e}")
+    })
+}
+
 #[cfg(test)]
 mod tests {
     /// tests/mutants.rs, the mutation run's one test binary, gathers every test file of tests/

@@ -637,19 +637,20 @@ pub fn run_volume(
     vox: &[u8],
     rs: &[Ray],
     vcd: Option<&std::path::Path>,
-) -> Result<VolumeRun, String> {
+) -> Result<VolumeRun, crate::RunError> {
     let dut = RayCaster::new(p, mode, vox)?;
+    let bad = |e: std::io::Error| crate::waveform_error(vcd.unwrap_or(std::path::Path::new("")), e);
     let tracer = match vcd {
         Some(path) => {
             let cfg = waves::TraceConfig {
                 period_ps: CYCLE_PS,
                 ..Default::default()
             };
-            Some(waves::VcdTracer::create(path, NAME, cfg).map_err(|e| e.to_string())?)
+            Some(waves::VcdTracer::create(path, NAME, cfg).map_err(bad)?)
         }
         None => None,
     };
-    let mut sim = Sim::maybe_traced(dut, tracer).map_err(|e| e.to_string())?;
+    let mut sim = Sim::maybe_traced(dut, tracer).map_err(bad)?;
     sim.reset(2);
     let want: Vec<[i64; 3]> = rs
         .iter()
@@ -681,7 +682,7 @@ pub fn run_volume(
     )
     .map_err(|e| e.to_string())?;
     if let Some(e) = wrong {
-        return Err(e);
+        return Err(e.into());
     }
     let d = &sim.dut;
     let ns = st.cycles * CYCLE_PS / 1000;
@@ -700,6 +701,6 @@ pub fn run_volume(
             n as f64 / ns as f64 * 1e9
         },
     };
-    sim.finish().map_err(|e| e.to_string())?;
+    sim.finish().map_err(bad)?;
     Ok(VolumeRun { samples, stats })
 }

@@ -115,12 +115,7 @@ fn options(a: &FootprintArgs) -> Result<(SetupParams, Border, bool), CmdError> {
             return Err(input(format!("--unit {u}: texram or texture")));
         }
     };
-    let border = Border::parse(&a.border).ok_or_else(|| {
-        let b = formats::shorten(&a.border);
-        input(format!(
-            "--border {b}: wrap, clamp, mirror or border:N (N 0..=255)"
-        ))
-    })?;
+    let border = super::texture_border(&a.border)?;
     let p = SetupParams {
         max_log2_n: a.max_n.trailing_zeros(),
         rounding,
@@ -135,7 +130,7 @@ fn footprint(a: &FootprintArgs) -> Result<String, CmdError> {
         let (drf, level0) = read_pgm(&a.texture, border)?;
         let pixels = read_pixels(&a.requests).map_err(input)?;
         let run =
-            run_footprint(drf, &level0, p, &pixels, a.vcd.as_deref()).map_err(CmdError::Failed)?;
+            run_footprint(drf, &level0, p, &pixels, a.vcd.as_deref()).map_err(super::run_error)?;
         (pixels, run)
     } else {
         let tex = super::texread::read_texture(&a.texture).map_err(input)?;
@@ -144,7 +139,7 @@ fn footprint(a: &FootprintArgs) -> Result<String, CmdError> {
             .map_err(|e| input(format!("{}: {e}", a.texture.display())))?;
         let pixels = read_pixels(&a.requests).map_err(input)?;
         let run = run_footprint_texture(&tex, tp, p, &pixels, a.vcd.as_deref())
-            .map_err(CmdError::Failed)?;
+            .map_err(super::run_error)?;
         (pixels, run)
     };
     write_results(a, &pixels.0, &pixels.1, texram)

@@ -17,3 +17,27 @@ pub mod volume;
 pub mod widths;
 
 pub use verif::cli::{check_outputs, input, parse_finite, same_file, write_out, CmdError, Outputs};
+
+/// A texture's `--border`: wrap, clamp, mirror or border:N. A tile border (`tile:T`) is for
+/// the detail maps of a map chain (section 9), which these commands do not read: refused.
+pub fn texture_border(s: &str) -> Result<units::texram::Border, CmdError> {
+    let bad = || {
+        let b = waves::output::shorten(s);
+        input(format!(
+            "--border {b}: wrap, clamp, mirror or border:N (N 0..=255)"
+        ))
+    };
+    match units::texram::Border::parse(s) {
+        Some(units::texram::Border::Tile(_)) | None => Err(bad()),
+        Some(b) => Ok(b),
+    }
+}
+
+/// A unit's run on a command's input: a waveform that cannot be written is bad output naming
+/// `--vcd` (exit 2), anything else a failed run (exit 1).
+pub fn run_error(e: tb::RunError) -> CmdError {
+    match e {
+        tb::RunError::Waveform(m) => input(format!("--vcd {m}")),
+        tb::RunError::Failed(m) => CmdError::Failed(m),
+    }
+}

@@ -231,12 +231,7 @@ fn texram(a: &TexramArgs) -> Result<String, CmdError> {
             )));
         }
     };
-    let border = Border::parse(&a.border).ok_or_else(|| {
-        let b = formats::shorten(&a.border);
-        input(format!(
-            "--border {b}: wrap, clamp, mirror or border:N (N 0..=255)"
-        ))
-    })?;
+    let border = super::texture_border(&a.border)?;
     let tex = read_texture(&a.texture, config, border).map_err(input)?;
     let reqs = read_requests(&a.requests).map_err(input)?;
     let run = run_texram(&tex, &reqs, a.vcd.as_deref()).map_err(input)?;

@@ -141,7 +141,7 @@ fn volume(a: &VolumeArgs) -> Result<String, CmdError> {
     } else {
         Mode::Value
     };
-    let run = run_volume(p, mode, &vox, &rays, a.vcd.as_deref()).map_err(CmdError::Failed)?;
+    let run = run_volume(p, mode, &vox, &rays, a.vcd.as_deref()).map_err(super::run_error)?;
     let mut csv = String::from("ray,k,x,y,z,value");
     csv.push_str(if a.gradient { ",gx,gy,gz\n" } else { "\n" });
     let f = |x: i64| x as f64 / 4096.0;
