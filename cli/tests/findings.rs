@@ -271,3 +271,27 @@ fn an_unwritable_waveform_names_vcd() {
         );
     }
 }
+
+/// A render whose panels would outgrow 1024x1024 pixels is refused at once (32x32 at zoom 64
+/// ran past 10 s and 860 MB); 32x32 at zoom 32 is the largest and runs.
+#[test]
+fn render_bounds_the_picture() {
+    let d = dir("findings", "render");
+    let mut pgm = b"P5\n32 32\n255\n".to_vec();
+    pgm.extend((0..1024u32).map(|k| (k * 7 % 256) as u8));
+    let h = d.join("m.pgm");
+    std::fs::write(&h, &pgm).unwrap();
+    let o = d.join("r.png");
+    let t0 = std::time::Instant::now();
+    common::assert_refused(
+        &["render", "--height", s(&h), "--out", s(&o), "--zoom", "64"],
+        "1024x1024 at most",
+        &d,
+        &["r.png"],
+    );
+    assert!(
+        t0.elapsed().as_secs() < 5,
+        "refused only after {:?}",
+        t0.elapsed()
+    );
+}

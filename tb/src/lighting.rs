@@ -104,7 +104,10 @@ pub fn render_png(
         worst = worst.max(e);
         img.put_pixel(3 * (w + 4) + x, y, heat(e));
     }
-    Ok((crate::pictures::png(&img)?, worst))
+    Ok((
+        verif::plot::png(img.width(), img.height(), img.as_raw())?,
+        worst,
+    ))
 }
 
 /// Log-scale heat colour: black below 2^-24, through blue, red and yellow to white at 2^-8.
