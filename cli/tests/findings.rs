@@ -295,3 +295,33 @@ fn render_bounds_the_picture() {
         t0.elapsed()
     );
 }
+
+/// Lights at a tiny elevation inside the documented (0, 90]: the occlusion march is bounded
+/// (it ran for minutes at 1e-300 degrees), so the fit ends in a second or two.
+#[test]
+fn ptm_fit_at_grazing_elevations_ends() {
+    let d = dir("findings", "ptm");
+    let mut pgm = b"P5\n32 32\n255\n".to_vec();
+    pgm.extend((0..1024u32).map(|k| ((k % 32) * 37 + (k / 32) * 91) as u8));
+    let h = d.join("h.pgm");
+    std::fs::write(&h, &pgm).unwrap();
+    let lights = d.join("l.csv");
+    std::fs::write(
+        &lights,
+        "elevation,azimuth\n1e-300,0\n1e-300,90\n1e-300,180\n45,0\n45,120\n45,240\n",
+    )
+    .unwrap();
+    let t0 = std::time::Instant::now();
+    ran(&[
+        "ptm",
+        "fit",
+        "--height",
+        s(&h),
+        "--lights",
+        s(&lights),
+        "--out",
+        s(&d.join("p.ptm")),
+    ]);
+    assert!(t0.elapsed().as_secs() < 10, "{:?}", t0.elapsed());
+    assert!(d.join("p.ptm").is_file());
+}

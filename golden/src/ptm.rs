@@ -215,8 +215,14 @@ fn height_at(h: &[f64], n: usize, x: f64, y: f64) -> f64 {
         + a * b * t(1.0, 1.0)
 }
 
+/// How far a ray marches toward its light at most, in swatch widths: a grazing light (its ray
+/// still below the field's highest point after 16 swatches) counts as occluded, so the march is
+/// bounded at every elevation in (0, 90] (steps grow as 1/tan(elevation) otherwise).
+pub const MAX_MARCH_SWATCHES: usize = 16;
+
 /// Whether texel `(x, y)` sees light `l`: a ray from its top toward the light, in quarter
-/// texel steps, stays above the field until it is above the field's highest point.
+/// texel steps, stays above the field until it is above the field's highest point, within
+/// [`MAX_MARCH_SWATCHES`] swatch widths (beyond: occluded).
 pub fn lit(h: &[f64], n: usize, x: usize, y: usize, l: Light) -> bool {
     let d = l.dir();
     let top = h.iter().copied().fold(f64::MIN, f64::max);
@@ -227,7 +233,13 @@ pub fn lit(h: &[f64], n: usize, x: usize, y: usize, l: Light) -> bool {
     let (sx, sy, sz) = (d[0] / flat * 0.25, d[1] / flat * 0.25, d[2] / flat * 0.25);
     let (mut px, mut py) = (x as f64, y as f64);
     let mut pz = h[y * n + x] + 1e-6;
+    // Quarter-texel steps over at most MAX_MARCH_SWATCHES widths.
+    let mut left = 4 * n * MAX_MARCH_SWATCHES;
     while pz <= top {
+        if left == 0 {
+            return false;
+        }
+        left -= 1;
         px += sx;
         py += sy;
         pz += sz;
@@ -314,6 +326,32 @@ mod tests {
     }
 
     /// A flat field is lit from everywhere; a deep pit is not lit from a low light.
+    #[test]
+    fn a_grazing_light_marches_a_bounded_distance() {
+        // A field with one bump: at 1e-300 degrees the ray never rises; it stops after the
+        // bounded march, occluded. At 30 degrees the bound is never reached.
+        let n = 8;
+        let mut h = vec![0.0; n * n];
+        h[3 * n + 5] = 2.0;
+        let grazing = Light {
+            elevation: 1e-300,
+            azimuth: 0.0,
+        };
+        let t0 = std::time::Instant::now();
+        assert!(!lit(&h, n, 0, 0, grazing));
+        assert!(t0.elapsed().as_secs() < 2);
+        let steep = Light {
+            elevation: 30.0,
+            azimuth: 0.0,
+        };
+        // From the bump's top the ray starts above everything: lit at once.
+        assert!(lit(&h, n, 5, 3, steep));
+        assert!(
+            lit(&h, n, 5, 3, grazing),
+            "the highest texel sees every light"
+        );
+    }
+
     #[test]
     fn occlusion_by_marching() {
         let flat = vec![1.0; 16 * 16];
