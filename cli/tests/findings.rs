@@ -325,3 +325,39 @@ fn ptm_fit_at_grazing_elevations_ends() {
     assert!(t0.elapsed().as_secs() < 10, "{:?}", t0.elapsed());
     assert!(d.join("p.ptm").is_file());
 }
+
+/// A moving ray costs what a standing one does, sample for sample (the reference mirrored a
+/// coordinate far outside the volume step by step: quadratic in the samples).
+#[test]
+fn a_moving_ray_is_as_cheap_as_a_standing_one() {
+    let d = dir("findings", "moving");
+    let raw = d.join("v.raw");
+    std::fs::write(&raw, [7u8; 240]).unwrap();
+    let time = |ray: &str| {
+        let rays = d.join("r.csv");
+        std::fs::write(
+            &rays,
+            format!("x0,y0,z0,dx,dy,dz,steps\n{ray}\n{ray}\n{ray}\n"),
+        )
+        .unwrap();
+        let t0 = std::time::Instant::now();
+        ran(&[
+            "volume",
+            "--volume",
+            s(&raw),
+            "--dims",
+            "8,6,5",
+            "--rays",
+            s(&rays),
+            "--out",
+            s(&d.join("o.csv")),
+        ]);
+        t0.elapsed().as_secs_f64()
+    };
+    let still = time("1,1,1,0,0,0,65535");
+    let moving = time("1,1,1,0.5,0,0,65535");
+    assert!(
+        moving < 3.0 * still + 1.0,
+        "moving {moving:.2} s, standing {still:.2} s"
+    );
+}
