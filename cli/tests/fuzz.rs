@@ -1,16 +1,28 @@
 //! Fuzzing every command's front end, as a user meets it: the program run on a valid input
-//! file with up to eight byte-level mutations ([`verif::mutate`]), under a 2 GiB
-//! address-space limit (an allocation by a declared size aborts there). Every run must exit
-//! 0, or 2 with one line and no new file (1 only where a testbench can fail); never a panic
-//! (101) or an abort (134). Seeds are printed; replay with `TEXRTL_SEED`.
+//! file with up to eight byte-level mutations ([`verif::mutate`]), and on valid arguments with
+//! one option's value replaced (numbers at and past their limits, junk, long values, control
+//! characters), under a 2 GiB address-space limit (an allocation by a declared size aborts
+//! there) and a time bound (a slow path is a failure). Every run must exit 0, or 2 with one
+//! line and no new file (1 only where a check can fail); never a panic (101) or an abort
+//! (134). Seeds are printed; replay with `TEXRTL_SEED`. `TEXRTL_FUZZ_CASES=N` runs N cases a
+//! front end (a campaign; the default is what `cargo test` runs).
 
 use proptest::test_runner::TestCaseError;
 use std::path::{Path, PathBuf};
 use std::process::Command;
 use verif::mutate::{mutated, mutations};
 
-/// Runs per command in `cargo test` (each is a process; the campaign runs more).
-const CASES: u32 = 40;
+/// Runs per command in `cargo test` (each is a process; a campaign sets
+/// `TEXRTL_FUZZ_CASES`).
+fn cases() -> u32 {
+    std::env::var("TEXRTL_FUZZ_CASES")
+        .ok()
+        .and_then(|v| v.parse().ok())
+        .unwrap_or(40)
+}
+
+/// Seconds one case may take (the program is killed at twice its CPU time).
+const CASE_SECONDS: u64 = 10;
 
 fn dir(name: &str) -> PathBuf {
     let d = std::env::temp_dir().join(format!("texrtl-fuzz-{}-{name}", std::process::id()));
@@ -291,15 +303,22 @@ fn args(f: &Front, d: &Path) -> Vec<String> {
         .collect()
 }
 
-/// Runs the program under the address-space limit.
-fn run_limited(args: &[String]) -> std::process::Output {
-    Command::new("sh")
+/// Runs the program under the address-space limit and a CPU-time limit; its output and the
+/// wall-clock seconds it took.
+fn run_limited(args: &[String], cwd: &Path) -> (std::process::Output, f64) {
+    let t0 = std::time::Instant::now();
+    let o = Command::new("sh")
         .arg("-c")
-        .arg("ulimit -v 2097152; exec \"$0\" \"$@\"")
+        .arg(format!(
+            "ulimit -v 2097152; ulimit -t {}; exec \"$0\" \"$@\"",
+            2 * CASE_SECONDS
+        ))
         .arg(env!("CARGO_BIN_EXE_texrtl"))
         .args(args)
+        .current_dir(cwd)
         .output()
-        .expect("runs")
+        .expect("runs");
+    (o, t0.elapsed().as_secs_f64())
 }
 
 /// One case: the command's file `which` mutated; checks the exit, the message and the folder.
@@ -319,9 +338,13 @@ fn case(
         };
         std::fs::write(d.join(name), b).unwrap();
     }
-    let before = names(&d);
-    let a = args(f, &d);
-    let o = run_limited(&a);
+    judge(f, &d, args(f, &d))
+}
+
+/// Runs `a` in the case folder `d` and judges the exit, the message, the folder and the time.
+fn judge(f: &Front, d: &Path, a: Vec<String>) -> Result<(), TestCaseError> {
+    let before = names(d);
+    let (o, secs) = run_limited(&a, d);
     let err = String::from_utf8_lossy(&o.stderr);
     let code = o.status.code().unwrap_or(-1);
     let fail = |m: String| {
@@ -330,21 +353,25 @@ fn case(
             a.join(" ")
         )))
     };
+    if secs > CASE_SECONDS as f64 {
+        return fail(format!("took {secs:.1} s"));
+    }
     match code {
         0 => {}
         2 => {
             if err.trim_end().lines().count() != 1 || err.len() > 400 {
                 return fail("not one short line".into());
             }
-            if names(&d) != before {
-                return fail(format!("left {:?}", names(&d)));
+            if names(d) != before {
+                return fail(format!("left {:?}", names(d)));
             }
         }
-        // A merged run that failed (a mutation can mark a shard failed).
-        1 if f.name == "merge" => {}
+        // A merged run that failed (a mutation can mark a shard failed), a vectors check
+        // or a co-simulation that found a difference.
+        1 if ["merge", "vectors", "cosim"].contains(&f.name) => {}
         c => return fail(format!("exit {c}")),
     }
-    let _ = std::fs::remove_dir_all(&d);
+    let _ = std::fs::remove_dir_all(d);
     Ok(())
 }
 
@@ -356,7 +383,7 @@ fn every_command_front_end_survives_mutated_inputs() {
         .chain(texram_fronts())
         .chain(later_fronts())
     {
-        let mut runner = verif::seeded_runner(&format!("fuzz {}", f.name), CASES);
+        let mut runner = verif::seeded_runner(&format!("fuzz {}", f.name), cases());
         let strat = (0..f.files.len(), mutations(8));
         runner
             .run(&strat, |(which, muts)| {
@@ -397,11 +424,204 @@ fn merge_survives_mutated_summaries() {
         files: vec![("s1.json", shard_summary(1)), ("s2.json", shard_summary(2))],
     };
     let n = std::sync::atomic::AtomicUsize::new(0);
-    let mut runner = verif::seeded_runner("fuzz merge", CASES);
+    let mut runner = verif::seeded_runner("fuzz merge", cases());
     runner
         .run(&(0..2usize, mutations(8)), |(which, muts)| {
             let k = n.fetch_add(1, std::sync::atomic::Ordering::Relaxed);
             case(&f, k, which, &muts)
         })
         .unwrap();
+}
+
+/// Fronts without an input file of their own: vectors, sweep, and co-simulation against the
+/// user's Verilog (`--rtl`, the twin's source mutated; Icarus, when installed).
+fn tool_fronts() -> Vec<Front> {
+    let mut v = vec![
+        Front {
+            name: "vectors",
+            args: &["vectors", "--unit", "blend_adjust_153", "--out", "{out}"],
+            files: vec![],
+        },
+        Front {
+            name: "sweep",
+            args: &["sweep", "normals", "--samples", "20", "--map", "bumps"],
+            files: vec![],
+        },
+    ];
+    if Command::new("iverilog").arg("-V").output().is_ok() {
+        let rtl = Path::new(env!("CARGO_MANIFEST_DIR")).join("../rtl/bump/blend_adjust_153.v");
+        v.push(Front {
+            name: "cosim",
+            args: &[
+                "cosim",
+                "--unit",
+                "blend_adjust_153",
+                "--sim",
+                "icarus",
+                "--count",
+                "40",
+                "--rtl",
+                "{u.v}",
+                "--out",
+                "{out}",
+            ],
+            files: vec![("u.v", std::fs::read(rtl).unwrap())],
+        });
+    }
+    v
+}
+
+/// The options of a command that take a value, from its `--help`, but those naming an output
+/// (a junk value there would only be a file name).
+fn value_options(f: &Front) -> Vec<String> {
+    let words: Vec<&str> = f
+        .args
+        .iter()
+        .take_while(|a| !a.starts_with("--"))
+        .copied()
+        .collect();
+    let o = Command::new(env!("CARGO_BIN_EXE_texrtl"))
+        .args(&words)
+        .arg("--help")
+        .output()
+        .unwrap();
+    let help = String::from_utf8_lossy(&o.stdout).into_owned();
+    let outputs = ["--out", "--stats", "--vcd", "--fst", "--dir"];
+    help.lines()
+        .filter_map(|l| {
+            let words: Vec<&str> = l.split_whitespace().collect();
+            if !words.first()?.starts_with('-') {
+                return None;
+            }
+            let k = words.iter().position(|w| w.starts_with("--"))?;
+            let takes_value = words.get(k + 1).is_some_and(|w| w.starts_with('<'));
+            takes_value.then(|| words[k].trim_end_matches(',').to_string())
+        })
+        .filter(|o| !outputs.contains(&o.as_str()))
+        .collect()
+}
+
+/// Values a user might give: numbers at and past every limit, specials, junk, long values,
+/// control characters (never a `/`: a relative path lands in the case's folder).
+fn value() -> impl proptest::strategy::Strategy<Value = String> {
+    use proptest::prelude::*;
+    let special = proptest::sample::select(vec![
+        "nan",
+        "inf",
+        "-inf",
+        "-0",
+        "1e308",
+        "1e-300",
+        "0x10",
+        "1,2",
+        "1,2,3",
+        "0,0,0",
+        "1..2",
+        "0..0",
+        "",
+        " ",
+        "tile:0",
+        "border:256",
+        "wrap",
+        "16,16,16",
+        "65535",
+        "65536",
+        "4294967296",
+    ]);
+    prop_oneof![
+        any::<i64>().prop_map(|v| v.to_string()),
+        (0u32..70).prop_map(|k| (1u128 << k).to_string()),
+        (-3i64..4).prop_map(|d| d.to_string()),
+        any::<f64>().prop_map(|x| x.to_string()),
+        special.prop_map(String::from),
+        "[ -.0-~]{0,12}",
+        "[a-z0-9\n\t,.:]{0,8}",
+        (0usize..6000).prop_map(|n| "9".repeat(n)),
+    ]
+}
+
+/// `f`'s arguments with option `opt` set to `v` (replaced where the front gives it, else added).
+fn with_value(f: &Front, d: &Path, opt: &str, v: &str) -> Vec<String> {
+    let mut a = args(f, d);
+    match a.iter().position(|x| x == opt) {
+        Some(i) if i + 1 < a.len() => a[i + 1] = v.to_string(),
+        _ => a.extend([opt.to_string(), v.to_string()]),
+    }
+    a
+}
+
+/// Options whose largest valid values are long runs by design (10 M co-simulated cycles, a
+/// million sweep samples): their limits are tested in `limits.rs`, not under the time bound.
+fn long_by_design(f: &Front, opt: &str) -> bool {
+    matches!((f.name, opt), ("cosim", "--count") | ("sweep", "--samples"))
+}
+
+#[test]
+fn the_value_fronts_read_the_options_from_the_help() {
+    let fronts = tool_fronts();
+    assert_eq!(value_options(&fronts[0]), ["--unit"], "vectors");
+    let volume = texram_fronts()
+        .into_iter()
+        .find(|f| f.name == "volume")
+        .unwrap();
+    let opts = value_options(&volume);
+    assert!(
+        opts.iter().any(|o| o == "--dims") && !opts.iter().any(|o| o == "--out"),
+        "{opts:?}"
+    );
+}
+
+#[test]
+fn every_option_value_is_checked() {
+    let n = std::sync::atomic::AtomicUsize::new(0);
+    let all = fronts()
+        .into_iter()
+        .chain(texram_fronts())
+        .chain(later_fronts())
+        .chain(tool_fronts());
+    for f in all {
+        let opts: Vec<String> = value_options(&f)
+            .into_iter()
+            .filter(|o| !long_by_design(&f, o))
+            .collect();
+        assert!(
+            !opts.is_empty(),
+            "{}: no option with a value in its help",
+            f.name
+        );
+        let mut runner =
+            verif::seeded_runner(&format!("fuzz values {}", f.name), cases().div_ceil(2));
+        runner
+            .run(&(0..opts.len(), value()), |(k, v)| {
+                let d = dir(&format!(
+                    "{}-v{}",
+                    f.name,
+                    n.fetch_add(1, std::sync::atomic::Ordering::Relaxed)
+                ));
+                for (name, bytes) in &f.files {
+                    std::fs::write(d.join(name), bytes).unwrap();
+                }
+                let a = with_value(&f, &d, &opts[k], &v);
+                judge(&f, &d, a)
+            })
+            .unwrap();
+    }
+}
+
+#[test]
+fn vectors_sweep_and_cosim_survive_mutated_inputs() {
+    let n = std::sync::atomic::AtomicUsize::new(0);
+    for f in tool_fronts().into_iter().filter(|f| !f.files.is_empty()) {
+        let mut runner = verif::seeded_runner(&format!("fuzz {}", f.name), cases());
+        runner
+            .run(&(0..f.files.len(), mutations(8)), |(which, muts)| {
+                case(
+                    &f,
+                    n.fetch_add(1, std::sync::atomic::Ordering::Relaxed),
+                    which,
+                    &muts,
+                )
+            })
+            .unwrap();
+    }
 }

@@ -116,6 +116,19 @@ fn clap_error(name: &str, e: clap::Error) -> ExitCode {
     let text = e.to_string();
     let first = text.lines().next().unwrap_or("bad arguments");
     let first = first.strip_prefix("error: ").unwrap_or(first);
+    // clap quotes the argument it refuses: a long one is shortened, as every message's values.
+    let first: String = first
+        .split('\'')
+        .enumerate()
+        .map(|(k, part)| {
+            if k % 2 == 1 {
+                waves::output::shorten(part)
+            } else {
+                part.to_string()
+            }
+        })
+        .collect::<Vec<_>>()
+        .join("'");
     fail(name, format!("{first} (see {name} --help)"))
 }
 
@@ -147,10 +160,12 @@ pub fn fail(name: &str, msg: impl std::fmt::Display) -> ExitCode {
     ExitCode::from(2)
 }
 
-/// A message kept on one line: a newline or other control character in it (a file name can
-/// hold one) is shown escaped.
+/// A message kept on one short line: a newline or other control character in it (a file name
+/// can hold one) is shown escaped, and a word (a value, a path) longer than 80 characters is
+/// cut to its first 40 and last 30 (a path keeps its file name).
 pub fn one_line(s: &str) -> String {
-    s.chars()
+    let escaped: String = s
+        .chars()
         .flat_map(|c| {
             if c.is_control() {
                 c.escape_default().collect::<Vec<_>>()
@@ -158,7 +173,37 @@ pub fn one_line(s: &str) -> String {
                 vec![c]
             }
         })
-        .collect()
+        .collect();
+    escaped
+        .split(' ')
+        .map(|w| {
+            let n = w.chars().count();
+            if n <= 80 {
+                return w.to_string();
+            }
+            let head: String = w.chars().take(40).collect();
+            let tail: String = w.chars().skip(n - 30).collect();
+            format!("{head}...{tail}")
+        })
+        .collect::<Vec<_>>()
+        .join(" ")
+}
+
+#[cfg(test)]
+mod tests {
+    use super::one_line;
+
+    #[test]
+    fn messages_stay_one_short_line() {
+        assert_eq!(one_line("a\nb\tc"), "a\\nb\\tc");
+        let long = format!("/tmp/{}/file.csv: no such file", "d".repeat(200));
+        let m = one_line(&long);
+        assert!(
+            m.len() < 100 && m.ends_with("/file.csv: no such file"),
+            "{m}"
+        );
+        assert_eq!(one_line("short words stay"), "short words stay");
+    }
 }
 
 /// `list`: every unit with its testbenches, twin and vectors.
