@@ -4,35 +4,61 @@
 
 mod common;
 use common::{dir, ran, s, texrtl};
+use std::path::{Path, PathBuf};
+
+/// An 8x6x5 volume of `fill` and a CSV holding `ray` (three times over when `thrice`).
+fn volume_inputs(d: &Path, fill: u8, ray: &str, thrice: bool) -> (PathBuf, PathBuf) {
+    let raw = d.join("v.raw");
+    std::fs::write(&raw, [fill; 240]).unwrap();
+    let rays = d.join("r.csv");
+    let n = if thrice { 3 } else { 1 };
+    std::fs::write(
+        &rays,
+        format!("x0,y0,z0,dx,dy,dz,steps\n{}", format!("{ray}\n").repeat(n)),
+    )
+    .unwrap();
+    (raw, rays)
+}
+
+/// `volume` on them, without its output.
+fn volume_args<'a>(raw: &'a Path, rays: &'a Path) -> Vec<&'a str> {
+    vec![
+        "volume",
+        "--volume",
+        s(raw),
+        "--dims",
+        "8,6,5",
+        "--rays",
+        s(rays),
+    ]
+}
+
+/// An 8x8 PGM ramp.
+fn texture(d: &Path) -> PathBuf {
+    let mut pgm = b"P5\n8 8\n255\n".to_vec();
+    pgm.extend(0..64u8);
+    let tex = d.join("t.pgm");
+    std::fs::write(&tex, &pgm).unwrap();
+    tex
+}
 
 /// A valid long ray whose stepper would leave its 32-bit range is refused at validation,
 /// naming the file's row (it panicked in the model); the same ray, shorter, runs.
 #[test]
 fn a_ray_leaving_the_stepper_range_is_refused_not_a_panic() {
     let d = dir("findings", "ray");
-    let raw = d.join("v.raw");
-    std::fs::write(&raw, [0u8; 240]).unwrap();
-    let rays = d.join("r.csv");
-    std::fs::write(&rays, "x0,y0,z0,dx,dy,dz,steps\n0,0,0,511,0,0,1100\n").unwrap();
+    let (raw, rays) = volume_inputs(&d, 0, "0,0,0,511,0,0,1100", false);
     let o = d.join("o.csv");
-    let args = [
-        "volume",
-        "--volume",
-        s(&raw),
-        "--dims",
-        "8,6,5",
-        "--rays",
-        s(&rays),
-    ];
-    let out = texrtl(&[&args[..], &["--out", s(&o)]].concat());
+    let args = [volume_args(&raw, &rays), vec!["--out", s(&o)]].concat();
+    let out = texrtl(&args);
     let err = String::from_utf8_lossy(&out.stderr);
     assert_eq!(out.status.code(), Some(2), "{err}");
     assert_eq!(err.trim_end().lines().count(), 1, "{err}");
     assert!(err.contains("r.csv") && err.contains("steps 1100"), "{err}");
     assert!(!o.exists());
-    // 1025 steps of 511 end at 523775 + 511: inside.
-    std::fs::write(&rays, "x0,y0,z0,dx,dy,dz,steps\n0,0,0,511,0,0,1024\n").unwrap();
-    ran(&[&args[..], &["--out", s(&o)]].concat());
+    // 1024 samples of 511: the position after the last, 523264 voxels, is inside (< 2^19).
+    volume_inputs(&d, 0, "0,0,0,511,0,0,1024", false);
+    ran(&args);
     assert_eq!(
         std::fs::read_to_string(&o).unwrap().lines().count(),
         1 + 1024
@@ -208,10 +234,7 @@ fn messages_stay_one_short_line() {
 #[test]
 fn texram_and_footprint_refuse_a_tile_border() {
     let d = dir("findings", "tile");
-    let mut pgm = b"P5\n8 8\n255\n".to_vec();
-    pgm.extend(0..64u8);
-    let tex = d.join("t.pgm");
-    std::fs::write(&tex, &pgm).unwrap();
+    let tex = texture(&d);
     let texram_reqs = d.join("tr.csv");
     std::fs::write(&texram_reqs, "u,v,lambda\n1.5,2.5,0\n").unwrap();
     let fp_reqs = d.join("fr.csv");
@@ -240,29 +263,14 @@ fn texram_and_footprint_refuse_a_tile_border() {
 #[test]
 fn an_unwritable_waveform_names_vcd() {
     let d = dir("findings", "full");
-    let raw = d.join("v.raw");
-    std::fs::write(&raw, [0u8; 240]).unwrap();
-    let rays = d.join("r.csv");
-    std::fs::write(&rays, "x0,y0,z0,dx,dy,dz,steps\n0,0,0,1,0,0,3\n").unwrap();
-    let mut pgm = b"P5\n8 8\n255\n".to_vec();
-    pgm.extend(0..64u8);
-    let tex = d.join("t.pgm");
-    std::fs::write(&tex, &pgm).unwrap();
+    let (raw, rays) = volume_inputs(&d, 0, "0,0,0,1,0,0,3", false);
+    let tex = texture(&d);
     let reqs = d.join("fr.csv");
     std::fs::write(&reqs, "u,v,dudx,dvdx,dudy,dvdy\n1.5,2.5,1,0,0,1\n").unwrap();
     let o = d.join("o.csv");
-    let vol = [
-        "volume",
-        "--volume",
-        s(&raw),
-        "--dims",
-        "8,6,5",
-        "--rays",
-        s(&rays),
-    ];
-    let fp = ["footprint", "--texture", s(&tex), "--requests", s(&reqs)];
-    for cmd in [&vol[..], &fp[..]] {
-        let args = [cmd, &["--out", s(&o), "--vcd", "/dev/full"]].concat();
+    let fp = vec!["footprint", "--texture", s(&tex), "--requests", s(&reqs)];
+    for cmd in [volume_args(&raw, &rays), fp] {
+        let args = [cmd, vec!["--out", s(&o), "--vcd", "/dev/full"]].concat();
         common::assert_refused(
             &args,
             "--vcd /dev/full: No space left on device",
@@ -331,27 +339,11 @@ fn ptm_fit_at_grazing_elevations_ends() {
 #[test]
 fn a_moving_ray_is_as_cheap_as_a_standing_one() {
     let d = dir("findings", "moving");
-    let raw = d.join("v.raw");
-    std::fs::write(&raw, [7u8; 240]).unwrap();
+    let o = d.join("o.csv");
     let time = |ray: &str| {
-        let rays = d.join("r.csv");
-        std::fs::write(
-            &rays,
-            format!("x0,y0,z0,dx,dy,dz,steps\n{ray}\n{ray}\n{ray}\n"),
-        )
-        .unwrap();
+        let (raw, rays) = volume_inputs(&d, 7, ray, true);
         let t0 = std::time::Instant::now();
-        ran(&[
-            "volume",
-            "--volume",
-            s(&raw),
-            "--dims",
-            "8,6,5",
-            "--rays",
-            s(&rays),
-            "--out",
-            s(&d.join("o.csv")),
-        ]);
+        ran(&[volume_args(&raw, &rays), vec!["--out", s(&o)]].concat());
         t0.elapsed().as_secs_f64()
     };
     let still = time("1,1,1,0,0,0,65535");
