@@ -216,10 +216,14 @@ pub fn list(project: &Project) -> String {
             has.push(format!("testbench {}", tbs.join(", ")));
         }
         if let Some(t) = u.twin_unit() {
-            has.push(format!("twin {} ({} files)", t.top(), t.rtl().len()));
+            let n = t.rtl().len();
+            let files = if n == 1 { "source" } else { "sources" };
+            has.push(format!("twin {} ({n} Verilog {files})", t.top()));
         }
-        if u.vectors_fn().is_some() {
-            has.push("vectors".to_string());
+        match (u.vectors_fn(), u.no_vectors_reason()) {
+            (Some(_), _) => has.push("vectors".to_string()),
+            (None, Some(why)) => has.push(format!("no vectors ({why})")),
+            (None, None) => {}
         }
         if u.pictures_fn().is_some() {
             has.push("pictures".to_string());
