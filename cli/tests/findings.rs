@@ -353,3 +353,26 @@ fn a_moving_ray_is_as_cheap_as_a_standing_one() {
         "moving {moving:.2} s, standing {still:.2} s"
     );
 }
+
+/// An endless device given as an input file is refused at the size limit, not read forever
+/// (`render --height /dev/zero` never ended).
+#[test]
+fn an_endless_input_is_refused() {
+    let d = dir("findings", "zero");
+    for (cmd, opt) in [
+        ("render", "--height"),
+        ("tangents", "--mesh"),
+        ("ccc", "--in"),
+    ] {
+        let o = d.join("o.out");
+        let words: Vec<&str> = if cmd == "ccc" {
+            vec!["ccc", "decode"]
+        } else {
+            vec![cmd]
+        };
+        let args = [words, vec![opt, "/dev/zero", "--out", s(&o)]].concat();
+        let t0 = std::time::Instant::now();
+        common::assert_refused(&args, "/dev/zero: longer than", &d, &["o.out"]);
+        assert!(t0.elapsed().as_secs() < 10, "{cmd}: {:?}", t0.elapsed());
+    }
+}

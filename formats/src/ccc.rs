@@ -176,7 +176,7 @@ impl Ccc {
     }
 
     pub fn read(path: &Path) -> Result<Ccc, String> {
-        let b = std::fs::read(path).map_err(|e| format!("{}: {e}", path.display()))?;
+        let b = crate::read_bounded(path, crate::MAX_INPUT_BYTES)?;
         Ccc::parse(&b).map_err(|e| format!("{}: {e}", path.display()))
     }
 }

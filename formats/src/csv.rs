@@ -26,7 +26,7 @@ pub struct Row {
 /// Reads `path`, whose header must be one of `headers` (each a comma-separated list of
 /// column names); every row must have as many fields as its header has columns.
 pub fn read(path: &Path, headers: &[&str]) -> Result<Table, String> {
-    let text = std::fs::read_to_string(path).map_err(|e| format!("{}: {e}", path.display()))?;
+    let text = crate::read_text_bounded(path, crate::MAX_INPUT_BYTES)?;
     parse(&path.display().to_string(), &text, headers)
 }
 

@@ -185,7 +185,7 @@ fn entry(e: &Entry, dir: &Path) -> Result<DrfSpec, String> {
 
 /// Reads the description at `path` and the maps it names.
 pub fn read(path: &Path) -> Result<Vec<DrfSpec>, String> {
-    let text = std::fs::read_to_string(path).map_err(|e| format!("{}: {e}", path.display()))?;
+    let text = crate::read_text_bounded(path, 1 << 20)?;
     let f: File = serde_json::from_str(&text).map_err(|e| format!("{}: {e}", path.display()))?;
     let dir = path.parent().unwrap_or(Path::new(""));
     let mut seen = [false; units::texram::DRFS];

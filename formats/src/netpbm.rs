@@ -14,7 +14,7 @@ pub struct Pgm {
 
 /// Reads `path`; the error names the file and the problem.
 pub fn read(path: &Path) -> Result<Pgm, String> {
-    let bytes = std::fs::read(path).map_err(|e| format!("{}: {e}", path.display()))?;
+    let bytes = crate::read_bounded(path, crate::MAX_INPUT_BYTES)?;
     parse(&bytes).map_err(|e| format!("{}: {e}", path.display()))
 }
 
@@ -28,7 +28,7 @@ pub type Ppm = Pgm;
 
 /// Reads a PPM; the error names the file and the problem.
 pub fn read_ppm(path: &Path) -> Result<Ppm, String> {
-    let bytes = std::fs::read(path).map_err(|e| format!("{}: {e}", path.display()))?;
+    let bytes = crate::read_bounded(path, crate::MAX_INPUT_BYTES)?;
     parse_ppm(&bytes).map_err(|e| format!("{}: {e}", path.display()))
 }
 

@@ -30,7 +30,7 @@ pub struct Mesh {
 
 /// Reads `path`.
 pub fn read(path: &std::path::Path) -> Result<Mesh, String> {
-    let text = std::fs::read_to_string(path).map_err(|e| format!("{}: {e}", path.display()))?;
+    let text = crate::read_text_bounded(path, crate::MAX_INPUT_BYTES)?;
     parse(&path.display().to_string(), &text)
 }
 

@@ -125,7 +125,7 @@ impl Ptm {
     }
 
     pub fn read(path: &std::path::Path) -> Result<Ptm, String> {
-        let b = std::fs::read(path).map_err(|e| format!("{}: {e}", path.display()))?;
+        let b = crate::read_bounded(path, crate::MAX_INPUT_BYTES)?;
         Ptm::parse(&b).map_err(|e| format!("{}: {e}", path.display()))
     }
 }
