@@ -186,7 +186,11 @@ fn entry(e: &Entry, dir: &Path) -> Result<DrfSpec, String> {
 /// Reads the description at `path` and the maps it names.
 pub fn read(path: &Path) -> Result<Vec<DrfSpec>, String> {
     let text = crate::read_text_bounded(path, 1 << 20)?;
-    let f: File = serde_json::from_str(&text).map_err(|e| format!("{}: {e}", path.display()))?;
+    let f: File = serde_json::from_str(&text).map_err(|e| {
+        // serde quotes what it refuses (a field name can hold a newline): kept on one line.
+        let e = waves::output::escape_controls(&e.to_string());
+        format!("{}: {e}", path.display())
+    })?;
     let dir = path.parent().unwrap_or(Path::new(""));
     let mut seen = [false; units::texram::DRFS];
     let mut out = Vec::with_capacity(f.drfs.len().min(units::texram::DRFS));
@@ -205,4 +209,23 @@ pub fn read(path: &Path) -> Result<Vec<DrfSpec>, String> {
         return Err(format!("{}: no drfs", path.display()));
     }
     Ok(out)
+}
+
+#[cfg(test)]
+mod tests {
+    /// What the cargo-fuzz target found: serde quoted an unknown field holding a newline, and
+    /// the message split over two lines.
+    #[test]
+    fn a_refused_field_with_a_newline_stays_on_one_line() {
+        let d = std::env::temp_dir().join(format!("texrtl-maps-json-{}", std::process::id()));
+        std::fs::create_dir_all(&d).unwrap();
+        let p = d.join("M.json");
+        std::fs::write(&p, "{\"dr\\ns\":{\"drf[{rd1fsf").unwrap();
+        let e = super::read(&p).unwrap_err();
+        let _ = std::fs::remove_dir_all(&d);
+        assert!(
+            !e.contains('\n') && e.contains("unknown field `dr\\ns`"),
+            "{e}"
+        );
+    }
 }

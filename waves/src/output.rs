@@ -133,6 +133,20 @@ pub fn write_output(path: &Path, contents: &[u8]) -> io::Result<()> {
     out.commit()
 }
 
+/// `s` with every control character (a newline, a tab) written as its escape, so a message
+/// quoting a value or a file name stays one line.
+pub fn escape_controls(s: &str) -> String {
+    s.chars()
+        .flat_map(|c| {
+            if c.is_control() {
+                c.escape_default().collect::<Vec<_>>()
+            } else {
+                vec![c]
+            }
+        })
+        .collect()
+}
+
 /// A value shown in a message, cut to at most 40 characters (a long option value or file
 /// name does not flood the one-line message that names it).
 pub fn shorten(s: &str) -> String {

@@ -164,16 +164,7 @@ pub fn fail(name: &str, msg: impl std::fmt::Display) -> ExitCode {
 /// can hold one) is shown escaped, and a word (a value, a path) longer than 80 characters is
 /// cut to its first 40 and last 30 (a path keeps its file name).
 pub fn one_line(s: &str) -> String {
-    let escaped: String = s
-        .chars()
-        .flat_map(|c| {
-            if c.is_control() {
-                c.escape_default().collect::<Vec<_>>()
-            } else {
-                vec![c]
-            }
-        })
-        .collect();
+    let escaped = waves::output::escape_controls(s);
     escaped
         .split(' ')
         .map(|w| {
