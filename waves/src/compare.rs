@@ -134,6 +134,20 @@ fn header<W: Write>(
     Ok((ids, shown_ids))
 }
 
+/// A `width`-bit trace of the save file: `path` with its range (vectors in hex, bits in
+/// binary), under `alias` when one is given (`+{u0 model} `).
+fn trace(alias: &str, path: &str, width: u32) -> Item {
+    let (range, style) = match width {
+        1 => (String::new(), Style::Bin),
+        w => (format!("[{}:0]", w - 1), Style::Hex),
+    };
+    Item::Trace {
+        name: format!("{alias}{path}{range}"),
+        style,
+        filter: None,
+    }
+}
+
 fn gtkw(
     vcd: &Path,
     title: &str,
@@ -147,17 +161,7 @@ fn gtkw(
     for sh in shown {
         g.begin_group(sh.scope, "tb");
         for &(name, width) in sh.signals {
-            let range = if width > 1 {
-                format!("[{}:0]", width - 1)
-            } else {
-                String::new()
-            };
-            let style = if width > 1 { Style::Hex } else { Style::Bin };
-            g.push(Item::Trace {
-                name: format!("tb.{}.{name}{range}", sh.scope),
-                style,
-                filter: None,
-            });
+            g.push(trace("", &format!("tb.{}.{name}", sh.scope), width));
         }
         g.end_group();
     }
@@ -166,17 +170,8 @@ fn gtkw(
         // Each trace under an alias (`+{u0 model}`): GTKWave shows leaf names, the same in
         // both scopes.
         for (scope, label) in [("model", "model"), ("rtl", "RTL")] {
-            let range = if width > 1 {
-                format!("[{}:0]", width - 1)
-            } else {
-                String::new()
-            };
-            let style = if width > 1 { Style::Hex } else { Style::Bin };
-            g.push(Item::Trace {
-                name: format!("+{{{name} {label}}} tb.{scope}.{name}{range}"),
-                style,
-                filter: None,
-            });
+            let alias = format!("+{{{name} {label}}} ");
+            g.push(trace(&alias, &format!("tb.{scope}.{name}"), width));
         }
         g.push(Item::Trace {
             name: format!("+{{{name} mismatch}} tb.mismatch.{name}"),
