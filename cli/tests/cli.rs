@@ -102,15 +102,21 @@ fn check_summary_report_and_pictures(out: &Path) {
     ] {
         assert!(report.contains(link), "report lacks {link}");
     }
-    for png in [
-        "normals_render.png",
-        "mipmap_levels.png",
-        "normal_pipeline_fig7_error_histogram.png",
-        "mipmap_gen_816_error_histogram.png",
-    ] {
+    for png in ["normals_render.png", "mipmap_levels.png"] {
         assert!(std::fs::read(out.join(png))
             .unwrap()
             .starts_with(b"\x89PNG"));
+    }
+    for svg in [
+        "normal_pipeline_fig7_error_histogram.svg",
+        "mipmap_gen_816_error_histogram.svg",
+    ] {
+        let text = std::fs::read_to_string(out.join(svg)).unwrap();
+        assert!(
+            text.starts_with("<svg") && text.trim_end().ends_with("</svg>"),
+            "{svg}"
+        );
+        assert!(report.contains(svg), "report lacks {svg}");
     }
     for vcd in ["normal_pipeline_fig7.vcd", "mipmap_gen_816.vcd"] {
         let p = out.join(vcd);

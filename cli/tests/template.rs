@@ -74,7 +74,7 @@ fn a_new_crate_builds_tests_and_regresses_outside_the_workspace() {
     }
     assert!(dir.join("out/whole/report.md").is_file());
     assert!(dir
-        .join("out/whole/rop_blend_error_histogram.png")
+        .join("out/whole/rop_blend_error_histogram.svg")
         .is_file());
     for (i, out) in [(1, "out/s1"), (2, "out/s2")] {
         let shard = format!("{i}/2");

@@ -4,7 +4,7 @@
 //! PTM swatch and the derivative filters.
 
 use std::path::Path;
-use verif::plot::grouped_bars_png;
+use verif::plot::grouped_bars_svg;
 use verif::project::Picture;
 use verif::Seed;
 use waves::output::write_output;
@@ -253,7 +253,7 @@ fn memory_plots(
     let pf = |s: &crate::texture::TexReadStats| s.page_faults_per_scanline;
     let plots = [
         (
-            "texture_hit_rate.png",
+            "texture_hit_rate.svg",
             "Cache 614: block hit rate (row-major, 256x256 texture)",
             "hit rate (%)",
             vec![
@@ -267,7 +267,7 @@ fn memory_plots(
             "block hit rate of cache 614 per trace, quadrant lookahead, direction lookahead and none, rasterizer offering a request every cycle or every 4 cycles",
         ),
         (
-            "texture_pixels_per_second.png",
+            "texture_pixels_per_second.svg",
             "Texture unit 602: pixels per second (5 ns cycle, row-major)",
             "M pixels/s",
             vec![
@@ -279,7 +279,7 @@ fn memory_plots(
             "textured pixels per second per trace with quadrant or direction lookahead, without it, and without the cache (rasterizer offering one request per cycle)",
         ),
         (
-            "texture_page_faults.png",
+            "texture_page_faults.svg",
             "DRAM 604: page faults per scanline (512-word pages)",
             "page faults / scanline",
             vec![
@@ -293,9 +293,9 @@ fn memory_plots(
     ];
     let mut v = Vec::new();
     for (file, title, ydesc, series, caption) in plots {
-        let png = grouped_bars_png(title, ydesc, &traces, &series)?;
+        let svg = grouped_bars_svg(title, ydesc, &traces, &series)?;
         let path = out.join(file);
-        write_output(&path, &png).map_err(|e| e.to_string())?;
+        write_output(&path, svg.as_bytes()).map_err(|e| e.to_string())?;
         v.push((file.to_string(), caption.to_string()));
     }
     Ok(v)
@@ -316,14 +316,14 @@ pub fn texram_plot(out: &std::path::Path) -> Result<(String, String), String> {
             rows.iter().map(|r| r.2).collect(),
         ),
     ];
-    let file = "texram_slots.png";
-    let png = grouped_bars_png(
+    let file = "texram_slots.svg";
+    let svg = grouped_bars_svg(
         "TEXRAM 802: slots and page faults by configuration",
         "per pixel / per scanline",
         &groups,
         &series,
     )?;
-    write_output(&out.join(file), &png).map_err(|e| e.to_string())?;
+    write_output(&out.join(file), svg.as_bytes()).map_err(|e| e.to_string())?;
     Ok((
         file.to_string(),
         "TEXRAM chip 802, a 64x64-pixel view scanline by scanline at lambda 2.5: slots per pixel (1 at best; four component accesses in the colour layouts, whose quadrant rows the planar one switches twice a pixel, and conflict rounds in the literal one) and the slots lost per 64-pixel scanline to page faults and bank conflicts".to_string(),

@@ -36,6 +36,10 @@
 //! * [`bench`](mod@bench): every twin against Verilator, untraced and traced.
 //! * [`cli`]: the command line (`regress`, `merge`, `cosim`, `vectors`, `bench`, `list`) for
 //!   any project: a program's `main` is one call.
+//!
+//! Feature `read` (off by default, to keep a user crate's first build short): a regression
+//! reads back every waveform it writes with `wellen` and checks it (and `--fst` converts the
+//! twins' VCDs); it enables `texrtl-waves/read`.
 
 #![warn(missing_docs)]
 

@@ -1,37 +1,24 @@
-//! PNG charts for a report, drawn with `plotters`: an error histogram and grouped bars. Text
-//! uses a font shipped inside a crate (Hack, from `epaint_default_fonts`), so no system font is
-//! needed.
+//! Charts for a report, drawn with `plotters` as SVG (a browser, a Markdown viewer and GTKWave's
+//! neighbours all show it; the text is the viewer's sans-serif, so no font is compiled in): an
+//! error histogram and grouped bars. [`png()`] encodes a picture of the design's own.
 
 use plotters::prelude::*;
 use std::collections::BTreeMap;
-use std::sync::Once;
 
-const FONT: &str = "texrtl-sans";
+const FONT: FontFamily = FontFamily::SansSerif;
 
-fn register() {
-    static ONCE: Once = Once::new();
-    ONCE.call_once(|| {
-        let _ = plotters::style::register_font(
-            FONT,
-            FontStyle::Normal,
-            epaint_default_fonts::HACK_REGULAR,
-        );
-    });
-}
-
-/// A bar chart of an error histogram (error in LSBs -> count, log-scaled counts), as PNG.
-pub fn histogram_png(title: &str, hist: &BTreeMap<i64, u64>) -> Result<Vec<u8>, String> {
-    register();
+/// A bar chart of an error histogram (error in LSBs -> count, log-scaled counts), as SVG.
+pub fn histogram_svg(title: &str, hist: &BTreeMap<i64, u64>) -> Result<String, String> {
     let (w, h) = (640u32, 360u32);
-    let mut buf = vec![0u8; (w * h * 3) as usize];
+    let mut buf = String::new();
     {
-        let root = BitMapBackend::with_buffer(&mut buf, (w, h)).into_drawing_area();
+        let root = SVGBackend::with_string(&mut buf, (w, h)).into_drawing_area();
         root.fill(&WHITE).map_err(|e| e.to_string())?;
         let lo = hist.keys().next().copied().unwrap_or(0).min(-1);
         let hi = hist.keys().last().copied().unwrap_or(0).max(1);
         let top = hist.values().copied().max().unwrap_or(1).max(1) as f64;
         let mut chart = ChartBuilder::on(&root)
-            .caption(title, (FONT, 18))
+            .caption(title, (FONT, 22))
             .margin(12)
             .x_label_area_size(36)
             .y_label_area_size(64)
@@ -45,10 +32,10 @@ pub fn histogram_png(title: &str, hist: &BTreeMap<i64, u64>) -> Result<Vec<u8>, 
             .x_desc("error (output LSBs, rounded)")
             .y_desc("results")
             .x_labels((hi - lo + 3) as usize)
-            .label_style((FONT, 13))
+            .label_style((FONT, 16))
             .x_label_formatter(&|v| format!("{v:.0}"))
             .y_label_formatter(&|v| format!("{v:.0}"))
-            .axis_desc_style((FONT, 14))
+            .axis_desc_style((FONT, 17))
             .draw()
             .map_err(|e| e.to_string())?;
         chart
@@ -62,20 +49,19 @@ pub fn histogram_png(title: &str, hist: &BTreeMap<i64, u64>) -> Result<Vec<u8>, 
             .map_err(|e| e.to_string())?;
         root.present().map_err(|e| e.to_string())?;
     }
-    png(w, h, &buf)
+    Ok(buf)
 }
 
-/// A grouped bar chart as PNG: one group per label on the x axis, one bar per series in each
+/// A grouped bar chart as SVG: one group per label on the x axis, one bar per series in each
 /// group (series named in the legend), values on a linear y axis starting at 0.
-pub fn grouped_bars_png(
+pub fn grouped_bars_svg(
     title: &str,
     y_desc: &str,
     groups: &[String],
     series: &[(String, Vec<f64>)],
-) -> Result<Vec<u8>, String> {
-    register();
+) -> Result<String, String> {
     let (w, h) = (720u32, 380u32);
-    let mut buf = vec![0u8; (w * h * 3) as usize];
+    let mut buf = String::new();
     let colours = [
         RGBColor(40, 90, 170),
         RGBColor(220, 120, 30),
@@ -85,7 +71,7 @@ pub fn grouped_bars_png(
         RGBColor(240, 190, 120),
     ];
     {
-        let root = BitMapBackend::with_buffer(&mut buf, (w, h)).into_drawing_area();
+        let root = SVGBackend::with_string(&mut buf, (w, h)).into_drawing_area();
         root.fill(&WHITE).map_err(|e| e.to_string())?;
         let top = series
             .iter()
@@ -96,7 +82,7 @@ pub fn grouped_bars_png(
             * (1.25 + 0.06 * series.len() as f64);
         let n = groups.len().max(1);
         let mut chart = ChartBuilder::on(&root)
-            .caption(title, (FONT, 18))
+            .caption(title, (FONT, 22))
             .margin(12)
             .x_label_area_size(36)
             .y_label_area_size(64)
@@ -116,8 +102,8 @@ pub fn grouped_bars_png(
                 }
             })
             .y_desc(y_desc)
-            .label_style((FONT, 13))
-            .axis_desc_style((FONT, 14))
+            .label_style((FONT, 16))
+            .axis_desc_style((FONT, 17))
             .draw()
             .map_err(|e| e.to_string())?;
         let m = series.len().max(1) as f64;
@@ -137,13 +123,13 @@ pub fn grouped_bars_png(
             .configure_series_labels()
             .background_style(WHITE.mix(0.8))
             .border_style(BLACK)
-            .label_font((FONT, 13))
+            .label_font((FONT, 16))
             .position(SeriesLabelPosition::UpperRight)
             .draw()
             .map_err(|e| e.to_string())?;
         root.present().map_err(|e| e.to_string())?;
     }
-    png(w, h, &buf)
+    Ok(buf)
 }
 
 /// PNG bytes of an 8-bit RGB image of `width` x `height` pixels, row by row (`rgb` holds
@@ -157,4 +143,35 @@ pub fn png(width: u32, height: u32, rgb: &[u8]) -> Result<Vec<u8>, String> {
     w.write_image_data(rgb).map_err(|e| e.to_string())?;
     w.finish().map_err(|e| e.to_string())?;
     Ok(out)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn the_histogram_is_an_svg_with_its_title_and_a_bar_per_bin() {
+        let hist = BTreeMap::from([(-1, 3), (0, 1000), (2, 7)]);
+        let svg = histogram_svg("unit: error", &hist).unwrap();
+        assert!(svg.starts_with("<svg") && svg.trim_end().ends_with("</svg>"));
+        assert!(svg.contains("unit: error"));
+        // The background and the plotting area are rectangles too; each bin adds one.
+        let bars = svg.matches("<rect").count();
+        let empty = histogram_svg("unit: error", &BTreeMap::new()).unwrap();
+        assert_eq!(bars - empty.matches("<rect").count(), hist.len());
+    }
+
+    #[test]
+    fn grouped_bars_name_every_group_and_series() {
+        let groups = vec!["a".to_string(), "b".to_string()];
+        let series = vec![
+            ("hits".to_string(), vec![1.0, 2.0]),
+            ("misses".to_string(), vec![0.5, 0.0]),
+        ];
+        let svg = grouped_bars_svg("t", "per pixel", &groups, &series).unwrap();
+        // plotters writes each text element's content on a line of its own.
+        for word in ["t", "per pixel", "hits", "misses", "a", "b"] {
+            assert!(svg.lines().any(|l| l.trim() == word), "{word} missing");
+        }
+    }
 }

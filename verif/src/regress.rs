@@ -8,6 +8,7 @@ use crate::TbResult;
 use crate::{Registry, RunOptions, Seed};
 use serde::{Deserialize, Serialize};
 use std::path::PathBuf;
+#[cfg(feature = "read")]
 use waves::check::{check_gtkw, read_vcd};
 use waves::output::write_output;
 use waves::TraceConfig;
@@ -50,7 +51,8 @@ pub struct RegressConfig {
     pub shard: crate::Shard,
     /// Random transactions per configuration (`None`: each testbench's default).
     pub count: Option<usize>,
-    /// Also write each waveform as FST (made from the VCD, checked against it).
+    /// Also write each waveform as FST (the models' while simulating, the twins' from their
+    /// VCD; with the `read` feature each is read back and compared with its VCD).
     pub fst: bool,
     /// Run only these testbenches (empty: all, and the vectors check).
     pub only: Vec<String>,
@@ -99,8 +101,8 @@ impl RegressConfig {
     }
 }
 
-/// Runs every selected testbench, checks every waveform it wrote (read back with wellen,
-/// `.gtkw` checked against it), writes `summary.json`. `progress` is called before each
+/// Runs every selected testbench, checks every waveform it wrote (with the `read` feature:
+/// read back with wellen, `.gtkw` checked against it), writes `summary.json`. `progress` is called before each
 /// configuration with the testbench's name and the configuration's label (and once with
 /// `("", "vectors and waveforms")`). `Err` is for bad options and I/O failures; mismatches
 /// are in the results.
@@ -111,6 +113,14 @@ pub fn regress(
 ) -> Result<Summary, String> {
     let reg = project.registry();
     cfg.validate(reg)?;
+    #[cfg(not(feature = "read"))]
+    if cfg.fst && cfg.cosim && project.twins().next().is_some() {
+        return Err(
+            "--fst: a twin's FST is made from its simulator's VCD, read back with \
+                    texrtl-verif's `read` feature (enable it, or give --no-cosim)"
+                .into(),
+        );
+    }
     std::fs::create_dir_all(&cfg.out).map_err(|e| format!("{}: {e}", cfg.out.display()))?;
     let opts = RunOptions {
         seed: cfg.seed,
@@ -189,6 +199,7 @@ fn cosim_row(
     }
     // The simulator's own VCD: with `--fst`, its FST is converted from it (the models' FSTs
     // are written while simulating).
+    #[cfg(feature = "read")]
     if cfg.fst {
         let f = c.vcd.with_extension("fst");
         if let Err(e) = waves::fst::vcd_to_fst(&c.vcd, &f) {
@@ -216,9 +227,14 @@ fn vectors_row(project: &Project, dir: &std::path::Path) -> TbResult {
     r
 }
 
+/// Without the `read` feature the waveforms are not read back.
+#[cfg(not(feature = "read"))]
+fn check_waveform(_: &mut TbResult, _: bool) {}
+
 /// Reads a result's waveform back with wellen and checks its `.gtkw` against it; with `fst`,
 /// also reads the FST written beside it while simulating and compares it value by value
 /// (the VCD's design variables: the FST has no `real` companions and no probes).
+#[cfg(feature = "read")]
 fn check_waveform(r: &mut TbResult, fst: bool) {
     let Some(vcd) = &r.vcd else { return };
     let mut rb = match read_vcd(vcd).and_then(|rb| check_gtkw(vcd, &rb).map(|_| rb)) {
@@ -239,6 +255,7 @@ fn check_waveform(r: &mut TbResult, fst: bool) {
     }
 }
 
+#[cfg(feature = "read")]
 fn fail_waveform(r: &mut TbResult, e: String) {
     r.failures.push(format!("waveform: {e}"));
     r.passed = false;

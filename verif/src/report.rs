@@ -165,12 +165,10 @@ pub fn write_report(project: &Project, out: &Path, summary: &Summary) -> Result<
         }
     }
     for r in results.iter().filter(|r| r.stats.count > 0) {
-        let file = format!("{}_error_histogram.png", r.name);
+        let file = format!("{}_error_histogram.svg", r.name);
         let title = format!("{}: error against golden", r.name);
-        write(
-            &file,
-            &crate::plot::histogram_png(&title, &r.stats.histogram)?,
-        )?;
+        let svg = crate::plot::histogram_svg(&title, &r.stats.histogram)?;
+        write(&file, svg.as_bytes())?;
         pictures.push(Picture {
             file,
             caption: format!(

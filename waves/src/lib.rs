@@ -6,6 +6,10 @@
 //! there and falling half a period later; the DUT's instance sits in scope `tb` beside `clk`,
 //! `rst` and `tb.golden` (the testbench's probes). Every fixed-point signal gets a companion
 //! `real` variable `<name>_real` with its value.
+//!
+//! Feature `read` (off by default: it brings the `wellen` reader and its dependencies, most of
+//! a first build's time): [`check`], which reads a VCD or FST back and checks it, and
+//! [`fst::vcd_to_fst`].
 
 #![warn(missing_docs)]
 
@@ -17,8 +21,10 @@ mod vcd_writer;
 
 pub use fst_trace::FstTracer;
 pub use vcd_trace::{ProbeId, TraceConfig, VcdTracer, ROOT};
+#[cfg(feature = "read")]
 pub mod check;
 pub mod compare;
+#[cfg(feature = "read")]
 pub mod fst;
 /// Writing output files so that no partial file is left behind, and naming values in messages.
 pub mod output;

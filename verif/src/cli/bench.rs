@@ -1,31 +1,50 @@
 //! `bench`: every twin of the project against Verilator on the same stimulus.
 
+use super::args::{all, clap_args, given, one, path, value, values};
 use super::CmdError;
 use crate::bench::{check, measure_all, BenchConfig};
 use crate::project::Project;
 use crate::Seed;
-use clap::Args;
+use clap::{value_parser, ArgMatches, Command};
 use std::path::PathBuf;
 
 /// Every twin against Verilator on the same stimulus: cycles per second, untraced and traced.
-#[derive(Args, Debug)]
+#[derive(Debug)]
 pub struct BenchArgs {
-    /// Cycles of the untraced runs (1..=100000000; the fastest of three passes counts).
-    #[arg(long, default_value_t = 1_000_000)]
+    /// Cycles of the untraced runs.
     pub cycles: usize,
-    /// Cycles of the traced runs, VCD and FST (1..=10000000; the fastest of three runs counts).
-    #[arg(long, default_value_t = 1_000_000)]
+    /// Cycles of the traced runs, VCD and FST.
     pub traced_cycles: usize,
-    /// Units to measure (repeatable; default every twin).
-    #[arg(long)]
+    /// Units to measure (default every twin).
     pub unit: Vec<String>,
-    /// Folder for the harnesses, builds, stimulus and table.md (default target/NAME-bench;
-    /// traces go to /dev/shm when there is one, and are deleted).
-    #[arg(long)]
+    /// Folder for the harnesses, builds, stimulus and table.md.
     pub out: Option<PathBuf>,
     /// Stimulus seed.
-    #[arg(long, value_parser = Seed::parse, default_value = "0xbe7c")]
     pub seed: Seed,
+}
+
+clap_args!(BenchArgs);
+
+impl BenchArgs {
+    pub(super) fn augment(c: Command) -> Command {
+        c.args([
+            value("cycles", "CYCLES", value_parser!(usize), "Cycles of the untraced runs (1..=100000000; the fastest of three passes counts)").default_value("1000000"),
+            value("traced-cycles", "TRACED_CYCLES", value_parser!(usize), "Cycles of the traced runs, VCD and FST (1..=10000000; the fastest of three runs counts)").default_value("1000000"),
+            values("unit", "UNIT", value_parser!(String), "Units to measure (repeatable; default every twin)"),
+            path("out", "OUT", "Folder for the harnesses, builds, stimulus and table.md (default target/NAME-bench; traces go to /dev/shm when there is one, and are deleted)"),
+            value("seed", "SEED", Seed::parse, "Stimulus seed").default_value("0xbe7c"),
+        ])
+    }
+
+    pub(super) fn read(m: &ArgMatches) -> Self {
+        BenchArgs {
+            cycles: given(m, "cycles"),
+            traced_cycles: given(m, "traced-cycles"),
+            unit: all(m, "unit"),
+            out: one(m, "out"),
+            seed: given(m, "seed"),
+        }
+    }
 }
 
 /// Measures and prints the table.

@@ -1,43 +1,60 @@
 //! `cosim`: a unit's model against its Verilog twin, or against your own Verilog with the same
 //! ports, on every output port of every cycle (under the unit's compare rules).
 
+use super::args::{all, clap_args, given, one, path, value, values};
 use super::CmdError;
 use crate::cosim::{self, Simulator};
 use crate::project::Project;
 use crate::Seed;
-use clap::Args;
+use clap::{value_parser, ArgMatches, Command};
 use std::path::PathBuf;
 use waves::output::shorten;
 
 /// Co-simulate a unit's model and Verilog (its twin, or --rtl FILE.v of yours).
-#[derive(Args, Debug)]
+#[derive(Debug)]
 pub struct CosimArgs {
     /// The unit (its Verilog module name; `list` names the units with a twin).
-    #[arg(long)]
     pub unit: String,
     /// verilator or icarus.
-    #[arg(long, default_value = "verilator")]
     pub sim: String,
-    /// Verilog sources of the unit to check instead of its twin (repeatable; they replace all
-    /// of the twin's own files, so a unit built on another needs both; the testbench-side
-    /// sources, such as behavioural memories, stay).
-    #[arg(long)]
+    /// Verilog sources of the unit to check instead of its twin.
     pub rtl: Vec<PathBuf>,
-    /// Cycles to simulate (1..=10000000): the unit's seeded stimulus, after its reset cycles.
-    #[arg(long, default_value_t = 100_000)]
+    /// Cycles to simulate.
     pub count: usize,
     /// Stimulus seed.
-    #[arg(long, value_parser = Seed::parse, default_value = "0xc051")]
     pub seed: Seed,
-    /// random (seeded, --count cycles) or vectors: the unit's directed runs (the transactions
-    /// of its regression vectors, in their configuration; one run per configuration, in
-    /// folders under --out).
-    #[arg(long, default_value = "random")]
+    /// random or vectors.
     pub stimulus: String,
-    /// Folder for the testbench, stimulus, RTL outputs and the waveform (default
-    /// target/NAME-cosim/UNIT-SIM, NAME the program's).
-    #[arg(long)]
+    /// Folder for the testbench, stimulus, RTL outputs and the waveform.
     pub out: Option<PathBuf>,
+}
+
+clap_args!(CosimArgs);
+
+impl CosimArgs {
+    pub(super) fn augment(c: Command) -> Command {
+        c.args([
+            value("unit", "UNIT", value_parser!(String), "The unit (its Verilog module name; `list` names the units with a twin)").required(true),
+            value("sim", "SIM", value_parser!(String), "verilator or icarus").default_value("verilator"),
+            values("rtl", "RTL", value_parser!(PathBuf), "Verilog sources of the unit to check instead of its twin (repeatable; they replace all of the twin's own files, so a unit built on another needs both; the testbench-side sources, such as behavioural memories, stay)"),
+            value("count", "COUNT", value_parser!(usize), "Cycles to simulate (1..=10000000): the unit's seeded stimulus, after its reset cycles").default_value("100000"),
+            value("seed", "SEED", Seed::parse, "Stimulus seed").default_value("0xc051"),
+            value("stimulus", "STIMULUS", value_parser!(String), "random (seeded, --count cycles) or vectors: the unit's directed runs (the transactions of its regression vectors, in their configuration; one run per configuration, in folders under --out)").default_value("random"),
+            path("out", "OUT", "Folder for the testbench, stimulus, RTL outputs and the waveform (default target/NAME-cosim/UNIT-SIM, NAME the program's)"),
+        ])
+    }
+
+    pub(super) fn read(m: &ArgMatches) -> Self {
+        CosimArgs {
+            unit: given(m, "unit"),
+            sim: given(m, "sim"),
+            rtl: all(m, "rtl"),
+            count: given(m, "count"),
+            seed: given(m, "seed"),
+            stimulus: given(m, "stimulus"),
+            out: one(m, "out"),
+        }
+    }
 }
 
 /// Runs it: exit 0 when every port agrees on every cycle, 1 at a difference, 2 bad input.

@@ -1,20 +1,43 @@
 //! `merge`: the summaries of every shard of a run combined into one, concluded by the
 //! project's testbenches as an unsharded run is.
 
+use super::args::{all, clap_args, given, path};
 use super::{write_out, CmdError};
 use crate::project::Project;
-use clap::Args;
+use clap::{value_parser, Arg, ArgAction, ArgMatches, Command};
 use std::path::PathBuf;
 
 /// Combine the summary.json files of all shards of a run into one.
-#[derive(Args, Debug)]
+#[derive(Debug)]
 pub struct MergeArgs {
     /// Where to write the merged summary.json.
-    #[arg(long)]
     pub out: PathBuf,
     /// The shards' summary.json files.
-    #[arg(required = true)]
     pub summaries: Vec<PathBuf>,
+}
+
+clap_args!(MergeArgs);
+
+impl MergeArgs {
+    pub(super) fn augment(c: Command) -> Command {
+        c.arg(path("out", "OUT", "Where to write the merged summary.json").required(true))
+            .arg(
+                Arg::new("summaries")
+                    .value_name("SUMMARIES")
+                    .value_parser(value_parser!(PathBuf))
+                    .action(ArgAction::Append)
+                    .num_args(1..)
+                    .required(true)
+                    .help("The shards' summary.json files"),
+            )
+    }
+
+    pub(super) fn read(m: &ArgMatches) -> Self {
+        MergeArgs {
+            out: given(m, "out"),
+            summaries: all(m, "summaries"),
+        }
+    }
 }
 
 /// Merges; exit 1 when the merged run failed.

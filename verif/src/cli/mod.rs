@@ -15,6 +15,7 @@
 //! stderr naming the option or file). The output files and their names are the same for every
 //! project.
 
+mod args;
 mod bench;
 mod cosim;
 mod merge;
@@ -30,41 +31,67 @@ pub use regress::RegressArgs;
 pub use vectors::VectorsArgs;
 
 use crate::project::Project;
-use clap::{CommandFactory, FromArgMatches, Parser, Subcommand};
+use clap::{Command, FromArgMatches, Subcommand};
 use std::process::ExitCode;
 
-#[derive(Parser)]
-#[command(args_conflicts_with_subcommands = true)]
-struct Cli<E: Subcommand> {
-    #[command(subcommand)]
-    cmd: Option<Cmd<E>>,
-    #[command(flatten)]
-    regress: RegressArgs,
-}
+/// The framework's subcommands and their one-line help.
+const COMMANDS: [(&str, &str); 6] = [
+    ("regress", "Run every testbench on built-in stimulus, check the vectors, co-simulate every twin (the default command)"),
+    ("merge", "Combine the summary.json files of all shards of a run into one"),
+    ("cosim", "Co-simulate a unit's model and Verilog (its twin, or --rtl FILE.v of yours): every output port compared on every cycle"),
+    ("vectors", "Check, bless or export the bit-accuracy vectors"),
+    ("bench", "Every twin against Verilator on the same stimulus: cycles per second, untraced and traced"),
+    ("list", "The project's units: testbenches, twin, vectors"),
+];
 
-#[derive(Subcommand)]
-enum Cmd<E: Subcommand> {
-    /// Run every testbench on built-in stimulus, check the vectors, co-simulate every twin (the
-    /// default command).
-    Regress(RegressArgs),
-    /// Combine the summary.json files of all shards of a run into one.
-    Merge(MergeArgs),
-    /// Co-simulate a unit's model and Verilog (its twin, or --rtl FILE.v of yours): every
-    /// output port compared on every cycle.
-    Cosim(CosimArgs),
-    /// Check, bless or export the bit-accuracy vectors.
-    Vectors(VectorsArgs),
-    /// Every twin against Verilator on the same stimulus: cycles per second, untraced and traced.
-    Bench(BenchArgs),
-    /// The project's units: testbenches, twin, vectors.
-    List,
-    #[command(flatten)]
-    Own(E),
+/// The command line: the framework's subcommands, the program's own (`E`) after them, and
+/// `regress`'s options at the top for the default command.
+fn command<E: Subcommand>(project: &Project, about: &'static str) -> Command {
+    let name = project.name();
+    let augment: [fn(Command) -> Command; 6] = [
+        RegressArgs::augment,
+        MergeArgs::augment,
+        CosimArgs::augment,
+        VectorsArgs::augment,
+        BenchArgs::augment,
+        |c| c,
+    ];
+    let mut cmd = Command::new(name)
+        .bin_name(name)
+        .args_conflicts_with_subcommands(true);
+    for ((sub, help), add) in COMMANDS.into_iter().zip(augment) {
+        cmd = cmd.subcommand(add(Command::new(sub).about(help)));
+    }
+    // After the program's subcommands, whose derive may set an about of its own.
+    E::augment_subcommands(RegressArgs::augment(cmd))
+        .version(project.version())
+        .about(about)
 }
 
 /// A program with no subcommands of its own.
-#[derive(Subcommand, Debug)]
+#[derive(Debug)]
 pub enum NoCommands {}
+
+impl FromArgMatches for NoCommands {
+    fn from_arg_matches(_: &clap::ArgMatches) -> Result<Self, clap::Error> {
+        Err(clap::Error::new(clap::error::ErrorKind::InvalidSubcommand))
+    }
+    fn update_from_arg_matches(&mut self, _: &clap::ArgMatches) -> Result<(), clap::Error> {
+        match *self {}
+    }
+}
+
+impl Subcommand for NoCommands {
+    fn augment_subcommands(c: Command) -> Command {
+        c
+    }
+    fn augment_subcommands_for_update(c: Command) -> Command {
+        c
+    }
+    fn has_subcommand(_: &str) -> bool {
+        false
+    }
+}
 
 /// Runs the command line of `project`: `regress`, `merge`, `cosim`, `vectors`, `bench`, `list`.
 pub fn main(project: &Project) -> ExitCode {
@@ -79,30 +106,25 @@ pub fn main_with<E: Subcommand>(
     own: impl FnOnce(E) -> ExitCode,
 ) -> ExitCode {
     let name = project.name();
-    let cmd = Cli::<E>::command()
-        .name(name)
-        .bin_name(name)
-        .version(project.version())
-        .about(about);
-    let parsed = cmd
-        .try_get_matches()
-        .and_then(|m| Cli::<E>::from_arg_matches(&m));
-    let cli = match parsed {
-        Ok(c) => c,
+    let m = match command::<E>(project, about).try_get_matches() {
+        Ok(m) => m,
         Err(e) => return clap_error(name, e),
     };
-    match cli.cmd {
-        None => regress::run(project, cli.regress),
-        Some(Cmd::Regress(a)) => regress::run(project, a),
-        Some(Cmd::Merge(a)) => finish(name, merge::run(project, &a)),
-        Some(Cmd::Cosim(a)) => finish(name, cosim::run(project, &a)),
-        Some(Cmd::Vectors(a)) => finish(name, vectors::run(project, &a)),
-        Some(Cmd::Bench(a)) => finish(name, bench::run(project, &a)),
-        Some(Cmd::List) => {
+    match m.subcommand() {
+        None => regress::run(project, RegressArgs::read(&m)),
+        Some(("regress", s)) => regress::run(project, RegressArgs::read(s)),
+        Some(("merge", s)) => finish(name, merge::run(project, &MergeArgs::read(s))),
+        Some(("cosim", s)) => finish(name, cosim::run(project, &CosimArgs::read(s))),
+        Some(("vectors", s)) => finish(name, vectors::run(project, &VectorsArgs::read(s))),
+        Some(("bench", s)) => finish(name, bench::run(project, &BenchArgs::read(s))),
+        Some(("list", _)) => {
             say(&list(project));
             ExitCode::SUCCESS
         }
-        Some(Cmd::Own(e)) => own(e),
+        Some(_) => match E::from_arg_matches(&m) {
+            Ok(e) => own(e),
+            Err(e) => clap_error(name, e),
+        },
     }
 }
 
@@ -113,9 +135,24 @@ fn clap_error(name: &str, e: clap::Error) -> ExitCode {
         let _ = e.print();
         return ExitCode::SUCCESS;
     }
+    fail(name, clap_message(name, &e))
+}
+
+/// A parse error as one line, naming the option.
+fn clap_message(name: &str, e: &clap::Error) -> String {
     let text = e.to_string();
-    let first = text.lines().next().unwrap_or("bad arguments");
+    let mut lines = text.lines();
+    let first = lines.next().unwrap_or("bad arguments");
     let first = first.strip_prefix("error: ").unwrap_or(first);
+    // A list after a colon (the required options not given) joins the line.
+    let listed: Vec<&str> = lines
+        .take_while(|l| l.starts_with("  "))
+        .map(str::trim)
+        .collect();
+    let first = match first.strip_suffix(':') {
+        Some(head) if !listed.is_empty() => format!("{head}: {}", listed.join(", ")),
+        _ => first.to_string(),
+    };
     // clap quotes the argument it refuses: a long one is shortened, as every message's values.
     let first: String = first
         .split('\'')
@@ -129,7 +166,7 @@ fn clap_error(name: &str, e: clap::Error) -> ExitCode {
         })
         .collect::<Vec<_>>()
         .join("'");
-    fail(name, format!("{first} (see {name} --help)"))
+    format!("{first} (see {name} --help)")
 }
 
 /// A command's result as its exit status: its message on stdout (0), or one line on stderr
@@ -194,6 +231,45 @@ mod tests {
             "{m}"
         );
         assert_eq!(one_line("short words stay"), "short words stay");
+    }
+
+    fn parse_error(args: &[&str]) -> String {
+        let p = crate::project::Project::new("chip", "1");
+        let e = super::command::<super::NoCommands>(&p, "")
+            .try_get_matches_from(args)
+            .unwrap_err();
+        super::clap_message("chip", &e)
+    }
+
+    #[test]
+    fn a_parse_error_names_the_option_on_one_line() {
+        assert_eq!(
+            parse_error(&["chip", "cosim"]),
+            "the following required arguments were not provided: --unit <UNIT> (see chip --help)"
+        );
+        let m = parse_error(&["chip", "vectors", "--unit", "u", "--check"]);
+        assert!(m.contains("'--check'") && !m.contains('\n'), "{m}");
+        let m = parse_error(&["chip", "--seed", &"9".repeat(500)]);
+        assert!(m.starts_with("invalid value '") && m.len() < 200, "{m}");
+    }
+
+    #[test]
+    fn the_default_command_takes_regress_options_and_a_subcommand_its_own() {
+        let p = crate::project::Project::new("chip", "1");
+        let m = super::command::<super::NoCommands>(&p, "")
+            .try_get_matches_from(["chip", "--count", "5", "-j", "2"])
+            .unwrap();
+        let a = super::RegressArgs::read(&m);
+        assert_eq!((a.count, a.jobs), (Some(5), Some(2)));
+        let m = super::command::<super::NoCommands>(&p, "")
+            .try_get_matches_from(["chip", "bench", "--unit", "a", "--unit", "b"])
+            .unwrap();
+        let (sub, s) = m.subcommand().unwrap();
+        assert_eq!(sub, "bench");
+        assert_eq!(super::BenchArgs::read(s).unit, ["a", "b"]);
+        assert!(super::command::<super::NoCommands>(&p, "")
+            .try_get_matches_from(["chip", "--count", "5", "list"])
+            .is_err());
     }
 }
 

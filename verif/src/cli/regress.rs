@@ -2,73 +2,81 @@
 //! vectors check, the co-simulation of every twin, the table, `summary.json`, the pictures
 //! and `report.md`.
 
+use super::args::{all, clap_args, flag, given, one, path, value, values};
 use super::{fail, say};
 use crate::project::Project;
 use crate::regress::{regress, RegressConfig};
 use crate::{Seed, Shard};
-use clap::Args;
+use clap::{value_parser, ArgMatches, Command};
 use std::path::PathBuf;
 use std::process::ExitCode;
 use waves::TraceConfig;
 
 /// Run every testbench on built-in stimulus (the default command).
-#[derive(Args, Clone, Debug)]
+#[derive(Clone, Debug)]
 pub struct RegressArgs {
-    /// Directory for VCDs, .gtkw files, summary.json and report.md (default target/NAME, NAME
-    /// the program's).
-    #[arg(long)]
     out: Option<PathBuf>,
-    /// Stimulus seed (hex 0x... or decimal); the run prints it, and the same seed replays it.
-    #[arg(long, value_parser = Seed::parse, default_value = "0x7e47")]
     seed: Seed,
-    /// Write no waveforms.
-    #[arg(long)]
     no_vcd: bool,
-    /// Trace scopes down to this depth (0 = clock, reset and golden probes only; 1 = each
-    /// testbench's top unit; ...).
-    #[arg(long)]
     trace_depth: Option<usize>,
-    /// Trace only signals whose hierarchical name (e.g. tb.blend_adjust_153.u0) matches this glob; repeatable.
-    #[arg(long = "trace-filter")]
     trace_filter: Vec<String>,
-    /// Trace only cycles START..END.
-    #[arg(long, value_parser = parse_window)]
     trace_window: Option<(u64, u64)>,
-    /// Clock period in picoseconds shown in every waveform (even, >= 2; default: each
-    /// testbench's own clock, 10 ns for the FIG. 7 and FIG. 14 units, 5 ns for the memory path).
-    #[arg(long)]
     period_ps: Option<u64>,
-    /// Rewrite the kept bit-accuracy vectors after a deliberate change, and print what changed.
-    #[arg(long)]
     bless: bool,
-    /// Run only shard I of N (configurations dealt round-robin; merge the summaries with
-    /// `merge`).
-    #[arg(long, value_parser = Shard::parse, default_value = "1/1")]
     shard: Shard,
-    /// Random transactions per configuration (default: each testbench's own).
-    #[arg(long)]
-    count: Option<usize>,
-    /// Also write every waveform as FST, directly while simulating (compact; open with
-    /// `gtkwave X.fst X.gtkw`).
-    #[arg(long)]
+    pub(super) count: Option<usize>,
     fst: bool,
-    /// Run only this testbench (repeatable; `vectors` is the bit-accuracy check).
-    #[arg(long)]
     only: Vec<String>,
-    /// List the testbenches with their configurations and what --count counts, and exit.
-    #[arg(long)]
     list: bool,
-    /// Run the kernel's schedule check (every cycle evaluated twice) in every testbench.
-    #[arg(long)]
     check_schedule: bool,
-    /// Skip the co-simulation of the Verilog twins (run by default when Verilator or Icarus
-    /// is installed, as rows cosim/UNIT/SIMULATOR).
-    #[arg(long)]
     no_cosim: bool,
-    /// Configurations run at once, 1..=256 threads (default: the machine's cores); the
-    /// results are the same for any number.
-    #[arg(short = 'j', long)]
-    jobs: Option<usize>,
+    pub(super) jobs: Option<usize>,
+}
+
+clap_args!(RegressArgs);
+
+impl RegressArgs {
+    pub(super) fn augment(c: Command) -> Command {
+        c.args([
+            path("out", "OUT", "Directory for VCDs, .gtkw files, summary.json and report.md (default target/NAME, NAME the program's)"),
+            value("seed", "SEED", Seed::parse, "Stimulus seed (hex 0x... or decimal); the run prints it, and the same seed replays it").default_value("0x7e47"),
+            flag("no-vcd", "Write no waveforms"),
+            value("trace-depth", "TRACE_DEPTH", value_parser!(usize), "Trace scopes down to this depth (0 = clock, reset and golden probes only; 1 = each testbench's top unit; ...)"),
+            values("trace-filter", "TRACE_FILTER", value_parser!(String), "Trace only signals whose hierarchical name (e.g. tb.top.u0) matches this glob; repeatable"),
+            value("trace-window", "TRACE_WINDOW", parse_window, "Trace only cycles START..END"),
+            value("period-ps", "PERIOD_PS", value_parser!(u64), "Clock period in picoseconds shown in every waveform (even, >= 2; default: each testbench's own clock)"),
+            flag("bless", "Rewrite the kept bit-accuracy vectors after a deliberate change, and print what changed"),
+            value("shard", "SHARD", Shard::parse, "Run only shard I of N (configurations dealt round-robin; merge the summaries with `merge`)").default_value("1/1"),
+            value("count", "COUNT", value_parser!(usize), "Random transactions per configuration (default: each testbench's own)"),
+            flag("fst", "Also write every waveform as FST, directly while simulating (compact; open with `gtkwave X.fst X.gtkw`)"),
+            values("only", "ONLY", value_parser!(String), "Run only this testbench (repeatable; `vectors` is the bit-accuracy check)"),
+            flag("list", "List the testbenches with their configurations and what --count counts, and exit"),
+            flag("check-schedule", "Run the kernel's schedule check (every cycle evaluated twice) in every testbench"),
+            flag("no-cosim", "Skip the co-simulation of the Verilog twins (run by default when Verilator or Icarus is installed, as rows cosim/UNIT/SIMULATOR)"),
+            value("jobs", "JOBS", value_parser!(usize), "Configurations run at once, 1..=256 threads (default: the machine's cores); the results are the same for any number").short('j'),
+        ])
+    }
+
+    pub(super) fn read(m: &ArgMatches) -> Self {
+        RegressArgs {
+            out: one(m, "out"),
+            seed: given(m, "seed"),
+            no_vcd: m.get_flag("no-vcd"),
+            trace_depth: one(m, "trace-depth"),
+            trace_filter: all(m, "trace-filter"),
+            trace_window: one(m, "trace-window"),
+            period_ps: one(m, "period-ps"),
+            bless: m.get_flag("bless"),
+            shard: given(m, "shard"),
+            count: one(m, "count"),
+            fst: m.get_flag("fst"),
+            only: all(m, "only"),
+            list: m.get_flag("list"),
+            check_schedule: m.get_flag("check-schedule"),
+            no_cosim: m.get_flag("no-cosim"),
+            jobs: one(m, "jobs"),
+        }
+    }
 }
 
 fn parse_window(s: &str) -> Result<(u64, u64), String> {

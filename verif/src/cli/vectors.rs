@@ -1,27 +1,47 @@
 //! `vectors`: the project's bit-accuracy vectors checked against the kept files, blessed after
 //! a deliberate change, or one unit's exported as `$readmemh` files.
 
+use super::args::{clap_args, flag, one, path, value};
 use super::CmdError;
 use crate::project::Project;
-use clap::Args;
+use clap::{value_parser, ArgMatches, Command};
 use std::path::{Path, PathBuf};
 
 /// Check, bless or export the bit-accuracy vectors.
-#[derive(Args, Debug)]
+#[derive(Debug)]
 pub struct VectorsArgs {
     /// Export this unit's vectors (with --out).
-    #[arg(long, requires = "out", conflicts_with_all = ["check", "bless"])]
     pub unit: Option<String>,
     /// Directory for UNIT_stimulus.hex and UNIT_expected.hex.
-    #[arg(long, requires = "unit")]
     pub out: Option<PathBuf>,
     /// Compare every unit's vectors with the kept files (exit 1 on a difference).
-    #[arg(long, conflicts_with = "bless")]
     pub check: bool,
-    /// Rewrite the kept files after a deliberate change; print how many rows of each unit
-    /// changed and which.
-    #[arg(long)]
+    /// Rewrite the kept files after a deliberate change.
     pub bless: bool,
+}
+
+clap_args!(VectorsArgs);
+
+impl VectorsArgs {
+    pub(super) fn augment(c: Command) -> Command {
+        c.args([
+            value("unit", "UNIT", value_parser!(String), "Export this unit's vectors (with --out)")
+                .requires("out")
+                .conflicts_with_all(["check", "bless"]),
+            path("out", "OUT", "Directory for UNIT_stimulus.hex and UNIT_expected.hex").requires("unit"),
+            flag("check", "Compare every unit's vectors with the kept files (exit 1 on a difference)").conflicts_with("bless"),
+            flag("bless", "Rewrite the kept files after a deliberate change; print how many rows of each unit changed and which"),
+        ])
+    }
+
+    pub(super) fn read(m: &ArgMatches) -> Self {
+        VectorsArgs {
+            unit: one(m, "unit"),
+            out: one(m, "out"),
+            check: m.get_flag("check"),
+            bless: m.get_flag("bless"),
+        }
+    }
 }
 
 /// Runs it.
