@@ -398,6 +398,8 @@ fn shards_merge_into_the_whole_run() {
             "--no-cosim",
             "--count",
             "40",
+            "--seeds",
+            "2",
             "--out",
             out.to_str().unwrap(),
         ];
@@ -428,22 +430,15 @@ fn shards_merge_into_the_whole_run() {
     assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
     let m: serde_json::Value = serde_json::from_slice(&std::fs::read(&merged).unwrap()).unwrap();
     assert_eq!(m["passed"], true);
-    for (a, b) in full["testbenches"]
-        .as_array()
-        .unwrap()
-        .iter()
-        .zip(m["testbenches"].as_array().unwrap())
-    {
-        assert_eq!(a["name"], b["name"]);
-        for k in ["transactions", "cycles", "mismatches", "coverage_percent"] {
-            assert_eq!(a[k], b[k], "{} {k}", a["name"]);
-        }
-        assert_eq!(
-            a["stats"]["max_abs_lsb"], b["stats"]["max_abs_lsb"],
-            "{}",
-            a["name"]
-        );
-    }
+    assert_eq!(
+        full["testbenches"].as_array().map(Vec::len),
+        m["testbenches"].as_array().map(Vec::len)
+    );
+    // The merge is the unsharded run's summary, byte for byte.
+    assert!(
+        std::fs::read(&merged).unwrap() == std::fs::read(d.join("full/summary.json")).unwrap(),
+        "the merged summary differs from the unsharded run's"
+    );
     // One shard alone is not a whole run; garbage is refused.
     let o = texrtl(&[
         "merge",
@@ -687,39 +682,51 @@ fn merge_refuses_huge_counts_and_mixed_versions_without_allocating() {
         s1.to_str().unwrap(),
     ]);
     assert!(o.status.code().is_some_and(|c| c <= 1), "{o:?}");
-    let j: serde_json::Value =
-        serde_json::from_slice(&std::fs::read(s1.join("summary.json")).unwrap()).unwrap();
-    let variant = |name: &str, edit: &dyn Fn(&mut serde_json::Value)| {
-        let mut v = j.clone();
-        edit(&mut v);
-        let p = d.join(name);
-        std::fs::write(&p, serde_json::to_vec(&v).unwrap()).unwrap();
-        p
+    let s2 = d.join("s2");
+    let o = texrtl(&[
+        "--no-cosim",
+        "--no-vcd",
+        "--only",
+        "blend_adjust_153",
+        "--count",
+        "10",
+        "--shard",
+        "2/2",
+        "--out",
+        s2.to_str().unwrap(),
+    ]);
+    assert!(o.status.code().is_some_and(|c| c <= 1), "{o:?}");
+    let read = |p: &Path| -> serde_json::Value {
+        serde_json::from_slice(&std::fs::read(p.join("summary.json")).unwrap()).unwrap()
     };
+    let (j, j2) = (read(&s1), read(&s2));
+    let variant_of =
+        |base: &serde_json::Value, name: &str, edit: &dyn Fn(&mut serde_json::Value)| {
+            let mut v = base.clone();
+            edit(&mut v);
+            let p = d.join(name);
+            std::fs::write(&p, serde_json::to_vec(&v).unwrap()).unwrap();
+            p
+        };
+    let variant = |name: &str, edit: &dyn Fn(&mut serde_json::Value)| variant_of(&j, name, edit);
     let huge = variant("huge.json", &|v| v["shard"] = "1/4294967295".into());
-    let other = variant("other.json", &|v| {
-        v["shard"] = "2/2".into();
-        v["texrtl"] = "0.0.0".into();
-    });
-    // The other half, with one coverage bin deleted: a different coverage model.
-    let nobin = variant("nobin.json", &|v| {
-        v["shard"] = "2/2".into();
-        let bins = &mut v["testbenches"][0]["coverage"]["points"][0]["bins"];
+    let other = variant_of(&j2, "other.json", &|v| v["texrtl"] = "0.0.0".into());
+    // The other half, with one coverage bin deleted in a job: a different coverage model.
+    let nobin = variant_of(&j2, "nobin.json", &|v| {
+        let bins = &mut v["jobs"][0]["result"]["coverage"]["points"][0]["bins"];
         bins.as_array_mut().unwrap().pop();
     });
     // The other half of a run whose model names a bin differently: whole, but another model.
-    let renamed = variant("renamed.json", &|v| {
-        v["shard"] = "2/2".into();
-        v["testbenches"][0]["coverage"]["points"][0]["bins"][0]["name"] = "other".into();
+    let renamed = variant_of(&j2, "renamed.json", &|v| {
+        v["jobs"][0]["result"]["coverage"]["points"][0]["bins"][0]["name"] = "other".into();
     });
     // Both halves with a sum near the largest double: their sum is not finite.
-    let big = |name: &str, shard: &str| {
-        variant(name, &|v| {
-            v["shard"] = shard.into();
-            v["testbenches"][0]["stats"]["sum_sq_signal"] = 1e308.into();
+    let big = |base: &serde_json::Value, name: &str| {
+        variant_of(base, name, &|v| {
+            v["jobs"][0]["result"]["stats"]["sum_sq_signal"] = 1e308.into();
         })
     };
-    let (big1, big2) = (big("big1.json", "1/2"), big("big2.json", "2/2"));
+    let (big1, big2) = (big(&j, "big1.json"), big(&j2, "big2.json"));
     let merged = d.join("m.json");
     for (files, needle) in [
         (vec![&huge], "N <= 4096"),

@@ -16,29 +16,11 @@ pub mod netpbm;
 pub mod obj;
 pub mod ptm;
 
-pub use waves::output::{self, shorten};
+pub use waves::output::{self, read_bounded, shorten};
 
 /// The largest file an image, table or mesh input may be (an ASCII PPM of 4096 x 4096 pixels
 /// fits): an endless device such as `/dev/zero` is refused at this size, not read forever.
 pub const MAX_INPUT_BYTES: u64 = 256 << 20;
-
-/// The bytes of `path`, at most `max`: a longer file or an endless device is refused, naming it.
-pub fn read_bounded(path: &std::path::Path, max: u64) -> Result<Vec<u8>, String> {
-    use std::io::Read;
-    let name = || path.display();
-    let f = std::fs::File::open(path).map_err(|e| format!("{}: {e}", name()))?;
-    let mut b = Vec::new();
-    f.take(max + 1)
-        .read_to_end(&mut b)
-        .map_err(|e| format!("{}: {e}", name()))?;
-    if b.len() as u64 > max {
-        return Err(format!(
-            "{}: longer than {max} bytes, more than any input of its kind",
-            name()
-        ));
-    }
-    Ok(b)
-}
 
 /// [`read_bounded`] as UTF-8 text.
 pub fn read_text_bounded(path: &std::path::Path, max: u64) -> Result<String, String> {

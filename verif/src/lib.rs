@@ -31,8 +31,10 @@
 //! * [`cosim`]: a unit's model against its Verilog in Verilator or Icarus, cycle by cycle,
 //!   under the unit's clocking and compare rules ([`cosim::CosimUnit`], [`cosim::Twin`]).
 //! * [`vectors`]: bit-accuracy vectors kept, checked to the row, blessed and exported.
+//! * [`jobs`]: a regression as a list of jobs (configuration x seed) that shards deal out.
 //! * [`regress`]: every testbench, the vectors and every twin, in shards, and the merge;
-//!   [`report`] and [`plot`]: the table, `report.md` and its pictures.
+//!   [`report`] and [`plot`]: the table, `report.md` and its pictures; [`junit`]: the JUnit
+//!   XML CI servers read.
 //! * [`bench`](mod@bench): every twin against Verilator, untraced and traced.
 //! * [`cli`]: the command line (`regress`, `merge`, `cosim`, `vectors`, `bench`, `list`) for
 //!   any project: a program's `main` is one call.
@@ -47,6 +49,8 @@ pub mod bench;
 pub mod cli;
 pub mod cosim;
 pub mod coverage;
+pub mod jobs;
+pub mod junit;
 pub mod mutate;
 pub mod plot;
 mod probe;
@@ -74,7 +78,8 @@ pub use run::{
 pub use scoreboard::{Mismatch, Outcome, Scoreboard};
 pub use stats::ErrorStats;
 pub use testbench::{
-    conclude, config_seed, run_testbench, Ctx, Registry, RunOptions, Testbench, WaveOut,
+    aggregate, conclude, config_seed, run_jobs, run_testbench, Ctx, Registry, RunOptions,
+    Testbench, WaveOut,
 };
 
 #[cfg(test)]

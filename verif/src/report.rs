@@ -94,6 +94,7 @@ pub fn markdown(project: &Project, s: &Summary, pictures: &[Picture]) -> String 
          unit's output format against the f64 golden model. Each waveform opens with \
          `gtkwave <name>.gtkw`.\n"
     );
+    failing_section(&mut m, s);
     if !pictures.is_empty() {
         let _ = writeln!(m, "## Pictures\n");
         for Picture { file, caption } in pictures {
@@ -181,6 +182,56 @@ pub fn write_report(project: &Project, out: &Path, summary: &Summary) -> Result<
         "report.md",
         markdown(project, summary, &pictures).as_bytes(),
     )
+}
+
+/// Each failing job with its testbench, configuration, seed and the command that runs it
+/// again alone, with its waveform.
+fn failing_section(m: &mut String, s: &Summary) {
+    if s.failing.is_empty() {
+        return;
+    }
+    let _ = writeln!(m, "## Failing jobs\n");
+    let _ = writeln!(
+        m,
+        "{} jobs failed; each command runs its job again, alone, with its waveform (traced \
+         around the first mismatch where its cycle is known).\n",
+        s.failing.len()
+    );
+    let _ = writeln!(
+        m,
+        "| job | testbench | configuration | seed | first | reproduce |"
+    );
+    let _ = writeln!(m, "|---:|---|---|---|---|---|");
+    for f in &s.failing {
+        let first = f.first.replace('|', "\\|");
+        let seed = if f.repeat == 0 {
+            f.seed.clone()
+        } else {
+            format!("{} (#{})", f.seed, f.repeat)
+        };
+        let _ = writeln!(
+            m,
+            "| {} | {} | {} | `{seed}` | {first} | `{}` |",
+            f.job, f.testbench, f.configuration, f.reproduce
+        );
+    }
+    let _ = writeln!(m);
+}
+
+/// The failing jobs' commands, at most `max` of them, as `regress` and `merge` print them.
+pub fn failing_lines(s: &Summary, max: usize) -> String {
+    let mut out = String::new();
+    for f in s.failing.iter().take(max) {
+        let _ = writeln!(
+            out,
+            "failing job {} ({} [{}]): {}",
+            f.job, f.testbench, f.configuration, f.reproduce
+        );
+    }
+    if s.failing.len() > max {
+        let _ = writeln!(out, "... and {} more in report.md", s.failing.len() - max);
+    }
+    out
 }
 
 /// The table and a closing line, as `texrtl regress` prints them.

@@ -27,6 +27,10 @@ pub struct TbResult {
     pub mismatches: u64,
     /// The first mismatches in detail.
     pub mismatch_log: Vec<String>,
+    /// The cycle of the first mismatch a scoreboard saw with its cycle (of the first
+    /// configuration that had one): where a reproduction's trace window goes.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub first_mismatch_cycle: Option<u64>,
     /// Anything else that failed: latency, throughput, watchdog, coverage holes, waveforms.
     pub failures: Vec<String>,
     /// Share of the coverage bins hit, in percent.
@@ -75,6 +79,7 @@ impl TbResult {
             cycles: 0,
             mismatches: 0,
             mismatch_log: Vec::new(),
+            first_mismatch_cycle: None,
             failures: Vec::new(),
             coverage_percent: 0.0,
             unhit: Vec::new(),
@@ -110,6 +115,12 @@ impl TbResult {
             ));
         }
         self.passed = self.mismatches == 0 && self.failures.is_empty();
+    }
+
+    /// Whether this result failed on its own account: a mismatch, or a failure other than
+    /// coverage holes (which only a whole run's merged coverage decides).
+    pub fn failed_itself(&self) -> bool {
+        self.mismatches > 0 || self.failures.iter().any(|f| !f.starts_with(HOLES))
     }
 
     /// Sets coverage figures from a model (kept for merging shards).
@@ -158,6 +169,7 @@ impl TbResult {
         self.cycles = cycles;
         self.mismatches = mismatches;
         self.mismatch_log.extend(o.mismatch_log.iter().map(tag));
+        self.first_mismatch_cycle = self.first_mismatch_cycle.or(o.first_mismatch_cycle);
         self.mismatch_log.truncate(20);
         let failures = o.failures.iter().filter(|f| !f.starts_with(HOLES));
         self.failures.extend(failures.map(tag));
@@ -186,6 +198,8 @@ impl TbResult {
     pub fn score<E: std::fmt::Debug, A: std::fmt::Debug>(&mut self, sb: &crate::Scoreboard<E, A>) {
         self.transactions += sb.compared();
         self.mismatches += sb.mismatch_count();
+        let first = sb.mismatches().iter().filter_map(|m| m.cycle).min();
+        self.first_mismatch_cycle = self.first_mismatch_cycle.or(first);
         for m in sb.mismatches().iter().take(10) {
             self.mismatch_log.push(format!(
                 "transaction {} (cycle {:?}): {}",

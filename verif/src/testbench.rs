@@ -8,6 +8,7 @@
 //! failure, and (for a whole run) no coverage hole.
 
 use crate::coverage::Coverage;
+use crate::jobs::{job_label, job_seed, JobRef, JobResult};
 use crate::random::{Seed, Shard};
 use crate::result::TbResult;
 use hdl::kernel::{Module, Sim};
@@ -145,6 +146,11 @@ pub struct RunOptions {
     /// Configurations run at once, on as many threads (1: one after the other). The merged
     /// result is the same either way: configurations are merged in their order.
     pub jobs: usize,
+    /// Seeds each configuration runs under ([`crate::jobs`]); 1: the run's seed alone.
+    pub seeds: u32,
+    /// Trace whichever job runs, not only the testbench's traced configuration under the
+    /// first seed (for a run of one job: its reproduction).
+    pub trace_every_job: bool,
 }
 
 impl Default for RunOptions {
@@ -156,6 +162,8 @@ impl Default for RunOptions {
             waves: None,
             check_schedule: false,
             jobs: 1,
+            seeds: 1,
+            trace_every_job: false,
         }
     }
 }
@@ -180,58 +188,113 @@ pub fn config_seed(seed: Seed, name: &str, index: usize) -> Seed {
     seed.derive(h).derive(index as u64)
 }
 
-/// Runs every configuration of `tb` that the shard owns, calling `progress` with each label
-/// before it runs, and merges the results; pass/fail as the module says. The waveform folder
-/// is made if it is not there.
+/// Runs every configuration of `tb` that the shard owns (under each of `opts.seeds` seeds:
+/// the testbench's jobs, dealt round-robin), calling `progress` with each label before it
+/// runs, and merges the results; pass/fail as the module says. The waveform folder is made if
+/// it is not there.
 pub fn run_testbench(
     tb: &dyn Testbench,
     opts: &RunOptions,
     progress: &mut dyn FnMut(&str),
 ) -> Result<TbResult, String> {
+    let n = tb.configurations().len();
+    let all: Vec<JobRef> = (0..opts.seeds)
+        .flat_map(|r| (0..n).map(move |c| (r, c)))
+        .enumerate()
+        .map(|(k, (repeat, configuration))| JobRef {
+            index: k as u64,
+            configuration,
+            repeat,
+        })
+        .collect();
+    let mine: Vec<JobRef> = all
+        .into_iter()
+        .filter(|j| opts.shard.owns(j.index))
+        .collect();
+    let results = run_jobs(tb, opts, &mine, progress)?;
+    aggregate(tb, opts.seed, &results, opts.shard.is_all())
+}
+
+/// Runs `jobs` of `tb` (on `opts.jobs` threads), each result in its job's place.
+pub fn run_jobs(
+    tb: &dyn Testbench,
+    opts: &RunOptions,
+    jobs: &[JobRef],
+    progress: &mut dyn FnMut(&str),
+) -> Result<Vec<JobResult>, String> {
     if let Some((dir, _, _)) = &opts.waves {
         std::fs::create_dir_all(dir).map_err(|e| format!("{}: {e}", dir.display()))?;
     }
-    let mut merged = TbResult::new(tb.name(), tb.unit());
-    merged.seed = Some(opts.seed.to_string());
-    merged.coverage = Some(tb.coverage());
-    let owned: Vec<(usize, String)> = tb
-        .configurations()
-        .into_iter()
-        .enumerate()
-        .filter(|(index, _)| opts.shard.owns(*index as u64))
-        .collect();
-    let results = if opts.jobs > 1 && owned.len() > 1 {
-        run_parallel(tb, opts, &owned, progress)
+    let labels = tb.configurations();
+    let label = |j: &JobRef| job_label(&labels[j.configuration], j.repeat);
+    let results = if opts.jobs > 1 && jobs.len() > 1 {
+        run_parallel(tb, opts, jobs, &labels, progress)
     } else {
-        owned
-            .iter()
-            .map(|(index, label)| {
-                progress(label);
-                run_configuration(tb, opts, *index, label)
+        jobs.iter()
+            .map(|j| {
+                progress(&label(j));
+                timed(|| run_job(tb, opts, j, &labels[j.configuration]))
             })
             .collect()
     };
-    // Merged in configuration order, however they ran.
-    for ((_, label), r) in owned.iter().zip(results) {
+    jobs.iter()
+        .zip(results)
+        .map(|(j, (r, seconds))| {
+            Ok(JobResult {
+                index: j.index,
+                configuration: j.configuration,
+                repeat: j.repeat,
+                result: r?,
+                seconds,
+            })
+        })
+        .collect()
+}
+
+/// `f`'s result and the seconds it took.
+fn timed<T>(f: impl FnOnce() -> T) -> (T, f64) {
+    let t = std::time::Instant::now();
+    let r = f();
+    (r, t.elapsed().as_secs_f64())
+}
+
+/// The jobs' results of `tb` merged in the order given (a run's, or a merge's sorted by job
+/// index: the same result), then concluded; `whole_run` decides whether coverage holes fail.
+pub fn aggregate(
+    tb: &dyn Testbench,
+    seed: Seed,
+    results: &[JobResult],
+    whole_run: bool,
+) -> Result<TbResult, String> {
+    let labels = tb.configurations();
+    let mut merged = TbResult::new(tb.name(), tb.unit());
+    merged.seed = Some(seed.to_string());
+    merged.coverage = Some(tb.coverage());
+    for j in results {
+        let l = labels
+            .get(j.configuration)
+            .ok_or_else(|| format!("{}: no configuration {}", tb.name(), j.configuration))?;
+        let label = job_label(l, j.repeat);
         merged
-            .absorb(&r?, Some(label))
+            .absorb(&j.result, Some(&label))
             .map_err(|e| format!("{} [{label}]: {e}", tb.name()))?;
     }
-    conclude(tb, &mut merged, opts.shard.is_all());
+    conclude(tb, &mut merged, whole_run);
     Ok(merged)
 }
 
-/// One configuration of `tb`.
-fn run_configuration(
+/// One job of `tb`.
+fn run_job(
     tb: &dyn Testbench,
     opts: &RunOptions,
-    index: usize,
+    job: &JobRef,
     label: &str,
 ) -> Result<TbResult, String> {
-    let waves = opts.waves.as_ref().filter(|_| index == tb.traced());
+    let traced = opts.trace_every_job || (job.configuration == tb.traced() && job.repeat == 0);
+    let waves = opts.waves.as_ref().filter(|_| traced);
     let ctx = Ctx {
-        index,
-        seed: config_seed(opts.seed, tb.name(), index),
+        index: job.configuration,
+        seed: job_seed(opts.seed, tb.name(), job.configuration, job.repeat),
         count: opts.count.unwrap_or_else(|| tb.default_count()),
         waves: waves.map(|(dir, trace, period_ps)| WaveOut {
             vcd: dir.join(format!("{}.vcd", tb.name())),
@@ -242,32 +305,34 @@ fn run_configuration(
         label: label.to_string(),
     };
     tb.run(&ctx)
-        .map_err(|e| format!("{} [{}]: {e}", tb.name(), ctx.label))
+        .map_err(|e| format!("{} [{}]: {e}", tb.name(), job_label(label, job.repeat)))
 }
 
-/// The configurations `owned` on `opts.jobs` threads, each result in its configuration's
-/// place; `progress` is told of each as it finishes.
+/// The `jobs` on `opts.jobs` threads, each result in its job's place; `progress` is told of
+/// each as it finishes.
 fn run_parallel(
     tb: &dyn Testbench,
     opts: &RunOptions,
-    owned: &[(usize, String)],
+    jobs: &[JobRef],
+    labels: &[String],
     progress: &mut dyn FnMut(&str),
-) -> Vec<Result<TbResult, String>> {
+) -> Vec<(Result<TbResult, String>, f64)> {
     use std::sync::atomic::{AtomicUsize, Ordering};
+    type Timed = (Result<TbResult, String>, f64);
     let next = AtomicUsize::new(0);
     let (tx, rx) = std::sync::mpsc::channel();
-    let mut results: Vec<Option<Result<TbResult, String>>> = owned.iter().map(|_| None).collect();
+    let mut results: Vec<Option<Timed>> = jobs.iter().map(|_| None).collect();
     std::thread::scope(|s| {
-        for _ in 0..opts.jobs.min(owned.len()) {
+        for _ in 0..opts.jobs.min(jobs.len()) {
             let tx = tx.clone();
             let next = &next;
             s.spawn(move || loop {
                 let k = next.fetch_add(1, Ordering::Relaxed);
-                let Some((index, label)) = owned.get(k) else {
+                let Some(j) = jobs.get(k) else {
                     break;
                 };
                 if tx
-                    .send((k, run_configuration(tb, opts, *index, label)))
+                    .send((k, timed(|| run_job(tb, opts, j, &labels[j.configuration]))))
                     .is_err()
                 {
                     break;
@@ -276,13 +341,19 @@ fn run_parallel(
         }
         drop(tx);
         for (k, r) in rx {
-            progress(&owned[k].1);
+            let j = &jobs[k];
+            progress(&job_label(&labels[j.configuration], j.repeat));
             results[k] = Some(r);
         }
     });
     results
         .into_iter()
-        .map(|r| r.unwrap_or_else(|| Err(format!("{}: a configuration did not finish", tb.name()))))
+        .map(|r| {
+            r.unwrap_or_else(|| {
+                let e = format!("{}: a configuration did not finish", tb.name());
+                (Err(e), 0.0)
+            })
+        })
         .collect()
 }
 
@@ -341,15 +412,18 @@ impl Registry {
         self.iter().position(|t| t.name() == name)
     }
 
-    /// Configurations a shard runs, over every testbench (for a progress bar).
+    /// Configurations a shard runs under one seed, over the selected testbenches (`only`,
+    /// empty: all).
     pub fn owned_configurations(&self, shard: Shard, only: &[String]) -> u64 {
-        self.iter()
-            .filter(|t| only.is_empty() || only.iter().any(|o| o == t.name()))
-            .map(|t| {
-                (0..t.configurations().len() as u64)
-                    .filter(|&i| shard.owns(i))
-                    .count() as u64
-            })
+        self.owned_jobs(1, shard, only)
+    }
+
+    /// Jobs a shard runs under `seeds` seeds ([`crate::jobs`]), for a progress bar.
+    pub fn owned_jobs(&self, seeds: u32, shard: Shard, only: &[String]) -> u64 {
+        let selected = |n: &str| only.is_empty() || only.iter().any(|o| o == n);
+        crate::jobs::owned(self, seeds, shard, &selected)
+            .iter()
+            .map(|(_, j)| j.len() as u64)
             .sum()
     }
 }
@@ -553,7 +627,9 @@ mod tests {
         let all = Shard::default();
         let second = Shard::parse("2/2").unwrap();
         assert_eq!(reg.owned_configurations(all, &[]), 4);
-        assert_eq!(reg.owned_configurations(second, &[]), 1);
+        // The run's jobs x0 x1 x2 y0, dealt round-robin: the second of two shards has x1, y0.
+        assert_eq!(reg.owned_configurations(second, &[]), 2);
+        assert_eq!(reg.owned_jobs(3, second, &[]), 6);
         assert_eq!(reg.owned_configurations(all, &["y".into()]), 1);
         assert_eq!(reg.owned_configurations(all, &["x".into()]), 3);
     }

@@ -159,6 +159,24 @@ pub fn shorten(s: &str) -> String {
     }
 }
 
+/// The bytes of `path`, at most `max`: a longer file or an endless device is refused, naming it.
+pub fn read_bounded(path: &std::path::Path, max: u64) -> Result<Vec<u8>, String> {
+    use std::io::Read;
+    let name = || path.display();
+    let f = std::fs::File::open(path).map_err(|e| format!("{}: {e}", name()))?;
+    let mut b = Vec::new();
+    f.take(max + 1)
+        .read_to_end(&mut b)
+        .map_err(|e| format!("{}: {e}", name()))?;
+    if b.len() as u64 > max {
+        return Err(format!(
+            "{}: longer than {max} bytes, more than any input of its kind",
+            name()
+        ));
+    }
+    Ok(b)
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

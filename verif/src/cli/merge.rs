@@ -1,7 +1,7 @@
 //! `merge`: the summaries of every shard of a run combined into one, concluded by the
 //! project's testbenches as an unsharded run is.
 
-use super::args::{all, clap_args, given, path};
+use super::args::{all, clap_args, given, one, path};
 use super::{write_out, CmdError};
 use crate::project::Project;
 use clap::{value_parser, Arg, ArgAction, ArgMatches, Command};
@@ -14,6 +14,10 @@ pub struct MergeArgs {
     pub out: PathBuf,
     /// The shards' summary.json files.
     pub summaries: Vec<PathBuf>,
+    /// A folder for the merged run's report.md and pictures.
+    pub report: Option<PathBuf>,
+    /// A file for the merged run's JUnit XML.
+    pub junit: Option<PathBuf>,
 }
 
 clap_args!(MergeArgs);
@@ -30,12 +34,24 @@ impl MergeArgs {
                     .required(true)
                     .help("The shards' summary.json files"),
             )
+            .arg(path(
+                "report",
+                "DIR",
+                "Also write the merged run's report.md (with each failing job and the command that reproduces it) and its pictures into this folder",
+            ))
+            .arg(path(
+                "junit",
+                "FILE",
+                "Also write the merged run's JUnit XML (one test case per job, as the unsharded run's but for the times)",
+            ))
     }
 
     pub(super) fn read(m: &ArgMatches) -> Self {
         MergeArgs {
             out: given(m, "out"),
             summaries: all(m, "summaries"),
+            report: one(m, "report"),
+            junit: one(m, "junit"),
         }
     }
 }
@@ -47,11 +63,38 @@ pub fn run(project: &Project, a: &MergeArgs) -> Result<String, CmdError> {
         .iter()
         .map(|p| ("a summary", p.as_path()))
         .collect();
-    super::check_outputs(&[("--out", a.out.as_path())], &ins)?;
-    let m = crate::regress::merge(project, &a.summaries).map_err(CmdError::Input)?;
+    let mut outs = vec![("--out", a.out.as_path())];
+    outs.extend(a.junit.as_deref().map(|j| ("--junit", j)));
+    super::check_outputs(&outs, &ins)?;
+    if let Some(d) = a
+        .report
+        .as_ref()
+        .filter(|d| d.symlink_metadata().is_ok() && !d.is_dir())
+    {
+        return Err(CmdError::Input(format!(
+            "--report {}: exists and is not a directory",
+            d.display()
+        )));
+    }
+    let shards = crate::regress::read_summaries(&a.summaries).map_err(CmdError::Input)?;
+    let m = crate::regress::merge_shards(project, &shards).map_err(CmdError::Input)?;
     let json = serde_json::to_vec_pretty(&m).map_err(|e| CmdError::Failed(e.to_string()))?;
     write_out(&a.out, &json)?;
-    let mut s = crate::report::table(&m.testbenches);
+    if let Some(j) = &a.junit {
+        let jobs: Vec<_> = shards
+            .iter()
+            .flat_map(|(_, s)| s.jobs.iter().cloned())
+            .collect();
+        let xml = crate::junit::junit(project, &m, &jobs).map_err(CmdError::Failed)?;
+        write_out(j, xml.as_bytes())?;
+    }
+    if let Some(dir) = &a.report {
+        let mut made = super::Outputs::default();
+        made.folder(dir);
+        made.settle(report(project, dir, &m))?;
+    }
+    let mut s = crate::report::failing_lines(&m, 10);
+    s.push_str(&crate::report::table(&m.testbenches));
     s.push_str(&format!(
         "merged {} shards into {}",
         a.summaries.len(),
@@ -63,4 +106,15 @@ pub fn run(project: &Project, a: &MergeArgs) -> Result<String, CmdError> {
         super::say(&format!("{s}\n"));
         Err(CmdError::Failed("merged run failed".into()))
     }
+}
+
+/// The merged run's report.md and pictures in `dir`.
+fn report(
+    project: &Project,
+    dir: &std::path::Path,
+    m: &crate::regress::Summary,
+) -> Result<(), CmdError> {
+    std::fs::create_dir_all(dir)
+        .map_err(|e| CmdError::Input(format!("--report {}: {e}", dir.display())))?;
+    crate::report::write_report(project, dir, m).map_err(CmdError::Input)
 }

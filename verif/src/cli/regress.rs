@@ -31,6 +31,9 @@ pub struct RegressArgs {
     check_schedule: bool,
     no_cosim: bool,
     pub(super) jobs: Option<usize>,
+    seeds: u32,
+    job: Option<u64>,
+    junit: Option<PathBuf>,
 }
 
 clap_args!(RegressArgs);
@@ -46,7 +49,7 @@ impl RegressArgs {
             value("trace-window", "TRACE_WINDOW", parse_window, "Trace only cycles START..END"),
             value("period-ps", "PERIOD_PS", value_parser!(u64), "Clock period in picoseconds shown in every waveform (even, >= 2; default: each testbench's own clock)"),
             flag("bless", "Rewrite the kept bit-accuracy vectors after a deliberate change, and print what changed"),
-            value("shard", "SHARD", Shard::parse, "Run only shard I of N (configurations dealt round-robin; merge the summaries with `merge`)").default_value("1/1"),
+            value("shard", "SHARD", Shard::parse, "Run only shard I of N (the run's jobs dealt round-robin; merge the summaries with `merge`)").default_value("1/1"),
             value("count", "COUNT", value_parser!(usize), "Random transactions per configuration (default: each testbench's own)"),
             flag("fst", "Also write every waveform as FST, directly while simulating (compact; open with `gtkwave X.fst X.gtkw`)"),
             values("only", "ONLY", value_parser!(String), "Run only this testbench (repeatable; `vectors` is the bit-accuracy check)"),
@@ -54,6 +57,9 @@ impl RegressArgs {
             flag("check-schedule", "Run the kernel's schedule check (every cycle evaluated twice) in every testbench"),
             flag("no-cosim", "Skip the co-simulation of the Verilog twins (run by default when Verilator or Icarus is installed, as rows cosim/UNIT/SIMULATOR)"),
             value("jobs", "JOBS", value_parser!(usize), "Configurations run at once, 1..=256 threads (default: the machine's cores); the results are the same for any number").short('j'),
+            value("seeds", "SEEDS", value_parser!(u32), "Run every configuration under this many seeds (the first is --seed's): seeds x configurations are the run's jobs, which --shard deals out").default_value("1"),
+            value("job", "JOB", value_parser!(u64), "Run only this job, with its waveform: what a failing job's line in the report runs (no vectors, no co-simulation)"),
+            path("junit", "FILE", "Also write the run's JUnit XML (one test case per job, with its seed and the command that reproduces it) for a CI server"),
         ])
     }
 
@@ -75,6 +81,9 @@ impl RegressArgs {
             check_schedule: m.get_flag("check-schedule"),
             no_cosim: m.get_flag("no-cosim"),
             jobs: one(m, "jobs"),
+            seeds: given(m, "seeds"),
+            job: one(m, "job"),
+            junit: one(m, "junit"),
         }
     }
 }
@@ -129,6 +138,9 @@ pub fn run(project: &Project, a: RegressArgs) -> ExitCode {
         jobs: a.jobs.unwrap_or_else(|| {
             std::thread::available_parallelism().map_or(1, std::num::NonZeroUsize::get)
         }),
+        seeds: a.seeds,
+        job: a.job,
+        junit: a.junit,
     };
     if let Err(e) = cfg.trace.validate() {
         return fail(name, format!("--period-ps/--trace-window: {e}"));
@@ -146,6 +158,9 @@ pub fn run(project: &Project, a: RegressArgs) -> ExitCode {
     // keeps its waves and report).
     let mut made = super::Outputs::default();
     made.folder(&cfg.out);
+    if let Some(j) = &cfg.junit {
+        made.file(j);
+    }
     eprintln!(
         "{name} regress: seed {} (replay with --seed {})",
         cfg.seed, cfg.seed
@@ -163,10 +178,13 @@ fn run_checked(
     made: &super::Outputs,
 ) -> ExitCode {
     let name = project.name();
-    // A progress bar on stderr, one step per configuration (hidden when stderr is not a
-    // terminal).
+    // A progress bar on stderr, one step per job (hidden when stderr is not a terminal).
     let reg = project.registry();
-    let bar = indicatif::ProgressBar::new(reg.owned_configurations(cfg.shard, &cfg.only));
+    let steps = match cfg.job {
+        Some(_) => 1,
+        None => reg.owned_jobs(cfg.seeds, cfg.shard, &cfg.only),
+    };
+    let bar = indicatif::ProgressBar::new(steps);
     bar.set_style(
         indicatif::ProgressStyle::with_template("{bar:30} {pos}/{len} {msg}")
             .unwrap_or_else(|_| indicatif::ProgressStyle::default_bar()),
@@ -181,6 +199,7 @@ fn run_checked(
     bar.finish_and_clear();
     match done {
         Ok(summary) => {
+            say(&crate::report::failing_lines(&summary, 10));
             let results = summary.testbenches;
             say(&crate::report::render(&results, cfg));
             if let Some(dir) = project.kept_vectors().filter(|_| bless) {

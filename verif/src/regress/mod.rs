@@ -3,6 +3,7 @@
 //! the summaries of a run's shards into the one an unsharded run writes.
 
 use crate::cosim::Simulator;
+use crate::jobs::{self, JobResult};
 use crate::project::Project;
 use crate::TbResult;
 use crate::{Registry, RunOptions, Seed};
@@ -19,6 +20,9 @@ pub const VECTORS: &str = "vectors";
 /// The prefix of the co-simulation rows (`cosim/<unit>/<simulator>`; `--only cosim`).
 pub const COSIM: &str = "cosim";
 
+mod merge;
+pub use merge::{merge, merge_shards, parse_summary, read_summaries};
+
 /// `summary.json`: every result, the seed, the shard and the project's version.
 #[derive(Clone, Serialize, Deserialize)]
 pub struct Summary {
@@ -26,12 +30,119 @@ pub struct Summary {
     pub texrtl: String,
     /// The run's seed, as it replays it (`--seed`).
     pub seed: String,
+    /// Seeds each configuration ran under (`--seeds`; 1 is not written).
+    #[serde(default = "one", skip_serializing_if = "is_one")]
+    pub seeds: u32,
+    /// `--count`, when the run was given one.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub count: Option<usize>,
+    /// `--only`: the testbenches the run selected (empty: all).
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub only: Vec<String>,
     /// `I/N` when the run was one shard of N.
     pub shard: Option<String>,
     /// Whether every row passed.
     pub passed: bool,
     /// Every row: each testbench, the vectors, each co-simulation, in run order.
     pub testbenches: Vec<TbResult>,
+    /// Every job that failed, in job order, with the command that reproduces it.
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub failing: Vec<FailingJob>,
+    /// A shard's jobs one by one, for the merge (not in a whole run's summary).
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub jobs: Vec<JobResult>,
+}
+
+fn one() -> u32 {
+    1
+}
+
+fn is_one(n: &u32) -> bool {
+    *n == 1
+}
+
+/// A job that failed: which, under which seed, and the one command that runs it again alone
+/// with its waveform (windowed around its first mismatch when the scoreboard saw its cycle).
+#[derive(Clone, Debug, Serialize, Deserialize)]
+pub struct FailingJob {
+    /// The job's index (`--job`).
+    pub job: u64,
+    /// Its testbench.
+    pub testbench: String,
+    /// Its configuration's label.
+    pub configuration: String,
+    /// Which of the run's seeds, from 0.
+    pub repeat: u32,
+    /// The job's own seed (the configuration's under that repeat).
+    pub seed: String,
+    /// The cycle of its first mismatch, where the scoreboard saw one.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub first_mismatch_cycle: Option<u64>,
+    /// Its first mismatch or failure.
+    pub first: String,
+    /// The command that reproduces it.
+    pub reproduce: String,
+}
+
+/// Cycles traced before a failing job's first mismatch, and after it, in its reproduction.
+pub const WINDOW: (u64, u64) = (64, 16);
+
+/// The failing jobs among `results` of `tb` in a run of `project` with `seed`, `seeds` and
+/// `count`.
+pub fn failing_jobs(
+    project: &Project,
+    run: (Seed, u32, Option<usize>),
+    tb: &dyn crate::Testbench,
+    results: &[JobResult],
+) -> Vec<FailingJob> {
+    let seed = run.0;
+    let labels = tb.configurations();
+    results
+        .iter()
+        .filter(|j| j.result.failed_itself())
+        .map(|j| {
+            let cmd = reproduce(project, run, j);
+            let c = j.result.first_mismatch_cycle;
+            let first = j.result.mismatch_log.first().or(j.result.failures.first());
+            FailingJob {
+                job: j.index,
+                testbench: tb.name().to_string(),
+                configuration: labels.get(j.configuration).cloned().unwrap_or_default(),
+                repeat: j.repeat,
+                seed: crate::jobs::job_seed(seed, tb.name(), j.configuration, j.repeat).to_string(),
+                first_mismatch_cycle: c,
+                first: first.cloned().unwrap_or_default(),
+                reproduce: cmd,
+            }
+        })
+        .collect()
+}
+
+/// The command that runs job `j` of a run `(seed, seeds, count)` of `project` again, alone,
+/// with its waveform: traced from [`WINDOW`] before its first mismatch to after it, when the
+/// scoreboard saw the mismatch's cycle.
+pub fn reproduce(project: &Project, run: (Seed, u32, Option<usize>), j: &JobResult) -> String {
+    let (seed, seeds, count) = run;
+    let name = project.name();
+    let mut cmd = format!("{name} regress --seed {seed}");
+    if seeds != 1 {
+        cmd.push_str(&format!(" --seeds {seeds}"));
+    }
+    if let Some(n) = count {
+        cmd.push_str(&format!(" --count {n}"));
+    }
+    cmd.push_str(&format!(
+        " --job {} --out target/{name}-job-{}",
+        j.index, j.index
+    ));
+    if let Some(c) = j.result.first_mismatch_cycle {
+        cmd.push_str(&format!(
+            " --trace-window {}..{}",
+            c.saturating_sub(WINDOW.0),
+            c + WINDOW.1
+        ));
+    }
+    cmd
 }
 
 /// What `texrtl regress` runs with.
@@ -62,6 +173,13 @@ pub struct RegressConfig {
     pub cosim: bool,
     /// Configurations run at once (threads); the results do not depend on it.
     pub jobs: usize,
+    /// Seeds each configuration runs under: the run's jobs ([`jobs`](crate::jobs)).
+    pub seeds: u32,
+    /// Run only this job, with its waveform (a failing job's reproduction); no vectors, no
+    /// co-simulation.
+    pub job: Option<u64>,
+    /// Also write the run's JUnit XML here ([`crate::junit`]).
+    pub junit: Option<PathBuf>,
 }
 
 impl RegressConfig {
@@ -85,6 +203,9 @@ impl RegressConfig {
         if summary.is_dir() {
             return Err(format!("--out: {} is a folder", summary.display()));
         }
+        if let Some(j) = self.junit.as_ref().filter(|j| j.is_dir()) {
+            return Err(format!("--junit {}: is a folder", j.display()));
+        }
         for o in &self.only {
             if reg.get(o).is_none() && o != VECTORS && o != COSIM {
                 return Err(format!(
@@ -92,6 +213,39 @@ impl RegressConfig {
                     reg.names().join(", ")
                 ));
             }
+        }
+        self.validate_jobs(reg)
+    }
+
+    /// `--seeds` and `--job`: in range, and a job is run alone.
+    fn validate_jobs(&self, reg: &Registry) -> Result<(), String> {
+        if !(1..=jobs::MAX_SEEDS).contains(&self.seeds) {
+            return Err(format!(
+                "--seeds {}: 1..={} seeds per configuration",
+                self.seeds,
+                jobs::MAX_SEEDS
+            ));
+        }
+        let n = jobs::count(reg, self.seeds, &|t| self.selected(t));
+        if n > jobs::MAX_JOBS {
+            return Err(format!(
+                "--seeds {}: {n} jobs; a run has at most {}",
+                self.seeds,
+                jobs::MAX_JOBS
+            ));
+        }
+        let Some(j) = self.job else { return Ok(()) };
+        if !self.only.is_empty() || !self.shard.is_all() {
+            return Err(format!(
+                "--job {j}: runs one job; give no --only or --shard"
+            ));
+        }
+        let all = jobs::count(reg, self.seeds, &|_| true);
+        if j >= all {
+            return Err(format!(
+                "--job {j}: the jobs of {} seeds are 0..{all}",
+                self.seeds
+            ));
         }
         Ok(())
     }
@@ -101,9 +255,56 @@ impl RegressConfig {
     }
 }
 
+/// What [`run_jobs_of`] gives: the rows, the failing jobs, the jobs' own results.
+type Ran = (Vec<TbResult>, Vec<FailingJob>, Vec<JobResult>);
+
+/// The run's jobs (the shard's, or the one `--job` names), testbench by testbench: each
+/// testbench's merged row, the failing jobs, and the jobs' own results where a shard or the
+/// JUnit file needs them.
+fn run_jobs_of(
+    project: &Project,
+    cfg: &RegressConfig,
+    progress: &mut dyn FnMut(&str, &str),
+) -> Result<Ran, String> {
+    let reg = project.registry();
+    let opts = RunOptions {
+        seed: cfg.seed,
+        count: cfg.count,
+        shard: cfg.shard,
+        waves: cfg
+            .vcd
+            .then(|| (cfg.out.clone(), cfg.trace.clone(), cfg.period_ps)),
+        check_schedule: cfg.check_schedule,
+        jobs: cfg.jobs,
+        seeds: cfg.seeds,
+        trace_every_job: cfg.job.is_some(),
+    };
+    let plan = match cfg.job {
+        Some(i) => jobs::find(reg, cfg.seeds, i)
+            .map(|(tb, j)| vec![(tb, vec![j])])
+            .unwrap_or_default(),
+        None => jobs::owned(reg, cfg.seeds, cfg.shard, &|t| cfg.selected(t)),
+    };
+    let whole = cfg.shard.is_all() && cfg.job.is_none();
+    let keep = !cfg.shard.is_all() || cfg.junit.is_some();
+    let (mut rows, mut failing, mut ran) = (Vec::new(), Vec::new(), Vec::new());
+    for (tb, js) in plan {
+        let name = tb.name();
+        let done = crate::run_jobs(tb, &opts, &js, &mut |label| progress(name, label))?;
+        rows.push(crate::aggregate(tb, cfg.seed, &done, whole)?);
+        let run = (cfg.seed, cfg.seeds, cfg.count);
+        failing.extend(failing_jobs(project, run, tb, &done));
+        if keep {
+            ran.extend(done);
+        }
+    }
+    Ok((rows, failing, ran))
+}
+
 /// Runs every selected testbench, checks every waveform it wrote (with the `read` feature:
-/// read back with wellen, `.gtkw` checked against it), writes `summary.json`. `progress` is called before each
-/// configuration with the testbench's name and the configuration's label (and once with
+/// read back with wellen, `.gtkw` checked against it), writes `summary.json` (and the JUnit
+/// file). `progress` is called before each job with the testbench's name and the job's label
+/// (and once with
 /// `("", "vectors and waveforms")`). `Err` is for bad options and I/O failures; mismatches
 /// are in the results.
 pub fn regress(
@@ -122,30 +323,23 @@ pub fn regress(
         );
     }
     std::fs::create_dir_all(&cfg.out).map_err(|e| format!("{}: {e}", cfg.out.display()))?;
-    let opts = RunOptions {
-        seed: cfg.seed,
-        count: cfg.count,
-        shard: cfg.shard,
-        waves: cfg
-            .vcd
-            .then(|| (cfg.out.clone(), cfg.trace.clone(), cfg.period_ps)),
-        check_schedule: cfg.check_schedule,
-        jobs: cfg.jobs,
+    let (mut results, failing, ran) = run_jobs_of(project, cfg, progress)?;
+    // A shard keeps its jobs in its summary; a whole run only for its JUnit file.
+    let keep = !cfg.shard.is_all();
+    let (kept, ran) = if keep {
+        (ran, Vec::new())
+    } else {
+        (Vec::new(), ran)
     };
-    let mut results = Vec::new();
-    for tb in reg.iter().filter(|t| cfg.selected(t.name())) {
-        let name = tb.name();
-        let r = crate::run_testbench(tb, &opts, &mut |label| progress(name, label))?;
-        results.push(r);
-    }
     progress("", "vectors and waveforms");
     // Bit-accuracy vectors of the project's source tree, when it is there (not for an
     // installed binary); checked by the first shard.
+    let first = cfg.shard.index == 1 && cfg.job.is_none();
     let dir = project.kept_vectors().filter(|d| d.is_dir());
-    if let Some(dir) = dir.filter(|_| cfg.shard.index == 1 && cfg.selected(VECTORS)) {
+    if let Some(dir) = dir.filter(|_| first && cfg.selected(VECTORS)) {
         results.push(vectors_row(project, dir));
     }
-    if cfg.cosim && cfg.shard.index == 1 && cfg.selected(COSIM) {
+    if cfg.cosim && first && cfg.selected(COSIM) {
         for sim in [Simulator::Verilator, Simulator::Icarus] {
             if sim.check_installed().is_err() {
                 continue;
@@ -159,16 +353,27 @@ pub fn regress(
     for r in &mut results {
         check_waveform(r, cfg.fst);
     }
+    let passed = results.iter().all(|r| r.passed);
     let summary = Summary {
         texrtl: project.version().to_string(),
         seed: cfg.seed.to_string(),
+        seeds: cfg.seeds,
+        count: cfg.count,
+        only: cfg.only.clone(),
         shard: (!cfg.shard.is_all()).then(|| cfg.shard.to_string()),
-        passed: results.iter().all(|r| r.passed),
-        testbenches: results.clone(),
+        passed,
+        testbenches: results,
+        failing,
+        jobs: kept,
     };
     let path = cfg.out.join("summary.json");
     let json = serde_json::to_vec_pretty(&summary).map_err(|e| e.to_string())?;
     write_output(&path, &json).map_err(|e| e.to_string())?;
+    if let Some(j) = &cfg.junit {
+        let jobs = if keep { &summary.jobs } else { &ran };
+        let xml = crate::junit::junit(project, &summary, jobs)?;
+        write_output(j, xml.as_bytes()).map_err(|e| format!("--junit {}: {e}", j.display()))?;
+    }
     Ok(summary)
 }
 
@@ -259,110 +464,4 @@ fn check_waveform(r: &mut TbResult, fst: bool) {
 fn fail_waveform(r: &mut TbResult, e: String) {
     r.failures.push(format!("waveform: {e}"));
     r.passed = false;
-}
-
-/// `texrtl merge`: combines the `summary.json` of every shard of one run into one: counts and
-/// error statistics add up, coverage is merged bin by bin (a hole fails only if no shard hit
-/// it). Errors name the file and the problem.
-pub fn merge(project: &Project, paths: &[PathBuf]) -> Result<Summary, String> {
-    let mut shards: Vec<(PathBuf, Summary)> = Vec::new();
-    for p in paths {
-        let b = std::fs::read(p).map_err(|e| format!("{}: {e}", p.display()))?;
-        shards.push((p.clone(), parse_summary(p, &b)?));
-    }
-    merge_shards(project, &shards)
-}
-
-/// A `summary.json`'s bytes (`path` names it in the message).
-pub fn parse_summary(path: &std::path::Path, b: &[u8]) -> Result<Summary, String> {
-    let s: Summary = serde_json::from_slice(b).map_err(|e| {
-        let e = waves::output::shorten(&e.to_string());
-        format!("{}: not a texrtl summary.json: {e}", path.display())
-    })?;
-    for r in &s.testbenches {
-        if let Some(c) = &r.coverage {
-            c.validate().map_err(|e| {
-                format!(
-                    "{}: {}: {e}",
-                    path.display(),
-                    waves::output::shorten(&r.name)
-                )
-            })?;
-        }
-    }
-    Ok(s)
-}
-
-/// [`merge`] of summaries already read, each with the path its messages name.
-pub fn merge_shards(project: &Project, shards: &[(PathBuf, Summary)]) -> Result<Summary, String> {
-    let (first_path, first) = shards.first().ok_or("merge: no summary.json given")?;
-    let parse = |p: &PathBuf, s: &Summary| -> Result<crate::Shard, String> {
-        match &s.shard {
-            Some(x) => crate::Shard::parse(x).map_err(|e| format!("{}: {e}", p.display())),
-            None => Err(format!(
-                "{}: not a shard (run with --shard I/N)",
-                p.display()
-            )),
-        }
-    };
-    let n = parse(first_path, first)?.count;
-    // The shards given, as a set: nothing is allocated for the count a file declares.
-    let mut seen = std::collections::BTreeSet::new();
-    for (p, s) in shards {
-        let sh = parse(p, s)?;
-        if s.texrtl != first.texrtl {
-            return Err(format!(
-                "{}: written by texrtl {}, {} by texrtl {}: merge the shards of one version",
-                p.display(),
-                waves::output::shorten(&s.texrtl),
-                first_path.display(),
-                waves::output::shorten(&first.texrtl)
-            ));
-        }
-        if s.seed != first.seed || sh.count != n {
-            return Err(format!(
-                "{}: shard {sh} of seed {} does not belong with {}/{n} of seed {}",
-                p.display(),
-                s.seed,
-                1,
-                first.seed
-            ));
-        }
-        if !seen.insert(sh.index) {
-            return Err(format!("{}: shard {sh} given twice", p.display()));
-        }
-    }
-    // The first gap is at most one past the shards given, however large the count.
-    if let Some(i) = (1..=n).find(|i| !seen.contains(i)) {
-        return Err(format!("merge: shard {i}/{n} is missing"));
-    }
-    let reg = project.registry();
-    let mut merged: Vec<TbResult> = Vec::new();
-    for (p, s) in shards {
-        for r in &s.testbenches {
-            let mut r = r.clone();
-            r.strip_conclusions();
-            match merged.iter_mut().find(|m| m.name == r.name) {
-                Some(m) => m
-                    .absorb(&r, None)
-                    .map_err(|e| format!("{}: {}: {e}", p.display(), r.name))?,
-                None => merged.push(r),
-            }
-        }
-    }
-    // The order of an unsharded run (shards see different subsets).
-    merged.sort_by_key(|m| reg.position(&m.name).unwrap_or(usize::MAX));
-    for m in &mut merged {
-        match reg.get(&m.name) {
-            Some(tb) => crate::conclude(tb, m, true),
-            None => m.finish_with(true),
-        }
-    }
-    Ok(Summary {
-        texrtl: first.texrtl.clone(),
-        seed: first.seed.clone(),
-        shard: None,
-        passed: merged.iter().all(|m| m.passed),
-        testbenches: merged,
-    })
 }

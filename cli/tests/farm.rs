@@ -1,0 +1,324 @@
+//! Regressions on a scheduler: `contrib/slurm/farm` on a single-node Slurm started here
+//! (`contrib/slurm/local-cluster`, Debian's slurm-wlm and munge). The merged summary of a job
+//! array equals one machine's run byte for byte; a task cancelled mid-run is named by the
+//! merge and its resubmission completes it; in a 2,000-job farm of a user crate with a rare
+//! injected bug, the one command the merged report prints for a failing job reproduces it
+//! with its waveform.
+//!
+//! Without slurmctld, slurmd and munged these tests pass with a note, unless
+//! `TEXRTL_REQUIRE_SLURM=1` (as `.ci/run` sets), which makes a missing scheduler a failure.
+
+use std::path::{Path, PathBuf};
+use std::process::{Command, Output};
+use std::time::{Duration, Instant};
+
+fn root() -> PathBuf {
+    Path::new(env!("CARGO_MANIFEST_DIR")).join("..")
+}
+
+fn script(name: &str) -> PathBuf {
+    root().join("contrib/slurm").join(name)
+}
+
+fn text(o: &Output) -> String {
+    String::from_utf8_lossy(&o.stdout).into_owned() + &String::from_utf8_lossy(&o.stderr)
+}
+
+/// A single-node cluster in a folder, stopped when dropped.
+struct Cluster {
+    dir: PathBuf,
+    conf: PathBuf,
+}
+
+impl Cluster {
+    /// `None` (with a note) when Slurm is not installed and not required.
+    fn start(dir: &Path) -> Option<Cluster> {
+        let installed = ["slurmctld", "slurmd", "munged", "sbatch"].iter().all(|t| {
+            ["/usr/sbin", "/usr/bin", "/sbin", "/bin"]
+                .iter()
+                .any(|d| Path::new(d).join(t).is_file())
+        });
+        if !installed {
+            assert!(
+                std::env::var("TEXRTL_REQUIRE_SLURM").as_deref() != Ok("1"),
+                "TEXRTL_REQUIRE_SLURM=1 but Slurm is not installed (apt-get install slurm-wlm munge)"
+            );
+            eprintln!("note: Slurm is not installed; the farm test did not run");
+            return None;
+        }
+        let o = Command::new(script("local-cluster"))
+            .arg("start")
+            .arg(dir)
+            .output()
+            .unwrap();
+        assert!(o.status.success(), "local-cluster start: {}", text(&o));
+        let conf = PathBuf::from(String::from_utf8_lossy(&o.stdout).trim());
+        Some(Cluster {
+            dir: dir.to_path_buf(),
+            conf,
+        })
+    }
+
+    fn cmd(&self, program: impl AsRef<std::ffi::OsStr>) -> Command {
+        let mut c = Command::new(program);
+        c.env("SLURM_CONF", &self.conf);
+        c
+    }
+
+    /// Waits until job `id` has left the queue.
+    fn wait_gone(&self, id: &str, limit: Duration) {
+        let t = Instant::now();
+        loop {
+            let o = self.cmd("squeue").args(["-h", "-j", id]).output().unwrap();
+            if String::from_utf8_lossy(&o.stdout).trim().is_empty() {
+                return;
+            }
+            assert!(t.elapsed() < limit, "job {id} still queued after {limit:?}");
+            std::thread::sleep(Duration::from_millis(200));
+        }
+    }
+}
+
+impl Drop for Cluster {
+    fn drop(&mut self) {
+        let _ = Command::new(script("local-cluster"))
+            .arg("stop")
+            .arg(&self.dir)
+            .output();
+    }
+}
+
+fn fresh(name: &str) -> PathBuf {
+    let d = std::env::temp_dir().join(format!("texrtl-farm-{}-{name}", std::process::id()));
+    let _ = std::fs::remove_dir_all(&d);
+    std::fs::create_dir_all(&d).unwrap();
+    d
+}
+
+/// The ids `farm` prints: `array ID: ...`, `merge ID: ...`.
+fn ids(out: &str) -> (String, String) {
+    let id = |what: &str| {
+        out.lines()
+            .find_map(|l| l.strip_prefix(what))
+            .and_then(|l| l.split(':').next())
+            .unwrap_or_else(|| panic!("no '{what}' line in {out}"))
+            .trim()
+            .to_string()
+    };
+    (id("array "), id("merge "))
+}
+
+/// The first task of `array` seen running (polled every 20 ms for a minute).
+fn a_running_task(c: &Cluster, array: &str) -> String {
+    let t = Instant::now();
+    while t.elapsed() < Duration::from_secs(60) {
+        let o = c
+            .cmd("squeue")
+            .args(["-h", "-r", "-t", "R", "-j", array, "-o", "%i"])
+            .output()
+            .unwrap();
+        if let Some(task) = String::from_utf8_lossy(&o.stdout).lines().next() {
+            return task.trim().to_string();
+        }
+        std::thread::sleep(Duration::from_millis(20));
+    }
+    panic!("no task of {array} ran within a minute");
+}
+
+const OPTIONS: [&str; 4] = ["--seeds", "2", "--count", "20"];
+
+#[test]
+fn a_slurm_array_merges_to_the_single_machine_run_and_names_a_cancelled_task() {
+    let d = fresh("texrtl");
+    let Some(c) = Cluster::start(&d.join("cluster")) else {
+        return;
+    };
+    let texrtl = env!("CARGO_BIN_EXE_texrtl");
+    let whole = d.join("whole");
+    let o = Command::new(texrtl)
+        .args(["regress", "--no-vcd", "--no-cosim", "-j", "1"])
+        .args(OPTIONS)
+        .arg("--out")
+        .arg(&whole)
+        .output()
+        .unwrap();
+    assert!(o.status.success(), "{}", text(&o));
+    let farm_dir = d.join("farm");
+    let o = c
+        .cmd(script("farm"))
+        .arg(texrtl)
+        .arg(&farm_dir)
+        .arg("6")
+        .args(OPTIONS)
+        .output()
+        .unwrap();
+    assert!(o.status.success(), "farm: {}", text(&o));
+    let (array, merge) = ids(&text(&o));
+    // One task cancelled while it runs: the merge names its shard.
+    let task = a_running_task(&c, &array);
+    let k = task.rsplit('_').next().unwrap().to_string();
+    let o = c.cmd("scancel").arg(&task).output().unwrap();
+    assert!(o.status.success(), "scancel {task}: {}", text(&o));
+    c.wait_gone(&merge, Duration::from_secs(600));
+    let log = std::fs::read_to_string(farm_dir.join("logs/merge.out")).unwrap();
+    assert!(
+        log.contains(&format!("shard {k}/6 is missing")),
+        "the merge after cancelling task {task}: {log}"
+    );
+    assert!(!farm_dir.join("merged/summary.json").exists());
+    // Resubmitted alone, the task completes the merge: the single machine's summary.
+    let o = c
+        .cmd(script("farm"))
+        .args(["--wait", "--resubmit", &k])
+        .arg(texrtl)
+        .arg(&farm_dir)
+        .arg("6")
+        .args(OPTIONS)
+        .output()
+        .unwrap();
+    assert!(o.status.success(), "farm --resubmit {k}: {}", text(&o));
+    let merged = std::fs::read(farm_dir.join("merged/summary.json")).unwrap();
+    assert!(
+        merged == std::fs::read(whole.join("summary.json")).unwrap(),
+        "the farm's merged summary differs from the single machine's"
+    );
+    assert!(farm_dir.join("merged/report.md").is_file());
+}
+
+/// `texrtl new` with a rare bug in the model: one sum in one state comes out one LSB high.
+fn crate_with_a_rare_bug(d: &Path) -> PathBuf {
+    let dir = d.join("farm_acc");
+    let o = Command::new(env!("CARGO_BIN_EXE_texrtl"))
+        .args(["new", "farm_acc", "--dir"])
+        .arg(&dir)
+        .output()
+        .unwrap();
+    assert!(o.status.success(), "{}", text(&o));
+    std::fs::copy(root().join("Cargo.lock"), dir.join("Cargo.lock")).unwrap();
+    let unit = dir.join("src/unit.rs");
+    let src = std::fs::read_to_string(&unit).unwrap();
+    let line =
+        "            self.acc_r.set_next(sum.convert(ACC, Quant::Trunc, Overflow::Saturate));";
+    assert!(src.contains(line), "the template's accumulator line moved");
+    let bug = "            let q = sum.convert(ACC, Quant::Trunc, Overflow::Saturate);\n            \
+               if self.x.raw() == 37 && (100..102).contains(&self.acc_r.q().raw()) {\n                \
+               self.acc_r.set_next_raw(q.raw() as i64 + 1);\n            } else {\n                \
+               self.acc_r.set_next(q);\n            }";
+    std::fs::write(&unit, src.replace(line, bug)).unwrap();
+    let target = root().join("target/template");
+    let o = Command::new(env!("CARGO"))
+        .args(["build", "--quiet"])
+        .current_dir(&dir)
+        .env("CARGO_TARGET_DIR", &target)
+        .env_remove("RUSTFLAGS")
+        .output()
+        .unwrap();
+    assert!(o.status.success(), "cargo build: {}", text(&o));
+    target.join("debug/farm_acc")
+}
+
+#[test]
+fn a_failing_seed_of_a_2000_job_farm_is_reproduced_by_its_line_in_the_report() {
+    let d = fresh("jobs");
+    let Some(c) = Cluster::start(&d.join("cluster")) else {
+        return;
+    };
+    let program = crate_with_a_rare_bug(&d);
+    // 1,000 seeds x 2 configurations = 2,000 jobs, over TEXRTL_FARM_TASKS array tasks.
+    let tasks = std::env::var("TEXRTL_FARM_TASKS").unwrap_or_else(|_| "100".into());
+    let options = ["--seeds", "1000", "--count", "50"];
+    let t = Instant::now();
+    let o = Command::new(&program)
+        .args(["regress", "--no-vcd", "--no-cosim", "-j", "1"])
+        .args(options)
+        .arg("--out")
+        .arg(d.join("one"))
+        .current_dir(&d)
+        .output()
+        .unwrap();
+    let one_process = t.elapsed();
+    assert_eq!(
+        o.status.code(),
+        Some(1),
+        "the bug fails some jobs: {}",
+        text(&o)
+    );
+    let farm_dir = d.join("farm");
+    let t = Instant::now();
+    let o = c
+        .cmd(script("farm"))
+        .arg("--wait")
+        .arg(&program)
+        .arg(&farm_dir)
+        .arg(&tasks)
+        .args(options)
+        .output()
+        .unwrap();
+    let farm = t.elapsed();
+    eprintln!(
+        "2000 jobs: one process {:.1} s, a {tasks}-task Slurm array and its merge {:.1} s",
+        one_process.as_secs_f64(),
+        farm.as_secs_f64()
+    );
+    // The merge exits 1: the run failed. Every job is accounted for: the single run's bytes.
+    assert_eq!(o.status.code(), Some(1), "farm: {}", text(&o));
+    let merged = farm_dir.join("merged/summary.json");
+    assert!(std::fs::read(&merged).unwrap() == std::fs::read(d.join("one/summary.json")).unwrap());
+    let s: serde_json::Value = serde_json::from_slice(&std::fs::read(&merged).unwrap()).unwrap();
+    let failing = s["failing"].as_array().unwrap();
+    assert!(
+        !failing.is_empty() && failing.len() < 200,
+        "{} failing jobs",
+        failing.len()
+    );
+    let report = std::fs::read_to_string(farm_dir.join("merged/report.md")).unwrap();
+    let line = failing[0]["reproduce"].as_str().unwrap();
+    assert!(report.contains("## Failing jobs") && report.contains(line));
+    // The JUnit file: a case per job (and a verdict per testbench), the failing ones failed.
+    let junit = std::fs::read_to_string(farm_dir.join("merged/junit.xml")).unwrap();
+    let rows = s["testbenches"].as_array().unwrap();
+    let failed_rows = rows.iter().filter(|r| r["passed"] != true).count();
+    let head = format!(
+        r#"<testsuites name="farm_acc" tests="{}" skipped="0" failures="{}""#,
+        2000 + rows.len(),
+        failing.len() + failed_rows
+    );
+    assert!(junit.contains(&head), "{head}: {}", &junit[..300]);
+    reproduce(&program, &d, line, failing[0]["first"].as_str().unwrap());
+}
+
+/// Runs the report's command (its first word is the program) and checks that it fails the
+/// same way, with a waveform whose mismatch flag rises inside the trace window.
+fn reproduce(program: &Path, dir: &Path, line: &str, first: &str) {
+    let mut words = line.split_whitespace();
+    assert_eq!(words.next(), Some("farm_acc"));
+    let args: Vec<&str> = words.collect();
+    let o = Command::new(program)
+        .args(&args)
+        .current_dir(dir)
+        .output()
+        .unwrap();
+    assert_eq!(o.status.code(), Some(1), "{line}: {}", text(&o));
+    assert!(
+        text(&o).contains(first),
+        "{line} did not fail with {first}: {}",
+        text(&o)
+    );
+    let out = args
+        .iter()
+        .skip_while(|a| **a != "--out")
+        .nth(1)
+        .expect("the command names its folder");
+    let vcd = dir.join(out).join("farm_acc.vcd");
+    let back = waves::check::read_vcd(&vcd).unwrap();
+    let flag = back
+        .vars
+        .iter()
+        .find(|(name, _)| name.ends_with("mismatch"))
+        .map(|(_, v)| v)
+        .expect("the mismatch flag is traced");
+    assert!(
+        flag.changes.iter().any(|(_, v)| v.as_u64() == Some(1)),
+        "the waveform of {line} shows no mismatch"
+    );
+}

@@ -1,0 +1,437 @@
+//! A regression as a list of jobs. A job is one configuration of one testbench under one of
+//! the run's seeds: with `seeds` S, testbench `t` with C configurations has S x C jobs, and
+//! the run's jobs are every selected testbench's, in registry order, seed by seed,
+//! configuration by configuration. A [`Shard`] takes every N-th job of that list, so any
+//! testbench spreads over any number of machines, and the jobs of every shard together are
+//! the run's, each with the same seed.
+//!
+//! A job's index counts over every testbench of the registry (whatever the run selects), so
+//! that `--job INDEX` names the same job in any run of the same project and seeds. Seed 0 of
+//! a configuration is the seed a run with one seed gives it ([`crate::config_seed`]); seed `r`
+//! derives from it.
+
+use crate::random::{Seed, Shard};
+use crate::result::TbResult;
+use crate::testbench::{config_seed, Registry, Testbench};
+use serde::{Deserialize, Serialize};
+
+/// Seeds of a run at most (`--seeds`).
+pub const MAX_SEEDS: u32 = 100_000;
+/// Jobs of a run at most (seeds x configurations, over the selected testbenches).
+pub const MAX_JOBS: u64 = 10_000_000;
+
+/// One job: a configuration of a testbench under one of the run's seeds.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct JobRef {
+    /// The job's index over every testbench of the registry.
+    pub index: u64,
+    /// The configuration (an index into the testbench's configurations).
+    pub configuration: usize,
+    /// Which of the run's seeds, from 0.
+    pub repeat: u32,
+}
+
+/// A job's result as a shard keeps it for the merge.
+#[derive(Clone, Debug, Serialize, Deserialize)]
+pub struct JobResult {
+    /// The job's index.
+    pub index: u64,
+    /// Its configuration's index.
+    pub configuration: usize,
+    /// Which seed, from 0.
+    pub repeat: u32,
+    /// What the configuration found under that seed (before any merging).
+    pub result: TbResult,
+    /// Seconds it ran (for the JUnit file; not part of any result).
+    #[serde(default)]
+    pub seconds: f64,
+}
+
+/// The seed of job (`configuration`, `repeat`) of testbench `name` in a run seeded `seed`.
+pub fn job_seed(seed: Seed, name: &str, configuration: usize, repeat: u32) -> Seed {
+    let s = config_seed(seed, name, configuration);
+    if repeat == 0 {
+        s
+    } else {
+        s.derive(u64::from(repeat))
+    }
+}
+
+/// The label a job's messages are tagged with: its configuration's, and the seed when it is
+/// not the first.
+pub fn job_label(label: &str, repeat: u32) -> String {
+    if repeat == 0 {
+        label.to_string()
+    } else {
+        format!("{label}, seed #{repeat}")
+    }
+}
+
+/// The index of the first job of the testbench at `position` in the registry.
+fn base(reg: &Registry, position: usize, seeds: u32) -> u64 {
+    reg.iter()
+        .take(position)
+        .map(|t| t.configurations().len() as u64 * u64::from(seeds))
+        .sum()
+}
+
+/// Every job of testbench `tb` (at `position` in the registry), in order.
+pub fn testbench_jobs(
+    tb: &dyn Testbench,
+    position: usize,
+    reg: &Registry,
+    seeds: u32,
+) -> Vec<JobRef> {
+    let first = base(reg, position, seeds);
+    let n = tb.configurations().len();
+    (0..seeds)
+        .flat_map(|r| (0..n).map(move |c| (r, c)))
+        .enumerate()
+        .map(|(k, (repeat, configuration))| JobRef {
+            index: first + k as u64,
+            configuration,
+            repeat,
+        })
+        .collect()
+}
+
+/// How many jobs the selected testbenches have (`selected` says which).
+pub fn count(reg: &Registry, seeds: u32, selected: &dyn Fn(&str) -> bool) -> u64 {
+    reg.iter()
+        .filter(|t| selected(t.name()))
+        .map(|t| t.configurations().len() as u64 * u64::from(seeds))
+        .sum()
+}
+
+/// The jobs of the selected testbenches that `shard` owns, per testbench (registry order; a
+/// testbench it owns no job of is left out). Shards deal the run's job list round-robin.
+pub fn owned<'r>(
+    reg: &'r Registry,
+    seeds: u32,
+    shard: Shard,
+    selected: &dyn Fn(&str) -> bool,
+) -> Vec<(&'r dyn Testbench, Vec<JobRef>)> {
+    let mut position = 0u64;
+    let mut out = Vec::new();
+    for (p, tb) in reg.iter().enumerate() {
+        if !selected(tb.name()) {
+            continue;
+        }
+        let mine: Vec<JobRef> = testbench_jobs(tb, p, reg, seeds)
+            .into_iter()
+            .filter(|_| {
+                let k = position;
+                position += 1;
+                shard.owns(k)
+            })
+            .collect();
+        if !mine.is_empty() {
+            out.push((tb, mine));
+        }
+    }
+    out
+}
+
+/// The job with index `index`: its testbench and place, or `None` past the last.
+pub fn find(reg: &Registry, seeds: u32, index: u64) -> Option<(&dyn Testbench, JobRef)> {
+    let mut first = 0u64;
+    for tb in reg.iter() {
+        let n = tb.configurations().len() as u64 * u64::from(seeds);
+        if index < first + n {
+            let k = index - first;
+            let per = tb.configurations().len() as u64;
+            return Some((
+                tb,
+                JobRef {
+                    index,
+                    configuration: (k % per) as usize,
+                    repeat: (k / per) as u32,
+                },
+            ));
+        }
+        first += n;
+    }
+    None
+}
+
+/// A job for a person: `testbench [configuration]`, with the seed when it is not the first.
+pub fn describe(tb: &dyn Testbench, j: &JobRef) -> String {
+    let labels = tb.configurations();
+    let label = labels.get(j.configuration).map_or("?", String::as_str);
+    format!("{} [{}]", tb.name(), job_label(label, j.repeat))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::project::{Project, Unit};
+    use crate::regress::{merge_shards, regress, RegressConfig, Summary};
+    use crate::{Coverage, Coverpoint, Ctx};
+    use std::path::PathBuf;
+
+    /// A testbench of no design whose figures depend on its seed in floating point (so an
+    /// order-dependent merge would show) and whose seed fails one job in `fail_one_in`.
+    struct Dice {
+        name: &'static str,
+        labels: usize,
+        fail_one_in: u64,
+    }
+
+    impl Testbench for Dice {
+        fn name(&self) -> &'static str {
+            self.name
+        }
+        fn unit(&self) -> &'static str {
+            "dice"
+        }
+        fn configurations(&self) -> Vec<String> {
+            (0..self.labels).map(|i| format!("c{i}")).collect()
+        }
+        fn coverage(&self) -> Coverage {
+            let mut c = Coverage::new();
+            c.add(Coverpoint::new("face").ranges("f", 0, 5, 6));
+            c
+        }
+        fn run(&self, ctx: &Ctx) -> Result<TbResult, String> {
+            let mut r = TbResult::new(self.name, "dice");
+            let mut cov = self.coverage();
+            let mut x = ctx.seed.0;
+            for k in 0..ctx.count as u64 {
+                x = x
+                    .wrapping_mul(6364136223846793005)
+                    .wrapping_add(1442695040888963407);
+                let golden = (x >> 11) as f64 / (1u64 << 53) as f64;
+                r.stats
+                    .record(golden + 1e-3 * golden.sin(), golden, 1.0 / 256.0);
+                cov.sample(&[(x >> 61) as i64 % 6]);
+                r.transactions += 1;
+                r.cycles += 3;
+                if (x >> 20).is_multiple_of(self.fail_one_in) {
+                    r.mismatches += 1;
+                    r.mismatch_log.push(format!("transaction {k}: a six"));
+                    r.first_mismatch_cycle = r.first_mismatch_cycle.or(Some(3 * k));
+                }
+            }
+            r.coverage = Some(cov);
+            r.record(&ctx.seed.0);
+            Ok(r)
+        }
+    }
+
+    fn project(fail_one_in: u64) -> Project {
+        Project::new("dice", "1")
+            .unit(Unit::new("a", "three configurations").testbench(Dice {
+                name: "a",
+                labels: 3,
+                fail_one_in,
+            }))
+            .unit(Unit::new("b", "one").testbench(Dice {
+                name: "b",
+                labels: 1,
+                fail_one_in,
+            }))
+    }
+
+    fn config(out: PathBuf, seeds: u32, shard: &str) -> RegressConfig {
+        RegressConfig {
+            out,
+            seed: Seed(0x5eed),
+            vcd: false,
+            trace: Default::default(),
+            period_ps: None,
+            shard: Shard::parse(shard).unwrap(),
+            count: Some(40),
+            fst: false,
+            only: Vec::new(),
+            check_schedule: false,
+            cosim: false,
+            jobs: 2,
+            seeds,
+            job: None,
+            junit: None,
+        }
+    }
+
+    fn run(p: &Project, seeds: u32, shard: &str, tag: &str) -> (PathBuf, Summary) {
+        let out = std::env::temp_dir().join(format!(
+            "texrtl-jobs-{}-{tag}-{}",
+            std::process::id(),
+            shard.replace('/', "of")
+        ));
+        let s = regress(p, &config(out.clone(), seeds, shard), &mut |_, _| {}).unwrap();
+        (out.join("summary.json"), s)
+    }
+
+    /// The file as it was written, read back as a merge reads it.
+    fn reread(path: &PathBuf) -> Summary {
+        crate::regress::parse_summary(path, &std::fs::read(path).unwrap()).unwrap()
+    }
+
+    #[test]
+    fn every_job_has_one_index_and_every_partition_runs_each_once() {
+        let p = project(u64::MAX);
+        let reg = p.registry();
+        for seeds in [1, 2, 5] {
+            let total = count(reg, seeds, &|_| true);
+            assert_eq!(total, 4 * u64::from(seeds));
+            for i in 0..total {
+                let (tb, j) = find(reg, seeds, i).unwrap();
+                let pos = reg.position(tb.name()).unwrap();
+                assert!(testbench_jobs(tb, pos, reg, seeds).contains(&j));
+            }
+            assert!(find(reg, seeds, total).is_none());
+            for n in 1..=7u32 {
+                let mut seen = vec![0u32; total as usize];
+                for i in 1..=n {
+                    let shard = Shard { index: i, count: n };
+                    for (_, js) in owned(reg, seeds, shard, &|_| true) {
+                        js.iter().for_each(|j| seen[j.index as usize] += 1);
+                    }
+                }
+                assert!(seen.iter().all(|&k| k == 1), "{seeds} seeds, {n} shards");
+            }
+        }
+        let b = |t: &str| t == "b";
+        assert_eq!(count(reg, 3, &b), 3);
+        let only_b = owned(reg, 3, Shard { index: 2, count: 3 }, &b);
+        assert_eq!(only_b[0].1[0].index, 9 + 1);
+    }
+
+    #[test]
+    fn the_first_seed_is_the_configuration_seed_and_the_others_differ() {
+        let s = Seed(7);
+        assert_eq!(job_seed(s, "a", 2, 0), config_seed(s, "a", 2));
+        assert_ne!(job_seed(s, "a", 2, 1), job_seed(s, "a", 2, 0));
+        assert_ne!(job_seed(s, "a", 2, 1), job_seed(s, "a", 2, 2));
+    }
+
+    #[test]
+    fn merged_shards_are_the_unsharded_summary_byte_for_byte() {
+        let p = project(300);
+        let (whole_path, whole) = run(&p, 6, "1/1", "bytes");
+        assert!(!whole.failing.is_empty(), "the test needs a failing job");
+        let whole_bytes = std::fs::read(&whole_path).unwrap();
+        // Two partitions: four equal shards, and halves and quarters mixed.
+        for parts in [
+            &["1/4", "2/4", "3/4", "4/4"][..],
+            &["1/2", "2/4", "4/4"][..],
+        ] {
+            let shards: Vec<(PathBuf, Summary)> = parts
+                .iter()
+                .map(|s| {
+                    let (path, _) = run(&p, 6, s, "bytes");
+                    let back = reread(&path);
+                    (path, back)
+                })
+                .collect();
+            let merged = merge_shards(&p, &shards).unwrap();
+            let bytes = serde_json::to_vec_pretty(&merged).unwrap();
+            assert!(bytes == whole_bytes, "{parts:?} merged differently");
+        }
+    }
+
+    #[test]
+    fn a_missing_or_doubled_job_is_named() {
+        let p = project(u64::MAX);
+        let halves: Vec<(PathBuf, Summary)> = ["1/2", "2/2"]
+            .iter()
+            .map(|s| {
+                let (path, _) = run(&p, 2, s, "gaps");
+                let back = reread(&path);
+                (path, back)
+            })
+            .collect();
+        let e = merge_shards(&p, &halves[..1]).err().unwrap();
+        assert!(
+            e.starts_with("merge: shard 2/2 is missing (its first job: 1 a [c1])"),
+            "{e}"
+        );
+        let (q, quarter) = run(&p, 2, "2/4", "gaps");
+        let mixed = vec![halves[0].clone(), halves[1].clone(), (q, quarter)];
+        let e = merge_shards(&p, &mixed).err().unwrap();
+        assert!(e.contains("job 1 (a [c1]) is in"), "{e}");
+        let e = merge_shards(&p, &[halves[0].clone()][..]).err().unwrap();
+        assert!(e.contains("missing"), "{e}");
+    }
+
+    #[test]
+    fn a_failing_job_is_listed_with_the_command_that_runs_it_alone() {
+        let p = project(97);
+        let (_, whole) = run(&p, 3, "1/1", "repro");
+        let f = whole.failing.first().expect("a failing job");
+        let c = f.first_mismatch_cycle.unwrap();
+        let window = format!("--trace-window {}..{}", c.saturating_sub(64), c + 16);
+        let start = format!(
+            "dice regress --seed {} --seeds 3 --count 40 --job ",
+            Seed(0x5eed)
+        );
+        assert!(f.reproduce.starts_with(&start), "{}", f.reproduce);
+        assert!(f.reproduce.ends_with(&window), "{}", f.reproduce);
+        // The job alone fails the same way.
+        let mut cfg = config(std::env::temp_dir().join("texrtl-jobs-alone"), 3, "1/1");
+        cfg.job = Some(f.job);
+        let alone = regress(&p, &cfg, &mut |_, _| {}).unwrap();
+        assert_eq!(alone.failing.len(), 1);
+        assert_eq!(alone.failing[0].first, f.first);
+        assert_eq!(alone.failing[0].seed, f.seed);
+    }
+
+    /// The XML without its `time="..."` attributes.
+    fn timeless(xml: &str) -> String {
+        let mut out = String::new();
+        let mut rest = xml;
+        while let Some(k) = rest.find(" time=\"") {
+            out.push_str(&rest[..k]);
+            let after = &rest[k + 7..];
+            rest = &after[after.find('"').map_or(after.len(), |e| e + 1)..];
+        }
+        out.push_str(rest);
+        out
+    }
+
+    #[test]
+    fn the_junit_file_has_a_case_per_job_and_merges_as_the_summary_does() {
+        let p = project(50);
+        let (path, whole) = run(&p, 2, "1/1", "junit");
+        let mut cfg = config(path.parent().unwrap().to_path_buf(), 2, "1/1");
+        cfg.junit = Some(path.with_file_name("junit.xml"));
+        regress(&p, &cfg, &mut |_, _| {}).unwrap();
+        let xml = std::fs::read_to_string(path.with_file_name("junit.xml")).unwrap();
+        let report = quick_junit::Report::deserialize_from_str(&xml).unwrap();
+        // Two seeds of 3 + 1 configurations, and each testbench's merged verdict.
+        assert_eq!(report.tests, 8 + 2);
+        let failing_rows = whole.testbenches.iter().filter(|r| !r.passed).count();
+        assert_eq!(report.failures, whole.failing.len() + failing_rows);
+        let f = &whole.failing[0];
+        let value = |c: &quick_junit::TestCase, k: &str| {
+            let q = c.properties.iter().find(|q| q.name.as_str() == k)?;
+            Some(q.value.as_str().to_string())
+        };
+        let case = report
+            .test_suites
+            .iter()
+            .flat_map(|s| &s.test_cases)
+            .find(|c| value(c, "job") == Some(f.job.to_string()))
+            .expect("the failing job's case");
+        assert!(!matches!(
+            case.status,
+            quick_junit::TestCaseStatus::Success { .. }
+        ));
+        let prop = |k: &str| value(case, k).unwrap();
+        assert_eq!(prop("reproduce").as_str(), f.reproduce);
+        assert_eq!(prop("seed").as_str(), f.seed);
+        // The shards' JUnit, merged: the whole run's but for the times.
+        let shards: Vec<(PathBuf, Summary)> = ["1/3", "2/3", "3/3"]
+            .iter()
+            .map(|s| {
+                let (path, _) = run(&p, 2, s, "junit");
+                let back = reread(&path);
+                (path, back)
+            })
+            .collect();
+        let merged = merge_shards(&p, &shards).unwrap();
+        let jobs: Vec<JobResult> = shards.iter().flat_map(|(_, s)| s.jobs.clone()).collect();
+        let again = crate::junit::junit(&p, &merged, &jobs).unwrap();
+        assert_eq!(timeless(&again), timeless(&xml));
+    }
+}
