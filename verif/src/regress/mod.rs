@@ -203,8 +203,19 @@ impl RegressConfig {
         if summary.is_dir() {
             return Err(format!("--out: {} is a folder", summary.display()));
         }
-        if let Some(j) = self.junit.as_ref().filter(|j| j.is_dir()) {
-            return Err(format!("--junit {}: is a folder", j.display()));
+        if let Some(j) = &self.junit {
+            if j.is_dir() {
+                return Err(format!("--junit {}: is a folder", j.display()));
+            }
+            // Where the file goes must be there before the run, not found missing after it.
+            let parent = j.parent().filter(|p| !p.as_os_str().is_empty());
+            if let Some(p) = parent.filter(|p| !p.is_dir()) {
+                return Err(format!(
+                    "--junit {}: no folder {}",
+                    j.display(),
+                    p.display()
+                ));
+            }
         }
         for o in &self.only {
             if reg.get(o).is_none() && o != VECTORS && o != COSIM {
@@ -243,7 +254,7 @@ impl RegressConfig {
         let all = jobs::count(reg, self.seeds, &|_| true);
         if j >= all {
             return Err(format!(
-                "--job {j}: the jobs of {} seeds are 0..{all}",
+                "--job {j}: the jobs are 0..{all} (with --seeds {})",
                 self.seeds
             ));
         }
