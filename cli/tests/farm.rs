@@ -183,6 +183,8 @@ fn a_slurm_array_merges_to_the_single_machine_run_and_names_a_cancelled_task() {
         "the farm's merged summary differs from the single machine's"
     );
     assert!(farm_dir.join("merged/report.md").is_file());
+    drop(c);
+    let _ = std::fs::remove_dir_all(&d);
 }
 
 /// `texrtl new` with a rare bug in the model: one sum in one state comes out one LSB high.
@@ -285,6 +287,8 @@ fn a_failing_seed_of_a_2000_job_farm_is_reproduced_by_its_line_in_the_report() {
     );
     assert!(junit.contains(&head), "{head}: {}", &junit[..300]);
     reproduce(&program, &d, line, failing[0]["first"].as_str().unwrap());
+    drop(c);
+    let _ = std::fs::remove_dir_all(&d);
 }
 
 /// Runs the report's command (its first word is the program) and checks that it fails the

@@ -252,12 +252,17 @@ mod tests {
         }
     }
 
+    /// The folder of one test's runs (removed by [`clean`]).
+    fn folder(tag: &str) -> PathBuf {
+        std::env::temp_dir().join(format!("texrtl-jobs-{}-{tag}", std::process::id()))
+    }
+
+    fn clean(tag: &str) {
+        let _ = std::fs::remove_dir_all(folder(tag));
+    }
+
     fn run(p: &Project, seeds: u32, shard: &str, tag: &str) -> (PathBuf, Summary) {
-        let out = std::env::temp_dir().join(format!(
-            "texrtl-jobs-{}-{tag}-{}",
-            std::process::id(),
-            shard.replace('/', "of")
-        ));
+        let out = folder(tag).join(shard.replace('/', "of"));
         let s = regress(p, &config(out.clone(), seeds, shard), &mut |_, _| {}).unwrap();
         (out.join("summary.json"), s)
     }
@@ -328,6 +333,7 @@ mod tests {
             let bytes = serde_json::to_vec_pretty(&merged).unwrap();
             assert!(bytes == whole_bytes, "{parts:?} merged differently");
         }
+        clean("bytes");
     }
 
     #[test]
@@ -352,6 +358,7 @@ mod tests {
         assert!(e.contains("job 1 (a [c1]) is in"), "{e}");
         let e = merge_shards(&p, &[halves[0].clone()][..]).err().unwrap();
         assert!(e.contains("missing"), "{e}");
+        clean("gaps");
     }
 
     #[test]
@@ -368,12 +375,13 @@ mod tests {
         assert!(f.reproduce.starts_with(&start), "{}", f.reproduce);
         assert!(f.reproduce.ends_with(&window), "{}", f.reproduce);
         // The job alone fails the same way.
-        let mut cfg = config(std::env::temp_dir().join("texrtl-jobs-alone"), 3, "1/1");
+        let mut cfg = config(folder("repro").join("alone"), 3, "1/1");
         cfg.job = Some(f.job);
         let alone = regress(&p, &cfg, &mut |_, _| {}).unwrap();
         assert_eq!(alone.failing.len(), 1);
         assert_eq!(alone.failing[0].first, f.first);
         assert_eq!(alone.failing[0].seed, f.seed);
+        clean("repro");
     }
 
     /// The XML without its `time="..."` attributes.
@@ -433,5 +441,6 @@ mod tests {
         let jobs: Vec<JobResult> = shards.iter().flat_map(|(_, s)| s.jobs.clone()).collect();
         let again = crate::junit::junit(&p, &merged, &jobs).unwrap();
         assert_eq!(timeless(&again), timeless(&xml));
+        clean("junit");
     }
 }
