@@ -144,14 +144,17 @@ fn a_slurm_array_merges_to_the_single_machine_run_and_names_a_cancelled_task() {
         .unwrap();
     assert!(o.status.success(), "{}", text(&o));
     let farm_dir = d.join("farm");
-    let o = c
-        .cmd(script("farm"))
-        .arg(texrtl)
-        .arg(&farm_dir)
-        .arg("6")
-        .args(OPTIONS)
-        .output()
-        .unwrap();
+    let farm = |before: &[&str]| {
+        c.cmd(script("farm"))
+            .args(before)
+            .arg(texrtl)
+            .arg(&farm_dir)
+            .arg("6")
+            .args(OPTIONS)
+            .output()
+            .unwrap()
+    };
+    let o = farm(&[]);
     assert!(o.status.success(), "farm: {}", text(&o));
     let (array, merge) = ids(&text(&o));
     // One task cancelled while it runs: the merge names its shard.
@@ -167,15 +170,7 @@ fn a_slurm_array_merges_to_the_single_machine_run_and_names_a_cancelled_task() {
     );
     assert!(!farm_dir.join("merged/summary.json").exists());
     // Resubmitted alone, the task completes the merge: the single machine's summary.
-    let o = c
-        .cmd(script("farm"))
-        .args(["--wait", "--resubmit", &k])
-        .arg(texrtl)
-        .arg(&farm_dir)
-        .arg("6")
-        .args(OPTIONS)
-        .output()
-        .unwrap();
+    let o = farm(&["--wait", "--resubmit", &k]);
     assert!(o.status.success(), "farm --resubmit {k}: {}", text(&o));
     let merged = std::fs::read(farm_dir.join("merged/summary.json")).unwrap();
     assert!(

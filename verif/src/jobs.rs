@@ -267,6 +267,18 @@ mod tests {
         (out.join("summary.json"), s)
     }
 
+    /// Runs `parts` (shards) and reads each summary back as a merge reads it.
+    fn shards(p: &Project, seeds: u32, parts: &[&str], tag: &str) -> Vec<(PathBuf, Summary)> {
+        parts
+            .iter()
+            .map(|s| {
+                let (path, _) = run(p, seeds, s, tag);
+                let back = reread(&path);
+                (path, back)
+            })
+            .collect()
+    }
+
     /// The file as it was written, read back as a merge reads it.
     fn reread(path: &PathBuf) -> Summary {
         crate::regress::parse_summary(path, &std::fs::read(path).unwrap()).unwrap()
@@ -321,15 +333,7 @@ mod tests {
             &["1/4", "2/4", "3/4", "4/4"][..],
             &["1/2", "2/4", "4/4"][..],
         ] {
-            let shards: Vec<(PathBuf, Summary)> = parts
-                .iter()
-                .map(|s| {
-                    let (path, _) = run(&p, 6, s, "bytes");
-                    let back = reread(&path);
-                    (path, back)
-                })
-                .collect();
-            let merged = merge_shards(&p, &shards).unwrap();
+            let merged = merge_shards(&p, &shards(&p, 6, parts, "bytes")).unwrap();
             let bytes = serde_json::to_vec_pretty(&merged).unwrap();
             assert!(bytes == whole_bytes, "{parts:?} merged differently");
         }
@@ -339,14 +343,7 @@ mod tests {
     #[test]
     fn a_missing_or_doubled_job_is_named() {
         let p = project(u64::MAX);
-        let halves: Vec<(PathBuf, Summary)> = ["1/2", "2/2"]
-            .iter()
-            .map(|s| {
-                let (path, _) = run(&p, 2, s, "gaps");
-                let back = reread(&path);
-                (path, back)
-            })
-            .collect();
+        let halves = shards(&p, 2, &["1/2", "2/2"], "gaps");
         let e = merge_shards(&p, &halves[..1]).err().unwrap();
         assert!(
             e.starts_with("merge: shard 2/2 is missing (its first job: 1 a [c1])"),
@@ -429,16 +426,9 @@ mod tests {
         assert_eq!(prop("reproduce").as_str(), f.reproduce);
         assert_eq!(prop("seed").as_str(), f.seed);
         // The shards' JUnit, merged: the whole run's but for the times.
-        let shards: Vec<(PathBuf, Summary)> = ["1/3", "2/3", "3/3"]
-            .iter()
-            .map(|s| {
-                let (path, _) = run(&p, 2, s, "junit");
-                let back = reread(&path);
-                (path, back)
-            })
-            .collect();
-        let merged = merge_shards(&p, &shards).unwrap();
-        let jobs: Vec<JobResult> = shards.iter().flat_map(|(_, s)| s.jobs.clone()).collect();
+        let thirds = shards(&p, 2, &["1/3", "2/3", "3/3"], "junit");
+        let merged = merge_shards(&p, &thirds).unwrap();
+        let jobs: Vec<JobResult> = thirds.iter().flat_map(|(_, s)| s.jobs.clone()).collect();
         let again = crate::junit::junit(&p, &merged, &jobs).unwrap();
         assert_eq!(timeless(&again), timeless(&xml));
         clean("junit");
