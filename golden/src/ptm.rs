@@ -1,23 +1,23 @@
-//! PTM micro-occlusion (US 2004/0207631's companion 001, paragraphs [0029]-[0061]) in f64,
+//! PTM micro-occlusion (US 2004/0207631's companion 001, paragraphs \[0029\]-\[0061\]) in f64,
 //! from the text and sharing nothing with `hdl`: the sample generator 602 (a tileable height
 //! field, binary occlusion toward each light of a dome), the least-squares fit 604 by QR,
 //! the evaluation of the polynomial and its clamp.
 //!
-//! * Basis [0030]: `K = A1 u^2 + A2 u + A3 u v + A4 v + A5 v^2 + A6`, total degree 2 (six
+//! * Basis \[0030\]: `K = A1 u^2 + A2 u + A3 u v + A4 v + A5 v^2 + A6`, total degree 2 (six
 //!   terms, not the nine of a tensor bi-quadratic); `(u, v)` the light vector projected onto
 //!   the surface's tangent plane, `u = L.T`, `v = L.B`.
-//! * Polarity: K is the occlusion, 0 lit and 1 occluded [0036]; the sample images are white
-//!   where lit [0044, 0047], so the fit takes `K_i = 1 - sample_i`.
-//! * The cubic basis of [0037] as printed (`A1 u + A2 v^3 ...`) repeats the linear term u; it
+//! * Polarity: K is the occlusion, 0 lit and 1 occluded \[0036\]; the sample images are white
+//!   where lit \[0044, 0047\], so the fit takes `K_i = 1 - sample_i`.
+//! * The cubic basis of \[0037\] as printed (`A1 u + A2 v^3 ...`) repeats the linear term u; it
 //!   must read `A1 u^3` (claims 18, 27): [`Basis::Cubic`] is the corrected one,
-//!   [`PRINTED_CUBIC`] the printed one (its design matrix is singular, see the tests).
+//!   [`printed_cubic`] the printed one (its design matrix is singular, see the tests).
 
 /// The bases of a PTM.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum Basis {
-    /// The six terms of [0030] in the order A1 .. A6: u^2, u, uv, v, v^2, 1.
+    /// The six terms of \[0030\] in the order A1 .. A6: u^2, u, uv, v, v^2, 1.
     Quadratic,
-    /// The corrected cubic basis of [0037]: u^3, v^3, u^2 v^2, u^2 v, u v^2, u^2, v^2, uv, u, v, 1.
+    /// The corrected cubic basis of \[0037\]: u^3, v^3, u^2 v^2, u^2 v, u v^2, u^2, v^2, uv, u, v, 1.
     Cubic,
 }
 
@@ -50,7 +50,7 @@ impl Basis {
     }
 }
 
-/// The cubic basis as [0037] prints it: `A1 u` where `A1 u^3` is meant (u appears twice).
+/// The cubic basis as \[0037\] prints it: `A1 u` where `A1 u^3` is meant (u appears twice).
 pub fn printed_cubic(u: f64, v: f64) -> Vec<f64> {
     vec![
         u,
@@ -200,7 +200,7 @@ pub fn woven(n: usize, amplitude: f64) -> Vec<f64> {
 }
 
 /// The height at `(x, y)`, bilinear between texel centres, the field repeated (the 3 x 3
-/// tiles of [0061]: any neighbour of a border texel is the opposite border's).
+/// tiles of \[0061\]: any neighbour of a border texel is the opposite border's).
 fn height_at(h: &[f64], n: usize, x: f64, y: f64) -> f64 {
     let (x0, y0) = (x.floor(), y.floor());
     let (a, b) = (x - x0, y - y0);
@@ -309,7 +309,7 @@ mod tests {
         assert!(fit(&rows(&dome(2, 6), Basis::Quadratic), &[0.5; 12]).is_some());
     }
 
-    /// [0037] as printed repeats u: its design matrix is rank deficient on any dome; with
+    /// \[0037\] as printed repeats u: its design matrix is rank deficient on any dome; with
     /// `A1 u^3` it is not.
     #[test]
     fn the_printed_cubic_basis_is_singular() {

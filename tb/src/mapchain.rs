@@ -1118,7 +1118,7 @@ fn quad_pixel(px: usize, py: usize, side: usize) -> Option<ChainRequest> {
 
 /// A bumped, detailed, environment-mapped quad, `side x side` pixels: each colour component
 /// a chain texture -> offsets -> detail -> environment on its own stub (one chip a
-/// component in lock-step, configuration 4). The rasterizer's part ([`quad_pixel`]) is f64.
+/// component in lock-step, configuration 4). The rasterizer's part (`quad_pixel`) is f64.
 pub fn render_quad(side: usize) -> Result<Vec<[u8; 3]>, String> {
     let mut chains = Vec::with_capacity(3);
     for c in 0..3 {

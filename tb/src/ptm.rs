@@ -21,7 +21,7 @@ use waves::VcdTracer;
 
 pub const FITTER: &str = "ptm_fitter_604";
 pub const SHADER: &str = "ptm_shader_608";
-/// The units' clock (a 5 ns cycle) [C].
+/// The units' clock (a 5 ns cycle) \[C\].
 const CYCLE_PS: u64 = 5_000;
 
 /// The pseudo-inverse of the quadratic basis over `lights`, rounded to sQ7.20; an error
@@ -614,7 +614,7 @@ pub struct PtmQuality {
     pub rmse_mean: f64,
     pub rmse_max: f64,
     /// Bytes: the PTM (six coefficients a texel, no header), the binary sample images (one
-    /// bit a texel a light), a 4096 x 4096 shadow map of 32-bit depths ([0006]) per light.
+    /// bit a texel a light), a 4096 x 4096 shadow map of 32-bit depths (\[0006\]) per light.
     pub ptm_bytes: u64,
     pub images_bytes: u64,
     pub shadow_map_bytes: u64,

@@ -1,7 +1,7 @@
 //! Tangent frames (003): the host's per-corner frames of a mesh in the seed's three modes
 //! (f64: the tool chain's side), and the testbench of the fixed-point tangent setup unit.
 //!
-//! Host [C]: a polygon's dP/du, dP/dv are the mean of its fan triangles'; its normal the
+//! Host \[C\]: a polygon's dP/du, dP/dv are the mean of its fan triangles'; its normal the
 //! normalised sum of their cross products. Vertex normals: the OBJ's where given, else the
 //! sum of the face normals (area-weighted) over the faces sharing the position and the
 //! smoothing group (group 0: the face's own). Smoothed tangents: the sum of the faces' unit

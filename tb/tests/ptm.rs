@@ -31,7 +31,7 @@ fn the_testbenches_pass_with_full_coverage() {
     }
 }
 
-/// [0036] says K = 0 is unoccluded; the sample images are white where lit [0044]. A texel
+/// \[0036\] says K = 0 is unoccluded; the sample images are white where lit \[0044\]. A texel
 /// lit from every light must fit to K = 0 (visibility 255) and one dark from every light to
 /// K = 1; taking the samples as K, as printed, gives the reverse.
 #[test]

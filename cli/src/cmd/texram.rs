@@ -105,7 +105,7 @@ fn read_texture(path: &Path, config: Config, border: Border) -> Result<TexramTex
     Ok(TexramTexture::generated(drf, &space))
 }
 
-/// An index map [C]: the palette is the image's colours in order of first appearance (at
+/// An index map \[C\]: the palette is the image's colours in order of first appearance (at
 /// most 256, alpha 255); each upper level's texel is the palette entry nearest (squared RGB
 /// distance, the lowest index on a tie) to the rounded mean colour of the 2x2 (or pair) below
 /// it. The generator 816 cannot make these: it averages values, which means nothing for

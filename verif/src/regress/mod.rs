@@ -173,7 +173,7 @@ pub struct RegressConfig {
     pub cosim: bool,
     /// Configurations run at once (threads); the results do not depend on it.
     pub jobs: usize,
-    /// Seeds each configuration runs under: the run's jobs ([`jobs`](crate::jobs)).
+    /// Seeds each configuration runs under: the run's jobs ([`crate::jobs`]).
     pub seeds: u32,
     /// Run only this job, with its waveform (a failing job's reproduction); no vectors, no
     /// co-simulation.

@@ -3,7 +3,7 @@
 //! sample, the weights `B0 = (1 - t)^2 / 2`, `B1 = (1 + 2t - 2t^2) / 2`, `B2 = t^2 / 2` along
 //! each axis, `t` the position inside the nearest texel (1/2 at its centre).
 //!
-//! # Arithmetic [C]
+//! # Arithmetic \[C\]
 //! `t` truncated to 8 bits; the weights `2 B` as exact integers over 2^16 (`(256 - t)^2`,
 //! `2^16 + 512 t - 2 t^2`, `t^2`, summing to 2^17); the channel's sum of texel times both
 //! axes' weights exact (over 2^34), one rounding half up to u8. One register stage.

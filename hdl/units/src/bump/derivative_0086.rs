@@ -5,7 +5,7 @@
 //! interpolated heights (`tb/tests/derivative.rs` tests the equality exactly). The normal is
 //! `normalize(-Dx s, -Dy s, 1)` through normal unit 156's inverse square root.
 //!
-//! Filters [C] (numerators over a denominator, all integers):
+//! Filters \[C\] (numerators over a denominator, all integers):
 //!
 //! | filter | Dx at texel (x, y) | window | texels a sample |
 //! |---|---|---|---|

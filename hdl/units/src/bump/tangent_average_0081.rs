@@ -2,7 +2,7 @@
 //! (Schilling & Knittel section 10) on a height map. The pipeline computes the tangents of
 //! each of a pixel's N sample points in turn; this stage, between tangent unit 155 and normal
 //! unit 156, adds them up and hands their mean to 156 with the pixel's last sample: one
-//! normalisation a pixel ([C], `../shared/notes/seed-systems.md` section 11).
+//! normalisation a pixel (\[C\], `../shared/notes/seed-systems.md` section 11).
 //!
 //! # Arithmetic
 //! `sum = (first ? 0 : acc) + x` for `x` in `du`, `dv`, `height` (exact: six more integer

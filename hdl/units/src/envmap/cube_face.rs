@@ -1,10 +1,10 @@
 //! Cube-face selection for environment maps (Schilling & Knittel section 7, "divide by the
 //! largest component"): from the reflection vector `w` (eq. 4, not normalised) the face of the
 //! cube its major axis points to, and the face coordinates `s = (sc/|ma| + 1)/2`,
-//! `t = (tc/|ma| + 1)/2` with the OpenGL cube-map table [C]. `1/|ma|` comes from a table and
+//! `t = (tc/|ma| + 1)/2` with the OpenGL cube-map table \[C\]. `1/|ma|` comes from a table and
 //! one Newton step, the structure of the inverse square root of unit 156.
 //!
-//! # Arithmetic ([C], `../shared/notes/seed-systems.md` section 4)
+//! # Arithmetic (\[C\], `../shared/notes/seed-systems.md` section 4)
 //! * Major axis: the largest `|w_i|` by exact compares, ties to x, then y.
 //! * `|ma| = 2^e m` with `m` in [1, 2) (`uQ1.16`, exact: `|ma|` has 16 fraction bits);
 //!   `r0` = the table entry for the six bits after the leading one, `1/m` at the interval's
@@ -12,7 +12,7 @@
 //! * `s = round((sc r1 2^-e + 1) / 2)` in `uQ0.12`: the product `sc r1` exact, its shift by
 //!   `e` floored to units of 2^-32 (an error under 2^-20 LSB), then one rounding, ties to
 //!   even, held to `0 ..= 1 - 2^-12` (`sc = |ma|` would give 1). The same for `t`.
-//! * A zero vector has no face: +Z with `s = t = 1/2` [C].
+//! * A zero vector has no face: +Z with `s = t = 1/2` \[C\].
 //!
 //! # Formats
 //! | port | format |

@@ -4,19 +4,19 @@
 //! (right-handed, `e2` needs no normalisation), and the perturbed normal
 //! `n_b = n + e1 b1 + e2 b2` with the bump map's offsets (eq. 3).
 //!
-//! # Arithmetic [C]
+//! # Arithmetic \[C\]
 //! Lengths by the inverse square root of normal unit 156 (its table and Newton step,
 //! [`crate::bump::rsqrt_156::rsqrt`], default parameters): `s = m 4^k` with the mantissa `m` in
 //! [1, 4) truncated to 22 fraction bits, `1/sqrt(s) = rsqrt(m) 2^-k`; each component the exact
 //! product rounded once to sQ1.14, ties to even. Cross products exact. `n_b`'s sum exact, one
 //! rounding to sQ2.14. When `h` is parallel to `n` (`h x n = 0`) the unit uses the x axis, or
-//! the y axis if that is parallel too, and raises `parallel` [C].
+//! the y axis if that is parallel too, and raises `parallel` \[C\].
 //!
 //! # Formats
 //! | port | format |
 //! |---|---|
 //! | `n1` (not unit, `0 < |n1| < 2`), `h` | sQ1.14 |
-//! | `b1`, `b2` | sQ1.7 (the bump map's offsets, a DRF scale of 1 [C]) |
+//! | `b1`, `b2` | sQ1.7 (the bump map's offsets, a DRF scale of 1 \[C\]) |
 //! | `n`, `e1`, `e2` | sQ1.14 |
 //! | `nb` | sQ2.14 (reflection unit's input) |
 

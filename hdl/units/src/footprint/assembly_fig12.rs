@@ -11,11 +11,11 @@
 //! | `u`, `v` | sQ12.8 (the chip's) |
 //! | `du`, `dv` | sQ11.14 (the setup unit's) |
 //! | sample points `p_n` | sQ16.15: `p_0 = p - (N-1) dr/2`, then `+ dr`; exact (dr/2 is sQ11.15) |
-//! | the access's `u`, `v` | `p_n` rounded half up to sQ12.8, held to its range [C] |
+//! | the access's `u`, `v` | `p_n` rounded half up to sQ12.8, held to its range \[C\] |
 //! | accumulator | uQ14.24 (38 bits): up to 64 sums of at most `255 * 2^24` |
 //! | result | u8, one rounding of the mean, half up |
 //!
-//! Luminance maps only on the TEXRAM chip [C] (818's exact sum is the luminance one).
+//! Luminance maps only on the TEXRAM chip \[C\] (818's exact sum is the luminance one).
 //!
 //! The same generator and accumulator drive Figure 6's texture unit 602 (bilinear on CCC
 //! textures, RGB: the document's low-cost system, "bilinear interpolation, CCC and footprint

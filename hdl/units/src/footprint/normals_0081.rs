@@ -8,7 +8,7 @@
 //! the pipeline one sample a clock (the pipeline has no backpressure): points exact in sQ.15
 //! as on the TEXRAM (`p - (N-1) dr/2`, then `+ dr`), rounded half up to the position's
 //! fraction bits. A pixel takes N clocks; its normal comes out with its last sample's, after
-//! the pipeline's latency. Trilinear pipelines are not driven here ([C]: level 0 only, as the
+//! the pipeline's latency. Trilinear pipelines are not driven here (\[C\]: level 0 only, as the
 //! FIG. 7 pipeline's default).
 
 use super::assembly_fig12::POINT_FRAC;

@@ -11,7 +11,7 @@
 //! ```
 //!
 //! The pages defining d1, d2 and lambda are missing from the seed; the diagonals and
-//! `lambda = log2 q` are the notes' reading [C] (`../shared/notes/seed-systems.md` section 2).
+//! `lambda = log2 q` are the notes' reading \[C\] (`../shared/notes/seed-systems.md` section 2).
 //!
 //! # Datapath: no square root, no division
 //! Squared lengths only, exact: `|r|^2 = r_u^2 + r_v^2`. `q^2` is the least of the four,
@@ -29,7 +29,7 @@
 //! # Formats
 //! | value | format |
 //! |---|---|
-//! | `r1u`, `r1v`, `r2u`, `r2v` | sQ11.8 (level-0 texels per pixel) [C] |
+//! | `r1u`, `r1v`, `r2u`, `r2v` | sQ11.8 (level-0 texels per pixel) \[C\] |
 //! | `len1`, `len2` (`\|r\|^2`) | uQ23.16 (40 bits) |
 //! | `diag1`, `diag2` (`d^2`) | uQ25.16 (42 bits) |
 //! | `q2`, `m2` | uQ25.16 |

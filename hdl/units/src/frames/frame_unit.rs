@@ -1,4 +1,4 @@
-//! The per-pixel frame unit [C] shared by bump maps (003's basis, Blinn's perturbation) and
+//! The per-pixel frame unit \[C\] shared by bump maps (003's basis, Blinn's perturbation) and
 //! tangent-space normal maps (002): from the interpolated tangent T, bitangent B and normal
 //! N, an optional Gram-Schmidt (Maya's per-pixel re-orthogonalisation, 003), then
 //! `n' = a N + gx T + gy B` normalised by normal unit 156's inverse square root.
@@ -6,7 +6,7 @@
 //! * Bump: `a = 1`, `(gx, gy)` the height's slope scaled and negated (`-dh/du`, `-dh/dv`:
 //!   003's listing adds `+dM`, which bends the normal into the bump, and calls the sum a unit
 //!   vector, which it is not; `golden::tangents` has both tests).
-//! * Normal map: the texel's RGB8 decoded as `c - 128` [C] (128 is exactly 0, so a flat
+//! * Normal map: the texel's RGB8 decoded as `c - 128` \[C\] (128 is exactly 0, so a flat
 //!   texel (128, 128, 255) gives N exactly; a common factor leaves the direction unchanged),
 //!   or as `2c - 255` ([`Decode::Symmetric`], 0 and 255 symmetric, 128 a little above 0);
 //!   002's `mapVector = vector(sampleColor)` omits the range change and tilts a flat texel.
@@ -37,7 +37,7 @@ pub struct FrameOut {
     pub n: [i64; 3],
     pub t: [i64; 3],
     pub b: [i64; 3],
-    /// The perturbed normal was zero (no direction): `n` is N's unit [C].
+    /// The perturbed normal was zero (no direction): `n` is N's unit \[C\].
     pub zero: bool,
 }
 

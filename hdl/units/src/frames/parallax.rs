@@ -3,7 +3,7 @@
 //! `uv' = uv + h V.xy / V.z` with `h = height scale + bias` and V the unit vector to the eye
 //! in tangent space; the offset-limited form `uv + h V.xy` has no divide.
 //!
-//! # Arithmetic [C]
+//! # Arithmetic \[C\]
 //! * `h = height 2^-8 scale + bias` exact (height uQ0.8, scale sQ3.12, bias sQ3.12).
 //! * `1 / V.z` by the cube-face unit's reciprocal (table + one Newton step, relative error
 //!   at most 5 x 2^-16), V.z held to at least 1/8 (grazing views would throw the

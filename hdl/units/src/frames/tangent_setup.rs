@@ -1,4 +1,4 @@
-//! The tangent setup unit (003, in hardware [C]): per triangle, from its edges and UV edges,
+//! The tangent setup unit (003, in hardware \[C\]): per triangle, from its edges and UV edges,
 //! `dP/du` and `dP/dv`, and at a corner with the unit normal `n` the orthonormal tangent
 //! `t = normalize(dP/du - (n . dP/du) n)` and bitangent `b = s n x t`, `s` the general
 //! handedness `sign((n x t) . dP/dv)` (the seed's UV-winding test is wrong for triangles
@@ -14,7 +14,7 @@
 //!   same reciprocal; else zero; `degenerate` raised, never a NaN.
 //! * `t`: the Gram-Schmidt sum exact from the rounded `dP/du`, normalised by normal unit 156's
 //!   inverse square root (`envmap::frame_eq2`'s `unit`), sQ1.14; a zero remainder gives
-//!   `t = 0` and `zero` [C]. `b = s n x t`, exact, rounded once to sQ1.14.
+//!   `t = 0` and `zero` \[C\]. `b = s n x t`, exact, rounded once to sQ1.14.
 //!
 //! | port | format |
 //! |---|---|

@@ -7,9 +7,9 @@
 //! trilinear 914 of the detail map 906 in that tile (access 908); the texture map 910 is read
 //! as a third step when -1 < lambda < 0 or when the detail colour modulates the texel; the
 //! step 912 combines them. The document's text stops at "texture map 910 and": the
-//! combination is [C].
+//! combination is \[C\].
 //!
-//! # Arithmetic ([C], all exact on the raw sQ12.8 / sQ5.8 values)
+//! # Arithmetic (\[C\], all exact on the raw sQ12.8 / sQ5.8 values)
 //! * Offset texel: `(floor u, floor v)`, read at its centre, lambda 0 (weights 0: the texel
 //!   itself, exactly).
 //! * Detail coordinate (the detail map's level-0 units): `o + frac(u) * 16`, raw

@@ -1,7 +1,7 @@
 //! The description register files of the address and control unit 812 (section 14, Fig. 16):
 //! seven DRFs, each describing one map of a pixel's chain and pointing to the next.
 //!
-//! Fields (the document lists them; their widths are [C]):
+//! Fields (the document lists them; their widths are \[C\]):
 //!
 //! | field | format | meaning |
 //! |---|---|---|
@@ -11,7 +11,7 @@
 //! | `link` | u3 + valid | the next DRF of the chain, none at its end |
 //! | `new_coords` | u1 | the chain computes this map's coordinates before its access (detail maps from the offsets, environment maps from the vectors) |
 //! | `k_s` | u8 | eq. 6's constant (environment DRF) |
-//! | `detail` | u2 | how detail colour meets the texel: replace, multiply, add-signed [C] |
+//! | `detail` | u2 | how detail colour meets the texel: replace, multiply, add-signed \[C\] |
 //! | `base` | u1 | eqs 6 and 7's `(C_d \| I_d)` |
 //! | `light` | u1 | eq. 7's `(E \| I_s)` |
 //!
@@ -63,7 +63,7 @@ impl Kind {
     }
 }
 
-/// How a detail colour D meets the texel T below it (Fig. 9's text is cut off here) [C].
+/// How a detail colour D meets the texel T below it (Fig. 9's text is cut off here) \[C\].
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Default)]
 pub enum DetailMode {
     /// D replaces T (T is then read only where -1 < lambda < 0).

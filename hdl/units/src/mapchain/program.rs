@@ -10,8 +10,8 @@
 //! * **detail**: only for lambda < 0: the detail map in the offsets' tile, then the waiting
 //!   texel if [`needs_texel`], combined by step 912;
 //! * **environment**: new coordinates first (eq. 4 and the cube face, one state), then the
-//!   face's mipmap at lambda `max(lambda, 0)` [C]; without `new_coords` the rasterizer's face
-//!   and (u, v) [C];
+//!   face's mipmap at lambda `max(lambda, 0)` \[C\]; without `new_coords` the rasterizer's face
+//!   and (u, v) \[C\];
 //! * then the DRF's link, or the output stage 820 (eqs 5-7) at the chain's end.
 //!
 //! Going to a DRF costs no cycle (812 decodes the next DRF while the last access runs); a

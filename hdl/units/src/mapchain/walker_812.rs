@@ -3,7 +3,7 @@
 //! state machine whose state is named in the waveform, the banks behind [`TexramAccess`] and
 //! the output stage 820.
 //!
-//! # Timing ([C]; the document gives the 30 ns slot and "a linked-map access will most
+//! # Timing (\[C\]; the document gives the 30 ns slot and "a linked-map access will most
 //! probably cause a page fault")
 //! The clock is 5 ns. A pixel is taken in a cycle where `req_ready` is high (idle, the
 //! cycle a result is out, or the last cycle of a pixel's last access). An access is issued on `acc_*` in the cycle the

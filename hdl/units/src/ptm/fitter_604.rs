@@ -1,10 +1,10 @@
 //! The fitter 604 of 001's Fig. 6 as a streaming unit: the least-squares fit of a texel's
 //! occlusion samples is `A = P K` with the pseudo-inverse `P = (A^T A)^-1 A^T` the same for
-//! every texel ([0049]), so six multiply-accumulate lanes take one light's sample a cycle
+//! every texel (\[0049\]), so six multiply-accumulate lanes take one light's sample a cycle
 //! and, after the texel's L-th, the six coefficients go out quantised to the PTM 612 format.
 //!
 //! * Sample: uQ0.8, 255 lit. Occlusion `x = 255 - sample`, widened to uQ1.8 as
-//!   `K = x + (x >> 7)` [C] (0 and 255 map to 0 and 1 exactly; any other within 2^-9 of
+//!   `K = x + (x >> 7)` \[C\] (0 and 255 map to 0 and 1 exactly; any other within 2^-9 of
 //!   x/255).
 //! * Lane j: `acc_j = sum_i P_ji K_i`, exact (sQ7.20 times uQ1.8 into sQ17.28).
 //! * Out: `q_j = round((acc_j - b_j 2^8) / 2^(e_j + 8))`, half up ([`PtmFormat::quantise`]).

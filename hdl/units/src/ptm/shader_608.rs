@@ -1,6 +1,6 @@
 //! The PTM's evaluator in the light shader 608 of 001's Fig. 6: the occlusion of a light at
 //! `(u, v)` from a texel's six stored coefficients, `K = (A1 u + A3 v + A2) u + (A5 v + A4) v
-//! + A6` (Horner's form of [0030]), exact, then one rounding to uQ0.8 (half up) held to
+//! + A6` (Horner's form of \[0030\]), exact, then one rounding to uQ0.8 (half up) held to
 //! `0 ..= 255`, and the visibility `255 - K` handed to the shading. One register stage.
 //!
 //! | port | format |

@@ -1,7 +1,7 @@
 //! The occlusion PTM 612 as the hardware stores it: per texel six unsigned coefficients of
 //! `bits` (8 or 16), coefficient j standing for `A_j = q_j 2^e_j + b_j` (units of 2^-20).
 //!
-//! The ranges come from the pseudo-inverse P before any fit [C]: with occlusions `K_i` in
+//! The ranges come from the pseudo-inverse P before any fit \[C\]: with occlusions `K_i` in
 //! [0, 1], `A_j = sum_i P_ji K_i` lies in `[sum of P_ji < 0, sum of P_ji > 0]`, so the bias is
 //! that lower end and `e_j` the least exponent whose `2^bits - 1` steps reach the upper end:
 //! no fit is ever held at a limit. (The ranges are wide against typical coefficients: the

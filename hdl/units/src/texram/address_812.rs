@@ -25,7 +25,7 @@ pub enum Border {
     /// Wrapped inside aligned tiles of `2^t` texels at level 0 (`2^(t-k)` at level k, at
     /// least 1), the tile being the one the sample point lies in; then wrapped at the map's
     /// edge. A detail map's tiles (section 9): each level-0 texel of the texture owns one
-    /// tile of the detail map, which repeats inside it [C].
+    /// tile of the detail map, which repeats inside it \[C\].
     Tile(u8),
 }
 

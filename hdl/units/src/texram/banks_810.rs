@@ -1,7 +1,7 @@
 //! Banks 810 and their address decoders 822: the two-level layout of Figure 2. Each level's
 //! texels are spread in 2x2 groups over four banks, texel (x, y) in bank `2 (y & 1) + (x & 1)`
 //! of its group; even levels use banks 0-3, odd levels banks 4-7 (the only reading that gives
-//! a trilinear pair L, L+1 for every L, [C]). Inside a bank a level is row-major by 2x2
+//! a trilinear pair L, L+1 for every L, \[C\]). Inside a bank a level is row-major by 2x2
 //! groups: word `base + offset(L) + (y >> 1) * ceil(W_L / 2) + (x >> 1)`, where `offset(L)`
 //! is the words of the earlier levels of the same group.
 //!
@@ -15,7 +15,7 @@ use super::Drf;
 
 /// Banks on the chip.
 pub const BANKS: usize = 8;
-/// Words of a page (one DRAM row), [C].
+/// Words of a page (one DRAM row), \[C\].
 pub const ROW_WORDS: u32 = 512;
 
 /// Words per bank of level `k`'s group: `ceil(W/2) * ceil(H/2)`.
@@ -70,7 +70,7 @@ pub fn store_level(banks: &mut [Vec<u8>], d: &Drf, k: u32, texels: &[u8]) -> Res
     Ok(())
 }
 
-/// Words per bank for the largest map, 1024 x 1024 with its chain (derived, [C]): even-level
+/// Words per bank for the largest map, 1024 x 1024 with its chain (derived, \[C\]): even-level
 /// banks 279,621 words (bank 0; banks 1-3 one fewer), odd-level banks 69,905, each rounded up
 /// to whole rows.
 pub fn bank_words(bank: usize) -> u32 {

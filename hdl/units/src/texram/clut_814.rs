@@ -2,7 +2,7 @@
 //! bits 24-31, G 16-23, B 8-15, alpha 0-7), eight read ports, so the eight indices of one
 //! trilinear access are looked up at once; the interpolator 818 then filters each component
 //! of the looked-up colours (post-lookup filtering: filtering indices would mix unrelated
-//! colours). [C] 818 handles the four components in the same slot.
+//! colours). \[C\] 818 handles the four components in the same slot.
 
 use super::trilinear_818::trilinear;
 

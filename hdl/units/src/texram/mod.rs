@@ -5,36 +5,36 @@
 //! The chip's transaction-level interface, the arithmetic its units share, the cycle-accurate
 //! chip built on them and a behavioural stub:
 //!
-//! * [`TexramAccess`]: one access, `(DRF, u, v, lambda) -> 8 texels, weights, slots, faults`,
+//! * [`TexramAccess`](crate::texram::TexramAccess): one access, `(DRF, u, v, lambda) -> 8 texels, weights, slots, faults`,
 //!   the interface the footprint assembly, the volume stepper and the map chain are written
 //!   against;
-//! * [`address_812`]: the address and control unit's arithmetic: level, weights and the
+//! * [`address_812`](crate::texram::address_812): the address and control unit's arithmetic: level, weights and the
 //!   border operations (wrap, clamp, mirror, border colour) of one access;
-//! * [`banks_810`]: the two-level layout, texel `(level, x, y)` to bank and word (the bank
+//! * [`banks_810`](crate::texram::banks_810): the two-level layout, texel `(level, x, y)` to bank and word (the bank
 //!   address decoders 822), proved conflict-free by exhaustive tests;
-//! * [`page_registers_824`]: one open row per bank; an access costs one slot, two if any bank
+//! * [`page_registers_824`](crate::texram::page_registers_824): one open row per bank; an access costs one slot, two if any bank
 //!   it reads misses its open row;
-//! * [`trilinear_818`]: the trilinear interpolator, one rounding of the exact weighted sum;
-//! * [`clut_814`]: the colour look-up table of the index configuration, filtered after look-up;
-//! * [`output_820`]: the output stage's eq. 5, `C_d = (I_d | k_T | 1) . T`;
-//! * [`video_port_808`]: the video port with the mipmap generator 816 on the banks and the
+//! * [`trilinear_818`](crate::texram::trilinear_818): the trilinear interpolator, one rounding of the exact weighted sum;
+//! * [`clut_814`](crate::texram::clut_814): the colour look-up table of the index configuration, filtered after look-up;
+//! * [`output_820`](crate::texram::output_820): the output stage's eq. 5, `C_d = (I_d | k_T | 1) . T`;
+//! * [`video_port_808`](crate::texram::video_port_808): the video port with the mipmap generator 816 on the banks and the
 //!   shift registers 826, stealing slots from the rasterizer;
-//! * [`texram_802`]: the chip cycle by cycle (request port, 812, 824, 810, 818, 820, the video
-//!   port), and `Texram802Access`, the chip behind [`TexramAccess`];
-//! * [`lockstep`]: one colour component per chip, four chips in lock-step;
-//! * [`stub`]: [`stub::TexramStub`], a behavioural model of the chip made of the above, exact
+//! * [`texram_802`](crate::texram::texram_802): the chip cycle by cycle (request port, 812, 824, 810, 818, 820, the video
+//!   port), and `Texram802Access`, the chip behind [`TexramAccess`](crate::texram::TexramAccess);
+//! * [`lockstep`](crate::texram::lockstep): one colour component per chip, four chips in lock-step;
+//! * [`stub`](crate::texram::stub): [`stub::TexramStub`](crate::texram::stub::TexramStub), a behavioural model of the chip made of the above, exact
 //!   in its texels, weights, result and slot count but not cycle by cycle (every
 //!   configuration; the video port as single row transfers).
 //!
-//! Formats ([C] marks the project's choices where the document is silent, see
+//! Formats (\[C\] marks the project's choices where the document is silent, see
 //! `../shared/notes/seed-systems.md`):
 //!
 //! | value | format | note |
 //! |---|---|---|
-//! | u, v | sQ12.8 (21 bits, two's complement) | level-0 texel units, [C] |
-//! | lambda | sQ5.8 (14 bits) | level of detail, [C]; `-4.0 ..= 10.0` |
+//! | u, v | sQ12.8 (21 bits, two's complement) | level-0 texel units, \[C\] |
+//! | lambda | sQ5.8 (14 bits) | level of detail, \[C\]; `-4.0 ..= 10.0` |
 //! | texel | u8 | the document's 8-bit texels (section 6) |
-//! | a, b, f | u8 (Q0.8, truncated) | weights, [C] |
+//! | a, b, f | u8 (Q0.8, truncated) | weights, \[C\] |
 //! | result of 818 | u8 | `(sum + 2^23) >> 24` of the exact sum, round half up |
 
 pub mod address_812;
@@ -85,7 +85,7 @@ pub enum Config {
     Luminance,
     /// 8-bit indices into the CLUT 814, filtered per component after the look-up.
     Index,
-    /// True colour, [C] the conflict-free reading: the DRF's space holds four component
+    /// True colour, \[C\] the conflict-free reading: the DRF's space holds four component
     /// planes of half its width and height in its quadrants (R top left, G top right, B
     /// bottom left, alpha bottom right); four accesses per pixel.
     Planar,

@@ -1,7 +1,7 @@
 //! The output and combination stage 820 (section 6, eq. 5): the texture colour T combined
 //! with the interpolated illumination, `C_d = (I_d | k_T | 1) . T`, where `|` is the DRF's
 //! choice of one of the three and `.` the multiplication of two 8-bit values that stand for
-//! 0 ..= 1. [C] `x . y = round(x y / 255)`, exactly, half up, with no division:
+//! 0 ..= 1. \[C\] `x . y = round(x y / 255)`, exactly, half up, with no division:
 //! `t = x y + 128; (t + (t >> 8)) >> 8` (so 255 is the neutral element: `255 . y = y`).
 
 /// What eq. 5 multiplies the texture colour by (a DRF field).
@@ -34,7 +34,7 @@ pub fn combine(m: Modulate, illumination: u8, texture: u8) -> u8 {
 }
 
 /// Eq. 5 on a result: R, G and B multiplied as `m` says by the illumination's (R, G, B) or
-/// the constant; alpha, [C], the texture's.
+/// the constant; alpha, \[C\], the texture's.
 pub fn shade(m: Modulate, illumination: [u8; 4], texture: [u8; 4]) -> [u8; 4] {
     let mut out = texture;
     for c in 0..3 {
@@ -43,7 +43,7 @@ pub fn shade(m: Modulate, illumination: [u8; 4], texture: [u8; 4]) -> [u8; 4] {
     out
 }
 
-/// `a + b` held to 255: the sums of eqs 6 and 7 saturate [C].
+/// `a + b` held to 255: the sums of eqs 6 and 7 saturate \[C\].
 #[inline]
 fn add_sat(a: u8, b: u8) -> u8 {
     a.saturating_add(b)
@@ -51,7 +51,7 @@ fn add_sat(a: u8, b: u8) -> u8 {
 
 /// Eq. 6, environment mapping: `C = (C_d | I_d) + k_s . E` on R, G and B, `k_s` a DRF
 /// register, `base` the DRF's choice of the shaded texture colour or the illumination; alpha,
-/// [C], the base's.
+/// \[C\], the base's.
 pub fn environment(base: [u8; 4], ks: u8, env: [u8; 4]) -> [u8; 4] {
     let mut out = base;
     for c in 0..3 {

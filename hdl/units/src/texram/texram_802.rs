@@ -3,7 +3,7 @@
 //! interpolator 818, the output stage 820 (eq. 5). In the waveform each unit is its own scope
 //! under `texram_802`.
 //!
-//! # Timing ([C], the document gives the 30 ns slot only)
+//! # Timing (\[C\], the document gives the 30 ns slot only)
 //! The clock is 5 ns (as `dram_604`); one access slot is `slot_cycles` = 6 cycles.
 //! * cycle 0: `req_valid && req_ready`: 812 computes the footprint (levels, weights, border
 //!   operations, bank words) into its registers;

@@ -1,4 +1,4 @@
-//! The trilinear interpolator 818, [C]: the exact sum of the eight texels, each weighed by
+//! The trilinear interpolator 818, \[C\]: the exact sum of the eight texels, each weighed by
 //! `w_a * w_b * w_f` (8-bit weights `256 - a` and `a`, so the eight products sum to `2^24`),
 //! rounded once to 8 bits, half up: `(sum + 2^23) >> 24`. The sum fits 32 bits
 //! (`255 * 2^24 < 2^32`); it is carried in a u64.

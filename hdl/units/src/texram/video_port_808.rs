@@ -5,7 +5,7 @@
 //! registers 826 and the page registers 824, one row transfer per bank, in access slots taken
 //! from the rasterizer.
 //!
-//! # The model ([C], the document gives the data path only)
+//! # The model (\[C\], the document gives the data path only)
 //! * A line of level k goes to the two banks of its row parity (`banks_810::locate`), the
 //!   even columns to one, the odd to the other: two **segments**, each split where it would
 //!   cross a DRAM row. Level 0's texels are collected in the shift registers as they arrive

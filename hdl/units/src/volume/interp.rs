@@ -5,7 +5,7 @@
 //!   (256 - c | c)` sum to `2^24`.
 //! * Value: the exact weighted sum of the eight voxels, rounded once half up to u8:
 //!   `(S + 2^23) >> 24`.
-//! * Gradient [C]: central differences at the eight corners without the 1/2,
+//! * Gradient \[C\]: central differences at the eight corners without the 1/2,
 //!   `g_x = f(x+1) - f(x-1)` (s9, exact), the same weights, rounded once half up to sQ9.4:
 //!   `(S + 2^19) >> 20`. A linear field `ax + by + cz + d` gives `(2a, 2b, 2c)` exactly at
 //!   every point whose neighbours are inside the volume.

@@ -2,13 +2,13 @@
 //! interleave, voxel `(x, y, z)` in bank `2 (y & 1) + (x & 1)` (the level-0 texel rule, so a
 //! 2x2 of a slice is one access), and the accesses a resample point needs.
 //!
-//! # Word order inside a bank [C]
+//! # Word order inside a bank \[C\]
 //! * [`Order::SliceMajor`]: `z (X/2)(Y/2) + (y >> 1)(X/2) + (x >> 1)`, slices one after the
 //!   other as level 0 stores a texture;
 //! * [`Order::ColumnMajor`]: `((y >> 1)(X/2) + (x >> 1)) Z + z`, a 2x2 column's slices
 //!   next to each other, so the two slices of a value access share a row.
 //!
-//! # Borders [C]
+//! # Borders \[C\]
 //! Voxel indices outside the volume are reflected without repeating the edge voxel
 //! (`-1 -> 1`, `X -> X - 2`): a reflection keeps an index's parity, so the x (and y) indices
 //! of an access (`i, i+1` or `i-1, i+2`) keep different parities and every access reads four
@@ -21,7 +21,7 @@
 //! (3-4), rows j-1 and j+2 (columns i, i+1) at k and k+1 (5-6) and the 2x2 at k-1 and k+2
 //! (7-8): the 32 voxels of the central differences at the eight corners.
 //!
-//! # Access order [C]
+//! # Access order \[C\]
 //! The y-row accesses (5-6) open other rows than the rest (the neighbouring 2x2 columns of y
 //! lie `(X/2) Z` words away in column-major order). The sequencer alternates the order from
 //! sample to sample, `1 2 7 8 3 4 5 6` then `5 6 3 4 7 8 1 2`, so that consecutive samples
@@ -30,7 +30,7 @@
 
 use crate::texram::banks_810::bank_words;
 
-/// Voxel positions: sQ9.12 (22 bits), voxel `x` at `x` exactly [C].
+/// Voxel positions: sQ9.12 (22 bits), voxel `x` at `x` exactly \[C\].
 pub const POS_FRAC: u32 = 12;
 pub const POS_BITS: u32 = 22;
 
@@ -66,7 +66,7 @@ pub struct VolumeParams {
     /// z 1..=256.
     pub dims: (u32, u32, u32),
     pub order: Order,
-    /// Words of a DRAM row (page), a power of two 16..=65536 ([C]; the chip's texture path
+    /// Words of a DRAM row (page), a power of two 16..=65536 (\[C\]; the chip's texture path
     /// uses 512).
     pub row_words: u32,
     /// Clock cycles of a 30 ns access slot (5 ns clock).

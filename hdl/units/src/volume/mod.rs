@@ -5,15 +5,15 @@
 //! accesses ("value mode"), or the 32 voxels its central-difference gradient needs in eight
 //! ("gradient mode"). Compositing is off-chip (the golden model has one).
 //!
-//! * [`layout`]: voxel `(x, y, z)` to bank and word, the border operation, the accesses of a
+//! * [`layout`](crate::volume::layout): voxel `(x, y, z)` to bank and word, the border operation, the accesses of a
 //!   resample point in each mode (each reads four voxels from four different banks: proved
 //!   exhaustively in its tests);
-//! * [`interp`]: the value and gradient arithmetic of one resample point;
-//! * [`ray_caster_fig15`]: the cycle-accurate ray caster: ray port, stepper, accesses through
+//! * [`interp`](crate::volume::interp): the value and gradient arithmetic of one resample point;
+//! * [`ray_caster_fig15`](crate::volume::ray_caster_fig15): the cycle-accurate ray caster: ray port, stepper, accesses through
 //!   the page registers, interpolation, sample port;
-//! * [`lockstep`]: pre-classified RGBA on four chips in lock-step.
+//! * [`lockstep`](crate::volume::lockstep): pre-classified RGBA on four chips in lock-step.
 //!
-//! The document gives the data path and two timings; the rest is [C] (see
+//! The document gives the data path and two timings; the rest is \[C\] (see
 //! `../shared/notes/seed-systems.md` section 3 and the README).
 
 pub mod interp;
