@@ -3,12 +3,14 @@
 #![no_main]
 use libfuzzer_sys::fuzz_target;
 use std::path::{Path, PathBuf};
-use std::sync::OnceLock;
 
-static PROJECT: OnceLock<verif::project::Project> = OnceLock::new();
+thread_local! {
+    // A project holds testbenches that are not Send: one per thread (libFuzzer runs one).
+    static PROJECT: &'static verif::project::Project = Box::leak(Box::new(tb::project::project()));
+}
 
 fuzz_target!(|data: &[u8]| {
-    let project = PROJECT.get_or_init(tb::project::project);
+    let project = PROJECT.with(|p| *p);
     let p = Path::new("s.json");
     let Ok(s) = verif::regress::parse_summary(p, data) else {
         return;
