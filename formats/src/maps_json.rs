@@ -187,8 +187,10 @@ fn entry(e: &Entry, dir: &Path) -> Result<DrfSpec, String> {
 pub fn read(path: &Path) -> Result<Vec<DrfSpec>, String> {
     let text = crate::read_text_bounded(path, 1 << 20)?;
     let f: File = serde_json::from_str(&text).map_err(|e| {
-        // serde quotes what it refuses (a field name can hold a newline): kept on one line.
+        // serde quotes what it refuses (a field name can hold a newline, and be long): kept on
+        // one short line.
         let e = waves::output::escape_controls(&e.to_string());
+        let e = waves::output::shorten_quoted(&e, '`');
         format!("{}: {e}", path.display())
     })?;
     let dir = path.parent().unwrap_or(Path::new(""));

@@ -159,6 +159,23 @@ pub fn shorten(s: &str) -> String {
     }
 }
 
+/// `s` with every part between two `quote` characters (what a parser quotes back: a refused
+/// value, an unknown field name) shortened as [`shorten`] does.
+pub fn shorten_quoted(s: &str, quote: char) -> String {
+    let q = quote.to_string();
+    s.split(quote)
+        .enumerate()
+        .map(|(k, part)| {
+            if k % 2 == 1 {
+                shorten(part)
+            } else {
+                part.to_string()
+            }
+        })
+        .collect::<Vec<_>>()
+        .join(&q)
+}
+
 /// The bytes of `path`, at most `max`: a longer file or an endless device is refused, naming it.
 pub fn read_bounded(path: &std::path::Path, max: u64) -> Result<Vec<u8>, String> {
     use std::io::Read;
@@ -180,6 +197,17 @@ pub fn read_bounded(path: &std::path::Path, max: u64) -> Result<Vec<u8>, String>
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn quoted_parts_are_shortened_and_the_rest_kept() {
+        let long = "x".repeat(300);
+        let m = shorten_quoted(&format!("unknown field `{long}`, expected `drf`"), '`');
+        assert_eq!(
+            m,
+            format!("unknown field `{}...`, expected `drf`", "x".repeat(37))
+        );
+        assert_eq!(shorten_quoted("no quotes at all", '`'), "no quotes at all");
+    }
 
     fn dir(name: &str) -> PathBuf {
         let d = std::env::temp_dir().join(format!("texrtl-output-{name}-{}", std::process::id()));

@@ -154,18 +154,7 @@ fn clap_message(name: &str, e: &clap::Error) -> String {
         _ => first.to_string(),
     };
     // clap quotes the argument it refuses: a long one is shortened, as every message's values.
-    let first: String = first
-        .split('\'')
-        .enumerate()
-        .map(|(k, part)| {
-            if k % 2 == 1 {
-                waves::output::shorten(part)
-            } else {
-                part.to_string()
-            }
-        })
-        .collect::<Vec<_>>()
-        .join("'");
+    let first = waves::output::shorten_quoted(&first, '\'');
     format!("{first} (see {name} --help)")
 }
 
