@@ -191,6 +191,7 @@ pub fn read(path: &Path) -> Result<Vec<DrfSpec>, String> {
         // one short line.
         let e = waves::output::escape_controls(&e.to_string());
         let e = waves::output::shorten_quoted(&e, '`');
+        let e = waves::output::shorten_message(&e, 200);
         format!("{}: {e}", path.display())
     })?;
     let dir = path.parent().unwrap_or(Path::new(""));

@@ -209,7 +209,11 @@ pub type VectorsFn = dyn Fn() -> Result<UnitVectors, String> + Send + Sync;
 fn kept(dir: &Path, unit: &str) -> Result<(Option<VectorFile>, Option<String>), String> {
     let path = dir.join(format!("{unit}.json"));
     let file = match std::fs::read(&path) {
-        Ok(b) => Some(serde_json::from_slice(&b).map_err(|e| format!("{}: {e}", path.display()))?),
+        Ok(b) => Some(serde_json::from_slice(&b).map_err(|e| {
+            let e = waves::output::escape_controls(&e.to_string());
+            let e = waves::output::shorten_message(&waves::output::shorten_quoted(&e, '`'), 200);
+            format!("{}: {e}", path.display())
+        })?),
         Err(_) => None,
     };
     let rows = std::fs::read_to_string(dir.join(format!("{unit}.rows"))).ok();

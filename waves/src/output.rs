@@ -176,6 +176,20 @@ pub fn shorten_quoted(s: &str, quote: char) -> String {
         .join(&q)
 }
 
+/// A message of at most about `max` characters: a longer one keeps its head and its tail (a
+/// parser's position, "at line 1 column 232") with `...` between, however it quotes what it
+/// refuses.
+pub fn shorten_message(s: &str, max: usize) -> String {
+    let n = s.chars().count();
+    if n <= max {
+        return s.to_string();
+    }
+    let tail = max / 3;
+    let head: String = s.chars().take(max - tail - 5).collect();
+    let end: String = s.chars().skip(n - tail).collect();
+    format!("{head} ... {end}")
+}
+
 /// The bytes of `path`, at most `max`: a longer file or an endless device is refused, naming it.
 pub fn read_bounded(path: &std::path::Path, max: u64) -> Result<Vec<u8>, String> {
     use std::io::Read;
@@ -207,6 +221,14 @@ mod tests {
             format!("unknown field `{}...`, expected `drf`", "x".repeat(37))
         );
         assert_eq!(shorten_quoted("no quotes at all", '`'), "no quotes at all");
+        // A quote inside the quoted value: the message is bounded all the same.
+        let odd = format!("unknown field `a`{long}`, expected `drf` at line 1 column 232");
+        let m = shorten_message(&shorten_quoted(&odd, '`'), 200);
+        assert!(
+            m.chars().count() <= 200 && m.ends_with("at line 1 column 232"),
+            "{m}"
+        );
+        assert_eq!(shorten_message("short", 200), "short");
     }
 
     fn dir(name: &str) -> PathBuf {

@@ -155,6 +155,7 @@ fn clap_message(name: &str, e: &clap::Error) -> String {
     };
     // clap quotes the argument it refuses: a long one is shortened, as every message's values.
     let first = waves::output::shorten_quoted(&first, '\'');
+    let first = waves::output::shorten_message(&first, 200);
     format!("{first} (see {name} --help)")
 }
 
