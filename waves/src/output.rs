@@ -147,10 +147,12 @@ pub fn escape_controls(s: &str) -> String {
         .collect()
 }
 
-/// A value shown in a message, cut to at most 40 characters (a long option value or file
-/// name does not flood the one-line message that names it).
+/// A value shown in a message, its control characters escaped and cut to at most 40
+/// characters (a long option value or file name does not flood the one-line message that
+/// names it, and a newline in it does not split that line).
 pub fn shorten(s: &str) -> String {
     const MAX: usize = 40;
+    let s = &escape_controls(s);
     if s.chars().count() <= MAX {
         s.to_string()
     } else {
@@ -229,6 +231,7 @@ mod tests {
             "{m}"
         );
         assert_eq!(shorten_message("short", 200), "short");
+        assert_eq!(shorten("a\nb"), "a\\nb");
     }
 
     fn dir(name: &str) -> PathBuf {
