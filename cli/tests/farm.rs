@@ -222,7 +222,7 @@ fn a_failing_seed_of_a_2000_job_farm_is_reproduced_by_its_line_in_the_report() {
     };
     let program = crate_with_a_rare_bug(&d);
     // 1,000 seeds x 2 configurations = 2,000 jobs, over TEXRTL_FARM_TASKS array tasks.
-    let tasks = std::env::var("TEXRTL_FARM_TASKS").unwrap_or_else(|_| "100".into());
+    let tasks = std::env::var("TEXRTL_FARM_TASKS").unwrap_or_else(|_| "40".into());
     let options = ["--seeds", "1000", "--count", "50"];
     let t = Instant::now();
     let o = Command::new(&program)
