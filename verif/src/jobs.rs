@@ -75,17 +75,11 @@ fn base(reg: &Registry, position: usize, seeds: u32) -> u64 {
         .sum()
 }
 
-/// Every job of testbench `tb` (at `position` in the registry), in order.
-pub fn testbench_jobs(
-    tb: &dyn Testbench,
-    position: usize,
-    reg: &Registry,
-    seeds: u32,
-) -> Vec<JobRef> {
-    let first = base(reg, position, seeds);
-    let n = tb.configurations().len();
+/// The jobs of a testbench with `configurations` configurations under `seeds` seeds, seed by
+/// seed, configuration by configuration, numbered from `first`.
+pub fn numbered(first: u64, configurations: usize, seeds: u32) -> Vec<JobRef> {
     (0..seeds)
-        .flat_map(|r| (0..n).map(move |c| (r, c)))
+        .flat_map(|r| (0..configurations).map(move |c| (r, c)))
         .enumerate()
         .map(|(k, (repeat, configuration))| JobRef {
             index: first + k as u64,
@@ -93,6 +87,16 @@ pub fn testbench_jobs(
             repeat,
         })
         .collect()
+}
+
+/// Every job of testbench `tb` (at `position` in the registry), in order.
+pub fn testbench_jobs(
+    tb: &dyn Testbench,
+    position: usize,
+    reg: &Registry,
+    seeds: u32,
+) -> Vec<JobRef> {
+    numbered(base(reg, position, seeds), tb.configurations().len(), seeds)
 }
 
 /// How many jobs the selected testbenches have (`selected` says which).

@@ -197,17 +197,7 @@ pub fn run_testbench(
     opts: &RunOptions,
     progress: &mut dyn FnMut(&str),
 ) -> Result<TbResult, String> {
-    let n = tb.configurations().len();
-    let all: Vec<JobRef> = (0..opts.seeds)
-        .flat_map(|r| (0..n).map(move |c| (r, c)))
-        .enumerate()
-        .map(|(k, (repeat, configuration))| JobRef {
-            index: k as u64,
-            configuration,
-            repeat,
-        })
-        .collect();
-    let mine: Vec<JobRef> = all
+    let mine: Vec<JobRef> = crate::jobs::numbered(0, tb.configurations().len(), opts.seeds)
         .into_iter()
         .filter(|j| opts.shard.owns(j.index))
         .collect();
