@@ -276,7 +276,7 @@ fn a_failing_seed_of_a_2000_job_farm_is_reproduced_by_its_line_in_the_report() {
     let rows = s["testbenches"].as_array().unwrap();
     let failed_rows = rows.iter().filter(|r| r["passed"] != true).count();
     let head = format!(
-        r#"<testsuites name="farm_acc" tests="{}" skipped="0" failures="{}""#,
+        r#"<testsuites name="farm_acc" tests="{}" failures="{}""#,
         2000 + rows.len(),
         failing.len() + failed_rows
     );
@@ -319,5 +319,23 @@ fn reproduce(program: &Path, dir: &Path, line: &str, first: &str) {
     assert!(
         flag.changes.iter().any(|(_, v)| v.as_u64() == Some(1)),
         "the waveform of {line} shows no mismatch"
+    );
+    // Its view opens on the first mismatch: marker A there, the flag up under it.
+    let g = std::fs::read_to_string(vcd.with_extension("gtkw")).unwrap();
+    let view = waves::gtkw::View::parse(&g).unwrap();
+    let (t, name) = view.marker.clone().expect("a marker on the mismatch");
+    assert_eq!(name, "first mismatch");
+    assert!(view.window.0 <= t && t <= view.window.1, "{view:?}");
+    let at = |t: u64| {
+        flag.changes
+            .iter()
+            .take_while(|(c, _)| *c <= t)
+            .last()
+            .and_then(|(_, v)| v.as_u64())
+    };
+    assert_eq!(
+        at(t),
+        Some(1),
+        "the mismatch flag at the marker ({t} ps): {view:?}"
     );
 }

@@ -185,13 +185,15 @@ fn read_waves(path: &Path) -> Result<Readback, String> {
 
 /// Checks a `^N /path` translate-filter line: a slot number and a readable file of
 /// `value name` lines (comments `#`).
-fn check_filter(line: &str) -> Result<(), String> {
+fn check_filter(line: &str, dir: &Path) -> Result<(), String> {
     let (slot, path) = line
         .split_once(' ')
         .ok_or_else(|| format!("bad filter line ^{line}"))?;
     slot.parse::<u32>()
         .map_err(|_| format!("bad filter slot in ^{line}"))?;
-    let text = std::fs::read_to_string(path).map_err(|e| format!("filter file {path}: {e}"))?;
+    // A relative name is GTKWave's: against the save file's folder.
+    let text =
+        std::fs::read_to_string(dir.join(path)).map_err(|e| format!("filter file {path}: {e}"))?;
     for l in text
         .lines()
         .filter(|l| !l.trim().is_empty() && !l.starts_with('#'))
@@ -207,7 +209,25 @@ fn check_filter(line: &str) -> Result<(), String> {
     Ok(())
 }
 
-/// Checks the `.gtkw` beside `vcd`: it exists, names this dump, every trace it lists exists
+/// The view a save file opens on starts inside its dump and is no wider than the dump (or
+/// the ten time units GTKWave shows at least); its marker is inside the dump.
+fn check_view(text: &str) -> Result<(), String> {
+    let v = crate::gtkw::View::parse(text).ok_or("no view (dump range, [timestart], zoom)")?;
+    let (lo, hi) = v.dump;
+    let (a, b) = v.window;
+    // The zoom's six decimals round the window's width by a few parts in a million.
+    let widest = (hi - lo).max(10) + (hi - lo) / 1000 + 1;
+    if a < lo || a > hi || b - a > widest {
+        return Err(format!("the view {a}..{b} leaves the dump {lo}..{hi}"));
+    }
+    match v.marker {
+        Some((t, _)) if t < lo || t > hi => Err(format!("marker at {t} outside the dump")),
+        _ => Ok(()),
+    }
+}
+
+/// Checks the `.gtkw` beside `vcd`: it exists, names this dump, its view and marker lie in
+/// the dump, every trace it lists exists
 /// in `rb` with the width in its `[msb:lsb]` suffix, and every translate filter file it
 /// names is there and well formed. Returns the number of traces.
 pub fn check_gtkw(vcd: &Path, rb: &Readback) -> Result<usize, String> {
@@ -223,6 +243,7 @@ pub fn check_gtkw(vcd: &Path, rb: &Readback) -> Result<usize, String> {
     if !opens {
         return Err(err(format!("does not open {name}")));
     }
+    check_view(&text).map_err(err)?;
     let mut n = 0;
     let mut depth = 0i32;
     let mut last_flags = "";
@@ -232,7 +253,7 @@ pub fn check_gtkw(vcd: &Path, rb: &Readback) -> Result<usize, String> {
             continue;
         }
         if let Some(f) = line.strip_prefix('^') {
-            check_filter(f).map_err(err)?;
+            check_filter(f, g.parent().unwrap_or(Path::new("."))).map_err(err)?;
             continue;
         }
         if line.starts_with('-') {

@@ -2,13 +2,13 @@
 //! co-simulation): scopes `tb.model` and `tb.rtl` with the same ports, `tb.mismatch` with a
 //! flag per port, and a `.gtkw` that puts each RTL port and its flag right under the model's.
 
-use crate::gtkw::{Gtkw, Item, Style};
+use crate::gtkw::{self, Gtkw, Item, Style};
 use std::io::{BufWriter, Write};
 use std::path::Path;
 use vcd::{IdCode, TimescaleUnit};
 
-/// A port: name and width.
-pub type PortDef<'a> = (&'a str, u32);
+/// A port: name, width and whether its format is signed (shown as signed decimal).
+pub type PortDef<'a> = (&'a str, u32, bool);
 
 /// Values shown beside the comparison, not compared: the inputs of every cycle, or signals
 /// inside the model. `values[c][k]` is signal `k`'s value in cycle `c`.
@@ -40,15 +40,18 @@ pub fn write(
     let mut w = vcd::Writer::new(BufWriter::new(f));
     let (ids, shown_ids) = header(&mut w, title, ports, shown).map_err(err)?;
     let mut last: Vec<Option<String>> = vec![None; ids.len()];
+    let mut first = None;
     let mut last_shown: Vec<Vec<Option<String>>> =
         shown.iter().map(|s| vec![None; s.signals.len()]).collect();
     for (c, (m, r)) in model.iter().zip(rtl).enumerate() {
-        w.timestamp(c as u64 * 10_000).map_err(err)?;
+        w.timestamp(c as u64 * PERIOD).map_err(err)?;
         if c == 0 {
             w.begin(vcd::SimulationCommand::Dumpvars).map_err(err)?;
         }
-        for (k, &(_, width)) in ports.iter().enumerate() {
-            let vals = [Some(m[k]), r[k], Some(u64::from(differs(c, k)))];
+        for (k, &(_, width, _)) in ports.iter().enumerate() {
+            let flag = differs(c, k);
+            first = first.or(flag.then_some(c as u64));
+            let vals = [Some(m[k]), r[k], Some(u64::from(flag))];
             for (j, v) in vals.into_iter().enumerate() {
                 let wd = if j == 2 { 1 } else { width };
                 let text = value(v, wd);
@@ -60,7 +63,7 @@ pub fn write(
             }
         }
         for (i, sh) in shown.iter().enumerate() {
-            for (k, &(_, width)) in sh.signals.iter().enumerate() {
+            for (k, &(_, width, _)) in sh.signals.iter().enumerate() {
                 let text = value(sh.values.get(c).and_then(|v| v.get(k)).copied(), width);
                 if last_shown[i][k].as_deref() != Some(text.as_str()) {
                     writeln!(w.writer(), "{text}{}", shown_ids[i][k]).map_err(err)?;
@@ -72,7 +75,7 @@ pub fn write(
             w.end().map_err(err)?;
         }
     }
-    w.timestamp(model.len() as u64 * 10_000).map_err(err)?;
+    w.timestamp(model.len() as u64 * PERIOD).map_err(err)?;
     w.flush().map_err(err)?;
     drop(w);
     let beside = out.is_file();
@@ -80,7 +83,28 @@ pub fn write(
     if !beside {
         return Ok(());
     }
-    gtkw(path, title, ports, shown, model.len() as u64 * 10_000)
+    let end = model.len() as u64 * PERIOD;
+    let active = shown
+        .first()
+        .filter(|s| s.signals.first().map(|p| p.0) == Some("rst"))
+        .map_or(0, |s| out_of_reset(s.values));
+    let view = gtkw::View::whole(0, end, PERIOD).opening(active * PERIOD);
+    let view = match first {
+        Some(c) => view.around(c * PERIOD, "first mismatch"),
+        None => view,
+    };
+    gtkw(path, title, ports, shown, view)
+}
+
+/// The clock period of a comparison's waveform (10 ns).
+const PERIOD: u64 = 10_000;
+
+/// The first cycle whose first shown value (a shown `rst`) is 0: where activity starts.
+fn out_of_reset(values: &[Vec<u64>]) -> u64 {
+    values
+        .iter()
+        .position(|v| v.first() == Some(&0))
+        .unwrap_or(0) as u64
 }
 
 /// `b0101 ` / `1` / `x` text of a value change (the id follows).
@@ -113,7 +137,7 @@ fn header<W: Write>(
     let mut ids = vec![IdCode::FIRST; 3 * ports.len()];
     for (j, scope) in ["model", "rtl", "mismatch"].into_iter().enumerate() {
         w.add_module(scope)?;
-        for (k, &(name, width)) in ports.iter().enumerate() {
+        for (k, &(name, width, _)) in ports.iter().enumerate() {
             ids[3 * k + j] = var(w, name, if j == 2 { 1 } else { width })?;
         }
         w.upscope()?;
@@ -124,7 +148,7 @@ fn header<W: Write>(
         let v: std::io::Result<Vec<IdCode>> = sh
             .signals
             .iter()
-            .map(|&(name, width)| var(w, name, width))
+            .map(|&(name, width, _)| var(w, name, width))
             .collect();
         shown_ids.push(v?);
         w.upscope()?;
@@ -134,12 +158,13 @@ fn header<W: Write>(
     Ok((ids, shown_ids))
 }
 
-/// A `width`-bit trace of the save file: `path` with its range (vectors in hex, bits in
-/// binary), under `alias` when one is given (`+{u0 model} `).
-fn trace(alias: &str, path: &str, width: u32) -> Item {
-    let (range, style) = match width {
-        1 => (String::new(), Style::Bin),
-        w => (format!("[{}:0]", w - 1), Style::Hex),
+/// A `width`-bit trace of the save file: `path` with its range (vectors in decimal, signed
+/// ones in signed decimal, bits in binary), under `alias` when one is given (`+{u0 model} `).
+fn trace(alias: &str, path: &str, (width, signed): (u32, bool)) -> Item {
+    let (range, style) = match (width, signed) {
+        (1, _) => (String::new(), Style::Bin),
+        (w, false) => (format!("[{}:0]", w - 1), Style::Dec),
+        (w, true) => (format!("[{}:0]", w - 1), Style::SignedDec),
     };
     Item::Trace {
         name: format!("{alias}{path}{range}"),
@@ -153,25 +178,30 @@ fn gtkw(
     title: &str,
     ports: &[PortDef],
     shown: &[Shown],
-    end: u64,
+    view: gtkw::View,
 ) -> Result<(), String> {
     let mut g = Gtkw::new(vcd);
-    g.set_end_time(end);
+    g.set_view(view);
     g.treeopen("tb");
     for sh in shown {
         g.begin_group(sh.scope, "tb");
-        for &(name, width) in sh.signals {
-            g.push(trace("", &format!("tb.{}.{name}", sh.scope), width));
+        for &(name, width, signed) in sh.signals {
+            let path = format!("tb.{}.{name}", sh.scope);
+            g.push(trace("", &path, (width, signed)));
         }
         g.end_group();
     }
-    for &(name, width) in ports {
+    for &(name, width, signed) in ports {
         g.begin_group(name, "tb");
         // Each trace under an alias (`+{u0 model}`): GTKWave shows leaf names, the same in
         // both scopes.
         for (scope, label) in [("model", "model"), ("rtl", "RTL")] {
             let alias = format!("+{{{name} {label}}} ");
-            g.push(trace(&alias, &format!("tb.{scope}.{name}"), width));
+            g.push(trace(
+                &alias,
+                &format!("tb.{scope}.{name}"),
+                (width, signed),
+            ));
         }
         g.push(Item::Trace {
             name: format!("+{{{name} mismatch}} tb.mismatch.{name}"),

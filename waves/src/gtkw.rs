@@ -1,10 +1,19 @@
 //! GTKWave save files (`.gtkw`) that open a trace with the signals grouped per unit.
 //!
+//! A save file opens on a window a person can read: the first cycles of activity after reset,
+//! or the cycles around a failing run's first mismatch with GTKWave's marker A on it (named,
+//! and also the primary marker, so the signal pane lists every value of that cycle). Each
+//! trace's radix follows its format: binary for one bit, decimal for unsigned numbers, signed
+//! decimal for signed ones, state names for an FSM, hex only where the trace configuration
+//! asks for it.
+//!
 //! Trace flags (hex, from GTKWave's save-file format): binary 0x8, hex 0x2, decimal 0x4,
 //! signed 0x400, right-justify 0x20, translate filter file 0x2000, analog step 0x8000, real
 //! 0x40000, blank/comment 0x200, group begin 0x800000, group end 0x1000000. A trace shown
 //! through a translate filter file (the names of an FSM's states) is preceded by a line
-//! `^N /path/to/filter`, which loads that file into GTKWave's filter slot N.
+//! `^N filter`, which loads that file into GTKWave's filter slot N. A filter beside the save
+//! file is named by its file name alone: GTKWave resolves it against the save file's folder,
+//! so a copied output folder keeps its state names.
 
 use std::io;
 use std::path::{Path, PathBuf};
@@ -14,7 +23,9 @@ use std::path::{Path, PathBuf};
 pub enum Style {
     /// One-bit signals: binary.
     Bin,
-    /// Unsigned vectors: hexadecimal.
+    /// Unsigned vectors: decimal.
+    Dec,
+    /// Unsigned vectors where asked: hexadecimal.
     Hex,
     /// Signed vectors: signed decimal (the raw two's complement integer).
     SignedDec,
@@ -30,6 +41,7 @@ impl Style {
         const RJUSTIFY: u32 = 0x20;
         match self {
             Style::Bin => 0x8 | RJUSTIFY,
+            Style::Dec => 0x4 | RJUSTIFY,
             Style::Hex => 0x2 | RJUSTIFY,
             Style::SignedDec => 0x4 | 0x400 | RJUSTIFY,
             Style::Analog => 0x8000 | 0x40000 | RJUSTIFY,
@@ -55,6 +67,155 @@ pub enum Item {
     GroupEnd(String),
 }
 
+/// Cycles shown when a view opens on the start of activity: with the default 1600-pixel
+/// window about 14 pixels a cycle, enough for a decimal value that holds for three cycles.
+pub const OPENING_CYCLES: u64 = 64;
+/// Cycles shown before a failing run's first mismatch (where its causes are) ...
+pub const CYCLES_BEFORE: u64 = 40;
+/// ... and after it.
+pub const CYCLES_AFTER: u64 = 24;
+
+/// What a save file opens on: the dump's time range, its clock, the window shown and a named
+/// marker. Times are the dump's (picoseconds).
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub struct View {
+    /// First and last time in the dump.
+    pub dump: (u64, u64),
+    /// The clock period.
+    pub period: u64,
+    /// First and last time shown.
+    pub window: (u64, u64),
+    /// Marker A: time and name.
+    pub marker: Option<(u64, String)>,
+}
+
+impl View {
+    /// The whole dump `[start, end]`, clocked at `period`.
+    pub fn whole(start: u64, end: u64, period: u64) -> View {
+        View {
+            dump: (start, end.max(start)),
+            period: period.max(1),
+            window: (start, end.max(start)),
+            marker: None,
+        }
+    }
+
+    /// Opens on [`OPENING_CYCLES`] from a couple of cycles before `active` (the first cycle
+    /// out of reset), inside the dump.
+    pub fn opening(mut self, active: u64) -> View {
+        let (lo, hi) = self.dump;
+        let start = active.saturating_sub(2 * self.period).clamp(lo, hi);
+        self.window = (
+            start,
+            start.saturating_add(OPENING_CYCLES * self.period).min(hi),
+        );
+        self
+    }
+
+    /// Opens around the cycle starting at time `t`, with marker A named `name` half-way into
+    /// it; a time outside the dump leaves the view as it is.
+    pub fn around(mut self, t: u64, name: &str) -> View {
+        let (lo, hi) = self.dump;
+        if t < lo || t > hi {
+            return self;
+        }
+        let start = t.saturating_sub(CYCLES_BEFORE * self.period).max(lo);
+        let end = t.saturating_add(CYCLES_AFTER * self.period).min(hi);
+        self.window = (start, end);
+        self.marker = Some(((t + self.period / 2).min(hi), name.to_string()));
+        self
+    }
+
+    /// The header lines: the dump's range and clock as a comment (what [`focus`] reads back),
+    /// the first time shown, the zoom that fits the window and the markers.
+    fn render(&self) -> String {
+        let (a, b) = self.window;
+        // At zoom 0 GTKWave 3.3 shows about 5 time units across the wave pane and each unit of
+        // zoom halves or doubles that (measured under Xvfb): fit the window, with a margin.
+        let zoom = -(((b - a).max(10) as f64) * 1.05 / 5.0).log2();
+        let mut s = format!(
+            "[*] dump {} {} ps, clock period {} ps\n[timestart] {a}\n[size] 1600 900\n[pos] -1 -1\n",
+            self.dump.0, self.dump.1, self.period
+        );
+        match &self.marker {
+            Some((t, name)) => {
+                s.push_str(&format!("*{zoom:.6} {t} {t}\n[markername] A{name}\n"));
+            }
+            None => s.push_str(&format!("*{zoom:.6} -1\n")),
+        }
+        s
+    }
+
+    /// Reads the view back from a save file's text (written by [`Gtkw::render`]).
+    pub fn parse(text: &str) -> Option<View> {
+        let mut words = text
+            .lines()
+            .find_map(|l| l.strip_prefix("[*] dump "))?
+            .split([' ', ',']);
+        let mut num = || words.find_map(|w| w.parse::<u64>().ok());
+        let (lo, hi, period) = (num()?, num()?, num()?);
+        let start = text.lines().find_map(|l| l.strip_prefix("[timestart] "))?;
+        let start: u64 = start.trim().parse().ok()?;
+        let zoom_line = text.lines().find(|l| l.starts_with('*'))?;
+        let zoom: f64 = zoom_line[1..].split(' ').next()?.parse().ok()?;
+        let span = (5.0 * (-zoom).exp2() / 1.05).round() as u64;
+        let marker = zoom_line.split(' ').nth(2).and_then(|t| t.parse().ok());
+        let name = text.lines().find_map(|l| l.strip_prefix("[markername] A"));
+        Some(View {
+            dump: (lo, hi),
+            period,
+            window: (start, start + span),
+            marker: marker.map(|t| (t, name.unwrap_or("").to_string())),
+        })
+    }
+}
+
+/// Rewrites the view of the save file at `gtkw` (one texrtl wrote) to open around clock cycle
+/// `cycle` with marker A named `name` on it: what a failing run's waveform opens on once the
+/// run knows where its first mismatch is. A cycle outside the dump leaves the file alone.
+pub fn focus(gtkw: &Path, cycle: u64, name: &str) -> io::Result<()> {
+    let text = std::fs::read_to_string(gtkw)?;
+    let bad = || {
+        io::Error::new(
+            io::ErrorKind::InvalidData,
+            format!("{}: not a texrtl save file", gtkw.display()),
+        )
+    };
+    let view = View::parse(&text).ok_or_else(bad)?;
+    let t = cycle.saturating_mul(view.period);
+    if t < view.dump.0 || t > view.dump.1 {
+        return Ok(());
+    }
+    let head = View {
+        marker: None,
+        ..view
+    }
+    .around(t, name)
+    .render();
+    let mut out = String::new();
+    let mut placed = false;
+    for line in text.lines() {
+        let header = [
+            "[*] dump ",
+            "[timestart] ",
+            "[size] ",
+            "[pos] ",
+            "*",
+            "[markername] ",
+        ];
+        if header.iter().any(|h| line.starts_with(h)) {
+            if !placed {
+                out.push_str(&head);
+                placed = true;
+            }
+            continue;
+        }
+        out.push_str(line);
+        out.push('\n');
+    }
+    crate::output::write_output(gtkw, out.as_bytes())
+}
+
 /// A save file being assembled.
 #[derive(Clone, Debug)]
 pub struct Gtkw {
@@ -63,7 +224,7 @@ pub struct Gtkw {
     items: Vec<Item>,
     open: Vec<String>,
     tree: Vec<String>,
-    end_time: u64,
+    view: View,
 }
 
 /// The trace name without a `[msb:lsb]` suffix.
@@ -85,7 +246,7 @@ impl Gtkw {
             items: Vec::new(),
             open: Vec::new(),
             tree: Vec::new(),
-            end_time: 0,
+            view: View::whole(0, 0, 1),
         }
     }
 
@@ -96,7 +257,12 @@ impl Gtkw {
 
     /// The dump's last timestamp: the view opens zoomed to show all of it.
     pub fn set_end_time(&mut self, t: u64) {
-        self.end_time = t;
+        self.view = View::whole(0, t, 1);
+    }
+
+    /// What the save file opens on.
+    pub fn set_view(&mut self, view: View) {
+        self.view = view;
     }
 
     /// Expands scope `path` in the signal tree.
@@ -155,11 +321,7 @@ impl Gtkw {
         s.push_str(&format!("[dumpfile] \"{}\"\n", self.dumpfile));
         let save = std::path::absolute(&self.path).unwrap_or_else(|_| self.path.clone());
         s.push_str(&format!("[savefile] \"{}\"\n", save.display()));
-        s.push_str("[timestart] 0\n[size] 1600 900\n[pos] -1 -1\n");
-        // At zoom 0 GTKWave 3.3 shows about 5 time units across the wave pane and each unit of
-        // zoom halves or doubles that (measured under Xvfb): fit the whole run, with a margin.
-        let zoom = -((self.end_time.max(10) as f64) * 1.05 / 5.0).log2();
-        s.push_str(&format!("*{zoom:.6} 0\n"));
+        s.push_str(&self.view.render());
         s.push_str(
             "[sst_width] 260\n[signals_width] 300\n[sst_expanded] 1\n[sst_vpaned_height] 260\n",
         );
@@ -188,8 +350,7 @@ impl Gtkw {
                                 filters.len()
                             }
                         };
-                        let abs = std::path::absolute(f).unwrap_or_else(|_| f.clone());
-                        s.push_str(&format!("^{slot} {}\n", abs.display()));
+                        s.push_str(&format!("^{slot} {}\n", self.filter_name(f)));
                     }
                     s.push_str(name);
                     s.push('\n');
@@ -206,6 +367,23 @@ impl Gtkw {
         }
         s.push_str("[pattern_trace] 1\n[pattern_trace] 0\n");
         s
+    }
+
+    /// How the save file names filter file `f`: its file name when it lies beside the save
+    /// file, else its absolute path.
+    fn filter_name(&self, f: &Path) -> String {
+        let dir = |p: &Path| {
+            std::path::absolute(p)
+                .ok()
+                .and_then(|a| a.parent().map(Path::to_path_buf))
+        };
+        match (dir(f), dir(&self.path), f.file_name()) {
+            (Some(a), Some(b), Some(n)) if a == b => n.to_string_lossy().into_owned(),
+            _ => std::path::absolute(f)
+                .unwrap_or_else(|_| f.to_path_buf())
+                .display()
+                .to_string(),
+        }
     }
 
     /// Writes the save file (via a temporary name, so it is never left half written).
@@ -299,35 +477,98 @@ mod tests {
         assert_eq!(order.join(" "), want);
     }
 
-    /// The whole text: header with the zoom that fits the run, the open scopes, a flags line
-    /// only where the style changes, filter slots by first use, empty groups left out.
+    /// The whole text: header with the view, the open scopes, a flags line only where the
+    /// style changes, filter slots by first use (beside the save file: by file name), empty
+    /// groups left out.
     #[test]
     fn a_save_file_renders_line_for_line() {
         let mut g = Gtkw::new(Path::new("/w/x.vcd"));
-        g.set_end_time(1000);
+        g.set_view(View::whole(0, 1000, 10));
         g.treeopen("tb");
         g.begin_group("u", "tb.u");
         g.push(trace("tb.u.a", Style::Bin));
         g.push(trace("tb.u.b", Style::Bin));
-        g.push(trace("tb.u.c[7:0]", Style::Hex));
+        g.push(trace("tb.u.c[7:0]", Style::Dec));
         g.push(named("tb.u.s[1:0]", "/w/s.txt"));
-        g.push(named("tb.u.t[1:0]", "/w/t.txt"));
+        g.push(named("tb.u.t[1:0]", "/v/t.txt"));
         g.push(named("tb.u.s2[1:0]", "/w/s.txt"));
         g.end_group();
         g.begin_group("empty", "tb.e");
         g.end_group();
         let want = "[*] texrtl: T\n[dumpfile] \"/w/x.vcd\"\n[savefile] \"/w/x.gtkw\"\n\
-            [timestart] 0\n[size] 1600 900\n[pos] -1 -1\n*-7.714246 0\n\
+            [*] dump 0 1000 ps, clock period 10 ps\n\
+            [timestart] 0\n[size] 1600 900\n[pos] -1 -1\n*-7.714246 -1\n\
             [sst_width] 260\n[signals_width] 300\n[sst_expanded] 1\n[sst_vpaned_height] 260\n\
             [treeopen] tb.\n[treeopen] tb.u.\n[treeopen] tb.e.\n\
-            @800200\n-u\n@28\ntb.u.a\ntb.u.b\n@22\ntb.u.c[7:0]\n\
-            @2024\n^1 /w/s.txt\ntb.u.s[1:0]\n^2 /w/t.txt\ntb.u.t[1:0]\n^1 /w/s.txt\ntb.u.s2[1:0]\n\
+            @800200\n-u\n@28\ntb.u.a\ntb.u.b\n@24\ntb.u.c[7:0]\n\
+            @2024\n^1 s.txt\ntb.u.s[1:0]\n^2 /v/t.txt\ntb.u.t[1:0]\n^1 s.txt\ntb.u.s2[1:0]\n\
             @1000200\n-u\n[pattern_trace] 1\n[pattern_trace] 0\n";
         assert_eq!(g.render("T"), want);
         g.set_end_time(0);
         assert!(
-            g.render("T").contains("\n*-1.070389 0\n"),
+            g.render("T").contains("\n*-1.070389 -1\n"),
             "at least 10 units shown"
         );
+    }
+
+    /// A view opens on the first cycles of activity, or around a time with marker A half-way
+    /// into its cycle, always inside the dump; what is rendered parses back.
+    #[test]
+    fn views_open_on_activity_or_around_a_mismatch_inside_the_dump() {
+        let p = 100;
+        let whole = View::whole(0, 100_000, p);
+        let open = whole.clone().opening(500);
+        assert_eq!(open.window, (300, 300 + OPENING_CYCLES * p));
+        assert_eq!(whole.clone().opening(99_950).window, (99_750, 100_000));
+        let at = whole.clone().around(50_000, "first mismatch");
+        assert_eq!(
+            at.window,
+            (50_000 - CYCLES_BEFORE * p, 50_000 + CYCLES_AFTER * p)
+        );
+        assert_eq!(at.marker, Some((50_050, "first mismatch".to_string())));
+        assert_eq!(
+            whole.clone().around(1_000, "m").window.0,
+            0,
+            "clamped at the start"
+        );
+        assert_eq!(
+            whole.clone().around(200_000, "m"),
+            whole,
+            "outside: unchanged"
+        );
+        for v in [open, at] {
+            let back = View::parse(&v.render()).unwrap();
+            assert_eq!(
+                (back.dump, back.period, back.marker.clone()),
+                (v.dump, v.period, v.marker.clone())
+            );
+            assert_eq!(back.window.0, v.window.0);
+            assert!(back.window.1.abs_diff(v.window.1) <= 1, "{back:?} {v:?}");
+        }
+    }
+
+    /// `focus` moves a written save file's view to a mismatch, marker and all, and keeps the
+    /// rest of the file line for line; a time outside the dump leaves it alone.
+    #[test]
+    fn focus_rewrites_only_the_view() {
+        let dir = std::env::temp_dir().join(format!("texrtl-gtkw-{}", std::process::id()));
+        std::fs::create_dir_all(&dir).unwrap();
+        let mut g = Gtkw::new(&dir.join("x.vcd"));
+        g.set_view(View::whole(0, 1_000_000, 1000).opening(0));
+        g.push(trace("tb.u.a", Style::Bin));
+        g.write("T").unwrap();
+        let before = std::fs::read_to_string(g.path()).unwrap();
+        focus(g.path(), 2_000, "m").unwrap();
+        assert_eq!(std::fs::read_to_string(g.path()).unwrap(), before);
+        focus(g.path(), 500, "first mismatch").unwrap();
+        let after = std::fs::read_to_string(g.path()).unwrap();
+        let mut g2 = g.clone();
+        g2.set_view(View::whole(0, 1_000_000, 1000).around(500_000, "first mismatch"));
+        assert_eq!(after, g2.render("T"));
+        assert!(
+            after.contains("\n*-13.714246 500500 500500\n[markername] Afirst mismatch\n"),
+            "{after}"
+        );
+        std::fs::remove_dir_all(&dir).unwrap();
     }
 }

@@ -1,7 +1,7 @@
 //! A VCD tracer for the kernel's [`Sim`](hdl::kernel::Sim), written with the `vcd` crate.
 
 use crate::glob::glob_match;
-use crate::gtkw::{Gtkw, Item, Style};
+use crate::gtkw::{Gtkw, Item, Style, View};
 use crate::output::Staged;
 use crate::vcd_writer::{Code, Rec, WriterThread, BATCH};
 use hdl::fx::Format;
@@ -29,8 +29,13 @@ pub struct TraceConfig {
     pub filters: Vec<String>,
     /// Cycles `[start, end)` to record; `None` = the whole run.
     pub window: Option<(u64, u64)>,
-    /// Add a `real` companion (`<name>_real`) for every fixed-point signal (fraction bits != 0).
+    /// Add a `real` companion (`<name>_real`: the value as a number) for every numeric vector,
+    /// fixed-point and integer formats, not flags or FSM states; the `.gtkw` shows the
+    /// fixed-point ones as analog steps under their signal.
     pub companions: bool,
+    /// Glob patterns (as in `filters`) of the vectors shown in hexadecimal; the others show as
+    /// numbers (unsigned or signed decimal, by their format).
+    pub hex: Vec<String>,
     /// Also write the FST beside the VCD (same name, `.fst`), directly while simulating
     /// ([`crate::FstTracer`]: the design's variables, no companions, no probes).
     pub fst: bool,
@@ -78,6 +83,7 @@ impl Default for TraceConfig {
             filters: Vec::new(),
             window: None,
             companions: true,
+            hex: Vec::new(),
             fst: false,
         }
     }
@@ -211,6 +217,9 @@ pub struct VcdTracer {
     rst_last: Option<bool>,
     dumped: bool,
     last_time: Option<u64>,
+    /// The first time dumped and the first cycle out of reset: where the view opens.
+    first_time: u64,
+    active: Option<u64>,
     /// The records not yet handed to the writer thread (which formats them; see
     /// [`crate::vcd_writer`]), and the thread, from the end of the declarations until
     /// `finish`; `w` is with the thread meanwhile.
@@ -272,6 +281,8 @@ impl VcdTracer {
             rst_last: None,
             dumped: false,
             last_time: None,
+            first_time: 0,
+            active: None,
             recs: Vec::with_capacity(BATCH),
             thread: None,
             fst,
@@ -451,7 +462,10 @@ impl VcdTracer {
             // A device or pipe: no view or filter files beside it.
             return Ok(());
         }
-        self.gtkw.set_end_time(self.last_time.unwrap_or(0));
+        let (lo, hi) = (self.first_time, self.last_time.unwrap_or(0));
+        let active = self.active.map_or(lo, |c| c * self.cfg.period_ps);
+        let view = View::whole(lo, hi, self.cfg.period_ps).opening(active);
+        self.gtkw.set_view(view);
         for (path, names) in &self.filters {
             write_filter(path, names)?;
         }
@@ -578,7 +592,7 @@ impl Visitor for Declare<'_> {
                 .add_var(VarType::Wire, w, &name, idx)
                 .and_then(|id| {
                     e.id = Some(id);
-                    if self.t.cfg.companions && fmt.frac() != 0 {
+                    if self.t.cfg.companions && w > 1 && s.states().is_none() {
                         e.real = Some(self.t.writer().add_var(
                             VarType::Real,
                             64,
@@ -595,10 +609,12 @@ impl Visitor for Declare<'_> {
             e.real_code = e.real.map(code_of).unwrap_or_default();
             let style = if w == 1 {
                 Style::Bin
+            } else if self.t.cfg.hex.iter().any(|g| glob_match(g, &full)) {
+                Style::Hex
             } else if fmt.is_signed() {
                 Style::SignedDec
             } else {
-                Style::Hex
+                Style::Dec
             };
             let vname = if w > 1 {
                 format!("{full}[{}:0]", w - 1)
@@ -616,7 +632,10 @@ impl Visitor for Declare<'_> {
                 style,
                 filter,
             });
-            if e.real.is_some() {
+            // An integer's companion is in the dump (for an analog view of it, added from the
+            // signal tree); the view lists fixed-point ones, whose value the raw row does not
+            // show.
+            if e.real.is_some() && fmt.frac() != 0 {
                 self.t.gtkw.push(Item::Trace {
                     name: format!("{full}_real"),
                     style: Style::Analog,
@@ -765,7 +784,11 @@ impl Trace for VcdTracer {
                     } else {
                         full
                     },
-                    style: if real { Style::Analog } else { Style::Hex },
+                    style: match (real, width) {
+                        (true, _) => Style::Analog,
+                        (false, 1) => Style::Bin,
+                        (false, _) => Style::Dec,
+                    },
                     filter: None,
                 };
                 let beside = self.probes[i].beside.clone();
@@ -797,12 +820,16 @@ impl Trace for VcdTracer {
         recs.push(Rec::time(t));
         if all {
             recs.push(Rec::text(false));
+            self.first_time = t;
         }
         recs.push(Rec::bits(clk, 1));
         let mut n = 1;
         if all || self.rst_last != Some(reset) {
             recs.push(Rec::bits(rst, u64::from(reset)));
             self.rst_last = Some(reset);
+            if !reset && self.active.is_none() {
+                self.active = Some(cycle);
+            }
             n += 1;
         }
         let mut s = Sample {

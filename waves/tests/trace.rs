@@ -470,10 +470,10 @@ fn probes_and_single_bits_are_named_as_gtkwave_names_them() {
     assert_eq!(declared("u_in").as_deref(), Some("[7:0] $end"));
     let g = std::fs::read_to_string(path.with_extension("gtkw")).unwrap();
     for (name, flags) in [
-        ("tb.golden.f", "22"),
-        ("tb.golden.b[7:0]", "22"),
+        ("tb.golden.f", "28"),
+        ("tb.golden.b[7:0]", "24"),
         ("tb.blend_adjust_153.valid_in", "28"),
-        ("tb.blend_adjust_153.u_in[7:0]", "22"),
+        ("tb.blend_adjust_153.u_in[7:0]", "24"),
     ] {
         assert_eq!(flags_of(&g, name), Some(flags), "{name} in\n{g}");
     }
@@ -592,7 +592,13 @@ fn check_written(name: &str, lines: &str) -> Result<usize, String> {
     let rb = read_vcd(&vcd).unwrap();
     assert_eq!(rb.timescale_exp, Some(-11), "10 ps");
     assert_eq!(rb.times, [0, 3]);
-    let gtkw = format!("[dumpfile] \"{}\"\n{lines}", vcd.display());
+    let default = "[*] dump 0 3 ps, clock period 1 ps\n[timestart] 0\n*-1.0 -1\n";
+    let view = if lines.contains("[*] dump") {
+        ""
+    } else {
+        default
+    };
+    let gtkw = format!("[dumpfile] \"{}\"\n{view}{lines}", vcd.display());
     std::fs::write(vcd.with_extension("gtkw"), gtkw).unwrap();
     check_gtkw(&vcd, &rb)
 }
@@ -639,6 +645,16 @@ fn save_files_are_checked_line_by_line() {
             "'0x1' is not a decimal value",
         ),
         ("groups", "@800200\n-g\n".into(), "unbalanced groups"),
+        (
+            "marker",
+            "[*] dump 0 3 ps, clock period 1 ps\n[timestart] 0\n*-1.0 7 7\n".into(),
+            "marker at 7 outside the dump",
+        ),
+        (
+            "late",
+            "[*] dump 0 3 ps, clock period 1 ps\n[timestart] 5\n*-1.0 -1\n".into(),
+            "the view 5..15 leaves the dump 0..3",
+        ),
         ("closed", "@1000200\n-g\n".into(), "group closed twice"),
     ] {
         let e = check_written(name, &lines).unwrap_err();
@@ -652,7 +668,7 @@ fn save_files_are_checked_line_by_line() {
 #[test]
 fn a_comparison_waveform_shows_model_rtl_and_mismatch() {
     let path = tmpdir("compare").join("c.vcd");
-    let ports = [("ok", 1), ("u", 8)];
+    let ports = [("ok", 1, false), ("u", 8, false)];
     let model = vec![vec![1, 5], vec![1, 6], vec![0, 6], vec![0, 7]];
     let rtl = vec![
         vec![Some(1), Some(5)],
@@ -662,7 +678,7 @@ fn a_comparison_waveform_shows_model_rtl_and_mismatch() {
     ];
     let differs = |c: usize, k: usize| rtl[c][k] != Some(model[c][k]);
     let stim = vec![vec![1, 3], vec![0, 3], vec![0, 4], vec![0, 4]];
-    let inputs = [("rst", 1), ("a", 4)];
+    let inputs = [("rst", 1, false), ("a", 4, true)];
     let shown = [waves::compare::Shown {
         scope: "inputs",
         signals: &inputs,
@@ -719,15 +735,19 @@ fn a_comparison_waveform_shows_model_rtl_and_mismatch() {
     );
     for (name, flags) in [
         ("+{ok model} tb.model.ok", "28"),
-        ("+{u RTL} tb.rtl.u[7:0]", "22"),
+        ("+{u RTL} tb.rtl.u[7:0]", "24"),
         ("+{u mismatch} tb.mismatch.u", "28"),
+        ("tb.inputs.a[3:0]", "424"),
     ] {
         assert_eq!(flags_of(&g, name), Some(flags), "{name} in\n{g}");
     }
     assert!(g.contains("@800200\n-u\n"), "a group per port");
     assert!(
-        g.contains("*-13.036174 0\n"),
-        "zoomed to the four cycles:\n{g}"
+        g.contains(
+            "[timestart] 0\n[size] 1600 900\n[pos] -1 -1\n*-13.036174 15000 15000\n\
+                    [markername] Afirst mismatch\n"
+        ),
+        "zoomed to the four cycles, marker A on the first mismatch (cycle 1):\n{g}"
     );
 }
 
@@ -806,9 +826,113 @@ fn each_kind_of_state_machine_has_its_filter_file() {
     let g = read("m.gtkw");
     let slots: Vec<&str> = g.lines().filter(|l| l.starts_with('^')).collect();
     assert_eq!(slots.len(), 3, "{g}");
-    assert!(slots[0].starts_with("^1 ") && slots[0].ends_with("m.ctl.state.txt"));
+    assert_eq!(
+        slots[0], "^1 m.ctl.state.txt",
+        "beside the save file: by name"
+    );
     assert_eq!(slots[1], slots[0], "a kind's instances share their file");
-    assert!(slots[2].starts_with("^2 ") && slots[2].ends_with("m.fill.state.txt"));
+    assert_eq!(slots[2], "^2 m.fill.state.txt");
+    // A copy of the folder, the original gone: its save file still finds its filters.
+    let copy = tmpdir("fsm-copy");
+    for f in ["m.vcd", "m.gtkw", "m.ctl.state.txt", "m.fill.state.txt"] {
+        std::fs::copy(dir.join(f), copy.join(f)).unwrap();
+    }
+    std::fs::remove_dir_all(dir).unwrap();
+    let moved = copy.join("m.vcd");
+    assert_eq!(check_gtkw(&moved, &read_vcd(&moved).unwrap()), Ok(2 + 3));
+}
+
+/// Integer registers of both signs, one-bit flags and a hex-shown address, counting from
+/// the first cycle out of reset.
+struct Counters {
+    count: hdl::kernel::Signal,
+    delta: hdl::kernel::Signal,
+    addr: hdl::kernel::Signal,
+    odd: hdl::kernel::Signal,
+    n: u64,
+}
+
+impl hdl::kernel::Module for Counters {
+    fn kind(&self) -> &'static str {
+        "counters"
+    }
+    fn eval(&mut self) {}
+    fn tick(&mut self, reset: bool) {
+        self.n = if reset { 0 } else { self.n + 1 };
+        self.count.set_bits(self.n & 0xff);
+        self.delta.set_bits((self.n.wrapping_neg()) & 0x3f);
+        self.addr.set_bits(0x1000 + self.n);
+        self.odd.set_bits(self.n & 1);
+    }
+    fn visit(&self, v: &mut dyn hdl::kernel::Visitor) {
+        v.enter("c", "counters");
+        for s in [&self.count, &self.delta, &self.addr, &self.odd] {
+            v.signal(hdl::kernel::Dir::Output, s);
+        }
+        v.leave();
+    }
+}
+
+/// The radix follows the format (decimal unsigned, signed decimal, binary bits, hex where a
+/// pattern asks), integer vectors have `real` companions in the dump, and the view opens on
+/// the first cycles out of reset, [`waves::gtkw::OPENING_CYCLES`] of them.
+#[test]
+fn radix_companions_and_the_opening_view_follow_the_formats() {
+    use hdl::fx::Format;
+    let sig = |n, f| hdl::kernel::Signal::new(n, f);
+    let dut = Counters {
+        count: sig("count", Format::uint(8)),
+        delta: sig("delta", Format::sint(6)),
+        addr: sig("addr", Format::uint(16)),
+        odd: sig("odd", Format::uint(1)),
+        n: 0,
+    };
+    let path = tmpdir("radix").join("c.vcd");
+    let cfg = TraceConfig {
+        hex: vec!["*.addr".into()],
+        ..TraceConfig::default()
+    };
+    let mut sim = Sim::traced(dut, VcdTracer::create(&path, "counters", cfg).unwrap()).unwrap();
+    sim.reset(300);
+    for _ in 0..1000 {
+        sim.eval();
+        sim.tick();
+    }
+    sim.finish().unwrap();
+    let rb = read_vcd(&path).unwrap();
+    check_gtkw(&path, &rb).unwrap();
+    let g = std::fs::read_to_string(path.with_extension("gtkw")).unwrap();
+    for (name, flags) in [
+        ("tb.c.count[7:0]", "24"),
+        ("tb.c.delta[5:0]", "424"),
+        ("tb.c.addr[15:0]", "22"),
+        ("tb.c.odd", "28"),
+    ] {
+        assert_eq!(flags_of(&g, name), Some(flags), "{name} in\n{g}");
+    }
+    let t = 310 * 10_000;
+    assert_eq!(rb.value_at("tb.c.count_real", t), Some(&Value::Real(10.0)));
+    assert_eq!(rb.value_at("tb.c.delta_real", t), Some(&Value::Real(-10.0)));
+    assert!(
+        !rb.vars.contains_key("tb.c.odd_real"),
+        "no companion for a bit"
+    );
+    assert!(
+        !g.contains("count_real"),
+        "integer companions stay out of the view"
+    );
+    let v = waves::gtkw::View::parse(&g).unwrap();
+    assert_eq!(
+        v.window.0,
+        298 * 10_000,
+        "two cycles before the reset falls"
+    );
+    let span = v.window.1 - v.window.0;
+    assert!(
+        span.abs_diff(waves::gtkw::OPENING_CYCLES * 10_000) <= 10,
+        "{v:?}"
+    );
+    assert_eq!(v.marker, None);
 }
 
 /// The tracer's change count is what the file holds: every change but the clock's falls,

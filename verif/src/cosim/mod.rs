@@ -634,11 +634,13 @@ pub fn run_with(
         (resets, history),
     );
     let vcd = dir.join(format!("{}_cosim.vcd", unit.name()));
-    let defs: Vec<(&str, u32)> = outs
+    let defs: Vec<(&str, u32, bool)> = outs
         .iter()
-        .map(|p| (p.name.as_str(), p.fmt.width()))
+        .map(|p| (p.name.as_str(), p.fmt.width(), p.fmt.is_signed()))
         .collect();
-    let differs = |c: usize, k: usize| rules.differs(k, &expected[c], &got[c]);
+    // Flagged where the comparison counts a difference: not before its first compared cycle.
+    let differs =
+        |c: usize, k: usize| c >= FIRST_COMPARED && rules.differs(k, &expected[c], &got[c]);
     let watched_ports = model.watched();
     let (inputs, watch) = (shown_ports(&ins, true), shown_ports(&watched_ports, false));
     let stim_rst: Vec<Vec<u64>> = (0..cycles)
@@ -675,10 +677,14 @@ pub fn run_with(
 }
 
 /// Names and widths of `ports` for the waveform, after a 1-bit `rst` when `with_reset`.
-fn shown_ports(ports: &[Port], with_reset: bool) -> Vec<(&str, u32)> {
-    let rst = with_reset.then_some(("rst", 1));
+fn shown_ports(ports: &[Port], with_reset: bool) -> Vec<(&str, u32, bool)> {
+    let rst = with_reset.then_some(("rst", 1, false));
     rst.into_iter()
-        .chain(ports.iter().map(|p| (p.name.as_str(), p.fmt.width())))
+        .chain(
+            ports
+                .iter()
+                .map(|p| (p.name.as_str(), p.fmt.width(), p.fmt.is_signed())),
+        )
         .collect()
 }
 

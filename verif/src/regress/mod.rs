@@ -362,6 +362,7 @@ pub fn regress(
         }
     }
     for r in &mut results {
+        focus_on_mismatch(r);
         check_waveform(r, cfg.fst);
     }
     let passed = results.iter().all(|r| r.passed);
@@ -441,6 +442,19 @@ fn vectors_row(project: &Project, dir: &std::path::Path) -> TbResult {
     }
     r.finish_with(false);
     r
+}
+
+/// A failing result's waveform opens at its first mismatch, marker A on it.
+fn focus_on_mismatch(r: &mut TbResult) {
+    let (Some(vcd), Some(c)) = (&r.vcd, r.first_mismatch_cycle) else {
+        return;
+    };
+    let g = vcd.with_extension("gtkw");
+    if g.is_file() {
+        if let Err(e) = waves::gtkw::focus(&g, c, "first mismatch") {
+            r.failures.push(format!("waveform: {e}"));
+        }
+    }
 }
 
 /// Without the `read` feature the waveforms are not read back.
