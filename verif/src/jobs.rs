@@ -398,6 +398,90 @@ mod tests {
         out
     }
 
+    /// Validates `xml` against the JUnit schema the strictest reader accepts, with libxml2's
+    /// `xmllint` (Debian's libxml2-utils, which `.ci/run` installs). Without it the check is
+    /// skipped with a note, unless `CI` is set.
+    fn schema_valid(xml: &str) -> Result<(), String> {
+        use std::io::Write;
+        let xsd = concat!(env!("CARGO_MANIFEST_DIR"), "/schema/junit.xsd");
+        let child = std::process::Command::new("xmllint")
+            .args(["--noout", "--schema", xsd, "-"])
+            .stdin(std::process::Stdio::piped())
+            .stdout(std::process::Stdio::piped())
+            .stderr(std::process::Stdio::piped())
+            .spawn();
+        let mut child = match child {
+            Ok(c) => c,
+            Err(e) if std::env::var_os("CI").is_none() => {
+                eprintln!(
+                    "note: JUnit schema not checked: xmllint: {e} (apt-get install libxml2-utils)"
+                );
+                return Ok(());
+            }
+            Err(e) => panic!("xmllint: {e} (apt-get install libxml2-utils)"),
+        };
+        child
+            .stdin
+            .take()
+            .unwrap()
+            .write_all(xml.as_bytes())
+            .unwrap();
+        let o = child.wait_with_output().unwrap();
+        match o.status.success() {
+            true => Ok(()),
+            false => Err(String::from_utf8_lossy(&o.stderr).into_owned()),
+        }
+    }
+
+    fn which_xmllint() -> bool {
+        std::process::Command::new("xmllint")
+            .arg("--version")
+            .output()
+            .is_ok()
+    }
+
+    /// The schema check itself can fail: a case property and a total `skipped` are refused.
+    #[test]
+    fn the_schema_refuses_what_the_strictest_reader_refuses() {
+        let ok = r#"<testsuites name="p" tests="1" failures="0" errors="0"><testsuite name="a" tests="1" failures="0" errors="0" skipped="0"><testcase name="c" time="0.001"><system-out>seed 1</system-out></testcase></testsuite></testsuites>"#;
+        schema_valid(ok).unwrap();
+        for bad in [
+            ok.replace(
+                r#"errors="0"><testsuite"#,
+                r#"errors="0" skipped="0"><testsuite"#,
+            ),
+            ok.replace(
+                "<system-out>seed 1</system-out>",
+                r#"<properties><property name="seed" value="1"/></properties>"#,
+            ),
+            ok.replace(r#"time="0.001""#, r#"time="1.0001""#)
+                .replace("<testcase name=\"c\"", "<testcase name=\"c\" ")
+                .replace(
+                    r#"<testsuite name="a""#,
+                    r#"<testsuite time="1.0001" name="a""#,
+                ),
+        ] {
+            if which_xmllint() {
+                assert!(schema_valid(&bad).is_err(), "accepted: {bad}");
+            }
+        }
+    }
+
+    /// A passing run's JUnit file validates too.
+    #[test]
+    fn a_passing_run_s_junit_file_is_valid() {
+        let p = project(u64::MAX);
+        let (path, whole) = run(&p, 1, "1/1", "junit-pass");
+        assert!(whole.passed, "{:?}", whole.failing);
+        let mut cfg = config(path.parent().unwrap().to_path_buf(), 1, "1/1");
+        cfg.junit = Some(path.with_file_name("junit.xml"));
+        regress(&p, &cfg, &mut |_, _| {}).unwrap();
+        let xml = std::fs::read_to_string(path.with_file_name("junit.xml")).unwrap();
+        assert!(!xml.contains("<failure"), "{xml}");
+        schema_valid(&xml).unwrap();
+        clean("junit-pass");
+    }
+
     #[test]
     fn the_junit_file_has_a_case_per_job_and_merges_as_the_summary_does() {
         let p = project(50);
@@ -412,23 +496,32 @@ mod tests {
         let failing_rows = whole.testbenches.iter().filter(|r| !r.passed).count();
         assert_eq!(report.failures, whole.failing.len() + failing_rows);
         let f = &whole.failing[0];
-        let value = |c: &quick_junit::TestCase, k: &str| {
-            let q = c.properties.iter().find(|q| q.name.as_str() == k)?;
-            Some(q.value.as_str().to_string())
+        // A case's job, seed and command: the lines of its system-out.
+        let out = |c: &quick_junit::TestCase| {
+            c.system_out
+                .as_ref()
+                .map(|o| o.as_str().to_string())
+                .unwrap_or_default()
         };
         let case = report
             .test_suites
             .iter()
             .flat_map(|s| &s.test_cases)
-            .find(|c| value(c, "job") == Some(f.job.to_string()))
+            .find(|c| out(c).starts_with(&format!("job {}\n", f.job)))
             .expect("the failing job's case");
-        assert!(!matches!(
-            case.status,
-            quick_junit::TestCaseStatus::Success { .. }
-        ));
-        let prop = |k: &str| value(case, k).unwrap();
-        assert_eq!(prop("reproduce").as_str(), f.reproduce);
-        assert_eq!(prop("seed").as_str(), f.seed);
+        let seed = Seed::parse(&f.seed).unwrap();
+        assert_eq!(
+            out(case),
+            crate::junit::case_output(f.job, seed, &f.reproduce)
+        );
+        match &case.status {
+            quick_junit::TestCaseStatus::NonSuccess { description, .. } => {
+                let d = description.as_ref().unwrap().as_str();
+                assert!(d.ends_with(&format!("reproduce: {}", f.reproduce)), "{d}");
+            }
+            s => panic!("the failing job passed: {s:?}"),
+        }
+        schema_valid(&xml).unwrap();
         // The shards' JUnit, merged: the whole run's but for the times.
         let thirds = shards(&p, 2, &["1/3", "2/3", "3/3"], "junit");
         let merged = merge_shards(&p, &thirds).unwrap();
