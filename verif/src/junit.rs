@@ -35,6 +35,19 @@ pub fn case_output(job: u64, seed: Seed, reproduce: &str) -> String {
     format!("job {job}\nseed {seed}\nreproduce: {reproduce}")
 }
 
+/// The command that runs a check again alone: a co-simulation row `cosim/UNIT/SIM` as
+/// `cosim` with its cycles and the run's seed, the vectors as `regress --only vectors`.
+fn check_command(program: &str, seed: Seed, row: &TbResult) -> String {
+    let mut parts = row.name.split('/');
+    match (parts.next(), parts.next(), parts.next()) {
+        (Some(crate::regress::COSIM), Some(unit), Some(sim)) => format!(
+            "{program} cosim --unit {unit} --sim {sim} --count {} --seed {seed}",
+            row.cycles
+        ),
+        _ => format!("{program} regress --only {} --seed {seed}", row.name),
+    }
+}
+
 /// quick-junit writes a `skipped` count on `testsuites`, which the xUnit plugin's schema does
 /// not allow; texrtl skips no case, and each suite keeps its own count.
 fn without_total_skipped(mut xml: String) -> String {
@@ -90,8 +103,11 @@ pub fn junit(project: &Project, s: &Summary, jobs: &[JobResult]) -> Result<Strin
     let mut checks = TestSuite::new("checks");
     for row in &s.testbenches {
         let Some(tb) = reg.get(&row.name) else {
-            let mut case = TestCase::new(row.name.as_str(), status(!row.passed, row, None));
-            case.set_classname("checks");
+            let command = check_command(project.name(), seed, row);
+            let mut case =
+                TestCase::new(row.name.as_str(), status(!row.passed, row, Some(&command)));
+            case.set_classname("checks")
+                .set_system_out(format!("seed {seed}\nreproduce: {command}"));
             checks.add_test_case(case);
             continue;
         };
