@@ -286,14 +286,14 @@ fn normals_bad_cases(d: &Path) -> Vec<(PathBuf, PathBuf, Vec<&'static str>, &'st
     let good_h = write(d, "h.pgm", b"P2\n2 2\n255\n1 2 3 4\n");
     let good_c = write(d, "c.csv", b"u,v\n0.5,0.5\n");
     vec![
-        // Issue 17: a plain header declaring 65535x65535 aborted on its allocation.
+        // Once, a plain header declaring 65535x65535 aborted on its allocation.
         (
             write(d, "huge.pgm", b"P2\n65535 65535\n255\n1 2 3\n"),
             good_c.clone(),
             vec![],
             "hold at most",
         ),
-        // Issue 17: --scale out of range blamed the coordinates file in 309 digits.
+        // Once, --scale out of range blamed the coordinates file in 309 digits.
         (
             good_h.clone(),
             good_c.clone(),
@@ -642,7 +642,7 @@ fn parallel_regress_is_byte_identical_to_one_thread() {
     let _ = std::fs::remove_dir_all(&d);
 }
 
-/// Issue 17: with `summary.json` a folder, regress ran every testbench and left the waves
+/// Once, with `summary.json` a folder, regress ran every testbench and left the waves
 /// and pictures behind before failing. Now it refuses before any work.
 #[test]
 fn regress_refuses_an_unwritable_summary_before_running() {
@@ -663,7 +663,7 @@ fn regress_refuses_an_unwritable_summary_before_running() {
     assert_eq!(left.len(), 1, "only the folder that was there: {left:?}");
 }
 
-/// Issue 17: `merge` of a shard declaring 1/4294967295 allocated a 4 G-entry vector (the
+/// Once, `merge` of a shard declaring 1/4294967295 allocated a 4 G-entry vector (the
 /// shard syntax now stops at 4096, and merge keeps a set of the shards given, not a vector
 /// of the count), and shards of different texrtl versions merged silently. Both are refused
 /// with one line.

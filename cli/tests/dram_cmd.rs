@@ -47,7 +47,7 @@ fn dram_command() {
         ("addr\n1x\n", vec![], "not a word address"),
         ("addr\n1\n", vec!["--t-fault-ns", "7"], "multiple"),
         ("addr\n1\n", vec!["--page-words", "3"], "page-words"),
-        // Issue 17: a fault time too long for the timing registers blamed --page-words.
+        // Once, a fault time too long for the timing registers blamed --page-words.
         (
             "addr\n1\n",
             vec!["--t-fault-ns", "10010"],

@@ -1,4 +1,4 @@
-//! Issue 17's output reproducers: devices, pipes and symbolic links are written through (a
+//! Output reproducers: devices, pipes and symbolic links are written through (a
 //! write error is exit 2 naming the option's file), regular files are replaced atomically,
 //! and a command that fails on bad input or I/O leaves no new file, waves included.
 

@@ -212,7 +212,7 @@ fn texread_refuses_bad_textures_and_requests() {
     }
 }
 
-/// Issue 17's texread reproducers: every output checked before any work (a missing folder
+/// texread's bad-output reproducers: every output checked before any work (a missing folder
 /// for the second output left the first behind), outputs distinct from each other and from
 /// the inputs, and a bad --lookahead refused even beside --no-lookahead. Each exits 2 with
 /// one line naming the option, and leaves no file.
@@ -305,7 +305,7 @@ fn texread_sizes_and_options() {
 }
 
 /// Every field of `texread --stats` is documented in `texrtl texread --help` and in the
-/// README's table (issue 18), and `--frac-bits 0` names the option.
+/// documented table, and `--frac-bits 0` names the option.
 #[test]
 fn every_stats_field_is_documented() {
     let s = serde_json::to_value(
@@ -322,8 +322,11 @@ fn every_stats_field_is_documented() {
     .unwrap();
     let help = texrtl(&["texread", "--help"]);
     let help = String::from_utf8_lossy(&help.stdout);
-    let readme =
-        std::fs::read_to_string(concat!(env!("CARGO_MANIFEST_DIR"), "/../README.md")).unwrap();
+    let readme = std::fs::read_to_string(concat!(
+        env!("CARGO_MANIFEST_DIR"),
+        "/../hdl/units/src/texmem/mod.rs"
+    ))
+    .unwrap();
     let fields = s.as_object().unwrap();
     assert_eq!(fields.len(), 29);
     for k in fields.keys() {
@@ -331,7 +334,10 @@ fn every_stats_field_is_documented() {
             help.lines().any(|l| l.trim_start().starts_with(k.as_str())),
             "--help lacks {k}"
         );
-        assert!(readme.contains(&format!("`{k}`")), "README lacks {k}");
+        assert!(
+            readme.contains(&format!("`{k}`")),
+            "the texmem docs lack {k}"
+        );
     }
     let d = dir("frac-bits-message");
     let t = d.join("t.ccc");

@@ -1,5 +1,5 @@
 //! Speed of the RTL kernel and the fixed-point layer (criterion). Run with
-//! `cargo bench -p texrtl --bench kernel`; figures are recorded in README.md.
+//! `cargo bench -p texrtl --bench kernel`; figures are recorded in the user guide (docs/guide/speed.md).
 
 use criterion::{criterion_group, criterion_main, BatchSize, Criterion, Throughput};
 use hdl::fx::{Format, Fx, Overflow, Quant};

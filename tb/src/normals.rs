@@ -6,7 +6,7 @@
 //! outside the format's range is an error, not clamped), and the golden model is evaluated at
 //! exactly the quantised inputs, so the measured error is the pipeline's own.
 //!
-//! Accuracy criterion (issue: default widths, positions exact in the blend-factor format): every
+//! Accuracy criterion (default widths, positions exact in the blend-factor format): every
 //! component within `2^-13` of the golden normal and every normal within 0.01 degrees of it.
 
 use golden::bump::{self as g, Heights};

@@ -1,4 +1,4 @@
-//! The testbench of the video port 808 on the TEXRAM chip (issue 13): video frames enter the
+//! The testbench of the video port 808 on the TEXRAM chip: video frames enter the
 //! chip's serial port while the rasterizer reads another map at the request port; the mipmap
 //! generator 816 makes the upper levels and the shift registers 826 write every line into the
 //! banks in slots taken from the rasterizer.

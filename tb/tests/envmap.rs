@@ -1,4 +1,4 @@
-//! Environment mapping (issue 15, begun): the cube-face unit against f64.
+//! Environment mapping: the cube-face unit against f64.
 
 use hdl::kernel::Sim;
 use proptest::prelude::*;

@@ -164,7 +164,8 @@ fn all_under(top: &dyn Module, scope: &str) -> bool {
     !paths.is_empty() && paths.iter().all(|p| p.starts_with(&format!("{scope}.")))
 }
 
-/// The units of issues 13-15: every scope their waveforms are read by, with its signals.
+/// The units beside the TEXRAM chip (video port, footprint assembly, ray caster, environment
+/// maps): every scope their waveforms are read by, with its signals.
 #[test]
 fn the_texram_side_units_visit_every_scope() {
     use units::envmap::cube_face::CubeFace;
@@ -267,8 +268,9 @@ fn the_texram_side_units_visit_every_scope() {
     }
 }
 
-/// The units of issues 15-16: each its own scope named after its kind, with every port and
-/// register (counted by hand from the modules' port tables).
+/// The map chain and the per-pixel units (derivative, bi-quadratic, frames, parallax, PTM): each
+/// its own scope named after its kind, with every port and register (counted by hand from the
+/// modules' port tables).
 #[test]
 fn the_map_chain_and_per_pixel_units_visit_every_signal() {
     use units::bump::biquadratic_0087::{Biquadratic0087, ColourMap};

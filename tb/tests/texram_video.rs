@@ -1,4 +1,4 @@
-//! The video port 808 on the TEXRAM chip (issue 13): the generator 816 writing its mipmaps
+//! The video port 808 on the TEXRAM chip: the generator 816 writing its mipmaps
 //! into the banks through the shift registers 826, beside the rasterizer.
 
 use hdl::kernel::Sim;

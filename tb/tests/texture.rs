@@ -405,7 +405,7 @@ fn scan_misses(look: Lookahead, vertical: bool) -> (u64, u64) {
     (s.misses, s.prefetch_fills)
 }
 
-/// The defect of issue 18: on leftward or upward scanlines the direction lookahead preloaded
+/// A defect once found: on leftward or upward scanlines the direction lookahead preloaded
 /// block bx-1 into the entry of bx+1 (same parity) while the footprint still spanned bx and
 /// bx+1, so it missed more often than no lookahead at all. A preload never evicts a block the
 /// current footprint uses: direction lookahead now misses less than none, never more.

@@ -265,7 +265,7 @@ impl TbResult {
 mod tests {
     use super::*;
 
-    /// Issue 17: merged counters wrapped. An overflowing result is refused and the merged
+    /// Merged counters once wrapped. An overflowing result is refused and the merged
     /// result keeps what it had.
     #[test]
     fn absorb_refuses_overflowing_counters_and_changes_nothing() {

@@ -155,7 +155,7 @@ mod tests {
         assert!(t.sqnr_db().unwrap() > 40.0);
     }
 
-    /// Issue 17: merged shard summaries wrapped u64 counters and wrote 1e308 + 1e308 as
+    /// Merged shard summaries once wrapped u64 counters and wrote 1e308 + 1e308 as
     /// `null`. Both are refused, and the refused merge changes nothing.
     #[test]
     fn merging_refuses_overflow_and_leaves_the_stats_unchanged() {

@@ -10,7 +10,7 @@ use units::mapchain::program::ChainRequest;
 /// Pixels through the map chain walker of 812 (section 14, Fig. 16).
 #[derive(Clone, Debug, clap::Args)]
 pub struct MapchainArgs {
-    /// JSON: the DRFs and their PGM maps (see the README's map chain section):
+    /// JSON: the DRFs and their PGM maps (see the map chain's documentation, `units::mapchain`):
     /// {"drfs": [{"drf": 0, "kind": "texture", "maps": ["t.pgm"], "link": 1}, ...]}.
     #[arg(long)]
     pub maps: PathBuf,

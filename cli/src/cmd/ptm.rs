@@ -24,7 +24,7 @@ pub enum PtmCmd {
         /// elevations and 6..=1024 lights.
         #[arg(long)]
         lights: PathBuf,
-        /// The PTM (`.ptm`, see the README).
+        /// The PTM (`.ptm`, see `units::ptm`).
         #[arg(long)]
         out: PathBuf,
         /// Bits a stored coefficient: 8 or 16.

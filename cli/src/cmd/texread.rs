@@ -9,7 +9,7 @@ use units::texmem::cache_614::Lookahead;
 use units::texmem::layout::Layout;
 use units::texmem::texture_unit_602::TexParams;
 
-/// The `--stats` fields, shown by `texrtl texread --help` (the README has the same table).
+/// The `--stats` fields, shown by `texrtl texread --help` (the texture memory docs, `units::texmem`, have the same table).
 pub const STATS_HELP: &str = "\
 --stats JSON fields (blocks are 4x4-texel CCC blocks, two DRAM words each):
   requests                 requests accepted from the rasterizer

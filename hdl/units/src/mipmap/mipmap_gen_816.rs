@@ -215,7 +215,7 @@ impl MipmapGen {
         })
     }
 
-    /// The unit on the TEXRAM chip's banks (issue 13): no frame store of its own. Its owner
+    /// The unit on the TEXRAM chip's banks: no frame store of its own. Its owner
     /// writes what [`MipmapGen::level0_write`] and [`MipmapGen::line_writes`] give at each
     /// edge, reads the line [`MipmapGen::partner_read`] names and hands it back through
     /// [`MipmapGen::load_partner`] before the line that needs it arrives.
