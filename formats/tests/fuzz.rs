@@ -5,8 +5,8 @@
 //! The allocation bound: a parser holds at most a few machine words per input byte (a CSV
 //! row is a `Vec` of `String`s, a pixel one byte, a block four bytes), so no single
 //! allocation may exceed 64 bytes per input byte plus 64 KiB. A size read from a header and
-//! allocated before it is checked against the input (the `P2` 65535x65535 abort of issue
-//! 17) breaks it by orders of magnitude. Seeds are printed; replay with `TEXRTL_SEED`.
+//! allocated before it is checked against the input (the `P2` 65535x65535 abort found
+//! once) breaks it by orders of magnitude. Seeds are printed; replay with `TEXRTL_SEED`.
 
 use proptest::test_runner::TestCaseError;
 use std::alloc::{GlobalAlloc, Layout, System};

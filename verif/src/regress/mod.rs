@@ -183,6 +183,28 @@ pub struct RegressConfig {
 }
 
 impl RegressConfig {
+    /// What `regress` runs with when given only `--out DIR`: the default seed, waveforms
+    /// traced, every testbench once under its own count, co-simulation on, one job per core.
+    pub fn new(out: impl Into<PathBuf>) -> RegressConfig {
+        RegressConfig {
+            out: out.into(),
+            seed: Seed(0x7e47),
+            vcd: true,
+            trace: TraceConfig::default(),
+            period_ps: None,
+            shard: crate::Shard::parse("1/1").expect("the whole run"),
+            count: None,
+            fst: false,
+            only: Vec::new(),
+            check_schedule: false,
+            cosim: true,
+            jobs: std::thread::available_parallelism().map_or(1, std::num::NonZeroUsize::get),
+            seeds: 1,
+            job: None,
+            junit: None,
+        }
+    }
+
     /// Random transactions per configuration at most (`--count`).
     pub const MAX_COUNT: usize = 1_000_000;
 
