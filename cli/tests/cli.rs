@@ -127,19 +127,16 @@ fn check_summary_report_and_pictures(out: &Path) {
 }
 
 /// FSM states by name: a translate filter file per state register, referenced from the
-/// `.gtkw` just before the trace it names.
+/// `.gtkw` by its file name just before the trace it names.
 fn check_state_names(out: &Path) {
     let filter = out.join("texture_unit_602.fill_engine_607.state.txt");
     let names = std::fs::read_to_string(&filter).unwrap();
     assert!(names.contains("0 IDLE\n1 FETCH\n2 DECODE\n"), "{names}");
     let g = std::fs::read_to_string(out.join("texture_unit_602.gtkw")).unwrap();
-    let abs = std::path::absolute(&filter).unwrap();
-    let line = format!(
-        "{}\ntb.texture_unit_602.fill_engine_607.state[1:0]",
-        abs.display()
-    );
+    // Beside the save file, by file name: a copied folder keeps its state names.
+    let line = " texture_unit_602.fill_engine_607.state.txt\ntb.texture_unit_602.fill_engine_607.state[1:0]";
     assert!(
-        g.contains(&line),
+        g.contains(line),
         "the .gtkw does not name the state filter: {g}"
     );
     let p = out.join("texture_unit_602.vcd");

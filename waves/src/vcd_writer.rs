@@ -118,9 +118,18 @@ impl Text {
         }
     }
 
+    /// Appends `bytes`; a record's lines may pass the chunk (a change and its `real`
+    /// companion), so the buffer grows when they would pass its end, keeping a line's room
+    /// for [`Text::change`].
     fn put(&mut self, bytes: &[u8]) {
-        self.buf[self.pos..self.pos + bytes.len()].copy_from_slice(bytes);
-        self.pos += bytes.len();
+        let end = self.pos + bytes.len();
+        if end + LINE > self.buf.len() {
+            let mut grown = vec![0; end + LINE].into_boxed_slice();
+            grown[..self.pos].copy_from_slice(&self.buf[..self.pos]);
+            self.buf = grown;
+        }
+        self.buf[self.pos..end].copy_from_slice(bytes);
+        self.pos = end;
     }
 
     /// A value change, as [`push_change`] writes it.
@@ -286,5 +295,24 @@ mod tests {
             Tail::of(b"0123456789abcdef").is_none(),
             "16 characters take the long path"
         );
+    }
+
+    /// A record that starts just under the chunk and writes a 64-bit change and a `real`
+    /// companion after it fits: the buffer grows, nothing is lost or overwritten.
+    #[test]
+    fn a_change_and_its_companion_fit_past_the_chunk() {
+        let tail = Tail::of(b"!").unwrap();
+        let mut text = Text::new();
+        text.pos = CHUNK - 1;
+        text.change(&tail, 64, u64::MAX);
+        let real = [b'r'; 3 * LINE];
+        text.put(&real);
+        let mut want = Vec::new();
+        push_change(&mut want, b"!", 64, u64::MAX);
+        want.extend_from_slice(&real);
+        assert_eq!(&text.buf[CHUNK - 1..text.pos], &want[..]);
+        text.change(&tail, 64, 0);
+        // The second change went into the room the growth kept: b, 64 digits, space, "!\n".
+        assert_eq!(text.buf.len() - text.pos, LINE - (1 + 64 + 1 + 2));
     }
 }

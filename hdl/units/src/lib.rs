@@ -4,6 +4,20 @@
 //! No floating point is used inside a model: values are integers with a declared
 //! [`fx::Format`]; conversions to `f64` exist only at the edges (tracing, golden comparison).
 //!
+//! # The documents
+//! The units model five source documents, cited by number: **000** US 2004/0207631 (Fenney
+//! and Fazzini, bump mapping with height maps: the FIG. 7 pipeline and paragraphs 0055-0087);
+//! **001** US 2005/0190194 (Kraemer, polynomial texture maps for micro-scale occlusion: the PTM
+//! fitter and shader); **002** West (2007), an investigation of surface mapping techniques
+//! (normal and parallax mapping); **003** the 3ds Max SDK's notes on bump mapping (tangent
+//! frames); **004** Schilling and Knittel's TEXRAM (texture unit 602, the TEXRAM chip 802,
+//! the mipmap generator 816, footprint assembly, map chains, environment maps, volume
+//! rendering). Unit numbers are the documents' reference numerals; "para. 0081" is a
+//! paragraph of 000.
+//!
+//! **\[C\]** marks a choice texrtl made where a document is silent (a width, a rounding, a
+//! layout, a timing): documented where it is made and, where it matters, a parameter.
+//!
 //! # From unit number to waveform, in one hop
 //! Every numbered unit is one file named after it and its number; its module's kind and
 //! instance carry the same name, its testbench (a `verif::Testbench` in `tb/src`)
