@@ -20,6 +20,7 @@ use hdl::kernel::{Dir, Module, Signal, Sim, Visitor};
 use std::path::{Path, PathBuf};
 use std::process::Command;
 
+pub mod cache;
 mod rtl;
 mod twin;
 mod verilator;
@@ -613,9 +614,9 @@ pub fn run_with(
         let path = dir.join(file);
         std::fs::write(&path, text).map_err(|e| format!("{}: {e}", path.display()))?;
     }
-    let tb = rtl::testbench(unit, &ins, &outs, cycles, dir);
+    let tb = rtl::testbench(unit, &ins, &outs);
     std::fs::write(dir.join("tb.sv"), tb).map_err(|e| format!("{}: {e}", dir.display()))?;
-    let got = rtl::simulate(sim, dir, &sources, &outs)?;
+    let got = rtl::simulate(sim, dir, &sources, (&outs, cycles))?;
     if got.len() != cycles {
         return Err(format!(
             "{}: the RTL wrote {} cycles of outputs, {cycles} expected",

@@ -13,7 +13,7 @@ use std::process::Command;
 use std::sync::OnceLock;
 
 /// The options of every build (the cached runtime objects are only valid for these).
-const OPTIONS: [&str; 7] = [
+pub(super) const OPTIONS: [&str; 7] = [
     "--cc",
     "--exe",
     "--main",

@@ -373,15 +373,7 @@ pub fn regress(
         results.push(vectors_row(project, dir));
     }
     if cfg.cosim && first && cfg.selected(COSIM) {
-        for sim in [Simulator::Verilator, Simulator::Icarus] {
-            if sim.check_installed().is_err() {
-                continue;
-            }
-            for unit in project.twins() {
-                progress(COSIM, &format!("{} in {}", unit.name(), sim.name()));
-                results.push(cosim_row(unit, sim, cfg)?);
-            }
-        }
+        results.extend(cosim_rows(project, cfg, progress)?);
     }
     for r in &mut results {
         focus_on_mismatch(r);
@@ -413,6 +405,53 @@ pub fn regress(
 
 /// Cycles each twin is co-simulated for in a regression: Verilator / Icarus.
 const COSIM_CYCLES: [usize; 2] = [100_000, 20_000];
+
+/// Every twin in every simulator installed, `cfg.jobs` at a time (builds and runs in
+/// parallel), in the table's order: Verilator's rows, then Icarus's, each in the project's.
+fn cosim_rows(
+    project: &Project,
+    cfg: &RegressConfig,
+    progress: &mut dyn FnMut(&str, &str),
+) -> Result<Vec<TbResult>, String> {
+    let sims = [Simulator::Verilator, Simulator::Icarus];
+    let rows: Vec<(Simulator, &dyn crate::cosim::CosimUnit)> = sims
+        .into_iter()
+        .filter(|s| s.check_installed().is_ok())
+        .flat_map(|s| project.twins().map(move |u| (s, u)))
+        .collect();
+    if rows.is_empty() {
+        return Ok(Vec::new());
+    }
+    progress(
+        COSIM,
+        &format!(
+            "{} twins and simulators, {} at a time",
+            rows.len(),
+            cfg.jobs
+        ),
+    );
+    let next = std::sync::atomic::AtomicUsize::new(0);
+    let done: Vec<std::sync::Mutex<Option<Result<TbResult, String>>>> =
+        rows.iter().map(|_| std::sync::Mutex::new(None)).collect();
+    std::thread::scope(|scope| {
+        for _ in 0..cfg.jobs.clamp(1, rows.len()) {
+            scope.spawn(|| loop {
+                let i = next.fetch_add(1, std::sync::atomic::Ordering::Relaxed);
+                let Some(&(sim, unit)) = rows.get(i) else {
+                    break;
+                };
+                let r = cosim_row(unit, sim, cfg);
+                *done[i].lock().unwrap_or_else(|e| e.into_inner()) = Some(r);
+            });
+        }
+    });
+    done.into_iter()
+        .map(|m| {
+            let r = m.into_inner().unwrap_or_else(|e| e.into_inner());
+            r.unwrap_or_else(|| Err("a co-simulation row did not run".into()))
+        })
+        .collect()
+}
 
 /// A twin against its model as a row of the table: `cosim/<unit>/<simulator>`.
 fn cosim_row(
