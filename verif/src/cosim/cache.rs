@@ -12,8 +12,13 @@
 //! temporary folder; `TEXRTL_SIM_CACHE=off` builds every time). An entry is built in its run's
 //! folder, copied into a temporary folder of the cache and renamed into place whole, so a
 //! concurrent run sees an entry complete or not at all, and two runs that build the same key
-//! keep one. At most [`MAX_ENTRIES`] entries are kept, the least recently used removed first.
-//! Deleting the folder clears it.
+//! keep one. At most [`MAX_ENTRIES`] entries and [`MAX_BYTES`] are kept, the least recently
+//! used removed first. Deleting the folder clears it.
+//!
+//! A run is kept the same way: its outputs under a key of the build's key, the cycle count
+//! and the run-time inputs' names and contents. A simulator is deterministic, so the same
+//! build on the same inputs writes the same outputs; a kept run's are copied into the run's
+//! folder instead of simulating again.
 
 use std::hash::{DefaultHasher, Hash, Hasher};
 use std::path::{Path, PathBuf};
@@ -21,8 +26,11 @@ use std::process::Command;
 use std::sync::atomic::{AtomicU64, Ordering};
 use std::sync::OnceLock;
 
-/// Entries kept at most (a Verilator `simv` of texrtl's twins is 1-10 MB).
+/// Entries kept at most (a Verilator `simv` of texrtl's twins is 1-10 MB, a run's outputs up
+/// to a few MB) ...
 pub const MAX_ENTRIES: usize = 256;
+/// ... and bytes.
+pub const MAX_BYTES: u64 = 1 << 30;
 
 /// The environment variable naming the cache's folder, or `off`.
 pub const CACHE_ENV: &str = "TEXRTL_SIM_CACHE";
@@ -96,7 +104,7 @@ pub fn lookup(root: &Path, key: &str, file: &str) -> Option<PathBuf> {
 
 /// Keeps `artifact` as `key`'s entry: copied into a fresh temporary folder of the cache, then
 /// renamed into place whole (a concurrent run that kept the same key first wins; the copy is
-/// dropped). Then the oldest entries past [`MAX_ENTRIES`] go. Failures only cost a rebuild.
+/// dropped). Then the oldest entries past the bounds go. Failures only cost a rebuild.
 pub fn store(root: &Path, key: &str, artifact: &Path) {
     static N: AtomicU64 = AtomicU64::new(0);
     let Some(name) = artifact.file_name() else {
@@ -114,15 +122,27 @@ pub fn store(root: &Path, key: &str, artifact: &Path) {
     if made.is_err() {
         let _ = std::fs::remove_dir_all(&tmp);
     }
-    prune(root, MAX_ENTRIES);
+    prune(root, MAX_ENTRIES, MAX_BYTES);
 }
 
-/// Removes the least recently used entries until at most `keep` remain.
-pub fn prune(root: &Path, keep: usize) {
+/// The bytes of the files in `dir`.
+fn size(dir: &Path) -> u64 {
+    let Ok(rd) = std::fs::read_dir(dir) else {
+        return 0;
+    };
+    rd.flatten()
+        .filter_map(|e| e.metadata().ok())
+        .map(|m| m.len())
+        .sum()
+}
+
+/// Removes the least recently used entries until at most `keep` remain, holding at most
+/// `bytes`.
+pub fn prune(root: &Path, keep: usize, bytes: u64) {
     let Ok(rd) = std::fs::read_dir(root) else {
         return;
     };
-    let mut entries: Vec<(std::time::SystemTime, PathBuf)> = rd
+    let mut entries: Vec<(std::time::SystemTime, PathBuf, u64)> = rd
         .flatten()
         .filter(|e| !e.file_name().to_string_lossy().starts_with('.'))
         .filter_map(|e| {
@@ -132,15 +152,19 @@ pub fn prune(root: &Path, keep: usize) {
                 .metadata()
                 .and_then(|m| m.modified())
                 .ok()?;
-            Some((used, e.path()))
+            Some((used, e.path(), size(&e.path())))
         })
         .collect();
-    if entries.len() <= keep {
-        return;
-    }
     entries.sort();
-    for (_, p) in &entries[..entries.len() - keep] {
+    let mut total: u64 = entries.iter().map(|e| e.2).sum();
+    let mut left = entries.len();
+    for (_, p, n) in &entries {
+        if left <= keep && total <= bytes {
+            break;
+        }
         let _ = std::fs::remove_dir_all(p);
+        left -= 1;
+        total -= n;
     }
 }
 
@@ -208,8 +232,10 @@ mod tests {
         }
         std::thread::sleep(std::time::Duration::from_millis(20));
         lookup(&root, "k1", "simv").unwrap(); // k1 used last: k2 is the oldest
-        prune(&root, 2);
+        prune(&root, 2, MAX_BYTES);
         assert_eq!(names(&root), ["k1", "k3"]);
+        prune(&root, 2, 2 * (6 + 2) - 1); // each entry: "binary" and a 2-byte marker
+        assert_eq!(names(&root), ["k1"], "the oldest goes for size too");
         std::fs::remove_dir_all(&d).unwrap();
     }
 }

@@ -609,21 +609,7 @@ pub fn run_with(
     let (expected, watched): (Vec<Vec<u64>>, Vec<Vec<u64>>) = (0..cycles)
         .map(|c| model.cycle_watched(c < resets, &stim[c]))
         .unzip();
-    rtl::write_stimulus(&dir.join("stim.hex"), &ins, stim, resets)?;
-    for (file, text) in unit.memories() {
-        let path = dir.join(file);
-        std::fs::write(&path, text).map_err(|e| format!("{}: {e}", path.display()))?;
-    }
-    let tb = rtl::testbench(unit, &ins, &outs);
-    std::fs::write(dir.join("tb.sv"), tb).map_err(|e| format!("{}: {e}", dir.display()))?;
-    let got = rtl::simulate(sim, dir, &sources, (&outs, cycles))?;
-    if got.len() != cycles {
-        return Err(format!(
-            "{}: the RTL wrote {} cycles of outputs, {cycles} expected",
-            sim.name(),
-            got.len()
-        ));
-    }
+    let got = rtl_outputs(unit, sim, dir, &sources, (&ins, &outs), stim)?;
     let history = unit.history().max(1);
     let found = compare(
         &ins,
@@ -675,6 +661,44 @@ pub fn run_with(
         differences: found.1,
         vcd,
     })
+}
+
+/// Writes a run's files into `dir` (the stimulus, the memory images, the testbench) and has
+/// the RTL simulate them (or takes a kept run of the same), checking it wrote every cycle.
+fn rtl_outputs(
+    unit: &dyn CosimUnit,
+    sim: Simulator,
+    dir: &Path,
+    sources: &[PathBuf],
+    (ins, outs): (&[Port], &[Port]),
+    stim: &[Vec<u64>],
+) -> Result<Vec<Vec<Option<u64>>>, String> {
+    let cycles = stim.len();
+    rtl::write_stimulus(&dir.join("stim.hex"), ins, stim, reset_cycles(unit))?;
+    let mut inputs = vec![dir.join("stim.hex")];
+    for (file, text) in unit.memories() {
+        let path = dir.join(file);
+        std::fs::write(&path, text).map_err(|e| format!("{}: {e}", path.display()))?;
+        inputs.push(path);
+    }
+    let tb = rtl::testbench(unit, ins, outs);
+    std::fs::write(dir.join("tb.sv"), tb).map_err(|e| format!("{}: {e}", dir.display()))?;
+    let run = rtl::RtlRun {
+        dir,
+        sources,
+        outs,
+        cycles,
+        inputs,
+    };
+    let got = rtl::simulate(sim, &run)?;
+    if got.len() != cycles {
+        return Err(format!(
+            "{}: the RTL wrote {} cycles of outputs, {cycles} expected",
+            sim.name(),
+            got.len()
+        ));
+    }
+    Ok(got)
 }
 
 /// Names and widths of `ports` for the waveform, after a 1-bit `rst` when `with_reset`.

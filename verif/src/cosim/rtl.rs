@@ -99,73 +99,116 @@ pub(super) fn testbench(unit: &dyn CosimUnit, ins: &[Port], outs: &[Port]) -> St
     s
 }
 
-/// Builds and runs the testbench; reads the outputs back (`None` where the RTL drove x/z).
-pub(super) fn simulate(
-    sim: Simulator,
-    dir: &Path,
-    sources: &[PathBuf],
-    (outs, cycles): (&[Port], usize),
-) -> Result<Vec<Vec<Option<u64>>>, String> {
-    let tb = dir.join("tb.sv");
-    let run = |cmd: &mut Command, what: &str| -> Result<(), String> {
-        let o = cmd.output().map_err(|e| format!("{what}: {e}"))?;
-        if o.status.success() {
-            return Ok(());
-        }
-        let err = String::from_utf8_lossy(&o.stderr);
-        let first = err
-            .lines()
-            .find(|l| !l.trim().is_empty())
-            .unwrap_or("failed");
-        // The simulator's first message, cut at 200 characters (it names the file and line).
-        let first: String = first.chars().take(200).collect();
-        Err(format!("{what}: {first}"))
+/// A run of the generated testbench: its folder (holding `tb.sv`, `stim.hex` and the memory
+/// images), the Verilog sources, the output ports, the cycles, and the files the RTL reads
+/// at run time (the stimulus and the memory images).
+pub(super) struct RtlRun<'a> {
+    pub dir: &'a Path,
+    pub sources: &'a [PathBuf],
+    pub outs: &'a [Port],
+    pub cycles: usize,
+    pub inputs: Vec<PathBuf>,
+}
+
+/// Runs `cmd`, turning a failure into the tool's first message (cut at 200 characters; it
+/// names the file and line).
+fn run_tool(cmd: &mut Command, what: &str) -> Result<(), String> {
+    let o = cmd.output().map_err(|e| format!("{what}: {e}"))?;
+    if o.status.success() {
+        return Ok(());
+    }
+    let err = String::from_utf8_lossy(&o.stderr);
+    let first = err
+        .lines()
+        .find(|l| !l.trim().is_empty())
+        .unwrap_or("failed");
+    let first: String = first.chars().take(200).collect();
+    Err(format!("{what}: {first}"))
+}
+
+/// The simulator's build of the testbench: the kept one of `key`, or a new one (then kept).
+fn binary(sim: Simulator, r: &RtlRun, kept: Option<(&Path, &str)>) -> Result<PathBuf, String> {
+    let file = match sim {
+        Simulator::Verilator => "simv",
+        Simulator::Icarus => "sim.vvp",
     };
-    let text = std::fs::read_to_string(&tb).map_err(|e| format!("{}: {e}", tb.display()))?;
-    let cycles = format!("+cycles={cycles}");
-    let root = cache::root();
-    match sim {
+    if let Some(b) = kept.and_then(|(root, k)| cache::lookup(root, k, file)) {
+        return Ok(b);
+    }
+    let tb = r.dir.join("tb.sv");
+    let built = match sim {
         Simulator::Verilator => {
-            let what = format!("verilator {}", verilator::OPTIONS.join(" "));
-            let key = cache::key(&what, &text, sources);
-            let kept = root.as_deref().zip(key.as_deref());
-            let simv = match kept.and_then(|(r, k)| cache::lookup(r, k, "simv")) {
-                Some(simv) => simv,
-                None => {
-                    let simv = verilator::build(&tb, sources, &dir.join("obj_dir"), &run)?;
-                    if let Some((r, k)) = kept {
-                        cache::store(r, k, &simv);
-                    }
-                    simv
-                }
-            };
-            run(Command::new(simv).arg(&cycles).current_dir(dir), "simv")?;
+            verilator::build(&tb, r.sources, &r.dir.join("obj_dir"), &run_tool)?
         }
         Simulator::Icarus => {
-            let key = cache::key("iverilog -g2012", &text, sources);
-            let kept = root.as_deref().zip(key.as_deref());
-            let vvp = match kept.and_then(|(r, k)| cache::lookup(r, k, "sim.vvp")) {
-                Some(vvp) => vvp,
-                None => {
-                    let vvp = dir.join("sim.vvp");
-                    let mut c = Command::new("iverilog");
-                    c.args(["-g2012", "-s", "tb", "-o"])
-                        .arg(&vvp)
-                        .arg(&tb)
-                        .args(sources);
-                    run(&mut c, "iverilog")?;
-                    if let Some((r, k)) = kept {
-                        cache::store(r, k, &vvp);
-                    }
-                    vvp
+            let vvp = r.dir.join(file);
+            let mut c = Command::new("iverilog");
+            c.args(["-g2012", "-s", "tb", "-o"])
+                .arg(&vvp)
+                .arg(&tb)
+                .args(r.sources);
+            run_tool(&mut c, "iverilog")?;
+            vvp
+        }
+    };
+    if let Some((root, k)) = kept {
+        cache::store(root, k, &built);
+    }
+    Ok(built)
+}
+
+/// Builds (or takes the kept build of) the testbench and runs it, unless a run of the same
+/// build on the same inputs and cycles is kept: then its outputs are copied in (a simulator
+/// is deterministic: the same binary on the same inputs writes the same outputs). Reads the
+/// outputs back (`None` where the RTL drove x/z).
+pub(super) fn simulate(sim: Simulator, r: &RtlRun) -> Result<Vec<Vec<Option<u64>>>, String> {
+    let tb = r.dir.join("tb.sv");
+    let text = std::fs::read_to_string(&tb).map_err(|e| format!("{}: {e}", tb.display()))?;
+    let what = match sim {
+        Simulator::Verilator => format!("verilator {}", verilator::OPTIONS.join(" ")),
+        Simulator::Icarus => "iverilog -g2012".to_string(),
+    };
+    let root = cache::root();
+    let build_key = cache::key(&what, &text, r.sources);
+    let run_key = build_key
+        .as_deref()
+        .and_then(|k| cache::key(&format!("{k} +cycles={}", r.cycles), "run", &r.inputs));
+    let out = r.dir.join("rtl_out.hex");
+    let kept_run = root.as_deref().zip(run_key.as_deref());
+    match kept_run.and_then(|(root, k)| cache::lookup(root, k, "rtl_out.hex")) {
+        Some(kept) => {
+            std::fs::copy(&kept, &out).map_err(|e| format!("{}: {e}", out.display()))?;
+        }
+        None => {
+            let b = binary(sim, r, root.as_deref().zip(build_key.as_deref()))?;
+            let mut c = match sim {
+                Simulator::Verilator => Command::new(&b),
+                Simulator::Icarus => {
+                    let mut c = Command::new("vvp");
+                    c.arg("-n").arg(&b);
+                    c
                 }
             };
-            let mut c = Command::new("vvp");
-            run(c.arg("-n").arg(&vvp).arg(&cycles).current_dir(dir), "vvp")?;
+            let tool = if sim == Simulator::Verilator {
+                "simv"
+            } else {
+                "vvp"
+            };
+            run_tool(
+                c.arg(format!("+cycles={}", r.cycles)).current_dir(r.dir),
+                tool,
+            )?;
+            if let Some((root, k)) = kept_run {
+                cache::store(root, k, &out);
+            }
         }
     }
-    let path = dir.join("rtl_out.hex");
-    let text = std::fs::read_to_string(&path).map_err(|e| format!("{}: {e}", path.display()))?;
+    read_outputs(&out, r.outs)
+}
+
+/// The RTL's outputs, a line per cycle of hex fields, one per port.
+fn read_outputs(path: &Path, outs: &[Port]) -> Result<Vec<Vec<Option<u64>>>, String> {
+    let text = std::fs::read_to_string(path).map_err(|e| format!("{}: {e}", path.display()))?;
     text.lines()
         .filter(|l| !l.trim().is_empty())
         .map(|l| {

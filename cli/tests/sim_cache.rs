@@ -1,0 +1,94 @@
+//! The co-simulation cache, as a user meets it: a second run of an unchanged unit builds and
+//! simulates nothing and says the same, byte for byte; another seed simulates again on the
+//! kept build; changed Verilog misses the cache and its difference is found; `off` builds
+//! every time. Icarus only (the cheaper build); without it the test says so and passes, unless
+//! `TEXRTL_REQUIRE_COSIM=1`.
+
+mod common;
+use common::dir;
+use std::path::Path;
+use std::process::{Command, Output};
+
+fn cosim(cache: &str, out: &Path, extra: &[&str]) -> Output {
+    Command::new(env!("CARGO_BIN_EXE_texrtl"))
+        .args([
+            "cosim",
+            "--unit",
+            "blend_adjust_153",
+            "--sim",
+            "icarus",
+            "--count",
+            "3000",
+        ])
+        .args(extra)
+        .arg("--out")
+        .arg(out)
+        .env("TEXRTL_SIM_CACHE", cache)
+        .output()
+        .unwrap()
+}
+
+fn entries(root: &Path) -> Vec<String> {
+    let mut v: Vec<String> = std::fs::read_dir(root)
+        .map(|rd| {
+            rd.flatten()
+                .map(|e| e.file_name().to_string_lossy().into_owned())
+                .collect()
+        })
+        .unwrap_or_default();
+    v.sort();
+    v
+}
+
+#[test]
+fn an_unchanged_cosimulation_is_reused_and_a_changed_one_is_not() {
+    let installed = Command::new("iverilog").arg("-V").output().is_ok();
+    if !installed {
+        assert!(
+            std::env::var("TEXRTL_REQUIRE_COSIM").as_deref() != Ok("1"),
+            "no Icarus"
+        );
+        eprintln!("Icarus Verilog not installed: the cache is not tried");
+        return;
+    }
+    let d = dir("sim-cache", "reuse");
+    let root = d.join("cache");
+    let c = root.to_str().unwrap();
+    let first = cosim(c, &d.join("a"), &[]);
+    assert_eq!(
+        first.status.code(),
+        Some(0),
+        "{}",
+        String::from_utf8_lossy(&first.stderr)
+    );
+    let kept = entries(&root);
+    assert_eq!(kept.len(), 2, "the build and the run: {kept:?}");
+    let out_a = std::fs::read(d.join("a/rtl_out.hex")).unwrap();
+    // Again, into another folder: nothing new kept, the same outputs, the same report.
+    let second = cosim(c, &d.join("b"), &[]);
+    assert_eq!(entries(&root), kept);
+    assert_eq!(std::fs::read(d.join("b/rtl_out.hex")).unwrap(), out_a);
+    assert!(!d.join("b/sim.vvp").exists(), "nothing was built");
+    let said = |o: &Output, dir: &str| String::from_utf8_lossy(&o.stdout).replace(dir, "DIR");
+    assert_eq!(said(&second, "/b/"), said(&first, "/a/"));
+    // Another seed: the kept build, a new run.
+    let seeded = cosim(c, &d.join("c"), &["--seed", "7"]);
+    assert_eq!(seeded.status.code(), Some(0));
+    assert_eq!(entries(&root).len(), 3);
+    assert!(!d.join("c/sim.vvp").exists(), "the build is reused");
+    // Changed Verilog: a miss, built and simulated, and its bug found.
+    let twin = Path::new(env!("CARGO_MANIFEST_DIR")).join("../rtl/bump/blend_adjust_153.v");
+    let good = std::fs::read_to_string(twin).unwrap();
+    let mine = d.join("mine.v");
+    std::fs::write(&mine, good.replace("{1'b1, u_in};", "{1'b0, u_in};")).unwrap();
+    let bad = cosim(c, &d.join("d"), &["--rtl", mine.to_str().unwrap()]);
+    assert_eq!(bad.status.code(), Some(1), "the bug is found");
+    assert!(d.join("d/sim.vvp").exists(), "built anew");
+    assert_eq!(entries(&root).len(), 5);
+    // Off: built every time, nothing kept.
+    let off = cosim("off", &d.join("e"), &[]);
+    assert_eq!(off.status.code(), Some(0));
+    assert!(d.join("e/sim.vvp").exists());
+    assert_eq!(entries(&root).len(), 5);
+    std::fs::remove_dir_all(&d).unwrap();
+}
