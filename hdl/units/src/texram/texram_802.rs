@@ -23,8 +23,8 @@
 //! the literal layout a component's 2x2 lies in one bank: 812 gives each bank up to four
 //! words, read in successive rounds of a slot each (two on a page fault), and counts the
 //! access in `conflicts`. The DRFs and the bank
-//! contents are loaded through [`Texram802::set_drf`] and [`Texram802::load`] (the chain
-//! walker that writes them is later work).
+//! contents are loaded through [`Texram802::set_drf`] and [`Texram802::load`], or a whole
+//! map with its mipmap through [`Texram802::load_map`] (what the map chain uses).
 //!
 //! Video (sections 11-12): with [`Texram802::attach_video`] the chip has its video port 808,
 //! the mipmap generator 816 and the shift registers 826 (`video_port_808.rs`). Their row
