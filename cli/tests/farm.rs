@@ -128,6 +128,7 @@ fn a_running_task(c: &Cluster, array: &str) -> String {
 const OPTIONS: [&str; 4] = ["--seeds", "2", "--count", "20"];
 
 #[test]
+#[ignore = "slow (a Slurm cluster started and stopped): cargo test -- --ignored, as .ci/run does"]
 fn a_slurm_array_merges_to_the_single_machine_run_and_names_a_cancelled_task() {
     let d = fresh("texrtl");
     let Some(c) = Cluster::start(&d.join("cluster")) else {
@@ -215,6 +216,7 @@ fn crate_with_a_rare_bug(d: &Path) -> PathBuf {
 }
 
 #[test]
+#[ignore = "slow (a user crate built, 2,000 jobs on Slurm): cargo test -- --ignored, as .ci/run does"]
 fn a_failing_seed_of_a_2000_job_farm_is_reproduced_by_its_line_in_the_report() {
     let d = fresh("jobs");
     let Some(c) = Cluster::start(&d.join("cluster")) else {

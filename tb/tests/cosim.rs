@@ -486,27 +486,48 @@ fn tangent_configs() -> Vec<(&'static str, BumpParams)> {
     ]
 }
 
-/// Every twin matches its model on every port of every cycle: 100 k random cycles per
-/// configuration in Verilator, 20 k in Icarus (its first configuration of each unit). The
-/// runs share two threads (the machine's cores; Verilator's C++ builds dominate).
-/// `TEXRTL_COSIM_ONLY=text` runs only the configurations whose label contains `text`.
+/// Every twin matches its model on every port of every cycle. The twins' first configurations, every unit once, in both simulators (20 k cycles in
+/// Verilator, 5 k in Icarus): the quick check of `cargo test`. The full sweep is below.
 #[test]
 fn every_twin_matches_its_model_on_every_cycle() {
+    let first = |sim: Simulator| match sim {
+        Simulator::Verilator => 20_000,
+        Simulator::Icarus => 5_000,
+    };
+    sweep(&|sim, _, first_of_unit| first_of_unit.then(|| first(sim)));
+}
+
+/// Every configuration of every twin (59: widths, modes, borders, sizes, timings), 100 k
+/// cycles each in Verilator, the first configuration of each unit 20 k in Icarus. Slow:
+/// `cargo test -- --ignored`, which `.ci/run` runs; `TEXRTL_COSIM_ONLY=text` narrows it to
+/// configurations whose label contains `text`.
+#[test]
+#[ignore = "slow (about 4 minutes on 2 cores): cargo test -- --ignored, as .ci/run does"]
+fn every_configuration_of_every_twin_matches_on_every_cycle() {
+    let only = std::env::var("TEXRTL_COSIM_ONLY").unwrap_or_default();
+    sweep(&|sim, label, first_of_unit| {
+        if !label.contains(&only) {
+            return None;
+        }
+        match sim {
+            Simulator::Verilator => Some(100_000),
+            Simulator::Icarus => first_of_unit.then_some(20_000),
+        }
+    });
+}
+
+/// Co-simulates the twins `cycles(simulator, label, first configuration of its unit)` picks,
+/// for the cycles it says, two at a time; every failure is reported.
+fn sweep(cycles: &(dyn Fn(Simulator, &str, bool) -> Option<usize> + Sync)) {
     let mut jobs: Vec<(Simulator, usize, usize)> = Vec::new();
     for sim in [Simulator::Verilator, Simulator::Icarus] {
         if !available(sim) {
             continue;
         }
         let mut seen = Vec::new();
-        let only = std::env::var("TEXRTL_COSIM_ONLY").unwrap_or_default();
         for (k, (label, u)) in twins().iter().enumerate() {
-            if !label.contains(&only) {
-                continue;
-            }
-            match sim {
-                Simulator::Verilator => jobs.push((sim, k, 100_000)),
-                Simulator::Icarus if !seen.contains(&u.name()) => jobs.push((sim, k, 20_000)),
-                Simulator::Icarus => {}
+            if let Some(n) = cycles(sim, label, !seen.contains(&u.name())) {
+                jobs.push((sim, k, n));
             }
             seen.push(u.name());
         }
@@ -930,6 +951,7 @@ fn normal_rounding_bug_is_caught_with_its_cycle_and_port() {
 /// Where Yosys is installed, every twin synthesises (`rtl/synth`, generic cells) and the
 /// B-spline replicate unit is pure wiring, as para. 0056 says.
 #[test]
+#[ignore = "slow (about 2 minutes): cargo test -- --ignored, as .ci/run does"]
 fn every_twin_synthesises_where_yosys_is_present() {
     if std::process::Command::new("yosys")
         .arg("-V")
