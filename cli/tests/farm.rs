@@ -109,20 +109,32 @@ fn ids(out: &str) -> (String, String) {
 }
 
 /// The first task of `array` seen running (polled every 20 ms for a minute).
-fn a_running_task(c: &Cluster, array: &str) -> String {
+/// A task of `array` to cancel: the last one still pending when there is one (queued behind
+/// the others, it cannot finish before the cancel lands; a running task near its end could,
+/// and then nothing would be missing), else one that runs.
+fn a_task_to_cancel(c: &Cluster, array: &str) -> String {
     let t = Instant::now();
-    while t.elapsed() < Duration::from_secs(60) {
+    let tasks = |state: &str| {
         let o = c
             .cmd("squeue")
-            .args(["-h", "-r", "-t", "R", "-j", array, "-o", "%i"])
+            .args(["-h", "-r", "-t", state, "-j", array, "-o", "%i"])
             .output()
             .unwrap();
-        if let Some(task) = String::from_utf8_lossy(&o.stdout).lines().next() {
-            return task.trim().to_string();
+        let out = String::from_utf8_lossy(&o.stdout).into_owned();
+        out.lines()
+            .map(|l| l.trim().to_string())
+            .collect::<Vec<_>>()
+    };
+    while t.elapsed() < Duration::from_secs(60) {
+        if let Some(task) = tasks("PD").into_iter().rfind(|t| !t.contains('[')) {
+            return task;
+        }
+        if let Some(task) = tasks("R").into_iter().next() {
+            return task;
         }
         std::thread::sleep(Duration::from_millis(20));
     }
-    panic!("no task of {array} ran within a minute");
+    panic!("no task of {array} was queued or ran within a minute");
 }
 
 const OPTIONS: [&str; 4] = ["--seeds", "2", "--count", "20"];
@@ -158,8 +170,8 @@ fn a_slurm_array_merges_to_the_single_machine_run_and_names_a_cancelled_task() {
     let o = farm(&[]);
     assert!(o.status.success(), "farm: {}", text(&o));
     let (array, merge) = ids(&text(&o));
-    // One task cancelled while it runs: the merge names its shard.
-    let task = a_running_task(&c, &array);
+    // One task cancelled before it ends: the merge names its shard.
+    let task = a_task_to_cancel(&c, &array);
     let k = task.rsplit('_').next().unwrap().to_string();
     let o = c.cmd("scancel").arg(&task).output().unwrap();
     assert!(o.status.success(), "scancel {task}: {}", text(&o));
