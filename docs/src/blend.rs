@@ -12,59 +12,63 @@
 //! and rounds once to the output format. Latency 2, one blend a cycle.
 
 use hdl::fx::{Format, Overflow, Quant};
-use hdl::kernel::{Module, Reg, Signal, Visitor};
+use hdl::kernel::{Module, Reg, Signal};
 
 /// The colours' and the weight's format, uQ0.8.
 pub const COLOUR: Format = Format::unsigned(8, 8);
 /// The exact product `alpha (a - b)`: uQ0.8 times sQ1.8, within (-1, 1): sQ1.16.
 pub const PRODUCT: Format = Format::signed(18, 16);
 
-/// The two-stage blend.
-#[derive(Clone)]
+/// One bit: the valid flags.
+pub const BIT: Format = Format::uint(1);
+
+/// The two-stage blend. Each port and register is declared once, with its format:
+/// `#[derive(Module)]` makes the constructor ([`Blend::new`], every signal named after its
+/// field), the clock edge (every `#[reg]` commits) and the hierarchy (every marked field
+/// traced and schedule-checked) from the fields; the behaviour is [`Blend::eval`].
+#[derive(Clone, Module)]
+#[module(kind = "blend", new)]
 pub struct Blend {
     /// Input: a blend is presented.
+    #[input(fmt = BIT)]
     pub valid_in: Signal,
     /// Input: the colour weighted by `alpha`.
+    #[input(fmt = COLOUR)]
     pub a: Signal,
     /// Input: the colour weighted by `1 - alpha`.
+    #[input(fmt = COLOUR)]
     pub b: Signal,
     /// Input: the weight.
+    #[input(fmt = COLOUR)]
     pub alpha: Signal,
     /// Output: `out` is a blend.
+    #[output(fmt = BIT)]
     pub out_valid: Signal,
     /// Output: the blend.
+    #[output(fmt = COLOUR)]
     pub out: Signal,
+    #[reg(fmt = PRODUCT)]
     product_r: Reg,
+    #[reg(fmt = COLOUR)]
     b_r: Reg,
+    #[reg(fmt = BIT)]
     valid1_r: Reg,
+    #[reg(fmt = COLOUR)]
     out_r: Reg,
+    #[reg(fmt = BIT)]
     valid2_r: Reg,
 }
 
 impl Default for Blend {
     fn default() -> Blend {
-        Blend {
-            valid_in: Signal::bit("valid_in"),
-            a: Signal::new("a", COLOUR),
-            b: Signal::new("b", COLOUR),
-            alpha: Signal::new("alpha", COLOUR),
-            out_valid: Signal::bit("out_valid"),
-            out: Signal::new("out", COLOUR),
-            product_r: Reg::new("product_r", PRODUCT),
-            b_r: Reg::new("b_r", COLOUR),
-            valid1_r: Reg::new("valid1_r", Format::uint(1)),
-            out_r: Reg::new("out_r", COLOUR),
-            valid2_r: Reg::new("valid2_r", Format::uint(1)),
-        }
+        Blend::new()
     }
 }
 
-impl Module for Blend {
-    fn kind(&self) -> &'static str {
-        "blend"
-    }
-
-    fn eval(&mut self) {
+impl Blend {
+    /// The combinational process: outputs and next values from the inputs and the registers
+    /// (the two-process rule: `eval` computes, the generated `tick` commits).
+    pub fn eval(&mut self) {
         // Outputs from the registers (the two-process rule: eval computes, tick commits).
         self.out_valid.follow(self.valid2_r.q());
         self.out.follow(self.out_r.q());
@@ -82,26 +86,6 @@ impl Module for Blend {
             self.product_r.set_next(product.exact(PRODUCT));
             self.b_r.set_next(self.b.fx());
         }
-    }
-
-    fn tick(&mut self, reset: bool) {
-        for r in [
-            &mut self.product_r,
-            &mut self.b_r,
-            &mut self.valid1_r,
-            &mut self.out_r,
-            &mut self.valid2_r,
-        ] {
-            r.tick(reset);
-        }
-    }
-
-    fn visit(&self, v: &mut dyn Visitor) {
-        v.enter(self.instance(), self.kind());
-        hdl::signals!(v; Input: self.valid_in, self.a, self.b, self.alpha;
-            Output: self.out_valid, self.out;
-            Reg: self.product_r, self.b_r, self.valid1_r, self.out_r, self.valid2_r);
-        v.leave();
     }
 }
 

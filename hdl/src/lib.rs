@@ -13,5 +13,8 @@
 
 #![warn(missing_docs)]
 
+// `#[derive(Module)]` names this crate `::hdl` wherever it expands, here too.
+extern crate self as hdl;
+
 pub mod fx;
 pub mod kernel;

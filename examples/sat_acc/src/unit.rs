@@ -1,34 +1,38 @@
-//! The unit, `acc <= sat(acc + x)`, two-process style: `eval` computes, `tick` only commits.
+//! The unit, `acc <= sat(acc + x)`, two-process style: each port and register declared once,
+//! with its format (`#[derive(Module)]` makes the constructor, the clock edge and the
+//! hierarchy from them); the behaviour is `eval`.
 use hdl::fx::{Format, Overflow, Quant};
-use hdl::kernel::{Module, Reg, Signal, Visitor};
+use hdl::kernel::{Module, Reg, Signal};
 
 pub const X: Format = Format::signed(8, 4); // input sQ4.4: [-8, 8)
 pub const ACC: Format = Format::signed(10, 4); // accumulator sQ6.4: [-32, 32)
+pub const BIT: Format = Format::uint(1);
 
-#[derive(Clone)]
+#[derive(Clone, Module)]
+#[module(kind = "sat_acc", new)]
 pub struct SatAcc {
+    #[input(fmt = BIT)]
     pub valid_in: Signal,
+    #[input(fmt = X)]
     pub x: Signal,
+    #[output(fmt = BIT)]
     pub out_valid: Signal,
+    #[output(fmt = ACC)]
     pub acc: Signal,
+    #[reg(fmt = ACC)]
     acc_r: Reg,
+    #[reg(fmt = BIT)]
     valid_r: Reg,
 }
 
 impl Default for SatAcc {
     fn default() -> SatAcc {
-        let (valid_in, x, out_valid) =
-            (Signal::bit("valid_in"), Signal::new("x", X), Signal::bit("out_valid"));
-        let (acc, acc_r) = (Signal::new("acc", ACC), Reg::new("acc_r", ACC));
-        SatAcc { valid_in, x, out_valid, acc, acc_r, valid_r: Reg::new("valid_r", Format::uint(1)) }
+        SatAcc::new()
     }
 }
 
-impl Module for SatAcc {
-    fn kind(&self) -> &'static str {
-        "sat_acc"
-    }
-    fn eval(&mut self) {
+impl SatAcc {
+    pub fn eval(&mut self) {
         self.out_valid.follow(self.valid_r.q());
         self.acc.follow(self.acc_r.q());
         self.valid_r.set_next_bool(self.valid_in.is_high());
@@ -37,16 +41,6 @@ impl Module for SatAcc {
             let sum = self.acc_r.q().fx() + self.x.fx();
             self.acc_r.set_next(sum.convert(ACC, Quant::Trunc, Overflow::Saturate));
         }
-    }
-    fn tick(&mut self, reset: bool) {
-        self.acc_r.tick(reset);
-        self.valid_r.tick(reset);
-    }
-    fn visit(&self, v: &mut dyn Visitor) {
-        v.enter(self.instance(), self.kind());
-        hdl::signals!(v; Input: self.valid_in, self.x;
-            Output: self.out_valid, self.acc; Reg: self.acc_r, self.valid_r);
-        v.leave();
     }
 }
 

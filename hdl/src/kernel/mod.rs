@@ -6,6 +6,7 @@
 //! plain machine integers, every call is statically dispatched, nothing allocates per cycle,
 //! and tracing is a single branch when it is off.
 
+pub mod declared;
 mod delay;
 mod module;
 mod signal;
@@ -15,6 +16,9 @@ pub use delay::Delay;
 pub use module::{Dir, Module, Visitor};
 pub use signal::{Reg, Signal};
 pub use sim::{instances, signal_dirs, signal_paths, NoTrace, Sim, Trace};
+/// Derives [`Module`] from fields marked `#[input]`, `#[output]`, `#[wire]`, `#[reg]`,
+/// `#[child]` (see [`declared`]); the behaviour is the type's own `fn eval(&mut self)`.
+pub use texrtl_hdl_derive::Module;
 
 #[cfg(test)]
 mod tests;

@@ -1,0 +1,289 @@
+//! `#[derive(Module)]`: a module's ports, registers, wires and children are declared once, by
+//! an attribute on their field, and its `tick` and `visit` are generated from them, so a
+//! register added to the struct is committed at the clock edge, traced and schedule-checked
+//! with no other edit. The behaviour stays hand-written: an inherent `fn eval(&mut self)`.
+//!
+//! ```text
+//! #[derive(Module)]
+//! #[module(kind = "blend")]          // the kind (and, by default, the instance name);
+//!                                    // `new` also generates `Blend::new()` (below)
+//! pub struct Blend {
+//!     #[input] pub a: Signal,         // Signal, [Signal; N] or Vec<Signal>
+//!     #[output] pub out: Signal,
+//!     #[wire] sum: Signal,            // an internal combinational value, traced
+//!     #[reg] out_r: Reg,              // Reg, [Reg; N] or Vec<Reg>: ticked and traced
+//!     #[child] stage: Stage,          // a Module, [M; N], Vec<M> or Option<M>: ticked, visited
+//!     #[instance] name: &'static str, // optional: the instance name
+//!     params: Params,                 // anything unmarked is neither ticked nor visited
+//! }
+//! impl Blend { fn eval(&mut self) { ... } }
+//! ```
+//!
+//! Fields are visited in declaration order. With `#[module(kind = "...", new)]` and every
+//! field a marked signal or register with its format (`#[input(fmt = COLOUR)]`,
+//! `#[reg(fmt = PRODUCT, reset = ...)]`, `#[reg(fmt = F, states = &["IDLE", "FETCH"])]`), the
+//! derive also writes `pub fn new() -> Self`, each signal named after its field: the names,
+//! formats and state names are then written once, in the struct. A module whose edge or
+//! hierarchy the attributes cannot say keeps a hand-written `impl Module`.
+
+use proc_macro::TokenStream;
+use proc_macro2::TokenStream as Tokens;
+use quote::{format_ident, quote};
+use syn::{parse_macro_input, Data, DeriveInput, Fields, LitStr};
+
+/// What a field is to its module.
+#[derive(Clone, Copy, PartialEq)]
+enum Role {
+    Input,
+    Output,
+    Wire,
+    Reg,
+    Child,
+    Instance,
+}
+
+const ROLES: [(&str, Role); 6] = [
+    ("input", Role::Input),
+    ("output", Role::Output),
+    ("wire", Role::Wire),
+    ("reg", Role::Reg),
+    ("child", Role::Child),
+    ("instance", Role::Instance),
+];
+
+/// Derives `Module` (see the crate documentation).
+#[proc_macro_derive(Module, attributes(module, input, output, wire, reg, child, instance))]
+pub fn derive_module(input: TokenStream) -> TokenStream {
+    let ast = parse_macro_input!(input as DeriveInput);
+    expand(&ast).unwrap_or_else(|e| e.to_compile_error()).into()
+}
+
+/// The path of texrtl-hdl as the deriving crate names it.
+fn hdl_path() -> Tokens {
+    use proc_macro_crate::{crate_name, FoundCrate};
+    match crate_name("texrtl-hdl") {
+        // texrtl-hdl itself (its lib names itself `hdl`, its tests depend on it as `hdl`).
+        Ok(FoundCrate::Itself) => quote!(::hdl),
+        // A dependency declared under its package name is named by its lib's name, `hdl`.
+        Ok(FoundCrate::Name(n)) if n == "texrtl_hdl" => quote!(::hdl),
+        Ok(FoundCrate::Name(n)) => {
+            let id = format_ident!("{}", n);
+            quote!(::#id)
+        }
+        Err(_) => quote!(::hdl),
+    }
+}
+
+/// `#[module(kind = "...", new)]`: the kind (required) and whether to generate `new`.
+fn module_args(ast: &DeriveInput) -> syn::Result<(LitStr, bool)> {
+    let (mut kind, mut new) = (None, false);
+    for a in ast.attrs.iter().filter(|a| a.path().is_ident("module")) {
+        a.parse_nested_meta(|m| {
+            if m.path.is_ident("kind") {
+                kind = Some(m.value()?.parse::<LitStr>()?);
+                Ok(())
+            } else if m.path.is_ident("new") {
+                new = true;
+                Ok(())
+            } else {
+                Err(m.error("expected `kind = \"...\"` or `new`"))
+            }
+        })?;
+    }
+    let kind = kind.ok_or_else(|| {
+        syn::Error::new_spanned(
+            &ast.ident,
+            "#[derive(Module)] needs #[module(kind = \"...\")]",
+        )
+    })?;
+    Ok((kind, new))
+}
+
+/// `pub fn new() -> Self`: every field a signal or register of a declared format, named
+/// after its field, registers reset to zero unless `reset` says otherwise.
+fn constructor(ast: &DeriveInput, fields: &[Field], hdl: &Tokens) -> syn::Result<Tokens> {
+    let Data::Struct(s) = &ast.data else {
+        unreachable!("checked in roles")
+    };
+    if s.fields.len() != fields.len()
+        || fields
+            .iter()
+            .any(|f| matches!(f.role, Role::Child | Role::Instance))
+    {
+        return Err(syn::Error::new_spanned(
+            &ast.ident,
+            "`new` needs every field a marked signal or register",
+        ));
+    }
+    let mut inits = Vec::new();
+    for f in fields {
+        let (id, name) = (&f.id, f.id.to_string());
+        let fmt = f
+            .fmt
+            .as_ref()
+            .ok_or_else(|| syn::Error::new_spanned(id, "`new` needs `fmt = ...` on every field"))?;
+        let base = match (f.role, &f.reset) {
+            (Role::Reg, Some(r)) => quote!(#hdl::kernel::Reg::with_reset(#name, #fmt, #r)),
+            (Role::Reg, None) => quote!(#hdl::kernel::Reg::new(#name, #fmt)),
+            _ => quote!(#hdl::kernel::Signal::new(#name, #fmt)),
+        };
+        inits.push(match &f.states {
+            Some(st) => quote!(#id: #base.with_states(#st)),
+            None => quote!(#id: #base),
+        });
+    }
+    let name = &ast.ident;
+    Ok(quote! {
+        impl #name {
+            /// The module, every signal and register named after its field, in its declared format.
+            pub fn new() -> Self {
+                Self { #(#inits),* }
+            }
+        }
+    })
+}
+
+/// A marked field: its name, role and what its attribute says it is made of.
+struct Field {
+    id: syn::Ident,
+    role: Role,
+    /// `fmt = EXPR`: the signal's or register's format (for the generated `new`).
+    fmt: Option<syn::Expr>,
+    /// `states = EXPR`: an FSM register's or signal's state names.
+    states: Option<syn::Expr>,
+    /// `reset = EXPR`: a register's reset value (an `Fx`), zero by default.
+    reset: Option<syn::Expr>,
+}
+
+/// The `fmt`, `states` and `reset` of a role attribute (`#[reg(fmt = F, states = S)]`).
+fn field_args(a: &syn::Attribute, f: &mut Field) -> syn::Result<()> {
+    if matches!(a.meta, syn::Meta::Path(_)) {
+        return Ok(());
+    }
+    a.parse_nested_meta(|m| {
+        let slot = if m.path.is_ident("fmt") {
+            &mut f.fmt
+        } else if m.path.is_ident("states") {
+            &mut f.states
+        } else if m.path.is_ident("reset") && f.role == Role::Reg {
+            &mut f.reset
+        } else {
+            return Err(
+                m.error("expected `fmt = ...`, `states = ...` or (a register's) `reset = ...`")
+            );
+        };
+        *slot = Some(m.value()?.parse::<syn::Expr>()?);
+        Ok(())
+    })
+}
+
+/// Each named field's role, in declaration order; a field with two roles is an error.
+fn roles(ast: &DeriveInput) -> syn::Result<Vec<Field>> {
+    let Data::Struct(s) = &ast.data else {
+        return Err(syn::Error::new_spanned(
+            &ast.ident,
+            "#[derive(Module)] is for structs",
+        ));
+    };
+    let Fields::Named(fields) = &s.fields else {
+        return Err(syn::Error::new_spanned(
+            &ast.ident,
+            "#[derive(Module)] needs named fields",
+        ));
+    };
+    let mut out = Vec::new();
+    for f in &fields.named {
+        let mut found: Option<Field> = None;
+        for a in &f.attrs {
+            let Some(&(_, role)) = ROLES.iter().find(|(n, _)| a.path().is_ident(n)) else {
+                continue;
+            };
+            if found.is_some() {
+                return Err(syn::Error::new_spanned(a, "a field has one role"));
+            }
+            let id = f.ident.clone().expect("named");
+            let mut field = Field {
+                id,
+                role,
+                fmt: None,
+                states: None,
+                reset: None,
+            };
+            field_args(a, &mut field)?;
+            found = Some(field);
+        }
+        out.extend(found);
+    }
+    if out.iter().filter(|f| f.role == Role::Instance).count() > 1 {
+        return Err(syn::Error::new_spanned(
+            &ast.ident,
+            "one #[instance] field at most",
+        ));
+    }
+    Ok(out)
+}
+
+fn expand(ast: &DeriveInput) -> syn::Result<Tokens> {
+    let (kind, new) = module_args(ast)?;
+    let fields = roles(ast)?;
+    let hdl = hdl_path();
+    let ctor = if new {
+        constructor(ast, &fields, &hdl)?
+    } else {
+        Tokens::new()
+    };
+    let name = &ast.ident;
+    let (impl_g, ty_g, where_g) = ast.generics.split_for_impl();
+    let decl = quote!(#hdl::kernel::declared);
+    let mut ticks = Vec::new();
+    let mut visits = Vec::new();
+    let mut instance = quote!(#kind);
+    for Field { id: f, role, .. } in &fields {
+        let dir = |d: &str| {
+            let d = format_ident!("{}", d);
+            quote!(#decl::Signals::visit_signals(&self.#f, #hdl::kernel::Dir::#d, v);)
+        };
+        match role {
+            Role::Input => visits.push(dir("Input")),
+            Role::Output => visits.push(dir("Output")),
+            Role::Wire => visits.push(dir("Wire")),
+            Role::Reg => {
+                ticks.push(quote!(#decl::Regs::tick_regs(&mut self.#f, reset);));
+                visits.push(quote!(#decl::Regs::visit_regs(&self.#f, v);));
+            }
+            Role::Child => {
+                ticks.push(quote!(#decl::Children::tick_children(&mut self.#f, reset);));
+                visits.push(quote!(#decl::Children::visit_children(&self.#f, v);));
+            }
+            Role::Instance => instance = quote!(&self.#f),
+        }
+    }
+    Ok(quote! {
+        #ctor
+        impl #impl_g #hdl::kernel::Module for #name #ty_g #where_g {
+            fn instance(&self) -> &str {
+                #instance
+            }
+            fn kind(&self) -> &'static str {
+                #kind
+            }
+            // The unit's own (inherent) `eval`: without one this would call itself, which
+            // the lint makes a compile error.
+            #[inline]
+            #[deny(unconditional_recursion)]
+            fn eval(&mut self) {
+                Self::eval(self)
+            }
+            #[inline]
+            fn tick(&mut self, reset: bool) {
+                let _ = reset;
+                #(#ticks)*
+            }
+            fn visit(&self, v: &mut dyn #hdl::kernel::Visitor) {
+                v.enter(#hdl::kernel::Module::instance(self), #kind);
+                #(#visits)*
+                v.leave();
+            }
+        }
+    })
+}

@@ -1,0 +1,131 @@
+//! What `#[derive(Module)]` ticks and visits: a field marked `#[input]`, `#[output]` or
+//! `#[wire]` is [`Signals`], `#[reg]` [`Regs`], `#[child]` [`Children`]; each is one item or a
+//! collection of them (an array, a `Vec`, an `Option` of children), so a bank of registers or
+//! of sub-units is declared with one attribute, with no index kept in step by hand.
+
+use super::module::{Dir, Module, Visitor};
+use super::signal::{Reg, Signal};
+
+/// Signals a module visits with one direction.
+pub trait Signals {
+    /// Visits every signal, in order.
+    fn visit_signals(&self, dir: Dir, v: &mut dyn Visitor);
+}
+
+impl Signals for Signal {
+    #[inline]
+    fn visit_signals(&self, dir: Dir, v: &mut dyn Visitor) {
+        v.signal(dir, self);
+    }
+}
+
+impl<T: Signals, const N: usize> Signals for [T; N] {
+    fn visit_signals(&self, dir: Dir, v: &mut dyn Visitor) {
+        self.iter().for_each(|s| s.visit_signals(dir, v));
+    }
+}
+
+impl<T: Signals> Signals for Vec<T> {
+    fn visit_signals(&self, dir: Dir, v: &mut dyn Visitor) {
+        self.iter().for_each(|s| s.visit_signals(dir, v));
+    }
+}
+
+/// Registers: committed at the clock edge, visited as registers.
+pub trait Regs {
+    /// The clock edge of every register.
+    fn tick_regs(&mut self, reset: bool);
+    /// Visits every register, in order.
+    fn visit_regs(&self, v: &mut dyn Visitor);
+}
+
+impl Regs for Reg {
+    #[inline]
+    fn tick_regs(&mut self, reset: bool) {
+        self.tick(reset);
+    }
+    #[inline]
+    fn visit_regs(&self, v: &mut dyn Visitor) {
+        v.reg(self);
+    }
+}
+
+impl<T: Regs, const N: usize> Regs for [T; N] {
+    #[inline]
+    fn tick_regs(&mut self, reset: bool) {
+        for r in self {
+            r.tick_regs(reset);
+        }
+    }
+    fn visit_regs(&self, v: &mut dyn Visitor) {
+        self.iter().for_each(|r| r.visit_regs(v));
+    }
+}
+
+impl<T: Regs> Regs for Vec<T> {
+    #[inline]
+    fn tick_regs(&mut self, reset: bool) {
+        for r in self {
+            r.tick_regs(reset);
+        }
+    }
+    fn visit_regs(&self, v: &mut dyn Visitor) {
+        self.iter().for_each(|r| r.visit_regs(v));
+    }
+}
+
+/// Child modules: their clock edge and their hierarchy.
+pub trait Children {
+    /// The clock edge of every child.
+    fn tick_children(&mut self, reset: bool);
+    /// Visits every child, in order.
+    fn visit_children(&self, v: &mut dyn Visitor);
+}
+
+impl<M: Module> Children for M {
+    #[inline]
+    fn tick_children(&mut self, reset: bool) {
+        self.tick(reset);
+    }
+    fn visit_children(&self, v: &mut dyn Visitor) {
+        self.visit(v);
+    }
+}
+
+impl<M: Module, const N: usize> Children for [M; N] {
+    #[inline]
+    fn tick_children(&mut self, reset: bool) {
+        for m in self {
+            m.tick(reset);
+        }
+    }
+    fn visit_children(&self, v: &mut dyn Visitor) {
+        self.iter().for_each(|m| m.visit(v));
+    }
+}
+
+impl<M: Module> Children for Vec<M> {
+    #[inline]
+    fn tick_children(&mut self, reset: bool) {
+        for m in self {
+            m.tick(reset);
+        }
+    }
+    fn visit_children(&self, v: &mut dyn Visitor) {
+        self.iter().for_each(|m| m.visit(v));
+    }
+}
+
+impl<M: Module> Children for Option<M> {
+    #[inline]
+    fn tick_children(&mut self, reset: bool) {
+        if let Some(m) = self {
+            m.tick(reset);
+        }
+    }
+    fn visit_children(&self, v: &mut dyn Visitor) {
+        if let Some(m) = self {
+            m.visit(v);
+        }
+    }
+}
