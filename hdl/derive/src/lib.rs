@@ -58,6 +58,47 @@ pub fn derive_module(input: TokenStream) -> TokenStream {
     expand(&ast).unwrap_or_else(|e| e.to_compile_error()).into()
 }
 
+/// Derives `Signals` for a port bundle: a struct of signals (or of bundles, arrays, vectors of
+/// them) visited field by field, in order, with the direction the module's attribute gives it
+/// (`#[input] pub i: BlendIn`). A bundle is written once and travels whole: to a driver, a
+/// monitor, a co-simulation adapter.
+#[proc_macro_derive(Signals)]
+pub fn derive_signals(input: TokenStream) -> TokenStream {
+    let ast = parse_macro_input!(input as DeriveInput);
+    expand_signals(&ast)
+        .unwrap_or_else(|e| e.to_compile_error())
+        .into()
+}
+
+fn expand_signals(ast: &DeriveInput) -> syn::Result<Tokens> {
+    let Data::Struct(s) = &ast.data else {
+        return Err(syn::Error::new_spanned(
+            &ast.ident,
+            "#[derive(Signals)] is for structs",
+        ));
+    };
+    let Fields::Named(fields) = &s.fields else {
+        return Err(syn::Error::new_spanned(
+            &ast.ident,
+            "#[derive(Signals)] needs named fields",
+        ));
+    };
+    let hdl = hdl_path();
+    let name = &ast.ident;
+    let (impl_g, ty_g, where_g) = ast.generics.split_for_impl();
+    let visits = fields.named.iter().map(|f| {
+        let id = &f.ident;
+        quote!(#hdl::kernel::declared::Signals::visit_signals(&self.#id, dir, v);)
+    });
+    Ok(quote! {
+        impl #impl_g #hdl::kernel::declared::Signals for #name #ty_g #where_g {
+            fn visit_signals(&self, dir: #hdl::kernel::Dir, v: &mut dyn #hdl::kernel::Visitor) {
+                #(#visits)*
+            }
+        }
+    })
+}
+
 /// The path of texrtl-hdl as the deriving crate names it.
 fn hdl_path() -> Tokens {
     use proc_macro_crate::{crate_name, FoundCrate};

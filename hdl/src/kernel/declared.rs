@@ -1,7 +1,8 @@
 //! What `#[derive(Module)]` ticks and visits: a field marked `#[input]`, `#[output]` or
 //! `#[wire]` is [`Signals`], `#[reg]` [`Regs`], `#[child]` [`Children`]; each is one item or a
-//! collection of them (an array, a `Vec`, an `Option` of children), so a bank of registers or
-//! of sub-units is declared with one attribute, with no index kept in step by hand.
+//! collection of them (an array, a `Vec`, an `Option` of registers or children), so a bank of
+//! registers or of sub-units is declared with one attribute, with no index kept in step by
+//! hand. A port bundle (a struct of signals) is `Signals` by `#[derive(Signals)]`.
 
 use super::module::{Dir, Module, Visitor};
 use super::signal::{Reg, Signal};
@@ -71,6 +72,20 @@ impl<T: Regs> Regs for Vec<T> {
     }
     fn visit_regs(&self, v: &mut dyn Visitor) {
         self.iter().for_each(|r| r.visit_regs(v));
+    }
+}
+
+impl<T: Regs> Regs for Option<T> {
+    #[inline]
+    fn tick_regs(&mut self, reset: bool) {
+        if let Some(r) = self {
+            r.tick_regs(reset);
+        }
+    }
+    fn visit_regs(&self, v: &mut dyn Visitor) {
+        if let Some(r) = self {
+            r.visit_regs(v);
+        }
     }
 }
 

@@ -19,6 +19,8 @@ pub use sim::{instances, signal_dirs, signal_paths, NoTrace, Sim, Trace};
 /// Derives [`Module`] from fields marked `#[input]`, `#[output]`, `#[wire]`, `#[reg]`,
 /// `#[child]` (see [`declared`]); the behaviour is the type's own `fn eval(&mut self)`.
 pub use texrtl_hdl_derive::Module;
+/// Derives [`declared::Signals`] for a port bundle, a struct of signals visited field by field.
+pub use texrtl_hdl_derive::Signals;
 
 #[cfg(test)]
 mod tests;

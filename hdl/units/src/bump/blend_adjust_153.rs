@@ -30,8 +30,7 @@
 //! clears the output registers.
 
 use crate::fx::Format;
-use crate::kernel::{Module, Reg, Signal, Visitor};
-use crate::signals;
+use crate::kernel::{Module, Reg, Signal, Signals};
 
 /// Parameters an architect may sweep.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -80,7 +79,7 @@ impl BlendAdjustParams {
 }
 
 /// Input ports.
-#[derive(Clone, Debug)]
+#[derive(Clone, Debug, Signals)]
 pub struct BlendAdjustIn {
     pub valid_in: Signal,
     pub bypass: Signal,
@@ -89,7 +88,7 @@ pub struct BlendAdjustIn {
 }
 
 /// Output ports.
-#[derive(Clone, Debug)]
+#[derive(Clone, Debug, Signals)]
 pub struct BlendAdjustOut {
     pub valid: Signal,
     pub u0: Signal,
@@ -99,14 +98,19 @@ pub struct BlendAdjustOut {
 }
 
 /// Blend-factor adjust unit 153.
-#[derive(Clone, Debug)]
+#[derive(Clone, Debug, Module)]
+#[module(kind = "blend_adjust_153")]
 pub struct BlendAdjust {
+    #[instance]
     name: String,
     params: BlendAdjustParams,
+    #[input]
     pub i: BlendAdjustIn,
+    #[output]
     pub o: BlendAdjustOut,
-    /// Output register stage (used when `registered`): valid, u0, u1, v0, v1.
-    r: [Reg; 5],
+    /// Output register stage, when `registered`: valid, u0, u1, v0, v1.
+    #[reg]
+    r: Option<[Reg; 5]>,
 }
 
 impl BlendAdjust {
@@ -131,13 +135,15 @@ impl BlendAdjust {
                 v0: Signal::new("v0", fo),
                 v1: Signal::new("v1", fo),
             },
-            r: [
-                Reg::new("valid_r", Format::uint(1)),
-                Reg::new("u0_r", fo),
-                Reg::new("u1_r", fo),
-                Reg::new("v0_r", fo),
-                Reg::new("v1_r", fo),
-            ],
+            r: params.registered.then(|| {
+                [
+                    Reg::new("valid_r", Format::uint(1)),
+                    Reg::new("u0_r", fo),
+                    Reg::new("u1_r", fo),
+                    Reg::new("v0_r", fo),
+                    Reg::new("v1_r", fo),
+                ]
+            }),
         })
     }
 
@@ -159,16 +165,10 @@ impl BlendAdjust {
     }
 }
 
-impl Module for BlendAdjust {
-    fn instance(&self) -> &str {
-        &self.name
-    }
-    fn kind(&self) -> &'static str {
-        "blend_adjust_153"
-    }
-
+impl BlendAdjust {
+    /// The combinational process (the generated `tick` commits the register stage).
     #[inline]
-    fn eval(&mut self) {
+    pub fn eval(&mut self) {
         let f = self.params.frac_bits;
         let bypass = self.i.bypass.is_high();
         let (u0, u1) = Self::adjust(f, self.i.u_in.bits(), bypass);
@@ -177,8 +177,8 @@ impl Module for BlendAdjust {
         let comb = [valid, u0, u1, v0, v1];
         let o = &mut self.o;
         let outs = [&mut o.valid, &mut o.u0, &mut o.u1, &mut o.v0, &mut o.v1];
-        if self.params.registered {
-            for ((reg, out), next) in self.r.iter_mut().zip(outs).zip(comb) {
+        if let Some(r) = &mut self.r {
+            for ((reg, out), next) in r.iter_mut().zip(outs).zip(comb) {
                 reg.set_next_raw(next as i64);
                 out.set_bits(reg.q().bits());
             }
@@ -187,29 +187,6 @@ impl Module for BlendAdjust {
                 out.set_bits(v);
             }
         }
-    }
-
-    #[inline]
-    fn tick(&mut self, reset: bool) {
-        if self.params.registered {
-            for r in &mut self.r {
-                r.tick(reset);
-            }
-        }
-    }
-
-    fn visit(&self, v: &mut dyn Visitor) {
-        v.enter(self.instance(), self.kind());
-        let (i, o) = (&self.i, &self.o);
-        signals!(v;
-            Input: i.valid_in, i.bypass, i.u_in, i.v_in;
-            Output: o.valid, o.u0, o.u1, o.v0, o.v1);
-        if self.params.registered {
-            for r in &self.r {
-                v.reg(r);
-            }
-        }
-        v.leave();
     }
 }
 
