@@ -13,29 +13,44 @@
 //! Pure selection: no arithmetic, no rounding.
 
 use crate::fx::Format;
-use crate::kernel::{Module, Reg, Signal, Visitor};
-use crate::signals;
+use crate::kernel::{Module, Reg, Signal};
 use crate::texmem::cache_614::entry_of;
 use crate::texmem::ccc_decode_608::Line;
 
-#[derive(Clone, Debug)]
+#[derive(Clone, Debug, Module)]
+#[module(kind = "extract_618")]
 pub struct ColorExtract {
+    #[instance]
     name: String,
+    #[input]
     pub in_valid: Signal,
+    #[input]
     pub x0: Signal,
+    #[input]
     pub x1: Signal,
+    #[input]
     pub y0: Signal,
+    #[input]
     pub y1: Signal,
+    #[input]
     pub in_fu: Signal,
+    #[input]
     pub in_fv: Signal,
     /// The four 64-bit lines from cache 614 (entries A-D).
     pub lines: [u64; 4],
+    #[reg]
     pub valid: Reg,
+    #[reg]
     pub c00: Reg,
+    #[reg]
     pub c10: Reg,
+    #[reg]
     pub c01: Reg,
+    #[reg]
     pub c11: Reg,
+    #[reg]
     pub fu: Reg,
+    #[reg]
     pub fv: Reg,
 }
 
@@ -69,14 +84,11 @@ impl ColorExtract {
     }
 }
 
-impl Module for ColorExtract {
-    fn instance(&self) -> &str {
-        &self.name
-    }
-    fn kind(&self) -> &'static str {
-        "extract_618"
-    }
-    fn eval(&mut self) {
+impl ColorExtract {
+    /// The combinational process: the next texels and weights (the generated `tick`
+    /// registers them).
+    #[inline]
+    pub fn eval(&mut self) {
         let v = self.in_valid.is_high();
         self.valid.set_next_bool(v);
         if v {
@@ -93,25 +105,5 @@ impl Module for ColorExtract {
             self.fu.set_next_bits(self.in_fu.bits());
             self.fv.set_next_bits(self.in_fv.bits());
         }
-    }
-    fn tick(&mut self, reset: bool) {
-        for r in [
-            &mut self.valid,
-            &mut self.c00,
-            &mut self.c10,
-            &mut self.c01,
-            &mut self.c11,
-            &mut self.fu,
-            &mut self.fv,
-        ] {
-            r.tick(reset);
-        }
-    }
-    fn visit(&self, v: &mut dyn Visitor) {
-        v.enter(self.instance(), self.kind());
-        signals!(v;
-            Input: self.in_valid, self.x0, self.x1, self.y0, self.y1, self.in_fu, self.in_fv;
-            Reg: self.valid, self.c00, self.c10, self.c01, self.c11, self.fu, self.fv);
-        v.leave();
     }
 }
