@@ -51,44 +51,6 @@ impl Regs for Reg {
     }
 }
 
-impl<T: Regs, const N: usize> Regs for [T; N] {
-    #[inline]
-    fn tick_regs(&mut self, reset: bool) {
-        for r in self {
-            r.tick_regs(reset);
-        }
-    }
-    fn visit_regs(&self, v: &mut dyn Visitor) {
-        self.iter().for_each(|r| r.visit_regs(v));
-    }
-}
-
-impl<T: Regs> Regs for Vec<T> {
-    #[inline]
-    fn tick_regs(&mut self, reset: bool) {
-        for r in self {
-            r.tick_regs(reset);
-        }
-    }
-    fn visit_regs(&self, v: &mut dyn Visitor) {
-        self.iter().for_each(|r| r.visit_regs(v));
-    }
-}
-
-impl<T: Regs> Regs for Option<T> {
-    #[inline]
-    fn tick_regs(&mut self, reset: bool) {
-        if let Some(r) = self {
-            r.tick_regs(reset);
-        }
-    }
-    fn visit_regs(&self, v: &mut dyn Visitor) {
-        if let Some(r) = self {
-            r.visit_regs(v);
-        }
-    }
-}
-
 /// Child modules: their clock edge and their hierarchy.
 pub trait Children {
     /// The clock edge of every child.
@@ -107,40 +69,51 @@ impl<M: Module> Children for M {
     }
 }
 
-impl<M: Module, const N: usize> Children for [M; N] {
-    #[inline]
-    fn tick_children(&mut self, reset: bool) {
-        for m in self {
-            m.tick(reset);
+/// `$trait` for arrays, `Vec`s and `Option`s of `$bound`: each item ticked by `$tick` and
+/// visited by `$visit`, in order.
+macro_rules! collections {
+    ($trait:ident, $bound:ident, $tick_fn:ident => $tick:ident, $visit_fn:ident => $visit:ident) => {
+        impl<T: $bound, const N: usize> $trait for [T; N] {
+            #[inline]
+            fn $tick_fn(&mut self, reset: bool) {
+                for x in self {
+                    x.$tick(reset);
+                }
+            }
+            fn $visit_fn(&self, v: &mut dyn Visitor) {
+                for x in self {
+                    x.$visit(v);
+                }
+            }
         }
-    }
-    fn visit_children(&self, v: &mut dyn Visitor) {
-        self.iter().for_each(|m| m.visit(v));
-    }
+        impl<T: $bound> $trait for Vec<T> {
+            #[inline]
+            fn $tick_fn(&mut self, reset: bool) {
+                for x in self {
+                    x.$tick(reset);
+                }
+            }
+            fn $visit_fn(&self, v: &mut dyn Visitor) {
+                for x in self {
+                    x.$visit(v);
+                }
+            }
+        }
+        impl<T: $bound> $trait for Option<T> {
+            #[inline]
+            fn $tick_fn(&mut self, reset: bool) {
+                if let Some(x) = self {
+                    x.$tick(reset);
+                }
+            }
+            fn $visit_fn(&self, v: &mut dyn Visitor) {
+                if let Some(x) = self {
+                    x.$visit(v);
+                }
+            }
+        }
+    };
 }
 
-impl<M: Module> Children for Vec<M> {
-    #[inline]
-    fn tick_children(&mut self, reset: bool) {
-        for m in self {
-            m.tick(reset);
-        }
-    }
-    fn visit_children(&self, v: &mut dyn Visitor) {
-        self.iter().for_each(|m| m.visit(v));
-    }
-}
-
-impl<M: Module> Children for Option<M> {
-    #[inline]
-    fn tick_children(&mut self, reset: bool) {
-        if let Some(m) = self {
-            m.tick(reset);
-        }
-    }
-    fn visit_children(&self, v: &mut dyn Visitor) {
-        if let Some(m) = self {
-            m.visit(v);
-        }
-    }
-}
+collections!(Regs, Regs, tick_regs => tick_regs, visit_regs => visit_regs);
+collections!(Children, Module, tick_children => tick, visit_children => visit);
