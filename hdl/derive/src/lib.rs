@@ -70,19 +70,25 @@ pub fn derive_signals(input: TokenStream) -> TokenStream {
         .into()
 }
 
+/// The named fields of the struct `ast` (`what` names the derive in the error).
+fn named_fields<'a>(ast: &'a DeriveInput, what: &str) -> syn::Result<&'a syn::FieldsNamed> {
+    match &ast.data {
+        Data::Struct(s) => match &s.fields {
+            Fields::Named(f) => Ok(f),
+            _ => Err(syn::Error::new_spanned(
+                &ast.ident,
+                format!("#[derive({what})] needs named fields"),
+            )),
+        },
+        _ => Err(syn::Error::new_spanned(
+            &ast.ident,
+            format!("#[derive({what})] is for structs"),
+        )),
+    }
+}
+
 fn expand_signals(ast: &DeriveInput) -> syn::Result<Tokens> {
-    let Data::Struct(s) = &ast.data else {
-        return Err(syn::Error::new_spanned(
-            &ast.ident,
-            "#[derive(Signals)] is for structs",
-        ));
-    };
-    let Fields::Named(fields) = &s.fields else {
-        return Err(syn::Error::new_spanned(
-            &ast.ident,
-            "#[derive(Signals)] needs named fields",
-        ));
-    };
+    let fields = named_fields(ast, "Signals")?;
     let hdl = hdl_path();
     let name = &ast.ident;
     let (impl_g, ty_g, where_g) = ast.generics.split_for_impl();
@@ -143,10 +149,7 @@ fn module_args(ast: &DeriveInput) -> syn::Result<(LitStr, bool)> {
 /// `pub fn new() -> Self`: every field a signal or register of a declared format, named
 /// after its field, registers reset to zero unless `reset` says otherwise.
 fn constructor(ast: &DeriveInput, fields: &[Field], hdl: &Tokens) -> syn::Result<Tokens> {
-    let Data::Struct(s) = &ast.data else {
-        unreachable!("checked in roles")
-    };
-    if s.fields.len() != fields.len()
+    if named_fields(ast, "Module")?.named.len() != fields.len()
         || fields
             .iter()
             .any(|f| matches!(f.role, Role::Child | Role::Instance))
@@ -220,18 +223,7 @@ fn field_args(a: &syn::Attribute, f: &mut Field) -> syn::Result<()> {
 
 /// Each named field's role, in declaration order; a field with two roles is an error.
 fn roles(ast: &DeriveInput) -> syn::Result<Vec<Field>> {
-    let Data::Struct(s) = &ast.data else {
-        return Err(syn::Error::new_spanned(
-            &ast.ident,
-            "#[derive(Module)] is for structs",
-        ));
-    };
-    let Fields::Named(fields) = &s.fields else {
-        return Err(syn::Error::new_spanned(
-            &ast.ident,
-            "#[derive(Module)] needs named fields",
-        ));
-    };
+    let fields = named_fields(ast, "Module")?;
     let mut out = Vec::new();
     for f in &fields.named {
         let mut found: Option<Field> = None;
