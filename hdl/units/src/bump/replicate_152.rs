@@ -11,7 +11,7 @@
 //! (`uQ6.4` for 8-bit texels). Purely combinational (wiring and adders): latency 0.
 
 use crate::fx::Format;
-use crate::kernel::{Dir, Module, Signal, Visitor};
+use crate::kernel::{Module, Signal};
 
 /// Indices into a..k of each window: red, green, blue, alpha.
 pub const WINDOWS: [[usize; 4]; 4] = [[0, 1, 3, 4], [1, 2, 4, 5], [3, 4, 6, 7], [4, 5, 7, 8]];
@@ -48,12 +48,17 @@ pub fn control_points(mut h: [u64; 9], bezier: bool) -> [u64; 9] {
 }
 
 /// Replicate unit 152.
-#[derive(Clone, Debug)]
+#[derive(Clone, Debug, Module)]
+#[module(kind = "replicate_152")]
 pub struct Replicate {
+    #[instance]
     name: String,
     bezier: bool,
+    /// The 3 x 3 height texels.
+    #[input]
     pub h: [Signal; 9],
     /// Windows red, green, blue, alpha.
+    #[output]
     pub w: [[Signal; 4]; 4],
 }
 
@@ -70,15 +75,10 @@ impl Replicate {
     }
 }
 
-impl Module for Replicate {
-    fn instance(&self) -> &str {
-        &self.name
-    }
-    fn kind(&self) -> &'static str {
-        "replicate_152"
-    }
+impl Replicate {
     #[inline]
-    fn eval(&mut self) {
+    /// The combinational unit: the four windows' control points from the nine texels.
+    pub fn eval(&mut self) {
         let mut h = [0; 9];
         for (x, s) in h.iter_mut().zip(&self.h) {
             *x = s.bits();
@@ -89,16 +89,5 @@ impl Module for Replicate {
                 self.w[wi][k].set_bits(p[i]);
             }
         }
-    }
-    fn tick(&mut self, _: bool) {}
-    fn visit(&self, v: &mut dyn Visitor) {
-        v.enter(self.instance(), self.kind());
-        for s in &self.h {
-            v.signal(Dir::Input, s);
-        }
-        for s in self.w.iter().flatten() {
-            v.signal(Dir::Output, s);
-        }
-        v.leave();
     }
 }
