@@ -12,8 +12,7 @@
 //! The result is registered: one cycle from 618's registers to `rgb` / `valid`.
 
 use crate::fx::Format;
-use crate::kernel::{Module, Reg, Signal, Visitor};
-use crate::signals;
+use crate::kernel::{Module, Reg, Signal};
 
 /// The arithmetic of one channel (exposed for the unit's exhaustive test).
 #[inline]
@@ -33,17 +32,27 @@ pub fn lerp2_sum(c00: u32, c10: u32, c01: u32, c11: u32, fu: u32, fv: u32, frac_
     u64::from(top) * u64::from(w - fv) + u64::from(bot) * u64::from(fv)
 }
 
-#[derive(Clone, Debug)]
+#[derive(Clone, Debug, Module)]
+#[module(kind = "bilinear_622")]
 pub struct ColorBilinear {
+    #[instance]
     name: String,
     frac_bits: u32,
+    #[input]
     pub in_valid: Signal,
+    /// The 2 x 2 texels c00, c10, c01, c11 (24-bit RGB).
+    #[input]
     pub c: [Signal; 4],
+    #[input]
     pub fu: Signal,
+    #[input]
     pub fv: Signal,
+    #[reg]
     pub valid: Reg,
+    #[reg]
     pub rgb: Reg,
     /// The exact sums before the rounding, R, G, B (for footprint assembly).
+    #[reg]
     pub sums: [Reg; 3],
 }
 
@@ -71,14 +80,10 @@ impl ColorBilinear {
     }
 }
 
-impl Module for ColorBilinear {
-    fn instance(&self) -> &str {
-        &self.name
-    }
-    fn kind(&self) -> &'static str {
-        "bilinear_622"
-    }
-    fn eval(&mut self) {
+impl ColorBilinear {
+    /// The combinational process: the next colour and sums (the generated `tick` registers
+    /// them).
+    pub fn eval(&mut self) {
         let v = self.in_valid.is_high();
         self.valid.set_next_bool(v);
         if v {
@@ -94,20 +99,6 @@ impl Module for ColorBilinear {
             }
             self.rgb.set_next_bits(u64::from(rgb));
         }
-    }
-    fn tick(&mut self, reset: bool) {
-        self.valid.tick(reset);
-        self.rgb.tick(reset);
-        for s in &mut self.sums {
-            s.tick(reset);
-        }
-    }
-    fn visit(&self, v: &mut dyn Visitor) {
-        v.enter(self.instance(), self.kind());
-        signals!(v;
-            Input: self.in_valid, self.c[0], self.c[1], self.c[2], self.c[3], self.fu, self.fv;
-            Reg: self.valid, self.rgb, self.sums[0], self.sums[1], self.sums[2]);
-        v.leave();
     }
 }
 
