@@ -69,45 +69,24 @@ impl<M: Module> Children for M {
     }
 }
 
-/// `$trait` for arrays, `Vec`s and `Option`s of `$bound`: each item ticked by `$tick` and
-/// visited by `$visit`, in order.
+/// `$trait` for arrays, `Vec`s and `Option`s of `$bound`: each item (an `Option` holds none
+/// or one) ticked by `$tick` and visited by `$visit`, in order.
 macro_rules! collections {
     ($trait:ident, $bound:ident, $tick_fn:ident => $tick:ident, $visit_fn:ident => $visit:ident) => {
-        impl<T: $bound, const N: usize> $trait for [T; N] {
+        collections!(@one [T: $bound, const N: usize] [T; N], $trait, $tick_fn => $tick, $visit_fn => $visit);
+        collections!(@one [T: $bound] Vec<T>, $trait, $tick_fn => $tick, $visit_fn => $visit);
+        collections!(@one [T: $bound] Option<T>, $trait, $tick_fn => $tick, $visit_fn => $visit);
+    };
+    (@one [$($g:tt)*] $ty:ty, $trait:ident, $tick_fn:ident => $tick:ident, $visit_fn:ident => $visit:ident) => {
+        impl<$($g)*> $trait for $ty {
             #[inline]
             fn $tick_fn(&mut self, reset: bool) {
-                for x in self {
+                for x in self.iter_mut() {
                     x.$tick(reset);
                 }
             }
             fn $visit_fn(&self, v: &mut dyn Visitor) {
-                for x in self {
-                    x.$visit(v);
-                }
-            }
-        }
-        impl<T: $bound> $trait for Vec<T> {
-            #[inline]
-            fn $tick_fn(&mut self, reset: bool) {
-                for x in self {
-                    x.$tick(reset);
-                }
-            }
-            fn $visit_fn(&self, v: &mut dyn Visitor) {
-                for x in self {
-                    x.$visit(v);
-                }
-            }
-        }
-        impl<T: $bound> $trait for Option<T> {
-            #[inline]
-            fn $tick_fn(&mut self, reset: bool) {
-                if let Some(x) = self {
-                    x.$tick(reset);
-                }
-            }
-            fn $visit_fn(&self, v: &mut dyn Visitor) {
-                if let Some(x) = self {
+                for x in self.iter() {
                     x.$visit(v);
                 }
             }
