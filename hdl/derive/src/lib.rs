@@ -70,6 +70,37 @@ pub fn derive_signals(input: TokenStream) -> TokenStream {
         .into()
 }
 
+/// Derives `Children` for a group of sub-modules that has no scope of its own (one MIP
+/// level's units, say): every field is a child (a module, or a collection of them), ticked
+/// and visited in order, straight into the scope of the module that holds the group.
+#[proc_macro_derive(Group)]
+pub fn derive_group(input: TokenStream) -> TokenStream {
+    let ast = parse_macro_input!(input as DeriveInput);
+    expand_group(&ast)
+        .unwrap_or_else(|e| e.to_compile_error())
+        .into()
+}
+
+fn expand_group(ast: &DeriveInput) -> syn::Result<Tokens> {
+    let fields = named_fields(ast, "Group")?;
+    let hdl = hdl_path();
+    let decl = quote!(#hdl::kernel::declared);
+    let name = &ast.ident;
+    let (impl_g, ty_g, where_g) = ast.generics.split_for_impl();
+    let ids: Vec<_> = fields.named.iter().map(|f| &f.ident).collect();
+    Ok(quote! {
+        impl #impl_g #decl::Children for #name #ty_g #where_g {
+            #[inline]
+            fn tick_children(&mut self, reset: bool) {
+                #(#decl::Children::tick_children(&mut self.#ids, reset);)*
+            }
+            fn visit_children(&self, v: &mut dyn #hdl::kernel::Visitor) {
+                #(#decl::Children::visit_children(&self.#ids, v);)*
+            }
+        }
+    })
+}
+
 /// The named fields of the struct `ast` (`what` names the derive in the error).
 fn named_fields<'a>(ast: &'a DeriveInput, what: &str) -> syn::Result<&'a syn::FieldsNamed> {
     match &ast.data {

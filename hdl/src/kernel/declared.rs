@@ -32,6 +32,13 @@ impl<T: Signals> Signals for Vec<T> {
     }
 }
 
+/// Ports a configuration may leave out (a trilinear unit's second level): visited when present.
+impl<T: Signals> Signals for Option<T> {
+    fn visit_signals(&self, dir: Dir, v: &mut dyn Visitor) {
+        self.iter().for_each(|s| s.visit_signals(dir, v));
+    }
+}
+
 /// Registers: committed at the clock edge, visited as registers.
 pub trait Regs {
     /// The clock edge of every register.
@@ -95,4 +102,4 @@ macro_rules! collections {
 }
 
 collections!(Regs, Regs, tick_regs => tick_regs, visit_regs => visit_regs);
-collections!(Children, Module, tick_children => tick, visit_children => visit);
+collections!(Children, Children, tick_children => tick_children, visit_children => visit_children);

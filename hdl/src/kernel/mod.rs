@@ -16,6 +16,8 @@ pub use delay::Delay;
 pub use module::{Dir, Module, Visitor};
 pub use signal::{Reg, Signal};
 pub use sim::{instances, signal_dirs, signal_paths, NoTrace, Sim, Trace};
+/// Derives [`declared::Children`] for a group of sub-modules without a scope of its own.
+pub use texrtl_hdl_derive::Group;
 /// Derives [`Module`] from fields marked `#[input]`, `#[output]`, `#[wire]`, `#[reg]`,
 /// `#[child]` (see [`declared`]); the behaviour is the type's own `fn eval(&mut self)`.
 pub use texrtl_hdl_derive::Module;

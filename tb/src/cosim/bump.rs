@@ -269,10 +269,10 @@ impl CosimUnit for TangentCosim {
                 d.tu.set_bits(v[n]);
                 d.tv.set_bits(v[n + 1]);
                 d.scale.set_bits(v[n + 2]);
-                if n == 8 {
-                    d.tu1.set_bits(v[n + 3]);
-                    d.tv1.set_bits(v[n + 4]);
-                    d.lod.set_bits(v[n + 5]);
+                if let Some(l1) = &mut d.level1 {
+                    l1.tu1.set_bits(v[n + 3]);
+                    l1.tv1.set_bits(v[n + 4]);
+                    l1.lod.set_bits(v[n + 5]);
                 }
             },
         )))

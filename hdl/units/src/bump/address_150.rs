@@ -17,22 +17,31 @@
 //! One register stage: latency 1.
 
 use crate::fx::Format;
-use crate::kernel::{Module, Reg, Signal, Visitor};
-use crate::signals;
+use crate::kernel::{Module, Reg, Signal};
 
 /// Address unit 150.
-#[derive(Clone, Debug)]
+#[derive(Clone, Debug, Module)]
+#[module(kind = "address_150")]
 pub struct AddressUnit {
+    #[instance]
     name: String,
     blend_bits: u32,
     pos_frac: u32,
+    #[input]
     pub u: Signal,
+    #[input]
     pub v: Signal,
+    #[input]
     pub colour: Signal,
+    #[output]
     pub ui: Signal,
+    #[output]
     pub vj: Signal,
+    #[output]
     pub ub: Signal,
+    #[output]
     pub vb: Signal,
+    #[reg]
     r: [Reg; 4],
 }
 
@@ -83,15 +92,10 @@ impl AddressUnit {
     }
 }
 
-impl Module for AddressUnit {
-    fn instance(&self) -> &str {
-        &self.name
-    }
-    fn kind(&self) -> &'static str {
-        "address_150"
-    }
+impl AddressUnit {
     #[inline]
-    fn eval(&mut self) {
+    /// Splits both positions into their texel coordinates and blend factors (one register stage).
+    pub fn eval(&mut self) {
         let colour = self.colour.is_high();
         let (ui, ub) = self.split(self.u.raw(), colour);
         let (vj, vb) = self.split(self.v.raw(), colour);
@@ -103,16 +107,5 @@ impl Module for AddressUnit {
         self.vj.follow(self.r[1].q());
         self.ub.follow(self.r[2].q());
         self.vb.follow(self.r[3].q());
-    }
-    #[inline]
-    fn tick(&mut self, reset: bool) {
-        for r in &mut self.r {
-            r.tick(reset);
-        }
-    }
-    fn visit(&self, v: &mut dyn Visitor) {
-        v.enter(self.instance(), self.kind());
-        signals!(v; Input: self.u, self.v, self.colour; Output: self.ui, self.vj, self.ub, self.vb);
-        v.leave();
     }
 }

@@ -18,21 +18,27 @@
 
 use crate::bump::params::{ROUND, SAT};
 use crate::fx::{quantise, Format};
-use crate::kernel::{Module, Reg, Signal, Visitor};
-use crate::signals;
+use crate::kernel::{Module, Reg, Signal};
 
 /// One bilinear unit.
-#[derive(Clone, Debug)]
+#[derive(Clone, Debug, Module)]
+#[module(kind = "bilinear_65_68")]
 pub struct Bilinear {
+    #[instance]
     name: String,
     /// Fraction bits of the blend factors (F+1) and of the texels.
     sf: u32,
     pf: u32,
     out: Format,
+    #[input]
     pub p: [Signal; 4],
+    #[input]
     pub s: Signal,
+    #[input]
     pub t: Signal,
+    #[output]
     pub q: Signal,
+    #[reg]
     r: Reg,
 }
 
@@ -79,15 +85,10 @@ impl Bilinear {
     }
 }
 
-impl Module for Bilinear {
-    fn instance(&self) -> &str {
-        &self.name
-    }
-    fn kind(&self) -> &'static str {
-        "bilinear_65_68"
-    }
+impl Bilinear {
     #[inline]
-    fn eval(&mut self) {
+    /// The blend of the four texels, into the output register.
+    pub fn eval(&mut self) {
         let p = [
             self.p[0].raw(),
             self.p[1].raw(),
@@ -97,15 +98,5 @@ impl Module for Bilinear {
         let v = self.compute(p, self.s.raw(), self.t.raw());
         self.r.set_next_raw(v);
         self.q.follow(self.r.q());
-    }
-    #[inline]
-    fn tick(&mut self, reset: bool) {
-        self.r.tick(reset);
-    }
-    fn visit(&self, v: &mut dyn Visitor) {
-        v.enter(self.instance(), self.kind());
-        let p = &self.p;
-        signals!(v; Input: p[0], p[1], p[2], p[3], self.s, self.t; Output: self.q);
-        v.leave();
     }
 }

@@ -16,7 +16,7 @@
 use crate::bump::params::Border;
 use crate::bump::texel_fetch_151::border_index;
 use crate::fx::Format;
-use crate::kernel::{Module, Reg, Signal, Visitor};
+use crate::kernel::{Module, Reg, Signal};
 
 /// Position fraction bits.
 pub const POS_FRAC: u32 = 16;
@@ -81,12 +81,19 @@ pub fn filter(m: &ColourMap, u: i64, v: i64) -> [u8; 3] {
 }
 
 /// The unit.
+#[derive(Module)]
+#[module(kind = "biquadratic_0087")]
 pub struct Biquadratic0087 {
     map: ColourMap,
+    #[input]
     pub valid_in: Signal,
+    #[input]
     pub u: Signal,
+    #[input]
     pub v: Signal,
+    #[reg]
     pub valid: Reg,
+    #[reg]
     pub rgb: [Reg; 3],
 }
 
@@ -113,12 +120,9 @@ impl Biquadratic0087 {
     }
 }
 
-impl Module for Biquadratic0087 {
-    fn kind(&self) -> &'static str {
-        "biquadratic_0087"
-    }
-
-    fn eval(&mut self) {
+impl Biquadratic0087 {
+    /// The filtered colour of a valid query, into the output registers.
+    pub fn eval(&mut self) {
         let valid = self.valid_in.is_high();
         self.valid.set_next_bool(valid);
         if valid {
@@ -127,25 +131,6 @@ impl Module for Biquadratic0087 {
                 r.set_next_bits(u64::from(x));
             }
         }
-    }
-
-    fn tick(&mut self, reset: bool) {
-        self.valid.tick(reset);
-        for r in &mut self.rgb {
-            r.tick(reset);
-        }
-    }
-
-    fn visit(&self, vis: &mut dyn Visitor) {
-        use crate::kernel::Dir;
-        vis.enter(self.instance(), self.kind());
-        for s in [&self.valid_in, &self.u, &self.v] {
-            vis.signal(Dir::Input, s);
-        }
-        for r in std::iter::once(&self.valid).chain(&self.rgb) {
-            vis.reg(r);
-        }
-        vis.leave();
     }
 }
 

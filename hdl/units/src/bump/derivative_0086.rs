@@ -31,7 +31,7 @@ use crate::bump::rsqrt_156::RsqrtTable;
 use crate::bump::texel_fetch_151::border_index;
 use crate::envmap::frame_eq2::unit;
 use crate::fx::Format;
-use crate::kernel::{Module, Reg, Signal, Visitor};
+use crate::kernel::{Module, Reg, Signal};
 
 /// A derivative filter of para. 0086.
 #[derive(Clone, Debug, PartialEq, Eq)]
@@ -229,13 +229,21 @@ impl Derivative {
 }
 
 /// The unit: one register stage around [`Derivative::normal`].
+#[derive(Module)]
+#[module(kind = "derivative_0086")]
 pub struct DerivativeUnit {
     pub math: Derivative,
+    #[input]
     pub valid_in: Signal,
+    #[input]
     pub u: Signal,
+    #[input]
     pub v: Signal,
+    #[input]
     pub scale: Signal,
+    #[reg]
     pub valid: Reg,
+    #[reg]
     pub n: [Reg; 3],
 }
 
@@ -254,12 +262,9 @@ impl DerivativeUnit {
     }
 }
 
-impl Module for DerivativeUnit {
-    fn kind(&self) -> &'static str {
-        "derivative_0086"
-    }
-
-    fn eval(&mut self) {
+impl DerivativeUnit {
+    /// The normal of a valid query, into the output registers.
+    pub fn eval(&mut self) {
         let valid = self.valid_in.is_high();
         self.valid.set_next_bool(valid);
         if valid {
@@ -270,25 +275,6 @@ impl Module for DerivativeUnit {
                 r.set_next_raw(x);
             }
         }
-    }
-
-    fn tick(&mut self, reset: bool) {
-        self.valid.tick(reset);
-        for r in &mut self.n {
-            r.tick(reset);
-        }
-    }
-
-    fn visit(&self, vis: &mut dyn Visitor) {
-        use crate::kernel::Dir;
-        vis.enter(self.instance(), self.kind());
-        for s in [&self.valid_in, &self.u, &self.v, &self.scale] {
-            vis.signal(Dir::Input, s);
-        }
-        for r in std::iter::once(&self.valid).chain(&self.n) {
-            vis.reg(r);
-        }
-        vis.leave();
     }
 }
 

@@ -26,7 +26,7 @@
 use crate::bump::params::{BumpParams, ROUND, SAT};
 use crate::bump::rsqrt_156::{m_fmt, Rsqrt};
 use crate::fx::{quantise, Format};
-use crate::kernel::{Delay, Dir, Module, Reg, Signal, Visitor};
+use crate::kernel::{Delay, Module, Reg, Signal};
 
 /// `(k, m)` with `s * 2^-s_frac = m * 4^k`, `m` truncated to `mant_frac` fraction bits.
 #[inline]
@@ -44,23 +44,34 @@ pub fn normalise(s: u128, s_frac: u32, mant_frac: u32) -> (u32, u64) {
 }
 
 /// Normal unit 156.
-#[derive(Clone, Debug)]
+#[derive(Clone, Debug, Module)]
+#[module(kind = "normal_156")]
 pub struct Normal {
+    #[instance]
     name: String,
     tf: u32,
     mf: u32,
     yf: u32,
     out: Format,
+    #[input]
     pub du: Signal,
+    #[input]
     pub dv: Signal,
+    #[output]
     pub nx: Signal,
+    #[output]
     pub ny: Signal,
+    #[output]
     pub nz: Signal,
     /// Square stage: -du, -dv, k, m.
+    #[reg]
     sq: [Reg; 4],
+    #[child]
     pub rsqrt: Rsqrt,
+    #[child]
     carry: Delay,
     /// Multiply stage: nx, ny, nz.
+    #[reg]
     mul: [Reg; 3],
 }
 
@@ -116,15 +127,10 @@ impl Normal {
     }
 }
 
-impl Module for Normal {
-    fn instance(&self) -> &str {
-        &self.name
-    }
-    fn kind(&self) -> &'static str {
-        "normal_156"
-    }
+impl Normal {
     #[inline]
-    fn eval(&mut self) {
+    /// The square, rsqrt and multiply stages.
+    pub fn eval(&mut self) {
         // Square stage.
         let (du, dv) = (self.du.raw(), self.dv.raw());
         let s =
@@ -153,28 +159,6 @@ impl Module for Normal {
         self.nx.follow(self.mul[0].q());
         self.ny.follow(self.mul[1].q());
         self.nz.follow(self.mul[2].q());
-    }
-    #[inline]
-    fn tick(&mut self, reset: bool) {
-        for r in self.sq.iter_mut().chain(self.mul.iter_mut()) {
-            r.tick(reset);
-        }
-        self.rsqrt.tick(reset);
-        self.carry.tick(reset);
-    }
-    fn visit(&self, v: &mut dyn Visitor) {
-        v.enter(self.instance(), self.kind());
-        v.signal(Dir::Input, &self.du);
-        v.signal(Dir::Input, &self.dv);
-        for s in [&self.nx, &self.ny, &self.nz] {
-            v.signal(Dir::Output, s);
-        }
-        for r in &self.sq {
-            v.reg(r);
-        }
-        self.rsqrt.visit(v);
-        self.carry.visit(v);
-        v.leave();
     }
 }
 

@@ -38,11 +38,11 @@ use crate::bump::tangent_155::Tangent;
 use crate::bump::tangent_average_0081::TangentAverage;
 use crate::bump::texel_fetch_151::TexelFetch;
 use crate::fx::Format;
-use crate::kernel::{Delay, Module, Signal, Visitor};
-use crate::signals;
+use crate::kernel::{Delay, Group, Module, Signal, Signals};
 
-/// Per MIP level: address, fetch, adjust, replicate and four bilinear units.
-#[derive(Clone, Debug)]
+/// Per MIP level: address, fetch, adjust, replicate and four bilinear units, each a scope of
+/// the pipeline's own.
+#[derive(Clone, Debug, Group)]
 struct Level {
     addr: AddressUnit,
     fetch: TexelFetch,
@@ -152,58 +152,75 @@ impl Level {
             b.eval();
         }
     }
+}
 
-    fn tick(&mut self, reset: bool) {
-        self.addr.tick(reset);
-        self.fetch.tick(reset);
-        self.adjust.tick(reset);
-        self.rep.tick(reset);
-        for b in &mut self.bil {
-            b.tick(reset);
-        }
-    }
+/// Para. 0081's footprint tags of each sample, inputs of a pipeline with the tangent average.
+#[derive(Clone, Debug, Signals)]
+pub struct FootprintTags {
+    /// The pixel's first sample.
+    pub first: Signal,
+    /// The pixel's last sample.
+    pub last: Signal,
+    /// log2 of the pixel's sample count.
+    pub log2_n: Signal,
+}
 
-    fn visit(&self, v: &mut dyn Visitor) {
-        self.addr.visit(v);
-        self.fetch.visit(v);
-        self.adjust.visit(v);
-        self.rep.visit(v);
-        for b in &self.bil {
-            b.visit(v);
-        }
-    }
+/// Para. 0081's tangent average and the tags carried to it, 4 stages, from the inputs.
+#[derive(Clone, Debug, Group)]
+struct Average {
+    tags: Delay,
+    average: TangentAverage,
 }
 
 /// The FIG. 7 pipeline.
-#[derive(Clone, Debug)]
+#[derive(Clone, Debug, Module)]
+#[module(kind = "normal_pipeline_fig7")]
 pub struct NormalPipeline {
+    #[instance]
     name: String,
     params: BumpParams,
+    #[input]
     pub valid_in: Signal,
+    #[input]
     pub u: Signal,
+    #[input]
     pub v: Signal,
+    #[input]
     pub scale: Signal,
+    #[input]
     pub lod: Signal,
+    #[output]
     pub valid: Signal,
+    #[output]
     pub nx: Signal,
+    #[output]
     pub ny: Signal,
+    #[output]
     pub nz: Signal,
+    #[output]
     pub height: Signal,
+    #[child]
     levels: Vec<Level>,
     /// tu, tv (and tu1, tv1) from the address units to the tangent unit: 2 stages.
+    #[child]
     blend_d: Delay,
     /// scale, lod from the inputs to the tangent unit: 3 stages.
+    #[child]
     side_d: Delay,
+    #[child]
     pub tangent: Tangent,
-    pub normal: Normal,
-    height_d: Delay,
-    valid_d: Delay,
     /// Footprint assembly (para. 0081): each sample's `first`, `last` and `log2_n` of its
     /// pixel, carried 4 stages to the tangent unit's output, and the average before 156.
-    pub fa_first: Signal,
-    pub fa_last: Signal,
-    pub fa_log2_n: Signal,
-    average: Option<(Delay, TangentAverage)>,
+    #[input]
+    pub fa: Option<FootprintTags>,
+    #[child]
+    average: Option<Average>,
+    #[child]
+    pub normal: Normal,
+    #[child]
+    height_d: Delay,
+    #[child]
+    valid_d: Delay,
 }
 
 impl NormalPipeline {
@@ -274,20 +291,18 @@ impl NormalPipeline {
                 latency,
                 &["valid_d"],
             ),
-            fa_first: Signal::bit("fa_first"),
-            fa_last: Signal::bit("fa_last"),
-            fa_log2_n: Signal::new("fa_log2_n", Format::uint(3)),
+            fa: None,
             average: None,
         })
     }
 
     /// Para. 0081's tangent average, when the pipeline has one.
     pub fn tangent_average(&self) -> Option<&TangentAverage> {
-        self.average.as_ref().map(|(_, a)| a)
+        self.average.as_ref().map(|a| &a.average)
     }
 
     /// The pipeline with para. 0081's tangent average between 155 and 156: the samples of a
-    /// pixel come in one a clock (`valid_in`, `fa_first`, `fa_last`, `fa_log2_n`), and one
+    /// pixel come in one a clock (`valid_in` and the tags [`NormalPipeline::fa`]), and one
     /// normal a pixel comes out (`valid` with its last sample's).
     pub fn with_tangent_average(mut self) -> NormalPipeline {
         let tags = Delay::new(
@@ -300,7 +315,15 @@ impl NormalPipeline {
             4,
             &["first_d", "last_d", "log2_n_d"],
         );
-        self.average = Some((tags, TangentAverage::new(&self.params)));
+        self.fa = Some(FootprintTags {
+            first: Signal::bit("fa_first"),
+            last: Signal::bit("fa_last"),
+            log2_n: Signal::new("fa_log2_n", Format::uint(3)),
+        });
+        self.average = Some(Average {
+            tags,
+            average: TangentAverage::new(&self.params),
+        });
         self
     }
 
@@ -310,14 +333,9 @@ impl NormalPipeline {
     }
 }
 
-impl Module for NormalPipeline {
-    fn instance(&self) -> &str {
-        &self.name
-    }
-    fn kind(&self) -> &'static str {
-        "normal_pipeline_fig7"
-    }
-    fn eval(&mut self) {
+impl NormalPipeline {
+    /// Both MIP levels' units, the tangent unit, the average, the normal unit and the carries.
+    pub fn eval(&mut self) {
         let bypass = self.params.filter != Filter::BSpline;
         let (u, v) = (self.u.raw(), self.v.raw());
         for l in &mut self.levels {
@@ -344,17 +362,19 @@ impl Module for NormalPipeline {
         }
         t.tu.follow(&self.blend_d.o[0]);
         t.tv.follow(&self.blend_d.o[1]);
-        t.tu1.follow(&self.blend_d.o[2]);
-        t.tv1.follow(&self.blend_d.o[3]);
         t.scale.follow(&self.side_d.o[0]);
-        t.lod.follow(&self.side_d.o[1]);
+        if let Some(l1) = &mut t.level1 {
+            l1.tu1.follow(&self.blend_d.o[2]);
+            l1.tv1.follow(&self.blend_d.o[3]);
+            l1.lod.follow(&self.side_d.o[1]);
+        }
         t.eval();
         // Normal unit 156, through the tangent average when there is one.
-        let (du, dv, h) = match &mut self.average {
-            Some((tags, a)) => {
-                tags.i[0].follow(&self.fa_first);
-                tags.i[1].follow(&self.fa_last);
-                tags.i[2].follow(&self.fa_log2_n);
+        let (du, dv, h) = match (&mut self.average, &self.fa) {
+            (Some(Average { tags, average: a }), Some(fa)) => {
+                tags.i[0].follow(&fa.first);
+                tags.i[1].follow(&fa.last);
+                tags.i[2].follow(&fa.log2_n);
                 tags.eval();
                 a.first.follow(&tags.o[0]);
                 a.last.follow(&tags.o[1]);
@@ -365,7 +385,7 @@ impl Module for NormalPipeline {
                 a.eval();
                 (&a.du, &a.dv, &a.height)
             }
-            None => (&self.tangent.du, &self.tangent.dv, &self.tangent.height),
+            _ => (&self.tangent.du, &self.tangent.dv, &self.tangent.height),
         };
         self.normal.du.follow(du);
         self.normal.dv.follow(dv);
@@ -373,7 +393,7 @@ impl Module for NormalPipeline {
         self.normal.eval();
         self.height_d.eval();
         // With the average, a normal is out for each pixel's last sample.
-        let last = self.average.is_none() || self.fa_last.is_high();
+        let last = self.fa.as_ref().is_none_or(|fa| fa.last.is_high());
         self.valid_d.i[0].set_bool(self.valid_in.is_high() && last);
         self.valid_d.eval();
         self.valid.follow(&self.valid_d.o[0]);
@@ -381,41 +401,5 @@ impl Module for NormalPipeline {
         self.ny.follow(&self.normal.ny);
         self.nz.follow(&self.normal.nz);
         self.height.follow(&self.height_d.o[0]);
-    }
-    fn tick(&mut self, reset: bool) {
-        for l in &mut self.levels {
-            l.tick(reset);
-        }
-        self.blend_d.tick(reset);
-        self.side_d.tick(reset);
-        self.tangent.tick(reset);
-        self.normal.tick(reset);
-        self.height_d.tick(reset);
-        self.valid_d.tick(reset);
-        if let Some((tags, a)) = &mut self.average {
-            tags.tick(reset);
-            a.tick(reset);
-        }
-    }
-    fn visit(&self, v: &mut dyn Visitor) {
-        v.enter(self.instance(), self.kind());
-        signals!(v;
-            Input: self.valid_in, self.u, self.v, self.scale, self.lod;
-            Output: self.valid, self.nx, self.ny, self.nz, self.height);
-        for l in &self.levels {
-            l.visit(v);
-        }
-        self.blend_d.visit(v);
-        self.side_d.visit(v);
-        self.tangent.visit(v);
-        if let Some((tags, a)) = &self.average {
-            signals!(v; Input: self.fa_first, self.fa_last, self.fa_log2_n);
-            tags.visit(v);
-            a.visit(v);
-        }
-        self.normal.visit(v);
-        self.height_d.visit(v);
-        self.valid_d.visit(v);
-        v.leave();
     }
 }

@@ -23,7 +23,7 @@
 
 use crate::bump::params::{RsqrtParams, ROUND, SAT};
 use crate::fx::{quantise, Format};
-use crate::kernel::{Dir, Module, Reg, Signal, Visitor};
+use crate::kernel::{Module, Reg, Signal};
 
 /// The first-approximation table.
 #[derive(Clone, Debug)]
@@ -112,14 +112,20 @@ const M_NAMES: [&str; 4] = ["m0_r", "m1_r", "m2_r", "m3_r"];
 const Y_NAMES: [&str; 4] = ["y0_r", "y1_r", "y2_r", "y3_r"];
 
 /// The rsqrt unit as pipeline stages: table (1 stage) then one stage per iteration.
-#[derive(Clone, Debug)]
+#[derive(Clone, Debug, Module)]
+#[module(kind = "rsqrt_156")]
 pub struct Rsqrt {
+    #[instance]
     name: String,
     table: RsqrtTable,
+    #[input]
     pub m: Signal,
+    #[output]
     pub y: Signal,
     /// Per stage: the mantissa carried along and the current approximation.
+    #[reg]
     m_r: Vec<Reg>,
+    #[reg]
     y_r: Vec<Reg>,
 }
 
@@ -151,15 +157,10 @@ impl Rsqrt {
     }
 }
 
-impl Module for Rsqrt {
-    fn instance(&self) -> &str {
-        &self.name
-    }
-    fn kind(&self) -> &'static str {
-        "rsqrt_156"
-    }
+impl Rsqrt {
     #[inline]
-    fn eval(&mut self) {
+    /// The table stage and the Newton-Raphson stages, one register stage each.
+    pub fn eval(&mut self) {
         let m = self.m.bits();
         // Stage 0: table lookup. An input below 1 (zero, when idle; never from unit 156, whose
         // sum of squares is at least 1) gives 0 at every stage, as the Verilog twin's
@@ -183,21 +184,6 @@ impl Module for Rsqrt {
         }
         let last = self.y_r.len() - 1;
         self.y.follow(self.y_r[last].q());
-    }
-    #[inline]
-    fn tick(&mut self, reset: bool) {
-        for r in self.m_r.iter_mut().chain(self.y_r.iter_mut()) {
-            r.tick(reset);
-        }
-    }
-    fn visit(&self, v: &mut dyn Visitor) {
-        v.enter(self.instance(), self.kind());
-        v.signal(Dir::Input, &self.m);
-        v.signal(Dir::Output, &self.y);
-        for r in &self.y_r {
-            v.reg(r);
-        }
-        v.leave();
     }
 }
 

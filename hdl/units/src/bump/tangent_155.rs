@@ -33,7 +33,7 @@
 
 use crate::bump::params::{BumpParams, Filter, ROUND};
 use crate::fx::{quantise, Format, Overflow};
-use crate::kernel::{Dir, Module, Reg, Signal, Visitor};
+use crate::kernel::{Module, Reg, Signal, Signals};
 
 /// Signed machine integers the tangent datapath can be computed in: `i64` when the widths
 /// allow (decided once, at construction), `i128` otherwise. Same bits either way.
@@ -78,8 +78,19 @@ pub struct TangentIn {
 }
 
 /// Tangent unit 155.
-#[derive(Clone, Debug)]
+/// The trilinear variant's inputs for the coarser MIP level: its blend factors and the
+/// level-of-detail fraction that mixes the two levels.
+#[derive(Clone, Debug, Signals)]
+pub struct Level1 {
+    pub tu1: Signal,
+    pub tv1: Signal,
+    pub lod: Signal,
+}
+
+#[derive(Clone, Debug, Module)]
+#[module(kind = "tangent_155")]
 pub struct Tangent {
+    #[instance]
     name: String,
     f: u32,
     fb: u32,
@@ -91,16 +102,24 @@ pub struct Tangent {
     tan: Format,
     hfmt: Format,
     /// R, G, B, A of level 0 then (trilinear) of level 1.
+    #[input]
     pub rgba: Vec<Signal>,
+    #[input]
     pub tu: Signal,
+    #[input]
     pub tv: Signal,
-    pub tu1: Signal,
-    pub tv1: Signal,
-    pub lod: Signal,
+    #[input]
     pub scale: Signal,
+    /// Present in the trilinear variant.
+    #[input]
+    pub level1: Option<Level1>,
+    #[output]
     pub du: Signal,
+    #[output]
     pub dv: Signal,
+    #[output]
     pub height: Signal,
+    #[reg]
     r: [Reg; 3],
 }
 
@@ -127,9 +146,11 @@ impl Tangent {
             rgba: names.iter().map(|n| Signal::new(n, bl)).collect(),
             tu: Signal::new("tu", blend),
             tv: Signal::new("tv", blend),
-            tu1: Signal::new("tu1", blend),
-            tv1: Signal::new("tv1", blend),
-            lod: Signal::new("lod", blend),
+            level1: p.trilinear.then(|| Level1 {
+                tu1: Signal::new("tu1", blend),
+                tv1: Signal::new("tv1", blend),
+                lod: Signal::new("lod", blend),
+            }),
             scale: Signal::new("scale", p.scale_fmt()),
             du: Signal::new("du", p.tangent_fmt()),
             dv: Signal::new("dv", p.tangent_fmt()),
@@ -191,15 +212,11 @@ impl Tangent {
     }
 }
 
-impl Module for Tangent {
-    fn instance(&self) -> &str {
-        &self.name
-    }
-    fn kind(&self) -> &'static str {
-        "tangent_155"
-    }
+impl Tangent {
     #[inline]
-    fn eval(&mut self) {
+    /// The slopes and height of the blended texels, into the output registers.
+    pub fn eval(&mut self) {
+        let l1 = self.level1.as_ref();
         let mut rgba = [0i64; 8];
         for (k, s) in self.rgba.iter().enumerate() {
             rgba[k] = s.raw();
@@ -208,9 +225,9 @@ impl Module for Tangent {
             rgba,
             tu: self.tu.raw(),
             tv: self.tv.raw(),
-            tu1: self.tu1.raw(),
-            tv1: self.tv1.raw(),
-            lod: self.lod.raw(),
+            tu1: l1.map_or(0, |l| l.tu1.raw()),
+            tv1: l1.map_or(0, |l| l.tv1.raw()),
+            lod: l1.map_or(0, |l| l.lod.raw()),
             scale: self.scale.raw(),
         });
         self.r[0].set_next_raw(du);
@@ -219,28 +236,5 @@ impl Module for Tangent {
         self.du.follow(self.r[0].q());
         self.dv.follow(self.r[1].q());
         self.height.follow(self.r[2].q());
-    }
-    #[inline]
-    fn tick(&mut self, reset: bool) {
-        for r in &mut self.r {
-            r.tick(reset);
-        }
-    }
-    fn visit(&self, v: &mut dyn Visitor) {
-        v.enter(self.instance(), self.kind());
-        for s in &self.rgba {
-            v.signal(Dir::Input, s);
-        }
-        let mut ins = vec![&self.tu, &self.tv, &self.scale];
-        if self.trilinear {
-            ins.extend([&self.tu1, &self.tv1, &self.lod]);
-        }
-        for s in ins {
-            v.signal(Dir::Input, s);
-        }
-        for s in [&self.du, &self.dv, &self.height] {
-            v.signal(Dir::Output, s);
-        }
-        v.leave();
     }
 }

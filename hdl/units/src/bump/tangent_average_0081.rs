@@ -21,20 +21,30 @@
 
 use crate::bump::params::BumpParams;
 use crate::fx::Format;
-use crate::kernel::{Reg, Signal, Visitor};
-use crate::signals;
+use crate::kernel::{Module, Reg, Signal};
 
-#[derive(Clone, Debug)]
+#[derive(Clone, Debug, Module)]
+#[module(kind = "tangent_average_0081")]
 pub struct TangentAverage {
+    #[input]
     pub first: Signal,
+    #[input]
     pub last: Signal,
+    #[input]
     pub log2_n: Signal,
+    #[input]
     pub du_in: Signal,
+    #[input]
     pub dv_in: Signal,
+    #[input]
     pub h_in: Signal,
+    #[output]
     pub du: Signal,
+    #[output]
     pub dv: Signal,
+    #[output]
     pub height: Signal,
+    #[reg]
     acc: [Reg; 3],
 }
 
@@ -69,6 +79,7 @@ impl TangentAverage {
         }
     }
 
+    /// The running sums and their means.
     pub fn eval(&mut self) {
         let first = self.first.is_high();
         let k = self.log2_n.bits() as u32;
@@ -82,21 +93,6 @@ impl TangentAverage {
         self.du.set_raw(means[0]);
         self.dv.set_raw(means[1]);
         self.height.set_raw(means[2]);
-    }
-
-    pub fn tick(&mut self, reset: bool) {
-        for r in &mut self.acc {
-            r.tick(reset);
-        }
-    }
-
-    pub fn visit(&self, v: &mut dyn Visitor) {
-        v.enter("tangent_average_0081", "tangent_average_0081");
-        signals!(v;
-            Input: self.first, self.last, self.log2_n, self.du_in, self.dv_in, self.h_in;
-            Output: self.du, self.dv, self.height;
-            Reg: self.acc[0], self.acc[1], self.acc[2]);
-        v.leave();
     }
 }
 

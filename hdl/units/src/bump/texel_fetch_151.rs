@@ -18,8 +18,7 @@
 use crate::bump::height_map::HeightMap;
 use crate::bump::params::Border;
 use crate::fx::Format;
-use crate::kernel::{Dir, Module, Reg, Signal, Visitor};
-use crate::signals;
+use crate::kernel::{Module, Reg, Signal};
 
 /// The texel index along one axis of size `n` for coordinate `i`, or `None` for the
 /// constant border.
@@ -54,15 +53,21 @@ const REG_NAMES: [&str; 9] = [
 ];
 
 /// Texel fetch unit 151.
-#[derive(Clone, Debug)]
+#[derive(Clone, Debug, Module)]
+#[module(kind = "texel_fetch_151")]
 pub struct TexelFetch {
+    #[instance]
     name: String,
     map: HeightMap,
     border: Border,
+    #[input]
     pub ui: Signal,
+    #[input]
     pub vj: Signal,
     /// a, b, c, d, e, f, g, h, k.
+    #[output]
     pub h: [Signal; 9],
+    #[reg]
     r: [Reg; 9],
 }
 
@@ -120,33 +125,14 @@ impl TexelFetch {
     }
 }
 
-impl Module for TexelFetch {
-    fn instance(&self) -> &str {
-        &self.name
-    }
-    fn kind(&self) -> &'static str {
-        "texel_fetch_151"
-    }
+impl TexelFetch {
     #[inline]
-    fn eval(&mut self) {
+    /// Reads the 3x3 grid around the texel coordinates into the output registers.
+    pub fn eval(&mut self) {
         let g = self.grid(self.ui.raw(), self.vj.raw());
         for ((r, h), g) in self.r.iter_mut().zip(&mut self.h).zip(g) {
             r.set_next_raw(i64::from(g));
             h.follow(r.q());
         }
-    }
-    #[inline]
-    fn tick(&mut self, reset: bool) {
-        for r in &mut self.r {
-            r.tick(reset);
-        }
-    }
-    fn visit(&self, v: &mut dyn Visitor) {
-        v.enter(self.instance(), self.kind());
-        signals!(v; Input: self.ui, self.vj);
-        for s in &self.h {
-            v.signal(Dir::Output, s);
-        }
-        v.leave();
     }
 }

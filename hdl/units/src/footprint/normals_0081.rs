@@ -98,9 +98,10 @@ impl FootprintNormals {
         p.u.set_raw(to_position(self.pu.q().raw(), pos));
         p.v.set_raw(to_position(self.pv.q().raw(), pos));
         p.scale.follow(self.scale.q());
-        p.fa_first.set_bool(self.index.q().bits() == 0);
-        p.fa_last.set_bool(left == 1);
-        p.fa_log2_n.follow(self.log2_n.q());
+        let fa = p.fa.as_mut().expect("the pipeline has the tangent average");
+        fa.first.set_bool(self.index.q().bits() == 0);
+        fa.last.set_bool(left == 1);
+        fa.log2_n.follow(self.log2_n.q());
         if left > 0 {
             self.left.set_next_bits(left - 1);
             self.index.set_next_bits(self.index.q().bits() + 1);
