@@ -160,10 +160,11 @@ impl<U: SampleTarget> Monitor<FootprintFig12<U>> for PixelMonitor {
     type Txn = Assembled;
     fn sample(&mut self, dut: &FootprintFig12<U>) -> Option<Assembled> {
         let a = &dut.assembly;
-        a.out_valid.q().is_high().then(|| Assembled {
-            value: a.out_value.q().bits() as u8,
-            n: a.out_n.q().bits() as u32,
-            rgb: a.out_rgb.q().bits() as u32,
+        let r = &a.acc;
+        r.out_valid.q().is_high().then(|| Assembled {
+            value: r.out_value.q().bits() as u8,
+            n: r.out_n.q().bits() as u32,
+            rgb: r.out_rgb.q().bits() as u32,
         })
     }
 }
@@ -589,7 +590,7 @@ fn run_pixels<U: SampleTarget, T: Trace>(
         res.failures.push(e);
     }
     // The assembly's pixel counter (a waveform aid) counts the pixels that came out.
-    let counted = sim.dut.assembly.pixels.q().bits();
+    let counted = sim.dut.assembly.acc.pixels.q().bits();
     if counted != res.transactions {
         res.failures.push(format!(
             "the pixel counter says {counted}, {} pixels came out",

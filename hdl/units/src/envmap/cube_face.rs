@@ -25,8 +25,7 @@
 //! (derived in the tests from the reciprocal's). One register stage.
 
 use crate::fx::Format;
-use crate::kernel::{Module, Reg, Signal, Visitor};
-use crate::signals;
+use crate::kernel::{Module, Reg, Signal};
 
 /// Fraction bits of `w`, the mantissa and the reciprocal.
 pub const W_FRAC: u32 = 16;
@@ -126,14 +125,21 @@ pub fn face_st(w: [i64; 3], tab: &[u64; 64]) -> (u8, u64, u64) {
 }
 
 /// The unit: one register stage.
-#[derive(Clone, Debug)]
+#[derive(Clone, Debug, Module)]
+#[module(kind = "cube_face")]
 pub struct CubeFace {
     tab: [u64; 64],
+    #[input]
     pub w: [Signal; 3],
+    #[input]
     pub valid_in: Signal,
+    #[reg]
     pub valid: Reg,
+    #[reg]
     pub face: Reg,
+    #[reg]
     pub s: Reg,
+    #[reg]
     pub t: Reg,
 }
 
@@ -164,14 +170,9 @@ impl CubeFace {
     }
 }
 
-impl Module for CubeFace {
-    fn instance(&self) -> &str {
-        "cube_face"
-    }
-    fn kind(&self) -> &'static str {
-        "cube_face"
-    }
-    fn eval(&mut self) {
+impl CubeFace {
+    /// The face and face coordinates of a valid vector, into the output registers.
+    pub fn eval(&mut self) {
         let v = self.valid_in.is_high();
         self.valid.set_next_bool(v);
         if v {
@@ -180,19 +181,6 @@ impl Module for CubeFace {
             self.s.set_next_bits(s);
             self.t.set_next_bits(t);
         }
-    }
-    fn tick(&mut self, reset: bool) {
-        for r in [&mut self.valid, &mut self.face, &mut self.s, &mut self.t] {
-            r.tick(reset);
-        }
-    }
-    fn visit(&self, v: &mut dyn Visitor) {
-        v.enter(self.instance(), self.kind());
-        let [x, y, z] = &self.w;
-        signals!(v;
-            Input: self.valid_in, x, y, z;
-            Reg: self.valid, self.face, self.s, self.t);
-        v.leave();
     }
 }
 

@@ -19,8 +19,7 @@
 //! One register stage.
 
 use crate::fx::{quantise, Format, Overflow, Quant};
-use crate::kernel::{Module, Reg, Signal, Visitor};
-use crate::signals;
+use crate::kernel::{Module, Reg, Signal};
 
 /// Fraction bits of the vectors in.
 pub const VEC_FRAC: u32 = 14;
@@ -40,12 +39,18 @@ pub fn reflect(nb: [i64; 3], v: [i64; 3]) -> [i64; 3] {
 }
 
 /// The unit: one register stage.
-#[derive(Clone, Debug)]
+#[derive(Clone, Debug, Module)]
+#[module(kind = "reflect_eq4")]
 pub struct Reflect {
+    #[input]
     pub valid_in: Signal,
+    #[input]
     pub nb: [Signal; 3],
+    #[input]
     pub v: [Signal; 3],
+    #[reg]
     pub valid: Reg,
+    #[reg]
     pub w: [Reg; 3],
 }
 
@@ -72,14 +77,9 @@ impl Reflect {
     }
 }
 
-impl Module for Reflect {
-    fn instance(&self) -> &str {
-        "reflect_eq4"
-    }
-    fn kind(&self) -> &'static str {
-        "reflect_eq4"
-    }
-    fn eval(&mut self) {
+impl Reflect {
+    /// The reflected vector of a valid query, into the output registers.
+    pub fn eval(&mut self) {
         let valid = self.valid_in.is_high();
         self.valid.set_next_bool(valid);
         if valid {
@@ -91,22 +91,6 @@ impl Module for Reflect {
                 r.set_next_raw(x);
             }
         }
-    }
-    fn tick(&mut self, reset: bool) {
-        self.valid.tick(reset);
-        for r in &mut self.w {
-            r.tick(reset);
-        }
-    }
-    fn visit(&self, vis: &mut dyn Visitor) {
-        vis.enter(self.instance(), self.kind());
-        let [nx, ny, nz] = &self.nb;
-        let [vx, vy, vz] = &self.v;
-        let [wx, wy, wz] = &self.w;
-        signals!(vis;
-            Input: self.valid_in, nx, ny, nz, vx, vy, vz;
-            Reg: self.valid, wx, wy, wz);
-        vis.leave();
     }
 }
 

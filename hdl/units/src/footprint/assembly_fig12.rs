@@ -34,8 +34,7 @@
 
 use super::setup_fig12::{Setup, STEP_FRAC};
 use crate::fx::Format;
-use crate::kernel::{Module, Reg, Signal, Visitor};
-use crate::signals;
+use crate::kernel::{Module, Reg, Signal};
 use crate::texram::texram_802::Texram802;
 use crate::texram::trilinear_818::trilinear_sum;
 use crate::texram::{TexramAccess, TexramRequest, FRAC, UV_BITS};
@@ -185,39 +184,96 @@ impl SampleTarget for crate::texmem::texture_unit_602::TextureUnit {
     }
 }
 
-/// The sample generator and accumulator with the chip (or unit) behind them.
-#[derive(Clone, Debug)]
-pub struct FootprintAssembly<T: SampleTarget = Texram802> {
-    pub chip: T,
-    pub px_valid: Signal,
-    pub px_ready: Signal,
-    pub px_drf: Signal,
-    pub px_u: Signal,
-    pub px_v: Signal,
-    pub px_lambda: Signal,
-    pub px_du: Signal,
-    pub px_dv: Signal,
-    pub px_log2_n: Signal,
-    /// Generator: samples still to send, the point, the step, the pixel's DRF and lambda.
+/// The sample generator's state: samples still to send, the point, the step, the pixel's DRF
+/// and lambda (its next state is [`FootprintAssembly::eval`]'s).
+#[derive(Clone, Debug, Module)]
+#[module(kind = "footprint_generator")]
+struct Generator {
+    #[instance]
+    name: &'static str,
+    #[reg]
     left: Reg,
+    #[reg]
     pu: Reg,
+    #[reg]
     pv: Reg,
+    #[reg]
     du: Reg,
+    #[reg]
     dv: Reg,
+    #[reg]
     drf: Reg,
+    #[reg]
     lambda: Reg,
-    /// Accumulator: the pixels in flight (3 bits of log2 N each, oldest lowest), their count,
-    /// the sums (one a channel) and the results counted for the oldest.
+}
+
+impl Generator {
+    /// Registers only: [`FootprintAssembly::eval`] sets their next values.
+    fn eval(&mut self) {}
+}
+
+/// The accumulator's state: the pixels in flight (3 bits of log2 N each, oldest lowest), their
+/// count, the results counted for the oldest, the sums (one a channel), and the result.
+#[derive(Clone, Debug, Module)]
+#[module(kind = "footprint_accumulator")]
+pub struct Accumulator {
+    #[instance]
+    name: &'static str,
+    #[reg]
     pend: Reg,
+    #[reg]
     pend_n: Reg,
-    sums: [Reg; 3],
+    #[reg]
     count: Reg,
+    #[reg]
+    sums: Vec<Reg>,
+    #[reg]
     pub out_valid: Reg,
     /// The first channel (luminance), and R, G, B (luminance three times).
+    #[reg]
     pub out_value: Reg,
+    #[reg]
     pub out_rgb: Reg,
+    #[reg]
     pub out_n: Reg,
+    #[reg]
     pub pixels: Reg,
+}
+
+impl Accumulator {
+    /// Registers only: [`FootprintAssembly::eval`] sets their next values.
+    fn eval(&mut self) {}
+}
+
+/// The sample generator and accumulator with the chip (or unit) behind them.
+#[derive(Clone, Debug, Module)]
+#[module(kind = "footprint_assembly")]
+pub struct FootprintAssembly<T: SampleTarget = Texram802> {
+    #[input]
+    pub px_valid: Signal,
+    #[output]
+    pub px_ready: Signal,
+    #[input]
+    pub px_drf: Signal,
+    #[input]
+    pub px_u: Signal,
+    #[input]
+    pub px_v: Signal,
+    #[input]
+    pub px_lambda: Signal,
+    #[input]
+    pub px_du: Signal,
+    #[input]
+    pub px_dv: Signal,
+    #[input]
+    pub px_log2_n: Signal,
+    #[child]
+    gen: Generator,
+    /// The result: `out_valid`, `out_value`, `out_rgb`, `out_n`, and the pixels counted.
+    #[child]
+    pub acc: Accumulator,
+    #[child]
+    pub chip: T,
 }
 
 impl<T: SampleTarget> FootprintAssembly<T> {
@@ -227,7 +283,6 @@ impl<T: SampleTarget> FootprintAssembly<T> {
         // Up to 64 sums of at most 255 * 2^frac.
         let sum = |n| Reg::new(n, Format::unsigned(frac + 14, frac as i32));
         FootprintAssembly {
-            chip,
             px_valid: Signal::bit("px_valid"),
             px_ready: Signal::bit("px_ready"),
             px_drf: Signal::new("px_drf", Format::uint(3)),
@@ -237,50 +292,60 @@ impl<T: SampleTarget> FootprintAssembly<T> {
             px_du: Signal::new("px_du", Format::signed(26, STEP_FRAC as i32)),
             px_dv: Signal::new("px_dv", Format::signed(26, STEP_FRAC as i32)),
             px_log2_n: Signal::new("px_log2_n", Format::uint(3)),
-            left: Reg::new("left", Format::uint(7)),
-            pu: point("pu"),
-            pv: point("pv"),
-            du: point("step_u"),
-            dv: point("step_v"),
-            drf: Reg::new("drf", Format::uint(3)),
-            lambda: Reg::new("lambda", Format::signed(14, 8)),
-            pend: Reg::new("pend", Format::uint(3 * IN_FLIGHT as u32)),
-            pend_n: Reg::new("pend_n", Format::uint(4)),
-            sums: [sum("sum0"), sum("sum1"), sum("sum2")],
-            count: Reg::new("count", Format::uint(7)),
-            out_valid: Reg::new("out_valid", Format::uint(1)),
-            out_value: Reg::new("out_value", Format::uint(8)),
-            out_rgb: Reg::new("out_rgb", Format::uint(24)),
-            out_n: Reg::new("out_n", Format::uint(7)),
-            pixels: Reg::new("pixels", Format::uint(40)),
+            gen: Generator {
+                name: "generator",
+                left: Reg::new("left", Format::uint(7)),
+                pu: point("pu"),
+                pv: point("pv"),
+                du: point("step_u"),
+                dv: point("step_v"),
+                drf: Reg::new("drf", Format::uint(3)),
+                lambda: Reg::new("lambda", Format::signed(14, 8)),
+            },
+            acc: Accumulator {
+                name: "accumulator",
+                pend: Reg::new("pend", Format::uint(3 * IN_FLIGHT as u32)),
+                pend_n: Reg::new("pend_n", Format::uint(4)),
+                count: Reg::new("count", Format::uint(7)),
+                sums: ["sum0", "sum1", "sum2"][..chip.channels()]
+                    .iter()
+                    .map(|n| sum(n))
+                    .collect(),
+                out_valid: Reg::new("out_valid", Format::uint(1)),
+                out_value: Reg::new("out_value", Format::uint(8)),
+                out_rgb: Reg::new("out_rgb", Format::uint(24)),
+                out_n: Reg::new("out_n", Format::uint(7)),
+                pixels: Reg::new("pixels", Format::uint(40)),
+            },
+            chip,
         }
     }
 
     /// The generator: a pixel taken (its log2 N), or the current sample offered.
     fn generate(&mut self) -> Option<u64> {
-        let left = self.left.q().bits();
+        let left = self.gen.left.q().bits();
         // A pixel is taken when the last has all its samples out and the accumulator has
         // room to count it.
-        let ready = left == 0 && self.pend_n.q().bits() < IN_FLIGHT;
+        let ready = left == 0 && self.acc.pend_n.q().bits() < IN_FLIGHT;
         self.px_ready.set_bool(ready);
-        let p = (self.pu.q().raw(), self.pv.q().raw());
-        let (drf, lambda) = (self.drf.q().bits(), self.lambda.q().raw());
+        let p = (self.gen.pu.q().raw(), self.gen.pv.q().raw());
+        let (drf, lambda) = (self.gen.drf.q().bits(), self.gen.lambda.q().raw());
         self.chip.present(left > 0, drf, p, lambda);
         if ready && self.px_valid.is_high() {
             let k = self.px_log2_n.bits() as u32;
             let (pu, du) = first_point(self.px_u.raw() as i32, self.px_du.raw() as i32, k);
             let (pv, dv) = first_point(self.px_v.raw() as i32, self.px_dv.raw() as i32, k);
-            self.left.set_next_bits(1 << k);
+            self.gen.left.set_next_bits(1 << k);
             for (r, x) in [
-                (&mut self.pu, pu),
-                (&mut self.pv, pv),
-                (&mut self.du, du),
-                (&mut self.dv, dv),
+                (&mut self.gen.pu, pu),
+                (&mut self.gen.pv, pv),
+                (&mut self.gen.du, du),
+                (&mut self.gen.dv, dv),
             ] {
                 r.set_next_raw(x);
             }
-            self.drf.set_next_bits(self.px_drf.bits());
-            self.lambda.set_next_raw(self.px_lambda.raw());
+            self.gen.drf.set_next_bits(self.px_drf.bits());
+            self.gen.lambda.set_next_raw(self.px_lambda.raw());
             return Some(u64::from(k));
         }
         None
@@ -288,12 +353,12 @@ impl<T: SampleTarget> FootprintAssembly<T> {
 
     /// After the chip settled: the sample taken moves the generator on.
     fn advance(&mut self) {
-        if self.left.q().bits() > 0 && self.chip.taken() {
-            self.left.set_next_bits(self.left.q().bits() - 1);
-            let pu = self.pu.q().raw() + self.du.q().raw();
-            let pv = self.pv.q().raw() + self.dv.q().raw();
-            self.pu.set_next_raw(pu);
-            self.pv.set_next_raw(pv);
+        if self.gen.left.q().bits() > 0 && self.chip.taken() {
+            self.gen.left.set_next_bits(self.gen.left.q().bits() - 1);
+            let pu = self.gen.pu.q().raw() + self.gen.du.q().raw();
+            let pv = self.gen.pv.q().raw() + self.gen.dv.q().raw();
+            self.gen.pu.set_next_raw(pu);
+            self.gen.pv.set_next_raw(pv);
         }
     }
 
@@ -306,43 +371,46 @@ impl<T: SampleTarget> FootprintAssembly<T> {
         } else {
             ch[0] << 16 | ch[1] << 8 | ch[2]
         };
-        self.out_valid.set_next_bool(true);
-        self.out_value.set_next_bits(ch[0]);
-        self.out_rgb.set_next_bits(rgb);
-        self.out_n.set_next_bits(count);
-        self.pixels.set_next_bits(self.pixels.q().bits() + 1);
+        self.acc.out_valid.set_next_bool(true);
+        self.acc.out_value.set_next_bits(ch[0]);
+        self.acc.out_rgb.set_next_bits(rgb);
+        self.acc.out_n.set_next_bits(count);
+        self.acc
+            .pixels
+            .set_next_bits(self.acc.pixels.q().bits() + 1);
     }
 
     /// The accumulator: the chip's result added; the oldest pixel out with its last one;
     /// `taken` the log2 N of a pixel the generator took this cycle.
     fn accumulate(&mut self, taken: Option<u64>) {
-        let (mut pend, mut n) = (self.pend.q().bits(), self.pend_n.q().bits());
-        self.out_valid.set_next_bool(false);
+        let (mut pend, mut n) = (self.acc.pend.q().bits(), self.acc.pend_n.q().bits());
+        self.acc.out_valid.set_next_bool(false);
         if let Some(r) = self.chip.result().filter(|_| n > 0) {
             let k = (pend & 7) as u32;
-            let sums: [u64; 3] = std::array::from_fn(|c| self.sums[c].q().bits() + r[c]);
-            let count = self.count.q().bits() + 1;
+            let sums: [u64; 3] =
+                std::array::from_fn(|c| self.acc.sums.get(c).map_or(0, |s| s.q().bits()) + r[c]);
+            let count = self.acc.count.q().bits() + 1;
             if count == 1 << k {
                 self.emit(sums, k, count);
-                for s in &mut self.sums {
+                for s in &mut self.acc.sums {
                     s.set_next_bits(0);
                 }
-                self.count.set_next_bits(0);
+                self.acc.count.set_next_bits(0);
                 pend >>= 3;
                 n -= 1;
             } else {
-                for (reg, s) in self.sums.iter_mut().zip(sums) {
+                for (reg, s) in self.acc.sums.iter_mut().zip(sums) {
                     reg.set_next_bits(s);
                 }
-                self.count.set_next_bits(count);
+                self.acc.count.set_next_bits(count);
             }
         }
         if let Some(k) = taken {
             pend |= k << (3 * n);
             n += 1;
         }
-        self.pend.set_next_bits(pend);
-        self.pend_n.set_next_bits(n);
+        self.acc.pend.set_next_bits(pend);
+        self.acc.pend_n.set_next_bits(n);
     }
 }
 
@@ -351,62 +419,13 @@ pub fn mean_of(sum: u64, k: u32, frac: u32) -> u8 {
     ((sum + (1u64 << (frac - 1 + k))) >> (frac + k)) as u8
 }
 
-impl<T: SampleTarget> Module for FootprintAssembly<T> {
-    fn instance(&self) -> &str {
-        "footprint_assembly"
-    }
-    fn kind(&self) -> &'static str {
-        "footprint_assembly"
-    }
-    fn eval(&mut self) {
+impl<T: SampleTarget> FootprintAssembly<T> {
+    /// The generator's sample to the chip, the chip, and its result into the accumulator.
+    pub fn eval(&mut self) {
         let taken = self.generate();
         self.chip.eval();
         self.advance();
         self.accumulate(taken);
-    }
-    fn tick(&mut self, reset: bool) {
-        for r in [
-            &mut self.left,
-            &mut self.pu,
-            &mut self.pv,
-            &mut self.du,
-            &mut self.dv,
-            &mut self.drf,
-            &mut self.lambda,
-            &mut self.pend,
-            &mut self.pend_n,
-            &mut self.count,
-            &mut self.out_valid,
-            &mut self.out_value,
-            &mut self.out_rgb,
-            &mut self.out_n,
-            &mut self.pixels,
-        ] {
-            r.tick(reset);
-        }
-        for r in &mut self.sums {
-            r.tick(reset);
-        }
-        self.chip.tick(reset);
-    }
-    fn visit(&self, v: &mut dyn Visitor) {
-        v.enter(self.instance(), self.kind());
-        signals!(v;
-            Input: self.px_valid, self.px_drf, self.px_u, self.px_v, self.px_lambda,
-                self.px_du, self.px_dv, self.px_log2_n;
-            Output: self.px_ready);
-        v.enter("generator", "footprint_generator");
-        signals!(v; Reg: self.left, self.pu, self.pv, self.du, self.dv, self.drf, self.lambda);
-        v.leave();
-        v.enter("accumulator", "footprint_accumulator");
-        signals!(v; Reg: self.pend, self.pend_n, self.count);
-        for r in &self.sums[..self.chip.channels()] {
-            v.reg(r);
-        }
-        signals!(v; Reg: self.out_valid, self.out_value, self.out_rgb, self.out_n, self.pixels);
-        v.leave();
-        self.chip.visit(v);
-        v.leave();
     }
 }
 

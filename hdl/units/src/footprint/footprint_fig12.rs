@@ -5,16 +5,19 @@
 
 use super::assembly_fig12::{FootprintAssembly, SampleTarget};
 use super::setup_fig12::{SetupParams, SetupUnit};
-use crate::kernel::{Module, Visitor};
+use crate::kernel::Module;
 use crate::texram::texram_802::Texram802;
 
 /// The setup unit and the assembly unit with its chip (or Figure 6's texture unit).
-#[derive(Clone, Debug)]
+#[derive(Clone, Debug, Module)]
+#[module(kind = "footprint_fig12")]
 pub struct FootprintFig12<T: SampleTarget = Texram802> {
     /// Drive its inputs (`in_valid`, `drf`, `u`, `v`, `r1u` ... `r2v`); `in_ready` says it
     /// took them.
+    #[child]
     pub setup: SetupUnit,
-    /// Its `out_valid`, `out_value`, `out_n` are the pixel's result.
+    /// Its accumulator's `out_valid`, `out_value`, `out_n` are the pixel's result.
+    #[child]
     pub assembly: FootprintAssembly<T>,
 }
 
@@ -27,14 +30,9 @@ impl<T: SampleTarget> FootprintFig12<T> {
     }
 }
 
-impl<T: SampleTarget> Module for FootprintFig12<T> {
-    fn instance(&self) -> &str {
-        "footprint_fig12"
-    }
-    fn kind(&self) -> &'static str {
-        "footprint_fig12"
-    }
-    fn eval(&mut self) {
+impl<T: SampleTarget> FootprintFig12<T> {
+    /// The assembly unit first (its `px_ready` is the setup unit's `out_ready`), then setup.
+    pub fn eval(&mut self) {
         let (s, a) = (&self.setup, &mut self.assembly);
         a.px_valid.follow(s.out_valid.q());
         a.px_drf.follow(s.out_drf.q());
@@ -47,15 +45,5 @@ impl<T: SampleTarget> Module for FootprintFig12<T> {
         a.eval();
         self.setup.out_ready.follow(&self.assembly.px_ready);
         self.setup.eval();
-    }
-    fn tick(&mut self, reset: bool) {
-        self.setup.tick(reset);
-        self.assembly.tick(reset);
-    }
-    fn visit(&self, v: &mut dyn Visitor) {
-        v.enter(self.instance(), self.kind());
-        self.setup.visit(v);
-        self.assembly.visit(v);
-        v.leave();
     }
 }

@@ -15,8 +15,7 @@ use super::assembly_fig12::POINT_FRAC;
 use super::setup_fig12::STEP_FRAC;
 use crate::bump::normal_pipeline_fig7::NormalPipeline;
 use crate::fx::Format;
-use crate::kernel::{Module, Reg, Signal, Visitor};
-use crate::signals;
+use crate::kernel::{Module, Reg, Signal};
 
 /// A point (sQ.15) in a position format with `frac` fraction bits: rounded half up below 15
 /// bits, exact above, held to the format's range.
@@ -40,26 +39,61 @@ pub fn from_position(x: i64, frac: u32) -> i64 {
     }
 }
 
-/// The generator with the FIG. 7 pipeline (with its tangent average) behind it.
-#[derive(Clone, Debug)]
-pub struct FootprintNormals {
-    pub pipe: NormalPipeline,
-    pub px_valid: Signal,
-    pub px_ready: Signal,
-    pub px_u: Signal,
-    pub px_v: Signal,
-    pub px_du: Signal,
-    pub px_dv: Signal,
-    pub px_log2_n: Signal,
-    pub px_scale: Signal,
+/// The sample generator's state: the samples left of the pixel, the current one's index and
+/// point, the step between samples, the pixel's `log2_n` and scale. Its next state is the
+/// owner's [`FootprintNormals::eval`], which drives the pipeline from it.
+#[derive(Clone, Debug, Module)]
+#[module(kind = "footprint_generator")]
+struct Generator {
+    #[instance]
+    name: &'static str,
+    #[reg]
     left: Reg,
+    #[reg]
     index: Reg,
+    #[reg]
     log2_n: Reg,
+    #[reg]
     pu: Reg,
+    #[reg]
     pv: Reg,
+    #[reg]
     du: Reg,
+    #[reg]
     dv: Reg,
+    #[reg]
     scale: Reg,
+}
+
+impl Generator {
+    /// Registers only: [`FootprintNormals::eval`] sets their next values.
+    fn eval(&mut self) {}
+}
+
+/// The generator with the FIG. 7 pipeline (with its tangent average) behind it.
+#[derive(Clone, Debug, Module)]
+#[module(kind = "footprint_normals_0081")]
+pub struct FootprintNormals {
+    #[input]
+    pub px_valid: Signal,
+    #[output]
+    pub px_ready: Signal,
+    #[input]
+    pub px_u: Signal,
+    #[input]
+    pub px_v: Signal,
+    #[input]
+    pub px_du: Signal,
+    #[input]
+    pub px_dv: Signal,
+    #[input]
+    pub px_log2_n: Signal,
+    #[input]
+    pub px_scale: Signal,
+    #[child]
+    gen: Generator,
+    #[child]
+    pub pipe: NormalPipeline,
 }
 
 impl FootprintNormals {
@@ -77,36 +111,43 @@ impl FootprintNormals {
             px_dv: Signal::new("px_dv", Format::signed(26, STEP_FRAC as i32)),
             px_log2_n: Signal::new("px_log2_n", Format::uint(3)),
             px_scale: Signal::new("px_scale", scale),
-            left: Reg::new("left", Format::uint(7)),
-            index: Reg::new("index", Format::uint(7)),
-            log2_n: Reg::new("log2_n", Format::uint(3)),
-            pu: point("pu"),
-            pv: point("pv"),
-            du: point("step_u"),
-            dv: point("step_v"),
-            scale: Reg::new("scale", scale),
+            gen: Generator {
+                name: "generator",
+                left: Reg::new("left", Format::uint(7)),
+                index: Reg::new("index", Format::uint(7)),
+                log2_n: Reg::new("log2_n", Format::uint(3)),
+                pu: point("pu"),
+                pv: point("pv"),
+                du: point("step_u"),
+                dv: point("step_v"),
+                scale: Reg::new("scale", scale),
+            },
             pipe,
         }
     }
 
     /// The current sample into the pipeline, and the generator's next state.
     fn generate(&mut self) {
-        let left = self.left.q().bits();
+        let left = self.gen.left.q().bits();
         let pos = self.pipe.u.fmt();
         let p = &mut self.pipe;
         p.valid_in.set_bool(left > 0);
-        p.u.set_raw(to_position(self.pu.q().raw(), pos));
-        p.v.set_raw(to_position(self.pv.q().raw(), pos));
-        p.scale.follow(self.scale.q());
+        p.u.set_raw(to_position(self.gen.pu.q().raw(), pos));
+        p.v.set_raw(to_position(self.gen.pv.q().raw(), pos));
+        p.scale.follow(self.gen.scale.q());
         let fa = p.fa.as_mut().expect("the pipeline has the tangent average");
-        fa.first.set_bool(self.index.q().bits() == 0);
+        fa.first.set_bool(self.gen.index.q().bits() == 0);
         fa.last.set_bool(left == 1);
-        fa.log2_n.follow(self.log2_n.q());
+        fa.log2_n.follow(self.gen.log2_n.q());
         if left > 0 {
-            self.left.set_next_bits(left - 1);
-            self.index.set_next_bits(self.index.q().bits() + 1);
-            self.pu.set_next_raw(self.pu.q().raw() + self.du.q().raw());
-            self.pv.set_next_raw(self.pv.q().raw() + self.dv.q().raw());
+            self.gen.left.set_next_bits(left - 1);
+            self.gen.index.set_next_bits(self.gen.index.q().bits() + 1);
+            self.gen
+                .pu
+                .set_next_raw(self.gen.pu.q().raw() + self.gen.du.q().raw());
+            self.gen
+                .pv
+                .set_next_raw(self.gen.pv.q().raw() + self.gen.dv.q().raw());
         }
         // The next pixel is taken as the last sample of this one goes in.
         let ready = left <= 1;
@@ -116,58 +157,27 @@ impl FootprintNormals {
             let n1 = (1i64 << k) - 1;
             let frac = pos.frac() as u32;
             let (du, dv) = (self.px_du.raw(), self.px_dv.raw());
-            self.pu
+            self.gen
+                .pu
                 .set_next_raw(from_position(self.px_u.raw(), frac) - n1 * du);
-            self.pv
+            self.gen
+                .pv
                 .set_next_raw(from_position(self.px_v.raw(), frac) - n1 * dv);
-            self.du.set_next_raw(2 * du);
-            self.dv.set_next_raw(2 * dv);
-            self.left.set_next_bits(1 << k);
-            self.index.set_next_bits(0);
-            self.log2_n.set_next_bits(u64::from(k));
-            self.scale.set_next_raw(self.px_scale.raw());
+            self.gen.du.set_next_raw(2 * du);
+            self.gen.dv.set_next_raw(2 * dv);
+            self.gen.left.set_next_bits(1 << k);
+            self.gen.index.set_next_bits(0);
+            self.gen.log2_n.set_next_bits(u64::from(k));
+            self.gen.scale.set_next_raw(self.px_scale.raw());
         }
     }
 }
 
-impl Module for FootprintNormals {
-    fn instance(&self) -> &str {
-        "footprint_normals_0081"
-    }
-    fn kind(&self) -> &'static str {
-        "footprint_normals_0081"
-    }
-    fn eval(&mut self) {
+impl FootprintNormals {
+    /// The generator's samples into the pipeline, and the pipeline.
+    pub fn eval(&mut self) {
         self.generate();
         self.pipe.eval();
-    }
-    fn tick(&mut self, reset: bool) {
-        for r in [
-            &mut self.left,
-            &mut self.index,
-            &mut self.log2_n,
-            &mut self.pu,
-            &mut self.pv,
-            &mut self.du,
-            &mut self.dv,
-            &mut self.scale,
-        ] {
-            r.tick(reset);
-        }
-        self.pipe.tick(reset);
-    }
-    fn visit(&self, v: &mut dyn Visitor) {
-        v.enter(self.instance(), self.kind());
-        signals!(v;
-            Input: self.px_valid, self.px_u, self.px_v, self.px_du, self.px_dv, self.px_log2_n,
-                self.px_scale;
-            Output: self.px_ready);
-        v.enter("generator", "footprint_generator");
-        signals!(v; Reg: self.left, self.index, self.log2_n, self.pu, self.pv, self.du,
-            self.dv, self.scale);
-        v.leave();
-        self.pipe.visit(v);
-        v.leave();
     }
 }
 

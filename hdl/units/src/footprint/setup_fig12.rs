@@ -42,8 +42,7 @@
 //! held while `out_ready` is low (`in_ready` then low too).
 
 use crate::fx::Format;
-use crate::kernel::{Dir, Module, Reg, Signal, Visitor};
-use crate::signals;
+use crate::kernel::{Module, Reg, Signal};
 use crate::texram::{FRAC, LAMBDA_MAX, LAMBDA_MIN, UV_BITS};
 
 /// Fraction bits of `r1`, `r2`.
@@ -184,34 +183,59 @@ pub fn setup(p: &SetupParams, r1: (i32, i32), r2: (i32, i32), table: &[i32; 64])
 }
 
 /// The setup unit: one pixel a cycle, one register stage.
-#[derive(Clone, Debug)]
+#[derive(Clone, Debug, Module)]
+#[module(kind = "footprint_setup")]
 pub struct SetupUnit {
+    #[instance]
     name: String,
     p: SetupParams,
     table: [i32; 64],
+    #[input]
     pub in_valid: Signal,
+    #[output]
     pub in_ready: Signal,
+    #[input]
     pub drf: Signal,
+    #[input]
     pub u: Signal,
+    #[input]
     pub v: Signal,
+    #[input]
     pub r1u: Signal,
+    #[input]
     pub r1v: Signal,
+    #[input]
     pub r2u: Signal,
+    #[input]
     pub r2v: Signal,
     /// The squared lengths and their least and greatest (wires).
+    #[wire]
     pub len1: Signal,
+    #[wire]
     pub len2: Signal,
+    #[wire]
     pub q2: Signal,
+    #[wire]
     pub m2: Signal,
+    #[input]
     pub out_ready: Signal,
+    #[reg]
     pub out_valid: Reg,
+    #[reg]
     pub out_drf: Reg,
+    #[reg]
     pub out_u: Reg,
+    #[reg]
     pub out_v: Reg,
+    #[reg]
     pub log2_n: Reg,
+    #[reg]
     pub du: Reg,
+    #[reg]
     pub dv: Reg,
+    #[reg]
     pub lambda: Reg,
+    #[reg]
     pub lambda_iso: Reg,
 }
 
@@ -257,14 +281,9 @@ impl SetupUnit {
     }
 }
 
-impl Module for SetupUnit {
-    fn instance(&self) -> &str {
-        &self.name
-    }
-    fn kind(&self) -> &'static str {
-        "footprint_setup"
-    }
-    fn eval(&mut self) {
+impl SetupUnit {
+    /// One pixel's footprint into the output registers when they are free.
+    pub fn eval(&mut self) {
         let r1 = (self.r1u.raw() as i32, self.r1v.raw() as i32);
         let r2 = (self.r2u.raw() as i32, self.r2v.raw() as i32);
         let s = setup(&self.p, r1, r2, &self.table);
@@ -291,34 +310,6 @@ impl Module for SetupUnit {
             self.lambda.set_next_raw(i64::from(s.lambda));
             self.lambda_iso.set_next_raw(i64::from(s.lambda_iso));
         }
-    }
-    fn tick(&mut self, reset: bool) {
-        for r in [
-            &mut self.out_valid,
-            &mut self.out_drf,
-            &mut self.out_u,
-            &mut self.out_v,
-            &mut self.log2_n,
-            &mut self.du,
-            &mut self.dv,
-            &mut self.lambda,
-            &mut self.lambda_iso,
-        ] {
-            r.tick(reset);
-        }
-    }
-    fn visit(&self, v: &mut dyn Visitor) {
-        v.enter(self.instance(), self.kind());
-        signals!(v;
-            Input: self.in_valid, self.drf, self.u, self.v, self.r1u, self.r1v, self.r2u,
-                self.r2v, self.out_ready;
-            Output: self.in_ready;
-            Reg: self.out_valid, self.out_drf, self.out_u, self.out_v, self.log2_n, self.du,
-                self.dv, self.lambda, self.lambda_iso);
-        for s in [&self.len1, &self.len2, &self.q2, &self.m2] {
-            v.signal(Dir::Wire, s);
-        }
-        v.leave();
     }
 }
 

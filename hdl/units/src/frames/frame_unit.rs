@@ -25,7 +25,7 @@ use crate::bump::params::{RsqrtParams, ROUND, SAT};
 use crate::bump::rsqrt_156::RsqrtTable;
 use crate::envmap::frame_eq2::unit;
 use crate::fx::{quantise, Format};
-use crate::kernel::{Module, Reg, Signal, Visitor};
+use crate::kernel::{Module, Reg, Signal};
 
 /// Fraction bits of the vectors and of the weights.
 pub const VEC_FRAC: u32 = 14;
@@ -156,17 +156,28 @@ const B: [&str; 3] = ["bx", "by", "bz"];
 const N: [&str; 3] = ["nx", "ny", "nz"];
 
 /// The unit: one register stage.
+#[derive(Module)]
+#[module(kind = "frame_unit")]
 pub struct FrameUnit {
     math: FrameMath,
+    #[input]
     pub valid_in: Signal,
+    #[input]
     pub gram_schmidt: Signal,
+    #[input]
     pub frame: [[Signal; 3]; 3],
     /// a, gx, gy.
+    #[input]
     pub w: [Signal; 3],
+    #[reg]
     pub valid: Reg,
+    #[reg]
     pub nout: [Reg; 3],
+    #[reg]
     pub tout: [Reg; 3],
+    #[reg]
     pub bout: [Reg; 3],
+    #[reg]
     pub zero: Reg,
 }
 
@@ -194,12 +205,9 @@ impl FrameUnit {
     }
 }
 
-impl Module for FrameUnit {
-    fn kind(&self) -> &'static str {
-        "frame_unit"
-    }
-
-    fn eval(&mut self) {
+impl FrameUnit {
+    /// The perturbed frame of a valid pixel, into the output registers.
+    pub fn eval(&mut self) {
         let valid = self.valid_in.is_high();
         self.valid.set_next_bool(valid);
         if !valid {
@@ -214,32 +222,6 @@ impl Module for FrameUnit {
             self.bout[c].set_next_raw(o.b[c]);
         }
         self.zero.set_next_bool(o.zero);
-    }
-
-    fn tick(&mut self, reset: bool) {
-        let regs = self
-            .nout
-            .iter_mut()
-            .chain(&mut self.tout)
-            .chain(&mut self.bout);
-        for r in regs.chain([&mut self.valid, &mut self.zero]) {
-            r.tick(reset);
-        }
-    }
-
-    fn visit(&self, v: &mut dyn Visitor) {
-        use crate::kernel::Dir;
-        v.enter(self.instance(), self.kind());
-        v.signal(Dir::Input, &self.valid_in);
-        v.signal(Dir::Input, &self.gram_schmidt);
-        for s in self.frame.iter().flatten().chain(&self.w) {
-            v.signal(Dir::Input, s);
-        }
-        let regs = self.nout.iter().chain(&self.tout).chain(&self.bout);
-        for r in regs.chain([&self.valid, &self.zero]) {
-            v.reg(r);
-        }
-        v.leave();
     }
 }
 

@@ -19,7 +19,7 @@
 
 use crate::envmap::cube_face::{reciprocal, CubeFace};
 use crate::fx::{quantise, Format, Overflow, Quant};
-use crate::kernel::{Module, Reg, Signal, Visitor};
+use crate::kernel::{Module, Reg, Signal};
 
 /// The least V.z, raw sQ1.14 (1/8).
 pub const VZ_MIN: i64 = 1 << 11;
@@ -81,16 +81,27 @@ impl Parallax {
 }
 
 /// The unit: one register stage.
+#[derive(Module)]
+#[module(kind = "parallax")]
 pub struct ParallaxUnit {
     math: Parallax,
+    #[input]
     pub valid_in: Signal,
+    #[input]
     pub limited: Signal,
+    #[input]
     pub uv: [Signal; 2],
+    #[input]
     pub height: Signal,
+    #[input]
     pub scale: Signal,
+    #[input]
     pub bias: Signal,
+    #[input]
     pub eye: [Signal; 3],
+    #[reg]
     pub valid: Reg,
+    #[reg]
     pub out: [Reg; 2],
 }
 
@@ -119,12 +130,9 @@ impl ParallaxUnit {
     }
 }
 
-impl Module for ParallaxUnit {
-    fn kind(&self) -> &'static str {
-        "parallax"
-    }
-
-    fn eval(&mut self) {
+impl ParallaxUnit {
+    /// The offset coordinates of a valid query, into the output registers.
+    pub fn eval(&mut self) {
         let valid = self.valid_in.is_high();
         self.valid.set_next_bool(valid);
         if valid {
@@ -139,32 +147,6 @@ impl Module for ParallaxUnit {
                 r.set_next_raw(x);
             }
         }
-    }
-
-    fn tick(&mut self, reset: bool) {
-        self.valid.tick(reset);
-        for r in &mut self.out {
-            r.tick(reset);
-        }
-    }
-
-    fn visit(&self, vis: &mut dyn Visitor) {
-        use crate::kernel::Dir;
-        vis.enter(self.instance(), self.kind());
-        let ins = [
-            &self.valid_in,
-            &self.limited,
-            &self.height,
-            &self.scale,
-            &self.bias,
-        ];
-        for s in ins.into_iter().chain(&self.uv).chain(&self.eye) {
-            vis.signal(Dir::Input, s);
-        }
-        for r in std::iter::once(&self.valid).chain(&self.out) {
-            vis.reg(r);
-        }
-        vis.leave();
     }
 }
 

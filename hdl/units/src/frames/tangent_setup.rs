@@ -29,7 +29,7 @@ use crate::bump::rsqrt_156::RsqrtTable;
 use crate::envmap::cube_face::{reciprocal, CubeFace};
 use crate::envmap::frame_eq2::unit;
 use crate::fx::{quantise, Format, Overflow, Quant};
-use crate::kernel::{Module, Reg, Signal, Visitor};
+use crate::kernel::{Module, Reg, Signal};
 
 /// Fraction bits of positions, UVs and dP/du.
 pub const POS_FRAC: u32 = 16;
@@ -146,18 +146,31 @@ const V: [[&str; 3]; 2] = [["v1x", "v1y", "v1z"], ["v2x", "v2y", "v2z"]];
 const D: [[&str; 2]; 2] = [["d1u", "d1v"], ["d2u", "d2v"]];
 
 /// The unit: one register stage.
+#[derive(Module)]
+#[module(kind = "tangent_setup")]
 pub struct TangentSetup {
     math: TangentMath,
+    #[input]
     pub valid_in: Signal,
+    #[input]
     pub v: [[Signal; 3]; 2],
+    #[input]
     pub d: [[Signal; 2]; 2],
+    #[input]
     pub n: [Signal; 3],
+    #[reg]
     pub valid: Reg,
+    #[reg]
     pub dpdu: [Reg; 3],
+    #[reg]
     pub dpdv: [Reg; 3],
+    #[reg]
     pub t: [Reg; 3],
+    #[reg]
     pub b: [Reg; 3],
+    #[reg]
     pub degenerate: Reg,
+    #[reg]
     pub zero: Reg,
 }
 
@@ -187,24 +200,11 @@ impl TangentSetup {
             zero: Reg::new("zero", Format::uint(1)),
         }
     }
-
-    fn regs(&mut self) -> impl Iterator<Item = &mut Reg> {
-        let vecs = self
-            .dpdu
-            .iter_mut()
-            .chain(&mut self.dpdv)
-            .chain(&mut self.t);
-        vecs.chain(&mut self.b)
-            .chain([&mut self.valid, &mut self.degenerate, &mut self.zero])
-    }
 }
 
-impl Module for TangentSetup {
-    fn kind(&self) -> &'static str {
-        "tangent_setup"
-    }
-
-    fn eval(&mut self) {
+impl TangentSetup {
+    /// The frame of a valid triangle, into the output registers.
+    pub fn eval(&mut self) {
         let valid = self.valid_in.is_high();
         self.valid.set_next_bool(valid);
         if !valid {
@@ -221,32 +221,6 @@ impl Module for TangentSetup {
         }
         self.degenerate.set_next_bool(s.degenerate);
         self.zero.set_next_bool(s.zero);
-    }
-
-    fn tick(&mut self, reset: bool) {
-        for r in self.regs() {
-            r.tick(reset);
-        }
-    }
-
-    fn visit(&self, vis: &mut dyn Visitor) {
-        use crate::kernel::Dir;
-        vis.enter(self.instance(), self.kind());
-        vis.signal(Dir::Input, &self.valid_in);
-        let ins = self.v.iter().flatten().chain(self.d.iter().flatten());
-        for s in ins.chain(&self.n) {
-            vis.signal(Dir::Input, s);
-        }
-        let vecs = self
-            .dpdu
-            .iter()
-            .chain(&self.dpdv)
-            .chain(&self.t)
-            .chain(&self.b);
-        for r in vecs.chain([&self.valid, &self.degenerate, &self.zero]) {
-            vis.reg(r);
-        }
-        vis.leave();
     }
 }
 

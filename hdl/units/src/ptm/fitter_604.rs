@@ -15,8 +15,7 @@
 use super::texture_612::PtmFormat;
 use super::MAX_LIGHTS;
 use crate::fx::Format;
-use crate::kernel::{Module, Reg, Signal, Visitor};
-use crate::signals;
+use crate::kernel::{Module, Reg, Signal};
 
 /// Lane register width: sQ17.28.
 const ACC_BITS: u32 = 46;
@@ -28,17 +27,25 @@ pub fn occlusion(sample: u8) -> u32 {
 }
 
 /// The unit.
-#[derive(Clone, Debug)]
+#[derive(Clone, Debug, Module)]
+#[module(kind = "ptm_fitter_604")]
 pub struct Fitter604 {
     p: [Vec<i32>; 6],
     fmt: PtmFormat,
+    #[input]
     pub in_valid: Signal,
+    #[input]
     pub in_sample: Signal,
     /// The sample's occlusion (combinational).
+    #[output]
     pub k: Signal,
+    #[reg]
     pub light: Reg,
+    #[reg]
     pub acc: [Reg; 6],
+    #[reg]
     pub out_valid: Reg,
+    #[reg]
     pub out_q: [Reg; 6],
 }
 
@@ -71,12 +78,9 @@ impl Fitter604 {
     }
 }
 
-impl Module for Fitter604 {
-    fn kind(&self) -> &'static str {
-        "ptm_fitter_604"
-    }
-
-    fn eval(&mut self) {
+impl Fitter604 {
+    /// One sample into the accumulators; the coefficients out after the last.
+    pub fn eval(&mut self) {
         let k = occlusion(self.in_sample.bits() as u8);
         self.k.set_bits(u64::from(k));
         self.out_valid.set_next_bool(false);
@@ -97,23 +101,6 @@ impl Module for Fitter604 {
         self.out_valid.set_next_bool(last);
         self.light
             .set_next_bits(if last { 0 } else { i as u64 + 1 });
-    }
-
-    fn tick(&mut self, reset: bool) {
-        self.light.tick(reset);
-        self.out_valid.tick(reset);
-        for r in self.acc.iter_mut().chain(&mut self.out_q) {
-            r.tick(reset);
-        }
-    }
-
-    fn visit(&self, v: &mut dyn Visitor) {
-        v.enter(self.instance(), self.kind());
-        signals!(v; Input: self.in_valid, self.in_sample; Output: self.k; Reg: self.light, self.out_valid);
-        for r in self.acc.iter().chain(&self.out_q) {
-            v.reg(r);
-        }
-        v.leave();
     }
 }
 

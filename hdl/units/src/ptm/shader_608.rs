@@ -12,8 +12,7 @@
 use super::texture_612::PtmFormat;
 use super::UV_FRAC;
 use crate::fx::Format;
-use crate::kernel::{Module, Reg, Signal, Visitor};
-use crate::signals;
+use crate::kernel::{Module, Reg, Signal};
 
 /// K (uQ0.8, held) of stored `q` at raw `(u, v)`.
 pub fn occlusion_at(fmt: &PtmFormat, q: &[u64; 6], u: i64, v: i64) -> u8 {
@@ -28,15 +27,23 @@ pub fn occlusion_at(fmt: &PtmFormat, q: &[u64; 6], u: i64, v: i64) -> u8 {
 }
 
 /// The unit.
-#[derive(Clone, Debug)]
+#[derive(Clone, Debug, Module)]
+#[module(kind = "ptm_shader_608")]
 pub struct Shader608 {
     fmt: PtmFormat,
+    #[input]
     pub in_valid: Signal,
+    #[input]
     pub q: [Signal; 6],
+    #[input]
     pub u: Signal,
+    #[input]
     pub v: Signal,
+    #[reg]
     pub out_valid: Reg,
+    #[reg]
     pub k: Reg,
+    #[reg]
     pub visibility: Reg,
 }
 
@@ -59,12 +66,9 @@ impl Shader608 {
     }
 }
 
-impl Module for Shader608 {
-    fn kind(&self) -> &'static str {
-        "ptm_shader_608"
-    }
-
-    fn eval(&mut self) {
+impl Shader608 {
+    /// The occlusion of a valid query, into the output registers.
+    pub fn eval(&mut self) {
         let valid = self.in_valid.is_high();
         self.out_valid.set_next_bool(valid);
         if valid {
@@ -73,21 +77,6 @@ impl Module for Shader608 {
             self.k.set_next_bits(u64::from(k));
             self.visibility.set_next_bits(u64::from(255 - k));
         }
-    }
-
-    fn tick(&mut self, reset: bool) {
-        for r in [&mut self.out_valid, &mut self.k, &mut self.visibility] {
-            r.tick(reset);
-        }
-    }
-
-    fn visit(&self, vis: &mut dyn Visitor) {
-        vis.enter(self.instance(), self.kind());
-        let [a, b, c, d, e, f] = &self.q;
-        signals!(vis;
-            Input: self.in_valid, a, b, c, d, e, f, self.u, self.v;
-            Reg: self.out_valid, self.k, self.visibility);
-        vis.leave();
     }
 }
 
