@@ -7,25 +7,35 @@
 use super::texram_802::{Texram802, TexramParams};
 use super::Drf;
 use crate::fx::Format;
-use crate::kernel::{Module, Reg, Signal, Visitor};
-use crate::signals;
+use crate::kernel::{Module, Reg, Signal};
 
 const NAMES: [&str; 4] = ["chip_r", "chip_g", "chip_b", "chip_a"];
 
 /// Four chips sharing the request port.
-#[derive(Clone, Debug)]
+#[derive(Clone, Debug, Module)]
+#[module(kind = "texram_lockstep")]
 pub struct TexramLockstep {
+    #[child]
     pub chips: Vec<Texram802>,
+    #[input]
     pub req_valid: Signal,
+    #[output]
     pub req_ready: Signal,
+    #[input]
     pub req_drf: Signal,
+    #[input]
     pub req_u: Signal,
+    #[input]
     pub req_v: Signal,
+    #[input]
     pub req_lambda: Signal,
     /// R, G, B, alpha from the top byte down, valid with `out_valid`.
+    #[output]
     pub out_valid: Signal,
+    #[output]
     pub out_rgba: Signal,
     /// Set if the chips ever fell out of step (a modelling error, never expected).
+    #[reg]
     pub out_of_step: Reg,
 }
 
@@ -59,12 +69,9 @@ impl TexramLockstep {
     }
 }
 
-impl Module for TexramLockstep {
-    fn kind(&self) -> &'static str {
-        "texram_lockstep"
-    }
-
-    fn eval(&mut self) {
+impl TexramLockstep {
+    /// Every chip on the same request; their results compared.
+    pub fn eval(&mut self) {
         for chip in &mut self.chips {
             chip.req_valid.follow(&self.req_valid);
             chip.req_drf.follow(&self.req_drf);
@@ -89,25 +96,6 @@ impl Module for TexramLockstep {
             .iter()
             .fold(0u64, |acc, c| acc << 8 | c.out_value.q().bits());
         self.out_rgba.set_bits(rgba);
-    }
-
-    fn tick(&mut self, reset: bool) {
-        for chip in &mut self.chips {
-            chip.tick(reset);
-        }
-        self.out_of_step.tick(reset);
-    }
-
-    fn visit(&self, v: &mut dyn Visitor) {
-        v.enter(self.instance(), self.kind());
-        signals!(v;
-            Input: self.req_valid, self.req_drf, self.req_u, self.req_v, self.req_lambda;
-            Output: self.req_ready, self.out_valid, self.out_rgba;
-            Reg: self.out_of_step);
-        for chip in &self.chips {
-            chip.visit(v);
-        }
-        v.leave();
     }
 }
 

@@ -7,24 +7,33 @@
 use super::layout::{Mode, VolumeParams};
 use super::ray_caster_fig15::RayCaster;
 use crate::fx::Format;
-use crate::kernel::{Module, Reg, Signal, Visitor};
-use crate::signals;
+use crate::kernel::{Module, Reg, Signal};
 
 const NAMES: [&str; 4] = ["chip_r", "chip_g", "chip_b", "chip_a"];
 
 /// Four ray casters sharing the ray port.
-#[derive(Clone, Debug)]
+#[derive(Clone, Debug, Module)]
+#[module(kind = "volume_lockstep")]
 pub struct VolumeLockstep {
+    #[child]
     pub chips: Vec<RayCaster>,
+    #[input]
     pub ray_valid: Signal,
+    #[output]
     pub ray_ready: Signal,
+    #[input]
     pub ray_p: [Signal; 3],
+    #[input]
     pub ray_d: [Signal; 3],
+    #[input]
     pub ray_steps: Signal,
     /// R, G, B, alpha from the top byte down, valid with `out_valid`.
+    #[output]
     pub out_valid: Signal,
+    #[output]
     pub out_rgba: Signal,
     /// Set if the chips ever fell out of step (a modelling error, never expected).
+    #[reg]
     pub out_of_step: Reg,
 }
 
@@ -52,14 +61,9 @@ impl VolumeLockstep {
     }
 }
 
-impl Module for VolumeLockstep {
-    fn instance(&self) -> &str {
-        "volume_lockstep"
-    }
-    fn kind(&self) -> &'static str {
-        "volume_lockstep"
-    }
-    fn eval(&mut self) {
+impl VolumeLockstep {
+    /// Every chip on the same ray; their results compared.
+    pub fn eval(&mut self) {
         for chip in &mut self.chips {
             chip.ray_valid.follow(&self.ray_valid);
             for c in 0..3 {
@@ -85,24 +89,5 @@ impl Module for VolumeLockstep {
             .iter()
             .fold(0u64, |acc, c| acc << 8 | c.out_value.q().bits());
         self.out_rgba.set_bits(rgba);
-    }
-    fn tick(&mut self, reset: bool) {
-        for chip in &mut self.chips {
-            chip.tick(reset);
-        }
-        self.out_of_step.tick(reset);
-    }
-    fn visit(&self, v: &mut dyn Visitor) {
-        v.enter(self.instance(), self.kind());
-        let [px, py, pz] = &self.ray_p;
-        let [dx, dy, dz] = &self.ray_d;
-        signals!(v;
-            Input: self.ray_valid, px, py, pz, dx, dy, dz, self.ray_steps;
-            Output: self.ray_ready, self.out_valid, self.out_rgba;
-            Reg: self.out_of_step);
-        for chip in &self.chips {
-            chip.visit(v);
-        }
-        v.leave();
     }
 }
