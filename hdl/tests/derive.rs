@@ -162,3 +162,69 @@ fn the_generated_edge_commits_every_register_and_child_and_resets_them() {
     sim.reset(1);
     assert_eq!(sim.dut.more[0].t2.q().bits(), 0);
 }
+
+/// Ports a configuration may leave out: a bundle of two inputs.
+#[derive(hdl::kernel::Signals)]
+struct Extra {
+    x: Signal,
+    y: Signal,
+}
+
+/// Two sets of taps sharing their owner's scope.
+#[derive(hdl::kernel::Group)]
+struct Pair {
+    a: Taps,
+    b: Taps,
+}
+
+#[derive(Module)]
+#[module(kind = "grouped")]
+struct Grouped {
+    #[input]
+    extra: Option<Extra>,
+    #[child]
+    pairs: Vec<Pair>,
+}
+
+impl Grouped {
+    fn eval(&mut self) {
+        for p in &mut self.pairs {
+            p.a.eval();
+            p.b.eval();
+        }
+    }
+}
+
+#[test]
+fn an_optional_bundle_and_a_group_add_no_scope_and_are_visited_when_present() {
+    let pair = || Pair {
+        a: Taps::new(),
+        b: Taps::new(),
+    };
+    let extra = Extra {
+        x: Signal::new("x", BIT),
+        y: Signal::new("y", BIT),
+    };
+    let g = Grouped {
+        extra: Some(extra),
+        pairs: vec![pair(), pair()],
+    };
+    let paths = signal_paths(&g);
+    assert_eq!(&paths[..3], ["grouped.x", "grouped.y", "grouped.taps.en"]);
+    assert_eq!(
+        paths.len(),
+        2 + 4 * 7,
+        "four sets of taps straight under the owner"
+    );
+    let inst: Vec<String> = instances(&g).into_iter().map(|(i, _)| i).collect();
+    assert_eq!(
+        inst.len(),
+        5,
+        "the owner and four taps, no scope for a pair: {inst:?}"
+    );
+    let bare = Grouped {
+        extra: None,
+        pairs: vec![pair()],
+    };
+    assert_eq!(signal_paths(&bare).len(), 2 * 7, "no bundle, not visited");
+}

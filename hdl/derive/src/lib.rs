@@ -25,6 +25,10 @@
 //! derive also writes `pub fn new() -> Self`, each signal named after its field: the names,
 //! formats and state names are then written once, in the struct. A module whose edge or
 //! hierarchy the attributes cannot say keeps a hand-written `impl Module`.
+//!
+//! `#[derive(Signals)]` makes a struct of signals a port bundle (an `Option` of one: ports a
+//! configuration may leave out); `#[derive(Group)]` makes a struct of children a group that
+//! ticks and visits them into its owner's scope, with no scope of its own.
 
 use proc_macro::TokenStream;
 use proc_macro2::TokenStream as Tokens;
