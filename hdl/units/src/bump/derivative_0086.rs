@@ -26,10 +26,10 @@
 //! | normal | `sQ1.14` |
 
 use crate::bump::height_map::HeightMap;
+use crate::bump::normal_156::unit_vector as unit;
 use crate::bump::params::{Border, RsqrtParams};
 use crate::bump::rsqrt_156::RsqrtTable;
 use crate::bump::texel_fetch_151::border_index;
-use crate::envmap::frame_eq2::unit;
 use crate::fx::Format;
 use crate::kernel::{Module, Reg, Signal};
 

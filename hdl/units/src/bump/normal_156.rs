@@ -23,8 +23,8 @@
 //! Pipeline: square/normalise stage, the rsqrt stages, multiply stage: latency
 //! `3 + iterations`.
 
-use crate::bump::params::{BumpParams, ROUND, SAT};
-use crate::bump::rsqrt_156::{m_fmt, Rsqrt};
+use crate::bump::params::{BumpParams, RsqrtParams, ROUND, SAT};
+use crate::bump::rsqrt_156::{m_fmt, rsqrt, Rsqrt, RsqrtTable};
 use crate::fx::{quantise, Format};
 use crate::kernel::{Delay, Module, Reg, Signal};
 
@@ -44,6 +44,23 @@ pub fn normalise(s: u128, s_frac: u32, mant_frac: u32) -> (u32, u64) {
 }
 
 /// Normal unit 156.
+/// Fraction bits of a unit vector from [`unit_vector`] (sQ1.14).
+pub const UNIT_FRAC: u32 = 14;
+
+/// `v / |v|` by normal unit 156's normalisation and inverse square root, each component
+/// rounded once to sQ1.14 ([`UNIT_FRAC`]), for any nonzero `v`. The quotient has
+/// no units, so `v`'s binary point does not matter and `v` is read as an integer:
+/// `|v|^2 = m 4^k` with `m` in [1, 4) (unit 156's `normalise`), `y = rsqrt(m)`, then
+/// `v_c y 2^-k`.
+pub fn unit_vector(v: [i128; 3], table: &RsqrtTable, p: &RsqrtParams) -> [i64; 3] {
+    let s: u128 = v.iter().map(|c| (c * c) as u128).sum();
+    let (k, m) = normalise(s, 0, p.mant_frac);
+    let y = i128::from(rsqrt(table, m));
+    let out = Format::signed(16, UNIT_FRAC as i32);
+    // v_c y 2^-k: fraction bits y_frac + k.
+    v.map(|c| quantise(c * y, (p.y_frac + k) as i32, out, ROUND, SAT) as i64)
+}
+
 #[derive(Clone, Debug, Module)]
 #[module(kind = "normal_156")]
 pub struct Normal {

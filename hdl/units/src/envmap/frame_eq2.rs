@@ -20,26 +20,13 @@
 //! | `n`, `e1`, `e2` | sQ1.14 |
 //! | `nb` | sQ2.14 (reflection unit's input) |
 
-use crate::bump::normal_156::normalise;
+use crate::bump::normal_156::{unit_vector as unit, UNIT_FRAC};
 use crate::bump::params::{RsqrtParams, ROUND, SAT};
-use crate::bump::rsqrt_156::{rsqrt, RsqrtTable};
+use crate::bump::rsqrt_156::RsqrtTable;
 use crate::fx::{quantise, Format};
 
-/// Fraction bits of the vectors.
-pub const FRAC: u32 = 14;
-
-/// `v / |v|`, each component rounded once to sQ1.14, for any nonzero `v`. The quotient has
-/// no units, so `v`'s binary point does not matter and `v` is read as an integer:
-/// `|v|^2 = m 4^k` with `m` in [1, 4) (unit 156's `normalise`), `y = rsqrt(m)`, then
-/// `v_c y 2^-k`.
-pub(crate) fn unit(v: [i128; 3], table: &RsqrtTable, p: &RsqrtParams) -> [i64; 3] {
-    let s: u128 = v.iter().map(|c| (c * c) as u128).sum();
-    let (k, m) = normalise(s, 0, p.mant_frac);
-    let y = i128::from(rsqrt(table, m));
-    let out = Format::signed(16, FRAC as i32);
-    // v_c y 2^-k: fraction bits y_frac + k.
-    v.map(|c| quantise(c * y, (p.y_frac + k) as i32, out, ROUND, SAT) as i64)
-}
+/// Fraction bits of the vectors: those of unit 156's unit vectors.
+pub const FRAC: u32 = UNIT_FRAC;
 
 fn cross(a: [i128; 3], b: [i128; 3]) -> [i128; 3] {
     [

@@ -21,9 +21,9 @@
 //! | `a`, `gx`, `gy` | sQ3.12 |
 //! | `nout`, `tout`, `bout` | sQ1.14 |
 
+use crate::bump::normal_156::unit_vector as unit;
 use crate::bump::params::{RsqrtParams, ROUND, SAT};
 use crate::bump::rsqrt_156::RsqrtTable;
-use crate::envmap::frame_eq2::unit;
 use crate::fx::{quantise, Format};
 use crate::kernel::{Module, Reg, Signal};
 

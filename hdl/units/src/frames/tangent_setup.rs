@@ -24,10 +24,10 @@
 //! | `dpdu`, `dpdv` | sQ23.16 |
 //! | `t`, `b` | sQ1.14 |
 
+use crate::bump::normal_156::unit_vector as unit;
 use crate::bump::params::{RsqrtParams, ROUND, SAT};
 use crate::bump::rsqrt_156::RsqrtTable;
 use crate::envmap::cube_face::{reciprocal, CubeFace};
-use crate::envmap::frame_eq2::unit;
 use crate::fx::{quantise, Format, Overflow, Quant};
 use crate::kernel::{Module, Reg, Signal};
 
