@@ -1,5 +1,8 @@
 //! `bench/vs-verilator`: the texture units' twins against Verilator, the same measurement as
-//! `texrtl bench` (the framework's `bench` command on the texture project).
+//! `texrtl bench` (the framework's `bench` command on the texture project), plus the worked
+//! example's unit in the documented style and the same logic on raw integers.
+
+mod styles;
 
 use clap::Parser;
 use std::process::ExitCode;
@@ -16,8 +19,8 @@ struct Args {
 
 fn main() -> ExitCode {
     let a = Args::parse();
-    verif::cli::finish(
-        "vs-verilator",
-        verif::cli::bench(&tb::project::project(), &a.bench),
-    )
+    let project = styles::units()
+        .into_iter()
+        .fold(tb::project::project(), |p, u| p.unit(u));
+    verif::cli::finish("vs-verilator", verif::cli::bench(&project, &a.bench))
 }

@@ -11,18 +11,17 @@
 //! Stage 1 registers the exact product `alpha (a - b)` (sQ1.16) and `b`; stage 2 adds them
 //! and rounds once to the output format. Latency 2, one blend a cycle.
 
-use hdl::fx::{Format, Overflow, Quant};
-use hdl::kernel::{Module, Reg, Signal};
+use hdl::fx::{Bit, Format, Overflow, Quant};
+use hdl::kernel::{Module, RegOf, SignalOf};
 
-/// The colours' and the weight's format, uQ0.8.
-pub const COLOUR: Format = Format::unsigned(8, 8);
-/// The exact product `alpha (a - b)`: uQ0.8 times sQ1.8, within (-1, 1): sQ1.16.
-pub const PRODUCT: Format = Format::signed(18, 16);
+hdl::formats! {
+    /// The colours' and the weight's format, uQ0.8.
+    pub Colour = Format::unsigned(8, 8);
+    /// The exact product `alpha (a - b)`: uQ0.8 times sQ1.8, within (-1, 1): sQ1.16.
+    pub Product = Format::signed(18, 16);
+}
 
-/// One bit: the valid flags.
-pub const BIT: Format = Format::uint(1);
-
-/// The two-stage blend. Each port and register is declared once, with its format:
+/// The two-stage blend. Each port and register is declared once, its type saying its format:
 /// `#[derive(Module)]` makes the constructor ([`Blend::new`], every signal named after its
 /// field), the clock edge (every `#[reg]` commits) and the hierarchy (every marked field
 /// traced and schedule-checked) from the fields; the behaviour is [`Blend::eval`].
@@ -30,33 +29,33 @@ pub const BIT: Format = Format::uint(1);
 #[module(kind = "blend", new)]
 pub struct Blend {
     /// Input: a blend is presented.
-    #[input(fmt = BIT)]
-    pub valid_in: Signal,
+    #[input]
+    pub valid_in: SignalOf<Bit>,
     /// Input: the colour weighted by `alpha`.
-    #[input(fmt = COLOUR)]
-    pub a: Signal,
+    #[input]
+    pub a: SignalOf<Colour>,
     /// Input: the colour weighted by `1 - alpha`.
-    #[input(fmt = COLOUR)]
-    pub b: Signal,
+    #[input]
+    pub b: SignalOf<Colour>,
     /// Input: the weight.
-    #[input(fmt = COLOUR)]
-    pub alpha: Signal,
+    #[input]
+    pub alpha: SignalOf<Colour>,
     /// Output: `out` is a blend.
-    #[output(fmt = BIT)]
-    pub out_valid: Signal,
+    #[output]
+    pub out_valid: SignalOf<Bit>,
     /// Output: the blend.
-    #[output(fmt = COLOUR)]
-    pub out: Signal,
-    #[reg(fmt = PRODUCT)]
-    product_r: Reg,
-    #[reg(fmt = COLOUR)]
-    b_r: Reg,
-    #[reg(fmt = BIT)]
-    valid1_r: Reg,
-    #[reg(fmt = COLOUR)]
-    out_r: Reg,
-    #[reg(fmt = BIT)]
-    valid2_r: Reg,
+    #[output]
+    pub out: SignalOf<Colour>,
+    #[reg]
+    product_r: RegOf<Product>,
+    #[reg]
+    b_r: RegOf<Colour>,
+    #[reg]
+    valid1_r: RegOf<Bit>,
+    #[reg]
+    out_r: RegOf<Colour>,
+    #[reg]
+    valid2_r: RegOf<Bit>,
 }
 
 impl Default for Blend {
@@ -76,14 +75,14 @@ impl Blend {
         self.valid2_r.set_next_bool(self.valid1_r.q().is_high());
         if self.valid1_r.q().is_high() {
             let sum = self.b_r.q().fx() + self.product_r.q().fx();
-            let out = sum.convert(COLOUR, Quant::RoundHalfEven, Overflow::Saturate);
+            let out = sum.convert(Colour::FMT, Quant::RoundHalfEven, Overflow::Saturate);
             self.out_r.set_next(out);
         }
         // Stage 1: the exact product, stored without loss.
         self.valid1_r.set_next_bool(self.valid_in.is_high());
         if self.valid_in.is_high() {
             let product = self.alpha.fx() * (self.a.fx() - self.b.fx());
-            self.product_r.set_next(product.exact(PRODUCT));
+            self.product_r.set_next(product.exact(Product::FMT));
             self.b_r.set_next(self.b.fx());
         }
     }

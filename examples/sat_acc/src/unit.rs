@@ -1,28 +1,32 @@
 //! The unit, `acc <= sat(acc + x)`, two-process style: each port and register declared once,
-//! with its format (`#[derive(Module)]` makes the constructor, the clock edge and the
-//! hierarchy from them); the behaviour is `eval`.
-use hdl::fx::{Format, Overflow, Quant};
-use hdl::kernel::{Module, Reg, Signal};
+//! its type saying its format (`#[derive(Module)]` makes the constructor, the clock edge and the
+//! hierarchy from them); the behaviour is `eval`, written on fixed-point values. The formats
+//! are constants, so the arithmetic compiles to the integer code a careful person would write.
+use hdl::fx::{Bit, Format, Overflow, Quant};
+use hdl::kernel::{Module, RegOf, SignalOf};
 
-pub const X: Format = Format::signed(8, 4); // input sQ4.4: [-8, 8)
-pub const ACC: Format = Format::signed(10, 4); // accumulator sQ6.4: [-32, 32)
-pub const BIT: Format = Format::uint(1);
+hdl::formats! {
+    /// Input sQ4.4: [-8, 8).
+    pub X = Format::signed(8, 4);
+    /// Accumulator sQ6.4: [-32, 32).
+    pub Acc = Format::signed(10, 4);
+}
 
 #[derive(Clone, Module)]
 #[module(kind = "sat_acc", new)]
 pub struct SatAcc {
-    #[input(fmt = BIT)]
-    pub valid_in: Signal,
-    #[input(fmt = X)]
-    pub x: Signal,
-    #[output(fmt = BIT)]
-    pub out_valid: Signal,
-    #[output(fmt = ACC)]
-    pub acc: Signal,
-    #[reg(fmt = ACC)]
-    acc_r: Reg,
-    #[reg(fmt = BIT)]
-    valid_r: Reg,
+    #[input]
+    pub valid_in: SignalOf<Bit>,
+    #[input]
+    pub x: SignalOf<X>,
+    #[output]
+    pub out_valid: SignalOf<Bit>,
+    #[output]
+    pub acc: SignalOf<Acc>,
+    #[reg]
+    acc_r: RegOf<Acc>,
+    #[reg]
+    valid_r: RegOf<Bit>,
 }
 
 impl Default for SatAcc {
@@ -39,7 +43,8 @@ impl SatAcc {
         if self.valid_in.is_high() {
             // Full-precision sum, then one declared narrowing: truncate (exact here), saturate.
             let sum = self.acc_r.q().fx() + self.x.fx();
-            self.acc_r.set_next(sum.convert(ACC, Quant::Trunc, Overflow::Saturate));
+            self.acc_r
+                .set_next(sum.convert(Acc::FMT, Quant::Trunc, Overflow::Saturate));
         }
     }
 }

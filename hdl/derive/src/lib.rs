@@ -23,7 +23,8 @@
 //! field a marked signal or register with its format (`#[input(fmt = COLOUR)]`,
 //! `#[reg(fmt = PRODUCT, reset = ...)]`, `#[reg(fmt = F, states = &["IDLE", "FETCH"])]`), the
 //! derive also writes `pub fn new() -> Self`, each signal named after its field: the names,
-//! formats and state names are then written once, in the struct. A module whose edge or
+//! formats and state names are then written once, in the struct. A field whose type is its
+//! format (`SignalOf<F>`, `RegOf<F>`) needs no `fmt`. A module whose edge or
 //! hierarchy the attributes cannot say keeps a hand-written `impl Module`.
 //!
 //! `#[derive(Signals)]` makes a struct of signals a port bundle (an `Option` of one: ports a
@@ -195,21 +196,22 @@ fn constructor(ast: &DeriveInput, fields: &[Field], hdl: &Tokens) -> syn::Result
         ));
     }
     let mut inits = Vec::new();
+    let decl = quote!(#hdl::kernel);
     for f in fields {
-        let (id, name) = (&f.id, f.id.to_string());
-        let fmt = f
-            .fmt
-            .as_ref()
-            .ok_or_else(|| syn::Error::new_spanned(id, "`new` needs `fmt = ...` on every field"))?;
-        let base = match (f.role, &f.reset) {
-            (Role::Reg, Some(r)) => quote!(#hdl::kernel::Reg::with_reset(#name, #fmt, #r)),
-            (Role::Reg, None) => quote!(#hdl::kernel::Reg::new(#name, #fmt)),
-            _ => quote!(#hdl::kernel::Signal::new(#name, #fmt)),
+        let (id, ty, name) = (&f.id, &f.ty, f.id.to_string());
+        // A `fmt = ...` builds a run-time-format field (or checks a typed one's); without it,
+        // the field's type is its format (`SignalOf<F>`, `RegOf<F>`).
+        let mut base = match &f.fmt {
+            Some(fmt) => quote!(<#ty as #decl::Declare>::declare(#name, #fmt)),
+            None => quote!(<#ty as #decl::DeclareTyped>::declare_typed(#name)),
         };
-        inits.push(match &f.states {
-            Some(st) => quote!(#id: #base.with_states(#st)),
-            None => quote!(#id: #base),
-        });
+        if let Some(r) = &f.reset {
+            base = quote!(#base.reset_to(#r));
+        }
+        if let Some(st) = &f.states {
+            base = quote!(#base.with_states(#st));
+        }
+        inits.push(quote!(#id: #base));
     }
     let name = &ast.ident;
     Ok(quote! {
@@ -225,6 +227,8 @@ fn constructor(ast: &DeriveInput, fields: &[Field], hdl: &Tokens) -> syn::Result
 /// A marked field: its name, role and what its attribute says it is made of.
 struct Field {
     id: syn::Ident,
+    /// The field's type.
+    ty: syn::Type,
     role: Role,
     /// `fmt = EXPR`: the signal's or register's format (for the generated `new`).
     fmt: Option<syn::Expr>,
@@ -272,6 +276,7 @@ fn roles(ast: &DeriveInput) -> syn::Result<Vec<Field>> {
             let id = f.ident.clone().expect("named");
             let mut field = Field {
                 id,
+                ty: f.ty.clone(),
                 role,
                 fmt: None,
                 states: None,

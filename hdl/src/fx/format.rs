@@ -59,6 +59,7 @@ impl std::error::Error for FormatError {}
 
 impl Format {
     /// A format, or why it is impossible.
+    #[inline]
     pub const fn try_new(width: u32, frac: i32, signed: bool) -> Result<Format, FormatError> {
         let max = if signed { MAX_WIDTH } else { MAX_WIDTH - 1 };
         if width == 0 || width > max {
@@ -178,15 +179,18 @@ impl Format {
     /// The format of `a + b` (and `a - b` when both are signed): full precision.
     ///
     /// Panics if the result needs more bits than an `i128` holds.
+    #[inline]
     pub fn sum(a: Format, b: Format) -> Format {
         Format::grow(a, b, a.signed || b.signed, "sum")
     }
 
     /// The format of `a - b`: always signed, full precision.
+    #[inline]
     pub fn difference(a: Format, b: Format) -> Format {
         Format::grow(a, b, true, "difference")
     }
 
+    #[inline]
     fn grow(a: Format, b: Format, signed: bool, what: &str) -> Format {
         let frac = a.frac().max(b.frac());
         // An unsigned operand needs one more integer bit inside a signed result.
@@ -194,24 +198,47 @@ impl Format {
         let ib = b.int_bits() + i32::from(signed && !b.signed);
         let int = ia.max(ib) + 1;
         let width = (int + frac).max(1);
-        Format::try_new(width as u32, frac, signed)
-            .unwrap_or_else(|e| panic!("{what} of {a} and {b} has no format: {e}"))
+        Format::derived(width, frac, signed, what, a, b)
+    }
+
+    /// A format computed from valid ones: `frac` is one of theirs or their sum, so only the
+    /// width (and a sum of fractions) can be out of range; one check, the panic out of line.
+    #[inline(always)]
+    fn derived(width: i32, frac: i32, signed: bool, what: &str, a: Format, b: Format) -> Format {
+        let max = if signed { MAX_WIDTH } else { MAX_WIDTH - 1 } as i32;
+        if width > max || frac.abs() > MAX_FRAC {
+            Format::no_format(what, a, b, width, frac, signed);
+        }
+        Format {
+            width: width as u8,
+            frac: frac as i8,
+            signed,
+        }
+    }
+
+    #[cold]
+    #[inline(never)]
+    fn no_format(what: &str, a: Format, b: Format, width: i32, frac: i32, signed: bool) -> ! {
+        let e = Format::try_new(width.max(0) as u32, frac, signed)
+            .err()
+            .map_or_else(String::new, |e| e.to_string());
+        if what == "negation" {
+            panic!("negation of {a} has no format: {e}")
+        }
+        panic!("{what} of {a} and {b} has no format: {e}")
     }
 
     /// The format of `a * b`: `W1 + W2` bits, `F1 + F2` fraction bits.
+    #[inline]
     pub fn product(a: Format, b: Format) -> Format {
-        Format::try_new(
-            a.width() + b.width(),
-            a.frac() + b.frac(),
-            a.signed || b.signed,
-        )
-        .unwrap_or_else(|e| panic!("product of {a} and {b} has no format: {e}"))
+        let (width, frac) = (a.width() + b.width(), a.frac() + b.frac());
+        Format::derived(width as i32, frac, a.signed || b.signed, "product", a, b)
     }
 
     /// The format of `-a`: signed, one bit wider.
+    #[inline]
     pub fn negation(a: Format) -> Format {
-        Format::try_new(a.width() + 1, a.frac(), true)
-            .unwrap_or_else(|e| panic!("negation of {a} has no format: {e}"))
+        Format::derived(a.width() as i32 + 1, a.frac(), true, "negation", a, a)
     }
 
     /// Parses the notation of `Display`: `uQ3.5`, `sQ1.14`, `u8`, `s12`.

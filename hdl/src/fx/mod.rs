@@ -9,13 +9,17 @@
 //! * Precision is only lost in [`Fx::convert`], which names its [`Quant`] (rounding) and
 //!   [`Overflow`] mode. [`Fx::exact`] converts only when no bit is lost and panics otherwise.
 //!
-//! # Why formats are carried at run time
-//! Stable Rust cannot compute `W1 + W2` in a const generic. The alternatives are typenum-style
-//! type arithmetic or a format carried beside the value. texrtl carries the format at run time:
-//! architects sweep widths from the command line without recompiling, one compiled model serves
-//! every width, error messages name widths instead of nested type lists, and compile times stay
-//! short. The cost is a few integer operations per arithmetic step to compute the result format;
-//! datapath models that sit on the hot path compute their formats once, at construction.
+//! # Formats at run time, folded at compile time
+//! Stable Rust cannot compute `W1 + W2` in a const generic, so a value carries its format
+//! beside it ([`Fx`] is a raw integer and a [`Format`]), and every operator is inlined. Where
+//! the formats are constants, the compiler folds them away: a signal declared with a format
+//! type ([`Fmt`], declared by [`formats!`](crate::formats); [`crate::kernel::SignalOf`],
+//! [`crate::kernel::RegOf`]) gives values whose formats are constants, and a sum, a product,
+//! a `convert` and the write back compile to the shifts, adds and compares a careful person
+//! writes on raw integers; results that fit 64 bits are computed in 64 bits. Where a width is
+//! a parameter (an architect sweeping it from the command line without recompiling), a
+//! [`crate::kernel::Signal`] carries its format at run time and each step also computes its
+//! result format: a few integer operations more.
 //!
 //! # Limits
 //! Values are held in an `i128`: a format may be up to 128 bits signed or 127 bits unsigned, so
@@ -26,10 +30,12 @@
 
 mod format;
 mod modes;
+mod typed;
 mod value;
 
 pub use format::{Format, FormatError};
 pub use modes::{Overflow, Quant};
+pub use typed::{Bit, Fmt};
 pub use value::{quantise, Fx, FxError};
 
 #[cfg(test)]

@@ -259,11 +259,13 @@ fn sign_extend(bits: u128, fmt: Format) -> i128 {
 impl Fx {
     /// The value `raw * 2^-frac`; panics if `raw` does not fit `fmt`.
     #[track_caller]
+    #[inline]
     pub fn from_raw(fmt: Format, raw: i128) -> Fx {
         Fx::try_from_raw(fmt, raw).unwrap_or_else(|e| panic!("{e}"))
     }
 
     /// The value `raw * 2^-frac`, or an error if `raw` does not fit `fmt`.
+    #[inline]
     pub fn try_from_raw(fmt: Format, raw: i128) -> Result<Fx, FxError> {
         if fmt.contains_raw(raw) {
             Ok(Fx { raw, fmt })
@@ -275,6 +277,7 @@ impl Fx {
     /// The value whose two's complement bits are the low `width` bits of `bits` (higher bits
     /// must be zero: panics otherwise).
     #[track_caller]
+    #[inline]
     pub fn from_bits(fmt: Format, bits: u128) -> Fx {
         assert!(
             bits & !fmt.mask() == 0,
@@ -287,6 +290,14 @@ impl Fx {
         }
     }
 
+    /// A value whose raw integer the caller knows fits `fmt` (a signal's, checked when it was
+    /// written): no check, no 128-bit mask.
+    #[inline(always)]
+    pub(crate) fn from_fitting_raw(fmt: Format, raw: i128) -> Fx {
+        debug_assert!(fmt.contains_raw(raw), "{raw} does not fit {fmt}");
+        Fx { raw, fmt }
+    }
+
     /// The integer `v` in `fmt` (panics unless exactly representable).
     #[track_caller]
     pub fn from_int(fmt: Format, v: i128) -> Fx {
@@ -294,6 +305,7 @@ impl Fx {
     }
 
     /// Zero in `fmt`.
+    #[inline]
     pub fn zero(fmt: Format) -> Fx {
         Fx { raw: 0, fmt }
     }
@@ -324,6 +336,7 @@ impl Fx {
 
     /// The nearest f64 (exact for widths up to 53 bits). For display and golden comparison at
     /// the edges of a model, never inside one.
+    #[inline]
     pub fn to_f64(self) -> f64 {
         (self.raw as f64) * 2f64.powi(-self.fmt.frac())
     }
@@ -369,11 +382,13 @@ impl Fx {
     /// Conversion that must not lose anything: panics if the value is not exactly
     /// representable in `fmt`.
     #[track_caller]
+    #[inline]
     pub fn exact(self, fmt: Format) -> Fx {
         self.try_exact(fmt).unwrap_or_else(|e| panic!("{e}"))
     }
 
     /// Conversion that must not lose anything.
+    #[inline]
     pub fn try_exact(self, fmt: Format) -> Result<Fx, FxError> {
         let t = self.convert(fmt, Quant::Trunc, Overflow::Wrap);
         if t.cmp_value(&self) == Ordering::Equal {
@@ -384,6 +399,7 @@ impl Fx {
     }
 
     /// Whether the value is exactly representable in `fmt`.
+    #[inline]
     pub fn fits(self, fmt: Format) -> bool {
         self.try_exact(fmt).is_ok()
     }
@@ -404,6 +420,7 @@ impl Fx {
     }
 
     /// Compares the values (not the formats).
+    #[inline]
     pub fn cmp_value(&self, other: &Fx) -> Ordering {
         let f = self.fmt.frac().max(other.fmt.frac());
         let a = align(self.raw, (f - self.fmt.frac()) as u32);
@@ -417,10 +434,12 @@ impl Fx {
     }
 
     /// Below zero.
+    #[inline]
     pub fn is_negative(self) -> bool {
         self.raw < 0
     }
     /// Exactly zero.
+    #[inline]
     pub fn is_zero(self) -> bool {
         self.raw == 0
     }
@@ -431,6 +450,7 @@ impl Fx {
     }
 }
 
+#[inline]
 fn align(raw: i128, s: u32) -> Option<i128> {
     if s == 0 || raw == 0 {
         return Some(raw);
@@ -442,13 +462,32 @@ fn align(raw: i128, s: u32) -> Option<i128> {
     ((v >> s) == raw).then_some(v)
 }
 
+/// Whether every value of `fmt` fits an `i64` (then so does every value of a narrower operand).
+#[inline(always)]
+fn word(fmt: Format) -> bool {
+    fmt.width() < 64 || (fmt.width() == 64 && fmt.is_signed())
+}
+
+/// `raw << s` for a left alignment `s`: in a machine word when the result's format fits one
+/// (its value then does too), else in i128.
+#[inline(always)]
+fn aligned(raw: i128, s: i32, word: bool) -> i128 {
+    if word {
+        i128::from((raw as i64) << s)
+    } else {
+        raw << s
+    }
+}
+
 impl Add for Fx {
     type Output = Fx;
     /// Full-precision sum: one bit wider than the wider operand.
+    #[inline]
     fn add(self, rhs: Fx) -> Fx {
         let fmt = Format::sum(self.fmt, rhs.fmt);
-        let a = self.raw << (fmt.frac() - self.fmt.frac());
-        let b = rhs.raw << (fmt.frac() - rhs.fmt.frac());
+        let word = word(fmt);
+        let a = aligned(self.raw, fmt.frac() - self.fmt.frac(), word);
+        let b = aligned(rhs.raw, fmt.frac() - rhs.fmt.frac(), word);
         Fx { raw: a + b, fmt }
     }
 }
@@ -456,10 +495,12 @@ impl Add for Fx {
 impl Sub for Fx {
     type Output = Fx;
     /// Full-precision difference: signed, one bit wider than the wider operand.
+    #[inline]
     fn sub(self, rhs: Fx) -> Fx {
         let fmt = Format::difference(self.fmt, rhs.fmt);
-        let a = self.raw << (fmt.frac() - self.fmt.frac());
-        let b = rhs.raw << (fmt.frac() - rhs.fmt.frac());
+        let word = word(fmt);
+        let a = aligned(self.raw, fmt.frac() - self.fmt.frac(), word);
+        let b = aligned(rhs.raw, fmt.frac() - rhs.fmt.frac(), word);
         Fx { raw: a - b, fmt }
     }
 }
@@ -467,18 +508,22 @@ impl Sub for Fx {
 impl Mul for Fx {
     type Output = Fx;
     /// Full-precision product: `W1 + W2` bits, `F1 + F2` fraction bits.
+    #[inline]
     fn mul(self, rhs: Fx) -> Fx {
         let fmt = Format::product(self.fmt, rhs.fmt);
-        Fx {
-            raw: self.raw * rhs.raw,
-            fmt,
-        }
+        let raw = if word(fmt) {
+            i128::from((self.raw as i64) * (rhs.raw as i64))
+        } else {
+            self.raw * rhs.raw
+        };
+        Fx { raw, fmt }
     }
 }
 
 impl Neg for Fx {
     type Output = Fx;
     /// Full-precision negation: signed, one bit wider.
+    #[inline]
     fn neg(self) -> Fx {
         Fx {
             raw: -self.raw,
@@ -489,6 +534,7 @@ impl Neg for Fx {
 
 impl PartialOrd for Fx {
     /// Orders by value, whatever the formats.
+    #[inline]
     fn partial_cmp(&self, other: &Fx) -> Option<Ordering> {
         Some(self.cmp_value(other))
     }

@@ -11,6 +11,7 @@ mod delay;
 mod module;
 mod signal;
 mod sim;
+mod typed;
 
 pub use delay::Delay;
 pub use module::{Dir, Module, Visitor};
@@ -23,6 +24,7 @@ pub use texrtl_hdl_derive::Group;
 pub use texrtl_hdl_derive::Module;
 /// Derives [`declared::Signals`] for a port bundle, a struct of signals visited field by field.
 pub use texrtl_hdl_derive::Signals;
+pub use typed::{Declare, DeclareTyped, RegOf, SignalOf};
 
 #[cfg(test)]
 mod tests;

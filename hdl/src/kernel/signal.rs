@@ -12,12 +12,12 @@ use crate::fx::{Format, Fx};
 /// debug check that both ends share one format makes the release check redundant.
 #[derive(Clone, Debug)]
 pub struct Signal {
-    bits: u64,
+    pub(super) bits: u64,
     /// `width` low bits set.
-    mask: u64,
+    pub(super) mask: u64,
     /// Range of raw values.
-    lo: i64,
-    hi: i64,
+    pub(super) lo: i64,
+    pub(super) hi: i64,
     fmt: Format,
     name: &'static str,
     /// Names of the values of an enumerated signal (a state register), by value.
@@ -122,7 +122,14 @@ impl Signal {
     /// The value as a fixed-point number of the signal's format.
     #[inline]
     pub fn fx(&self) -> Fx {
-        Fx::from_bits(self.fmt, self.bits as u128)
+        // The bits were checked against the format when written; an unsigned value is its
+        // bits (all 64 of them for a 64-bit format).
+        let raw = if self.fmt.is_signed() {
+            i128::from(self.raw())
+        } else {
+            i128::from(self.bits)
+        };
+        Fx::from_fitting_raw(self.fmt, raw)
     }
 
     /// Writes a bit pattern; panics if bits above `width` are set.
@@ -186,9 +193,10 @@ impl Signal {
     /// The bit pattern of `v` in this signal's format; panics unless exactly representable.
     #[inline]
     #[track_caller]
-    fn encode(&self, v: Fx) -> u64 {
+    pub(super) fn encode(&self, v: Fx) -> u64 {
         if v.fmt() == self.fmt {
-            return v.bits() as u64;
+            // In range by construction: the low `width` bits of the raw integer.
+            return (v.raw() as u64) & self.mask;
         }
         match v.try_exact(self.fmt) {
             Ok(x) => x.bits() as u64,
@@ -198,7 +206,7 @@ impl Signal {
 
     #[cold]
     #[track_caller]
-    fn overflow(&self, what: String) -> ! {
+    pub(super) fn overflow(&self, what: String) -> ! {
         panic!(
             "signal '{}' ({}, {} bits): {what} does not fit",
             self.name,
@@ -241,6 +249,15 @@ impl Reg {
             d: bits,
             reset: bits,
         }
+    }
+
+    /// The same register resetting to `value` (which must fit its format).
+    #[track_caller]
+    pub fn reset_to(mut self, value: Fx) -> Reg {
+        self.q.set(value);
+        self.d = self.q.bits;
+        self.reset = self.q.bits;
+        self
     }
 
     /// The same register with named values (an FSM state register; see
