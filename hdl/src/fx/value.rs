@@ -97,7 +97,7 @@ fn took(_path: u8) {
 /// resolving overflow by `o`; returns the raw integer of `dst`. Works for any shift, so floats
 /// with tiny or huge exponents quantise exactly too. Datapath models call it directly on raw
 /// integers whose formats they computed once, at construction.
-#[inline]
+#[inline(always)]
 pub fn quantise(raw: i128, src_frac: i32, dst: Format, q: Quant, o: Overflow) -> i128 {
     let shift = src_frac - dst.frac();
     // Fast paths: nothing dropped, or fewer than 127 bits dropped, with the result in range.
