@@ -218,15 +218,27 @@ pub fn run_normals(cfg: &NormalsRun) -> Result<NormalsOutcome, String> {
             ];
             let sim = Sim::traced(dut, t).map_err(|e| e.to_string())?;
             let (sim, out) = drive(sim, cfg, raws, &fine, coarse.as_ref(), Some(probes));
-            sim.finish().map_err(|e| e.to_string())?;
+            let dut = sim.finish().map_err(|e| e.to_string())?;
             let mut out = out;
             out.result.vcd = Some(path.clone());
+            out.result.narrowings = narrowings(&dut);
             Ok(out)
         }
         None => {
             let sim: Sim<NormalPipeline, NoTrace> = Sim::new(dut);
-            Ok(drive(sim, cfg, raws, &fine, coarse.as_ref(), None).1)
+            let (sim, mut out) = drive(sim, cfg, raws, &fine, coarse.as_ref(), None);
+            out.result.narrowings = narrowings(&sim.dut);
+            Ok(out)
         }
+    }
+}
+
+/// What the pipeline's narrowings met, when numeric tracking is on.
+fn narrowings(dut: &NormalPipeline) -> Vec<verif::numeric::NarrowRow> {
+    if hdl::fx::tracking() {
+        verif::numeric::rows(dut)
+    } else {
+        Vec::new()
     }
 }
 

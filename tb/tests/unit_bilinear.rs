@@ -14,7 +14,7 @@ fn unit(out_frac: Option<u32>) -> Bilinear {
     Bilinear::new("bl", texel, blend, Format::unsigned(6 + f, f as i32)).unwrap()
 }
 
-fn eval(b: &Bilinear, p: [i64; 4], s: i64, t: i64, out_frac: u32) -> f64 {
+fn eval(b: &mut Bilinear, p: [i64; 4], s: i64, t: i64, out_frac: u32) -> f64 {
     b.compute(p, s, t) as f64 / f64::from(1u32 << out_frac)
 }
 
@@ -29,9 +29,9 @@ fn exact_and_d3d11_rules() {
     );
     runner
         .run(&strat, |(p, s, t, of)| {
-            let b = unit(of);
+            let mut b = unit(of);
             let f = of.unwrap_or(22);
-            let q = eval(&b, p, s, t, f);
+            let q = eval(&mut b, p, s, t, f);
             let pf = p.map(|x| x as f64 / 16.0);
             let (sf, tf) = (s as f64 / 512.0, t as f64 / 512.0);
             let exact = (1.0 - tf) * ((1.0 - sf) * pf[0] + sf * pf[1])
@@ -57,9 +57,9 @@ fn exact_and_d3d11_rules() {
                     .step_by(7)
                     .map(|x| {
                         if which == 0 {
-                            eval(&b, p, x, fixed, f)
+                            eval(&mut b, p, x, fixed, f)
                         } else {
-                            eval(&b, p, fixed, x, f)
+                            eval(&mut b, p, fixed, x, f)
                         }
                     })
                     .collect();

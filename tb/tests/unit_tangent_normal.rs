@@ -66,7 +66,7 @@ fn tangent_formulas() {
     runner
         .run(&inputs, |(p, raw, factors)| {
             prop_assert_eq!(p.validate(), Ok(()));
-            let t = Tangent::new("tan", &p);
+            let mut t = Tangent::new("tan", &p);
             let (bl, f, sc) = (p.bilinear_fmt(), p.blend_bits, p.scale_fmt());
             let blend = |k: usize| (factors[k] % (1 << f)) as i64;
             let x = TangentIn {

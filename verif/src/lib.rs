@@ -52,6 +52,7 @@ pub mod coverage;
 pub mod jobs;
 pub mod junit;
 pub mod mutate;
+pub mod numeric;
 pub mod plot;
 mod probe;
 pub mod project;

@@ -54,6 +54,9 @@ pub struct TbResult {
     /// into notes, tables and plots.
     #[serde(default)]
     pub records: Vec<serde_json::Value>,
+    /// What each named narrowing of the unit met (numeric coverage), merged over the runs.
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub narrowings: Vec<crate::numeric::NarrowRow>,
     /// The seed that replays the run.
     pub seed: Option<String>,
     /// The waveform written, if any.
@@ -89,6 +92,7 @@ impl TbResult {
             notes: Vec::new(),
             tables: Vec::new(),
             records: Vec::new(),
+            narrowings: Vec::new(),
             seed: None,
             vcd: None,
             coverage: None,
@@ -180,6 +184,7 @@ impl TbResult {
         self.notes.extend(o.notes.iter().cloned());
         self.tables.extend(o.tables.iter().cloned());
         self.records.extend(o.records.iter().cloned());
+        crate::numeric::merge(&mut self.narrowings, &o.narrowings);
         self.vcd = self.vcd.take().or_else(|| o.vcd.clone());
         Ok(())
     }

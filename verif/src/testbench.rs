@@ -71,6 +71,9 @@ impl Ctx {
     ) -> Result<M, String> {
         let dut = sim.finish().map_err(|e| e.to_string())?;
         res.vcd = self.waves.as_ref().map(|w| w.vcd.clone());
+        if hdl::fx::tracking() {
+            crate::numeric::merge(&mut res.narrowings, &crate::numeric::rows(&dut));
+        }
         Ok(dut)
     }
 }
@@ -151,6 +154,9 @@ pub struct RunOptions {
     /// Trace whichever job runs, not only the testbench's traced configuration under the
     /// first seed (for a run of one job: its reproduction).
     pub trace_every_job: bool,
+    /// Count what every named narrowing meets (numeric coverage, in the summary and the
+    /// report); off, a narrowing costs one thread-local test.
+    pub numeric: bool,
 }
 
 impl Default for RunOptions {
@@ -164,6 +170,7 @@ impl Default for RunOptions {
             jobs: 1,
             seeds: 1,
             trace_every_job: false,
+            numeric: true,
         }
     }
 }
@@ -294,8 +301,12 @@ fn run_job(
         check_schedule: opts.check_schedule,
         label: label.to_string(),
     };
-    tb.run(&ctx)
-        .map_err(|e| format!("{} [{}]: {e}", tb.name(), job_label(label, job.repeat)))
+    // Tracking is per thread: on for this job's run, as it was after.
+    let was = hdl::fx::tracking();
+    hdl::fx::set_tracking(opts.numeric);
+    let r = tb.run(&ctx);
+    hdl::fx::set_tracking(was);
+    r.map_err(|e| format!("{} [{}]: {e}", tb.name(), job_label(label, job.repeat)))
 }
 
 /// The `jobs` on `opts.jobs` threads, each result in its job's place; `progress` is told of

@@ -13,6 +13,8 @@
 //!     #[wire] sum: Signal,            // an internal combinational value, traced
 //!     #[reg] out_r: Reg,              // Reg, [Reg; N] or Vec<Reg>: ticked and traced
 //!     #[child] stage: Stage,          // a Module, [M; N], Vec<M> or Option<M>: ticked, visited
+//!     #[narrow] round: Narrowing,     // a named narrowing (or [_; N], Vec<_>): visited for
+//!                                    // numeric coverage
 //!     #[instance] name: &'static str, // optional: the instance name
 //!     params: Params,                 // anything unmarked is neither ticked nor visited
 //! }
@@ -44,20 +46,25 @@ enum Role {
     Wire,
     Reg,
     Child,
+    Narrow,
     Instance,
 }
 
-const ROLES: [(&str, Role); 6] = [
+const ROLES: [(&str, Role); 7] = [
     ("input", Role::Input),
     ("output", Role::Output),
     ("wire", Role::Wire),
     ("reg", Role::Reg),
     ("child", Role::Child),
+    ("narrow", Role::Narrow),
     ("instance", Role::Instance),
 ];
 
 /// Derives `Module` (see the crate documentation).
-#[proc_macro_derive(Module, attributes(module, input, output, wire, reg, child, instance))]
+#[proc_macro_derive(
+    Module,
+    attributes(module, input, output, wire, reg, child, narrow, instance)
+)]
 pub fn derive_module(input: TokenStream) -> TokenStream {
     let ast = parse_macro_input!(input as DeriveInput);
     expand(&ast).unwrap_or_else(|e| e.to_compile_error()).into()
@@ -188,7 +195,7 @@ fn constructor(ast: &DeriveInput, fields: &[Field], hdl: &Tokens) -> syn::Result
     if named_fields(ast, "Module")?.named.len() != fields.len()
         || fields
             .iter()
-            .any(|f| matches!(f.role, Role::Child | Role::Instance))
+            .any(|f| matches!(f.role, Role::Child | Role::Narrow | Role::Instance))
     {
         return Err(syn::Error::new_spanned(
             &ast.ident,
@@ -328,6 +335,7 @@ fn expand(ast: &DeriveInput) -> syn::Result<Tokens> {
                 ticks.push(quote!(#decl::Children::tick_children(&mut self.#f, reset);));
                 visits.push(quote!(#decl::Children::visit_children(&self.#f, v);));
             }
+            Role::Narrow => visits.push(quote!(#decl::Narrowings::visit_narrowings(&self.#f, v);)),
             Role::Instance => instance = quote!(&self.#f),
         }
     }

@@ -30,11 +30,13 @@
 
 mod format;
 mod modes;
+mod narrowing;
 mod typed;
 mod value;
 
 pub use format::{Format, FormatError};
 pub use modes::{Overflow, Quant};
+pub use narrowing::{set_tracking, tracking, NarrowStats, Narrowing};
 pub use typed::{Bit, Fmt};
 pub use value::{quantise, Fx, FxError};
 

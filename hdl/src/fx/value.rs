@@ -184,17 +184,14 @@ fn round_shift<T: num_traits::PrimInt + num_traits::Signed>(r: T, s: u32, q: Qua
     }
 }
 
-#[cold]
-fn quantise_general(raw: i128, src_frac: i32, dst: Format, q: Quant, o: Overflow) -> i128 {
-    let negative = raw < 0;
-    let shift = src_frac - dst.frac();
-    // `value` is the rounded value in units of the destination LSB; `huge` marks one that
-    // does not even fit an i128 (then only its sign and its low bits matter).
-    let (value, huge) = if shift > 0 {
+/// `raw * 2^-src_frac` rounded by `q` to units of `2^-dst_frac`, before any overflow rule;
+/// `huge` marks a value that does not fit an i128 (then only its sign and low bits matter).
+pub(crate) fn rounded(raw: i128, shift: i32, q: Quant) -> (i128, bool) {
+    if shift > 0 {
         let s = shift as u32;
         let floor = if s >= 127 { raw >> 127 } else { raw >> s };
         let inc = q.increment(
-            negative,
+            raw < 0,
             floor & 1 == 1,
             bit(raw, s - 1),
             any_low(raw, s - 1),
@@ -210,7 +207,24 @@ fn quantise_general(raw: i128, src_frac: i32, dst: Format, q: Quant, o: Overflow
             let v = raw.wrapping_shl(s);
             (v, (v >> s) != raw)
         }
-    };
+    }
+}
+
+/// What dropping `shift` bits of `raw` meets: whether any dropped bit is set, and whether the
+/// dropped bits are exactly one half of the kept LSB (a tie).
+pub(crate) fn dropped(raw: i128, shift: i32) -> (bool, bool) {
+    if shift <= 0 {
+        return (false, false);
+    }
+    let s = shift as u32;
+    let (half, sticky) = (bit(raw, s - 1), any_low(raw, s - 1));
+    (half || sticky, half && !sticky)
+}
+
+#[cold]
+fn quantise_general(raw: i128, src_frac: i32, dst: Format, q: Quant, o: Overflow) -> i128 {
+    let negative = raw < 0;
+    let (value, huge) = rounded(raw, src_frac - dst.frac(), q);
     if !huge && dst.contains_raw(value) {
         if o == Overflow::SaturateSymmetric && dst.is_signed() && value == dst.min_raw() {
             return -dst.max_raw();

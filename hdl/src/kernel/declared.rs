@@ -1,11 +1,13 @@
 //! What `#[derive(Module)]` ticks and visits: a field marked `#[input]`, `#[output]` or
-//! `#[wire]` is [`Signals`], `#[reg]` [`Regs`], `#[child]` [`Children`]; each is one item or a
+//! `#[wire]` is [`Signals`], `#[reg]` [`Regs`], `#[child]` [`Children`], `#[narrow]`
+//! [`Narrowings`]; each is one item or a
 //! collection of them (an array, a `Vec`, an `Option` of registers or children), so a bank of
 //! registers or of sub-units is declared with one attribute, with no index kept in step by
 //! hand. A port bundle (a struct of signals) is `Signals` by `#[derive(Signals)]`.
 
 use super::module::{Dir, Module, Visitor};
 use super::signal::{Reg, Signal};
+use crate::fx::Narrowing;
 
 /// Signals a module visits with one direction.
 pub trait Signals {
@@ -55,6 +57,30 @@ impl Regs for Reg {
     #[inline]
     fn visit_regs(&self, v: &mut dyn Visitor) {
         v.reg(self);
+    }
+}
+
+/// Named narrowings ([`Narrowing`]): visited for numeric coverage, never ticked.
+pub trait Narrowings {
+    /// Visits every narrowing, in order.
+    fn visit_narrowings(&self, v: &mut dyn Visitor);
+}
+
+impl Narrowings for Narrowing {
+    fn visit_narrowings(&self, v: &mut dyn Visitor) {
+        v.narrowing(self);
+    }
+}
+
+impl<T: Narrowings, const N: usize> Narrowings for [T; N] {
+    fn visit_narrowings(&self, v: &mut dyn Visitor) {
+        self.iter().for_each(|n| n.visit_narrowings(v));
+    }
+}
+
+impl<T: Narrowings> Narrowings for Vec<T> {
+    fn visit_narrowings(&self, v: &mut dyn Visitor) {
+        self.iter().for_each(|n| n.visit_narrowings(v));
     }
 }
 

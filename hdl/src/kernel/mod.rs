@@ -16,7 +16,7 @@ mod typed;
 pub use delay::Delay;
 pub use module::{Dir, Module, Visitor};
 pub use signal::{Reg, Signal};
-pub use sim::{instances, signal_dirs, signal_paths, NoTrace, Sim, Trace};
+pub use sim::{instances, narrowings, signal_dirs, signal_paths, NoTrace, Sim, Trace};
 /// Derives [`declared::Children`] for a group of sub-modules without a scope of its own.
 pub use texrtl_hdl_derive::Group;
 /// Derives [`Module`] from fields marked `#[input]`, `#[output]`, `#[wire]`, `#[reg]`,

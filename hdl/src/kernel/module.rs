@@ -1,6 +1,7 @@
 //! Clocked modules, their hierarchy and the visitor that tracing and checks walk it with.
 
 use super::signal::{Reg, Signal};
+use crate::fx::Narrowing;
 
 /// What a traced signal is to its module.
 #[derive(Clone, Copy, PartialEq, Eq, Debug, Hash)]
@@ -30,6 +31,8 @@ pub trait Visitor {
     fn reg(&mut self, r: &Reg) {
         self.signal(Dir::Reg, r.q());
     }
+    /// A named narrowing of the current instance (for numeric coverage; ignored by default).
+    fn narrowing(&mut self, _n: &Narrowing) {}
 }
 
 /// A clocked hardware module in two-process style.

@@ -2,6 +2,7 @@
 
 use super::module::{Dir, Module, Visitor};
 use super::signal::Signal;
+use crate::fx::Narrowing;
 
 /// Something that records the design every cycle (a VCD writer, for instance).
 ///
@@ -280,4 +281,29 @@ pub fn signal_paths(top: &dyn Module) -> Vec<String> {
     let mut p = Paths::default();
     top.visit(&mut p);
     p.out
+}
+
+/// Every named narrowing of `top`, by its path (`instance.child.name`), with what it met.
+pub fn narrowings(top: &dyn Module) -> Vec<(String, Narrowing)> {
+    #[derive(Default)]
+    struct Found {
+        scope: Vec<String>,
+        out: Vec<(String, Narrowing)>,
+    }
+    impl Visitor for Found {
+        fn enter(&mut self, instance: &str, _: &str) {
+            self.scope.push(instance.to_string());
+        }
+        fn leave(&mut self) {
+            self.scope.pop();
+        }
+        fn signal(&mut self, _: Dir, _: &Signal) {}
+        fn narrowing(&mut self, n: &Narrowing) {
+            let path = format!("{}.{}", self.scope.join("."), n.name());
+            self.out.push((path, n.clone()));
+        }
+    }
+    let mut f = Found::default();
+    top.visit(&mut f);
+    f.out
 }

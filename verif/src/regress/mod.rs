@@ -311,6 +311,7 @@ fn run_jobs_of(
         jobs: cfg.jobs,
         seeds: cfg.seeds,
         trace_every_job: cfg.job.is_some(),
+        numeric: true,
     };
     let plan = match cfg.job {
         Some(i) => jobs::find(reg, cfg.seeds, i)

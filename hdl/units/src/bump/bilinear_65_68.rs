@@ -17,7 +17,7 @@
 //! One register stage: latency 1.
 
 use crate::bump::params::{ROUND, SAT};
-use crate::fx::{quantise, Format};
+use crate::fx::{Format, Narrowing};
 use crate::kernel::{Module, Reg, Signal};
 
 /// One bilinear unit.
@@ -29,7 +29,6 @@ pub struct Bilinear {
     /// Fraction bits of the blend factors (F+1) and of the texels.
     sf: u32,
     pf: u32,
-    out: Format,
     #[input]
     pub p: [Signal; 4],
     #[input]
@@ -40,6 +39,9 @@ pub struct Bilinear {
     pub q: Signal,
     #[reg]
     r: Reg,
+    /// The one narrowing: the exact blend into the output format.
+    #[narrow]
+    round: Narrowing,
 }
 
 impl Bilinear {
@@ -53,12 +55,12 @@ impl Bilinear {
             name: name.into(),
             sf: blend.frac() as u32,
             pf: texel.frac() as u32,
-            out,
             p: ["p00", "p10", "p01", "p11"].map(|n| Signal::new(n, texel)),
             s: Signal::new("s", blend),
             t: Signal::new("t", blend),
             q: Signal::new("q", out),
             r: Reg::new("q_r", out),
+            round: Narrowing::new("q", out, ROUND, SAT),
         })
     }
 
@@ -74,14 +76,10 @@ impl Bilinear {
 
     /// The unit's result for raw inputs, raw in the output format.
     #[inline]
-    pub fn compute(&self, p: [i64; 4], s: i64, t: i64) -> i64 {
+    pub fn compute(&mut self, p: [i64; 4], s: i64, t: i64) -> i64 {
         let x = Self::exact(p, s, t, self.sf);
         let f = self.pf + 2 * self.sf;
-        if f == self.out.frac() as u32 {
-            x
-        } else {
-            quantise(i128::from(x), f as i32, self.out, ROUND, SAT) as i64
-        }
+        self.round.raw(i128::from(x), f as i32) as i64
     }
 }
 

@@ -25,7 +25,7 @@
 
 use crate::bump::params::{BumpParams, RsqrtParams, ROUND, SAT};
 use crate::bump::rsqrt_156::{m_fmt, rsqrt, Rsqrt, RsqrtTable};
-use crate::fx::{quantise, Format};
+use crate::fx::{quantise, Format, Narrowing};
 use crate::kernel::{Delay, Module, Reg, Signal};
 
 /// `(k, m)` with `s * 2^-s_frac = m * 4^k`, `m` truncated to `mant_frac` fraction bits.
@@ -69,7 +69,6 @@ pub struct Normal {
     tf: u32,
     mf: u32,
     yf: u32,
-    out: Format,
     #[input]
     pub du: Signal,
     #[input]
@@ -90,6 +89,9 @@ pub struct Normal {
     /// Multiply stage: nx, ny, nz.
     #[reg]
     mul: [Reg; 3],
+    /// The multiply stage's narrowings, `N y 2^-k` into the output format: nx, ny, nz.
+    #[narrow]
+    scaled: [Narrowing; 3],
 }
 
 const K_FMT: Format = Format::uint(6);
@@ -110,7 +112,6 @@ impl Normal {
             tf: p.tangent_frac,
             mf: p.rsqrt.mant_frac,
             yf: p.rsqrt.y_frac,
-            out,
             du: Signal::new("du", tan),
             dv: Signal::new("dv", tan),
             nx: Signal::new("nx", out),
@@ -129,6 +130,7 @@ impl Normal {
                 Reg::new("ny_r", out),
                 Reg::new("nz_r", out),
             ],
+            scaled: ["nx", "ny", "nz"].map(|n| Narrowing::new(n, out, ROUND, SAT)),
         })
     }
 
@@ -138,9 +140,9 @@ impl Normal {
 
     /// The multiply stage on raw values: `N * y * 2^-k` into the output format.
     #[inline]
-    fn scale(&self, n: i64, y: u64, k: u32) -> i64 {
+    fn scale(&mut self, c: usize, n: i64, y: u64, k: u32) -> i64 {
         let x = i128::from(n) * i128::from(y);
-        quantise(x, (self.tf + self.yf + k) as i32, self.out, ROUND, SAT) as i64
+        self.scaled[c].raw(x, (self.tf + self.yf + k) as i32) as i64
     }
 }
 
@@ -167,9 +169,9 @@ impl Normal {
         // Multiply stage.
         let y = self.rsqrt.y.bits();
         let k = self.carry.o[2].bits() as u32;
-        let nx = self.scale(self.carry.o[0].raw(), y, k);
-        let ny = self.scale(self.carry.o[1].raw(), y, k);
-        let nz = self.scale(1i64 << self.tf, y, k);
+        let nx = self.scale(0, self.carry.o[0].raw(), y, k);
+        let ny = self.scale(1, self.carry.o[1].raw(), y, k);
+        let nz = self.scale(2, 1i64 << self.tf, y, k);
         self.mul[0].set_next_raw(nx);
         self.mul[1].set_next_raw(ny);
         self.mul[2].set_next_raw(nz);

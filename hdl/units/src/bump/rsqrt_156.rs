@@ -22,8 +22,9 @@
 //! `1 + iterations`.
 
 use crate::bump::params::{RsqrtParams, ROUND, SAT};
-use crate::fx::{quantise, Format};
-use crate::kernel::{Module, Reg, Signal};
+use crate::fx::{Format, Narrowing};
+use crate::kernel::declared::Narrowings;
+use crate::kernel::{Module, Reg, Signal, Visitor};
 
 /// The first-approximation table.
 #[derive(Clone, Debug)]
@@ -79,14 +80,47 @@ impl RsqrtTable {
 /// One Newton-Raphson iteration on raw values: `m` (`uQ2.M`), `y` (`uQ1.Y`).
 #[inline]
 pub fn nr_step(p: &RsqrtParams, m: u64, y: u64) -> u64 {
+    nr_step_in(p, m, y, &mut NrNarrowings::new(p, 1))
+}
+
+/// An iteration's two narrowings: `t = m y^2` into `uQ2.(Y+2)` and the new `y` into `uQ1.Y`.
+#[derive(Clone, Debug)]
+pub struct NrNarrowings {
+    t: Narrowing,
+    y: Narrowing,
+}
+
+const T_NAMES: [&str; 3] = ["t1", "t2", "t3"];
+const NEXT_NAMES: [&str; 3] = ["y1", "y2", "y3"];
+
+impl NrNarrowings {
+    /// Iteration `i` (1-based)'s, named `t<i>` and `y<i>`.
+    pub fn new(p: &RsqrtParams, i: usize) -> NrNarrowings {
+        let yf = p.y_frac;
+        // t = m y^2 in uQ2.(Y+2): y^2 m is close to 1; 4 integer bits leave room for any input.
+        let t_fmt = Format::new(yf + 4, yf as i32 + 2, false);
+        NrNarrowings {
+            t: Narrowing::new(T_NAMES[i - 1], t_fmt, ROUND, SAT),
+            y: Narrowing::new(NEXT_NAMES[i - 1], y_fmt(p), ROUND, SAT),
+        }
+    }
+}
+
+impl Narrowings for NrNarrowings {
+    fn visit_narrowings(&self, v: &mut dyn Visitor) {
+        v.narrowing(&self.t);
+        v.narrowing(&self.y);
+    }
+}
+
+/// [`nr_step`] through named narrowings (counted when numeric tracking is on).
+#[inline]
+pub fn nr_step_in(p: &RsqrtParams, m: u64, y: u64, n: &mut NrNarrowings) -> u64 {
     let (mf, yf) = (p.mant_frac, p.y_frac);
     let (m, y) = (i128::from(m), i128::from(y));
-    // t = m y^2 in uQ2.(Y+2): y^2 m is close to 1; 4 integer bits leave room for any input.
-    let t_fmt = Format::new(yf + 4, yf as i32 + 2, false);
-    let t = quantise(m * y * y, (mf + 2 * yf) as i32, t_fmt, ROUND, SAT);
+    let t = n.t.raw(m * y * y, (mf + 2 * yf) as i32);
     let e = (3i128 << (yf + 2)) - t;
-    let out = Format::new(yf + 1, yf as i32, false);
-    quantise(y * e, (2 * yf + 3) as i32, out, ROUND, SAT) as u64
+    n.y.raw(y * e, (2 * yf + 3) as i32) as u64
 }
 
 /// Output format `uQ1.Y`.
@@ -127,6 +161,9 @@ pub struct Rsqrt {
     m_r: Vec<Reg>,
     #[reg]
     y_r: Vec<Reg>,
+    /// Each iteration's narrowings.
+    #[narrow]
+    steps: Vec<NrNarrowings>,
 }
 
 impl Rsqrt {
@@ -145,6 +182,7 @@ impl Rsqrt {
                 .iter()
                 .map(|nm| Reg::new(nm, y_fmt(&p)))
                 .collect(),
+            steps: (1..n).map(|i| NrNarrowings::new(&p, i)).collect(),
         })
     }
 
@@ -177,7 +215,7 @@ impl Rsqrt {
             let y = if mq >> self.table.p.mant_frac == 0 {
                 0
             } else {
-                nr_step(&self.table.p, mq, yq)
+                nr_step_in(&self.table.p, mq, yq, &mut self.steps[s - 1])
             };
             self.m_r[s].set_next_bits(mq);
             self.y_r[s].set_next_bits(y);

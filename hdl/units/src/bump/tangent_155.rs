@@ -32,7 +32,7 @@
 //! One register stage: latency 1.
 
 use crate::bump::params::{BumpParams, Filter, ROUND};
-use crate::fx::{quantise, Format, Overflow};
+use crate::fx::{Narrowing, Overflow};
 use crate::kernel::{Module, Reg, Signal, Signals};
 
 /// Signed machine integers the tangent datapath can be computed in: `i64` when the widths
@@ -99,8 +99,6 @@ pub struct Tangent {
     narrow: bool,
     blinn: bool,
     trilinear: bool,
-    tan: Format,
-    hfmt: Format,
     /// R, G, B, A of level 0 then (trilinear) of level 1.
     #[input]
     pub rgba: Vec<Signal>,
@@ -121,6 +119,9 @@ pub struct Tangent {
     pub height: Signal,
     #[reg]
     r: [Reg; 3],
+    /// The output narrowings: du, dv (symmetric saturation), height.
+    #[narrow]
+    round: [Narrowing; 3],
 }
 
 impl Tangent {
@@ -141,8 +142,6 @@ impl Tangent {
             narrow: !p.trilinear && bl.width() + 2 * p.blend_bits + p.scale_fmt().width() <= 61,
             blinn: p.filter == Filter::Blinn,
             trilinear: p.trilinear,
-            tan: p.tangent_fmt(),
-            hfmt: p.height_out_fmt(),
             rgba: names.iter().map(|n| Signal::new(n, bl)).collect(),
             tu: Signal::new("tu", blend),
             tv: Signal::new("tv", blend),
@@ -160,12 +159,17 @@ impl Tangent {
                 Reg::new("dv_r", p.tangent_fmt()),
                 Reg::new("height_r", p.height_out_fmt()),
             ],
+            round: [
+                Narrowing::new("du", p.tangent_fmt(), ROUND, Overflow::SaturateSymmetric),
+                Narrowing::new("dv", p.tangent_fmt(), ROUND, Overflow::SaturateSymmetric),
+                Narrowing::new("height", p.height_out_fmt(), ROUND, Overflow::Saturate),
+            ],
         }
     }
 
     /// Raw `(du, dv, height)` for raw inputs.
     #[inline]
-    pub fn compute(&self, x: &TangentIn) -> (i64, i64, i64) {
+    pub fn compute(&mut self, x: &TangentIn) -> (i64, i64, i64) {
         if self.narrow {
             self.compute_in::<i64>(x)
         } else {
@@ -174,7 +178,7 @@ impl Tangent {
     }
 
     #[inline]
-    fn compute_in<T: Word>(&self, x: &TangentIn) -> (i64, i64, i64) {
+    fn compute_in<T: Word>(&mut self, x: &TangentIn) -> (i64, i64, i64) {
         let TangentIn {
             rgba,
             tu,
@@ -201,14 +205,10 @@ impl Tangent {
             fh += f;
         }
         let s = <T as From<i64>>::from(scale);
-        let q = |x: T, fr: u32, fmt: Format, o: Overflow| {
-            quantise((x * s).into(), (fr + self.sf) as i32, fmt, ROUND, o) as i64
-        };
-        (
-            q(du, fd, self.tan, Overflow::SaturateSymmetric),
-            q(dv, fd, self.tan, Overflow::SaturateSymmetric),
-            q(h, fh, self.hfmt, Overflow::Saturate),
-        )
+        let sf = self.sf;
+        let [rdu, rdv, rh] = &mut self.round;
+        let q = |n: &mut Narrowing, x: T, fr: u32| n.raw((x * s).into(), (fr + sf) as i32) as i64;
+        (q(rdu, du, fd), q(rdv, dv, fd), q(rh, h, fh))
     }
 }
 

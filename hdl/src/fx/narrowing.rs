@@ -1,0 +1,170 @@
+//! Named narrowings: a unit's `convert`s as parts of the unit, each with a stable name, a
+//! destination format and its modes fixed at construction, and, when numeric tracking is on,
+//! counts of what it met: values narrowed, overflows above and below (saturated or wrapped,
+//! as the mode says), rounding ties, values that lost fraction bits, and the range of the
+//! values before narrowing.
+
+use super::value::{dropped, rounded};
+use super::{quantise, Format, Fx, Overflow, Quant};
+use std::cell::Cell;
+
+thread_local! {
+    static TRACKING: Cell<bool> = const { Cell::new(false) };
+}
+
+/// Turns numeric tracking on or off for every narrowing applied on this thread (off by
+/// default: then a narrowing is its `quantise` and one thread-local test).
+pub fn set_tracking(on: bool) {
+    TRACKING.with(|t| t.set(on));
+}
+
+/// Whether numeric tracking is on for this thread.
+#[inline(always)]
+pub fn tracking() -> bool {
+    TRACKING.with(Cell::get)
+}
+
+/// What one narrowing met while tracking was on.
+#[derive(Clone, Debug, PartialEq)]
+pub struct NarrowStats {
+    /// Values narrowed.
+    pub narrowed: u64,
+    /// Values above the destination's largest (saturated, or wrapped under `Wrap`).
+    pub over_high: u64,
+    /// Values below the destination's smallest (below `-max` under symmetric saturation).
+    pub over_low: u64,
+    /// Values exactly half-way between two destination codes, under a mode with a tie rule.
+    pub ties: u64,
+    /// Values that lost fraction bits (not exactly representable before overflow).
+    pub inexact: u64,
+    /// The smallest and largest value before narrowing (`f64`: for ranges, not for bits).
+    pub min: f64,
+    /// See `min`.
+    pub max: f64,
+}
+
+impl Default for NarrowStats {
+    fn default() -> NarrowStats {
+        NarrowStats {
+            narrowed: 0,
+            over_high: 0,
+            over_low: 0,
+            ties: 0,
+            inexact: 0,
+            min: f64::INFINITY,
+            max: f64::NEG_INFINITY,
+        }
+    }
+}
+
+impl NarrowStats {
+    /// Adds another run's counts (shards of one regression, configurations of one unit).
+    pub fn merge(&mut self, o: &NarrowStats) {
+        self.narrowed += o.narrowed;
+        self.over_high += o.over_high;
+        self.over_low += o.over_low;
+        self.ties += o.ties;
+        self.inexact += o.inexact;
+        self.min = self.min.min(o.min);
+        self.max = self.max.max(o.max);
+    }
+}
+
+/// One narrowing of a unit, named (its path in the hierarchy is the unit's instance path and
+/// this name: `normal_pipeline_fig7.normal_156.nx`). `raw` and `fx` give exactly what
+/// [`quantise`] and [`Fx::convert`] give.
+#[derive(Clone, Debug)]
+pub struct Narrowing {
+    name: &'static str,
+    dst: Format,
+    q: Quant,
+    o: Overflow,
+    stats: NarrowStats,
+}
+
+impl Narrowing {
+    /// A narrowing named `name` into `dst`, rounding by `q`, overflow by `o`.
+    pub fn new(name: &'static str, dst: Format, q: Quant, o: Overflow) -> Narrowing {
+        Narrowing {
+            name,
+            dst,
+            q,
+            o,
+            stats: NarrowStats::default(),
+        }
+    }
+
+    /// Its name within its unit.
+    pub fn name(&self) -> &'static str {
+        self.name
+    }
+    /// The destination format.
+    pub fn dst(&self) -> Format {
+        self.dst
+    }
+    /// The rounding mode.
+    pub fn quant(&self) -> Quant {
+        self.q
+    }
+    /// The overflow mode.
+    pub fn overflow(&self) -> Overflow {
+        self.o
+    }
+    /// What it met while tracking was on.
+    pub fn stats(&self) -> &NarrowStats {
+        &self.stats
+    }
+
+    /// `raw * 2^-src_frac` narrowed: [`quantise`] into the destination, counted when tracking.
+    #[inline(always)]
+    pub fn raw(&mut self, raw: i128, src_frac: i32) -> i128 {
+        if tracking() {
+            self.record(raw, src_frac);
+        }
+        quantise(raw, src_frac, self.dst, self.q, self.o)
+    }
+
+    /// `v` narrowed: [`Fx::convert`] into the destination, counted when tracking.
+    #[inline(always)]
+    pub fn fx(&mut self, v: Fx) -> Fx {
+        if tracking() {
+            self.record(v.raw(), v.fmt().frac());
+        }
+        v.convert(self.dst, self.q, self.o)
+    }
+
+    #[inline(never)]
+    fn record(&mut self, raw: i128, src_frac: i32) {
+        let (d, s) = (self.dst, &mut self.stats);
+        let shift = src_frac - d.frac();
+        let (v, huge) = rounded(raw, shift, self.q);
+        let (lost, tie) = dropped(raw, shift);
+        s.narrowed += 1;
+        s.inexact += u64::from(lost);
+        s.ties += u64::from(tie && has_tie_rule(self.q));
+        let low = if self.o == Overflow::SaturateSymmetric && d.is_signed() {
+            -d.max_raw()
+        } else {
+            d.min_raw()
+        };
+        if huge {
+            if raw < 0 {
+                s.over_low += 1;
+            } else {
+                s.over_high += 1;
+            }
+        } else if v > d.max_raw() {
+            s.over_high += 1;
+        } else if v < low {
+            s.over_low += 1;
+        }
+        let x = raw as f64 * 2f64.powi(-src_frac);
+        s.min = s.min.min(x);
+        s.max = s.max.max(x);
+    }
+}
+
+/// Whether the mode decides a tie by a rule of its own (the round-half modes).
+fn has_tie_rule(q: Quant) -> bool {
+    !matches!(q, Quant::Trunc | Quant::TruncZero)
+}

@@ -1,0 +1,99 @@
+//! Named narrowings: the same bits as `quantise` whether tracking is on or off, counts that
+//! match a count made from the definitions, and the hierarchy's paths from the derive.
+
+use hdl::fx::{quantise, set_tracking, Format, Fx, Narrowing, Overflow, Quant};
+use hdl::kernel::{narrowings, Module, RegOf, SignalOf};
+
+/// Every raw value of 10-bit sources with 0..=5 fraction bits into a signed 4-bit, 1-fraction
+/// destination, every mode: the result is `quantise`'s, on or off; on, each count equals the
+/// one computed from exact rationals.
+#[test]
+fn results_are_quantise_and_counts_are_the_definitions() {
+    let dst = Format::signed(4, 1); // -4 ..= 3.5 in steps of 0.5
+    for &q in Quant::ALL.iter() {
+        for &o in Overflow::ALL.iter() {
+            for frac in 0..=5 {
+                let mut n = Narrowing::new("y", dst, q, o);
+                set_tracking(false);
+                for raw in -512i128..512 {
+                    assert_eq!(n.raw(raw, frac), quantise(raw, frac, dst, q, o));
+                }
+                assert_eq!(n.stats().narrowed, 0, "off: nothing counted");
+                set_tracking(true);
+                let (mut high, mut low, mut ties, mut inexact) = (0, 0, 0, 0);
+                for raw in -512i128..512 {
+                    assert_eq!(n.raw(raw, frac), quantise(raw, frac, dst, q, o));
+                    // In halves of the destination LSB's quarter: exact integer arithmetic.
+                    let scaled = raw << (6 - frac); // units of 2^-6
+                    let rem = scaled.rem_euclid(32); // within one destination LSB (2^-1)
+                    inexact += u64::from(rem != 0);
+                    let tie = rem == 16 && !matches!(q, Quant::Trunc | Quant::TruncZero);
+                    ties += u64::from(tie);
+                    let r = quantise(raw, frac, Format::signed(20, 1), q, Overflow::Wrap);
+                    let lo = if o == Overflow::SaturateSymmetric {
+                        -7
+                    } else {
+                        -8
+                    };
+                    high += u64::from(r > 7);
+                    low += u64::from(r < lo);
+                }
+                let s = n.stats();
+                assert_eq!(s.narrowed, 1024);
+                assert_eq!((s.over_high, s.over_low), (high, low), "{q:?} {o:?} {frac}");
+                assert_eq!((s.ties, s.inexact), (ties, inexact), "{q:?} {o:?} {frac}");
+                assert_eq!(
+                    (s.min, s.max),
+                    (-512.0 / f64::from(1 << frac), 511.0 / f64::from(1 << frac))
+                );
+                set_tracking(false);
+            }
+        }
+    }
+}
+
+hdl::formats! {
+    Wide = Format::signed(12, 4);
+    Out = Format::signed(8, 4);
+}
+
+/// A unit with a narrowing: its path in the hierarchy, and its counts after a run.
+#[derive(Module)]
+#[module(kind = "clip")]
+struct Clip {
+    #[input]
+    x: SignalOf<Wide>,
+    #[reg]
+    y: RegOf<Out>,
+    #[narrow]
+    round: Narrowing,
+}
+
+impl Clip {
+    fn eval(&mut self) {
+        let v = self.round.fx(self.x.fx());
+        self.y.set_next(v);
+    }
+}
+
+#[test]
+fn the_hierarchy_names_each_narrowing() {
+    let mut c = Clip {
+        x: SignalOf::new("x"),
+        y: RegOf::new("y"),
+        round: Narrowing::new("y", Out::FMT, Quant::RoundHalfEven, Overflow::Saturate),
+    };
+    set_tracking(true);
+    for raw in [-2048, -100, 0, 100, 2047] {
+        c.x.set_raw(raw);
+        c.eval();
+        c.tick(false);
+    }
+    set_tracking(false);
+    let found = narrowings(&c);
+    assert_eq!(found.len(), 1);
+    assert_eq!(found[0].0, "clip.y");
+    let s = found[0].1.stats();
+    assert_eq!((s.narrowed, s.over_high, s.over_low), (5, 1, 1));
+    assert_eq!(c.y.q().fx(), Fx::from_raw(Out::FMT, 127));
+}

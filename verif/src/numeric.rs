@@ -1,0 +1,229 @@
+//! Numeric coverage: what each named narrowing of a unit met in a run (values narrowed,
+//! overflows above and below, rounding ties, values that lost fraction bits, the range before
+//! narrowing), merged across configurations and shards, and the paths never exercised.
+
+use hdl::fx::{Format, Narrowing, Overflow};
+use hdl::kernel::Module;
+use serde::{Deserialize, Serialize};
+use std::fmt::Write;
+
+/// One narrowing's counts in a testbench's runs.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+pub struct NarrowRow {
+    /// Its path: unit instance path and the narrowing's name.
+    pub path: String,
+    /// The declared destination format (`sQ1.14`).
+    pub format: String,
+    /// The rounding mode's name.
+    pub quant: String,
+    /// The overflow mode's name.
+    pub overflow: String,
+    /// Values narrowed.
+    pub narrowed: u64,
+    /// Values above the destination's range (saturated, or wrapped).
+    pub over_high: u64,
+    /// Values below it.
+    pub over_low: u64,
+    /// Exact half-way values under a mode with a tie rule.
+    pub ties: u64,
+    /// Values that lost fraction bits.
+    pub inexact: u64,
+    /// The smallest value before narrowing (`null` when none was narrowed).
+    pub min: Option<f64>,
+    /// The largest.
+    pub max: Option<f64>,
+}
+
+impl NarrowRow {
+    fn of(path: String, n: &Narrowing) -> NarrowRow {
+        let s = n.stats();
+        let seen = s.narrowed > 0;
+        NarrowRow {
+            path,
+            format: n.dst().to_string(),
+            quant: n.quant().name().into(),
+            overflow: n.overflow().name().into(),
+            narrowed: s.narrowed,
+            over_high: s.over_high,
+            over_low: s.over_low,
+            ties: s.ties,
+            inexact: s.inexact,
+            min: seen.then_some(s.min),
+            max: seen.then_some(s.max),
+        }
+    }
+
+    fn merge(&mut self, o: &NarrowRow) {
+        self.narrowed += o.narrowed;
+        self.over_high += o.over_high;
+        self.over_low += o.over_low;
+        self.ties += o.ties;
+        self.inexact += o.inexact;
+        let pick = |a: Option<f64>, b: Option<f64>, f: fn(f64, f64) -> f64| match (a, b) {
+            (Some(a), Some(b)) => Some(f(a, b)),
+            (a, b) => a.or(b),
+        };
+        self.min = pick(self.min, o.min, f64::min);
+        self.max = pick(self.max, o.max, f64::max);
+    }
+
+    /// The paths of this narrowing its runs never took: an overflow rule never applied on a
+    /// side the format can overflow on, a tie never met by a rounding mode with a tie rule.
+    pub fn holes(&self) -> Vec<String> {
+        let mut h = Vec::new();
+        let wrap = self.overflow == Overflow::Wrap.name();
+        let what = if wrap { "wrap" } else { "saturation" };
+        if self.over_high == 0 {
+            h.push(format!("{}: {what} high never reached", self.path));
+        }
+        let unsigned = Format::parse(&self.format).is_ok_and(|f| !f.is_signed());
+        if self.over_low == 0 && !(unsigned && self.min.is_some_and(|m| m >= 0.0)) {
+            h.push(format!("{}: {what} low never reached", self.path));
+        }
+        let tie_rule = !self.quant.starts_with("trunc");
+        if tie_rule && self.ties == 0 && self.inexact > 0 {
+            h.push(format!("{}: no rounding tie met", self.path));
+        }
+        h
+    }
+}
+
+/// Every narrowing of `dut` with its counts (all zero unless tracking was on).
+pub fn rows(dut: &dyn Module) -> Vec<NarrowRow> {
+    hdl::kernel::narrowings(dut)
+        .into_iter()
+        .map(|(path, n)| NarrowRow::of(path, &n))
+        .collect()
+}
+
+/// Adds `more` into `into`, row by row of the same path (new paths appended in order).
+pub fn merge(into: &mut Vec<NarrowRow>, more: &[NarrowRow]) {
+    for r in more {
+        match into.iter_mut().find(|x| x.path == r.path) {
+            Some(x) => x.merge(r),
+            None => into.push(r.clone()),
+        }
+    }
+}
+
+/// The rows as a Markdown table for `report.md`.
+pub fn table(rows: &[NarrowRow]) -> String {
+    let mut t = String::from(
+        "| narrowing | format | rounding | overflow | narrowed | over high | over low | ties | inexact | min | max |\n|---|---|---|---|---:|---:|---:|---:|---:|---:|---:|\n",
+    );
+    let num = |x: Option<f64>| x.map_or_else(|| "-".into(), |v| format!("{v:.6}"));
+    for r in rows {
+        let _ = writeln!(
+            t,
+            "| {} | {} | {} | {} | {} | {} | {} | {} | {} | {} | {} |",
+            r.path,
+            r.format,
+            r.quant,
+            r.overflow,
+            r.narrowed,
+            r.over_high,
+            r.over_low,
+            r.ties,
+            r.inexact,
+            num(r.min),
+            num(r.max)
+        );
+    }
+    t
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use hdl::fx::{set_tracking, Quant};
+    use hdl::kernel::{Reg, Signal};
+
+    #[derive(hdl::kernel::Module)]
+    #[module(kind = "clip")]
+    struct Clip {
+        #[input]
+        x: Signal,
+        #[reg]
+        y: Reg,
+        #[narrow]
+        round: [Narrowing; 2],
+    }
+
+    impl Clip {
+        fn eval(&mut self) {
+            let v = self.round[0].fx(self.x.fx());
+            self.y.set_next(self.round[1].fx(v));
+        }
+    }
+
+    fn clip(xs: &[i64]) -> Vec<NarrowRow> {
+        let out = Format::signed(6, 2);
+        let mut c = Clip {
+            x: Signal::new("x", Format::signed(10, 4)),
+            y: Reg::new("y", out),
+            round: [
+                Narrowing::new("y", out, Quant::RoundHalfEven, Overflow::Saturate),
+                Narrowing::new("again", out, Quant::Trunc, Overflow::Wrap),
+            ],
+        };
+        set_tracking(true);
+        for &x in xs {
+            c.x.set_raw(x);
+            c.eval();
+        }
+        set_tracking(false);
+        rows(&c)
+    }
+
+    /// Rows carry the counts and the declared modes; runs merge path by path, adding counts
+    /// and widening the range; the holes are the overflow sides and ties never met.
+    #[test]
+    fn rows_merge_and_name_their_holes() {
+        // 31.9375 saturates high (and drops 0.75 LSB); 0.125 and 0.375 are ties (0.5, 1.5 LSB).
+        let a = clip(&[511, 2, 6]);
+        assert_eq!(a[0].path, "clip.y");
+        assert_eq!((a[0].narrowed, a[0].over_high, a[0].over_low), (3, 1, 0));
+        assert_eq!((a[0].ties, a[0].inexact), (2, 3));
+        assert_eq!(
+            (a[0].format.as_str(), a[0].quant.as_str()),
+            ("sQ4.2", "round-half-even")
+        );
+        assert_eq!(
+            a[0].holes(),
+            ["clip.y: saturation low never reached"],
+            "high and a tie were met"
+        );
+        let b = clip(&[-512]);
+        let mut m = a.clone();
+        merge(&mut m, &b);
+        assert_eq!((m[0].narrowed, m[0].over_high, m[0].over_low), (4, 1, 1));
+        assert_eq!((m[0].min, m[0].max), (Some(-32.0), Some(511.0 / 16.0)));
+        assert!(m[0].holes().is_empty());
+        assert_eq!(
+            m[1].holes(),
+            [
+                "clip.again: wrap high never reached",
+                "clip.again: wrap low never reached"
+            ]
+        );
+        let json = serde_json::to_string(&m).unwrap();
+        assert_eq!(serde_json::from_str::<Vec<NarrowRow>>(&json).unwrap(), m);
+        assert!(table(&m).contains("| clip.y | sQ4.2 | round-half-even | saturate | 4 | 1 | 1 |"));
+    }
+
+    /// Off, nothing is counted and the rows are all zeros.
+    #[test]
+    fn off_counts_nothing() {
+        let mut c = Clip {
+            x: Signal::new("x", Format::signed(10, 4)),
+            y: Reg::new("y", Format::signed(6, 2)),
+            round: [
+                Narrowing::new("y", Format::signed(6, 2), Quant::Trunc, Overflow::Saturate),
+                Narrowing::new("z", Format::signed(6, 2), Quant::Trunc, Overflow::Saturate),
+            ],
+        };
+        c.x.set_raw(511);
+        c.eval();
+        assert!(rows(&c).iter().all(|r| r.narrowed == 0 && r.min.is_none()));
+    }
+}
