@@ -88,6 +88,27 @@ impl NarrowRow {
     }
 }
 
+/// The narrowest format that would have held every value seen with the same error: the same
+/// fraction bits and signedness, integer bits for the observed range, rounded outward (a
+/// narrowing that overflowed keeps its format: a narrower one would clip where it did not).
+/// With the declared format's integer bits the narrowing never used.
+pub fn narrowest(r: &NarrowRow) -> Option<(Format, u32)> {
+    let declared = Format::parse(&r.format).ok()?;
+    let (lo, hi) = (r.min?, r.max?);
+    if r.over_high > 0 || r.over_low > 0 {
+        return Some((declared, 0));
+    }
+    let scale = 2f64.powi(declared.frac());
+    let (lo, hi) = ((lo * scale).floor(), (hi * scale).ceil());
+    let fits = |w: u32| {
+        let f = Format::try_new(w, declared.frac(), declared.is_signed());
+        f.is_ok_and(|f| lo >= f.min_raw() as f64 && hi <= f.max_raw() as f64)
+    };
+    let w = (1..=declared.width()).find(|&w| fits(w))?;
+    let f = Format::new(w, declared.frac(), declared.is_signed());
+    Some((f, declared.width() - w))
+}
+
 /// Every narrowing of `dut` with its counts (all zero unless tracking was on).
 pub fn rows(dut: &dyn Module) -> Vec<NarrowRow> {
     hdl::kernel::narrowings(dut)
@@ -109,13 +130,13 @@ pub fn merge(into: &mut Vec<NarrowRow>, more: &[NarrowRow]) {
 /// The rows as a Markdown table for `report.md`.
 pub fn table(rows: &[NarrowRow]) -> String {
     let mut t = String::from(
-        "| narrowing | format | rounding | overflow | narrowed | over high | over low | ties | inexact | min | max |\n|---|---|---|---|---:|---:|---:|---:|---:|---:|---:|\n",
+        "| narrowing | format | rounding | overflow | narrowed | over high | over low | ties | inexact | min | max | unused integer bits | narrowest |\n|---|---|---|---|---:|---:|---:|---:|---:|---:|---:|---:|---|\n",
     );
     let num = |x: Option<f64>| x.map_or_else(|| "-".into(), |v| format!("{v:.6}"));
     for r in rows {
         let _ = writeln!(
             t,
-            "| {} | {} | {} | {} | {} | {} | {} | {} | {} | {} | {} |",
+            "| {} | {} | {} | {} | {} | {} | {} | {} | {} | {} | {} | {} | {} |",
             r.path,
             r.format,
             r.quant,
@@ -126,8 +147,41 @@ pub fn table(rows: &[NarrowRow]) -> String {
             r.ties,
             r.inexact,
             num(r.min),
-            num(r.max)
+            num(r.max),
+            narrowest(r).map_or_else(|| "-".into(), |(_, u)| u.to_string()),
+            narrowest(r).map_or_else(|| "-".into(), |(f, _)| f.to_string()),
         );
+    }
+    t
+}
+
+/// The rows of every testbench as CSV (`narrowings.csv` beside `report.md`): one line a
+/// narrowing, with its testbench.
+pub fn csv(results: &[crate::TbResult]) -> String {
+    let mut t = String::from("testbench,narrowing,format,rounding,overflow,narrowed,over_high,over_low,ties,inexact,min,max,unused_integer_bits,narrowest\n");
+    for res in results {
+        for r in &res.narrowings {
+            let (nf, unused) = narrowest(r).map_or((String::new(), String::new()), |(f, u)| {
+                (f.to_string(), u.to_string())
+            });
+            let num = |x: Option<f64>| x.map_or_else(String::new, |v| v.to_string());
+            let _ = writeln!(
+                t,
+                "{},{},{},{},{},{},{},{},{},{},{},{},{unused},{nf}",
+                res.name,
+                r.path,
+                r.format,
+                r.quant,
+                r.overflow,
+                r.narrowed,
+                r.over_high,
+                r.over_low,
+                r.ties,
+                r.inexact,
+                num(r.min),
+                num(r.max)
+            );
+        }
     }
     t
 }
@@ -209,6 +263,43 @@ mod tests {
         let json = serde_json::to_string(&m).unwrap();
         assert_eq!(serde_json::from_str::<Vec<NarrowRow>>(&json).unwrap(), m);
         assert!(table(&m).contains("| clip.y | sQ4.2 | round-half-even | saturate | 4 | 1 | 1 |"));
+    }
+
+    /// A deliberately over-wide destination (sQ12.2 for values within [-6, 6)): its unused
+    /// integer bits are reported, and the narrowest format proposed gives every output of the
+    /// run again, bit for bit (the same error against the exact values).
+    #[test]
+    fn an_over_wide_format_is_narrowed_with_the_same_results() {
+        let inputs: Vec<i64> = (-96..96).collect(); // sQ6.4 raws: -6 ..= 5.9375
+        let wide = Format::signed(14, 2);
+        let run = |fmt: Format| {
+            let mut n = Narrowing::new("y", fmt, Quant::RoundHalfEven, Overflow::Saturate);
+            set_tracking(true);
+            let out: Vec<f64> = inputs
+                .iter()
+                .map(|&x| {
+                    n.fx(hdl::fx::Fx::from_raw(Format::signed(10, 4), x.into()))
+                        .to_f64()
+                })
+                .collect();
+            set_tracking(false);
+            (out, NarrowRow::of("clip.y".into(), &n))
+        };
+        let (wide_out, row) = run(wide);
+        let (fmt, unused) = narrowest(&row).unwrap();
+        assert_eq!(
+            fmt,
+            Format::signed(6, 2),
+            "-6.0 ..= 6.0 after rounding: sQ4.2"
+        );
+        assert_eq!(unused, 8);
+        assert!(table(&[row]).contains("| 8 | sQ4.2 |"));
+        let (narrow_out, row) = run(fmt);
+        assert_eq!(narrow_out, wide_out, "the same results, so the same error");
+        assert_eq!((row.over_high, row.over_low), (0, 0));
+        // One bit fewer would clip: 6.0 (5.9375 rounded) needs the sign and three bits.
+        let (clipped, _) = run(Format::signed(5, 2));
+        assert_ne!(clipped, wide_out);
     }
 
     /// Off, nothing is counted and the rows are all zeros.

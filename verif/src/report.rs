@@ -186,6 +186,9 @@ pub fn write_report(project: &Project, out: &Path, summary: &Summary) -> Result<
             ),
         });
     }
+    if results.iter().any(|r| !r.narrowings.is_empty()) {
+        write("narrowings.csv", crate::numeric::csv(results).as_bytes())?;
+    }
     write(
         "report.md",
         markdown(project, summary, &pictures).as_bytes(),
