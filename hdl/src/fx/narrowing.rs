@@ -121,18 +121,35 @@ impl Narrowing {
         if tracking() {
             self.record(raw, src_frac);
         }
-        quantise(raw, src_frac, self.dst, self.q, self.o)
+        // The modes as constants where they are the common ones, so `quantise`'s rounding and
+        // overflow logic folds as it does at a call site that names them (one predictable
+        // branch here instead of a run-time match inside).
+        let dst = self.dst;
+        match (self.q, self.o) {
+            (Quant::RoundHalfEven, Overflow::Saturate) => {
+                quantise(raw, src_frac, dst, Quant::RoundHalfEven, Overflow::Saturate)
+            }
+            (Quant::RoundHalfEven, Overflow::SaturateSymmetric) => quantise(
+                raw,
+                src_frac,
+                dst,
+                Quant::RoundHalfEven,
+                Overflow::SaturateSymmetric,
+            ),
+            (Quant::Trunc, Overflow::Wrap) => {
+                quantise(raw, src_frac, dst, Quant::Trunc, Overflow::Wrap)
+            }
+            (q, o) => quantise(raw, src_frac, dst, q, o),
+        }
     }
 
     /// `v` narrowed: [`Fx::convert`] into the destination, counted when tracking.
     #[inline(always)]
     pub fn fx(&mut self, v: Fx) -> Fx {
-        if tracking() {
-            self.record(v.raw(), v.fmt().frac());
-        }
-        v.convert(self.dst, self.q, self.o)
+        Fx::from_fitting_raw(self.dst, self.raw(v.raw(), v.fmt().frac()))
     }
 
+    #[cold]
     #[inline(never)]
     fn record(&mut self, raw: i128, src_frac: i32) {
         let (d, s) = (self.dst, &mut self.stats);
