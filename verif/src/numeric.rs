@@ -127,32 +127,50 @@ pub fn merge(into: &mut Vec<NarrowRow>, more: &[NarrowRow]) {
     }
 }
 
+/// A row's cells, in the table's and the CSV's column order; `none` for an empty range.
+fn cells(r: &NarrowRow, num: fn(f64) -> String, none: &str) -> Vec<String> {
+    let opt = |x: Option<f64>| x.map_or_else(|| none.to_string(), num);
+    let (narrow, unused) = narrowest(r).map_or((none.to_string(), none.to_string()), |(f, u)| {
+        (f.to_string(), u.to_string())
+    });
+    let counts = [r.narrowed, r.over_high, r.over_low, r.ties, r.inexact];
+    let mut c = vec![
+        r.path.clone(),
+        r.format.clone(),
+        r.quant.clone(),
+        r.overflow.clone(),
+    ];
+    c.extend(counts.iter().map(u64::to_string));
+    c.extend([opt(r.min), opt(r.max), unused, narrow]);
+    c
+}
+
 /// The rows as a Markdown table for `report.md`.
 pub fn table(rows: &[NarrowRow]) -> String {
     let mut t = String::from(
         "| narrowing | format | rounding | overflow | narrowed | over high | over low | ties | inexact | min | max | unused integer bits | narrowest |\n|---|---|---|---|---:|---:|---:|---:|---:|---:|---:|---:|---|\n",
     );
-    let num = |x: Option<f64>| x.map_or_else(|| "-".into(), |v| format!("{v:.6}"));
     for r in rows {
         let _ = writeln!(
             t,
-            "| {} | {} | {} | {} | {} | {} | {} | {} | {} | {} | {} | {} | {} |",
-            r.path,
-            r.format,
-            r.quant,
-            r.overflow,
-            r.narrowed,
-            r.over_high,
-            r.over_low,
-            r.ties,
-            r.inexact,
-            num(r.min),
-            num(r.max),
-            narrowest(r).map_or_else(|| "-".into(), |(_, u)| u.to_string()),
-            narrowest(r).map_or_else(|| "-".into(), |(f, _)| f.to_string()),
+            "| {} |",
+            cells(r, |v| format!("{v:.6}"), "-").join(" | ")
         );
     }
     t
+}
+
+/// A testbench's numeric coverage section of `report.md`: its table and the paths never taken.
+pub fn section(m: &mut String, rows: &[NarrowRow]) {
+    if rows.is_empty() {
+        return;
+    }
+    let _ = writeln!(m, "\nNumeric coverage (every named narrowing):\n");
+    m.push_str(&table(rows));
+    let holes: Vec<String> = rows.iter().flat_map(NarrowRow::holes).collect();
+    if !holes.is_empty() {
+        let _ = writeln!(m, "\nNumeric paths never exercised: {}", holes.join("; "));
+    }
 }
 
 /// The rows of every testbench as CSV (`narrowings.csv` beside `report.md`): one line a
@@ -161,25 +179,11 @@ pub fn csv(results: &[crate::TbResult]) -> String {
     let mut t = String::from("testbench,narrowing,format,rounding,overflow,narrowed,over_high,over_low,ties,inexact,min,max,unused_integer_bits,narrowest\n");
     for res in results {
         for r in &res.narrowings {
-            let (nf, unused) = narrowest(r).map_or((String::new(), String::new()), |(f, u)| {
-                (f.to_string(), u.to_string())
-            });
-            let num = |x: Option<f64>| x.map_or_else(String::new, |v| v.to_string());
             let _ = writeln!(
                 t,
-                "{},{},{},{},{},{},{},{},{},{},{},{},{unused},{nf}",
+                "{},{}",
                 res.name,
-                r.path,
-                r.format,
-                r.quant,
-                r.overflow,
-                r.narrowed,
-                r.over_high,
-                r.over_low,
-                r.ties,
-                r.inexact,
-                num(r.min),
-                num(r.max)
+                cells(r, |v| v.to_string(), "").join(",")
             );
         }
     }
@@ -263,6 +267,16 @@ mod tests {
         let json = serde_json::to_string(&m).unwrap();
         assert_eq!(serde_json::from_str::<Vec<NarrowRow>>(&json).unwrap(), m);
         assert!(table(&m).contains("| clip.y | sQ4.2 | round-half-even | saturate | 4 | 1 | 1 |"));
+        let mut res = crate::TbResult::new("clip_tb", "a clip");
+        res.narrowings = m.clone();
+        let csv = csv(&[res]);
+        assert!(csv.starts_with("testbench,narrowing,format,"));
+        assert!(
+            csv.contains(
+                "\nclip_tb,clip.y,sQ4.2,round-half-even,saturate,4,1,1,2,3,-32,31.9375,0,sQ4.2\n"
+            ),
+            "{csv}"
+        );
     }
 
     /// A deliberately over-wide destination (sQ12.2 for values within [-6, 6)): its unused

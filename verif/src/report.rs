@@ -142,14 +142,7 @@ pub fn markdown(project: &Project, s: &Summary, pictures: &[Picture]) -> String 
         if !r.unhit.is_empty() {
             let _ = writeln!(m, "\nCoverage holes: {}", r.unhit.join(", "));
         }
-        if !r.narrowings.is_empty() {
-            let holes: Vec<String> = r.narrowings.iter().flat_map(|n| n.holes()).collect();
-            let _ = writeln!(m, "\nNumeric coverage (every named narrowing):\n");
-            m.push_str(&crate::numeric::table(&r.narrowings));
-            if !holes.is_empty() {
-                let _ = writeln!(m, "\nNumeric paths never exercised: {}", holes.join("; "));
-            }
-        }
+        crate::numeric::section(&mut m, &r.narrowings);
         for f in r.mismatch_log.iter().chain(&r.failures) {
             let _ = writeln!(m, "- **{f}**");
         }
