@@ -125,6 +125,15 @@ fn normal_pipeline(c: &mut Criterion) {
             Sim::new(NormalPipeline::new("normal_pipeline_fig7", p, map.clone(), None).unwrap());
         b.iter(|| black_box(pipeline(&mut sim)))
     });
+    // Numeric tracking on: every named narrowing counts what it meets (against
+    // `cycles_untraced`, tracking off, the cost of numeric coverage).
+    g.bench_function("cycles_untraced_numeric_tracking", |b| {
+        let mut sim =
+            Sim::new(NormalPipeline::new("normal_pipeline_fig7", p, map.clone(), None).unwrap());
+        hdl::fx::set_tracking(true);
+        b.iter(|| black_box(pipeline(&mut sim)));
+        hdl::fx::set_tracking(false);
+    });
     let tri = BumpParams {
         trilinear: true,
         ..p
