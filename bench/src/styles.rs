@@ -11,8 +11,10 @@ use std::path::{Path, PathBuf};
 use verif::cosim::Twin;
 use verif::project::Unit;
 
+// The example is formatted by its own crate's rustfmt.toml, not this workspace's.
 #[path = "../../examples/sat_acc/src/unit.rs"]
 #[allow(dead_code)]
+#[rustfmt::skip]
 mod documented;
 
 #[path = "../../docs/src/blend.rs"]

@@ -43,8 +43,7 @@ impl SatAcc {
         if self.valid_in.is_high() {
             // Full-precision sum, then one declared narrowing: truncate (exact here), saturate.
             let sum = self.acc_r.q().fx() + self.x.fx();
-            self.acc_r
-                .set_next(sum.convert(Acc::FMT, Quant::Trunc, Overflow::Saturate));
+            self.acc_r.set_next(sum.convert(Acc::FMT, Quant::Trunc, Overflow::Saturate));
         }
     }
 }
