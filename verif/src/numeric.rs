@@ -2,7 +2,7 @@
 //! overflows above and below, rounding ties, values that lost fraction bits, the range before
 //! narrowing), merged across configurations and shards, and the paths never exercised.
 
-use hdl::fx::{Format, Narrowing, Overflow};
+use hdl::fx::{Format, Fx, Narrowing, Overflow};
 use hdl::kernel::Module;
 use serde::{Deserialize, Serialize};
 use std::fmt::Write;
@@ -48,8 +48,8 @@ impl NarrowRow {
             over_low: s.over_low,
             ties: s.ties,
             inexact: s.inexact,
-            min: seen.then_some(s.min),
-            max: seen.then_some(s.max),
+            min: s.min.filter(|_| seen).map(Fx::to_f64),
+            max: s.max.filter(|_| seen).map(Fx::to_f64),
         }
     }
 

@@ -37,10 +37,10 @@ pub struct NarrowStats {
     pub ties: u64,
     /// Values that lost fraction bits (not exactly representable before overflow).
     pub inexact: u64,
-    /// The smallest and largest value before narrowing (`f64`: for ranges, not for bits).
-    pub min: f64,
-    /// See `min`.
-    pub max: f64,
+    /// The smallest value before narrowing, exactly (`None` before the first).
+    pub min: Option<Fx>,
+    /// The largest.
+    pub max: Option<Fx>,
 }
 
 impl Default for NarrowStats {
@@ -51,8 +51,8 @@ impl Default for NarrowStats {
             over_low: 0,
             ties: 0,
             inexact: 0,
-            min: f64::INFINITY,
-            max: f64::NEG_INFINITY,
+            min: None,
+            max: None,
         }
     }
 }
@@ -65,8 +65,19 @@ impl NarrowStats {
         self.over_low += o.over_low;
         self.ties += o.ties;
         self.inexact += o.inexact;
-        self.min = self.min.min(o.min);
-        self.max = self.max.max(o.max);
+        self.widen(o.min);
+        self.widen(o.max);
+    }
+
+    /// Widens the range to hold `x`.
+    fn widen(&mut self, x: Option<Fx>) {
+        let Some(x) = x else { return };
+        if self.min.is_none_or(|m| x < m) {
+            self.min = Some(x);
+        }
+        if self.max.is_none_or(|m| x > m) {
+            self.max = Some(x);
+        }
     }
 }
 
@@ -175,9 +186,10 @@ impl Narrowing {
         } else if v < low {
             s.over_low += 1;
         }
-        let x = raw as f64 * 2f64.powi(-src_frac);
-        s.min = s.min.min(x);
-        s.max = s.max.max(x);
+        // The value exactly: every i128 fits a signed 128-bit format of the source's fraction.
+        if let Ok(f) = Format::try_new(128, src_frac, true) {
+            s.widen(Some(Fx::from_raw(f, raw)));
+        }
     }
 }
 
