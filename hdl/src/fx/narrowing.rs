@@ -25,7 +25,7 @@ pub fn tracking() -> bool {
 }
 
 /// What one narrowing met while tracking was on.
-#[derive(Clone, Debug, PartialEq)]
+#[derive(Clone, Debug, Default, PartialEq)]
 pub struct NarrowStats {
     /// Values narrowed.
     pub narrowed: u64,
@@ -41,20 +41,6 @@ pub struct NarrowStats {
     pub min: Option<Fx>,
     /// The largest.
     pub max: Option<Fx>,
-}
-
-impl Default for NarrowStats {
-    fn default() -> NarrowStats {
-        NarrowStats {
-            narrowed: 0,
-            over_high: 0,
-            over_low: 0,
-            ties: 0,
-            inexact: 0,
-            min: None,
-            max: None,
-        }
-    }
 }
 
 impl NarrowStats {
