@@ -117,7 +117,8 @@ pub fn rows(dut: &dyn Module) -> Vec<NarrowRow> {
         .collect()
 }
 
-/// Adds `more` into `into`, row by row of the same path (new paths appended in order).
+/// Adds `more` into `into`, row by row of the same path, the rows kept in path order: shards
+/// and configurations merged in any order give the same rows.
 pub fn merge(into: &mut Vec<NarrowRow>, more: &[NarrowRow]) {
     for r in more {
         match into.iter_mut().find(|x| x.path == r.path) {
@@ -125,6 +126,7 @@ pub fn merge(into: &mut Vec<NarrowRow>, more: &[NarrowRow]) {
             None => into.push(r.clone()),
         }
     }
+    into.sort_by(|a, b| a.path.cmp(&b.path));
 }
 
 /// A row's cells, in the table's and the CSV's column order; `none` for an empty range.
@@ -252,8 +254,19 @@ mod tests {
             "high and a tie were met"
         );
         let b = clip(&[-512]);
-        let mut m = a.clone();
+        let mut m = Vec::new();
+        merge(&mut m, &a);
         merge(&mut m, &b);
+        let mut other_way = Vec::new();
+        merge(&mut other_way, &b);
+        merge(&mut other_way, &a);
+        assert_eq!(m, other_way, "merged in either order");
+        let (again, y) = (&m[0], &m[1]);
+        assert_eq!(
+            (again.path.as_str(), y.path.as_str()),
+            ("clip.again", "clip.y")
+        );
+        let m = vec![y.clone(), again.clone()];
         assert_eq!((m[0].narrowed, m[0].over_high, m[0].over_low), (4, 1, 1));
         assert_eq!((m[0].min, m[0].max), (Some(-32.0), Some(511.0 / 16.0)));
         assert!(m[0].holes().is_empty());
