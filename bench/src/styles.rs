@@ -2,8 +2,8 @@
 //! `texrtl new` template's) and the user guide's two-stage blend, each compiled from its own
 //! file in this crate as a user's crate compiles it, and each written again on `i64` and
 //! `set_next_raw` with run-time-format signals, the style of texrtl's own units. Each pair
-//! co-simulates with the one Verilog (the raw model's under its own name, `rtl/*_raw.v`), so
-//! the speed table gives all four against Verilator in one run.
+//! co-simulates with the one Verilog (the raw model instantiating it as its top), so the speed
+//! table gives all four against Verilator in one run.
 
 use hdl::fx::Format;
 use hdl::kernel::{Module, Reg, Signal};
@@ -140,15 +140,20 @@ pub fn units() -> [Unit; 4] {
         )
         .twin(Twin::new(documented::SatAcc::new, sat_acc).sources([sat_acc_v.clone()])),
         Unit::new("sat_acc_raw", "the same accumulator on raw integers").twin(
-            Twin::new(SatAccRaw::new, sat_acc_raw).sources([sat_acc_v, here("rtl/sat_acc_raw.v")]),
+            Twin::new(SatAccRaw::new, sat_acc_raw)
+                .top("sat_acc")
+                .sources([sat_acc_v]),
         ),
         Unit::new(
             "blend",
             "the user guide's blend (documented fixed-point style)",
         )
         .twin(Twin::new(blend::Blend::new, blend).sources([blend_v.clone()])),
-        Unit::new("blend_raw", "the same blend on raw integers")
-            .twin(Twin::new(BlendRaw::new, blend_raw).sources([blend_v, here("rtl/blend_raw.v")])),
+        Unit::new("blend_raw", "the same blend on raw integers").twin(
+            Twin::new(BlendRaw::new, blend_raw)
+                .top("blend")
+                .sources([blend_v]),
+        ),
     ]
 }
 

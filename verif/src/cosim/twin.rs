@@ -23,6 +23,7 @@ pub struct Twin<M> {
     make: fn() -> M,
     drive: fn(&mut M, &[u64]),
     name: &'static str,
+    top: Option<&'static str>,
     rtl: Vec<PathBuf>,
     bench_rtl: Vec<PathBuf>,
     parameters: Vec<(&'static str, i64)>,
@@ -40,6 +41,7 @@ impl<M: Module + Clone + Send + Sync + 'static> Twin<M> {
     pub fn new(make: fn() -> M, drive: fn(&mut M, &[u64])) -> Twin<M> {
         Twin {
             name: make().kind(),
+            top: None,
             make,
             drive,
             rtl: Vec::new(),
@@ -58,6 +60,12 @@ impl<M: Module + Clone + Send + Sync + 'static> Twin<M> {
     pub fn watch(mut self, ports: Vec<Port>, f: fn(&M) -> Vec<u64>) -> Self {
         self.watch = ports;
         self.watch_fn = f;
+        self
+    }
+    /// The Verilog module to instantiate when it is not named as the module's kind (a second
+    /// model of the same design).
+    pub fn top(mut self, module: &'static str) -> Self {
+        self.top = Some(module);
         self
     }
     /// The twin's Verilog sources.
@@ -117,6 +125,9 @@ pub fn random_inputs(inputs: &[Port], seed: Seed, cycles: usize) -> Vec<Vec<u64>
 impl<M: Module + Clone + Send + Sync + 'static> CosimUnit for Twin<M> {
     fn name(&self) -> &str {
         self.name
+    }
+    fn top(&self) -> &str {
+        self.top.unwrap_or(self.name)
     }
     fn rtl(&self) -> Vec<PathBuf> {
         self.rtl.clone()
