@@ -97,3 +97,30 @@ fn the_hierarchy_names_each_narrowing() {
     assert_eq!((s.narrowed, s.over_high, s.over_low), (5, 1, 1));
     assert_eq!(c.y.q().fx(), Fx::from_raw(Out::FMT, 127));
 }
+
+/// The overflow flag: a one-bit wire `y_sat` of the unit's scope (so every tracer shows it),
+/// high while the latest value narrowed saturated, which the kernel's schedule check accepts;
+/// with tracking off it stays low.
+#[test]
+fn the_flag_is_a_wire_that_shows_the_latest_saturation() {
+    use hdl::kernel::{signal_paths, Sim};
+    let clip = || Clip {
+        x: SignalOf::new("x"),
+        y: RegOf::new("y"),
+        round: Narrowing::new("y", Out::FMT, Quant::RoundHalfEven, Overflow::Saturate),
+    };
+    assert_eq!(signal_paths(&clip()), ["clip.x", "clip.y", "clip.y_sat"]);
+    let mut sim = Sim::new(clip()).check_schedule(true);
+    set_tracking(true);
+    let mut flags = Vec::new();
+    for raw in [0, 2047, 2047, 100, -2048, -100] {
+        sim.dut.x.set_raw(raw);
+        sim.step();
+        flags.push(sim.dut.round.flag().raw());
+    }
+    set_tracking(false);
+    assert_eq!(flags, [0, 1, 1, 0, 1, 0]);
+    sim.dut.x.set_raw(2047);
+    sim.step();
+    assert_eq!(sim.dut.round.flag().raw(), 0, "off: not set");
+}

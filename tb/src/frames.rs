@@ -303,7 +303,9 @@ pub fn golden_parallax(q: &ParallaxQ) -> ([f64; 2], f64) {
     let h = f64::from(q.height) / 256.0 * q.scale as f64 / 4096.0 + q.bias as f64 / 4096.0;
     let eye = q.eye.map(|c| c as f64 / 16384.0);
     let uv = q.uv.map(|c| c as f64 / 256.0);
-    let g = golden::tangents::parallax(uv, h, eye, q.limited);
+    // The unit holds the coordinate at its format's ends (sQ13.8: -4096 ..= 4096 - 2^-8).
+    let g = golden::tangents::parallax(uv, h, eye, q.limited)
+        .map(|x| x.clamp(-4096.0, 4096.0 - 1.0 / 256.0));
     let full = if q.limited {
         0.0
     } else {
@@ -342,23 +344,64 @@ pub fn parallax_queries(n: usize, stim: &mut Stimulus) -> Vec<ParallaxQ> {
         .collect()
 }
 
+/// Directed queries for what the random ones never reach (they keep uv within 1000 texels
+/// and the offset within 25, so the coordinate never comes near the format's ends, and a
+/// rounding tie is a 2^-26 chance): each coordinate pushed past either end, in both forms,
+/// and offsets of exactly half an LSB (h = 2^-8, V.x = V.y = 1/2: 2^-9) on either side of 0.
+pub fn parallax_edges() -> Vec<ParallaxQ> {
+    let edge = 4095 * 256 + 128; // 4095.5 texels
+    let half = 1 << 13; // 0.5 in sQ1.14
+    let mut qs = Vec::new();
+    for limited in [false, true] {
+        for sign in [1i64, -1] {
+            // h = 255/256 x 2 + 1 (about 3 texels), moved by 0.5 (limited) or 1 (divided)
+            // texel per texel of height, outward: u past one end, v past the other.
+            let eye = [half * sign, -half * sign, half];
+            qs.push(ParallaxQ {
+                uv: [edge * sign, -edge * sign],
+                height: 255,
+                scale: 8191,
+                bias: 4096,
+                eye,
+                limited,
+            });
+        }
+        for uv in [[0, 0], [256, -256]] {
+            qs.push(ParallaxQ {
+                uv,
+                height: 0,
+                scale: 0,
+                bias: 16, // h = 16 2^-12 = 2^-8 texels
+                eye: [1 << 13, -(1 << 13), 1 << 14],
+                limited,
+            });
+        }
+    }
+    qs
+}
+
+/// Drives one query onto the unit's inputs (`None`: no query this cycle).
+pub fn drive_parallax(d: &mut ParallaxUnit, t: Option<&ParallaxQ>) {
+    d.valid_in.set_bool(t.is_some());
+    if let Some(q) = t {
+        d.limited.set_bool(q.limited);
+        d.uv[0].set_raw(q.uv[0]);
+        d.uv[1].set_raw(q.uv[1]);
+        d.height.set_bits(u64::from(q.height));
+        d.scale.set_raw(q.scale);
+        d.bias.set_raw(q.bias);
+        for c in 0..3 {
+            d.eye[c].set_raw(q.eye[c]);
+        }
+    }
+}
+
 struct ParallaxDriver;
 
 impl Driver<ParallaxUnit> for ParallaxDriver {
     type Txn = ParallaxQ;
     fn drive(&mut self, d: &mut ParallaxUnit, t: Option<&ParallaxQ>) {
-        d.valid_in.set_bool(t.is_some());
-        if let Some(q) = t {
-            d.limited.set_bool(q.limited);
-            d.uv[0].set_raw(q.uv[0]);
-            d.uv[1].set_raw(q.uv[1]);
-            d.height.set_bits(u64::from(q.height));
-            d.scale.set_raw(q.scale);
-            d.bias.set_raw(q.bias);
-            for c in 0..3 {
-                d.eye[c].set_raw(q.eye[c]);
-            }
-        }
+        drive_parallax(d, t);
     }
 }
 
@@ -411,7 +454,8 @@ impl Testbench for ParallaxTb {
     }
     fn run(&self, ctx: &Ctx) -> Result<TbResult, String> {
         let mut stim = Stimulus::new(ctx.seed);
-        let qs = parallax_queries(ctx.count.max(20), &mut stim);
+        let mut qs = parallax_queries(ctx.count.max(20), &mut stim);
+        qs.extend(parallax_edges());
         let title = format!("{PARALLAX} {}", ctx.label);
         let (mut sim, _) = ctx.sim(ParallaxUnit::new(), &title, 10_000, |_| ())?;
         sim.reset(2);

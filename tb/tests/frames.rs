@@ -59,3 +59,46 @@ fn a_cancelled_height_moves_nothing() {
         }
     }
 }
+
+/// Directed closure of numeric coverage: the random queries never take the coordinates'
+/// saturations or a rounding tie (holes the numeric coverage names), the directed edge
+/// queries take every one of them, and the testbench with both passes against the golden
+/// model, which holds the coordinate at the format's ends as the unit does.
+#[test]
+fn directed_queries_close_the_holes_random_parallax_stimulus_leaves() {
+    use tb::frames::{drive_parallax, parallax_edges};
+    use units::frames::parallax::ParallaxUnit;
+    let holes = |qs: &[tb::frames::ParallaxQ]| {
+        let mut sim = hdl::kernel::Sim::new(ParallaxUnit::new());
+        hdl::fx::set_tracking(true);
+        for q in qs {
+            drive_parallax(&mut sim.dut, Some(q));
+            sim.step();
+        }
+        hdl::fx::set_tracking(false);
+        let rows = verif::numeric::rows(&sim.dut);
+        assert_eq!(rows.len(), 2, "u_out, v_out");
+        assert!(rows.iter().all(|r| r.narrowed == qs.len() as u64));
+        rows.iter().flat_map(|r| r.holes()).collect::<Vec<_>>()
+    };
+    let random = parallax_queries(3000, &mut Stimulus::new(Seed(0x7e47)));
+    let found = holes(&random);
+    for c in ["u_out", "v_out"] {
+        for h in ["saturation high", "saturation low", "tie"] {
+            let hole = format!("parallax.{c}: {h} never reached");
+            assert!(found.contains(&hole), "{hole} not in {found:?}");
+        }
+    }
+    assert_eq!(found.len(), 6);
+    let mut both = random;
+    both.extend(parallax_edges());
+    assert_eq!(holes(&both), Vec::<String>::new(), "every path taken");
+    let opts = verif::RunOptions {
+        count: Some(200),
+        ..Default::default()
+    };
+    let r = verif::run_testbench(&ParallaxTb, &opts, &mut |_| {}).unwrap();
+    assert!(r.passed, "{:?} {:?}", r.failures, r.mismatch_log);
+    assert_eq!(r.numeric_percent, Some(100.0));
+    assert!(r.numeric_holes.is_empty(), "{:?}", r.numeric_holes);
+}

@@ -264,3 +264,54 @@ fn trilinear_outside_the_map_in_every_border_mode() {
         );
     }
 }
+
+/// The FIG. 7 regression's numeric coverage: each of its narrowings (four bilinear units and
+/// their second-level twins, the tangent unit's slopes and height, the normal unit's
+/// components and its rsqrt's iterates) listed with its counts, and no saturation path left
+/// a hole: each is taken or declared unreachable by its unit with the reason; none declared
+/// so is taken.
+#[test]
+fn every_fig7_narrowing_is_counted_and_no_saturation_is_left_open() {
+    let opts = verif::RunOptions {
+        count: Some(12),
+        ..Default::default()
+    };
+    let r = verif::run_testbench(&tb::normals::NormalsTb, &opts, &mut |_| {}).unwrap();
+    assert!(r.passed, "{:?}", r.failures);
+    let paths: Vec<&str> = r.narrowings.iter().map(|n| n.path.as_str()).collect();
+    let top = "normal_pipeline_fig7";
+    for unit in ["bilinear_65_red", "bilinear_68_alpha_l1"] {
+        assert!(
+            paths.contains(&format!("{top}.{unit}.q").as_str()),
+            "{paths:?}"
+        );
+    }
+    for n in ["tangent_155.du", "tangent_155.dv", "tangent_155.height"]
+        .into_iter()
+        .chain(["normal_156.nx", "normal_156.ny", "normal_156.nz"])
+        .chain(["normal_156.rsqrt_156.t1", "normal_156.rsqrt_156.y1"])
+    {
+        assert!(
+            paths.contains(&format!("{top}.{n}").as_str()),
+            "{n}: {paths:?}"
+        );
+    }
+    assert_eq!(paths.len(), 16);
+    assert!(
+        r.narrowings.iter().all(|n| n.narrowed > 0),
+        "each one counted"
+    );
+    let open: Vec<&String> = r
+        .numeric_holes
+        .iter()
+        .filter(|h| h.contains("saturation"))
+        .collect();
+    assert!(open.is_empty(), "{open:?}");
+    let declared: usize = r
+        .narrowings
+        .iter()
+        .map(|n| n.declared_unreachable().len())
+        .sum();
+    // Bilinear: high, low and tie (exact) x 8; tangent: 2 x 2 + 2; normal: 2 x 3; rsqrt: 2.
+    assert_eq!(declared, 24 + 6 + 6 + 2);
+}

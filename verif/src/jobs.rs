@@ -253,6 +253,7 @@ mod tests {
             seeds,
             job: None,
             junit: None,
+            require_numeric: false,
         }
     }
 

@@ -2,7 +2,8 @@
 //! overflows above and below, rounding ties, values that lost fraction bits, the range before
 //! narrowing), merged across configurations and shards, and the paths never exercised.
 
-use hdl::fx::{Format, Fx, Narrowing, Overflow};
+use crate::coverage::{Coverage, Coverpoint};
+use hdl::fx::{Format, Fx, NarrowPath, Narrowing, Overflow};
 use hdl::kernel::Module;
 use serde::{Deserialize, Serialize};
 use std::fmt::Write;
@@ -32,6 +33,30 @@ pub struct NarrowRow {
     pub min: Option<f64>,
     /// The largest.
     pub max: Option<f64>,
+    /// The paths the unit declares unreachable, with the reason (a bound on its values).
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub unreachable: Vec<Unreachable>,
+}
+
+/// A path of a narrowing declared unreachable ([`Narrowing::unreachable`]).
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+pub struct Unreachable {
+    /// `high`, `low` or `tie`.
+    pub path: String,
+    /// Why no value reaches it.
+    pub why: String,
+}
+
+/// One path of a narrowing as a coverage bin: its name in reports, the values that took it,
+/// the reason it is unreachable if the unit declares it so.
+#[derive(Clone, Debug, PartialEq)]
+pub struct NumericBin {
+    /// `saturation high`, `wrap low`, `tie`, ...
+    pub name: String,
+    /// Values that took the path.
+    pub hits: u64,
+    /// The unit's reason it cannot be taken.
+    pub unreachable: Option<String>,
 }
 
 impl NarrowRow {
@@ -50,6 +75,14 @@ impl NarrowRow {
             inexact: s.inexact,
             min: s.min.filter(|_| seen).map(Fx::to_f64),
             max: s.max.filter(|_| seen).map(Fx::to_f64),
+            unreachable: n
+                .unreachable_paths()
+                .iter()
+                .map(|(p, why)| Unreachable {
+                    path: p.name().into(),
+                    why: (*why).into(),
+                })
+                .collect(),
         }
     }
 
@@ -65,27 +98,108 @@ impl NarrowRow {
         };
         self.min = pick(self.min, o.min, f64::min);
         self.max = pick(self.max, o.max, f64::max);
+        for u in &o.unreachable {
+            if !self.unreachable.iter().any(|x| x.path == u.path) {
+                self.unreachable.push(u.clone());
+            }
+        }
     }
 
-    /// The paths of this narrowing its runs never took: an overflow rule never applied on a
-    /// side the format can overflow on, a tie never met by a rounding mode with a tie rule.
-    pub fn holes(&self) -> Vec<String> {
-        let mut h = Vec::new();
+    /// The narrowing's paths as coverage bins: an overflow on each side the destination can
+    /// overflow on (below an unsigned one only when a negative value came), a rounding tie
+    /// under a mode with a tie rule once a value was rounded at all; and any path the unit
+    /// declares unreachable.
+    pub fn bins(&self) -> Vec<NumericBin> {
         let wrap = self.overflow == Overflow::Wrap.name();
         let what = if wrap { "wrap" } else { "saturation" };
-        if self.over_high == 0 {
-            h.push(format!("{}: {what} high never reached", self.path));
-        }
         let unsigned = Format::parse(&self.format).is_ok_and(|f| !f.is_signed());
-        if self.over_low == 0 && !(unsigned && self.min.is_some_and(|m| m >= 0.0)) {
-            h.push(format!("{}: {what} low never reached", self.path));
-        }
         let tie_rule = !self.quant.starts_with("trunc");
-        if tie_rule && self.ties == 0 && self.inexact > 0 {
-            h.push(format!("{}: no rounding tie met", self.path));
-        }
-        h
+        let why = |p: NarrowPath| {
+            let u = self.unreachable.iter().find(|u| u.path == p.name());
+            u.map(|u| u.why.clone())
+        };
+        let paths = [
+            (
+                NarrowPath::High,
+                format!("{what} high"),
+                self.over_high,
+                true,
+            ),
+            (
+                NarrowPath::Low,
+                format!("{what} low"),
+                self.over_low,
+                !(unsigned && self.min.is_some_and(|m| m >= 0.0)),
+            ),
+            (
+                NarrowPath::Tie,
+                "tie".into(),
+                self.ties,
+                tie_rule && self.inexact > 0,
+            ),
+        ];
+        paths
+            .into_iter()
+            .filter(|(p, _, _, applies)| *applies || why(*p).is_some())
+            .map(|(p, name, hits, _)| NumericBin {
+                name,
+                hits,
+                unreachable: why(p),
+            })
+            .collect()
     }
+
+    /// The paths of this narrowing its runs never took (and the unit does not declare
+    /// unreachable): an overflow rule never applied on a side the format can overflow on, a
+    /// tie never met by a rounding mode with a tie rule.
+    pub fn holes(&self) -> Vec<String> {
+        let bins = self.bins().into_iter();
+        let holes = bins.filter(|b| b.hits == 0 && b.unreachable.is_none());
+        holes
+            .map(|b| format!("{}: {} never reached", self.path, b.name))
+            .collect()
+    }
+
+    /// The paths declared unreachable, with their reasons (`path: saturation high: why`).
+    pub fn declared_unreachable(&self) -> Vec<String> {
+        let bins = self.bins().into_iter();
+        bins.filter_map(|b| Some(format!("{}: {}: {}", self.path, b.name, b.unreachable?)))
+            .collect()
+    }
+
+    /// The paths declared unreachable that a run took after all: the unit's bound is wrong.
+    pub fn contradictions(&self) -> Vec<String> {
+        let bins = self.bins().into_iter().filter(|b| b.hits > 0);
+        bins.filter_map(|b| {
+            let why = b.unreachable?;
+            Some(format!(
+                "{}: {} declared unreachable ({why}) but taken {} times",
+                self.path, b.name, b.hits
+            ))
+        })
+        .collect()
+    }
+}
+
+/// The narrowings' paths as a coverage model, one coverpoint per narrowing (named by its
+/// path) with a bin per path that can be taken (bins declared unreachable are left out): the
+/// testbench's numeric coverage, with no line of testbench code.
+pub fn coverage(rows: &[NarrowRow]) -> Coverage {
+    let mut c = Coverage::new();
+    for r in rows {
+        let bins = r.bins().into_iter().filter(|b| b.unreachable.is_none());
+        let mut p = Coverpoint::new(&r.path);
+        for (k, b) in bins.enumerate() {
+            p = p.value(&b.name, k as i64);
+            if let Some(last) = p.bins.last_mut() {
+                last.hits = b.hits;
+            }
+        }
+        if !p.bins.is_empty() {
+            c.add(p);
+        }
+    }
+    c
 }
 
 /// The narrowest format that would have held every value seen with the same error: the same
@@ -167,11 +281,25 @@ pub fn section(m: &mut String, rows: &[NarrowRow]) {
     if rows.is_empty() {
         return;
     }
-    let _ = writeln!(m, "\nNumeric coverage (every named narrowing):\n");
+    let (total, hit) = coverage(rows).totals();
+    let _ = writeln!(
+        m,
+        "\nNumeric coverage (every named narrowing): {hit}/{total} overflow and tie paths taken\n"
+    );
     m.push_str(&table(rows));
     let holes: Vec<String> = rows.iter().flat_map(NarrowRow::holes).collect();
     if !holes.is_empty() {
         let _ = writeln!(m, "\nNumeric paths never exercised: {}", holes.join("; "));
+    }
+    let declared: Vec<String> = rows
+        .iter()
+        .flat_map(NarrowRow::declared_unreachable)
+        .collect();
+    if !declared.is_empty() {
+        let _ = writeln!(m, "\nDeclared unreachable by the unit:\n");
+        for d in declared {
+            let _ = writeln!(m, "- {d}");
+        }
     }
 }
 
@@ -327,6 +455,63 @@ mod tests {
         // One bit fewer would clip: 6.0 (5.9375 rounded) needs the sign and three bits.
         let (clipped, _) = run(Format::signed(5, 2));
         assert_ne!(clipped, wide_out);
+    }
+
+    /// A path the unit declares unreachable is no hole and no bin of the coverage model but
+    /// is listed with its reason; taken after all, it fails the result whether or not numeric
+    /// coverage is required; holes fail a result only when it is required.
+    #[test]
+    fn declared_paths_are_listed_and_taking_one_fails() {
+        let run = |xs: &[i64], low_why: Option<&'static str>| {
+            let out = Format::signed(6, 2);
+            let mut n = Narrowing::new("y", out, Quant::RoundHalfEven, Overflow::Saturate);
+            if let Some(why) = low_why {
+                n = n.unreachable(NarrowPath::Low, why);
+            }
+            set_tracking(true);
+            for &x in xs {
+                n.fx(Fx::from_raw(Format::signed(10, 4), x.into()));
+            }
+            set_tracking(false);
+            NarrowRow::of("clip.y".into(), &n)
+        };
+        let r = run(&[511, 2], Some("x >= 0 by construction"));
+        assert_eq!(
+            r.holes(),
+            Vec::<String>::new(),
+            "high and a tie met, low declared"
+        );
+        assert_eq!(
+            r.declared_unreachable(),
+            ["clip.y: saturation low: x >= 0 by construction"]
+        );
+        assert!(r.contradictions().is_empty());
+        let c = coverage(std::slice::from_ref(&r));
+        assert_eq!(c.totals(), (2, 2), "high and tie; low left out");
+        let mut res = crate::TbResult::new("clip_tb", "a clip");
+        res.narrowings = vec![run(&[2], None)];
+        res.finish_with(true);
+        assert!(res.passed, "holes pass unless required: {:?}", res.failures);
+        assert_eq!(res.numeric_percent, Some(100.0 / 3.0));
+        assert_eq!(res.numeric_holes.len(), 2, "{:?}", res.numeric_holes);
+        res.require_numeric_coverage();
+        assert!(!res.passed);
+        assert!(res.failures[0].starts_with(
+            "numeric coverage holes (2 paths): clip.y: saturation high never reached"
+        ));
+        res.narrowings = vec![run(&[-512, 511, 2], Some("x >= 0 by construction"))];
+        res.finish_with(true);
+        assert!(!res.passed, "a declared-unreachable path taken");
+        assert_eq!(
+            res.failures,
+            ["unreachable narrowing path taken: clip.y: saturation low declared unreachable (x >= 0 by construction) but taken 1 times"]
+        );
+        let json = serde_json::to_string(&res).unwrap();
+        let back: crate::TbResult = serde_json::from_str(&json).unwrap();
+        assert_eq!(
+            back.narrowings, res.narrowings,
+            "declarations kept in summary.json"
+        );
     }
 
     /// Off, nothing is counted and the rows are all zeros.

@@ -8,6 +8,10 @@ use std::path::PathBuf;
 
 /// Coverage-hole failures start with this text (so merged shards can drop their own).
 const HOLES: &str = "coverage holes";
+/// The failure of a run asked to reach every numeric path (`--require-numeric-coverage`).
+const NUMERIC_HOLES: &str = "numeric coverage holes";
+/// The failure of a narrowing path taken that its unit declares unreachable.
+const TAKEN: &str = "unreachable narrowing path taken";
 
 /// What one testbench (or one of its configurations) found.
 #[derive(Clone, Debug, Serialize, Deserialize)]
@@ -57,6 +61,13 @@ pub struct TbResult {
     /// What each named narrowing of the unit met (numeric coverage), merged over the runs.
     #[serde(default, skip_serializing_if = "Vec::is_empty")]
     pub narrowings: Vec<crate::numeric::NarrowRow>,
+    /// Numeric coverage: the percentage of the narrowings' overflow and tie paths taken
+    /// (`None` without narrowings).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub numeric_percent: Option<f64>,
+    /// The narrowings' paths never taken (numeric coverage holes), merged over the shards.
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub numeric_holes: Vec<String>,
     /// The seed that replays the run.
     pub seed: Option<String>,
     /// The waveform written, if any.
@@ -93,6 +104,8 @@ impl TbResult {
             tables: Vec::new(),
             records: Vec::new(),
             narrowings: Vec::new(),
+            numeric_percent: None,
+            numeric_holes: Vec::new(),
             seed: None,
             vcd: None,
             coverage: None,
@@ -109,7 +122,12 @@ impl TbResult {
     /// Decides pass/fail; coverage holes fail it only when `require_coverage` (a shard cannot
     /// know whether another shard hits its holes: `texrtl merge` decides for the whole run).
     pub fn finish_with(&mut self, require_coverage: bool) {
-        self.failures.retain(|f| !f.starts_with(HOLES));
+        self.failures.retain(|f| {
+            ![HOLES, NUMERIC_HOLES, TAKEN]
+                .iter()
+                .any(|p| f.starts_with(p))
+        });
+        self.finish_numeric();
         if require_coverage && !self.unhit.is_empty() {
             let first: Vec<&str> = self.unhit.iter().take(8).map(String::as_str).collect();
             self.failures.push(format!(
@@ -121,10 +139,43 @@ impl TbResult {
         self.passed = self.mismatches == 0 && self.failures.is_empty();
     }
 
+    /// Numeric coverage from the narrowings: the percentage and the holes; a path taken that
+    /// the unit declares unreachable is a failure.
+    fn finish_numeric(&mut self) {
+        use crate::numeric::{coverage, NarrowRow};
+        let rows = &self.narrowings;
+        self.numeric_percent = (!rows.is_empty()).then(|| coverage(rows).percent());
+        self.numeric_holes = rows.iter().flat_map(NarrowRow::holes).collect();
+        let taken: Vec<String> = rows.iter().flat_map(NarrowRow::contradictions).collect();
+        self.failures
+            .extend(taken.into_iter().map(|t| format!("{TAKEN}: {t}")));
+    }
+
+    /// Fails the result if a narrowing path was never taken (`--require-numeric-coverage`:
+    /// for a whole run, or a merged one, as a shard cannot know what the others reached).
+    pub fn require_numeric_coverage(&mut self) {
+        self.failures.retain(|f| !f.starts_with(NUMERIC_HOLES));
+        if !self.numeric_holes.is_empty() {
+            let first: Vec<&str> = self
+                .numeric_holes
+                .iter()
+                .take(8)
+                .map(String::as_str)
+                .collect();
+            self.failures.push(format!(
+                "{NUMERIC_HOLES} ({} paths): {}",
+                self.numeric_holes.len(),
+                first.join("; ")
+            ));
+        }
+        self.passed = self.mismatches == 0 && self.failures.is_empty();
+    }
+
     /// Whether this result failed on its own account: a mismatch, or a failure other than
     /// coverage holes (which only a whole run's merged coverage decides).
     pub fn failed_itself(&self) -> bool {
-        self.mismatches > 0 || self.failures.iter().any(|f| !f.starts_with(HOLES))
+        let holes = |f: &String| f.starts_with(HOLES) || f.starts_with(NUMERIC_HOLES);
+        self.mismatches > 0 || self.failures.iter().any(|f| !holes(f))
     }
 
     /// Sets coverage figures from a model (kept for merging shards).
@@ -175,7 +226,13 @@ impl TbResult {
         self.mismatch_log.extend(o.mismatch_log.iter().map(tag));
         self.first_mismatch_cycle = self.first_mismatch_cycle.or(o.first_mismatch_cycle);
         self.mismatch_log.truncate(20);
-        let failures = o.failures.iter().filter(|f| !f.starts_with(HOLES));
+        // The verdicts a merged result decides again from its merged figures.
+        let again = |f: &&String| {
+            [HOLES, NUMERIC_HOLES, TAKEN]
+                .iter()
+                .any(|p| f.starts_with(p))
+        };
+        let failures = o.failures.iter().filter(|f| !again(f));
         self.failures.extend(failures.map(tag));
         self.latency = match (self.latency, o.latency) {
             (Some(a), Some(b)) => Some(a.max(b)),

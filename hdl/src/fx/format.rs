@@ -171,6 +171,22 @@ impl Format {
         }
     }
 
+    /// Whether the value `raw * 2^-frac` lies between this format's smallest and largest
+    /// values, exactly (for a bound on what reaches a narrowing: a value within them never
+    /// overflows, whatever the rounding, since both ends are codes).
+    pub fn holds(self, raw: i128, frac: i32) -> bool {
+        let up = |x: i128, by: i32| x.checked_mul(1i128.checked_shl(by as u32)?);
+        let shift = frac - self.frac();
+        if shift >= 0 {
+            // The ends at the value's resolution (beyond i128: past any value).
+            let lo = up(self.min_raw(), shift).unwrap_or(i128::MIN);
+            let hi = up(self.max_raw(), shift).unwrap_or(i128::MAX);
+            lo <= raw && raw <= hi
+        } else {
+            up(raw, -shift).is_some_and(|v| self.min_raw() <= v && v <= self.max_raw())
+        }
+    }
+
     /// Number of hex digits that show every bit.
     pub const fn hex_digits(self) -> usize {
         (self.width as usize).div_ceil(4)

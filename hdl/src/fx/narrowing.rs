@@ -6,6 +6,7 @@
 
 use super::value::{dropped, rounded};
 use super::{quantise, Format, Fx, Overflow, Quant};
+use crate::kernel::Signal;
 use std::cell::Cell;
 
 thread_local! {
@@ -67,9 +68,38 @@ impl NarrowStats {
     }
 }
 
+/// A path through a narrowing that numeric coverage counts: an overflow on either side, a
+/// rounding tie.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub enum NarrowPath {
+    /// A value above the destination's range (saturated, or wrapped).
+    High,
+    /// A value below it.
+    Low,
+    /// A value exactly half-way between two codes, under a mode with a tie rule.
+    Tie,
+}
+
+impl NarrowPath {
+    /// Its name in reports: `high`, `low`, `tie`.
+    pub fn name(self) -> &'static str {
+        match self {
+            NarrowPath::High => "high",
+            NarrowPath::Low => "low",
+            NarrowPath::Tie => "tie",
+        }
+    }
+}
+
 /// One narrowing of a unit, named (its path in the hierarchy is the unit's instance path and
 /// this name: `normal_pipeline_fig7.normal_156.nx`). `raw` and `fx` give exactly what
 /// [`quantise`] and [`Fx::convert`] give.
+///
+/// While tracking is on, its flag (a one-bit wire `<name>_sat`, or `<name>_wrap` under
+/// [`Overflow::Wrap`], in the unit's waveform scope) tells whether the latest value narrowed
+/// overflowed: high from the evaluation that saturated (or wrapped) until one that did not.
+/// A wire of the evaluation, so the kernel's schedule check holds for it (evaluating twice
+/// sets it twice alike; the clock edge leaves it).
 #[derive(Clone, Debug)]
 pub struct Narrowing {
     name: &'static str,
@@ -77,6 +107,8 @@ pub struct Narrowing {
     q: Quant,
     o: Overflow,
     stats: NarrowStats,
+    flag: Signal,
+    unreachable: Vec<(NarrowPath, &'static str)>,
 }
 
 impl Narrowing {
@@ -88,7 +120,38 @@ impl Narrowing {
             q,
             o,
             stats: NarrowStats::default(),
+            flag: Signal::bit(flag_name(name, o)),
+            unreachable: Vec::new(),
         }
+    }
+
+    /// The same narrowing with `path` declared unreachable, for the reason `why` (a bound on
+    /// the values that reach it): numeric coverage lists it with the reason instead of as a
+    /// hole, and a run that reaches it after all says so as a failure.
+    pub fn unreachable(mut self, path: NarrowPath, why: &'static str) -> Narrowing {
+        self.unreachable.retain(|(p, _)| *p != path);
+        self.unreachable.push((path, why));
+        self
+    }
+
+    /// [`Narrowing::unreachable`] where `bound` holds (a bound the constructor proves from
+    /// its widths, which are parameters: with other widths the path may be reachable).
+    pub fn unreachable_if(self, bound: bool, path: NarrowPath, why: &'static str) -> Narrowing {
+        if bound {
+            self.unreachable(path, why)
+        } else {
+            self
+        }
+    }
+
+    /// The paths declared unreachable, with their reasons.
+    pub fn unreachable_paths(&self) -> &[(NarrowPath, &'static str)] {
+        &self.unreachable
+    }
+
+    /// The overflow flag: whether the latest value narrowed overflowed (tracking on).
+    pub fn flag(&self) -> &Signal {
+        &self.flag
     }
 
     /// Its name within its unit.
@@ -161,22 +224,41 @@ impl Narrowing {
         } else {
             d.min_raw()
         };
-        if huge {
-            if raw < 0 {
-                s.over_low += 1;
-            } else {
-                s.over_high += 1;
-            }
-        } else if v > d.max_raw() {
-            s.over_high += 1;
-        } else if v < low {
-            s.over_low += 1;
-        }
+        let (high, under) = if huge {
+            (raw >= 0, raw < 0)
+        } else {
+            (v > d.max_raw(), v < low)
+        };
+        s.over_high += u64::from(high);
+        s.over_low += u64::from(under);
+        self.flag.set_raw(i64::from(high || under));
         // The value exactly: every i128 fits a signed 128-bit format of the source's fraction.
         if let Ok(f) = Format::try_new(128, src_frac, true) {
             s.widen(Some(Fx::from_raw(f, raw)));
         }
     }
+}
+
+/// The flag's name, `<name>_sat` (`<name>_wrap` under wrapping), kept once per name for the
+/// run (signal names are `&'static str`; a unit built many times names its flags once).
+fn flag_name(name: &'static str, o: Overflow) -> &'static str {
+    use std::collections::HashSet;
+    use std::sync::{Mutex, OnceLock};
+    static NAMES: OnceLock<Mutex<HashSet<&'static str>>> = OnceLock::new();
+    let want = format!(
+        "{name}_{}",
+        if o == Overflow::Wrap { "wrap" } else { "sat" }
+    );
+    let mut names = NAMES
+        .get_or_init(Default::default)
+        .lock()
+        .unwrap_or_else(std::sync::PoisonError::into_inner);
+    if let Some(n) = names.get(want.as_str()) {
+        return n;
+    }
+    let n: &'static str = Box::leak(want.into_boxed_str());
+    names.insert(n);
+    n
 }
 
 /// Whether the mode decides a tie by a rule of its own (the round-half modes).

@@ -60,7 +60,8 @@ impl Regs for Reg {
     }
 }
 
-/// Named narrowings ([`Narrowing`]): visited for numeric coverage, never ticked.
+/// Named narrowings ([`Narrowing`]): visited for numeric coverage (and their overflow flags
+/// traced), never ticked.
 pub trait Narrowings {
     /// Visits every narrowing, in order.
     fn visit_narrowings(&self, v: &mut dyn Visitor);

@@ -31,8 +31,11 @@ pub trait Visitor {
     fn reg(&mut self, r: &Reg) {
         self.signal(Dir::Reg, r.q());
     }
-    /// A named narrowing of the current instance (for numeric coverage; ignored by default).
-    fn narrowing(&mut self, _n: &Narrowing) {}
+    /// A named narrowing of the current instance: for numeric coverage; by default its
+    /// overflow flag is a wire of the instance (so tracing shows it).
+    fn narrowing(&mut self, n: &Narrowing) {
+        self.signal(Dir::Wire, n.flag());
+    }
 }
 
 /// A clocked hardware module in two-process style.

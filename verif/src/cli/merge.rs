@@ -18,6 +18,8 @@ pub struct MergeArgs {
     pub report: Option<PathBuf>,
     /// A file for the merged run's JUnit XML.
     pub junit: Option<PathBuf>,
+    /// Fail a testbench whose merged narrowings left a path untaken.
+    pub require_numeric: bool,
 }
 
 clap_args!(MergeArgs);
@@ -44,6 +46,12 @@ impl MergeArgs {
                 "FILE",
                 "Also write the merged run's JUnit XML (one test case per job, as the unsharded run's but for the times)",
             ))
+            .arg(
+                Arg::new("require-numeric-coverage")
+                    .long("require-numeric-coverage")
+                    .action(ArgAction::SetTrue)
+                    .help("Fail a testbench whose named narrowings, over all the shards, left a saturation, wrap or rounding tie never reached (unless the unit declares it unreachable)"),
+            )
     }
 
     pub(super) fn read(m: &ArgMatches) -> Self {
@@ -52,6 +60,7 @@ impl MergeArgs {
             summaries: all(m, "summaries"),
             report: one(m, "report"),
             junit: one(m, "junit"),
+            require_numeric: m.get_flag("require-numeric-coverage"),
         }
     }
 }
@@ -77,7 +86,13 @@ pub fn run(project: &Project, a: &MergeArgs) -> Result<String, CmdError> {
         )));
     }
     let shards = crate::regress::read_summaries(&a.summaries).map_err(CmdError::Input)?;
-    let m = crate::regress::merge_shards(project, &shards).map_err(CmdError::Input)?;
+    let mut m = crate::regress::merge_shards(project, &shards).map_err(CmdError::Input)?;
+    if a.require_numeric {
+        m.testbenches
+            .iter_mut()
+            .for_each(crate::TbResult::require_numeric_coverage);
+        m.passed = m.testbenches.iter().all(|r| r.passed);
+    }
     let json = serde_json::to_vec_pretty(&m).map_err(|e| CmdError::Failed(e.to_string()))?;
     write_out(&a.out, &json)?;
     if let Some(j) = &a.junit {

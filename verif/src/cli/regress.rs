@@ -35,6 +35,7 @@ pub struct RegressArgs {
     seeds: u32,
     job: Option<u64>,
     junit: Option<PathBuf>,
+    require_numeric: bool,
 }
 
 clap_args!(RegressArgs);
@@ -62,6 +63,7 @@ impl RegressArgs {
             value("seeds", "SEEDS", value_parser!(u32), "Run every configuration under this many seeds (the first is --seed's): seeds x configurations are the run's jobs, which --shard deals out").default_value("1"),
             value("job", "JOB", value_parser!(u64), "Run only this job, with its waveform: what a failing job's line in the report runs (no vectors, no co-simulation)"),
             path("junit", "FILE", "Also write the run's JUnit XML (one test case per job, with its seed and the command that reproduces it) for a CI server"),
+            flag("require-numeric-coverage", "Fail a testbench whose named narrowings left a saturation, wrap or rounding tie never reached (unless the unit declares it unreachable); a sharded run decides at `merge`"),
         ])
     }
 
@@ -87,6 +89,7 @@ impl RegressArgs {
             seeds: given(m, "seeds"),
             job: one(m, "job"),
             junit: one(m, "junit"),
+            require_numeric: m.get_flag("require-numeric-coverage"),
         }
     }
 }
@@ -145,6 +148,7 @@ pub fn run(project: &Project, a: RegressArgs) -> ExitCode {
         seeds: a.seeds,
         job: a.job,
         junit: a.junit,
+        require_numeric: a.require_numeric,
     };
     if let Err(e) = cfg.trace.validate() {
         return fail(name, format!("--period-ps/--trace-window: {e}"));

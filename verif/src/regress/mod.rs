@@ -180,6 +180,9 @@ pub struct RegressConfig {
     pub job: Option<u64>,
     /// Also write the run's JUnit XML here ([`crate::junit`]).
     pub junit: Option<PathBuf>,
+    /// Fail a testbench whose narrowings left an overflow or tie path untaken (numeric
+    /// coverage holes; decided for a whole run, or by `merge` for a sharded one).
+    pub require_numeric: bool,
 }
 
 impl RegressConfig {
@@ -202,6 +205,7 @@ impl RegressConfig {
             seeds: 1,
             job: None,
             junit: None,
+            require_numeric: false,
         }
     }
 
@@ -325,7 +329,11 @@ fn run_jobs_of(
     for (tb, js) in plan {
         let name = tb.name();
         let done = crate::run_jobs(tb, &opts, &js, &mut |label| progress(name, label))?;
-        rows.push(crate::aggregate(tb, cfg.seed, &done, whole)?);
+        let mut row = crate::aggregate(tb, cfg.seed, &done, whole)?;
+        if whole && cfg.require_numeric {
+            row.require_numeric_coverage();
+        }
+        rows.push(row);
         let run = (cfg.seed, cfg.seeds, cfg.count);
         failing.extend(failing_jobs(project, run, tb, &done));
         if keep {

@@ -17,8 +17,34 @@
 //! One register stage: latency 1.
 
 use crate::bump::params::{ROUND, SAT};
-use crate::fx::{Format, Narrowing};
+use crate::fx::{Format, NarrowPath, Narrowing};
 use crate::kernel::{Module, Reg, Signal};
+
+/// The one narrowing, with what the formats prove of it: the blend lies between its
+/// smallest and largest texel (weights `1 - s`, `s` of each lerp sum to one), so it overflows
+/// neither way where the output holds every texel; it is exact where the output keeps every
+/// fraction bit.
+fn bilinear_narrowing(texel: Format, blend: Format, out: Format) -> Narrowing {
+    let f = texel.frac();
+    let holds_texels = out.holds(texel.max_raw(), f) && out.holds(texel.min_raw(), f);
+    let exact = out.frac() >= f + 2 * blend.frac();
+    Narrowing::new("q", out, ROUND, SAT)
+        .unreachable_if(
+            holds_texels,
+            NarrowPath::High,
+            "a blend never exceeds its largest texel, which the output holds",
+        )
+        .unreachable_if(
+            holds_texels,
+            NarrowPath::Low,
+            "a blend is never below its smallest texel, which the output holds",
+        )
+        .unreachable_if(
+            exact,
+            NarrowPath::Tie,
+            "exact: the output keeps every fraction bit of the blend",
+        )
+}
 
 /// One bilinear unit.
 #[derive(Clone, Debug, Module)]
@@ -60,7 +86,7 @@ impl Bilinear {
             t: Signal::new("t", blend),
             q: Signal::new("q", out),
             r: Reg::new("q_r", out),
-            round: Narrowing::new("q", out, ROUND, SAT),
+            round: bilinear_narrowing(texel, blend, out),
         })
     }
 

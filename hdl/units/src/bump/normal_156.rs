@@ -25,7 +25,7 @@
 
 use crate::bump::params::{BumpParams, RsqrtParams, ROUND, SAT};
 use crate::bump::rsqrt_156::{m_fmt, rsqrt, Rsqrt, RsqrtTable};
-use crate::fx::{quantise, Format, Narrowing};
+use crate::fx::{quantise, Format, NarrowPath, Narrowing};
 use crate::kernel::{Delay, Module, Reg, Signal};
 
 /// `(k, m)` with `s * 2^-s_frac = m * 4^k`, `m` truncated to `mant_frac` fraction bits.
@@ -130,7 +130,15 @@ impl Normal {
                 Reg::new("ny_r", out),
                 Reg::new("nz_r", out),
             ],
-            scaled: ["nx", "ny", "nz"].map(|n| Narrowing::new(n, out, ROUND, SAT)),
+            scaled: ["nx", "ny", "nz"].map(|n| {
+                // A unit vector's components are within [-1, 1]; the rsqrt's relative error
+                // (a few LSBs of y) cannot take them to 2.
+                const UNIT: &str =
+                    "|n| = 1 within the rsqrt's error: every component is far inside (-2, 2)";
+                Narrowing::new(n, out, ROUND, SAT)
+                    .unreachable(NarrowPath::High, UNIT)
+                    .unreachable(NarrowPath::Low, UNIT)
+            }),
         })
     }
 

@@ -22,7 +22,7 @@
 //! `1 + iterations`.
 
 use crate::bump::params::{RsqrtParams, ROUND, SAT};
-use crate::fx::{Format, Narrowing};
+use crate::fx::{Format, NarrowPath, Narrowing};
 use crate::kernel::declared::Narrowings;
 use crate::kernel::{Module, Reg, Signal, Visitor};
 
@@ -99,9 +99,16 @@ impl NrNarrowings {
         let yf = p.y_frac;
         // t = m y^2 in uQ2.(Y+2): y^2 m is close to 1; 4 integer bits leave room for any input.
         let t_fmt = Format::new(yf + 4, yf as i32 + 2, false);
+        // y stays near rsqrt(m) in (0.5, 1] from the table on (each step moves it closer), so
+        // t = m y^2 stays near 1 and the next y near rsqrt(m): neither comes near 4 or 2.
+        const NEAR_ONE: &str = "t = m y^2 is 1 within the table's error, far below 4";
+        const NEAR_RSQRT: &str =
+            "y (3 - t) / 2 from y <= 1 and t >= 1/4 (m >= 1, y >= 1/2) is at most 1.375, below 2";
         NrNarrowings {
-            t: Narrowing::new(T_NAMES[i - 1], t_fmt, ROUND, SAT),
-            y: Narrowing::new(NEXT_NAMES[i - 1], y_fmt(p), ROUND, SAT),
+            t: Narrowing::new(T_NAMES[i - 1], t_fmt, ROUND, SAT)
+                .unreachable(NarrowPath::High, NEAR_ONE),
+            y: Narrowing::new(NEXT_NAMES[i - 1], y_fmt(p), ROUND, SAT)
+                .unreachable(NarrowPath::High, NEAR_RSQRT),
         }
     }
 }

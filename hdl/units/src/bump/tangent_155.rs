@@ -32,8 +32,44 @@
 //! One register stage: latency 1.
 
 use crate::bump::params::{BumpParams, Filter, ROUND};
-use crate::fx::{Narrowing, Overflow};
+use crate::fx::{Format, NarrowPath, Narrowing, Overflow};
 use crate::kernel::{Module, Reg, Signal, Signals};
+
+/// The output narrowings, with what the formats prove of them. A slope is at most twice the
+/// largest bilinear result (B-spline; once for Blinn; the trilinear blend of a level's slope
+/// and half the next one's is no larger) times the largest scale; the height at most the
+/// largest result times the scale, and never negative (texels and scale are unsigned).
+fn narrowings(p: &BumpParams) -> [Narrowing; 3] {
+    let (bl, sc) = (p.bilinear_fmt(), p.scale_fmt());
+    let f = bl.frac() + sc.frac();
+    let top = bl.max_raw().checked_mul(sc.max_raw());
+    let slope = top.and_then(|t| t.checked_mul(2));
+    let fits =
+        |fmt: Format, v: Option<i128>| v.is_some_and(|v| fmt.holds(v, f) && fmt.holds(-v, f));
+    let slopes_fit = fits(p.tangent_fmt(), slope);
+    let height_fits = top.is_some_and(|t| p.height_out_fmt().holds(t, f));
+    const STEEPEST: &str =
+        "|slope| <= 2 x the largest bilinear result x the largest scale, which the format holds";
+    let slope = |n| {
+        Narrowing::new(n, p.tangent_fmt(), ROUND, Overflow::SaturateSymmetric)
+            .unreachable_if(slopes_fit, NarrowPath::High, STEEPEST)
+            .unreachable_if(slopes_fit, NarrowPath::Low, STEEPEST)
+    };
+    [
+        slope("du"),
+        slope("dv"),
+        Narrowing::new("height", p.height_out_fmt(), ROUND, Overflow::Saturate)
+            .unreachable_if(
+                height_fits,
+                NarrowPath::High,
+                "height <= the largest bilinear result x the largest scale, which the format holds",
+            )
+            .unreachable(
+                NarrowPath::Low,
+                "texels and scale are unsigned: the height is never negative",
+            ),
+    ]
+}
 
 /// Signed machine integers the tangent datapath can be computed in: `i64` when the widths
 /// allow (decided once, at construction), `i128` otherwise. Same bits either way.
@@ -159,11 +195,7 @@ impl Tangent {
                 Reg::new("dv_r", p.tangent_fmt()),
                 Reg::new("height_r", p.height_out_fmt()),
             ],
-            round: [
-                Narrowing::new("du", p.tangent_fmt(), ROUND, Overflow::SaturateSymmetric),
-                Narrowing::new("dv", p.tangent_fmt(), ROUND, Overflow::SaturateSymmetric),
-                Narrowing::new("height", p.height_out_fmt(), ROUND, Overflow::Saturate),
-            ],
+            round: narrowings(p),
         }
     }
 

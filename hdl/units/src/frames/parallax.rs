@@ -18,7 +18,7 @@
 //! | `V` | sQ1.14 |
 
 use crate::envmap::cube_face::{reciprocal, CubeFace};
-use crate::fx::{quantise, Format, Overflow, Quant};
+use crate::fx::{quantise, Format, Narrowing, Overflow, Quant};
 use crate::kernel::{Module, Reg, Signal};
 
 /// The least V.z, raw sQ1.14 (1/8).
@@ -47,13 +47,25 @@ impl Parallax {
         &self,
         uv: [i64; 2],
         height: u8,
-        (scale, bias): (i64, i64),
+        hb: (i64, i64),
         eye: [i64; 3],
         limited: bool,
     ) -> [i64; 2] {
+        let (sum, frac) = self.exact(uv, height, hb, eye, limited);
+        sum.map(|x| quantise(x, frac, UV, Quant::RoundHalfEven, Overflow::Saturate) as i64)
+    }
+
+    /// The moved coordinates before their one rounding: `(raw, fraction bits)`.
+    pub fn exact(
+        &self,
+        uv: [i64; 2],
+        height: u8,
+        (scale, bias): (i64, i64),
+        eye: [i64; 3],
+        limited: bool,
+    ) -> ([i128; 2], i32) {
         // h in units of 2^-20: height 2^-8 scale 2^-12, bias 2^-12.
         let h = i128::from(height) * i128::from(scale) + (i128::from(bias) << 8);
-        let out = Format::signed(21, 8);
         let (num, frac) = if limited {
             // h V.xy: 2^-34.
             (eye.map(|c| h * i128::from(c)), 34)
@@ -67,18 +79,13 @@ impl Parallax {
                 (34 + 16 + 2 + e) as u32,
             )
         };
-        std::array::from_fn(|c| {
-            let sum = (i128::from(uv[c]) << (frac - 8)) + num[c];
-            quantise(
-                sum,
-                frac as i32,
-                out,
-                Quant::RoundHalfEven,
-                Overflow::Saturate,
-            ) as i64
-        })
+        let sum = std::array::from_fn(|c| (i128::from(uv[c]) << (frac - 8)) + num[c]);
+        (sum, frac as i32)
     }
 }
+
+/// The coordinates' format, sQ12.8 texels.
+const UV: Format = Format::signed(21, 8);
 
 /// The unit: one register stage.
 #[derive(Module)]
@@ -103,6 +110,9 @@ pub struct ParallaxUnit {
     pub valid: Reg,
     #[reg]
     pub out: [Reg; 2],
+    /// The one rounding of each coordinate, held at the format's ends.
+    #[narrow]
+    round: [Narrowing; 2],
 }
 
 impl Default for ParallaxUnit {
@@ -126,6 +136,8 @@ impl ParallaxUnit {
             eye: ["vx", "vy", "vz"].map(|n| Signal::new(n, Format::signed(16, 14))),
             valid: Reg::new("valid", Format::uint(1)),
             out: ["u_out", "v_out"].map(|n| Reg::new(n, uvf)),
+            round: ["u_out", "v_out"]
+                .map(|n| Narrowing::new(n, UV, Quant::RoundHalfEven, Overflow::Saturate)),
         }
     }
 }
@@ -136,15 +148,15 @@ impl ParallaxUnit {
         let valid = self.valid_in.is_high();
         self.valid.set_next_bool(valid);
         if valid {
-            let o = self.math.offset(
+            let (sum, frac) = self.math.exact(
                 self.uv.each_ref().map(|s| s.raw()),
                 self.height.bits() as u8,
                 (self.scale.raw(), self.bias.raw()),
                 self.eye.each_ref().map(|s| s.raw()),
                 self.limited.is_high(),
             );
-            for (r, x) in self.out.iter_mut().zip(o) {
-                r.set_next_raw(x);
+            for ((r, n), x) in self.out.iter_mut().zip(&mut self.round).zip(sum) {
+                r.set_next_raw(n.raw(x, frac) as i64);
             }
         }
     }
