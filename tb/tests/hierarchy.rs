@@ -316,8 +316,8 @@ fn the_map_chain_and_per_pixel_units_visit_every_signal() {
     );
     // valid_in, gram_schmidt, 9 + 3 inputs, 9 outputs, valid, zero.
     assert_eq!(paths_with(&FrameUnit::new(), "frame_unit."), 2 + 12 + 9 + 2);
-    // 5 + 2 + 3 inputs, valid, two outputs.
-    assert_eq!(paths_with(&ParallaxUnit::new(), "parallax."), 13);
+    // 5 + 2 + 3 inputs, valid, two outputs, the two narrowings' saturation flags.
+    assert_eq!(paths_with(&ParallaxUnit::new(), "parallax."), 15);
     let map = tb::maps::builtin("noise", 8, 8, BumpParams::default().texel_fmt()).unwrap();
     let d = DerivativeUnit::new(Derivative::new(DerivFilter::Sobel, map, Border::Wrap, 16));
     assert_eq!(paths_with(&d, "derivative_0086."), 8);
