@@ -161,7 +161,7 @@ fn the_reflection_vector_is_eq4_with_one_rounding() {
 #[test]
 fn the_local_frame_is_orthonormal_within_its_bound() {
     use units::envmap::frame_eq2::FrameUnit;
-    let unit = FrameUnit::new();
+    let mut unit = FrameUnit::new();
     let p = units::bump::params::RsqrtParams::default();
     let eps = golden::rsqrt::error_bound_ulps(p.table_bits, p.iterations, p.y_frac)
         * 2.0

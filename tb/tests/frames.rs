@@ -27,7 +27,7 @@ fn the_testbenches_pass_with_full_coverage() {
 /// frame (through Gram-Schmidt), with the offset decode.
 #[test]
 fn a_flat_texel_gives_n_in_any_frame() {
-    let m = FrameMath::new();
+    let mut m = FrameMath::new();
     let mut stim = Stimulus::new(Seed(8));
     for p in tb::frames::frame_pixels(600, &mut stim) {
         let o = m.perturb(p.frame, decode_rgb8([128, 128, 255], Decode::Offset), true);

@@ -231,7 +231,8 @@ fn the_texram_side_units_visit_every_scope() {
         assert!(all_under(top, scope), "{scope}");
     }
     assert_eq!(paths_with(&CubeFace::new(), "cube_face."), 8);
-    assert_eq!(paths_with(&Reflect::new(), "reflect_eq4."), 11);
+    // valid_in, six inputs, valid, three outputs, the three narrowings' saturation flags.
+    assert_eq!(paths_with(&Reflect::new(), "reflect_eq4."), 14);
     // Every instance's kind, by hand from the modules' documentation.
     assert_eq!(kinds(&CubeFace::new()), own(&[("cube_face", 1)]));
     assert_eq!(kinds(&Reflect::new()), own(&[("reflect_eq4", 1)]));
@@ -302,25 +303,31 @@ fn the_map_chain_and_per_pixel_units_visit_every_signal() {
     };
     let p: [Vec<i32>; 6] = std::array::from_fn(|_| vec![1; 8]);
     let fit = Fitter604::new(p, fmt).unwrap();
-    // in_valid, in_sample, k, light, out_valid, six lanes, six q.
-    assert_eq!(paths_with(&fit, "ptm_fitter_604."), 17);
-    // in_valid, q1..q6, u, v, out_valid, k, visibility.
+    // in_valid, in_sample, k, light, out_valid, six lanes, six q, six saturation flags.
+    assert_eq!(paths_with(&fit, "ptm_fitter_604."), 23);
+    // in_valid, q1..q6, u, v, out_valid, k, visibility, k's saturation flag.
     assert_eq!(
         paths_with(&Shader608::new(fmt).unwrap(), "ptm_shader_608."),
-        12
+        13
     );
-    // valid_in, 6 + 4 + 3 inputs, 12 vector registers, valid, degenerate, zero.
+    // valid_in, 6 + 4 + 3 inputs, 12 vector registers, valid, degenerate, zero, the 12
+    // narrowings' saturation flags (dP/du, dP/dv, t, b).
     assert_eq!(
         paths_with(&TangentSetup::new(), "tangent_setup."),
-        1 + 13 + 12 + 3
+        1 + 13 + 12 + 3 + 12
     );
-    // valid_in, gram_schmidt, 9 + 3 inputs, 9 outputs, valid, zero.
-    assert_eq!(paths_with(&FrameUnit::new(), "frame_unit."), 2 + 12 + 9 + 2);
+    // valid_in, gram_schmidt, 9 + 3 inputs, 9 outputs, valid, zero, the 12 narrowings'
+    // saturation flags (N's unit, Gram-Schmidt's t and b, the perturbed normal).
+    assert_eq!(
+        paths_with(&FrameUnit::new(), "frame_unit."),
+        2 + 12 + 9 + 2 + 12
+    );
     // 5 + 2 + 3 inputs, valid, two outputs, the two narrowings' saturation flags.
     assert_eq!(paths_with(&ParallaxUnit::new(), "parallax."), 15);
     let map = tb::maps::builtin("noise", 8, 8, BumpParams::default().texel_fmt()).unwrap();
     let d = DerivativeUnit::new(Derivative::new(DerivFilter::Sobel, map, Border::Wrap, 16));
-    assert_eq!(paths_with(&d, "derivative_0086."), 8);
+    // valid_in, u, v, scale, valid, three outputs, their narrowings' saturation flags.
+    assert_eq!(paths_with(&d, "derivative_0086."), 11);
     let cm = ColourMap {
         width: 2,
         height: 2,
@@ -329,7 +336,8 @@ fn the_map_chain_and_per_pixel_units_visit_every_signal() {
     };
     assert_eq!(
         paths_with(&Biquadratic0087::new(cm).unwrap(), "biquadratic_0087."),
-        7
+        7 + 3,
+        "and the three channels' saturation flags"
     );
     for (top, kind) in [
         (&fit as &dyn Module, "ptm_fitter_604"),

@@ -15,7 +15,7 @@
 
 use crate::bump::params::Border;
 use crate::bump::texel_fetch_151::border_index;
-use crate::fx::Format;
+use crate::fx::{quantise, Format, NarrowPath, Narrowing, Overflow, Quant};
 use crate::kernel::{Module, Reg, Signal};
 
 /// Position fraction bits.
@@ -77,7 +77,29 @@ pub fn sums(m: &ColourMap, u: i64, v: i64) -> [i64; 3] {
 
 /// The filtered colour at `(u, v)`.
 pub fn filter(m: &ColourMap, u: i64, v: i64) -> [u8; 3] {
-    sums(m, u, v).map(|x| ((x + (1 << 33)) >> 34).clamp(0, 255) as u8)
+    sums(m, u, v).map(|x| {
+        quantise(
+            x.into(),
+            SUM_FRAC,
+            CHANNEL,
+            Quant::RoundHalfUp,
+            Overflow::Saturate,
+        ) as u8
+    })
+}
+
+/// A channel's format, u8.
+const CHANNEL: Format = Format::uint(8);
+/// Fraction bits of the exact sums: the weights' 17 on each axis.
+const SUM_FRAC: i32 = 34;
+
+/// A channel's one rounding, half up, held to `0 ..= 255` (an end no sum reaches).
+fn channel_narrowing(name: &'static str) -> Narrowing {
+    const INSIDE: &str =
+        "the B-spline weights are non-negative and sum to one: a channel lies between its texels";
+    Narrowing::new(name, CHANNEL, Quant::RoundHalfUp, Overflow::Saturate)
+        .unreachable(NarrowPath::High, INSIDE)
+        .unreachable(NarrowPath::Low, INSIDE)
 }
 
 /// The unit.
@@ -95,6 +117,9 @@ pub struct Biquadratic0087 {
     pub valid: Reg,
     #[reg]
     pub rgb: [Reg; 3],
+    /// Each channel's one rounding.
+    #[narrow]
+    round: [Narrowing; 3],
 }
 
 impl Biquadratic0087 {
@@ -115,7 +140,8 @@ impl Biquadratic0087 {
             u: Signal::new("u", pos),
             v: Signal::new("v", pos),
             valid: Reg::new("valid", Format::uint(1)),
-            rgb: ["r", "g", "b"].map(|x| Reg::new(x, Format::uint(8))),
+            rgb: ["r", "g", "b"].map(|x| Reg::new(x, CHANNEL)),
+            round: ["r", "g", "b"].map(channel_narrowing),
         })
     }
 }
@@ -126,9 +152,10 @@ impl Biquadratic0087 {
         let valid = self.valid_in.is_high();
         self.valid.set_next_bool(valid);
         if valid {
-            let c = filter(&self.map, self.u.raw(), self.v.raw());
-            for (r, x) in self.rgb.iter_mut().zip(c) {
-                r.set_next_bits(u64::from(x));
+            let sums = sums(&self.map, self.u.raw(), self.v.raw());
+            for c in 0..3 {
+                let x = self.round[c].raw(sums[c].into(), SUM_FRAC);
+                self.rgb[c].set_next_raw(x as i64);
             }
         }
     }

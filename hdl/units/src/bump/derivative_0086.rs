@@ -26,11 +26,11 @@
 //! | normal | `sQ1.14` |
 
 use crate::bump::height_map::HeightMap;
-use crate::bump::normal_156::unit_vector as unit;
+use crate::bump::normal_156::{unit_narrowings, unit_vector as unit, unit_vector_in};
 use crate::bump::params::{Border, RsqrtParams};
 use crate::bump::rsqrt_156::RsqrtTable;
 use crate::bump::texel_fetch_151::border_index;
-use crate::fx::Format;
+use crate::fx::{Format, Narrowing};
 use crate::kernel::{Module, Reg, Signal};
 
 /// A derivative filter of para. 0086.
@@ -216,15 +216,24 @@ impl Derivative {
     /// The unit normal (sQ1.14) at `(u, v)` with height scale `scale` (uQ8.8): the exact
     /// vector `(-Dx s, -Dy s, den 2^(2 w_frac) 2^hf 2^8)` normalised.
     pub fn normal(&self, u: i64, v: i64, scale: i64) -> [i64; 3] {
+        unit(self.exact_normal(u, v, scale), &self.table, &self.p)
+    }
+
+    /// [`Derivative::normal`] through named narrowings (counted when numeric tracking is on).
+    pub fn normal_in(&self, u: i64, v: i64, scale: i64, n: &mut [Narrowing; 3]) -> [i64; 3] {
+        unit_vector_in(self.exact_normal(u, v, scale), &self.table, &self.p, n)
+    }
+
+    /// The normal before normalisation, exact.
+    fn exact_normal(&self, u: i64, v: i64, scale: i64) -> [i128; 3] {
         let (dx, dy) = self.slope(u, v);
         let hf = self.map.fmt().frac() as u32;
         let z = i128::from(self.filter.denominator()) << (2 * self.w_frac + hf + 8);
-        let vct = [
+        [
             -i128::from(dx) * i128::from(scale),
             -i128::from(dy) * i128::from(scale),
             z,
-        ];
-        unit(vct, &self.table, &self.p)
+        ]
     }
 }
 
@@ -245,6 +254,9 @@ pub struct DerivativeUnit {
     pub valid: Reg,
     #[reg]
     pub n: [Reg; 3],
+    /// The normal's components into sQ1.14.
+    #[narrow]
+    round: [Narrowing; 3],
 }
 
 impl DerivativeUnit {
@@ -257,6 +269,7 @@ impl DerivativeUnit {
             scale: Signal::new("scale", Format::unsigned(16, 8)),
             valid: Reg::new("valid", Format::uint(1)),
             n: ["nx", "ny", "nz"].map(|x| Reg::new(x, Format::signed(16, 14))),
+            round: unit_narrowings(["nx", "ny", "nz"]),
             math,
         }
     }
@@ -268,9 +281,8 @@ impl DerivativeUnit {
         let valid = self.valid_in.is_high();
         self.valid.set_next_bool(valid);
         if valid {
-            let n = self
-                .math
-                .normal(self.u.raw(), self.v.raw(), self.scale.raw());
+            let (u, v, s) = (self.u.raw(), self.v.raw(), self.scale.raw());
+            let n = self.math.normal_in(u, v, s, &mut self.round);
             for (r, x) in self.n.iter_mut().zip(n) {
                 r.set_next_raw(x);
             }

@@ -53,13 +53,51 @@ pub const UNIT_FRAC: u32 = 14;
 /// `|v|^2 = m 4^k` with `m` in [1, 4) (unit 156's `normalise`), `y = rsqrt(m)`, then
 /// `v_c y 2^-k`.
 pub fn unit_vector(v: [i128; 3], table: &RsqrtTable, p: &RsqrtParams) -> [i64; 3] {
+    let out = Format::signed(16, UNIT_FRAC as i32);
+    unit_vector_by(v, table, p, |_, x, frac| {
+        quantise(x, frac, out, ROUND, SAT) as i64
+    })
+}
+
+/// [`unit_vector`] through a unit's named narrowings (see [`unit_narrowings`]), counted when
+/// numeric tracking is on; the same result.
+pub fn unit_vector_in(
+    v: [i128; 3],
+    table: &RsqrtTable,
+    p: &RsqrtParams,
+    n: &mut [Narrowing; 3],
+) -> [i64; 3] {
+    unit_vector_by(v, table, p, |c, x, frac| n[c].raw(x, frac) as i64)
+}
+
+/// The normalisation, each component `v_c y` (`frac` fraction bits) narrowed by `round`.
+#[inline]
+fn unit_vector_by(
+    v: [i128; 3],
+    table: &RsqrtTable,
+    p: &RsqrtParams,
+    mut round: impl FnMut(usize, i128, i32) -> i64,
+) -> [i64; 3] {
     let s: u128 = v.iter().map(|c| (c * c) as u128).sum();
     let (k, m) = normalise(s, 0, p.mant_frac);
     let y = i128::from(rsqrt(table, m));
-    let out = Format::signed(16, UNIT_FRAC as i32);
     // v_c y 2^-k: fraction bits y_frac + k.
-    v.map(|c| quantise(c * y, (p.y_frac + k) as i32, out, ROUND, SAT) as i64)
+    let frac = (p.y_frac + k) as i32;
+    std::array::from_fn(|c| round(c, v[c] * y, frac))
 }
+
+/// The three narrowings of a [`unit_vector_in`] (the components into sQ1.14), named
+/// `names`; both saturations are unreachable, as every component of a unit vector is.
+pub fn unit_narrowings(names: [&'static str; 3]) -> [Narrowing; 3] {
+    names.map(|n| {
+        Narrowing::new(n, Format::signed(16, UNIT_FRAC as i32), ROUND, SAT)
+            .unreachable(NarrowPath::High, UNIT_BOUND)
+            .unreachable(NarrowPath::Low, UNIT_BOUND)
+    })
+}
+
+/// Why a unit vector's components never saturate.
+const UNIT_BOUND: &str = "|n| = 1 within the rsqrt's error: every component is far inside (-2, 2)";
 
 #[derive(Clone, Debug, Module)]
 #[module(kind = "normal_156")]
@@ -133,11 +171,9 @@ impl Normal {
             scaled: ["nx", "ny", "nz"].map(|n| {
                 // A unit vector's components are within [-1, 1]; the rsqrt's relative error
                 // (a few LSBs of y) cannot take them to 2.
-                const UNIT: &str =
-                    "|n| = 1 within the rsqrt's error: every component is far inside (-2, 2)";
                 Narrowing::new(n, out, ROUND, SAT)
-                    .unreachable(NarrowPath::High, UNIT)
-                    .unreachable(NarrowPath::Low, UNIT)
+                    .unreachable(NarrowPath::High, UNIT_BOUND)
+                    .unreachable(NarrowPath::Low, UNIT_BOUND)
             }),
         })
     }

@@ -20,10 +20,11 @@
 //! | `n`, `e1`, `e2` | sQ1.14 |
 //! | `nb` | sQ2.14 (reflection unit's input) |
 
-use crate::bump::normal_156::{unit_vector as unit, UNIT_FRAC};
+use crate::bump::normal_156::{unit_narrowings, unit_vector_in as unit, UNIT_FRAC};
 use crate::bump::params::{RsqrtParams, ROUND, SAT};
 use crate::bump::rsqrt_156::RsqrtTable;
-use crate::fx::{quantise, Format};
+use crate::fx::{Format, NarrowPath, Narrowing};
+use crate::kernel::{declared::Narrowings, Visitor};
 
 /// Fraction bits of the vectors: those of unit 156's unit vectors.
 pub const FRAC: u32 = UNIT_FRAC;
@@ -47,11 +48,30 @@ pub struct Frame {
     pub parallel: bool,
 }
 
-/// The frame unit as a function: raw `n1`, `h` (sQ1.14), `b1`, `b2` (sQ1.7).
+/// The frame unit as a function: raw `n1`, `h` (sQ1.14), `b1`, `b2` (sQ1.7), with its named
+/// narrowings (a unit that holds one visits them with `#[narrow]`).
 pub struct FrameUnit {
     p: RsqrtParams,
     table: RsqrtTable,
+    n: [Narrowing; 3],
+    e1: [Narrowing; 3],
+    e2: [Narrowing; 3],
+    nb: [Narrowing; 3],
 }
+
+impl Narrowings for FrameUnit {
+    fn visit_narrowings(&self, v: &mut dyn Visitor) {
+        for x in [&self.n, &self.e1, &self.e2, &self.nb] {
+            x.visit_narrowings(v);
+        }
+    }
+}
+
+/// Why `e2 = n x e1` never saturates.
+const E2_BOUND: &str = "e2 = n x e1 of two orthogonal unit vectors: |e2| = 1, inside (-2, 2)";
+/// Why `n_b` never saturates.
+const NB_BOUND: &str =
+    "n_b = n + e1 b1 + e2 b2 with unit n, e1, e2 and |b1|, |b2| < 1: |n_b| < 3, inside (-4, 4)";
 
 impl Default for FrameUnit {
     fn default() -> Self {
@@ -62,19 +82,38 @@ impl Default for FrameUnit {
 impl FrameUnit {
     pub fn new() -> FrameUnit {
         let p = RsqrtParams::default();
+        let held = |names: [&'static str; 3], f: Format, why: &'static str| {
+            names.map(|n| {
+                Narrowing::new(n, f, ROUND, SAT)
+                    .unreachable(NarrowPath::High, why)
+                    .unreachable(NarrowPath::Low, why)
+            })
+        };
         FrameUnit {
             table: RsqrtTable::new(p).expect("the default parameters are valid"),
             p,
+            n: unit_narrowings(["nx", "ny", "nz"]),
+            e1: unit_narrowings(["e1x", "e1y", "e1z"]),
+            e2: held(
+                ["e2x", "e2y", "e2z"],
+                Format::signed(16, FRAC as i32),
+                E2_BOUND,
+            ),
+            nb: held(
+                ["nbx", "nby", "nbz"],
+                Format::signed(17, FRAC as i32),
+                NB_BOUND,
+            ),
         }
     }
 
     /// `None` for a zero `n1`.
-    pub fn frame(&self, n1: [i64; 3], h: [i64; 3], b: (i64, i64)) -> Option<Frame> {
+    pub fn frame(&mut self, n1: [i64; 3], h: [i64; 3], b: (i64, i64)) -> Option<Frame> {
         let n1 = n1.map(i128::from);
         if n1 == [0; 3] {
             return None;
         }
-        let n = unit(n1, &self.table, &self.p);
+        let n = unit(n1, &self.table, &self.p, &mut self.n);
         let nw = n.map(i128::from);
         let one = 1i128 << FRAC;
         let mut c = cross(h.map(i128::from), nw);
@@ -86,17 +125,15 @@ impl FrameUnit {
             parallel = true;
             c = cross(axis, nw);
         }
-        let e1 = unit(c, &self.table, &self.p);
+        let e1 = unit(c, &self.table, &self.p, &mut self.e1);
         let e2w = cross(nw, e1.map(i128::from));
-        let out = Format::signed(16, FRAC as i32);
-        let e2 = e2w.map(|x| quantise(x, 2 * FRAC as i32, out, ROUND, SAT) as i64);
+        let e2: [i64; 3] = std::array::from_fn(|i| self.e2[i].raw(e2w[i], 2 * FRAC as i32) as i64);
         // n + e1 b1 + e2 b2 in units of 2^-21, rounded to sQ2.14.
-        let nb_fmt = Format::signed(17, FRAC as i32);
         let nb = std::array::from_fn(|i| {
             let x = (i128::from(n[i]) << 7)
                 + i128::from(e1[i]) * i128::from(b.0)
                 + i128::from(e2[i]) * i128::from(b.1);
-            quantise(x, 21, nb_fmt, ROUND, SAT) as i64
+            self.nb[i].raw(x, 21) as i64
         });
         Some(Frame {
             n,
@@ -114,7 +151,7 @@ mod tests {
 
     #[test]
     fn the_axes_give_the_axes() {
-        let u = FrameUnit::new();
+        let mut u = FrameUnit::new();
         let one = 1i64 << FRAC;
         let f = u.frame([0, 0, one / 2], [one, 0, 0], (0, 0)).unwrap();
         assert_eq!(f.n, [0, 0, one]);

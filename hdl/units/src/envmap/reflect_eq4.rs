@@ -18,7 +18,7 @@
 //!
 //! One register stage.
 
-use crate::fx::{quantise, Format, Overflow, Quant};
+use crate::fx::{quantise, Format, Narrowing, Overflow, Quant};
 use crate::kernel::{Module, Reg, Signal};
 
 /// Fraction bits of the vectors in.
@@ -26,16 +26,22 @@ pub const VEC_FRAC: u32 = 14;
 
 /// `w` (raw sQ3.16) of `nb` (raw sQ2.14) and `v` (raw sQ1.14).
 pub fn reflect(nb: [i64; 3], v: [i64; 3]) -> [i64; 3] {
+    reflect_by(nb, v, |_, x| {
+        quantise(x, 42, W, Quant::RoundHalfEven, Overflow::Saturate) as i64
+    })
+}
+
+/// The output's format, sQ3.16.
+const W: Format = Format::signed(20, 16);
+
+/// `2 nb d - v nn` exact (units of 2^-42), each component narrowed by `round`.
+#[inline]
+fn reflect_by(nb: [i64; 3], v: [i64; 3], mut round: impl FnMut(usize, i128) -> i64) -> [i64; 3] {
     let dot = |a: [i64; 3], b: [i64; 3]| -> i128 {
         (0..3).map(|c| i128::from(a[c]) * i128::from(b[c])).sum()
     };
     let (d, nn) = (dot(nb, v), dot(nb, nb));
-    let out = Format::signed(20, 16);
-    std::array::from_fn(|c| {
-        // 2 nb d - v nn, exact in units of 2^-42.
-        let x = 2 * i128::from(nb[c]) * d - i128::from(v[c]) * nn;
-        quantise(x, 42, out, Quant::RoundHalfEven, Overflow::Saturate) as i64
-    })
+    std::array::from_fn(|c| round(c, 2 * i128::from(nb[c]) * d - i128::from(v[c]) * nn))
 }
 
 /// The unit: one register stage.
@@ -52,6 +58,9 @@ pub struct Reflect {
     pub valid: Reg,
     #[reg]
     pub w: [Reg; 3],
+    /// `w`'s one rounding each, held at sQ3.16's ends.
+    #[narrow]
+    round: [Narrowing; 3],
 }
 
 impl Default for Reflect {
@@ -73,6 +82,8 @@ impl Reflect {
             v: ["vx", "vy", "vz"].map(|n| Signal::new(n, v)),
             valid: Reg::new("valid", Format::uint(1)),
             w: ["wx", "wy", "wz"].map(|n| Reg::new(n, w)),
+            round: ["wx", "wy", "wz"]
+                .map(|n| Narrowing::new(n, W, Quant::RoundHalfEven, Overflow::Saturate)),
         }
     }
 }
@@ -83,9 +94,11 @@ impl Reflect {
         let valid = self.valid_in.is_high();
         self.valid.set_next_bool(valid);
         if valid {
-            let w = reflect(
+            let round = &mut self.round;
+            let w = reflect_by(
                 self.nb.each_ref().map(|s| s.raw()),
                 self.v.each_ref().map(|s| s.raw()),
+                |c, x| round[c].raw(x, 42) as i64,
             );
             for (r, x) in self.w.iter_mut().zip(w) {
                 r.set_next_raw(x);

@@ -21,11 +21,11 @@
 //! | `a`, `gx`, `gy` | sQ3.12 |
 //! | `nout`, `tout`, `bout` | sQ1.14 |
 
-use crate::bump::normal_156::unit_vector as unit;
+use crate::bump::normal_156::{unit_narrowings, unit_vector_in as unit};
 use crate::bump::params::{RsqrtParams, ROUND, SAT};
 use crate::bump::rsqrt_156::RsqrtTable;
-use crate::fx::{quantise, Format};
-use crate::kernel::{Module, Reg, Signal};
+use crate::fx::{Format, NarrowPath, Narrowing};
+use crate::kernel::{declared::Narrowings, Module, Reg, Signal, Visitor};
 
 /// Fraction bits of the vectors and of the weights.
 pub const VEC_FRAC: u32 = 14;
@@ -45,7 +45,37 @@ pub struct FrameOut {
 pub struct FrameMath {
     table: RsqrtTable,
     p: RsqrtParams,
+    /// Its named narrowings: N's unit, Gram-Schmidt's t and b, the perturbed normal.
+    round: FrameNarrowings,
 }
+
+/// The frame unit's narrowings, each a vector's components into sQ1.14.
+struct FrameNarrowings {
+    n: [Narrowing; 3],
+    t: [Narrowing; 3],
+    b: [Narrowing; 3],
+    out: [Narrowing; 3],
+}
+
+/// Which unit vector a normalisation makes.
+#[derive(Clone, Copy)]
+enum Which {
+    N,
+    T,
+    Out,
+}
+
+impl Narrowings for FrameMath {
+    fn visit_narrowings(&self, v: &mut dyn Visitor) {
+        let r = &self.round;
+        for x in [&r.n, &r.t, &r.b, &r.out] {
+            x.visit_narrowings(v);
+        }
+    }
+}
+
+/// Why Gram-Schmidt's `b` never saturates.
+const B_BOUND: &str = "b = s n x t of two unit vectors: |b| <= 1, inside (-2, 2)";
 
 impl Default for FrameMath {
     fn default() -> Self {
@@ -68,46 +98,64 @@ fn dot(a: [i128; 3], b: [i128; 3]) -> i128 {
 impl FrameMath {
     pub fn new() -> FrameMath {
         let p = RsqrtParams::default();
+        let b = ["b_gs_x", "b_gs_y", "b_gs_z"].map(|n| {
+            Narrowing::new(n, Format::signed(16, VEC_FRAC as i32), ROUND, SAT)
+                .unreachable(NarrowPath::High, B_BOUND)
+                .unreachable(NarrowPath::Low, B_BOUND)
+        });
         FrameMath {
             table: RsqrtTable::new(p).expect("the default parameters are valid"),
             p,
+            round: FrameNarrowings {
+                n: unit_narrowings(["n_unit_x", "n_unit_y", "n_unit_z"]),
+                t: unit_narrowings(["t_gs_x", "t_gs_y", "t_gs_z"]),
+                b,
+                out: unit_narrowings(["nout_x", "nout_y", "nout_z"]),
+            },
         }
     }
 
-    /// `v / |v|` in sQ1.14 (at any binary point of `v`), or `None` for zero.
-    fn unit(&self, v: [i128; 3]) -> Option<[i64; 3]> {
-        (v != [0; 3]).then(|| unit(v, &self.table, &self.p))
+    /// `v / |v|` in sQ1.14 (at any binary point of `v`) by the narrowings of `which`, or
+    /// `None` for zero.
+    fn unit(&mut self, which: Which, v: [i128; 3]) -> Option<[i64; 3]> {
+        let r = &mut self.round;
+        let n = match which {
+            Which::N => &mut r.n,
+            Which::T => &mut r.t,
+            Which::Out => &mut r.out,
+        };
+        (v != [0; 3]).then(|| unit(v, &self.table, &self.p, n))
     }
 
     /// Gram-Schmidt of `(t, b)` against `n` (all raw sQ1.14): unit N, t, and b = s N x t.
     pub fn orthonormalise(
-        &self,
+        &mut self,
         t: [i64; 3],
         b: [i64; 3],
         n: [i64; 3],
     ) -> ([i64; 3], [i64; 3], [i64; 3]) {
         let nu = self
-            .unit(n.map(i128::from))
+            .unit(Which::N, n.map(i128::from))
             .unwrap_or([0, 0, 1 << VEC_FRAC]);
         let nw = nu.map(i128::from);
         let tw = t.map(i128::from);
         // t - (n.t) n in units of 2^-42.
         let d = dot(nw, tw);
         let r: [i128; 3] = std::array::from_fn(|c| (tw[c] << 28) - d * nw[c]);
-        let tu = self.unit(r).unwrap_or([0; 3]);
+        let tu = self.unit(Which::T, r).unwrap_or([0; 3]);
         let nt = cross(nw, tu.map(i128::from));
         let s = if dot(b.map(i128::from), nt) < 0 {
             -1
         } else {
             1
         };
-        let out = Format::signed(16, VEC_FRAC as i32);
-        let bu = nt.map(|x| quantise(s * x, 2 * VEC_FRAC as i32, out, ROUND, SAT) as i64);
+        let b = &mut self.round.b;
+        let bu = std::array::from_fn(|c| b[c].raw(s * nt[c], 2 * VEC_FRAC as i32) as i64);
         (tu, bu, nu)
     }
 
     /// The unit's result for frame `(t, b, n)` (sQ1.14) and weights `(a, gx, gy)` (sQ3.12).
-    pub fn perturb(&self, frame: [[i64; 3]; 3], w: [i64; 3], gram_schmidt: bool) -> FrameOut {
+    pub fn perturb(&mut self, frame: [[i64; 3]; 3], w: [i64; 3], gram_schmidt: bool) -> FrameOut {
         let [t, b, n] = frame;
         let (t, b, n) = if gram_schmidt {
             self.orthonormalise(t, b, n)
@@ -119,10 +167,10 @@ impl FrameMath {
         let v: [i128; 3] = std::array::from_fn(|c| {
             a * i128::from(n[c]) + gx * i128::from(t[c]) + gy * i128::from(b[c])
         });
-        let (out, zero) = match self.unit(v) {
+        let (out, zero) = match self.unit(Which::Out, v) {
             Some(u) => (u, false),
             None => (
-                self.unit(n.map(i128::from))
+                self.unit(Which::N, n.map(i128::from))
                     .unwrap_or([0, 0, 1 << VEC_FRAC]),
                 true,
             ),
@@ -159,6 +207,8 @@ const N: [&str; 3] = ["nx", "ny", "nz"];
 #[derive(Module)]
 #[module(kind = "frame_unit")]
 pub struct FrameUnit {
+    /// The arithmetic and its narrowings.
+    #[narrow]
     math: FrameMath,
     #[input]
     pub valid_in: Signal,
@@ -234,7 +284,7 @@ mod tests {
     /// not give N.
     #[test]
     fn a_flat_texel_gives_the_normal() {
-        let m = FrameMath::new();
+        let mut m = FrameMath::new();
         let one = 1i64 << VEC_FRAC;
         let frame = [[one, 0, 0], [0, one, 0], [0, 0, one]];
         for gs in [false, true] {
@@ -277,7 +327,7 @@ mod tests {
     /// along t) leaves the frame right-handed; one against N x t makes it left-handed.
     #[test]
     fn degenerate_frames_have_defined_results() {
-        let m = FrameMath::new();
+        let mut m = FrameMath::new();
         let one = 1i64 << VEC_FRAC;
         let (x, y, z) = ([one, 0, 0], [0, one, 0], [0, 0, one]);
         assert_eq!(m.orthonormalise(x, y, [0; 3]), (x, y, z));

@@ -24,12 +24,12 @@
 //! | `dpdu`, `dpdv` | sQ23.16 |
 //! | `t`, `b` | sQ1.14 |
 
-use crate::bump::normal_156::unit_vector as unit;
+use crate::bump::normal_156::{unit_narrowings, unit_vector_in as unit};
 use crate::bump::params::{RsqrtParams, ROUND, SAT};
 use crate::bump::rsqrt_156::RsqrtTable;
 use crate::envmap::cube_face::{reciprocal, CubeFace};
-use crate::fx::{quantise, Format, Overflow, Quant};
-use crate::kernel::{Module, Reg, Signal};
+use crate::fx::{Format, NarrowPath, Narrowing};
+use crate::kernel::{declared::Narrowings, Module, Reg, Signal, Visitor};
 
 /// Fraction bits of positions, UVs and dP/du.
 pub const POS_FRAC: u32 = 16;
@@ -47,12 +47,29 @@ pub struct Setup {
     pub zero: bool,
 }
 
-/// The unit's arithmetic, its tables made once.
+/// The unit's arithmetic, its tables made once, with its named narrowings: `dP/du` and
+/// `dP/dv` into sQ23.16, `t` and `b` into sQ1.14.
 pub struct TangentMath {
     recip: [u64; 64],
     rsqrt: RsqrtTable,
     p: RsqrtParams,
+    /// `dP/du`'s and `dP/dv`'s components.
+    dp: [[Narrowing; 3]; 2],
+    t: [Narrowing; 3],
+    b: [Narrowing; 3],
 }
+
+impl Narrowings for TangentMath {
+    fn visit_narrowings(&self, v: &mut dyn Visitor) {
+        self.dp.visit_narrowings(v);
+        self.t.visit_narrowings(v);
+        self.b.visit_narrowings(v);
+    }
+}
+
+/// Why `b = s n x t` never saturates.
+const B_BOUND: &str =
+    "b = s n x t of two unit vectors (n by the port's contract): |b| <= 1, inside (-2, 2)";
 
 impl Default for TangentMath {
     fn default() -> Self {
@@ -71,31 +88,47 @@ fn cross(a: [i128; 3], b: [i128; 3]) -> [i128; 3] {
 impl TangentMath {
     pub fn new() -> TangentMath {
         let p = RsqrtParams::default();
+        let dp = |names: [&'static str; 3]| {
+            names.map(|n| Narrowing::new(n, Format::signed(40, POS_FRAC as i32), ROUND, SAT))
+        };
         TangentMath {
             recip: *CubeFace::new().table(),
             rsqrt: RsqrtTable::new(p).expect("the default parameters are valid"),
             p,
+            dp: [
+                dp(["dpdu_x", "dpdu_y", "dpdu_z"]),
+                dp(["dpdv_x", "dpdv_y", "dpdv_z"]),
+            ],
+            t: unit_narrowings(["tx", "ty", "tz"]),
+            b: ["bx", "by", "bz"].map(|n| {
+                Narrowing::new(n, Format::signed(16, VEC_FRAC as i32), ROUND, SAT)
+                    .unreachable(NarrowPath::High, B_BOUND)
+                    .unreachable(NarrowPath::Low, B_BOUND)
+            }),
         }
     }
 
-    /// `num / den` for exact `num` (units 2^-(16 + den_frac)... see callers) rounded to
-    /// sQ23.16: `num` carries `nf` fraction bits, `den` (not zero) `df`.
-    fn divide(&self, num: [i128; 3], den: i128, nf: u32, df: u32) -> [i64; 3] {
+    /// `num / den` for exact `num` rounded to sQ23.16 by the narrowings of `dP/du` (`which`
+    /// 0) or `dP/dv` (1): `num` carries `nf` fraction bits, `den` (not zero) `df`.
+    fn divide(
+        &mut self,
+        which: usize,
+        num: [i128; 3],
+        den: i128,
+        (nf, df): (u32, u32),
+    ) -> [i64; 3] {
         // 1/|den| = r1 2^-16 2^-e with den read as 16 fraction bits; den really has df.
         let (r1, e) = reciprocal(den.unsigned_abs() as u64, &self.recip);
         let sign = den.signum();
-        let out = Format::signed(40, POS_FRAC as i32);
         // num r1: nf + 16 fraction bits; times 2^-e and 2^(df - 16) for den's own bits.
         let frac = nf as i32 + 16 + e - (df as i32 - 16);
-        num.map(|c| {
-            let x = c * i128::from(r1) * sign;
-            quantise(x, frac, out, Quant::RoundHalfEven, Overflow::Saturate) as i64
-        })
+        let round = &mut self.dp[which];
+        std::array::from_fn(|c| round[c].raw(num[c] * i128::from(r1) * sign, frac) as i64)
     }
 
     /// The setup of the triangle with edges `v` (sQ7.16), UV edges `d` (sQ3.16) at the corner
     /// with unit normal `n` (sQ1.14).
-    pub fn setup(&self, v: [[i64; 3]; 2], d: [[i64; 2]; 2], n: [i64; 3]) -> Setup {
+    pub fn setup(&mut self, v: [[i64; 3]; 2], d: [[i64; 2]; 2], n: [i64; 3]) -> Setup {
         let (v1, v2) = (v[0].map(i128::from), v[1].map(i128::from));
         let (d1, d2) = (d[0].map(i128::from), d[1].map(i128::from));
         let uvk = d2[0] * d1[1] - d1[0] * d2[1];
@@ -104,14 +137,14 @@ impl TangentMath {
             // Numerators: 16 + 16 fraction bits; uvk 32.
             let nu: [i128; 3] = std::array::from_fn(|c| d1[1] * v2[c] - d2[1] * v1[c]);
             let nv: [i128; 3] = std::array::from_fn(|c| d2[0] * v1[c] - d1[0] * v2[c]);
-            s.dpdu = self.divide(nu, uvk, 32, 32);
-            s.dpdv = self.divide(nv, uvk, 32, 32);
+            s.dpdu = self.divide(0, nu, uvk, (32, 32));
+            s.dpdv = self.divide(1, nv, uvk, (32, 32));
         } else {
             s.degenerate = true;
             if d1[0] != 0 {
-                s.dpdu = self.divide(v1, d1[0], 16, 16);
+                s.dpdu = self.divide(0, v1, d1[0], (16, 16));
             } else if d2[0] != 0 {
-                s.dpdu = self.divide(v2, d2[0], 16, 16);
+                s.dpdu = self.divide(0, v2, d2[0], (16, 16));
             }
         }
         self.frame(&mut s, n);
@@ -119,7 +152,7 @@ impl TangentMath {
     }
 
     /// `t` and `b` of `s.dpdu`, `s.dpdv` at `n`.
-    fn frame(&self, s: &mut Setup, n: [i64; 3]) {
+    fn frame(&mut self, s: &mut Setup, n: [i64; 3]) {
         let n = n.map(i128::from);
         let du = s.dpdu.map(i128::from);
         // dP/du - (n . dP/du) n, in units of 2^-(16 + 28).
@@ -129,7 +162,7 @@ impl TangentMath {
             s.zero = true;
             return;
         }
-        s.t = unit(r, &self.rsqrt, &self.p);
+        s.t = unit(r, &self.rsqrt, &self.p, &mut self.t);
         let nt = cross(n, s.t.map(i128::from));
         let dv = s.dpdv.map(i128::from);
         let sign = if (0..3).map(|c| nt[c] * dv[c]).sum::<i128>() < 0 {
@@ -137,8 +170,8 @@ impl TangentMath {
         } else {
             1
         };
-        let out = Format::signed(16, VEC_FRAC as i32);
-        s.b = nt.map(|x| quantise(sign * x, 2 * VEC_FRAC as i32, out, ROUND, SAT) as i64);
+        let b = &mut self.b;
+        s.b = std::array::from_fn(|c| b[c].raw(sign * nt[c], 2 * VEC_FRAC as i32) as i64);
     }
 }
 
@@ -149,6 +182,8 @@ const D: [[&str; 2]; 2] = [["d1u", "d1v"], ["d2u", "d2v"]];
 #[derive(Module)]
 #[module(kind = "tangent_setup")]
 pub struct TangentSetup {
+    /// The arithmetic and its narrowings.
+    #[narrow]
     math: TangentMath,
     #[input]
     pub valid_in: Signal,
@@ -231,7 +266,7 @@ mod tests {
     /// An axis-aligned quad's triangle: UVs = xy, n = z: t = x, b = y exactly; dP/du = x.
     #[test]
     fn the_axes_give_the_axes() {
-        let m = TangentMath::new();
+        let mut m = TangentMath::new();
         let one = 1i64 << POS_FRAC;
         let s = m.setup(
             [[one, 0, 0], [0, one, 0]],

@@ -14,7 +14,7 @@
 
 use super::texture_612::PtmFormat;
 use super::MAX_LIGHTS;
-use crate::fx::Format;
+use crate::fx::{Format, Narrowing};
 use crate::kernel::{Module, Reg, Signal};
 
 /// Lane register width: sQ17.28.
@@ -47,6 +47,9 @@ pub struct Fitter604 {
     pub out_valid: Reg,
     #[reg]
     pub out_q: [Reg; 6],
+    /// Each coefficient's one rounding into its stored format.
+    #[narrow]
+    round: [Narrowing; 6],
 }
 
 impl Fitter604 {
@@ -70,6 +73,7 @@ impl Fitter604 {
             acc: ACC.map(|n| Reg::new(n, acc)),
             out_valid: Reg::new("out_valid", Format::uint(1)),
             out_q: Q.map(|n| Reg::new(n, Format::uint(fmt.bits))),
+            round: Q.map(|n| fmt.narrowing(n)),
         })
     }
 
@@ -94,7 +98,7 @@ impl Fitter604 {
             let sum = base + i64::from(self.p[j][i]) * i64::from(k);
             self.acc[j].set_next_raw(sum);
             if last {
-                let q = self.fmt.quantise(j, sum);
+                let q = self.fmt.quantise_in(j, sum, &mut self.round[j]);
                 self.out_q[j].set_next_bits(q);
             }
         }

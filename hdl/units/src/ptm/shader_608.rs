@@ -11,19 +11,28 @@
 
 use super::texture_612::PtmFormat;
 use super::UV_FRAC;
-use crate::fx::Format;
+use crate::fx::{quantise, Format, Narrowing, Overflow, Quant};
 use crate::kernel::{Module, Reg, Signal};
 
 /// K (uQ0.8, held) of stored `q` at raw `(u, v)`.
 pub fn occlusion_at(fmt: &PtmFormat, q: &[u64; 6], u: i64, v: i64) -> u8 {
+    let k = exact_occlusion(fmt, q, u, v);
+    quantise(k, K_FRAC, K, Quant::RoundHalfUp, Overflow::Saturate) as u8
+}
+
+/// K's format, uQ0.8.
+const K: Format = Format::unsigned(8, 8);
+/// Fraction bits of the exact K: A's 20 and u's and v's 14 each.
+const K_FRAC: i32 = 20 + 2 * UV_FRAC as i32;
+
+/// K exact, in units of 2^-48 (Horner's form).
+fn exact_occlusion(fmt: &PtmFormat, q: &[u64; 6], u: i64, v: i64) -> i128 {
     let a: [i128; 6] = std::array::from_fn(|j| i128::from(fmt.coefficient(j, q[j])));
     let (u, v) = (i128::from(u), i128::from(v));
     // Units: A 2^-20, u and v 2^-14; each sum in 2^-48.
     let first = (a[0] * u + a[2] * v + (a[1] << UV_FRAC)) * u;
     let second = (a[4] * v + (a[3] << UV_FRAC)) * v;
-    let k = first + second + (a[5] << (2 * UV_FRAC));
-    let r = (k + (1 << 39)) >> 40;
-    r.clamp(0, 255) as u8
+    first + second + (a[5] << (2 * UV_FRAC))
 }
 
 /// The unit.
@@ -45,6 +54,9 @@ pub struct Shader608 {
     pub k: Reg,
     #[reg]
     pub visibility: Reg,
+    /// K's one rounding, held to `0 ..= 255`.
+    #[narrow]
+    round: Narrowing,
 }
 
 impl Shader608 {
@@ -62,6 +74,7 @@ impl Shader608 {
             out_valid: Reg::new("out_valid", Format::uint(1)),
             k: Reg::new("k", u8f),
             visibility: Reg::new("visibility", u8f),
+            round: Narrowing::new("k", K, Quant::RoundHalfUp, Overflow::Saturate),
         })
     }
 }
@@ -73,7 +86,8 @@ impl Shader608 {
         self.out_valid.set_next_bool(valid);
         if valid {
             let q = self.q.each_ref().map(|s| s.bits());
-            let k = occlusion_at(&self.fmt, &q, self.u.raw(), self.v.raw());
+            let exact = exact_occlusion(&self.fmt, &q, self.u.raw(), self.v.raw());
+            let k = self.round.raw(exact, K_FRAC) as u8;
             self.k.set_next_bits(u64::from(k));
             self.visibility.set_next_bits(u64::from(255 - k));
         }

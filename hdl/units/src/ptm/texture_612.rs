@@ -8,6 +8,7 @@
 //! price of knowing them before the data; 16 bits when 8 are too coarse.)
 
 use super::{MAX_LIGHTS, P_BITS};
+use crate::fx::{quantise, Format, NarrowPath, Narrowing, Overflow, Quant};
 
 /// The six coefficients' scales and biases.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -72,10 +73,40 @@ impl PtmFormat {
     /// The stored value of an exact accumulator `acc` (units of 2^-28: P 2^-20 times K 2^-8)
     /// of coefficient j: `(acc - b 2^8) / 2^(e + 8)` rounded half up, held to `0 ..= max_q`.
     pub fn quantise(&self, j: usize, acc: i64) -> u64 {
-        let sh = self.exp[j] + 8;
+        let (x, frac) = self.unbiased(j, acc);
+        quantise(
+            x,
+            frac,
+            self.stored(),
+            Quant::RoundHalfUp,
+            Overflow::Saturate,
+        ) as u64
+    }
+
+    /// [`PtmFormat::quantise`] through a named narrowing (see [`PtmFormat::narrowing`]).
+    pub fn quantise_in(&self, j: usize, acc: i64, n: &mut Narrowing) -> u64 {
+        let (x, frac) = self.unbiased(j, acc);
+        n.raw(x, frac) as u64
+    }
+
+    /// The narrowing of coefficient j's accumulator, named `name`: into the stored
+    /// unsigned `bits`, half up, held; neither end is reached (the format's construction).
+    pub fn narrowing(&self, name: &'static str) -> Narrowing {
+        const HELD: &str = "A = sum P K with K in [0, 1] lies in [b, b + (2^bits - 1) 2^e] by the format's construction";
+        Narrowing::new(name, self.stored(), Quant::RoundHalfUp, Overflow::Saturate)
+            .unreachable(NarrowPath::High, HELD)
+            .unreachable(NarrowPath::Low, HELD)
+    }
+
+    /// The stored format: unsigned `bits`, no fraction.
+    fn stored(&self) -> Format {
+        Format::uint(self.bits)
+    }
+
+    /// `acc - b 2^8` and its fraction bits `e + 8`: the stored value before its rounding.
+    fn unbiased(&self, j: usize, acc: i64) -> (i128, i32) {
         let x = i128::from(acc) - (i128::from(self.bias[j]) << 8);
-        let q = (x + (1i128 << (sh - 1))) >> sh;
-        q.clamp(0, i128::from(self.max_q())) as u64
+        (x, self.exp[j] as i32 + 8)
     }
 }
 
