@@ -207,10 +207,9 @@ fn crate_with_a_rare_bug(d: &Path) -> PathBuf {
     std::fs::copy(root().join("Cargo.lock"), dir.join("Cargo.lock")).unwrap();
     let unit = dir.join("src/unit.rs");
     let src = std::fs::read_to_string(&unit).unwrap();
-    let line =
-        "            self.acc_r.set_next(sum.convert(Acc::FMT, Quant::Trunc, Overflow::Saturate));";
+    let line = "            self.acc_r.set_next(self.to_acc.fx(sum));";
     assert!(src.contains(line), "the template's accumulator line moved");
-    let bug = "            let q = sum.convert(Acc::FMT, Quant::Trunc, Overflow::Saturate);\n            \
+    let bug = "            let q = self.to_acc.fx(sum);\n            \
                if self.x.raw() == 37 && (100..102).contains(&self.acc_r.q().raw()) {\n                \
                self.acc_r.set_next_raw(q.raw() as i64 + 1);\n            } else {\n                \
                self.acc_r.set_next(q);\n            }";

@@ -228,3 +228,52 @@ fn an_optional_bundle_and_a_group_add_no_scope_and_are_visited_when_present() {
     };
     assert_eq!(signal_paths(&bare).len(), 2 * 7, "no bundle, not visited");
 }
+
+hdl::formats! {
+    Wide = Format::signed(10, 4);
+    Narrow = Format::signed(6, 2);
+}
+
+/// Narrowings declared in the struct: `new` builds them named after their fields, typed
+/// (`NarrowingOf<F>`: the format is the type) or run-time (`fmt = ...`).
+#[derive(Module)]
+#[module(kind = "clip", new)]
+struct Clip {
+    #[input]
+    x: hdl::kernel::SignalOf<Wide>,
+    #[reg]
+    y: hdl::kernel::RegOf<Narrow>,
+    #[narrow(quant = hdl::fx::Quant::RoundHalfEven, overflow = hdl::fx::Overflow::Saturate)]
+    to_y: hdl::fx::NarrowingOf<Narrow>,
+    #[narrow(fmt = Format::signed(4, 0), quant = hdl::fx::Quant::Trunc, overflow = hdl::fx::Overflow::Wrap)]
+    whole: hdl::fx::Narrowing,
+}
+
+impl Clip {
+    fn eval(&mut self) {
+        let y = self.to_y.fx(self.x.fx());
+        self.whole.fx(y);
+        self.y.set_next(y);
+    }
+}
+
+#[test]
+fn new_declares_narrowings_with_their_modes_and_the_visitor_sees_them() {
+    let mut c = Clip::new();
+    let found = hdl::kernel::narrowings(&c);
+    let names: Vec<&str> = found.iter().map(|(p, _)| p.as_str()).collect();
+    assert_eq!(names, ["clip.to_y", "clip.whole"]);
+    assert_eq!(found[0].1.dst(), Narrow::FMT);
+    assert_eq!(found[1].1.overflow(), hdl::fx::Overflow::Wrap);
+    // Their flags are wires of the unit's scope, traced with its signals.
+    let paths = signal_paths(&c);
+    assert!(paths.iter().any(|p| p == "clip.to_y_sat"), "{paths:?}");
+    assert!(paths.iter().any(|p| p == "clip.whole_wrap"), "{paths:?}");
+    hdl::fx::set_tracking(true);
+    c.x.set_raw(511); // 31.9375: saturates at sQ4.2's 7.75
+    c.eval();
+    hdl::fx::set_tracking(false);
+    assert_eq!(c.y.next_bits(), 31, "7.75 in sQ4.2");
+    assert_eq!(c.to_y.stats().over_high, 1);
+    assert_eq!(c.whole.stats().narrowed, 1);
+}

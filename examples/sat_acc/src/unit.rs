@@ -1,8 +1,9 @@
-//! The unit, `acc <= sat(acc + x)`, two-process style: each port and register declared once,
-//! its type saying its format (`#[derive(Module)]` makes the constructor, the clock edge and the
-//! hierarchy from them); the behaviour is `eval`, written on fixed-point values. The formats
-//! are constants, so the arithmetic compiles to the integer code a careful person would write.
-use hdl::fx::{Bit, Format, Overflow, Quant};
+//! The unit, `acc <= sat(acc + x)`, two-process style: each port, register and narrowing
+//! declared once, its type saying its format (`#[derive(Module)]` makes the constructor, the
+//! clock edge and the hierarchy from them); the behaviour is `eval`, written on fixed-point
+//! values. The formats are constants, so the arithmetic compiles to the integer code a careful
+//! person would write. The one narrowing is named: a regression counts its saturations.
+use hdl::fx::{Bit, Format, NarrowingOf, Overflow, Quant};
 use hdl::kernel::{Module, RegOf, SignalOf};
 
 hdl::formats! {
@@ -27,6 +28,9 @@ pub struct SatAcc {
     acc_r: RegOf<Acc>,
     #[reg]
     valid_r: RegOf<Bit>,
+    /// The sum back into the accumulator: truncate (exact here), saturate.
+    #[narrow(quant = Quant::Trunc, overflow = Overflow::Saturate)]
+    to_acc: NarrowingOf<Acc>,
 }
 
 impl Default for SatAcc {
@@ -41,9 +45,9 @@ impl SatAcc {
         self.acc.follow(self.acc_r.q());
         self.valid_r.set_next_bool(self.valid_in.is_high());
         if self.valid_in.is_high() {
-            // Full-precision sum, then one declared narrowing: truncate (exact here), saturate.
+            // Full-precision sum, then its one declared narrowing.
             let sum = self.acc_r.q().fx() + self.x.fx();
-            self.acc_r.set_next(sum.convert(Acc::FMT, Quant::Trunc, Overflow::Saturate));
+            self.acc_r.set_next(self.to_acc.fx(sum));
         }
     }
 }

@@ -23,10 +23,12 @@
 //!
 //! Fields are visited in declaration order. With `#[module(kind = "...", new)]` and every
 //! field a marked signal or register with its format (`#[input(fmt = COLOUR)]`,
-//! `#[reg(fmt = PRODUCT, reset = ...)]`, `#[reg(fmt = F, states = &["IDLE", "FETCH"])]`), the
-//! derive also writes `pub fn new() -> Self`, each signal named after its field: the names,
-//! formats and state names are then written once, in the struct. A field whose type is its
-//! format (`SignalOf<F>`, `RegOf<F>`) needs no `fmt`. A module whose edge or
+//! `#[reg(fmt = PRODUCT, reset = ...)]`, `#[reg(fmt = F, states = &["IDLE", "FETCH"])]`) or a
+//! narrowing with its modes (`#[narrow(quant = Quant::Trunc, overflow = Overflow::Saturate)]`),
+//! the derive also writes `pub fn new() -> Self`, each signal and narrowing named after its
+//! field: the names, formats, modes and state names are then written once, in the struct. A
+//! field whose type is its format (`SignalOf<F>`, `RegOf<F>`, `NarrowingOf<F>`) needs no
+//! `fmt`. A module whose edge or
 //! hierarchy the attributes cannot say keeps a hand-written `impl Module`.
 //!
 //! `#[derive(Signals)]` makes a struct of signals a port bundle (an `Option` of one: ports a
@@ -192,20 +194,28 @@ fn module_args(ast: &DeriveInput) -> syn::Result<(LitStr, bool)> {
 /// `pub fn new() -> Self`: every field a signal or register of a declared format, named
 /// after its field, registers reset to zero unless `reset` says otherwise.
 fn constructor(ast: &DeriveInput, fields: &[Field], hdl: &Tokens) -> syn::Result<Tokens> {
+    let unmoded = |f: &Field| f.role == Role::Narrow && (f.quant.is_none() || f.overflow.is_none());
     if named_fields(ast, "Module")?.named.len() != fields.len()
         || fields
             .iter()
-            .any(|f| matches!(f.role, Role::Child | Role::Narrow | Role::Instance))
+            .any(|f| matches!(f.role, Role::Child | Role::Instance) || unmoded(f))
     {
         return Err(syn::Error::new_spanned(
             &ast.ident,
-            "`new` needs every field a marked signal or register",
+            "`new` needs every field a marked signal, register or narrowing (with its `quant` and `overflow`)",
         ));
     }
     let mut inits = Vec::new();
     let decl = quote!(#hdl::kernel);
     for f in fields {
         let (id, ty, name) = (&f.id, &f.ty, f.id.to_string());
+        if let (Role::Narrow, Some(q), Some(o)) = (f.role, &f.quant, &f.overflow) {
+            // A typed narrowing (`NarrowingOf<F>`) has its format in its type; a run-time one
+            // (`Narrowing`) takes `fmt`.
+            let fmt = f.fmt.iter();
+            inits.push(quote!(#id: <#ty>::new(#name, #(#fmt,)* #q, #o)));
+            continue;
+        }
         // A `fmt = ...` builds a run-time-format field (or checks a typed one's); without it,
         // the field's type is its format (`SignalOf<F>`, `RegOf<F>`).
         let mut base = match &f.fmt {
@@ -243,6 +253,9 @@ struct Field {
     states: Option<syn::Expr>,
     /// `reset = EXPR`: a register's reset value (an `Fx`), zero by default.
     reset: Option<syn::Expr>,
+    /// `quant = EXPR`, `overflow = EXPR`: a narrowing's modes (for the generated `new`).
+    quant: Option<syn::Expr>,
+    overflow: Option<syn::Expr>,
 }
 
 /// The `fmt`, `states` and `reset` of a role attribute (`#[reg(fmt = F, states = S)]`).
@@ -257,10 +270,14 @@ fn field_args(a: &syn::Attribute, f: &mut Field) -> syn::Result<()> {
             &mut f.states
         } else if m.path.is_ident("reset") && f.role == Role::Reg {
             &mut f.reset
+        } else if m.path.is_ident("quant") && f.role == Role::Narrow {
+            &mut f.quant
+        } else if m.path.is_ident("overflow") && f.role == Role::Narrow {
+            &mut f.overflow
         } else {
-            return Err(
-                m.error("expected `fmt = ...`, `states = ...` or (a register's) `reset = ...`")
-            );
+            return Err(m.error(
+                "expected `fmt = ...`, `states = ...`, (a register's) `reset = ...` or (a narrowing's) `quant = ...`, `overflow = ...`",
+            ));
         };
         *slot = Some(m.value()?.parse::<syn::Expr>()?);
         Ok(())
@@ -288,6 +305,8 @@ fn roles(ast: &DeriveInput) -> syn::Result<Vec<Field>> {
                 fmt: None,
                 states: None,
                 reset: None,
+                quant: None,
+                overflow: None,
             };
             field_args(a, &mut field)?;
             found = Some(field);

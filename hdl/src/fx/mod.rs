@@ -36,7 +36,7 @@ mod value;
 
 pub use format::{Format, FormatError};
 pub use modes::{Overflow, Quant};
-pub use narrowing::{set_tracking, tracking, NarrowPath, NarrowStats, Narrowing};
+pub use narrowing::{set_tracking, tracking, NarrowPath, NarrowStats, Narrowing, NarrowingOf};
 pub use typed::{Bit, Fmt};
 pub use value::{quantise, Fx, FxError};
 

@@ -5,9 +5,10 @@
 //! values before narrowing.
 
 use super::value::{dropped, rounded};
-use super::{quantise, Format, Fx, Overflow, Quant};
+use super::{quantise, Fmt, Format, Fx, Overflow, Quant};
 use crate::kernel::Signal;
 use std::cell::Cell;
+use std::marker::PhantomData;
 
 thread_local! {
     static TRACKING: Cell<bool> = const { Cell::new(false) };
@@ -178,13 +179,21 @@ impl Narrowing {
     /// `raw * 2^-src_frac` narrowed: [`quantise`] into the destination, counted when tracking.
     #[inline(always)]
     pub fn raw(&mut self, raw: i128, src_frac: i32) -> i128 {
+        let dst = self.dst;
+        self.raw_to(dst, raw, src_frac)
+    }
+
+    /// [`Narrowing::raw`] into `dst`, which is the destination (a constant where the caller
+    /// knows it at compile time, so the narrowing folds as a `convert` naming it does).
+    #[inline(always)]
+    fn raw_to(&mut self, dst: Format, raw: i128, src_frac: i32) -> i128 {
+        debug_assert_eq!(dst, self.dst);
         if tracking() {
             self.record(raw, src_frac);
         }
         // The modes as constants where they are the common ones, so `quantise`'s rounding and
         // overflow logic folds as it does at a call site that names them (one predictable
         // branch here instead of a run-time match inside).
-        let dst = self.dst;
         match (self.q, self.o) {
             (Quant::RoundHalfEven, Overflow::Saturate) => {
                 quantise(raw, src_frac, dst, Quant::RoundHalfEven, Overflow::Saturate)
@@ -236,6 +245,77 @@ impl Narrowing {
         if let Ok(f) = Format::try_new(128, src_frac, true) {
             s.widen(Some(Fx::from_raw(f, raw)));
         }
+    }
+}
+
+/// A named narrowing into a format known at compile time (`F`, declared with
+/// [`formats!`](crate::formats)): the typed style's [`Narrowing`]. Its destination is a
+/// constant, so `fx` compiles to what `convert(F::FMT, q, o)` does, plus the one thread-local
+/// test of numeric tracking. It reads as a [`Narrowing`] (its name, counts, flag).
+///
+/// ```
+/// use hdl::fx::{Format, Fx, NarrowingOf, Overflow, Quant};
+/// hdl::formats! {
+///     Out = Format::signed(8, 4);
+/// }
+/// let mut n = NarrowingOf::<Out>::new("y", Quant::RoundHalfEven, Overflow::Saturate);
+/// let v = Fx::from_raw(Format::signed(12, 6), 40); // 0.625
+/// assert_eq!(n.fx(v), v.convert(Out::FMT, Quant::RoundHalfEven, Overflow::Saturate));
+/// assert_eq!((n.name(), n.dst()), ("y", Out::FMT));
+/// ```
+pub struct NarrowingOf<F: Fmt> {
+    inner: Narrowing,
+    format: PhantomData<F>,
+}
+
+impl<F: Fmt> NarrowingOf<F> {
+    /// A narrowing named `name` into `F`, rounding by `q`, overflow by `o`.
+    pub fn new(name: &'static str, q: Quant, o: Overflow) -> NarrowingOf<F> {
+        NarrowingOf {
+            inner: Narrowing::new(name, F::FMT, q, o),
+            format: PhantomData,
+        }
+    }
+
+    /// The same narrowing with `path` declared unreachable ([`Narrowing::unreachable`]).
+    pub fn unreachable(mut self, path: NarrowPath, why: &'static str) -> NarrowingOf<F> {
+        self.inner = self.inner.unreachable(path, why);
+        self
+    }
+
+    /// `v` narrowed into `F`: [`Fx::convert`], counted when tracking.
+    #[inline(always)]
+    pub fn fx(&mut self, v: Fx) -> Fx {
+        let raw = self.inner.raw_to(F::FMT, v.raw(), v.fmt().frac());
+        Fx::from_fitting_raw(F::FMT, raw)
+    }
+
+    /// `raw * 2^-src_frac` narrowed into `F`: [`quantise`], counted when tracking.
+    #[inline(always)]
+    pub fn raw(&mut self, raw: i128, src_frac: i32) -> i128 {
+        self.inner.raw_to(F::FMT, raw, src_frac)
+    }
+}
+
+impl<F: Fmt> std::ops::Deref for NarrowingOf<F> {
+    type Target = Narrowing;
+    fn deref(&self) -> &Narrowing {
+        &self.inner
+    }
+}
+
+impl<F: Fmt> Clone for NarrowingOf<F> {
+    fn clone(&self) -> Self {
+        NarrowingOf {
+            inner: self.inner.clone(),
+            format: PhantomData,
+        }
+    }
+}
+
+impl<F: Fmt> std::fmt::Debug for NarrowingOf<F> {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        self.inner.fmt(f)
     }
 }
 

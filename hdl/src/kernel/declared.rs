@@ -73,6 +73,12 @@ impl Narrowings for Narrowing {
     }
 }
 
+impl<F: crate::fx::Fmt> Narrowings for crate::fx::NarrowingOf<F> {
+    fn visit_narrowings(&self, v: &mut dyn Visitor) {
+        v.narrowing(self);
+    }
+}
+
 impl<T: Narrowings, const N: usize> Narrowings for [T; N] {
     fn visit_narrowings(&self, v: &mut dyn Visitor) {
         self.iter().for_each(|n| n.visit_narrowings(v));
