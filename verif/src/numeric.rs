@@ -86,6 +86,11 @@ impl NarrowRow {
         }
     }
 
+    /// What makes two rows the same narrowing: path, declared format and modes.
+    fn key(&self) -> (&str, &str, &str, &str) {
+        (&self.path, &self.format, &self.quant, &self.overflow)
+    }
+
     fn merge(&mut self, o: &NarrowRow) {
         self.narrowed += o.narrowed;
         self.over_high += o.over_high;
@@ -223,6 +228,23 @@ pub fn narrowest(r: &NarrowRow) -> Option<(Format, u32)> {
     Some((f, declared.width() - w))
 }
 
+/// The headroom to saturation: the least distance from the range seen to either end of the
+/// declared format (`-max` for the low end under symmetric saturation), 0 where a value
+/// reached or passed an end; `None` before any value.
+pub fn headroom(r: &NarrowRow) -> Option<f64> {
+    let f = Format::parse(&r.format).ok()?;
+    let (lo, hi) = (r.min?, r.max?);
+    let scale = 2f64.powi(-f.frac());
+    let top = f.max_raw() as f64 * scale;
+    let symmetric = r.overflow == Overflow::SaturateSymmetric.name() && f.is_signed();
+    let bottom = if symmetric {
+        -top
+    } else {
+        f.min_raw() as f64 * scale
+    };
+    Some((top - hi).min(lo - bottom).max(0.0))
+}
+
 /// Every narrowing of `dut` with its counts (all zero unless tracking was on).
 pub fn rows(dut: &dyn Module) -> Vec<NarrowRow> {
     hdl::kernel::narrowings(dut)
@@ -231,16 +253,17 @@ pub fn rows(dut: &dyn Module) -> Vec<NarrowRow> {
         .collect()
 }
 
-/// Adds `more` into `into`, row by row of the same path, the rows kept in path order: shards
-/// and configurations merged in any order give the same rows.
+/// Adds `more` into `into`, row by row of the same narrowing (the same path, format and
+/// modes: configurations that give a narrowing other widths keep a row each), the rows kept
+/// in that order: shards and configurations merged in any order give the same rows.
 pub fn merge(into: &mut Vec<NarrowRow>, more: &[NarrowRow]) {
     for r in more {
-        match into.iter_mut().find(|x| x.path == r.path) {
+        match into.iter_mut().find(|x| x.key() == r.key()) {
             Some(x) => x.merge(r),
             None => into.push(r.clone()),
         }
     }
-    into.sort_by(|a, b| a.path.cmp(&b.path));
+    into.sort_by(|a, b| a.key().cmp(&b.key()));
 }
 
 /// A row's cells, in the table's and the CSV's column order; `none` for an empty range.
@@ -257,14 +280,14 @@ fn cells(r: &NarrowRow, num: fn(f64) -> String, none: &str) -> Vec<String> {
         r.overflow.clone(),
     ];
     c.extend(counts.iter().map(u64::to_string));
-    c.extend([opt(r.min), opt(r.max), unused, narrow]);
+    c.extend([opt(r.min), opt(r.max), opt(headroom(r)), unused, narrow]);
     c
 }
 
 /// The rows as a Markdown table for `report.md`.
 pub fn table(rows: &[NarrowRow]) -> String {
     let mut t = String::from(
-        "| narrowing | format | rounding | overflow | narrowed | over high | over low | ties | inexact | min | max | unused integer bits | narrowest |\n|---|---|---|---|---:|---:|---:|---:|---:|---:|---:|---:|---|\n",
+        "| narrowing | format | rounding | overflow | narrowed | over high | over low | ties | inexact | min | max | headroom | unused integer bits | narrowest |\n|---|---|---|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---|\n",
     );
     for r in rows {
         let _ = writeln!(
@@ -276,8 +299,49 @@ pub fn table(rows: &[NarrowRow]) -> String {
     t
 }
 
-/// A testbench's numeric coverage section of `report.md`: its table and the paths never taken.
-pub fn section(m: &mut String, rows: &[NarrowRow]) {
+/// The file name of testbench `name`'s bit chart ([`picture`]) beside `report.md`.
+pub fn picture_file(name: &str) -> String {
+    format!("{name}_narrowings.svg")
+}
+
+/// The rows as bit spans: each narrowing's declared bits, the bits its values used (the
+/// narrowest format's, [`narrowest`]), whether any overflowed. Labels drop the path's first
+/// scope when every row shares it (the testbench's top unit, named in the title).
+pub fn spans(rows: &[NarrowRow]) -> Vec<crate::plot::BitSpan> {
+    let top = |p: &str| p.split('.').next().unwrap_or("").to_string();
+    let shared = rows.first().map(|r| top(&r.path));
+    let shared = shared.filter(|t| rows.iter().all(|r| top(&r.path) == *t));
+    let bits = |f: Format| (-f.frac(), f.width() as i32 - f.frac() - 1);
+    let dup = |r: &NarrowRow| rows.iter().filter(|x| x.path == r.path).count() > 1;
+    rows.iter()
+        .filter_map(|r| {
+            let declared = Format::parse(&r.format).ok()?;
+            let mut label = match &shared {
+                Some(t) if r.path.len() > t.len() => r.path[t.len() + 1..].to_string(),
+                _ => r.path.clone(),
+            };
+            if dup(r) {
+                label = format!("{label} ({})", r.format);
+            }
+            Some(crate::plot::BitSpan {
+                label,
+                declared: bits(declared),
+                used: narrowest(r).map(|(f, _)| bits(f)),
+                overflowed: r.over_high > 0 || r.over_low > 0,
+            })
+        })
+        .collect()
+}
+
+/// Testbench `name`'s bit chart as SVG: per narrowing, the bits declared and the bits used.
+pub fn picture(name: &str, rows: &[NarrowRow]) -> Result<String, String> {
+    let title = format!("{name}: bits of each narrowing, declared and used");
+    crate::plot::bit_spans_svg(&title, &spans(rows))
+}
+
+/// A testbench's numeric coverage section of `report.md`: its table, its bit chart
+/// ([`picture_file`]), and the paths never taken.
+pub fn section(m: &mut String, name: &str, rows: &[NarrowRow]) {
     if rows.is_empty() {
         return;
     }
@@ -287,6 +351,12 @@ pub fn section(m: &mut String, rows: &[NarrowRow]) {
         "\nNumeric coverage (every named narrowing): {hit}/{total} overflow and tie paths taken\n"
     );
     m.push_str(&table(rows));
+    let file = picture_file(name);
+    let _ = writeln!(
+        m,
+        "\n![{name}: bits of each narrowing]({file})\n\n*Each narrowing's declared bits (grey) and \
+         the bits its values used (blue; red: values overflowed the format)*"
+    );
     let holes: Vec<String> = rows.iter().flat_map(NarrowRow::holes).collect();
     if !holes.is_empty() {
         let _ = writeln!(m, "\nNumeric paths never exercised: {}", holes.join("; "));
@@ -306,7 +376,7 @@ pub fn section(m: &mut String, rows: &[NarrowRow]) {
 /// The rows of every testbench as CSV (`narrowings.csv` beside `report.md`): one line a
 /// narrowing, with its testbench.
 pub fn csv(results: &[crate::TbResult]) -> String {
-    let mut t = String::from("testbench,narrowing,format,rounding,overflow,narrowed,over_high,over_low,ties,inexact,min,max,unused_integer_bits,narrowest\n");
+    let mut t = String::from("testbench,narrowing,format,rounding,overflow,narrowed,over_high,over_low,ties,inexact,min,max,headroom,unused_integer_bits,narrowest\n");
     for res in results {
         for r in &res.narrowings {
             let _ = writeln!(
@@ -363,6 +433,43 @@ mod tests {
         rows(&c)
     }
 
+    /// The bit chart's rows: the declared bits, the bits the values needed (all of them where
+    /// a value overflowed), labels without the shared top scope.
+    #[test]
+    fn spans_show_declared_and_used_bits() {
+        let a = clip(&[511, 2, 6]);
+        let s = spans(&a);
+        assert_eq!(s.len(), 2);
+        // sQ4.2: bits 2^-2 .. 2^3; `again` wrapped nothing but saw 31.9375 (raw 127.75 > 31).
+        assert_eq!((s[0].label.as_str(), s[0].declared), ("y", (-2, 3)));
+        assert!(s[0].overflowed && s[0].used == Some((-2, 3)));
+        let small = clip(&[2, 6]);
+        let s = spans(&small);
+        // 0.125 and 0.375 round to 0 and 0.5: raw 0 .. 2 needs 3 signed bits, 2^-2 .. 2^0.
+        assert_eq!((s[0].used, s[0].overflowed), (Some((-2, 0)), false));
+        let svg = picture("clip_tb", &small).unwrap();
+        assert!(svg.contains("clip_tb: bits of each narrowing"));
+    }
+
+    /// A narrowing that a configuration gives another format is another row: its counts and
+    /// range are not added into the first format's.
+    #[test]
+    fn a_narrowing_in_another_format_keeps_its_own_row() {
+        let a = clip(&[511, 2, 6]);
+        let mut wide = a.clone();
+        for r in &mut wide {
+            r.format = "sQ8.2".into();
+        }
+        let mut m = Vec::new();
+        merge(&mut m, &a);
+        merge(&mut m, &wide);
+        merge(&mut m, &a);
+        let y: Vec<_> = m.iter().filter(|r| r.path == "clip.y").collect();
+        assert_eq!(y.len(), 2);
+        assert_eq!((y[0].format.as_str(), y[0].narrowed), ("sQ4.2", 6));
+        assert_eq!((y[1].format.as_str(), y[1].narrowed), ("sQ8.2", 3));
+    }
+
     /// Rows carry the counts and the declared modes; runs merge path by path, adding counts
     /// and widening the range; the holes are the overflow sides and ties never met.
     #[test]
@@ -414,7 +521,7 @@ mod tests {
         assert!(csv.starts_with("testbench,narrowing,format,"));
         assert!(
             csv.contains(
-                "\nclip_tb,clip.y,sQ4.2,round-half-even,saturate,4,1,1,2,3,-32,31.9375,0,sQ4.2\n"
+                "\nclip_tb,clip.y,sQ4.2,round-half-even,saturate,4,1,1,2,3,-32,31.9375,0,0,sQ4.2\n"
             ),
             "{csv}"
         );

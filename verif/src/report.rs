@@ -142,7 +142,7 @@ pub fn markdown(project: &Project, s: &Summary, pictures: &[Picture]) -> String 
         if !r.unhit.is_empty() {
             let _ = writeln!(m, "\nCoverage holes: {}", r.unhit.join(", "));
         }
-        crate::numeric::section(&mut m, &r.narrowings);
+        crate::numeric::section(&mut m, &r.name, &r.narrowings);
         for f in r.mismatch_log.iter().chain(&r.failures) {
             let _ = writeln!(m, "- **{f}**");
         }
@@ -181,6 +181,10 @@ pub fn write_report(project: &Project, out: &Path, summary: &Summary) -> Result<
     }
     if results.iter().any(|r| !r.narrowings.is_empty()) {
         write("narrowings.csv", crate::numeric::csv(results).as_bytes())?;
+    }
+    for r in results.iter().filter(|r| !r.narrowings.is_empty()) {
+        let svg = crate::numeric::picture(&r.name, &r.narrowings)?;
+        write(&crate::numeric::picture_file(&r.name), svg.as_bytes())?;
     }
     write(
         "report.md",
