@@ -44,7 +44,7 @@ fn results_are_quantise_and_counts_are_the_definitions() {
                 assert_eq!((s.ties, s.inexact), (ties, inexact), "{q:?} {o:?} {frac}");
                 let src = Format::signed(10, frac);
                 let (lo, hi) = (Fx::from_raw(src, -512), Fx::from_raw(src, 511));
-                let (min, max) = (s.min.unwrap(), s.max.unwrap());
+                let (min, max) = (s.min().unwrap(), s.max().unwrap());
                 assert!(min.cmp_value(&lo).is_eq() && max.cmp_value(&hi).is_eq());
                 set_tracking(false);
             }
@@ -123,4 +123,41 @@ fn the_flag_is_a_wire_that_shows_the_latest_saturation() {
     sim.dut.x.set_raw(2047);
     sim.step();
     assert_eq!(sim.dut.round.flag().raw(), 0, "off: not set");
+}
+
+proptest::proptest! {
+    /// The range kept while tracking is the exact smallest and largest value narrowed, for
+    /// sources whose fraction bits vary from value to value (normal 156's `2^-k` does), wide
+    /// values included, and two runs merged hold both runs' ends.
+    #[test]
+    fn the_range_is_exact_whatever_the_fraction_bits(
+        values in proptest::collection::vec((proptest::num::i128::ANY, -20i32..60), 1..40),
+        split in 0usize..40,
+    ) {
+        let as_fx = |(raw, frac): (i128, i32)| Fx::from_raw(Format::new(128, frac, true), raw);
+        let run = |vs: &[(i128, i32)]| {
+            let mut n = Narrowing::new("x", Format::signed(8, 2), Quant::RoundHalfEven, Overflow::Saturate);
+            set_tracking(true);
+            for &(raw, frac) in vs {
+                n.raw(raw >> (raw.unsigned_abs().leading_zeros() % 100), frac);
+            }
+            set_tracking(false);
+            n.stats().clone()
+        };
+        let narrowed: Vec<(i128, i32)> = values
+            .iter()
+            .map(|&(raw, frac)| (raw >> (raw.unsigned_abs().leading_zeros() % 100), frac))
+            .collect();
+        let want_min = narrowed.iter().map(|&v| as_fx(v)).min_by(|a, b| a.cmp_value(b)).unwrap();
+        let want_max = narrowed.iter().map(|&v| as_fx(v)).max_by(|a, b| a.cmp_value(b)).unwrap();
+        let whole = run(&values);
+        proptest::prop_assert!(whole.min().unwrap().cmp_value(&want_min).is_eq());
+        proptest::prop_assert!(whole.max().unwrap().cmp_value(&want_max).is_eq());
+        let k = split.min(values.len());
+        let mut merged = run(&values[..k]);
+        merged.merge(&run(&values[k..]));
+        proptest::prop_assert!(merged.min().unwrap().cmp_value(&want_min).is_eq());
+        proptest::prop_assert!(merged.max().unwrap().cmp_value(&want_max).is_eq());
+        proptest::prop_assert_eq!(merged.narrowed, values.len() as u64);
+    }
 }

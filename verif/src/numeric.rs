@@ -73,8 +73,8 @@ impl NarrowRow {
             over_low: s.over_low,
             ties: s.ties,
             inexact: s.inexact,
-            min: s.min.filter(|_| seen).map(Fx::to_f64),
-            max: s.max.filter(|_| seen).map(Fx::to_f64),
+            min: s.min().filter(|_| seen).map(Fx::to_f64),
+            max: s.max().filter(|_| seen).map(Fx::to_f64),
             unreachable: n
                 .unreachable_paths()
                 .iter()

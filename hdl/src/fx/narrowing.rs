@@ -39,10 +39,8 @@ pub struct NarrowStats {
     pub ties: u64,
     /// Values that lost fraction bits (not exactly representable before overflow).
     pub inexact: u64,
-    /// The smallest value before narrowing, exactly (`None` before the first).
-    pub min: Option<Fx>,
-    /// The largest.
-    pub max: Option<Fx>,
+    /// The range before narrowing, exactly: each end a raw value and its fraction bits.
+    range: Option<[(i128, i32); 2]>,
 }
 
 impl NarrowStats {
@@ -53,19 +51,91 @@ impl NarrowStats {
         self.over_low += o.over_low;
         self.ties += o.ties;
         self.inexact += o.inexact;
-        self.widen(o.min);
-        self.widen(o.max);
+        for (raw, frac) in o.range.into_iter().flatten() {
+            self.widen_slow(raw, frac);
+        }
     }
 
-    /// Widens the range to hold `x`.
-    fn widen(&mut self, x: Option<Fx>) {
-        let Some(x) = x else { return };
-        if self.min.is_none_or(|m| x < m) {
-            self.min = Some(x);
+    /// The smallest value before narrowing, exactly (`None` before the first).
+    pub fn min(&self) -> Option<Fx> {
+        self.range.and_then(|[lo, _]| end(lo))
+    }
+
+    /// The largest value before narrowing, exactly.
+    pub fn max(&self) -> Option<Fx> {
+        self.range.and_then(|[_, hi]| end(hi))
+    }
+
+    /// Widens the range to hold `raw * 2^-frac`. Both ends are kept with the same fraction
+    /// bits where they fit an i128 that way, so a value of no more fraction bits than theirs
+    /// (a narrowing's source keeps its format, or varies within a few bits) is compared with
+    /// one shift and two integer compares.
+    #[inline(always)]
+    fn widen_raw(&mut self, raw: i128, frac: i32) {
+        if let Some([lo, hi]) = &mut self.range {
+            let sh = lo.1 - frac;
+            let aligned = match sh {
+                0 => Some(raw),
+                1..127 => Some(raw << sh).filter(|v| v >> sh == raw),
+                _ => None,
+            };
+            if let Some(v) = aligned.filter(|_| lo.1 == hi.1) {
+                if v < lo.0 {
+                    lo.0 = v;
+                } else if v > hi.0 {
+                    hi.0 = v;
+                }
+                return;
+            }
         }
-        if self.max.is_none_or(|m| x > m) {
-            self.max = Some(x);
+        self.widen_slow(raw, frac);
+    }
+
+    /// [`NarrowStats::widen_raw`] by value, then both ends in one format where they fit it.
+    #[cold]
+    fn widen_slow(&mut self, raw: i128, frac: i32) {
+        let x = (raw, frac);
+        let [mut lo, mut hi] = self.range.unwrap_or([x, x]);
+        if cmp(x, lo).is_lt() {
+            lo = x;
         }
+        if cmp(x, hi).is_gt() {
+            hi = x;
+        }
+        // The most fraction bits seen, this value's included: later values with as many
+        // take the direct comparison.
+        let f = lo.1.max(hi.1).max(frac);
+        let up = |(r, fr): (i128, i32)| {
+            let s = (f - fr) as u32;
+            let v = r.checked_shl(s)?;
+            (v >> s == r).then_some((v, f))
+        };
+        if let (Some(a), Some(b)) = (up(lo), up(hi)) {
+            (lo, hi) = (a, b);
+        }
+        self.range = Some([lo, hi]);
+    }
+}
+
+/// `raw * 2^-frac` as a value, in a signed 128-bit format of its fraction bits (`None` where
+/// a format cannot have that many).
+fn end((raw, frac): (i128, i32)) -> Option<Fx> {
+    let f = Format::try_new(128, frac, true).ok()?;
+    Some(Fx::from_fitting_raw(f, raw))
+}
+
+/// Two values `raw * 2^-frac` compared exactly.
+fn cmp(a: (i128, i32), b: (i128, i32)) -> std::cmp::Ordering {
+    let f = a.1.max(b.1);
+    let up = |(r, fr): (i128, i32)| {
+        let s = (f - fr) as u32;
+        r.checked_shl(s).filter(|v| v >> s == r)
+    };
+    match (up(a), up(b)) {
+        (Some(x), Some(y)) => x.cmp(&y),
+        // A value that overflows the alignment is larger in magnitude than the other.
+        (None, _) => a.0.cmp(&0),
+        (_, None) => 0.cmp(&b.0),
     }
 }
 
@@ -110,6 +180,11 @@ pub struct Narrowing {
     stats: NarrowStats,
     flag: Signal,
     unreachable: Vec<(NarrowPath, &'static str)>,
+    /// The destination's largest raw value and its smallest under the overflow mode (`-max`
+    /// under symmetric saturation), and whether the rounding mode has a tie rule.
+    top: i128,
+    bottom: i128,
+    tie_rule: bool,
 }
 
 impl Narrowing {
@@ -123,6 +198,13 @@ impl Narrowing {
             stats: NarrowStats::default(),
             flag: Signal::bit(flag_name(name, o)),
             unreachable: Vec::new(),
+            top: dst.max_raw(),
+            bottom: if o == Overflow::SaturateSymmetric && dst.is_signed() {
+                -dst.max_raw()
+            } else {
+                dst.min_raw()
+            },
+            tie_rule: has_tie_rule(q),
         }
     }
 
@@ -221,30 +303,38 @@ impl Narrowing {
     #[cold]
     #[inline(never)]
     fn record(&mut self, raw: i128, src_frac: i32) {
-        let (d, s) = (self.dst, &mut self.stats);
-        let shift = src_frac - d.frac();
-        let (v, huge) = rounded(raw, shift, self.q);
-        let (lost, tie) = dropped(raw, shift);
+        let shift = src_frac - self.dst.frac();
+        // The common case in 64-bit arithmetic: a value that fits an i64, rounded at a bit
+        // inside it (what `quantise` computes in 64 bits too).
+        let (v, huge, lost, tie) = match i64::try_from(raw) {
+            Ok(r) if (1..63).contains(&shift) => {
+                let s = shift as u32;
+                let floor = r >> s;
+                let half = (r >> (s - 1)) & 1 == 1;
+                let sticky = r & ((1i64 << (s - 1)) - 1) != 0;
+                let inc = self.q.increment(r < 0, floor & 1 == 1, half, sticky);
+                let v = i128::from(floor + i64::from(inc));
+                (v, false, half || sticky, half && !sticky)
+            }
+            _ => {
+                let (v, huge) = rounded(raw, shift, self.q);
+                let (lost, tie) = dropped(raw, shift);
+                (v, huge, lost, tie)
+            }
+        };
+        let s = &mut self.stats;
         s.narrowed += 1;
         s.inexact += u64::from(lost);
-        s.ties += u64::from(tie && has_tie_rule(self.q));
-        let low = if self.o == Overflow::SaturateSymmetric && d.is_signed() {
-            -d.max_raw()
-        } else {
-            d.min_raw()
-        };
+        s.ties += u64::from(tie && self.tie_rule);
         let (high, under) = if huge {
             (raw >= 0, raw < 0)
         } else {
-            (v > d.max_raw(), v < low)
+            (v > self.top, v < self.bottom)
         };
         s.over_high += u64::from(high);
         s.over_low += u64::from(under);
         self.flag.set_raw(i64::from(high || under));
-        // The value exactly: every i128 fits a signed 128-bit format of the source's fraction.
-        if let Ok(f) = Format::try_new(128, src_frac, true) {
-            s.widen(Some(Fx::from_raw(f, raw)));
-        }
+        s.widen_raw(raw, src_frac);
     }
 }
 

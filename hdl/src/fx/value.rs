@@ -186,6 +186,7 @@ fn round_shift<T: num_traits::PrimInt + num_traits::Signed>(r: T, s: u32, q: Qua
 
 /// `raw * 2^-src_frac` rounded by `q` to units of `2^-dst_frac`, before any overflow rule;
 /// `huge` marks a value that does not fit an i128 (then only its sign and low bits matter).
+#[inline]
 pub(crate) fn rounded(raw: i128, shift: i32, q: Quant) -> (i128, bool) {
     if shift > 0 {
         let s = shift as u32;
@@ -212,6 +213,7 @@ pub(crate) fn rounded(raw: i128, shift: i32, q: Quant) -> (i128, bool) {
 
 /// What dropping `shift` bits of `raw` meets: whether any dropped bit is set, and whether the
 /// dropped bits are exactly one half of the kept LSB (a tie).
+#[inline]
 pub(crate) fn dropped(raw: i128, shift: i32) -> (bool, bool) {
     if shift <= 0 {
         return (false, false);
