@@ -185,6 +185,29 @@ pub struct Narrowing {
     top: i128,
     bottom: i128,
     tie_rule: bool,
+    /// The modes, as one of the common pairs (one byte to test where a narrowing is applied).
+    modes: Modes,
+}
+
+/// The common pairs of a rounding and an overflow mode, which a narrowing applies with the
+/// modes as constants.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+enum Modes {
+    EvenSaturate,
+    EvenSymmetric,
+    TruncWrap,
+    Other,
+}
+
+impl Modes {
+    fn of(q: Quant, o: Overflow) -> Modes {
+        match (q, o) {
+            (Quant::RoundHalfEven, Overflow::Saturate) => Modes::EvenSaturate,
+            (Quant::RoundHalfEven, Overflow::SaturateSymmetric) => Modes::EvenSymmetric,
+            (Quant::Trunc, Overflow::Wrap) => Modes::TruncWrap,
+            _ => Modes::Other,
+        }
+    }
 }
 
 impl Narrowing {
@@ -205,6 +228,7 @@ impl Narrowing {
                 dst.min_raw()
             },
             tie_rule: has_tie_rule(q),
+            modes: Modes::of(q, o),
         }
     }
 
@@ -276,21 +300,19 @@ impl Narrowing {
         // The modes as constants where they are the common ones, so `quantise`'s rounding and
         // overflow logic folds as it does at a call site that names them (one predictable
         // branch here instead of a run-time match inside).
-        match (self.q, self.o) {
-            (Quant::RoundHalfEven, Overflow::Saturate) => {
+        match self.modes {
+            Modes::EvenSaturate => {
                 quantise(raw, src_frac, dst, Quant::RoundHalfEven, Overflow::Saturate)
             }
-            (Quant::RoundHalfEven, Overflow::SaturateSymmetric) => quantise(
+            Modes::EvenSymmetric => quantise(
                 raw,
                 src_frac,
                 dst,
                 Quant::RoundHalfEven,
                 Overflow::SaturateSymmetric,
             ),
-            (Quant::Trunc, Overflow::Wrap) => {
-                quantise(raw, src_frac, dst, Quant::Trunc, Overflow::Wrap)
-            }
-            (q, o) => quantise(raw, src_frac, dst, q, o),
+            Modes::TruncWrap => quantise(raw, src_frac, dst, Quant::Trunc, Overflow::Wrap),
+            Modes::Other => quantise(raw, src_frac, dst, self.q, self.o),
         }
     }
 

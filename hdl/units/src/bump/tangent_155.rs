@@ -239,8 +239,12 @@ impl Tangent {
         let s = <T as From<i64>>::from(scale);
         let sf = self.sf;
         let [rdu, rdv, rh] = &mut self.round;
-        let q = |n: &mut Narrowing, x: T, fr: u32| n.raw((x * s).into(), (fr + sf) as i32) as i64;
-        (q(rdu, du, fd), q(rdv, dv, fd), q(rh, h, fh))
+        // Three calls written out: a closure for them was left out of line.
+        (
+            rdu.raw((du * s).into(), (fd + sf) as i32) as i64,
+            rdv.raw((dv * s).into(), (fd + sf) as i32) as i64,
+            rh.raw((h * s).into(), (fh + sf) as i32) as i64,
+        )
     }
 }
 
