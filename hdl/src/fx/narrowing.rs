@@ -189,6 +189,13 @@ pub struct Narrowing {
     modes: Modes,
 }
 
+/// [`Narrowing::record`]'s modes: round half to even, truncate, the narrowing's own.
+const EVEN: u8 = 6;
+const TRUNC: u8 = 0;
+const ANY: u8 = u8::MAX;
+const _: () = assert!(matches!(Quant::ALL[EVEN as usize], Quant::RoundHalfEven));
+const _: () = assert!(matches!(Quant::ALL[TRUNC as usize], Quant::Trunc));
+
 /// The common pairs of a rounding and an overflow mode, which a narrowing applies with the
 /// modes as constants.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -294,25 +301,36 @@ impl Narrowing {
     #[inline(always)]
     fn raw_to(&mut self, dst: Format, raw: i128, src_frac: i32) -> i128 {
         debug_assert_eq!(dst, self.dst);
-        if tracking() {
-            self.record(raw, src_frac);
-        }
+        let tracked = tracking();
         // The modes as constants where they are the common ones, so `quantise`'s rounding and
         // overflow logic folds as it does at a call site that names them (one predictable
-        // branch here instead of a run-time match inside).
+        // branch here instead of a run-time match inside), and so does the count's rounding.
         match self.modes {
             Modes::EvenSaturate => {
+                if tracked {
+                    self.record::<EVEN>(raw, src_frac);
+                }
                 quantise(raw, src_frac, dst, Quant::RoundHalfEven, Overflow::Saturate)
             }
-            Modes::EvenSymmetric => quantise(
-                raw,
-                src_frac,
-                dst,
-                Quant::RoundHalfEven,
-                Overflow::SaturateSymmetric,
-            ),
-            Modes::TruncWrap => quantise(raw, src_frac, dst, Quant::Trunc, Overflow::Wrap),
-            Modes::Other => quantise(raw, src_frac, dst, self.q, self.o),
+            Modes::EvenSymmetric => {
+                if tracked {
+                    self.record::<EVEN>(raw, src_frac);
+                }
+                let o = Overflow::SaturateSymmetric;
+                quantise(raw, src_frac, dst, Quant::RoundHalfEven, o)
+            }
+            Modes::TruncWrap => {
+                if tracked {
+                    self.record::<TRUNC>(raw, src_frac);
+                }
+                quantise(raw, src_frac, dst, Quant::Trunc, Overflow::Wrap)
+            }
+            Modes::Other => {
+                if tracked {
+                    self.record::<ANY>(raw, src_frac);
+                }
+                quantise(raw, src_frac, dst, self.q, self.o)
+            }
         }
     }
 
@@ -322,9 +340,16 @@ impl Narrowing {
         Fx::from_fitting_raw(self.dst, self.raw(v.raw(), v.fmt().frac()))
     }
 
+    /// Counts one value narrowed, rounding as mode `Q` (an index into [`Quant::ALL`], so
+    /// that the common modes fold) or, for [`ANY`], as the narrowing's own mode.
     #[cold]
     #[inline(never)]
-    fn record(&mut self, raw: i128, src_frac: i32) {
+    fn record<const Q: u8>(&mut self, raw: i128, src_frac: i32) {
+        let q = if Q == ANY {
+            self.q
+        } else {
+            Quant::ALL[Q as usize]
+        };
         let shift = src_frac - self.dst.frac();
         // The common case in 64-bit arithmetic: a value that fits an i64, rounded at a bit
         // inside it (what `quantise` computes in 64 bits too).
@@ -334,12 +359,12 @@ impl Narrowing {
                 let floor = r >> s;
                 let half = (r >> (s - 1)) & 1 == 1;
                 let sticky = r & ((1i64 << (s - 1)) - 1) != 0;
-                let inc = self.q.increment(r < 0, floor & 1 == 1, half, sticky);
+                let inc = q.increment(r < 0, floor & 1 == 1, half, sticky);
                 let v = i128::from(floor + i64::from(inc));
                 (v, false, half || sticky, half && !sticky)
             }
             _ => {
-                let (v, huge) = rounded(raw, shift, self.q);
+                let (v, huge) = rounded(raw, shift, q);
                 let (lost, tie) = dropped(raw, shift);
                 (v, huge, lost, tie)
             }
