@@ -54,16 +54,17 @@ impl Quant {
     /// bit; `sticky`: OR of the dropped bits below it.
     #[inline]
     pub const fn increment(self, negative: bool, odd: bool, half: bool, sticky: bool) -> bool {
-        let above_half = half && sticky;
-        let tie = half && !sticky;
+        // Bitwise, not short-circuit: the bits are data, and branches on them mispredict.
+        let above_half = half & sticky;
+        let tie = half & !sticky;
         match self {
             Quant::Trunc => false,
-            Quant::TruncZero => negative && (half || sticky),
+            Quant::TruncZero => negative & (half | sticky),
             Quant::RoundHalfUp => half,
-            Quant::RoundHalfZero => above_half || (tie && negative),
-            Quant::RoundHalfAway => above_half || (tie && !negative),
+            Quant::RoundHalfZero => above_half | (tie & negative),
+            Quant::RoundHalfAway => above_half | (tie & !negative),
             Quant::RoundHalfDown => above_half,
-            Quant::RoundHalfEven => above_half || (tie && odd),
+            Quant::RoundHalfEven => above_half | (tie & odd),
         }
     }
 }

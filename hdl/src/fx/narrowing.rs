@@ -27,7 +27,7 @@ pub fn tracking() -> bool {
 }
 
 /// What one narrowing met while tracking was on.
-#[derive(Clone, Debug, Default, PartialEq)]
+#[derive(Clone, Debug, PartialEq)]
 pub struct NarrowStats {
     /// Values narrowed.
     pub narrowed: u64,
@@ -41,6 +41,24 @@ pub struct NarrowStats {
     pub inexact: u64,
     /// The range before narrowing, exactly: each end a raw value and its fraction bits.
     range: Option<[(i128, i32); 2]>,
+    /// The ends rounded into the destination (before any overflow rule): a value whose
+    /// rounding lies strictly between them lies strictly inside the range (rounding is
+    /// monotonic), so only the others are compared exactly. Empty: `MAX`, `MIN`.
+    rounded: (i128, i128),
+}
+
+impl Default for NarrowStats {
+    fn default() -> Self {
+        NarrowStats {
+            narrowed: 0,
+            over_high: 0,
+            over_low: 0,
+            ties: 0,
+            inexact: 0,
+            range: None,
+            rounded: (i128::MAX, i128::MIN),
+        }
+    }
 }
 
 impl NarrowStats {
@@ -53,6 +71,22 @@ impl NarrowStats {
         self.inexact += o.inexact;
         for (raw, frac) in o.range.into_iter().flatten() {
             self.widen_slow(raw, frac);
+        }
+        self.rounded = (
+            self.rounded.0.min(o.rounded.0),
+            self.rounded.1.max(o.rounded.1),
+        );
+    }
+
+    /// Widens the range to hold `raw * 2^-frac`, which rounds to `v` in the destination:
+    /// exactly, where `v` is not strictly between the rounded ends (rare once a run has
+    /// spread), else nothing to do.
+    #[inline(always)]
+    fn widen_rounded(&mut self, raw: i128, frac: i32, v: i128) {
+        let (lo, hi) = self.rounded;
+        if v <= lo || v >= hi {
+            self.rounded = (lo.min(v), hi.max(v));
+            self.widen_raw(raw, frac);
         }
     }
 
@@ -361,7 +395,7 @@ impl Narrowing {
                 let sticky = r & ((1i64 << (s - 1)) - 1) != 0;
                 let inc = q.increment(r < 0, floor & 1 == 1, half, sticky);
                 let v = i128::from(floor + i64::from(inc));
-                (v, false, half || sticky, half && !sticky)
+                (v, false, half | sticky, half & !sticky)
             }
             _ => {
                 let (v, huge) = rounded(raw, shift, q);
@@ -372,7 +406,7 @@ impl Narrowing {
         let s = &mut self.stats;
         s.narrowed += 1;
         s.inexact += u64::from(lost);
-        s.ties += u64::from(tie && self.tie_rule);
+        s.ties += u64::from(tie & self.tie_rule);
         let (high, under) = if huge {
             (raw >= 0, raw < 0)
         } else {
@@ -380,8 +414,12 @@ impl Narrowing {
         };
         s.over_high += u64::from(high);
         s.over_low += u64::from(under);
-        self.flag.set_raw(i64::from(high || under));
-        s.widen_raw(raw, src_frac);
+        self.flag.set_raw(i64::from(high | under));
+        if huge {
+            s.widen_raw(raw, src_frac);
+        } else {
+            s.widen_rounded(raw, src_frac, v);
+        }
     }
 }
 
