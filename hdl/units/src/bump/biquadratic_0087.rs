@@ -153,9 +153,9 @@ impl Biquadratic0087 {
         self.valid.set_next_bool(valid);
         if valid {
             let sums = sums(&self.map, self.u.raw(), self.v.raw());
-            for c in 0..3 {
-                let x = self.round[c].raw(sums[c].into(), SUM_FRAC);
-                self.rgb[c].set_next_raw(x as i64);
+            let channels = self.rgb.iter_mut().zip(&mut self.round);
+            for ((r, n), x) in channels.zip(sums) {
+                r.set_next_raw(n.raw(x.into(), SUM_FRAC) as i64);
             }
         }
     }
