@@ -414,7 +414,7 @@ impl Narrowing {
         };
         s.over_high += u64::from(high);
         s.over_low += u64::from(under);
-        self.flag.set_raw(i64::from(high | under));
+        self.flag.set_flag(high | under);
         if huge {
             s.widen_raw(raw, src_frac);
         } else {

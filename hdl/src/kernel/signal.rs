@@ -175,6 +175,13 @@ impl Signal {
         self.bits = bits;
     }
 
+    /// Writes a bool to a signal known to be one bit wide (a narrowing's flag), unchecked.
+    #[inline]
+    pub(crate) fn set_flag(&mut self, b: bool) {
+        debug_assert_eq!(self.mask, 1, "'{}' is not one bit", self.name);
+        self.bits = u64::from(b);
+    }
+
     /// Writes a bool to a one-bit signal.
     #[inline]
     #[track_caller]
