@@ -44,19 +44,9 @@ fn pass(cycles: u64, on: bool) -> f64 {
     let mut sim = Sim::new(dut);
     hdl::fx::set_tracking(on);
     let t = Instant::now();
-    let mut acc = 0u64;
-    for c in 0..cycles as i64 {
-        sim.dut.valid_in.set_bool(true);
-        sim.dut.u.set_raw((c * 37) % (16 << 8));
-        sim.dut.v.set_raw((c * 91) % (16 << 8));
-        sim.dut.scale.set_raw(256);
-        sim.eval();
-        acc = acc.wrapping_add(sim.dut.nz.bits());
-        sim.tick();
-    }
+    black_box(tb::normals::bench_cycles(&mut sim, cycles));
     let ns = t.elapsed().as_secs_f64() * 1e9 / cycles as f64;
     hdl::fx::set_tracking(false);
-    black_box(acc);
     ns
 }
 

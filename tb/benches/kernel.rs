@@ -102,17 +102,7 @@ fn fixed_point(c: &mut Criterion) {
 }
 
 fn pipeline<T: Trace>(sim: &mut Sim<NormalPipeline, T>) -> u64 {
-    let mut acc = 0;
-    for c in 0..CYCLES as i64 {
-        sim.dut.valid_in.set_bool(true);
-        sim.dut.u.set_raw((c * 37) % (16 << 8));
-        sim.dut.v.set_raw((c * 91) % (16 << 8));
-        sim.dut.scale.set_raw(256);
-        sim.eval();
-        acc += sim.dut.nz.bits();
-        sim.tick();
-    }
-    acc
+    tb::normals::bench_cycles(sim, CYCLES)
 }
 
 fn normal_pipeline(c: &mut Criterion) {

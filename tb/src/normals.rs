@@ -245,6 +245,23 @@ fn narrowings(dut: &NormalPipeline) -> Vec<verif::numeric::NarrowRow> {
 /// The coverage model: border mode x variant, blend factors at 0 / interior / max, samples
 /// in edge cells, and height extremes (the 3x3 neighbourhood holds the lowest and/or highest
 /// texel value of the format).
+/// The speed benchmarks' stimulus: `cycles` cycles of the default pipeline (16 x 16 texels),
+/// `u` and `v` stepping through every texel at two strides, a valid sample and a unit scale
+/// every cycle; the sum of the `nz` outputs (so that nothing is optimised away).
+pub fn bench_cycles<T: Trace>(sim: &mut Sim<NormalPipeline, T>, cycles: u64) -> u64 {
+    let mut acc = 0u64;
+    for c in 0..cycles as i64 {
+        sim.dut.valid_in.set_bool(true);
+        sim.dut.u.set_raw((c * 37) % (16 << 8));
+        sim.dut.v.set_raw((c * 91) % (16 << 8));
+        sim.dut.scale.set_raw(256);
+        sim.eval();
+        acc = acc.wrapping_add(sim.dut.nz.bits());
+        sim.tick();
+    }
+    acc
+}
+
 pub fn coverage_model() -> Coverage {
     let mut c = Coverage::new();
     let b = c.add(
