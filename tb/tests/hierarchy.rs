@@ -164,12 +164,22 @@ fn all_under(top: &dyn Module, scope: &str) -> bool {
     !paths.is_empty() && paths.iter().all(|p| p.starts_with(&format!("{scope}.")))
 }
 
-/// The units beside the TEXRAM chip (video port, footprint assembly, ray caster, environment
-/// maps): every scope their waveforms are read by, with its signals.
+/// The environment map's units: their signals and their kind.
 #[test]
-fn the_texram_side_units_visit_every_scope() {
+fn the_environment_map_units_visit_every_signal() {
     use units::envmap::cube_face::CubeFace;
     use units::envmap::reflect_eq4::Reflect;
+    assert_eq!(paths_with(&CubeFace::new(), "cube_face."), 8);
+    // valid_in, six inputs, valid, three outputs, the three narrowings' saturation flags.
+    assert_eq!(paths_with(&Reflect::new(), "reflect_eq4."), 14);
+    assert_eq!(kinds(&CubeFace::new()), own(&[("cube_face", 1)]));
+    assert_eq!(kinds(&Reflect::new()), own(&[("reflect_eq4", 1)]));
+}
+
+/// The units beside the TEXRAM chip (video port, footprint assembly, ray caster): every
+/// scope their waveforms are read by, with its signals.
+#[test]
+fn the_texram_side_units_visit_every_scope() {
     use units::footprint::footprint_fig12::FootprintFig12;
     use units::footprint::normals_0081::FootprintNormals;
     use units::footprint::setup_fig12::SetupParams;
@@ -230,12 +240,7 @@ fn the_texram_side_units_visit_every_scope() {
     ] {
         assert!(all_under(top, scope), "{scope}");
     }
-    assert_eq!(paths_with(&CubeFace::new(), "cube_face."), 8);
-    // valid_in, six inputs, valid, three outputs, the three narrowings' saturation flags.
-    assert_eq!(paths_with(&Reflect::new(), "reflect_eq4."), 14);
     // Every instance's kind, by hand from the modules' documentation.
-    assert_eq!(kinds(&CubeFace::new()), own(&[("cube_face", 1)]));
-    assert_eq!(kinds(&Reflect::new()), own(&[("reflect_eq4", 1)]));
     let caster = [
         ("ray_caster_fig15", 1),
         ("volume_stepper", 1),
