@@ -125,15 +125,17 @@ impl NarrowStats {
         self.widen_slow(raw, frac);
     }
 
-    /// [`NarrowStats::widen_raw`] by value, then both ends in one format where they fit it.
+    /// [`NarrowStats::widen_raw`] by value, then both ends in one format where they fit it
+    /// (a value whose fraction bits no format can have is left out, as it cannot be shown).
     #[cold]
     fn widen_slow(&mut self, raw: i128, frac: i32) {
         let x = (raw, frac);
+        let Some(xv) = end(x) else { return };
         let [mut lo, mut hi] = self.range.unwrap_or([x, x]);
-        if cmp(x, lo).is_lt() {
+        if end(lo).is_none_or(|v| xv.cmp_value(&v).is_lt()) {
             lo = x;
         }
-        if cmp(x, hi).is_gt() {
+        if end(hi).is_none_or(|v| xv.cmp_value(&v).is_gt()) {
             hi = x;
         }
         // The most fraction bits seen, this value's included: later values with as many
@@ -156,21 +158,6 @@ impl NarrowStats {
 fn end((raw, frac): (i128, i32)) -> Option<Fx> {
     let f = Format::try_new(128, frac, true).ok()?;
     Some(Fx::from_fitting_raw(f, raw))
-}
-
-/// Two values `raw * 2^-frac` compared exactly.
-fn cmp(a: (i128, i32), b: (i128, i32)) -> std::cmp::Ordering {
-    let f = a.1.max(b.1);
-    let up = |(r, fr): (i128, i32)| {
-        let s = (f - fr) as u32;
-        r.checked_shl(s).filter(|v| v >> s == r)
-    };
-    match (up(a), up(b)) {
-        (Some(x), Some(y)) => x.cmp(&y),
-        // A value that overflows the alignment is larger in magnitude than the other.
-        (None, _) => a.0.cmp(&0),
-        (_, None) => 0.cmp(&b.0),
-    }
 }
 
 /// A path through a narrowing that numeric coverage counts: an overflow on either side, a
