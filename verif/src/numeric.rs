@@ -440,7 +440,7 @@ mod tests {
         let a = clip(&[511, 2, 6]);
         let s = spans(&a);
         assert_eq!(s.len(), 2);
-        // sQ4.2: bits 2^-2 .. 2^3; `again` wrapped nothing but saw 31.9375 (raw 127.75 > 31).
+        // sQ4.2: bits 2^-2 .. 2^3; `y` saturated 31.9375 (above 7.75): all its bits, red.
         assert_eq!((s[0].label.as_str(), s[0].declared), ("y", (-2, 3)));
         assert!(s[0].overflowed && s[0].used == Some((-2, 3)));
         let small = clip(&[2, 6]);

@@ -269,6 +269,13 @@ impl Narrowing {
         self
     }
 
+    /// The same narrowing with both overflow paths declared unreachable for the reason `why`
+    /// (a bound that keeps every value inside the destination).
+    pub fn never_overflows(self, why: &'static str) -> Narrowing {
+        self.unreachable(NarrowPath::High, why)
+            .unreachable(NarrowPath::Low, why)
+    }
+
     /// [`Narrowing::unreachable`] where `bound` holds (a bound the constructor proves from
     /// its widths, which are parameters: with other widths the path may be reachable).
     pub fn unreachable_if(self, bound: bool, path: NarrowPath, why: &'static str) -> Narrowing {

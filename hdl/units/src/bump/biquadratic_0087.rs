@@ -15,7 +15,7 @@
 
 use crate::bump::params::Border;
 use crate::bump::texel_fetch_151::border_index;
-use crate::fx::{quantise, Format, NarrowPath, Narrowing, Overflow, Quant};
+use crate::fx::{quantise, Format, Narrowing, Overflow, Quant};
 use crate::kernel::{Module, Reg, Signal};
 
 /// Position fraction bits.
@@ -97,9 +97,7 @@ const SUM_FRAC: i32 = 34;
 fn channel_narrowing(name: &'static str) -> Narrowing {
     const INSIDE: &str =
         "the B-spline weights are non-negative and sum to one: a channel lies between its texels";
-    Narrowing::new(name, CHANNEL, Quant::RoundHalfUp, Overflow::Saturate)
-        .unreachable(NarrowPath::High, INSIDE)
-        .unreachable(NarrowPath::Low, INSIDE)
+    Narrowing::new(name, CHANNEL, Quant::RoundHalfUp, Overflow::Saturate).never_overflows(INSIDE)
 }
 
 /// The unit.

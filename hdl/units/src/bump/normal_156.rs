@@ -25,7 +25,7 @@
 
 use crate::bump::params::{BumpParams, RsqrtParams, ROUND, SAT};
 use crate::bump::rsqrt_156::{m_fmt, rsqrt, Rsqrt, RsqrtTable};
-use crate::fx::{quantise, Format, NarrowPath, Narrowing};
+use crate::fx::{quantise, Format, Narrowing};
 use crate::kernel::{Delay, Module, Reg, Signal};
 
 /// `(k, m)` with `s * 2^-s_frac = m * 4^k`, `m` truncated to `mant_frac` fraction bits.
@@ -91,8 +91,7 @@ fn unit_vector_by(
 pub fn unit_narrowings(names: [&'static str; 3]) -> [Narrowing; 3] {
     names.map(|n| {
         Narrowing::new(n, Format::signed(16, UNIT_FRAC as i32), ROUND, SAT)
-            .unreachable(NarrowPath::High, UNIT_BOUND)
-            .unreachable(NarrowPath::Low, UNIT_BOUND)
+            .never_overflows(UNIT_BOUND)
     })
 }
 
@@ -171,9 +170,7 @@ impl Normal {
             scaled: ["nx", "ny", "nz"].map(|n| {
                 // A unit vector's components are within [-1, 1]; the rsqrt's relative error
                 // (a few LSBs of y) cannot take them to 2.
-                Narrowing::new(n, out, ROUND, SAT)
-                    .unreachable(NarrowPath::High, UNIT_BOUND)
-                    .unreachable(NarrowPath::Low, UNIT_BOUND)
+                Narrowing::new(n, out, ROUND, SAT).never_overflows(UNIT_BOUND)
             }),
         })
     }

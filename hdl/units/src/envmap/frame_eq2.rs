@@ -23,7 +23,7 @@
 use crate::bump::normal_156::{unit_narrowings, unit_vector_in as unit, UNIT_FRAC};
 use crate::bump::params::{RsqrtParams, ROUND, SAT};
 use crate::bump::rsqrt_156::RsqrtTable;
-use crate::fx::{Format, NarrowPath, Narrowing};
+use crate::fx::{Format, Narrowing};
 use crate::kernel::{declared::Narrowings, Visitor};
 
 /// Fraction bits of the vectors: those of unit 156's unit vectors.
@@ -83,11 +83,7 @@ impl FrameUnit {
     pub fn new() -> FrameUnit {
         let p = RsqrtParams::default();
         let held = |names: [&'static str; 3], f: Format, why: &'static str| {
-            names.map(|n| {
-                Narrowing::new(n, f, ROUND, SAT)
-                    .unreachable(NarrowPath::High, why)
-                    .unreachable(NarrowPath::Low, why)
-            })
+            names.map(|n| Narrowing::new(n, f, ROUND, SAT).never_overflows(why))
         };
         FrameUnit {
             table: RsqrtTable::new(p).expect("the default parameters are valid"),

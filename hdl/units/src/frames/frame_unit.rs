@@ -24,7 +24,7 @@
 use crate::bump::normal_156::{unit_narrowings, unit_vector_in as unit};
 use crate::bump::params::{RsqrtParams, ROUND, SAT};
 use crate::bump::rsqrt_156::RsqrtTable;
-use crate::fx::{Format, NarrowPath, Narrowing};
+use crate::fx::{Format, Narrowing};
 use crate::kernel::{declared::Narrowings, Module, Reg, Signal, Visitor};
 
 /// Fraction bits of the vectors and of the weights.
@@ -100,8 +100,7 @@ impl FrameMath {
         let p = RsqrtParams::default();
         let b = ["b_gs_x", "b_gs_y", "b_gs_z"].map(|n| {
             Narrowing::new(n, Format::signed(16, VEC_FRAC as i32), ROUND, SAT)
-                .unreachable(NarrowPath::High, B_BOUND)
-                .unreachable(NarrowPath::Low, B_BOUND)
+                .never_overflows(B_BOUND)
         });
         FrameMath {
             table: RsqrtTable::new(p).expect("the default parameters are valid"),

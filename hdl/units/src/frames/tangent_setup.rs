@@ -28,7 +28,7 @@ use crate::bump::normal_156::{unit_narrowings, unit_vector_in as unit};
 use crate::bump::params::{RsqrtParams, ROUND, SAT};
 use crate::bump::rsqrt_156::RsqrtTable;
 use crate::envmap::cube_face::{reciprocal, CubeFace};
-use crate::fx::{Format, NarrowPath, Narrowing};
+use crate::fx::{Format, Narrowing};
 use crate::kernel::{declared::Narrowings, Module, Reg, Signal, Visitor};
 
 /// Fraction bits of positions, UVs and dP/du.
@@ -102,8 +102,7 @@ impl TangentMath {
             t: unit_narrowings(["tx", "ty", "tz"]),
             b: ["bx", "by", "bz"].map(|n| {
                 Narrowing::new(n, Format::signed(16, VEC_FRAC as i32), ROUND, SAT)
-                    .unreachable(NarrowPath::High, B_BOUND)
-                    .unreachable(NarrowPath::Low, B_BOUND)
+                    .never_overflows(B_BOUND)
             }),
         }
     }

@@ -8,7 +8,7 @@
 //! price of knowing them before the data; 16 bits when 8 are too coarse.)
 
 use super::{MAX_LIGHTS, P_BITS};
-use crate::fx::{quantise, Format, NarrowPath, Narrowing, Overflow, Quant};
+use crate::fx::{quantise, Format, Narrowing, Overflow, Quant};
 
 /// The six coefficients' scales and biases.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -94,8 +94,7 @@ impl PtmFormat {
     pub fn narrowing(&self, name: &'static str) -> Narrowing {
         const HELD: &str = "A = sum P K with K in [0, 1] lies in [b, b + (2^bits - 1) 2^e] by the format's construction";
         Narrowing::new(name, self.stored(), Quant::RoundHalfUp, Overflow::Saturate)
-            .unreachable(NarrowPath::High, HELD)
-            .unreachable(NarrowPath::Low, HELD)
+            .never_overflows(HELD)
     }
 
     /// The stored format: unsigned `bits`, no fraction.
