@@ -52,7 +52,9 @@ fn mipmap_command() {
     assert!(rb
         .vars
         .contains_key("tb.mipmap_gen_816.level1.fifo_1408.occupancy"));
-    assert!(rb.vars.contains_key("tb.mipmap_gen_816.page_row_bank0"));
+    assert!(rb
+        .vars
+        .contains_key("tb.mipmap_gen_816.page_registers_824.open0"));
     waves::check::check_gtkw(&vcd, &rb).unwrap();
     // Several frames: one directory each.
     let out2 = d.join("out2");

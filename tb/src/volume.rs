@@ -151,12 +151,12 @@ pub struct SampleMonitor;
 impl Monitor<RayCaster> for SampleMonitor {
     type Txn = VolSample;
     fn sample(&mut self, dut: &RayCaster) -> Option<VolSample> {
-        dut.out_valid.q().is_high().then(|| VolSample {
-            ray: dut.out_ray.q().bits() as u32,
-            k: dut.out_k.q().bits() as u16,
-            p: dut.out_p.each_ref().map(|r| r.q().raw()),
-            value: dut.out_value.q().bits() as u8,
-            g: dut.out_g.each_ref().map(|r| r.q().raw()),
+        dut.out.valid.q().is_high().then(|| VolSample {
+            ray: dut.out.ray.q().bits() as u32,
+            k: dut.out.k.q().bits() as u16,
+            p: dut.out.p.each_ref().map(|r| r.q().raw()),
+            value: dut.out.value.q().bits() as u8,
+            g: dut.out.g.each_ref().map(|r| r.q().raw()),
         })
     }
 }
@@ -381,7 +381,7 @@ fn run_rays<T: Trace>(
             if let Event::Received { cycle, txn } = ev {
                 if let Some((pt, _, want)) = sb.observe(cycle, txn).expected {
                     res.stats.record(f64::from(txn.value), want, 1.0);
-                    let slots = s.dut.slots.q().bits();
+                    let slots = s.dut.seq.slots.q().bits();
                     let fault = i64::from(slots - last_slots > mode.accesses() as u64);
                     last_slots = slots;
                     cov.sample(&[mi, 1 - oc, position_class(pt, dims), fault]);
@@ -391,7 +391,7 @@ fn run_rays<T: Trace>(
     );
     res.score(&sb);
     res.ran(&r);
-    let slots = sim.dut.slots.q().bits();
+    let slots = sim.dut.seq.slots.q().bits();
     if slots != want_slots {
         res.failures.push(format!(
             "{slots} slots, the page-register model counts {want_slots}"
@@ -406,7 +406,7 @@ fn run_rays<T: Trace>(
     res.notes.push(format!(
         "{}: {n} samples, {} accesses in {slots} slots",
         ctx.label,
-        sim.dut.accesses.q().bits()
+        sim.dut.seq.accesses.q().bits()
     ));
     res.coverage = Some(cov);
     Ok((sim, res))
@@ -579,7 +579,7 @@ pub fn render(n: u32, side: u32) -> Result<(Vec<[u8; 3]>, u64), String> {
         next += u32::from(d.ray_valid.is_high() && d.ray_ready.is_high());
         if d.out_valid.is_high() {
             let c = &d.chips[0];
-            let pt = c.out_p.each_ref().map(|r| r.q().raw());
+            let pt = c.out.p.each_ref().map(|r| r.q().raw());
             let rgba = (d.out_rgba.bits() as u32).to_be_bytes();
             for (plane, got) in planes.iter().zip(rgba) {
                 let (want, _) = ref_sample(plane, p.dims, pt, Mode::Value);
@@ -686,10 +686,10 @@ pub fn run_volume(
     let stats = VolumeStats {
         rays: rs.len() as u64,
         samples: n,
-        accesses: d.accesses.q().bits(),
-        slots: d.slots.q().bits(),
-        fault_slots: d.fault_slots.q().bits(),
-        bank_misses: d.bank_misses.q().bits(),
+        accesses: d.seq.accesses.q().bits(),
+        slots: d.seq.slots.q().bits(),
+        fault_slots: d.seq.fault_slots.q().bits(),
+        bank_misses: d.seq.bank_misses.q().bits(),
         cycles: st.cycles,
         ns,
         samples_per_second: if ns == 0 {

@@ -138,6 +138,7 @@ fn fig14_generator_visits_every_level_and_fifo() {
     // 16x8 has levels 1..4 (8x4, 4x2, 2x1, 1x1), each with FIFOs 1408 and 1412.
     let want = [
         ("mipmap_gen_816", 1),
+        ("page_registers_824", 1),
         ("mipmap_level_fig14", 4),
         ("fifo_1408", 4),
         ("fifo_1412", 4),
@@ -216,7 +217,8 @@ fn the_texram_side_units_visit_every_scope() {
     let rc = RayCaster::new(vp, Mode::Gradient, &[0; 64]).unwrap();
     for (part, n) in [
         ("ray_caster_fig15.stepper.", 9),
-        ("ray_caster_fig15.page_registers_824.", 11),
+        ("ray_caster_fig15.page_registers_824.", 4),
+        ("ray_caster_fig15.sequencer.", 39),
         ("ray_caster_fig15.trilinear_818.", 11),
         ("ray_caster_fig15.ray_", 9),
     ] {
@@ -245,6 +247,7 @@ fn the_texram_side_units_visit_every_scope() {
         ("ray_caster_fig15", 1),
         ("volume_stepper", 1),
         ("page_registers_824", 1),
+        ("access_sequencer", 1),
         ("trilinear_818", 1),
     ];
     assert_eq!(kinds(&rc), own(&caster));

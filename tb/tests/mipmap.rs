@@ -207,7 +207,7 @@ fn opened_rows(p: MipmapParams, frames: &[Vec<u8>]) -> [Vec<u32>; 3] {
             let n = sim.dut.activations[b] - before[b];
             assert!(n <= 1, "bank {b}: {n} rows opened in a cycle");
             if n == 1 {
-                r.push(sim.dut.page_row[b].q().bits() as u32);
+                r.push(sim.dut.open_row(b).expect("a row opened") as u32);
             }
         }
     }

@@ -81,10 +81,10 @@ fn a_linear_field_gives_exact_gradients_inside() {
         sim.eval();
         let d = &sim.dut;
         next += usize::from(d.ray_valid.is_high() && d.ray_ready.is_high());
-        if d.out_valid.q().is_high() {
+        if d.out.valid.q().is_high() {
             got.push((
-                d.out_value.q().bits(),
-                d.out_g.each_ref().map(|r| r.q().raw()),
+                d.out.value.q().bits(),
+                d.out.g.each_ref().map(|r| r.q().raw()),
             ));
         }
         sim.tick();
@@ -150,7 +150,7 @@ fn chips_out_of_step_are_flagged_at_once() {
         sim.eval();
         let c = &sim.dut.chips;
         let differ = |f: &dyn Fn(&RayCaster) -> bool| c.iter().any(|x| f(x) != f(&c[0]));
-        let apart = differ(&|x| x.ray_ready.is_high()) || differ(&|x| x.out_valid.q().is_high());
+        let apart = differ(&|x| x.ray_ready.is_high()) || differ(&|x| x.out.valid.q().is_high());
         if apart && first_apart.is_none() {
             first_apart = Some(sim.cycle());
         }

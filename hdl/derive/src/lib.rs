@@ -5,7 +5,8 @@
 //!
 //! ```text
 //! #[derive(Module)]
-//! #[module(kind = "blend")]          // the kind (and, by default, the instance name);
+//! #[module(kind = "blend")]          // the kind (and, by default, the instance name:
+//!                                    // `instance = "..."` names it otherwise);
 //!                                    // `new` also generates `Blend::new()` (below)
 //! pub struct Blend {
 //!     #[input] pub a: Signal,         // Signal, [Signal; N] or Vec<Signal>
@@ -166,19 +167,23 @@ fn hdl_path() -> Tokens {
     }
 }
 
-/// `#[module(kind = "...", new)]`: the kind (required) and whether to generate `new`.
-fn module_args(ast: &DeriveInput) -> syn::Result<(LitStr, bool)> {
-    let (mut kind, mut new) = (None, false);
+/// `#[module(kind = "...", instance = "...", new)]`: the kind (required), the instance name
+/// (the kind's by default) and whether to generate `new`.
+fn module_args(ast: &DeriveInput) -> syn::Result<(LitStr, Option<LitStr>, bool)> {
+    let (mut kind, mut instance, mut new) = (None, None, false);
     for a in ast.attrs.iter().filter(|a| a.path().is_ident("module")) {
         a.parse_nested_meta(|m| {
             if m.path.is_ident("kind") {
                 kind = Some(m.value()?.parse::<LitStr>()?);
                 Ok(())
+            } else if m.path.is_ident("instance") {
+                instance = Some(m.value()?.parse::<LitStr>()?);
+                Ok(())
             } else if m.path.is_ident("new") {
                 new = true;
                 Ok(())
             } else {
-                Err(m.error("expected `kind = \"...\"` or `new`"))
+                Err(m.error("expected `kind = \"...\"`, `instance = \"...\"` or `new`"))
             }
         })?;
     }
@@ -188,7 +193,7 @@ fn module_args(ast: &DeriveInput) -> syn::Result<(LitStr, bool)> {
             "#[derive(Module)] needs #[module(kind = \"...\")]",
         )
     })?;
-    Ok((kind, new))
+    Ok((kind, instance, new))
 }
 
 /// `pub fn new() -> Self`: every field a signal or register of a declared format, named
@@ -323,7 +328,7 @@ fn roles(ast: &DeriveInput) -> syn::Result<Vec<Field>> {
 }
 
 fn expand(ast: &DeriveInput) -> syn::Result<Tokens> {
-    let (kind, new) = module_args(ast)?;
+    let (kind, fixed_instance, new) = module_args(ast)?;
     let fields = roles(ast)?;
     let hdl = hdl_path();
     let ctor = if new {
@@ -336,7 +341,10 @@ fn expand(ast: &DeriveInput) -> syn::Result<Tokens> {
     let decl = quote!(#hdl::kernel::declared);
     let mut ticks = Vec::new();
     let mut visits = Vec::new();
-    let mut instance = quote!(#kind);
+    let mut instance = match &fixed_instance {
+        Some(i) => quote!(#i),
+        None => quote!(#kind),
+    };
     for Field { id: f, role, .. } in &fields {
         let dir = |d: &str| {
             let d = format_ident!("{}", d);

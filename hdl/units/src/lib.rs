@@ -46,7 +46,7 @@
 //! | FIFOs 1408 and 1412 | `mipmap/fifo.rs` | `fifo_1408`, `fifo_1412` | `mipmap_gen_816` | `tb.mipmap_gen_816.level1.fifo_1408` |
 //! | TEXRAM chip 802 (Schilling & Knittel Figure 8): request port, units 812, 824, 810, 818 cycle by cycle | `texram/texram_802.rs` | `texram_802` | `texram_802`; `tb/tests/texram.rs` | `tb.texram_802` |
 //! | address and control unit 812: levels, weights, border operations | `texram/address_812.rs` | scope `address_812` | `texram_802` | `tb.texram_802.address_812` |
-//! | page registers 824 | `texram/page_registers_824.rs` | scope `page_registers_824` | `texram_802` | `tb.texram_802.page_registers_824` |
+//! | page registers 824: open rows, slots (also of the ray caster and the mipmap generator's own store) | `pages/page_registers_824.rs` | `page_registers_824` | `texram_802` | `tb.texram_802.page_registers_824` |
 //! | banks 810 and their address decoders 822: the two-level layout | `texram/banks_810.rs` | scopes `banks_810`, `banks_810.address_decoders_822` | `texram_802` | `tb.texram_802.banks_810.address_decoders_822` |
 //! | trilinear interpolator 818 | `texram/trilinear_818.rs` | scope `trilinear_818` | `texram_802` | `tb.texram_802.trilinear_818` |
 //! | CLUT 814 | `texram/clut_814.rs` | scope `clut_814` (the eight entries an index access looked up) | `texram_802`; `tb/tests/texram.rs` | `tb.texram_802.clut_814` |
@@ -57,7 +57,7 @@
 //! | the two before the chip (or texture unit 602) | `footprint/footprint_fig12.rs` | `footprint_fig12` | `footprint_fig12` | `tb.footprint_fig12` |
 //! | tangent average of para. 0081 (Fenney FIG. 7, between 155 and 156) | `bump/tangent_average_0081.rs` | scope `tangent_average_0081` | `footprint_normals_0081` | `tb.footprint_normals_0081.normal_pipeline_fig7.tangent_average_0081` |
 //! | footprint generator before the FIG. 7 pipeline (para. 0081) | `footprint/normals_0081.rs` | `footprint_normals_0081` | `footprint_normals_0081` | `tb.footprint_normals_0081.generator` |
-//! | ray caster (section 13, Figure 15) | `volume/ray_caster_fig15.rs` (`layout.rs`, `interp.rs`) | `ray_caster_fig15`, scopes `stepper`, `page_registers_824`, `trilinear_818` | `ray_caster_fig15`; `tb/tests/volume.rs` | `tb.ray_caster_fig15.stepper` … |
+//! | ray caster (section 13, Figure 15) | `volume/ray_caster_fig15.rs` (`layout.rs`, `interp.rs`) | `ray_caster_fig15`, scopes `stepper`, `page_registers_824`, `sequencer`, `trilinear_818` | `ray_caster_fig15`; `tb/tests/volume.rs` | `tb.ray_caster_fig15.stepper` … |
 //! | RGBA on four ray casters in lock-step | `volume/lockstep.rs` | `volume_lockstep`, chips `chip_r` … | `tb/tests/volume.rs` | `volume_lockstep.chip_r` … |
 //! | video port 808 and shift registers 826, with the mipmap generator 816 on the banks | `texram/video_port_808.rs` | scope `video_port_808` | `video_port_808`; `tb/tests/texram_video.rs` | `tb.texram_802.video_port_808`, `….mipmap_gen_816`, `….shift_registers_826` |
 //! | reflection vector, eq. 4, and cube-face selection (section 7) | `envmap/reflect_eq4.rs`, `envmap/cube_face.rs` | `reflect_eq4`, `cube_face`; in the walker's `ENV_COORDS` state | `walker_812`; `tb/tests/envmap.rs` | `tb.walker_812` (`face`, `s`, `t`) |
@@ -83,6 +83,8 @@ pub mod frames;
 pub mod mapchain;
 /// FIG. 14 of Schilling & Knittel: the real-time mipmap generator.
 pub mod mipmap;
+/// Section 5 of Schilling & Knittel: the page registers 824 of DRAM banks.
+pub mod pages;
 /// PTM micro-occlusion (001, Fig. 6): the fitter 604, the occlusion PTM 612 and the light shader 608.
 pub mod ptm;
 /// Figure 6 of Schilling & Knittel: the texture memory path.

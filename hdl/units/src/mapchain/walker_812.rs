@@ -224,9 +224,7 @@ impl<T: TexramAccess> MapChain812<T> {
     /// The walker over `texram`, whose maps the DRFs of `file` describe (loaded already).
     pub fn new(file: DrfFile, texram: T, slot_cycles: u32) -> Result<MapChain812<T>, String> {
         file.validate()?;
-        if !(1..=15).contains(&slot_cycles) {
-            return Err(format!("slot_cycles {slot_cycles}: 1..=15"));
-        }
+        crate::pages::page_registers_824::check_slot_cycles(slot_cycles)?;
         let fmt = pixel_formats();
         let uv = Format::signed(UV_BITS, 8);
         let (u3, u8f) = (Format::uint(3), Format::uint(8));

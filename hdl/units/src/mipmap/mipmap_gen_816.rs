@@ -35,6 +35,7 @@
 use crate::fx::Format;
 use crate::kernel::{Module, Reg, Signal, Visitor};
 use crate::mipmap::level_fig14::Level;
+use crate::pages::page_registers_824::PageRegisters824;
 use crate::signals;
 
 /// Arrival order of a frame's lines.
@@ -151,8 +152,9 @@ pub struct MipmapGen {
     /// Shift register 826 (interlaced: the partner line of the line arriving).
     sr: Vec<u8>,
     sr_load: Option<u32>,
-    /// Open row of each bank's page register, and row activations counted.
-    pub page_row: [Reg; 3],
+    /// The page registers 824 of the own frame store's three banks (none on the TEXRAM's,
+    /// whose own count), and row activations counted.
+    pages: Option<PageRegisters824>,
     pub activations: [u64; 3],
     /// Row activations per bank at the coming edge (decided by `eval`).
     acts: [u64; 3],
@@ -201,8 +203,7 @@ impl MipmapGen {
             levels,
             sr: vec![0; p.width as usize],
             sr_load: None,
-            page_row: ["page_row_bank0", "page_row_bank1", "page_row_bank2"]
-                .map(|n| Reg::new(n, Format::uint(16))),
+            pages: Some(PageRegisters824::new(3, 16)),
             activations: [0; 3],
             acts: [0; 3],
             buffers: [buf.clone(), buf],
@@ -223,6 +224,7 @@ impl MipmapGen {
     /// that it is in the banks (the owner knows when it is).
     pub fn on_banks(mut self) -> MipmapGen {
         self.own_store = false;
+        self.pages = None;
         self.buffers = [Vec::new(), Vec::new()];
         self
     }
@@ -258,6 +260,11 @@ impl MipmapGen {
     /// second field): the partner line must be there.
     pub fn reads_partner(&self) -> bool {
         self.p.scan != Scan::Progressive && self.valid.is_high() && self.field.q().is_high()
+    }
+
+    /// The row bank `bank` of the own frame store has open (at the last edge).
+    pub fn open_row(&self, bank: usize) -> Option<u64> {
+        self.pages.as_ref()?.open_row(bank)
     }
 
     pub fn params(&self) -> &MipmapParams {
@@ -341,18 +348,17 @@ impl MipmapGen {
         }
     }
 
-    /// The bank accesses of this cycle, in the order the edge makes them (level-0 store, the
-    /// shift register's line, the levels' lines): sets each page register's next row and
-    /// counts the activations (a row not already open, or a bank never opened).
+    /// The bank accesses of this cycle on the own frame store, in the order the edge makes
+    /// them (level-0 store, the shift register's line, the levels' lines), through the page
+    /// registers: the activations they count (a row not already open).
     fn page_registers(&mut self) {
-        let mut rows = self.page_row.each_ref().map(|r| r.q().bits() as u32);
-        let mut opened = self.activations.map(|a| a > 0);
+        let Some(pages) = &mut self.pages else {
+            return;
+        };
+        pages.eval();
         let mut acts = [0u64; 3];
         let mut open = |bank: usize, row: u32| {
-            if rows[bank] != row || !opened[bank] {
-                acts[bank] += 1;
-                (rows[bank], opened[bank]) = (row & 0xffff, true);
-            }
+            acts[bank] += u64::from(pages.open(bank, u64::from(row)));
         };
         if let Some((_, y, _)) = self.pending_store {
             open((y % 2) as usize, y / 2);
@@ -367,9 +373,6 @@ impl MipmapGen {
             if let Some((_, row)) = self.levels[k].line_write() {
                 open(2, (k as u32) << 10 | row);
             }
-        }
-        for (r, row) in self.page_row.iter_mut().zip(rows) {
-            r.set_next_bits(u64::from(row));
         }
         self.acts = acts;
     }
@@ -445,9 +448,7 @@ impl Module for MipmapGen {
             l.eval();
             self.drains |= u32::from(l.line_write().is_some()) << k;
         }
-        if self.own_store {
-            self.page_registers();
-        }
+        self.page_registers();
         // A FIFO error of any level takes precedence over a sync error.
         if let Some(e) = self.levels.iter().map(Level::error_code).find(|&e| e != 0) {
             code = e;
@@ -464,8 +465,8 @@ impl Module for MipmapGen {
         self.field.tick(reset);
         self.err.tick(reset);
         self.code.tick(reset);
-        for r in &mut self.page_row {
-            r.tick(reset);
+        if let Some(p) = &mut self.pages {
+            p.tick(reset);
         }
         self.cycle += 1;
         if reset {
@@ -494,10 +495,8 @@ impl Module for MipmapGen {
             Output: self.error, self.err_code, self.frame_done;
             Reg: self.x, self.line, self.field);
         // On the TEXRAM banks the chip's page registers 824 are the ones that count.
-        if self.own_store {
-            for p in &self.page_row {
-                v.reg(p);
-            }
+        if let Some(p) = &self.pages {
+            p.visit(v);
         }
         for l in &self.levels {
             l.visit(v);

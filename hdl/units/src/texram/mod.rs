@@ -12,7 +12,7 @@
 //!   border operations (wrap, clamp, mirror, border colour) of one access;
 //! * [`banks_810`](crate::texram::banks_810): the two-level layout, texel `(level, x, y)` to bank and word (the bank
 //!   address decoders 822), proved conflict-free by exhaustive tests;
-//! * [`page_registers_824`](crate::texram::page_registers_824): one open row per bank; an access costs one slot, two if any bank
+//! * [`page_registers_824`](crate::pages::page_registers_824) (shared with the units that read banks like these): one open row per bank; an access costs one slot, two if any bank
 //!   it reads misses its open row;
 //! * [`trilinear_818`](crate::texram::trilinear_818): the trilinear interpolator, one rounding of the exact weighted sum;
 //! * [`clut_814`](crate::texram::clut_814): the colour look-up table of the index configuration, filtered after look-up;
@@ -191,7 +191,6 @@ pub mod banks_810;
 pub mod clut_814;
 pub mod lockstep;
 pub mod output_820;
-pub mod page_registers_824;
 pub mod stub;
 pub mod texram_802;
 pub mod trilinear_818;

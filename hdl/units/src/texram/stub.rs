@@ -5,18 +5,19 @@
 //! map-chain work start before the cycle-accurate chip exists, and will be held against it.
 
 use super::address_812::Footprint;
-use super::banks_810::{bank_words, locate, store_level, BANKS};
+use super::banks_810::{bank_words, locate, store_level, BANKS, ROW_WORDS};
 use super::clut_814::Clut;
-use super::page_registers_824::{Cost, PageRegisters};
 use super::trilinear_818::trilinear;
 use super::{Border, Config, Drf, TexramAccess, TexramReply, TexramRequest, DRFS};
+use crate::kernel::Module;
+use crate::pages::page_registers_824::{Cost, PageRegisters824};
 
 /// The chip's state: DRFs, bank contents, open rows and counters.
 #[derive(Clone, Debug)]
 pub struct TexramStub {
     drfs: [Option<Drf>; DRFS],
     banks: Vec<Vec<u8>>,
-    pages: PageRegisters,
+    pages: PageRegisters824,
     clut: Clut,
     slots: u64,
     accesses: u64,
@@ -52,6 +53,11 @@ pub fn next_level(w: u32, h: u32, texels: &[u8]) -> Vec<u8> {
     out
 }
 
+/// The row of a bank word.
+fn row_of(word: u32) -> u64 {
+    u64::from(word / ROW_WORDS)
+}
+
 impl TexramStub {
     /// Empty banks of the chip's size, every DRF unset, every row closed.
     pub fn new() -> TexramStub {
@@ -60,7 +66,7 @@ impl TexramStub {
             banks: (0..BANKS)
                 .map(|b| vec![0; bank_words(b) as usize])
                 .collect(),
-            pages: PageRegisters::new(),
+            pages: PageRegisters824::new(BANKS, 11),
             clut: Clut::identity(),
             slots: 0,
             accesses: 0,
@@ -133,12 +139,15 @@ impl TexramStub {
             slots: 0,
             faults: 0,
         };
+        // The page registers' clock: the access's rounds within one cycle of theirs.
+        self.pages.eval();
         for r in 0..rounds {
-            let round: [Option<u32>; BANKS] = std::array::from_fn(|b| words[b].get(r).copied());
-            let c = self.pages.access(&round);
+            let round = (0..BANKS).filter_map(|b| words[b].get(r).map(|&w| (b, row_of(w))));
+            let c = self.pages.round(round);
             cost.slots += c.slots;
             cost.faults += c.faults;
         }
+        self.pages.tick(false);
         (texels, cost)
     }
 
@@ -147,9 +156,9 @@ impl TexramStub {
     /// row (which the transfer then replaces: the rasterizer's next access there faults).
     /// The slots are stolen from the rasterizer and counted apart ([`TexramStub::video_slots`]).
     pub fn video_transfer(&mut self, bank: usize, word: u32) -> Cost {
-        let mut one = [None; BANKS];
-        one[bank] = Some(word);
-        let cost = self.pages.access(&one);
+        self.pages.eval();
+        let cost = self.pages.round([(bank, row_of(word))]);
+        self.pages.tick(false);
         self.video_slots += u64::from(cost.slots);
         self.slots += u64::from(cost.slots);
         cost

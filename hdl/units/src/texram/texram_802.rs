@@ -42,6 +42,7 @@ use super::video_port_808::{VideoParams, VideoPort808};
 use super::{Border, Config, Drf, DRFS};
 use crate::fx::Format;
 use crate::kernel::{Module, Reg, Signal, Visitor};
+use crate::pages::page_registers_824::{check_slot_cycles, PageRegisters824};
 use crate::signals;
 
 /// Bank words need 19 bits (280,064 words in banks 0-3).
@@ -56,9 +57,6 @@ const WORD_NAMES: [&str; BANKS * ROUNDS] = [
     "word2_0", "word2_1", "word2_2", "word2_3", "word3_0", "word3_1", "word3_2", "word3_3",
     "word4_0", "word4_1", "word4_2", "word4_3", "word5_0", "word5_1", "word5_2", "word5_3",
     "word6_0", "word6_1", "word6_2", "word6_3", "word7_0", "word7_1", "word7_2", "word7_3",
-];
-const OPEN_NAMES: [&str; BANKS] = [
-    "open0", "open1", "open2", "open3", "open4", "open5", "open6", "open7",
 ];
 
 /// The chip's timing.
@@ -76,10 +74,7 @@ impl Default for TexramParams {
 
 impl TexramParams {
     pub fn validate(&self) -> Result<(), String> {
-        if !(1..=15).contains(&self.slot_cycles) {
-            return Err(format!("slot_cycles {}: 1..=15", self.slot_cycles));
-        }
-        Ok(())
+        check_slot_cycles(self.slot_cycles)
     }
 }
 
@@ -220,8 +215,8 @@ pub struct Texram802 {
     /// 812's registers, and the request it is splitting into component accesses.
     addr: Access,
     held: [Reg; 4],
-    /// 824: per bank the open row plus one (0: closed).
-    open: Vec<Reg>,
+    /// 824: per bank the open row.
+    pages: PageRegisters824,
     /// 810: the access being served and the cycles left in its slot(s).
     bank: Access,
     left: Reg,
@@ -273,10 +268,7 @@ impl Texram802 {
             req_lambda: Signal::new("req_lambda", Format::signed(14, 8)),
             req_illum: Signal::new("req_illum", Format::uint(32)),
             addr: Access::new(),
-            open: OPEN_NAMES
-                .iter()
-                .map(|n| Reg::new(n, Format::uint(11)))
-                .collect(),
+            pages: PageRegisters824::new(BANKS, 11),
             bank: Access::new(),
             left: Reg::new("left", Format::uint(8)),
             fault: Reg::new("fault", Format::uint(1)),
@@ -370,20 +362,16 @@ impl Texram802 {
         let Some(v) = self.video.as_deref_mut() else {
             return false;
         };
-        let (mut n, mut missed) = (0, 0u64);
-        for s in v.round().into_iter().flatten() {
-            let row = u64::from(s.word / ROW_WORDS) + 1;
-            let open = &mut self.open[s.bank];
-            if open.q().bits() != row {
-                missed += 1;
-                open.set_next_bits(row);
-            }
-            n += 1;
-        }
+        let segments = v.round();
+        let n = segments.iter().flatten().count();
         if n == 0 {
             return false;
         }
-        let slots = if missed > 0 { 2 } else { 1 };
+        let rows = segments.into_iter().flatten();
+        let cost = self
+            .pages
+            .round(rows.map(|s| (s.bank, u64::from(s.word / ROW_WORDS))));
+        let slots = u64::from(cost.slots);
         v.start(slots);
         self.left
             .set_next_bits(slots * u64::from(self.p.slot_cycles));
@@ -526,30 +514,20 @@ impl Texram802 {
     /// two when a bank misses its open row), the rows it leaves open.
     fn open_rows(&mut self) {
         let read = self.addr.read.q().bits();
-        let mut open: [u64; BANKS] = std::array::from_fn(|b| self.open[b].q().bits());
         let (mut slots, mut missed, mut fault_slots) = (0u64, 0u64, 0u64);
         for r in 0..ROUNDS {
-            let mut round_missed = 0;
-            let mut any = false;
-            for (b, o) in open.iter_mut().enumerate() {
-                let at = b * ROUNDS + r;
-                if read >> at & 1 == 1 {
-                    any = true;
-                    let row = self.addr.word[at].q().bits() / u64::from(ROW_WORDS) + 1;
-                    if *o != row {
-                        round_missed += 1;
-                        *o = row;
-                    }
-                }
-            }
+            let reads = (0..BANKS).filter(|b| read >> (b * ROUNDS + r) & 1 == 1);
+            let rows = reads.map(|b| {
+                let word = self.addr.word[b * ROUNDS + r].q().bits();
+                (b, word / u64::from(ROW_WORDS))
+            });
+            let any = rows.clone().next().is_some();
             if any || r == 0 {
-                slots += if round_missed > 0 { 2 } else { 1 };
-                fault_slots += u64::from(round_missed > 0);
-                missed += round_missed;
+                let cost = self.pages.round(rows);
+                slots += u64::from(cost.slots);
+                fault_slots += u64::from(cost.slots - 1);
+                missed += u64::from(cost.faults);
             }
-        }
-        for (reg, row) in self.open.iter_mut().zip(open) {
-            reg.set_next_bits(row);
         }
         self.left
             .set_next_bits(slots * u64::from(self.p.slot_cycles));
@@ -623,6 +601,7 @@ impl Module for Texram802 {
     }
 
     fn eval(&mut self) {
+        self.pages.eval();
         let busy = self.bank.valid.q().is_high();
         let finishing = busy && self.left.q().bits() == 1;
         self.out_valid.set_next_bool(false);
@@ -689,9 +668,7 @@ impl Module for Texram802 {
             r.tick(reset);
         }
         self.acc_rgba.tick(reset);
-        for r in &mut self.open {
-            r.tick(reset);
-        }
+        self.pages.tick(reset);
         self.bank.tick(reset);
         if let Some(v) = self.video.as_deref_mut() {
             v.tick(reset, &self.drfs, &mut self.banks);
@@ -724,7 +701,8 @@ impl Module for Texram802 {
         v.enter(self.instance(), self.kind());
         signals!(v;
             Input: self.req_valid, self.req_drf, self.req_u, self.req_v, self.req_lambda, self.req_illum;
-            Output: self.req_ready);
+            Output: self.req_ready;
+            Reg: self.slots, self.faults, self.accesses, self.fault_slots);
         v.enter("address_812", "address_812");
         self.addr.visit(v);
         for r in &self.held {
@@ -732,12 +710,7 @@ impl Module for Texram802 {
         }
         v.reg(&self.conflicts);
         v.leave();
-        v.enter("page_registers_824", "page_registers_824");
-        for r in &self.open {
-            v.reg(r);
-        }
-        signals!(v; Reg: self.slots, self.faults, self.accesses, self.fault_slots);
-        v.leave();
+        self.pages.visit(v);
         v.enter("banks_810", "banks_810");
         self.bank.visit_banks(v);
         signals!(v; Reg: self.left, self.fault, self.vid_round);

@@ -114,10 +114,7 @@ impl VolumeParams {
                 self.row_words
             ));
         }
-        if !(1..=15).contains(&self.slot_cycles) {
-            return Err(format!("slot_cycles {}: 1..=15", self.slot_cycles));
-        }
-        Ok(())
+        crate::pages::page_registers_824::check_slot_cycles(self.slot_cycles)
     }
 }
 

@@ -74,11 +74,11 @@ impl VolumeLockstep {
             chip.eval();
         }
         let ready = self.chips[0].ray_ready.is_high();
-        let valid = self.chips[0].out_valid.q().is_high();
+        let valid = self.chips[0].out.valid.q().is_high();
         let apart = self
             .chips
             .iter()
-            .any(|c| c.ray_ready.is_high() != ready || c.out_valid.q().is_high() != valid);
+            .any(|c| c.ray_ready.is_high() != ready || c.out.valid.q().is_high() != valid);
         if apart {
             self.out_of_step.set_next_bool(true);
         }
@@ -87,7 +87,7 @@ impl VolumeLockstep {
         let rgba = self
             .chips
             .iter()
-            .fold(0u64, |acc, c| acc << 8 | c.out_value.q().bits());
+            .fold(0u64, |acc, c| acc << 8 | c.out.value.q().bits());
         self.out_rgba.set_bits(rgba);
     }
 }

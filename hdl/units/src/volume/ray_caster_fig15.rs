@@ -24,49 +24,118 @@
 use super::interp::{gradient, value, weights, GRAD_FRAC};
 use super::layout::{access_order, access_voxels, locate, Mode, VolumeParams, POS_BITS, POS_FRAC};
 use crate::fx::Format;
-use crate::kernel::{Module, Reg, Signal, Visitor};
-use crate::signals;
+use crate::kernel::{Module, Reg, Signal};
+use crate::pages::page_registers_824::PageRegisters824;
 
-const OPEN_NAMES: [&str; 4] = ["open0", "open1", "open2", "open3"];
+/// The voxel buffer's registers: `voxel{4a + t}` is voxel `t` of access `a`.
+const VOXEL_NAMES: [&str; 32] = [
+    "voxel0", "voxel1", "voxel2", "voxel3", "voxel4", "voxel5", "voxel6", "voxel7", "voxel8",
+    "voxel9", "voxel10", "voxel11", "voxel12", "voxel13", "voxel14", "voxel15", "voxel16",
+    "voxel17", "voxel18", "voxel19", "voxel20", "voxel21", "voxel22", "voxel23", "voxel24",
+    "voxel25", "voxel26", "voxel27", "voxel28", "voxel29", "voxel30", "voxel31",
+];
+
+/// The 3-D stepper's registers: the point, the step, samples left, the sample's index, the
+/// ray's. Written by the caster's sequencer.
+#[derive(Clone, Debug, Module)]
+#[module(kind = "volume_stepper", instance = "stepper")]
+pub struct Stepper {
+    #[reg]
+    pos: [Reg; 3],
+    #[reg]
+    step: [Reg; 3],
+    #[reg]
+    left: Reg,
+    #[reg]
+    k: Reg,
+    #[reg]
+    ray: Reg,
+}
+
+impl Stepper {
+    fn eval(&mut self) {}
+}
+
+/// The access sequencer's registers: the access under way (index), cycles left in it, its
+/// page fault, the voxels read so far for the point, and the counters.
+#[derive(Clone, Debug, Module)]
+#[module(kind = "access_sequencer", instance = "sequencer")]
+pub struct Sequencer {
+    #[reg]
+    acc: Reg,
+    #[reg]
+    slot_left: Reg,
+    #[reg]
+    pub fault: Reg,
+    #[reg]
+    voxels: [Reg; 32],
+    #[reg]
+    pub accesses: Reg,
+    #[reg]
+    pub slots: Reg,
+    #[reg]
+    pub fault_slots: Reg,
+    #[reg]
+    pub bank_misses: Reg,
+}
+
+impl Sequencer {
+    fn eval(&mut self) {}
+}
+
+/// The interpolator 818's output registers: a sample, valid one cycle, and the count.
+#[derive(Clone, Debug, Module)]
+#[module(kind = "trilinear_818")]
+pub struct Sample818 {
+    #[reg]
+    pub valid: Reg,
+    #[reg]
+    pub ray: Reg,
+    #[reg]
+    pub k: Reg,
+    #[reg]
+    pub value: Reg,
+    #[reg]
+    pub samples: Reg,
+    #[reg]
+    pub p: [Reg; 3],
+    #[reg]
+    pub g: [Reg; 3],
+}
+
+impl Sample818 {
+    fn eval(&mut self) {}
+}
 
 /// The ray caster with its voxel store.
-#[derive(Clone, Debug)]
+#[derive(Clone, Debug, Module)]
+#[module(kind = "ray_caster_fig15")]
 pub struct RayCaster {
-    name: String,
+    #[instance]
+    name: &'static str,
     p: VolumeParams,
     mode: Mode,
+    /// The voxel store: level 0 of banks 0-3, loaded by the host.
     banks: Vec<Vec<u8>>,
+    #[input]
     pub ray_valid: Signal,
-    pub ray_ready: Signal,
+    #[input]
     pub ray_p: [Signal; 3],
+    #[input]
     pub ray_d: [Signal; 3],
+    #[input]
     pub ray_steps: Signal,
-    /// Stepper: the point, the step, samples left, the sample's index, the ray's.
-    pos: [Reg; 3],
-    step: [Reg; 3],
-    left: Reg,
-    k: Reg,
-    ray: Reg,
-    /// Sequencer: the access under way (index), cycles left in it, its page fault.
-    acc: Reg,
-    slot_left: Reg,
-    fault: Reg,
-    /// Page registers 824 of banks 0-3: open row plus one (0: closed).
-    open: Vec<Reg>,
-    /// The voxels read so far for the point (`buf[4a + t]`), and those arriving this cycle.
-    buf: [u8; 32],
-    buf_next: [u8; 32],
-    pub out_valid: Reg,
-    pub out_ray: Reg,
-    pub out_k: Reg,
-    pub out_p: [Reg; 3],
-    pub out_value: Reg,
-    pub out_g: [Reg; 3],
-    pub accesses: Reg,
-    pub slots: Reg,
-    pub fault_slots: Reg,
-    pub bank_misses: Reg,
-    pub samples: Reg,
+    #[output]
+    pub ray_ready: Signal,
+    #[child]
+    stepper: Stepper,
+    /// Page registers 824 of banks 0-3.
+    #[child]
+    pages: PageRegisters824,
+    #[child]
+    pub seq: Sequencer,
+    #[child]
+    pub out: Sample818,
 }
 
 impl RayCaster {
@@ -99,11 +168,8 @@ impl RayCaster {
             }
         }
         let pos = Format::signed(POS_BITS, POS_FRAC as i32);
-        let wide = Format::signed(32, POS_FRAC as i32);
-        let grad = Format::signed(9 + GRAD_FRAC + 1, GRAD_FRAC as i32);
-        let count = |n| Reg::new(n, Format::uint(40));
         Ok(RayCaster {
-            name: "ray_caster_fig15".into(),
+            name: "ray_caster_fig15",
             p,
             mode,
             banks,
@@ -112,37 +178,16 @@ impl RayCaster {
             ray_p: ["ray_x", "ray_y", "ray_z"].map(|n| Signal::new(n, pos)),
             ray_d: ["ray_dx", "ray_dy", "ray_dz"].map(|n| Signal::new(n, pos)),
             ray_steps: Signal::new("ray_steps", Format::uint(16)),
-            pos: ["x", "y", "z"].map(|n| Reg::new(n, wide)),
-            step: ["dx", "dy", "dz"].map(|n| Reg::new(n, wide)),
-            left: Reg::new("left", Format::uint(16)),
-            k: Reg::new("k", Format::uint(16)),
-            ray: Reg::new("ray", Format::uint(32)),
-            acc: Reg::new("acc", Format::uint(3)),
-            slot_left: Reg::new("slot_left", Format::uint(5)),
-            fault: Reg::new("fault", Format::uint(1)),
-            open: OPEN_NAMES
-                .iter()
-                .map(|n| Reg::new(n, Format::uint(18)))
-                .collect(),
-            buf: [0; 32],
-            buf_next: [0; 32],
-            out_valid: Reg::new("out_valid", Format::uint(1)),
-            out_ray: Reg::new("out_ray", Format::uint(32)),
-            out_k: Reg::new("out_k", Format::uint(16)),
-            out_p: ["out_x", "out_y", "out_z"].map(|n| Reg::new(n, wide)),
-            out_value: Reg::new("out_value", Format::uint(8)),
-            out_g: ["out_gx", "out_gy", "out_gz"].map(|n| Reg::new(n, grad)),
-            accesses: count("accesses"),
-            slots: count("slots"),
-            fault_slots: count("fault_slots"),
-            bank_misses: count("bank_misses"),
-            samples: count("samples"),
+            stepper: Stepper::new(),
+            pages: PageRegisters824::new(4, 18),
+            seq: Sequencer::new(),
+            out: Sample818::new(),
         })
     }
 
     /// The same caster under another instance name (several chips in one design).
-    pub fn named(mut self, name: &str) -> RayCaster {
-        self.name = name.into();
+    pub fn named(mut self, name: &'static str) -> RayCaster {
+        self.name = name;
         self
     }
 
@@ -151,76 +196,70 @@ impl RayCaster {
     fn start_access(&mut self, n: usize, k: u64, pos: [i64; 3]) {
         let a = access_order(self.mode, k)[n];
         let ijk = (pos[0] >> POS_FRAC, pos[1] >> POS_FRAC, pos[2] >> POS_FRAC);
-        let mut missed = 0u64;
+        let mut rows = [(0, 0); 4];
+        let seq = &mut self.seq;
         for (t, (x, y, z)) in access_voxels(&self.p, a, ijk).into_iter().enumerate() {
             let (b, w) = locate(&self.p, x, y, z);
-            self.buf_next[4 * a + t] = self.banks[b][w as usize];
-            let row = u64::from(w / self.p.row_words) + 1;
-            if self.open[b].q().bits() != row {
-                missed += 1;
-                self.open[b].set_next_bits(row);
-            }
+            seq.voxels[4 * a + t].set_next_bits(u64::from(self.banks[b][w as usize]));
+            rows[t] = (b, u64::from(w / self.p.row_words));
         }
-        let slots = 1 + u64::from(missed > 0);
-        self.acc.set_next_bits(n as u64);
-        self.slot_left
+        let cost = self.pages.round(rows);
+        let slots = u64::from(cost.slots);
+        seq.acc.set_next_bits(n as u64);
+        seq.slot_left
             .set_next_bits(slots * u64::from(self.p.slot_cycles));
-        self.fault.set_next_bool(missed > 0);
+        seq.fault.set_next_bool(cost.faults > 0);
         let add = |r: &mut Reg, n: u64| r.set_next_bits(r.q().bits() + n);
-        add(&mut self.accesses, 1);
-        add(&mut self.slots, slots);
-        add(&mut self.fault_slots, slots - 1);
-        add(&mut self.bank_misses, missed);
+        add(&mut seq.accesses, 1);
+        add(&mut seq.slots, slots);
+        add(&mut seq.fault_slots, slots - 1);
+        add(&mut seq.bank_misses, u64::from(cost.faults));
     }
 
     /// The point's last access ended: its result into the output registers.
     fn finish_point(&mut self, pos: [i64; 3]) {
         let frac = |p: i64| ((p & ((1 << POS_FRAC) - 1)) >> (POS_FRAC - 8)) as u8;
         let w = weights(frac(pos[0]), frac(pos[1]), frac(pos[2]));
-        self.out_valid.set_next_bool(true);
-        self.out_ray.set_next_bits(self.ray.q().bits());
-        self.out_k.set_next_bits(self.k.q().bits());
-        for (r, x) in self.out_p.iter_mut().zip(pos) {
+        let buf = self.seq.voxels.each_ref().map(|r| r.q().bits() as u8);
+        let out = &mut self.out;
+        out.valid.set_next_bool(true);
+        out.ray.set_next_bits(self.stepper.ray.q().bits());
+        out.k.set_next_bits(self.stepper.k.q().bits());
+        for (r, x) in out.p.iter_mut().zip(pos) {
             r.set_next_raw(x);
         }
-        self.out_value
-            .set_next_bits(u64::from(value(&self.buf, &w)));
+        out.value.set_next_bits(u64::from(value(&buf, &w)));
         let g = match self.mode {
             Mode::Value => [0; 3],
-            Mode::Gradient => gradient(&self.buf, &w),
+            Mode::Gradient => gradient(&buf, &w),
         };
-        for (r, x) in self.out_g.iter_mut().zip(g) {
+        for (r, x) in out.g.iter_mut().zip(g) {
             r.set_next_raw(x);
         }
-        self.samples.set_next_bits(self.samples.q().bits() + 1);
+        out.samples.set_next_bits(out.samples.q().bits() + 1);
     }
 
     /// A ray taken from the port.
     fn take_ray(&mut self) {
-        for (r, s) in self.pos.iter_mut().zip(&self.ray_p) {
+        let st = &mut self.stepper;
+        for (r, s) in st.pos.iter_mut().zip(&self.ray_p) {
             r.set_next_raw(s.raw());
         }
-        for (r, s) in self.step.iter_mut().zip(&self.ray_d) {
+        for (r, s) in st.step.iter_mut().zip(&self.ray_d) {
             r.set_next_raw(s.raw());
         }
-        self.left.set_next_bits(self.ray_steps.bits());
-        self.k.set_next_bits(0);
-        self.ray.set_next_bits(self.ray.q().bits() + 1);
-        self.slot_left.set_next_bits(0);
+        st.left.set_next_bits(self.ray_steps.bits());
+        st.k.set_next_bits(0);
+        st.ray.set_next_bits(st.ray.q().bits() + 1);
+        self.seq.slot_left.set_next_bits(0);
     }
-}
 
-impl Module for RayCaster {
-    fn instance(&self) -> &str {
-        &self.name
-    }
-    fn kind(&self) -> &'static str {
-        "ray_caster_fig15"
-    }
-    fn eval(&mut self) {
-        self.buf_next = self.buf;
-        self.out_valid.set_next_bool(false);
-        let left = self.left.q().bits();
+    /// The sequencer, one cycle: a ray taken when idle, else the next access or the wait
+    /// for the one under way; a point's last access ending moves the stepper on.
+    pub fn eval(&mut self) {
+        self.pages.eval();
+        self.out.valid.set_next_bool(false);
+        let left = self.stepper.left.q().bits();
         let busy = left > 0;
         self.ray_ready.set_bool(!busy);
         if !busy {
@@ -229,92 +268,79 @@ impl Module for RayCaster {
             }
             return;
         }
-        let pos = self.pos.each_ref().map(|r| r.q().raw());
-        let slot_left = self.slot_left.q().bits();
-        let n = self.acc.q().bits() as usize;
-        let k = self.k.q().bits();
+        let st = &self.stepper;
+        let pos = st.pos.each_ref().map(|r| r.q().raw());
+        let k = st.k.q().bits();
+        let slot_left = self.seq.slot_left.q().bits();
+        let n = self.seq.acc.q().bits() as usize;
         if slot_left == 0 {
             // A ray's first access.
             self.start_access(0, k, pos);
         } else if slot_left > 1 {
-            self.slot_left.set_next_bits(slot_left - 1);
+            self.seq.slot_left.set_next_bits(slot_left - 1);
         } else if n + 1 < self.mode.accesses() {
             self.start_access(n + 1, k, pos);
         } else {
             // The point is done; the next one's first access starts now.
             self.finish_point(pos);
-            let next: [i64; 3] = std::array::from_fn(|c| pos[c] + self.step[c].q().raw());
-            for (r, x) in self.pos.iter_mut().zip(next) {
+            let st = &mut self.stepper;
+            let next: [i64; 3] = std::array::from_fn(|c| pos[c] + st.step[c].q().raw());
+            for (r, x) in st.pos.iter_mut().zip(next) {
                 r.set_next_raw(x);
             }
-            self.left.set_next_bits(left - 1);
-            self.k.set_next_bits(self.k.q().bits() + 1);
+            st.left.set_next_bits(left - 1);
+            st.k.set_next_bits(k + 1);
             if left > 1 {
                 self.start_access(0, k + 1, next);
             } else {
-                self.slot_left.set_next_bits(0);
+                self.seq.slot_left.set_next_bits(0);
             }
         }
     }
-    fn tick(&mut self, reset: bool) {
-        self.buf = if reset { [0; 32] } else { self.buf_next };
-        let regs = self
-            .pos
-            .iter_mut()
-            .chain(self.step.iter_mut())
-            .chain(self.out_p.iter_mut())
-            .chain(self.out_g.iter_mut())
-            .chain(self.open.iter_mut());
-        for r in regs {
-            r.tick(reset);
-        }
-        for r in [
-            &mut self.left,
-            &mut self.k,
-            &mut self.ray,
-            &mut self.acc,
-            &mut self.slot_left,
-            &mut self.fault,
-            &mut self.out_valid,
-            &mut self.out_ray,
-            &mut self.out_k,
-            &mut self.out_value,
-            &mut self.accesses,
-            &mut self.slots,
-            &mut self.fault_slots,
-            &mut self.bank_misses,
-            &mut self.samples,
-        ] {
-            r.tick(reset);
+}
+
+impl Stepper {
+    fn new() -> Stepper {
+        let wide = Format::signed(32, POS_FRAC as i32);
+        Stepper {
+            pos: ["x", "y", "z"].map(|n| Reg::new(n, wide)),
+            step: ["dx", "dy", "dz"].map(|n| Reg::new(n, wide)),
+            left: Reg::new("left", Format::uint(16)),
+            k: Reg::new("k", Format::uint(16)),
+            ray: Reg::new("ray", Format::uint(32)),
         }
     }
-    fn visit(&self, v: &mut dyn Visitor) {
-        v.enter(self.instance(), self.kind());
-        let [px, py, pz] = &self.ray_p;
-        let [dx, dy, dz] = &self.ray_d;
-        signals!(v;
-            Input: self.ray_valid, px, py, pz, dx, dy, dz, self.ray_steps;
-            Output: self.ray_ready);
-        v.enter("stepper", "volume_stepper");
-        for r in self.pos.iter().chain(&self.step) {
-            v.reg(r);
+}
+
+impl Sequencer {
+    fn new() -> Sequencer {
+        let count = |n| Reg::new(n, Format::uint(40));
+        Sequencer {
+            acc: Reg::new("acc", Format::uint(3)),
+            slot_left: Reg::new("slot_left", Format::uint(5)),
+            fault: Reg::new("fault", Format::uint(1)),
+            voxels: VOXEL_NAMES.map(|n| Reg::new(n, Format::uint(8))),
+            accesses: count("accesses"),
+            slots: count("slots"),
+            fault_slots: count("fault_slots"),
+            bank_misses: count("bank_misses"),
         }
-        signals!(v; Reg: self.left, self.k, self.ray);
-        v.leave();
-        v.enter("page_registers_824", "page_registers_824");
-        for r in &self.open {
-            v.reg(r);
+    }
+}
+
+impl Sample818 {
+    fn new() -> Sample818 {
+        let wide = Format::signed(32, POS_FRAC as i32);
+        let grad = Format::signed(9 + GRAD_FRAC + 1, GRAD_FRAC as i32);
+        Sample818 {
+            valid: Reg::new("out_valid", Format::uint(1)),
+            ray: Reg::new("out_ray", Format::uint(32)),
+            k: Reg::new("out_k", Format::uint(16)),
+            value: Reg::new("out_value", Format::uint(8)),
+            samples: Reg::new("samples", Format::uint(40)),
+            p: ["out_x", "out_y", "out_z"].map(|n| Reg::new(n, wide)),
+            g: ["out_gx", "out_gy", "out_gz"].map(|n| Reg::new(n, grad)),
         }
-        signals!(v; Reg: self.acc, self.slot_left, self.fault, self.accesses, self.slots,
-            self.fault_slots, self.bank_misses);
-        v.leave();
-        v.enter("trilinear_818", "trilinear_818");
-        signals!(v; Reg: self.out_valid, self.out_ray, self.out_k, self.out_value, self.samples);
-        for r in self.out_p.iter().chain(&self.out_g) {
-            v.reg(r);
-        }
-        v.leave();
-        v.leave();
     }
 }
 
@@ -362,10 +388,10 @@ mod tests {
                 c > 0 || dut.ray_ready.is_high(),
                 "an idle caster takes the ray"
             );
-            if dut.out_valid.q().is_high() {
+            if dut.out.valid.q().is_high() {
                 seen.outs.push(c);
             }
-            seen.fault_cycles += u64::from(dut.fault.q().is_high());
+            seen.fault_cycles += u64::from(dut.seq.fault.q().is_high());
             sim.tick();
             if seen.outs.len() as u64 == steps {
                 break;
@@ -387,10 +413,14 @@ mod tests {
             let (sim, s) = one_ray(mode, sc, p, d, 10);
             let r = |r: &Reg| r.q().bits();
             let dut = &sim.dut;
-            let (slots, faults) = (r(&dut.slots), r(&dut.fault_slots));
-            assert_eq!(r(&dut.samples), 10, "{mode:?}");
-            assert_eq!(r(&dut.accesses), 10 * mode.accesses() as u64, "{mode:?}");
-            assert_eq!(slots, r(&dut.accesses) + faults, "{mode:?}");
+            let (slots, faults) = (r(&dut.seq.slots), r(&dut.seq.fault_slots));
+            assert_eq!(r(&dut.out.samples), 10, "{mode:?}");
+            assert_eq!(
+                r(&dut.seq.accesses),
+                10 * mode.accesses() as u64,
+                "{mode:?}"
+            );
+            assert_eq!(slots, r(&dut.seq.accesses) + faults, "{mode:?}");
             assert!(0 < faults && faults < 10, "{mode:?}: {faults} faults");
             let sc = u64::from(sc);
             assert_eq!(s.outs.len(), 10);
