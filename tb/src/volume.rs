@@ -132,13 +132,13 @@ pub struct RayDriver;
 impl Driver<RayCaster> for RayDriver {
     type Txn = Ray;
     fn drive(&mut self, dut: &mut RayCaster, t: Option<&Ray>) {
-        dut.ray_valid.set_bool(t.is_some());
+        dut.ray.valid.set_bool(t.is_some());
         if let Some(t) = t {
             for c in 0..3 {
-                dut.ray_p[c].set_raw(i64::from(t.p[c]));
-                dut.ray_d[c].set_raw(i64::from(t.d[c]));
+                dut.ray.p[c].set_raw(i64::from(t.p[c]));
+                dut.ray.d[c].set_raw(i64::from(t.d[c]));
             }
-            dut.ray_steps.set_bits(u64::from(t.steps));
+            dut.ray.steps.set_bits(u64::from(t.steps));
         }
     }
     fn accepted(&self, dut: &RayCaster) -> bool {
@@ -567,16 +567,16 @@ pub fn render(n: u32, side: u32) -> Result<(Vec<[u8; 3]>, u64), String> {
             return Err("the lock-step chips stalled".into());
         }
         let d = &mut sim.dut;
-        d.ray_valid.set_bool(next < total);
+        d.port.valid.set_bool(next < total);
         let r = ray(next % side, next / side);
         for c in 0..3 {
-            d.ray_p[c].set_raw(r[c]);
-            d.ray_d[c].set_raw(r[3 + c]);
+            d.port.p[c].set_raw(r[c]);
+            d.port.d[c].set_raw(r[3 + c]);
         }
-        d.ray_steps.set_bits(u64::from(steps));
+        d.port.steps.set_bits(u64::from(steps));
         sim.eval();
         let d = &sim.dut;
-        next += u32::from(d.ray_valid.is_high() && d.ray_ready.is_high());
+        next += u32::from(d.port.valid.is_high() && d.ready.is_high());
         if d.out_valid.is_high() {
             let c = &d.chips[0];
             let pt = c.out.p.each_ref().map(|r| r.q().raw());

@@ -529,14 +529,14 @@ fn colour_configurations_agree_component_by_component() {
     let (mut next, mut rgba) = (0, Vec::new());
     while rgba.len() < reqs.len() {
         assert!(sim.cycle() < 40_000, "stalled");
-        sim.dut.req_valid.set_bool(next < reqs.len());
+        sim.dut.port.valid.set_bool(next < reqs.len());
         if let Some(&(u, v, l)) = reqs.get(next) {
-            sim.dut.req_u.set_raw(i64::from(u));
-            sim.dut.req_v.set_raw(i64::from(v));
-            sim.dut.req_lambda.set_raw(i64::from(l));
+            sim.dut.port.u.set_raw(i64::from(u));
+            sim.dut.port.v.set_raw(i64::from(v));
+            sim.dut.port.lambda.set_raw(i64::from(l));
         }
         sim.eval();
-        if sim.dut.req_valid.is_high() && sim.dut.req_ready.is_high() {
+        if sim.dut.port.valid.is_high() && sim.dut.ready.is_high() {
             next += 1;
         }
         if sim.dut.out_valid.is_high() {

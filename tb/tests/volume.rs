@@ -70,17 +70,17 @@ fn a_linear_field_gives_exact_gradients_inside() {
     let (mut got, mut next) = (Vec::new(), 0);
     for _ in 0..100 * pts.len() {
         let dut = &mut sim.dut;
-        dut.ray_valid.set_bool(next < pts.len());
+        dut.ray.valid.set_bool(next < pts.len());
         if let Some(pt) = pts.get(next) {
             for (c, x) in pt.iter().enumerate() {
-                dut.ray_p[c].set_raw(*x);
-                dut.ray_d[c].set_raw(0);
+                dut.ray.p[c].set_raw(*x);
+                dut.ray.d[c].set_raw(0);
             }
-            dut.ray_steps.set_bits(1);
+            dut.ray.steps.set_bits(1);
         }
         sim.eval();
         let d = &sim.dut;
-        next += usize::from(d.ray_valid.is_high() && d.ray_ready.is_high());
+        next += usize::from(d.ray.valid.is_high() && d.ray_ready.is_high());
         if d.out.valid.q().is_high() {
             got.push((
                 d.out.value.q().bits(),
@@ -138,15 +138,15 @@ fn chips_out_of_step_are_flagged_at_once() {
     let mut first_apart = None;
     for _ in 0..200 {
         let d = &mut sim.dut;
-        d.ray_valid.set_bool(true);
+        d.port.valid.set_bool(true);
         for (c, (pos, dir)) in [(2, one / 4), (3, one / 8), (1, one / 2)]
             .into_iter()
             .enumerate()
         {
-            d.ray_p[c].set_raw(pos * one);
-            d.ray_d[c].set_raw(dir);
+            d.port.p[c].set_raw(pos * one);
+            d.port.d[c].set_raw(dir);
         }
-        d.ray_steps.set_bits(8);
+        d.port.steps.set_bits(8);
         sim.eval();
         let c = &sim.dut.chips;
         let differ = |f: &dyn Fn(&RayCaster) -> bool| c.iter().any(|x| f(x) != f(&c[0]));

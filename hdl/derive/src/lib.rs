@@ -167,14 +167,15 @@ fn hdl_path() -> Tokens {
     }
 }
 
-/// `#[module(kind = "...", instance = "...", new)]`: the kind (required), the instance name
-/// (the kind's by default) and whether to generate `new`.
-fn module_args(ast: &DeriveInput) -> syn::Result<(LitStr, Option<LitStr>, bool)> {
+/// `#[module(kind = "...", instance = "...", new)]`: the kind (required: a string, or a
+/// `&'static str` constant such as a generic module's `C::KIND`), the instance name (the
+/// kind's by default) and whether to generate `new`.
+fn module_args(ast: &DeriveInput) -> syn::Result<(syn::Expr, Option<LitStr>, bool)> {
     let (mut kind, mut instance, mut new) = (None, None, false);
     for a in ast.attrs.iter().filter(|a| a.path().is_ident("module")) {
         a.parse_nested_meta(|m| {
             if m.path.is_ident("kind") {
-                kind = Some(m.value()?.parse::<LitStr>()?);
+                kind = Some(m.value()?.parse::<syn::Expr>()?);
                 Ok(())
             } else if m.path.is_ident("instance") {
                 instance = Some(m.value()?.parse::<LitStr>()?);

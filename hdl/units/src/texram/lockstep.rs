@@ -7,28 +7,41 @@
 use super::texram_802::{Texram802, TexramParams};
 use super::Drf;
 use crate::fx::Format;
-use crate::kernel::{Module, Reg, Signal};
+use crate::kernel::{Module, Reg, Signal, Signals};
+use std::fmt::Debug;
 
 const NAMES: [&str; 4] = ["chip_r", "chip_g", "chip_b", "chip_a"];
 
-/// Four chips sharing the request port.
+/// A chip four of which run in lock-step, one colour component each (the TEXRAM 802 here,
+/// the ray caster of Figure 15 in `volume`).
+pub trait LockstepChip: Module + Clone + Debug {
+    /// The input port every chip of a group shares.
+    type Port: crate::kernel::declared::Signals + Clone + Debug;
+    /// The group's kind, its scope in the waveform.
+    const GROUP: &'static str;
+    /// The name of the group's ready output.
+    const READY: &'static str;
+    /// A port in the chip's formats.
+    fn port(&self) -> Self::Port;
+    /// Drives the chip's inputs from the group's port.
+    fn drive(&mut self, port: &Self::Port);
+    /// Whether the chip takes the port's input this cycle.
+    fn ready(&self) -> bool;
+    /// The chip's output register: whether a result is out, and its component.
+    fn out(&self) -> Option<u8>;
+}
+
+/// Four chips sharing one input port, their components one RGBA result, their agreement
+/// checked every cycle.
 #[derive(Clone, Debug, Module)]
-#[module(kind = "texram_lockstep")]
-pub struct TexramLockstep {
+#[module(kind = C::GROUP)]
+pub struct Lockstep<C: LockstepChip> {
     #[child]
-    pub chips: Vec<Texram802>,
+    pub chips: Vec<C>,
     #[input]
-    pub req_valid: Signal,
+    pub port: C::Port,
     #[output]
-    pub req_ready: Signal,
-    #[input]
-    pub req_drf: Signal,
-    #[input]
-    pub req_u: Signal,
-    #[input]
-    pub req_v: Signal,
-    #[input]
-    pub req_lambda: Signal,
+    pub ready: Signal,
     /// R, G, B, alpha from the top byte down, valid with `out_valid`.
     #[output]
     pub out_valid: Signal,
@@ -39,24 +52,99 @@ pub struct TexramLockstep {
     pub out_of_step: Reg,
 }
 
-impl TexramLockstep {
-    pub fn new(p: TexramParams) -> Result<TexramLockstep, String> {
-        let chips = NAMES
-            .iter()
-            .map(|n| Texram802::new(p).map(|c| c.named(n)))
-            .collect::<Result<Vec<_>, _>>()?;
-        Ok(TexramLockstep {
-            chips,
-            req_valid: Signal::bit("req_valid"),
-            req_ready: Signal::bit("req_ready"),
-            req_drf: Signal::new("req_drf", Format::uint(3)),
-            req_u: Signal::new("req_u", Format::signed(super::UV_BITS, 8)),
-            req_v: Signal::new("req_v", Format::signed(super::UV_BITS, 8)),
-            req_lambda: Signal::new("req_lambda", Format::signed(14, 8)),
+impl<C: LockstepChip> Lockstep<C> {
+    /// The four chips (R, G, B, alpha), named `chip_r` ... `chip_a` in the waveform.
+    pub fn of(chips: [C; 4], name: fn(C, &'static str) -> C) -> Lockstep<C> {
+        let chips: Vec<C> = chips
+            .into_iter()
+            .zip(NAMES)
+            .map(|(c, n)| name(c, n))
+            .collect();
+        Lockstep {
+            port: chips[0].port(),
+            ready: Signal::bit(C::READY),
             out_valid: Signal::bit("out_valid"),
             out_rgba: Signal::new("out_rgba", Format::uint(32)),
             out_of_step: Reg::new("out_of_step", Format::uint(1)),
-        })
+            chips,
+        }
+    }
+
+    /// Every chip on the same input; their results compared.
+    pub fn eval(&mut self) {
+        for chip in &mut self.chips {
+            chip.drive(&self.port);
+            chip.eval();
+        }
+        let ready = self.chips[0].ready();
+        let valid = self.chips[0].out().is_some();
+        let apart = self
+            .chips
+            .iter()
+            .any(|c| c.ready() != ready || c.out().is_some() != valid);
+        if apart {
+            self.out_of_step.set_next_bool(true);
+        }
+        self.ready.set_bool(ready);
+        self.out_valid.set_bool(valid);
+        let rgba = self
+            .chips
+            .iter()
+            .fold(0u64, |acc, c| acc << 8 | u64::from(c.out().unwrap_or(0)));
+        self.out_rgba.set_bits(rgba);
+    }
+}
+
+/// The chip's request port as the group shares it (the illumination is not shared: each
+/// chip's is its own input).
+#[derive(Clone, Debug, Signals)]
+pub struct TexramReq {
+    pub valid: Signal,
+    pub drf: Signal,
+    pub u: Signal,
+    pub v: Signal,
+    pub lambda: Signal,
+}
+
+impl LockstepChip for Texram802 {
+    type Port = TexramReq;
+    const GROUP: &'static str = "texram_lockstep";
+    const READY: &'static str = "req_ready";
+    fn port(&self) -> TexramReq {
+        TexramReq {
+            valid: self.req_valid.clone(),
+            drf: self.req_drf.clone(),
+            u: self.req_u.clone(),
+            v: self.req_v.clone(),
+            lambda: self.req_lambda.clone(),
+        }
+    }
+    fn drive(&mut self, port: &TexramReq) {
+        self.req_valid.follow(&port.valid);
+        self.req_drf.follow(&port.drf);
+        self.req_u.follow(&port.u);
+        self.req_v.follow(&port.v);
+        self.req_lambda.follow(&port.lambda);
+    }
+    fn ready(&self) -> bool {
+        self.req_ready.is_high()
+    }
+    fn out(&self) -> Option<u8> {
+        self.out_valid
+            .q()
+            .is_high()
+            .then(|| self.out_value.q().bits() as u8)
+    }
+}
+
+/// Configuration 4: four TEXRAM chips.
+pub type TexramLockstep = Lockstep<Texram802>;
+
+impl Lockstep<Texram802> {
+    pub fn new(p: TexramParams) -> Result<TexramLockstep, String> {
+        let chip = Texram802::new(p)?;
+        let four = [chip.clone(), chip.clone(), chip.clone(), chip];
+        Ok(Lockstep::of(four, |c, n| c.named(n)))
     }
 
     /// DRF `k` on every chip, and component `c`'s level 0 (R, G, B, alpha) on chip `c`.
@@ -66,36 +154,6 @@ impl TexramLockstep {
             chip.load(k, plane)?;
         }
         Ok(())
-    }
-}
-
-impl TexramLockstep {
-    /// Every chip on the same request; their results compared.
-    pub fn eval(&mut self) {
-        for chip in &mut self.chips {
-            chip.req_valid.follow(&self.req_valid);
-            chip.req_drf.follow(&self.req_drf);
-            chip.req_u.follow(&self.req_u);
-            chip.req_v.follow(&self.req_v);
-            chip.req_lambda.follow(&self.req_lambda);
-            chip.eval();
-        }
-        let ready = self.chips[0].req_ready.is_high();
-        let valid = self.chips[0].out_valid.q().is_high();
-        let apart = self
-            .chips
-            .iter()
-            .any(|c| c.req_ready.is_high() != ready || c.out_valid.q().is_high() != valid);
-        if apart {
-            self.out_of_step.set_next_bool(true);
-        }
-        self.req_ready.set_bool(ready);
-        self.out_valid.set_bool(valid);
-        let rgba = self
-            .chips
-            .iter()
-            .fold(0u64, |acc, c| acc << 8 | c.out_value.q().bits());
-        self.out_rgba.set_bits(rgba);
     }
 }
 
@@ -139,9 +197,9 @@ mod tests {
         sim.reset(2);
         let mut first_apart = None;
         for k in 0..400i64 {
-            sim.dut.req_valid.set_bool(true);
-            sim.dut.req_u.set_raw((k * 37 % 800) << 8);
-            sim.dut.req_v.set_raw((k * 91 % 800) << 8);
+            sim.dut.port.valid.set_bool(true);
+            sim.dut.port.u.set_raw((k * 37 % 800) << 8);
+            sim.dut.port.v.set_raw((k * 91 % 800) << 8);
             sim.eval();
             let c = &sim.dut.chips;
             let differ = |f: &dyn Fn(&Texram802) -> bool| c.iter().any(|x| f(x) != f(&c[0]));

@@ -24,7 +24,7 @@
 use super::interp::{gradient, value, weights, GRAD_FRAC};
 use super::layout::{access_order, access_voxels, locate, Mode, VolumeParams, POS_BITS, POS_FRAC};
 use crate::fx::Format;
-use crate::kernel::{Module, Reg, Signal};
+use crate::kernel::{Module, Reg, Signal, Signals};
 use crate::pages::page_registers_824::PageRegisters824;
 
 /// The voxel buffer's registers: `voxel{4a + t}` is voxel `t` of access `a`.
@@ -107,6 +107,38 @@ impl Sample818 {
     fn eval(&mut self) {}
 }
 
+/// The ray port: a ray from `p` by `d` (each sQ9.12) for `steps` samples (u16), offered
+/// with `valid`, taken when the caster is ready.
+#[derive(Clone, Debug, Signals)]
+pub struct RayIn {
+    pub valid: Signal,
+    pub p: [Signal; 3],
+    pub d: [Signal; 3],
+    pub steps: Signal,
+}
+
+impl RayIn {
+    fn new() -> RayIn {
+        let pos = Format::signed(POS_BITS, POS_FRAC as i32);
+        RayIn {
+            valid: Signal::bit("ray_valid"),
+            p: ["ray_x", "ray_y", "ray_z"].map(|n| Signal::new(n, pos)),
+            d: ["ray_dx", "ray_dy", "ray_dz"].map(|n| Signal::new(n, pos)),
+            steps: Signal::new("ray_steps", Format::uint(16)),
+        }
+    }
+
+    /// Drives this port from `from` (a group of casters sharing one ray port).
+    pub fn follow(&mut self, from: &RayIn) {
+        self.valid.follow(&from.valid);
+        for c in 0..3 {
+            self.p[c].follow(&from.p[c]);
+            self.d[c].follow(&from.d[c]);
+        }
+        self.steps.follow(&from.steps);
+    }
+}
+
 /// The ray caster with its voxel store.
 #[derive(Clone, Debug, Module)]
 #[module(kind = "ray_caster_fig15")]
@@ -118,13 +150,7 @@ pub struct RayCaster {
     /// The voxel store: level 0 of banks 0-3, loaded by the host.
     banks: Vec<Vec<u8>>,
     #[input]
-    pub ray_valid: Signal,
-    #[input]
-    pub ray_p: [Signal; 3],
-    #[input]
-    pub ray_d: [Signal; 3],
-    #[input]
-    pub ray_steps: Signal,
+    pub ray: RayIn,
     #[output]
     pub ray_ready: Signal,
     #[child]
@@ -167,17 +193,13 @@ impl RayCaster {
                 }
             }
         }
-        let pos = Format::signed(POS_BITS, POS_FRAC as i32);
         Ok(RayCaster {
             name: "ray_caster_fig15",
             p,
             mode,
             banks,
-            ray_valid: Signal::bit("ray_valid"),
+            ray: RayIn::new(),
             ray_ready: Signal::bit("ray_ready"),
-            ray_p: ["ray_x", "ray_y", "ray_z"].map(|n| Signal::new(n, pos)),
-            ray_d: ["ray_dx", "ray_dy", "ray_dz"].map(|n| Signal::new(n, pos)),
-            ray_steps: Signal::new("ray_steps", Format::uint(16)),
             stepper: Stepper::new(),
             pages: PageRegisters824::new(4, 18),
             seq: Sequencer::new(),
@@ -242,13 +264,13 @@ impl RayCaster {
     /// A ray taken from the port.
     fn take_ray(&mut self) {
         let st = &mut self.stepper;
-        for (r, s) in st.pos.iter_mut().zip(&self.ray_p) {
+        for (r, s) in st.pos.iter_mut().zip(&self.ray.p) {
             r.set_next_raw(s.raw());
         }
-        for (r, s) in st.step.iter_mut().zip(&self.ray_d) {
+        for (r, s) in st.step.iter_mut().zip(&self.ray.d) {
             r.set_next_raw(s.raw());
         }
-        st.left.set_next_bits(self.ray_steps.bits());
+        st.left.set_next_bits(self.ray.steps.bits());
         st.k.set_next_bits(0);
         st.ray.set_next_bits(st.ray.q().bits() + 1);
         self.seq.slot_left.set_next_bits(0);
@@ -263,7 +285,7 @@ impl RayCaster {
         let busy = left > 0;
         self.ray_ready.set_bool(!busy);
         if !busy {
-            if self.ray_valid.is_high() {
+            if self.ray.valid.is_high() {
                 self.take_ray();
             }
             return;
@@ -376,12 +398,12 @@ mod tests {
         };
         for c in 0..20_000u64 {
             let dut = &mut sim.dut;
-            dut.ray_valid.set_bool(c == 0);
+            dut.ray.valid.set_bool(c == 0);
             for k in 0..3 {
-                dut.ray_p[k].set_raw(p[k]);
-                dut.ray_d[k].set_raw(d[k]);
+                dut.ray.p[k].set_raw(p[k]);
+                dut.ray.d[k].set_raw(d[k]);
             }
-            dut.ray_steps.set_bits(steps);
+            dut.ray.steps.set_bits(steps);
             sim.eval();
             let dut = &sim.dut;
             assert!(
