@@ -296,7 +296,7 @@ fn drive<T: Trace>(
         } else {
             c.reads as f64 * 1e9 / ns as f64
         },
-        violations: c.dram.violations,
+        violations: c.dram.violations(),
         data_errors,
     };
     Ok((sim, st, cov))

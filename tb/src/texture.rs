@@ -471,7 +471,7 @@ fn read_stats(
         page_faults: d.mem.page_faults,
         scanlines,
         page_faults_per_scanline: d.mem.page_faults as f64 / scanlines.max(1) as f64,
-        violations: d.mem.dram.violations,
+        violations: d.mem.dram.violations(),
     }
 }
 

@@ -95,11 +95,11 @@ fn the_dram_model_flags_timing_violations() {
         sim.step();
     }
     let d = &sim.dut;
-    let text: Vec<String> = d.log.iter().map(|v| v.what.clone()).collect();
+    let text: Vec<String> = d.log().iter().map(|v| v.what.clone()).collect();
     assert!(text.iter().any(|t| t.contains("t_rcd")), "{text:?}");
     assert!(text.iter().any(|t| t.contains("t_cas")), "{text:?}");
     assert!(text.iter().any(|t| t.contains("t_rp")), "{text:?}");
-    assert_eq!(d.violations, 3);
+    assert_eq!(d.violations(), 3);
 }
 
 /// Drives the pins cycle by cycle: `(ras_n, cas_n, we_n, addr)`; the violations logged.
@@ -114,8 +114,8 @@ fn violations(pins: &[(bool, bool, bool, u64)]) -> Vec<String> {
         d.addr.set_bits(addr);
         sim.step();
     }
-    assert_eq!(sim.dut.violations, sim.dut.log.len() as u64);
-    sim.dut.log.iter().map(|v| v.what.clone()).collect()
+    assert_eq!(sim.dut.violations(), sim.dut.log().len() as u64);
+    sim.dut.log().iter().map(|v| v.what.clone()).collect()
 }
 
 /// The model's other rules, each broken once on its own (512 x 512 words, every timing 3

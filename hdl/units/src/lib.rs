@@ -35,7 +35,7 @@
 //! | normal unit 156 and its inverse square root | `bump/normal_156.rs`, `bump/rsqrt_156.rs` | `normal_156`, `rsqrt_156` | `normal_pipeline_fig7`; `tb/tests/unit_rsqrt.rs` | `tb.normal_pipeline_fig7.normal_156.rsqrt_156` |
 //! | the FIG. 7 pipeline | `bump/normal_pipeline_fig7.rs` | `normal_pipeline_fig7` | `normal_pipeline_fig7` | `tb.normal_pipeline_fig7` |
 //! | texture mapping unit 602 (Schilling & Knittel Figure 6) | `texmem/texture_unit_602.rs` | `texture_unit_602` | `texture_unit_602` | `tb.texture_unit_602` |
-//! | DRAM 604 | `texmem/dram_604.rs` | `dram_604` | `control_607` | `tb.control_607.dram_604` |
+//! | DRAM 604 (its timing checks a traced `violation` wire, one bit a rule, and a `violations` count) | `texmem/dram_604.rs` | `dram_604` | `control_607` | `tb.control_607.dram_604` |
 //! | DRAM control unit 607: word reads, block fetch, lookahead queue | `texmem/control_607.rs` | `control_607`, `fill_engine_607`, `lookahead_queue_607` | `control_607` (word reads), `texture_unit_602` | `tb.control_607`, `tb.texture_unit_602.fill_engine_607` |
 //! | register 608, multiplexer 610, CLUT 612 | `texmem/ccc_decode_608.rs` | `ccc_decode_608` | `texture_unit_602` | `tb.texture_unit_602.ccc_decode_608` |
 //! | cache 614 (four entries, Figure 7) | `texmem/cache_614.rs` | `cache_614`, entries `cache_614_entry` | `texture_unit_602` | `tb.texture_unit_602.cache_614.entry_a` … |

@@ -65,7 +65,7 @@ impl CosimUnit for ControlCosim {
                 r.cas_n.bits(),
                 r.oe_n.bits(),
                 r.addr.bits(),
-                r.violations & 0xffff_ffff,
+                r.violations() & 0xffff_ffff,
             ]
         })))
     }

@@ -16,9 +16,9 @@
 //! document's figures: a page-mode access `t_cas + t_cp` = 3 + 3 cycles = 30 ns, a page fault
 //! `t_rp + t_rcd` = 3 + 3 cycles = another 30 ns.
 
-use crate::fx::Format;
-use crate::kernel::{Module, Reg, Signal, Visitor};
-use crate::signals;
+use crate::fx::{Format, Fx};
+use crate::kernel::declared::Regs;
+use crate::kernel::{Dir, Module, Reg, Signal, Visitor};
 
 /// Geometry and timing.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -105,66 +105,155 @@ pub struct Violation {
     pub what: String,
 }
 
-/// DRAM 604.
+/// The rules the model checks, one bit each of its `violation` wire (the cycle before the
+/// edge that breaks them).
+pub mod rule {
+    /// WE# low: the texture DRAM is read here, never written.
+    pub const WRITE: u64 = 1 << 0;
+    /// RAS# fell after less than `t_rp` cycles high.
+    pub const T_RP: u64 = 1 << 1;
+    /// A row beyond the array.
+    pub const ROW: u64 = 1 << 2;
+    /// CAS# fell with RAS# high.
+    pub const NO_ROW: u64 = 1 << 3;
+    /// CAS# fell less than `t_rcd` cycles after RAS#.
+    pub const T_RCD: u64 = 1 << 4;
+    /// CAS# fell after less than `t_cp` cycles high.
+    pub const T_CP: u64 = 1 << 5;
+    /// A column beyond the page.
+    pub const COL: u64 = 1 << 6;
+    /// CAS# rose after less than `t_cas` cycles low.
+    pub const T_CAS: u64 = 1 << 7;
+}
+
+/// The violations seen so far: counted (traced as the register `violations`), the first 20
+/// described. Each cycle's are decided by `eval` and committed at the edge, as a register's
+/// next value is; under reset none is.
 #[derive(Clone, Debug)]
+pub struct ViolationLog {
+    count: Signal,
+    cycle: u64,
+    log: Vec<Violation>,
+    next: Vec<String>,
+}
+
+impl ViolationLog {
+    fn new() -> ViolationLog {
+        ViolationLog {
+            count: Signal::new("violations", Format::uint(40)),
+            cycle: 0,
+            log: Vec::new(),
+            next: Vec::new(),
+        }
+    }
+}
+
+impl Regs for ViolationLog {
+    fn tick_regs(&mut self, reset: bool) {
+        self.cycle += 1;
+        if reset {
+            self.next.clear();
+            return;
+        }
+        let n = self.count.bits() + self.next.len() as u64;
+        self.count.set_bits(n & ((1 << 40) - 1));
+        for what in self.next.drain(..) {
+            if self.log.len() < 20 {
+                self.log.push(Violation {
+                    cycle: self.cycle,
+                    what,
+                });
+            }
+        }
+    }
+    fn visit_regs(&self, v: &mut dyn Visitor) {
+        v.signal(Dir::Reg, &self.count);
+    }
+}
+
+/// A timing counter's register: cycles a pin has held its level, saturating at 1023 (every
+/// timing is at most 1000 cycles, so a comparison with one is exact).
+const LEVEL_MAX: u64 = 1023;
+
+/// DRAM 604.
+#[derive(Clone, Debug, Module)]
+#[module(kind = "dram_604")]
 pub struct Dram {
-    name: String,
+    #[instance]
+    name: &'static str,
     p: DramParams,
     mem: Vec<u16>,
+    #[input]
     pub ras_n: Signal,
+    #[input]
     pub cas_n: Signal,
+    #[input]
     pub we_n: Signal,
+    #[input]
     pub oe_n: Signal,
+    #[input]
     pub addr: Signal,
+    #[output]
     pub dq: Signal,
+    #[output]
     pub dq_valid: Signal,
+    /// The rules ([`rule`]) the pins break at the coming edge.
+    #[wire]
+    pub violation: Signal,
     /// The page register: the open row (valid while RAS# is low).
+    #[reg]
     pub page_row: Reg,
+    #[reg]
     col: Reg,
+    /// RAS# and CAS# at the last edge.
+    #[reg]
+    ras_n_was: Reg,
+    #[reg]
+    cas_n_was: Reg,
     /// Cycles RAS#/CAS# have held their level, and cycles since RAS# fell.
-    ras_level_for: u32,
-    cas_level_for: u32,
-    since_ras_fall: u32,
-    last: (bool, bool),
-    cycle: u64,
-    /// Violations counted, and the first ones described.
-    pub violations: u64,
-    pub log: Vec<Violation>,
+    #[reg]
+    ras_level_for: Reg,
+    #[reg]
+    cas_level_for: Reg,
+    #[reg]
+    since_ras_fall: Reg,
+    #[reg]
+    log: ViolationLog,
 }
 
 impl Dram {
-    pub fn new(name: &str, p: DramParams) -> Result<Dram, String> {
+    pub fn new(name: &'static str, p: DramParams) -> Result<Dram, String> {
         p.validate()?;
         let rb = 32 - (p.rows - 1).leading_zeros().min(31);
         let cb = 32 - (p.cols - 1).leading_zeros().min(31);
-        let mut ras_n = Signal::bit("ras_n");
-        ras_n.set_bool(true);
-        let mut cas_n = Signal::bit("cas_n");
-        cas_n.set_bool(true);
-        let mut we_n = Signal::bit("we_n");
-        we_n.set_bool(true);
-        let mut oe_n = Signal::bit("oe_n");
-        oe_n.set_bool(true);
+        let high = |n| {
+            let mut s = Signal::bit(n);
+            s.set_bool(true);
+            s
+        };
+        let (u10, bit) = (Format::uint(10), Format::uint(1));
+        // After reset both pins have been high "long ago".
+        let level = |n| Reg::with_reset(n, u10, Fx::from_int(u10, 1000));
         Ok(Dram {
-            name: name.into(),
+            name,
             mem: (0..p.words()).map(DramParams::pattern).collect(),
             p,
-            ras_n,
-            cas_n,
-            we_n,
-            oe_n,
+            ras_n: high("ras_n"),
+            cas_n: high("cas_n"),
+            we_n: high("we_n"),
+            oe_n: high("oe_n"),
             addr: Signal::new("addr", Format::uint(11)),
             dq: Signal::new("dq", Format::uint(16)),
             dq_valid: Signal::bit("dq_valid"),
+            violation: Signal::new("violation", Format::uint(8)),
             page_row: Reg::new("page_row", Format::uint(rb.max(1))),
             col: Reg::new("col", Format::uint(cb.max(1))),
-            ras_level_for: 1000,
-            cas_level_for: 1000,
-            since_ras_fall: 0,
-            last: (true, true),
-            cycle: 0,
-            violations: 0,
-            log: Vec::new(),
+            ras_n_was: Reg::with_reset("ras_n_was", bit, Fx::from_int(bit, 1)),
+            cas_n_was: Reg::with_reset("cas_n_was", bit, Fx::from_int(bit, 1)),
+            ras_level_for: level("ras_level_for"),
+            cas_level_for: level("cas_level_for"),
+            since_ras_fall: Reg::new("since_ras_fall", u10),
+            log: ViolationLog::new(),
         })
     }
 
@@ -183,118 +272,101 @@ impl Dram {
         Ok(())
     }
 
-    fn violate(&mut self, what: String) {
-        self.violations += 1;
-        if self.log.len() < 20 {
-            self.log.push(Violation {
-                cycle: self.cycle,
-                what,
-            });
+    /// Violations counted since power-up.
+    pub fn violations(&self) -> u64 {
+        self.log.count.bits()
+    }
+
+    /// The first 20 violations, described.
+    pub fn log(&self) -> &[Violation] {
+        &self.log.log
+    }
+
+    /// Rule `bit` broken at the coming edge, if `broken`: flagged on the wire, described.
+    fn check(&mut self, bit: u64, broken: bool, what: impl FnOnce() -> String) {
+        if broken {
+            self.violation.set_bits(self.violation.bits() | bit);
+            self.log.next.push(what());
         }
     }
-}
 
-impl Module for Dram {
-    fn instance(&self) -> &str {
-        &self.name
-    }
-    fn kind(&self) -> &'static str {
-        "dram_604"
-    }
-    fn eval(&mut self) {
-        // Data out: CAS# low for at least t_cas cycles, OE# low.
-        let (ras_n, cas_n) = (self.ras_n.is_high(), self.cas_n.is_high());
-        // Low for `cas_level_for` earlier cycles plus this one; the column was latched at the
-        // falling edge, so data can come from the second low cycle on (t_cas >= 2).
-        let valid = !ras_n
-            && !cas_n
+    /// Data out: CAS# low for at least `t_cas` cycles, OE# low. The column was latched at
+    /// the falling edge, so data can come from the second low cycle on (`t_cas >= 2`).
+    fn data_out(&mut self) {
+        let valid = !self.ras_n.is_high()
+            && !self.cas_n.is_high()
             && !self.oe_n.is_high()
-            && !self.last.1
-            && self.cas_level_for + 1 >= self.p.t_cas;
+            && !self.cas_n_was.q().is_high()
+            && self.cas_level_for.q().bits() + 1 >= u64::from(self.p.t_cas);
         self.dq_valid.set_bool(valid);
         if valid {
-            let a = u64::from(self.page_row.q().bits() as u32) * u64::from(self.p.cols)
-                + self.col.q().bits();
+            let a = self.page_row.q().bits() * u64::from(self.p.cols) + self.col.q().bits();
             self.dq.set_bits(u64::from(self.mem[a as usize]));
         }
     }
-    fn tick(&mut self, reset: bool) {
-        self.cycle += 1;
-        if reset {
-            self.last = (true, true);
-            self.ras_level_for = 1000;
-            self.cas_level_for = 1000;
-            return;
-        }
+
+    /// The pins, one cycle: data out, and the rules and latches of the coming edge.
+    pub fn eval(&mut self) {
+        self.data_out();
+        self.violation.set_bits(0);
+        self.log.next.clear();
         let (ras_n, cas_n) = (self.ras_n.is_high(), self.cas_n.is_high());
+        let (ras_was, cas_was) = (self.ras_n_was.q().is_high(), self.cas_n_was.q().is_high());
+        let (ras_for, cas_for) = (self.ras_level_for.q().bits(), self.cas_level_for.q().bits());
+        let since = self.since_ras_fall.q().bits();
         let a = self.addr.bits() as u32;
-        if !self.we_n.is_high() {
-            self.violate("WE# low: the texture DRAM is read here, never written".into());
+        let p = self.p;
+        self.check(rule::WRITE, !self.we_n.is_high(), || {
+            "WE# low: the texture DRAM is read here, never written".into()
+        });
+        let ras_falls = ras_was && !ras_n;
+        if ras_falls {
+            self.check(rule::T_RP, ras_for < u64::from(p.t_rp), || {
+                format!("RAS# precharge {ras_for} cycles < t_rp {}", p.t_rp)
+            });
+            self.check(rule::ROW, a >= p.rows, || {
+                format!("row {a} beyond {} rows", p.rows)
+            });
+            self.page_row.set_next_bits(u64::from(a % p.rows));
         }
-        // RAS# edges.
-        if self.last.0 && !ras_n {
-            if self.ras_level_for < self.p.t_rp {
-                self.violate(format!(
-                    "RAS# precharge {} cycles < t_rp {}",
-                    self.ras_level_for, self.p.t_rp
-                ));
-            }
-            if a >= self.p.rows {
-                self.violate(format!("row {a} beyond {} rows", self.p.rows));
-            }
-            self.page_row.set_next_bits(u64::from(a % self.p.rows));
-            self.page_row.tick(false);
-            self.since_ras_fall = 0;
+        if cas_was && !cas_n {
+            self.check(rule::NO_ROW, ras_n, || {
+                "CAS# fell with no open row (RAS# high)".into()
+            });
+            self.check(rule::T_RCD, since < u64::from(p.t_rcd), || {
+                format!("RAS#-to-CAS# {since} cycles < t_rcd {}", p.t_rcd)
+            });
+            self.check(rule::T_CP, cas_for < u64::from(p.t_cp), || {
+                format!("CAS# precharge {cas_for} cycles < t_cp {}", p.t_cp)
+            });
+            self.check(rule::COL, a >= p.cols, || {
+                format!("column {a} beyond {} words per page", p.cols)
+            });
+            self.col.set_next_bits(u64::from(a % p.cols));
         }
-        // CAS# edges.
-        if self.last.1 && !cas_n {
-            if ras_n {
-                self.violate("CAS# fell with no open row (RAS# high)".into());
+        let short = !cas_was && cas_n && cas_for < u64::from(p.t_cas);
+        self.check(rule::T_CAS, short, || {
+            format!("CAS# low {cas_for} cycles < t_cas {}", p.t_cas)
+        });
+        let held = |was: bool, now: bool, n: u64| {
+            if was == now {
+                (n + 1).min(LEVEL_MAX)
+            } else {
+                1
             }
-            if self.since_ras_fall < self.p.t_rcd {
-                self.violate(format!(
-                    "RAS#-to-CAS# {} cycles < t_rcd {}",
-                    self.since_ras_fall, self.p.t_rcd
-                ));
-            }
-            if self.cas_level_for < self.p.t_cp {
-                self.violate(format!(
-                    "CAS# precharge {} cycles < t_cp {}",
-                    self.cas_level_for, self.p.t_cp
-                ));
-            }
-            if a >= self.p.cols {
-                self.violate(format!("column {a} beyond {} words per page", self.p.cols));
-            }
-            self.col.set_next_bits(u64::from(a % self.p.cols));
-            self.col.tick(false);
-        }
-        if !self.last.1 && cas_n && self.cas_level_for < self.p.t_cas {
-            self.violate(format!(
-                "CAS# low {} cycles < t_cas {}",
-                self.cas_level_for, self.p.t_cas
-            ));
-        }
-        self.ras_level_for = if self.last.0 == ras_n {
-            self.ras_level_for.saturating_add(1)
-        } else {
-            1
         };
-        self.cas_level_for = if self.last.1 == cas_n {
-            self.cas_level_for.saturating_add(1)
-        } else {
+        self.ras_level_for
+            .set_next_bits(held(ras_was, ras_n, ras_for));
+        self.cas_level_for
+            .set_next_bits(held(cas_was, cas_n, cas_for));
+        let since = if ras_falls {
             1
+        } else {
+            (since + 1).min(LEVEL_MAX)
         };
-        self.since_ras_fall = self.since_ras_fall.saturating_add(1);
-        self.last = (ras_n, cas_n);
-    }
-    fn visit(&self, v: &mut dyn Visitor) {
-        v.enter(self.instance(), self.kind());
-        signals!(v;
-            Input: self.ras_n, self.cas_n, self.we_n, self.oe_n, self.addr;
-            Output: self.dq, self.dq_valid;
-            Reg: self.page_row, self.col);
-        v.leave();
+        self.since_ras_fall.set_next_bits(since);
+        self.ras_n_was.set_next_bool(ras_n);
+        self.cas_n_was.set_next_bool(cas_n);
     }
 }
 
@@ -359,7 +431,7 @@ mod tests {
         for _ in 0..4 {
             assert_eq!(pins(&mut d, true, true, false, 5), None, "OE# high");
         }
-        assert_eq!(d.violations, 0, "{:?}", d.log);
+        assert_eq!(d.violations(), 0, "{:?}", d.log());
         // RAS# high (no row open), CAS# low for long: a violation and no data.
         for _ in 0..4 {
             assert_eq!(pins(&mut d, false, false, true, 0), None);
@@ -367,7 +439,7 @@ mod tests {
         for _ in 0..5 {
             assert_eq!(pins(&mut d, false, true, true, 5), None, "no row open");
         }
-        assert_eq!(d.violations, 1, "{:?}", d.log);
+        assert_eq!(d.violations(), 1, "{:?}", d.log());
     }
 
     /// Every violation is counted; the first 20 are described, with their edges.
@@ -378,12 +450,12 @@ mod tests {
             d.we_n.set_bool(!(3..28).contains(&c));
             pins(&mut d, false, false, false, 0);
         }
-        assert_eq!(d.violations, 25);
-        assert_eq!(d.log.len(), 20);
-        let cycles: Vec<u64> = d.log.iter().map(|v| v.cycle).collect();
+        assert_eq!(d.violations(), 25);
+        assert_eq!(d.log().len(), 20);
+        let cycles: Vec<u64> = d.log().iter().map(|v| v.cycle).collect();
         // Numbered by the edge that saw them: the edge after cycle c is the model's c + 1.
         assert_eq!(cycles, (4..24).collect::<Vec<_>>());
-        assert!(d.log[0].what.starts_with("WE# low"), "{:?}", d.log[0]);
+        assert!(d.log()[0].what.starts_with("WE# low"), "{:?}", d.log()[0]);
     }
 
     /// Each range at both ends, and one beyond, naming the parameter.
