@@ -10,6 +10,8 @@
 //! every violation (with the first ones described): RAS# precharge `t_rp`, RAS#-to-CAS# delay
 //! `t_rcd`, CAS# low `t_cas`, CAS# precharge `t_cp`, an address beyond the array, CAS# without
 //! an open row, a write (WE# low: this model is read-only).
+//! In the waveform a violation is the `violation` wire's bit for its rule ([`rule`]) in the
+//! cycle before the edge that breaks it, and the `violations` register counts them.
 //!
 //! # Timing
 //! All times in controller cycles of `cycle_ns` (default 5 ns). Defaults reproduce the
