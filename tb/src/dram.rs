@@ -284,9 +284,9 @@ fn drive<T: Trace>(
     let cycles = done_at.expect("set above") - start;
     let ns = cycles * u64::from(p.cycle_ns);
     let st = DramStats {
-        reads: c.reads,
-        page_hits: c.page_hits,
-        page_faults: c.page_faults,
+        reads: c.reads.q().bits(),
+        page_hits: c.page_hits.q().bits(),
+        page_faults: c.page_faults.q().bits(),
         cycles,
         ns,
         cycle_ns: p.cycle_ns,
@@ -294,7 +294,7 @@ fn drive<T: Trace>(
         reads_per_second: if ns == 0 {
             0.0
         } else {
-            c.reads as f64 * 1e9 / ns as f64
+            c.reads.q().bits() as f64 * 1e9 / ns as f64
         },
         violations: c.dram.violations(),
         data_errors,

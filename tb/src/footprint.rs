@@ -938,7 +938,7 @@ pub fn run_footprint_texture(
     let want = |k: usize| ref_assemble_texture(tex, tp.frac_bits, &p, &pixels[k]).0;
     let (results, cycles, dut) = drive_pixels(dut, pixels, (vcd, period), want)?;
     let mut stats = stats_of(&results, cycles, period);
-    stats.page_faults = dut.assembly.chip.mem.page_faults;
+    stats.page_faults = dut.assembly.chip.mem.page_faults.q().bits();
     let results = results
         .into_iter()
         .zip(pixels)

@@ -466,11 +466,11 @@ fn read_stats(
         late_prefetches: s.late_prefetches,
         prefetch_dropped: s.prefetch_dropped,
         stall_cycles: s.stall_cycles,
-        dram_reads: d.mem.reads,
-        page_hits: d.mem.page_hits,
-        page_faults: d.mem.page_faults,
+        dram_reads: d.mem.reads.q().bits(),
+        page_hits: d.mem.page_hits.q().bits(),
+        page_faults: d.mem.page_faults.q().bits(),
         scanlines,
-        page_faults_per_scanline: d.mem.page_faults as f64 / scanlines.max(1) as f64,
+        page_faults_per_scanline: d.mem.page_faults.q().bits() as f64 / scanlines.max(1) as f64,
         violations: d.mem.dram.violations(),
     }
 }

@@ -1129,7 +1129,6 @@ fn cache_touch_bug_is_caught_with_its_cycle_and_port() {
 /// says when).
 #[test]
 fn lookahead_flush_bug_is_caught_with_its_cycle_and_port() {
-    use hdl::kernel::Module;
     use units::texmem::control_607::LookaheadQueue;
     let u = LookaheadCosim {
         mode: Lookahead::Quadrant,

@@ -15,8 +15,7 @@ use super::cache_614::{entry_of, lookahead, lookahead_direction, Lookahead};
 use super::dram_604::{Dram, DramParams};
 use super::layout::BlockMap;
 use crate::fx::Format;
-use crate::kernel::{Module, Reg, Signal, Visitor};
-use crate::signals;
+use crate::kernel::{Module, Reg, Signal};
 
 /// Controller states.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -32,25 +31,41 @@ enum State {
 const STATES: &[&str] = &["IDLE", "PRECHARGE", "ROW_OPEN", "CAS_LOW", "CAS_HIGH"];
 
 /// DRAM control unit 607 (word reads), with the DRAM 604 it drives.
-#[derive(Clone, Debug)]
+#[derive(Clone, Debug, Module)]
+#[module(kind = "control_607")]
 pub struct DramCtrl {
+    #[instance]
     name: String,
     p: DramParams,
+    #[input]
     pub req_valid: Signal,
+    #[input]
     pub req_addr: Signal,
+    #[output]
     pub ready: Signal,
+    #[output]
     pub resp_valid: Signal,
+    #[output]
     pub resp_data: Signal,
+    #[reg]
     pub state: Reg,
+    #[reg]
     count: Reg,
+    #[reg]
     open_row: Reg,
+    #[reg]
     row_open: Reg,
+    #[reg]
     addr_r: Reg,
+    /// Reads taken, and of them page hits and page faults.
+    #[reg]
+    pub reads: Reg,
+    #[reg]
+    pub page_hits: Reg,
+    #[reg]
+    pub page_faults: Reg,
+    #[child]
     pub dram: Dram,
-    pub reads: u64,
-    pub page_hits: u64,
-    pub page_faults: u64,
-    accept: bool,
 }
 
 impl DramCtrl {
@@ -71,10 +86,9 @@ impl DramCtrl {
             row_open: Reg::new("row_open", Format::uint(1)),
             addr_r: Reg::new("addr_r", Format::uint(ab.max(1))),
             dram,
-            reads: 0,
-            page_hits: 0,
-            page_faults: 0,
-            accept: false,
+            reads: Reg::new("reads", Format::uint(40)),
+            page_hits: Reg::new("page_hits", Format::uint(40)),
+            page_faults: Reg::new("page_faults", Format::uint(40)),
         })
     }
 
@@ -83,14 +97,9 @@ impl DramCtrl {
     }
 }
 
-impl Module for DramCtrl {
-    fn instance(&self) -> &str {
-        &self.name
-    }
-    fn kind(&self) -> &'static str {
-        "control_607"
-    }
-    fn eval(&mut self) {
+impl DramCtrl {
+    /// The pins from the state, the next state from the request and the DRAM's data.
+    pub fn eval(&mut self) {
         let st = self.state.q().bits();
         let n = self.count.q().bits() as u32;
         let cols = u64::from(self.p.cols);
@@ -99,8 +108,8 @@ impl Module for DramCtrl {
         let last_cp = st == State::CasHigh as u64 && n >= self.p.t_cp;
         let free = st == State::Idle as u64 || last_cp;
         self.ready.set_bool(free);
-        self.accept = free && self.req_valid.is_high();
-        let addr = if self.accept {
+        let accept = free && self.req_valid.is_high();
+        let addr = if accept {
             self.req_addr.bits()
         } else {
             self.addr_r.q().bits()
@@ -123,7 +132,7 @@ impl Module for DramCtrl {
         self.resp_valid.set_bool(false);
         // Next state.
         let (next, cnt) = match st {
-            _ if self.accept => {
+            _ if accept => {
                 if open {
                     (State::CasLow, 1)
                 } else {
@@ -164,41 +173,18 @@ impl Module for DramCtrl {
         };
         self.state.set_next_raw(next as i64);
         self.count.set_next_raw(i64::from(cnt));
-        if self.accept {
+        if accept {
             self.addr_r.set_next_bits(addr);
             self.open_row.set_next_bits(row);
             self.row_open.set_next_bool(true);
-        }
-    }
-    fn tick(&mut self, reset: bool) {
-        if self.accept && !reset {
-            self.reads += 1;
-            let row = self.req_addr.bits() / u64::from(self.p.cols);
-            if self.row_open.q().is_high() && self.open_row.q().bits() == row {
-                self.page_hits += 1;
+            let count = |r: &mut Reg| r.set_next_bits(r.q().bits() + 1);
+            count(&mut self.reads);
+            count(if open {
+                &mut self.page_hits
             } else {
-                self.page_faults += 1;
-            }
+                &mut self.page_faults
+            });
         }
-        for r in [
-            &mut self.state,
-            &mut self.count,
-            &mut self.open_row,
-            &mut self.row_open,
-            &mut self.addr_r,
-        ] {
-            r.tick(reset);
-        }
-        self.dram.tick(reset);
-    }
-    fn visit(&self, v: &mut dyn Visitor) {
-        v.enter(self.instance(), self.kind());
-        signals!(v;
-            Input: self.req_valid, self.req_addr;
-            Output: self.ready, self.resp_valid, self.resp_data;
-            Reg: self.state, self.count, self.open_row, self.row_open);
-        self.dram.visit(v);
-        v.leave();
     }
 }
 
@@ -217,23 +203,37 @@ const FILL_STATES: &[&str] = &["IDLE", "FETCH", "DECODE"];
 /// `word_ready`, `word_resp` from the word controller; `line_done` from the decoder;
 /// `word_req`, `word_addr` to the word controller (Moore outputs, also readable before `eval`
 /// through [`FillEngine::word_request`]).
-#[derive(Clone, Debug)]
+#[derive(Clone, Debug, Module)]
+#[module(kind = "fill_engine_607")]
 pub struct FillEngine {
-    name: &'static str,
     map: BlockMap,
+    #[input]
     pub start: Signal,
+    #[input]
     pub start_bx: Signal,
+    #[input]
     pub start_by: Signal,
+    #[input]
     pub start_prefetch: Signal,
+    #[input]
     pub word_ready: Signal,
+    #[input]
     pub word_resp: Signal,
+    #[input]
     pub line_done: Signal,
+    #[output]
     pub word_req: Signal,
+    #[output]
     pub word_addr: Signal,
+    #[reg]
     pub state: Reg,
+    #[reg]
     pub bx: Reg,
+    #[reg]
     pub by: Reg,
+    #[reg]
     pub prefetch: Reg,
+    #[reg]
     words_issued: Reg,
 }
 
@@ -243,7 +243,6 @@ impl FillEngine {
     pub fn new(map: BlockMap, block_bits: u32, addr: Format) -> FillEngine {
         let b = Format::uint(block_bits);
         FillEngine {
-            name: "fill_engine_607",
             map,
             start: Signal::bit("start"),
             start_bx: Signal::new("start_bx", b),
@@ -289,15 +288,10 @@ impl FillEngine {
     }
 }
 
-impl Module for FillEngine {
-    fn instance(&self) -> &str {
-        self.name
-    }
-    fn kind(&self) -> &'static str {
-        "fill_engine_607"
-    }
+impl FillEngine {
+    /// The word request from the state; the next state from the controller and decoder.
     #[inline]
-    fn eval(&mut self) {
+    pub fn eval(&mut self) {
         let req = self.word_request();
         self.word_req.set_bool(req.is_some());
         self.word_addr.set_bits(req.unwrap_or(0));
@@ -319,23 +313,6 @@ impl Module for FillEngine {
             self.words_issued.set_next_bits(0);
         }
     }
-    #[inline]
-    fn tick(&mut self, reset: bool) {
-        self.state.tick(reset);
-        self.bx.tick(reset);
-        self.by.tick(reset);
-        self.prefetch.tick(reset);
-        self.words_issued.tick(reset);
-    }
-    fn visit(&self, v: &mut dyn Visitor) {
-        v.enter(self.instance(), self.kind());
-        signals!(v;
-            Input: self.start, self.start_bx, self.start_by, self.start_prefetch,
-                   self.word_ready, self.word_resp, self.line_done;
-            Output: self.word_req, self.word_addr;
-            Reg: self.state, self.bx, self.by, self.prefetch, self.words_issued);
-        v.leave();
-    }
 }
 
 /// The lookahead queue of control unit 607: up to three neighbouring blocks to preload,
@@ -351,31 +328,47 @@ impl Module for FillEngine {
 /// first live candidate is taken (`take`, `take_bx`, `take_by`: the unit drops it without a
 /// fill when the cache already holds it). A request's candidates can be taken the cycle it
 /// completes.
-#[derive(Clone, Debug)]
+#[derive(Clone, Debug, Module)]
+#[module(kind = "lookahead_queue_607")]
 pub struct LookaheadQueue {
-    name: &'static str,
     mode: Lookahead,
     /// Texture size in blocks, and fraction bits of `u`, `v`.
     blocks: (u32, u32),
     frac_bits: u32,
+    #[input]
     pub complete: Signal,
+    #[input]
     pub u: Signal,
+    #[input]
     pub v: Signal,
+    #[input]
     pub newline: Signal,
+    #[input]
     pub flush: Signal,
+    #[input]
     pub engine_free: Signal,
+    #[input]
     pub stage0_missing: Signal,
+    #[output]
     pub take: Signal,
+    #[output]
     pub take_bx: Signal,
+    #[output]
     pub take_by: Signal,
     /// Live slots, and the blocks in them.
+    #[reg]
     pub mask: Reg,
-    bx: [Reg; 3],
-    by: [Reg; 3],
     /// The previous completed point of this scanline (direction lookahead).
+    #[reg]
     pub prev_valid: Reg,
+    #[reg]
     pub prev_u: Reg,
+    #[reg]
     pub prev_v: Reg,
+    #[reg]
+    bx: [Reg; 3],
+    #[reg]
+    by: [Reg; 3],
 }
 
 impl LookaheadQueue {
@@ -384,7 +377,6 @@ impl LookaheadQueue {
     pub fn new(mode: Lookahead, blocks: (u32, u32), uq: Format, block_bits: u32) -> Self {
         let b = Format::uint(block_bits);
         LookaheadQueue {
-            name: "lookahead_queue_607",
             mode,
             blocks,
             frac_bits: uq.frac() as u32,
@@ -399,8 +391,8 @@ impl LookaheadQueue {
             take_bx: Signal::new("take_bx", b),
             take_by: Signal::new("take_by", b),
             mask: Reg::new("mask", Format::uint(3)),
-            bx: [0, 1, 2].map(|_| Reg::new("slot_bx", b)),
-            by: [0, 1, 2].map(|_| Reg::new("slot_by", b)),
+            bx: ["slot0_bx", "slot1_bx", "slot2_bx"].map(|n| Reg::new(n, b)),
+            by: ["slot0_by", "slot1_by", "slot2_by"].map(|n| Reg::new(n, b)),
             prev_valid: Reg::new("prev_valid", Format::uint(1)),
             prev_u: Reg::new("prev_u", uq),
             prev_v: Reg::new("prev_v", uq),
@@ -452,15 +444,10 @@ impl LookaheadQueue {
     }
 }
 
-impl Module for LookaheadQueue {
-    fn instance(&self) -> &str {
-        self.name
-    }
-    fn kind(&self) -> &'static str {
-        "lookahead_queue_607"
-    }
+impl LookaheadQueue {
+    /// The queue's next contents and this cycle's take.
     #[inline]
-    fn eval(&mut self) {
+    pub fn eval(&mut self) {
         let complete = self.complete.is_high();
         let (u, v) = (self.u.bits(), self.v.bits());
         let (mut m, q) = if complete {
@@ -492,28 +479,5 @@ impl Module for LookaheadQueue {
         let (tx, ty) = take.unwrap_or((0, 0));
         self.take_bx.set_bits(u64::from(tx));
         self.take_by.set_bits(u64::from(ty));
-    }
-    #[inline]
-    fn tick(&mut self, reset: bool) {
-        for k in 0..3 {
-            self.bx[k].tick(reset);
-            self.by[k].tick(reset);
-        }
-        self.mask.tick(reset);
-        self.prev_valid.tick(reset);
-        self.prev_u.tick(reset);
-        self.prev_v.tick(reset);
-    }
-    fn visit(&self, v: &mut dyn Visitor) {
-        v.enter(self.instance(), self.kind());
-        signals!(v;
-            Input: self.complete, self.u, self.v, self.newline, self.flush, self.engine_free,
-                   self.stage0_missing;
-            Output: self.take, self.take_bx, self.take_by;
-            Reg: self.mask, self.prev_valid, self.prev_u, self.prev_v);
-        for r in self.bx.iter().chain(&self.by) {
-            v.reg(r);
-        }
-        v.leave();
     }
 }
