@@ -440,7 +440,7 @@ fn read_stats(
     [cold, cap, conf]: [u64; 3],
 ) -> TexReadStats {
     let p = d.params();
-    let s = d.stats;
+    let s = d.stats();
     let ns = cycles * u64::from(p.dram.cycle_ns);
     TexReadStats {
         requests: s.requests,

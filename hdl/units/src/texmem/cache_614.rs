@@ -29,8 +29,7 @@
 //! prefetch and not yet used by a request; for the statistics only).
 
 use crate::fx::Format;
-use crate::kernel::{Module, Reg, Signal, Visitor};
-use crate::signals;
+use crate::kernel::{Module, Reg, Signal};
 
 /// Entry of block `(bx, by)` (Figure 7).
 #[inline]
@@ -99,36 +98,26 @@ pub fn lookahead_direction(
 }
 
 /// One entry.
-#[derive(Clone, Debug)]
+#[derive(Clone, Debug, Module)]
+#[module(kind = "cache_614_entry")]
 pub struct Entry {
+    #[instance]
     name: String,
+    #[reg]
     pub valid: Reg,
+    #[reg]
     pub tag_x: Reg,
+    #[reg]
     pub tag_y: Reg,
+    #[reg]
     pub data: Reg,
+    #[reg]
     pub prefetched: Reg,
 }
 
-impl Module for Entry {
-    fn instance(&self) -> &str {
-        &self.name
-    }
-    fn kind(&self) -> &'static str {
-        "cache_614_entry"
-    }
+impl Entry {
+    /// The owning cache writes the entry's next values.
     fn eval(&mut self) {}
-    fn tick(&mut self, reset: bool) {
-        self.valid.tick(reset);
-        self.tag_x.tick(reset);
-        self.tag_y.tick(reset);
-        self.data.tick(reset);
-        self.prefetched.tick(reset);
-    }
-    fn visit(&self, v: &mut dyn Visitor) {
-        v.enter(self.instance(), self.kind());
-        signals!(v; Reg: self.valid, self.tag_x, self.tag_y, self.data, self.prefetched);
-        v.leave();
-    }
 }
 
 /// Cache 614. Reads are combinational ([`TextureCache::holds`], [`TextureCache::line`]: the
@@ -141,16 +130,26 @@ impl Module for Entry {
 /// entry, for the cache-off mode), `write` with `write_bx`, `write_by`, `write_data`,
 /// `write_prefetched` (a filled line; it wins over the others for its entry). Lookups read
 /// the registered state ([`TextureCache::holds`], [`TextureCache::line`]).
-#[derive(Clone, Debug)]
+#[derive(Clone, Debug, Module)]
+#[module(kind = "cache_614")]
 pub struct TextureCache {
+    #[instance]
     name: String,
+    #[input]
     pub touch: Signal,
+    #[input]
     pub invalidate: Signal,
+    #[input]
     pub write: Signal,
+    #[input]
     pub write_bx: Signal,
+    #[input]
     pub write_by: Signal,
+    #[input]
     pub write_data: Signal,
+    #[input]
     pub write_prefetched: Signal,
+    #[child]
     pub entries: [Entry; 4],
 }
 
@@ -201,15 +200,10 @@ impl TextureCache {
     }
 }
 
-impl Module for TextureCache {
-    fn instance(&self) -> &str {
-        &self.name
-    }
-    fn kind(&self) -> &'static str {
-        "cache_614"
-    }
+impl TextureCache {
+    /// The entries' next values from this cycle's touch, invalidation and write.
     #[inline]
-    fn eval(&mut self) {
+    pub fn eval(&mut self) {
         let touch = self.touch.bits();
         let inval = self.invalidate.is_high();
         for (k, e) in self.entries.iter_mut().enumerate() {
@@ -229,21 +223,6 @@ impl Module for TextureCache {
             e.data.set_next_bits(self.write_data.bits());
             e.prefetched.set_next_bool(self.write_prefetched.is_high());
         }
-    }
-    fn tick(&mut self, reset: bool) {
-        for e in &mut self.entries {
-            e.tick(reset);
-        }
-    }
-    fn visit(&self, v: &mut dyn Visitor) {
-        v.enter(self.instance(), self.kind());
-        signals!(v;
-            Input: self.touch, self.invalidate, self.write, self.write_bx, self.write_by,
-                   self.write_data, self.write_prefetched);
-        for e in &self.entries {
-            e.visit(v);
-        }
-        v.leave();
     }
 }
 

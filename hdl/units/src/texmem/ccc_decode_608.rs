@@ -20,8 +20,7 @@
 //! high and `line` carries the whole entry to the cache (write enable, line 616).
 
 use crate::fx::Format;
-use crate::kernel::{Module, Reg, Signal, Visitor};
-use crate::signals;
+use crate::kernel::{Module, Reg, Signal};
 
 /// One encoded block as stored in DRAM.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Default)]
@@ -73,25 +72,38 @@ const LUT_B: u64 = 2;
 const STATES: &[&str] = &["LOAD", "LUT_A", "LUT_B"];
 
 /// Register 608, multiplexer 610, CLUT 612.
-#[derive(Clone, Debug)]
+#[derive(Clone, Debug, Module)]
+#[module(kind = "ccc_decode_608")]
 pub struct CccDecode {
+    #[instance]
     name: String,
     clut: Vec<u32>,
     /// A DRAM word arrives (from control unit 607).
+    #[input]
     pub word_valid: Signal,
+    #[input]
     pub word: Signal,
     /// Multiplexer 610's select: 0 colour a, 1 colour b.
+    #[wire]
     pub mux_sel: Signal,
     /// CLUT 612's address and data.
+    #[wire]
     pub clut_addr: Signal,
+    #[wire]
     pub clut_data: Signal,
     /// The finished cache line (write enable and data).
+    #[output]
     pub line_valid: Signal,
+    #[output]
     pub line: Signal,
+    #[reg]
     pub reg_608: Reg,
     /// Words held (0, 1) while loading.
+    #[reg]
     words_in: Reg,
+    #[reg]
     pub state: Reg,
+    #[reg]
     color_a: Reg,
 }
 
@@ -122,14 +134,9 @@ impl CccDecode {
     }
 }
 
-impl Module for CccDecode {
-    fn instance(&self) -> &str {
-        &self.name
-    }
-    fn kind(&self) -> &'static str {
-        "ccc_decode_608"
-    }
-    fn eval(&mut self) {
+impl CccDecode {
+    /// Multiplexer 610 and CLUT 612 from the state; register 608 loads the block's words.
+    pub fn eval(&mut self) {
         let st = self.state.q().bits();
         let r = self.reg_608.q().bits();
         let sel = st == LUT_B;
@@ -164,21 +171,6 @@ impl Module for CccDecode {
                 }
             }
         }
-    }
-    fn tick(&mut self, reset: bool) {
-        self.reg_608.tick(reset);
-        self.words_in.tick(reset);
-        self.state.tick(reset);
-        self.color_a.tick(reset);
-    }
-    fn visit(&self, v: &mut dyn Visitor) {
-        v.enter(self.instance(), self.kind());
-        signals!(v;
-            Input: self.word_valid, self.word;
-            Wire: self.mux_sel, self.clut_addr, self.clut_data;
-            Output: self.line_valid, self.line;
-            Reg: self.reg_608, self.words_in, self.state, self.color_a);
-        v.leave();
     }
 }
 

@@ -38,8 +38,8 @@
 //! Counted at clock edges (so a schedule check evaluating twice does not count twice).
 
 use crate::fx::Format;
+use crate::kernel::declared::Regs;
 use crate::kernel::{Module, Reg, Signal, Visitor};
-use crate::signals;
 use crate::texmem::bilinear_622::ColorBilinear;
 use crate::texmem::cache_614::{entry_of, Lookahead, TextureCache};
 use crate::texmem::ccc_decode_608::CccDecode;
@@ -181,42 +181,71 @@ struct Stage0 {
 }
 
 /// Texture mapping unit 602.
-#[derive(Clone, Debug)]
+#[derive(Clone, Debug, Module)]
+#[module(kind = "texture_unit_602")]
 pub struct TextureUnit {
+    #[instance]
     name: String,
     p: TexParams,
     // Rasterizer side.
+    #[input]
     pub in_valid: Signal,
+    #[input]
     pub in_u: Signal,
+    #[input]
     pub in_v: Signal,
+    #[input]
     pub in_newline: Signal,
+    #[output]
     pub in_ready: Signal,
+    #[output]
     pub out_valid: Signal,
+    #[output]
     pub out_rgb: Signal,
     // Stage 0.
+    #[reg]
     pub req_valid: Reg,
+    #[reg]
     pub req_u: Reg,
+    #[reg]
     pub req_v: Reg,
+    #[reg]
     pub req_newline: Reg,
+    #[reg]
     req_seen: Reg,
     /// Entries the request needs and entries that hit (this cycle).
+    #[wire]
     pub need_mask: Signal,
+    #[wire]
     pub hit_mask: Signal,
     /// Control unit 607: block fetch, lookahead queue, word reads (with DRAM 604).
+    #[child]
     pub fill: FillEngine,
+    #[child]
     pub queue: LookaheadQueue,
+    #[child]
     pub mem: DramCtrl,
+    #[child]
     pub decode: CccDecode,
+    #[child]
     pub cache: TextureCache,
+    #[child]
     pub extract: ColorExtract,
+    #[child]
     pub bilinear: ColorBilinear,
-    pub stats: TexStats,
+    /// The statistics ([`TextureUnit::stats`]).
+    #[reg]
+    counters: Counters,
     /// The monitor port (valid after `eval`).
     pub lookup: Lookup,
-    ev: Events,
 }
 
 impl TextureUnit {
+    /// The statistics so far.
+    pub fn stats(&self) -> TexStats {
+        self.counters.stats
+    }
+
     /// A unit with the DRAM loaded from `words` at `p.base` (see
     /// [`crate::texmem::layout`]) and CLUT 612 from `clut`.
     pub fn new(name: &str, p: TexParams, clut: &[u32], words: &[u16]) -> Result<Self, String> {
@@ -252,9 +281,8 @@ impl TextureUnit {
             cache: TextureCache::new("cache_614", bb - 1),
             extract: ColorExtract::new("extract_618", COORD_BITS, p.frac_bits),
             bilinear: ColorBilinear::new("bilinear_622", p.frac_bits)?,
-            stats: TexStats::default(),
+            counters: Counters::default(),
             lookup: Lookup::default(),
-            ev: Events::default(),
         })
     }
 
@@ -300,7 +328,7 @@ impl TextureUnit {
             self.req_seen.set_next_bool(true);
         }
         let done = missing.is_none();
-        self.ev.stall = u64::from(!done);
+        self.counters.ev.stall = u64::from(!done);
         let ex = &mut self.extract;
         ex.in_valid.set_bool(done);
         if done {
@@ -358,10 +386,10 @@ impl TextureUnit {
                 // A prefetched block counts as used by the first request that finds it; as a
                 // prefetch hit only if that was the request's first lookup.
                 if h && first && self.cache.prefetched(e) {
-                    self.ev.pf_hits += 1;
+                    self.counters.ev.pf_hits += 1;
                 }
                 if first && !h && filling && fill_pf && (fbx, fby) == (bx, by) {
-                    self.ev.late += 1;
+                    self.counters.ev.late += 1;
                 }
             }
         }
@@ -369,8 +397,8 @@ impl TextureUnit {
         self.need_mask.set_bits(need);
         self.hit_mask.set_bits(hit);
         if first {
-            self.ev.refs = lk.n as u64;
-            self.ev.hits = u64::from(hit.count_ones());
+            self.counters.ev.refs = lk.n as u64;
+            self.counters.ev.hits = u64::from(hit.count_ones());
         }
         missing
     }
@@ -410,17 +438,17 @@ impl TextureUnit {
         q.eval();
         let mut start = demand.map(|b| (b, false));
         if start.is_some() {
-            self.ev.demand = 1;
+            self.counters.ev.demand = 1;
         } else if self.queue.take.is_high() {
             let b = (
                 self.queue.take_bx.bits() as u32,
                 self.queue.take_by.bits() as u32,
             );
             if self.cache.holds(b.0, b.1) {
-                self.ev.dropped = 1;
+                self.counters.ev.dropped = 1;
             } else {
                 start = Some((b, true));
-                self.ev.prefetch = 1;
+                self.counters.ev.prefetch = 1;
             }
         }
         let f = &mut self.fill;
@@ -441,7 +469,7 @@ impl TextureUnit {
         let ready = !s0.busy || s0.done;
         self.in_ready.set_bool(ready);
         let accept = ready && self.in_valid.is_high();
-        self.ev.accept = u64::from(accept);
+        self.counters.ev.accept = u64::from(accept);
         if accept {
             self.req_valid.set_next_bool(true);
             self.req_u.set_next_bits(self.in_u.bits());
@@ -472,68 +500,41 @@ impl TextureUnit {
     }
 }
 
-impl Module for TextureUnit {
-    fn instance(&self) -> &str {
-        &self.name
-    }
-    fn kind(&self) -> &'static str {
-        "texture_unit_602"
-    }
+impl TextureUnit {
     /// Figure 6 from left to right: stage 0 looks the footprint up in cache 614; 607 fetches
     /// the missing block or a lookahead candidate through DRAM 604 into 608/610/612 and the
     /// cache; the rasterizer handshake; extract 618 and bilinear 622.
-    fn eval(&mut self) {
-        self.ev = Events::default();
+    pub fn eval(&mut self) {
+        self.counters.ev = Events::default();
         let s0 = self.stage0();
         self.fill_path();
         self.start_fills(&s0);
         self.handshake(&s0);
         self.output_stages();
     }
+}
 
-    fn tick(&mut self, reset: bool) {
+/// The statistics' counters: this cycle's events, decided by `eval`, are added at the clock
+/// edge as a register's next value is committed (so a schedule check that evaluates twice
+/// does not count twice); none under reset. Statistics, not hardware: not traced.
+#[derive(Clone, Debug, Default)]
+struct Counters {
+    stats: TexStats,
+    ev: Events,
+}
+
+impl Regs for Counters {
+    #[inline]
+    fn tick_regs(&mut self, reset: bool) {
         if !reset {
             self.count_events();
         }
-        for r in [
-            &mut self.req_valid,
-            &mut self.req_u,
-            &mut self.req_v,
-            &mut self.req_newline,
-            &mut self.req_seen,
-        ] {
-            r.tick(reset);
-        }
-        self.fill.tick(reset);
-        self.queue.tick(reset);
-        self.mem.tick(reset);
-        self.decode.tick(reset);
-        self.cache.tick(reset);
-        self.extract.tick(reset);
-        self.bilinear.tick(reset);
     }
-
-    fn visit(&self, v: &mut dyn Visitor) {
-        v.enter(self.instance(), self.kind());
-        signals!(v;
-            Input: self.in_valid, self.in_u, self.in_v, self.in_newline;
-            Output: self.in_ready, self.out_valid, self.out_rgb;
-            Reg: self.req_valid, self.req_u, self.req_v, self.req_newline, self.req_seen;
-            Wire: self.need_mask, self.hit_mask);
-        self.fill.visit(v);
-        self.queue.visit(v);
-        self.mem.visit(v);
-        self.decode.visit(v);
-        self.cache.visit(v);
-        self.extract.visit(v);
-        self.bilinear.visit(v);
-        v.leave();
-    }
+    fn visit_regs(&self, _: &mut dyn Visitor) {}
 }
 
-impl TextureUnit {
-    /// This cycle's events into the statistics (at the edge, so a schedule check that
-    /// evaluates twice does not count twice).
+impl Counters {
+    /// This cycle's events into the statistics.
     fn count_events(&mut self) {
         let ev = self.ev;
         let s = &mut self.stats;
