@@ -142,10 +142,16 @@ fn fig14_generator_visits_every_level_and_fifo() {
         ("mipmap_level_fig14", 4),
         ("fifo_1408", 4),
         ("fifo_1412", 4),
+        ("mem", 8),
     ];
     assert_eq!(kinds(&top), own(&want));
     let names = paths(&top);
-    for unit in ["level1", "level1.fifo_1408", "level4.fifo_1412"] {
+    for unit in [
+        "level1",
+        "level1.fifo_1408",
+        "level4.fifo_1412",
+        "level4.fifo_1412.entries",
+    ] {
         let path = format!("mipmap_gen_816.{unit}");
         assert!(names.contains(&path), "{path} not visited: {names:?}");
     }

@@ -8,12 +8,14 @@
 
 pub mod declared;
 mod delay;
+mod mem;
 mod module;
 mod signal;
 mod sim;
 mod typed;
 
 pub use delay::Delay;
+pub use mem::Mem;
 pub use module::{Dir, Module, Visitor};
 pub use signal::{Reg, Signal};
 pub use sim::{instances, narrowings, signal_dirs, signal_paths, NoTrace, Sim, Trace};

@@ -7,8 +7,7 @@
 //! FIFO's registered state) and may be used before the inputs are driven.
 
 use crate::fx::Format;
-use crate::kernel::{Module, Signal, Visitor};
-use crate::signals;
+use crate::kernel::{Mem, Module, Reg, Signal};
 
 /// What went wrong with a FIFO.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -30,22 +29,36 @@ impl FifoError {
 }
 
 /// A FIFO of `depth` entries of `width` bits; its kind names the unit (`fifo_1408`).
-#[derive(Clone, Debug)]
+#[derive(Clone, Debug, Module)]
+#[module(kind = self.kind)]
 pub struct Fifo {
+    #[instance]
     name: &'static str,
     kind: &'static str,
-    buf: Vec<u16>,
-    head: usize,
-    len: usize,
-    max: usize,
+    #[input]
     pub push: Signal,
+    #[input]
     pub push_data: Signal,
+    #[input]
     pub pop: Signal,
     /// Empties the FIFO at the edge (a parallel transfer of its line), before pop and push.
+    #[input]
     pub clear: Signal,
+    #[output]
     pub occupancy: Signal,
     /// 0 none, 1 overflow, 2 underflow (this cycle's inputs against the stored state).
+    #[output]
     pub error: Signal,
+    /// The oldest entry's place, the entries held, the most ever held.
+    #[reg]
+    head: Reg,
+    #[reg]
+    len: Reg,
+    #[reg]
+    max: Reg,
+    /// The entries.
+    #[child]
+    buf: Mem,
 }
 
 impl Fifo {
@@ -58,102 +71,88 @@ impl Fifo {
             ));
         }
         let bits = usize::BITS - depth.leading_zeros();
+        let count = Format::uint(bits);
         Ok(Fifo {
             name,
             kind: name,
-            buf: vec![0; depth],
-            head: 0,
-            len: 0,
-            max: 0,
             push: Signal::bit("push"),
             push_data: Signal::new("push_data", Format::uint(width)),
             pop: Signal::bit("pop"),
             clear: Signal::bit("clear"),
-            occupancy: Signal::new("occupancy", Format::uint(bits)),
+            occupancy: Signal::new("occupancy", count),
             error: Signal::new("error", Format::uint(2)),
+            head: Reg::new("head", count),
+            len: Reg::new("len", count),
+            max: Reg::new("max_occupancy", count),
+            buf: Mem::new("entries", depth, Format::uint(width)),
         })
     }
 
     pub fn depth(&self) -> usize {
-        self.buf.len()
+        self.buf.depth()
     }
     pub fn len(&self) -> usize {
-        self.len
+        self.len.q().bits() as usize
     }
     pub fn is_empty(&self) -> bool {
-        self.len == 0
+        self.len() == 0
     }
     pub fn is_full(&self) -> bool {
-        self.len == self.buf.len()
+        self.len() == self.depth()
     }
-    /// Largest occupancy since construction.
+    /// Largest occupancy since reset.
     pub fn max_occupancy(&self) -> usize {
-        self.max
+        self.max.q().bits() as usize
     }
 
     /// The oldest stored entry, if any (what a pop takes).
     #[inline]
     pub fn front(&self) -> Option<u16> {
-        (self.len > 0).then(|| self.buf[self.head])
+        (self.len() > 0).then(|| self.buf.read(self.head.q().bits() as usize) as u16)
     }
 
     /// The stored entries, oldest first.
     pub fn iter(&self) -> impl Iterator<Item = u16> + '_ {
-        let d = self.buf.len();
-        (0..self.len).map(move |i| self.buf[(self.head + i) % d])
+        let (d, head) = (self.depth(), self.head.q().bits() as usize);
+        (0..self.len()).map(move |i| self.buf.read((head + i) % d) as u16)
     }
 
     /// The error this cycle's inputs cause: clear first, then pop, then push.
     fn fault(&self) -> Option<FifoError> {
-        let len = if self.clear.is_high() { 0 } else { self.len };
+        let len = if self.clear.is_high() { 0 } else { self.len() };
         let pop = self.pop.is_high();
         if pop && len == 0 {
             return Some(FifoError::Underflow);
         }
         let after_pop = len - usize::from(pop);
-        (self.push.is_high() && after_pop == self.buf.len()).then_some(FifoError::Overflow)
+        (self.push.is_high() && after_pop == self.depth()).then_some(FifoError::Overflow)
     }
-}
 
-impl Module for Fifo {
-    fn instance(&self) -> &str {
-        self.name
-    }
-    fn kind(&self) -> &'static str {
-        self.kind
-    }
+    /// The outputs from the stored state; the edge's clear, then pop, then push (one that
+    /// would overflow or underflow does nothing).
     #[inline]
-    fn eval(&mut self) {
-        self.occupancy.set_bits(self.len as u64);
+    pub fn eval(&mut self) {
+        self.occupancy.set_bits(self.len.q().bits());
         self.error.set_bits(self.fault().map_or(0, FifoError::code));
-    }
-    #[inline]
-    fn tick(&mut self, reset: bool) {
-        if reset || self.clear.is_high() {
-            self.head = 0;
-            self.len = 0;
+        self.buf.eval();
+        let d = self.depth();
+        let (mut head, mut len) = (self.head.q().bits() as usize, self.len());
+        if self.clear.is_high() {
+            (head, len) = (0, 0);
         }
-        if reset {
-            return;
+        if self.pop.is_high() && len > 0 {
+            head = if head + 1 == d { 0 } else { head + 1 };
+            len -= 1;
         }
-        let d = self.buf.len();
-        if self.pop.is_high() && self.len > 0 {
-            self.head = if self.head + 1 == d { 0 } else { self.head + 1 };
-            self.len -= 1;
+        if self.push.is_high() && len < d {
+            self.buf.write((head + len) % d, self.push_data.bits());
+            len += 1;
+            if len > self.max_occupancy() {
+                self.max.set_next_bits(len as u64);
+            }
         }
-        if self.push.is_high() && self.len < d {
-            let tail = (self.head + self.len) % d;
-            self.buf[tail] = self.push_data.bits() as u16;
-            self.len += 1;
-            self.max = self.max.max(self.len);
-        }
-    }
-    fn visit(&self, v: &mut dyn Visitor) {
-        v.enter(self.instance(), self.kind());
-        signals!(v;
-            Input: self.push, self.push_data, self.pop, self.clear;
-            Output: self.occupancy, self.error);
-        v.leave();
+        self.head.set_next_bits(head as u64);
+        self.len.set_next_bits(len as u64);
     }
 }
 
