@@ -108,7 +108,7 @@ impl Fifo {
     /// The oldest stored entry, if any (what a pop takes).
     #[inline]
     pub fn front(&self) -> Option<u16> {
-        (self.len() > 0).then(|| self.buf.read(self.head.q().bits() as usize) as u16)
+        (!self.is_empty()).then(|| self.buf.read(self.head.q().bits() as usize) as u16)
     }
 
     /// The stored entries, oldest first.
