@@ -2,7 +2,7 @@
 //! and rounding, sizes down to one texel, FIFOs within their depths, one texel per clock with
 //! frames back to back, errors reported; and the `texrtl mipmap` command.
 
-use hdl::kernel::{Module, Sim};
+use hdl::kernel::Sim;
 use tb::mipmap::{reference, run_mipmap, synthetic_video, video_stream, VideoDriver};
 use units::mipmap::{MipmapGen, MipmapParams, Rounding, Scan};
 use verif::Driver;

@@ -19,6 +19,8 @@
 //!     #[instance] name: &'static str, // optional: the instance name
 //!     params: Params,                 // anything unmarked is neither ticked nor visited
 //! }
+//! // `#[module(kind = "...", enable = self.busy.is_high())]`: a clock enable, the edge of
+//! // every register and child skipped while it is low (reset still applies).
 //! impl Blend { fn eval(&mut self) { ... } }
 //! ```
 //!
@@ -167,11 +169,12 @@ fn hdl_path() -> Tokens {
     }
 }
 
-/// `#[module(kind = "...", instance = "...", new)]`: the kind (required: a string, or a
-/// `&'static str` constant such as a generic module's `C::KIND`), the instance name (the
-/// kind's by default) and whether to generate `new`.
-fn module_args(ast: &DeriveInput) -> syn::Result<(syn::Expr, Option<LitStr>, bool)> {
-    let (mut kind, mut instance, mut new) = (None, None, false);
+/// `#[module(kind = "...", instance = "...", enable = ..., new)]`: the kind (required: a
+/// string, or a `&'static str` expression such as a generic module's `C::KIND` or a field,
+/// `self.kind`), the instance name (the kind's by default), a clock enable (an expression of
+/// `self`, read at the edge) and whether to generate `new`.
+fn module_args(ast: &DeriveInput) -> syn::Result<ModuleArgs> {
+    let (mut kind, mut instance, mut new, mut enable) = (None, None, false, None);
     for a in ast.attrs.iter().filter(|a| a.path().is_ident("module")) {
         a.parse_nested_meta(|m| {
             if m.path.is_ident("kind") {
@@ -183,8 +186,13 @@ fn module_args(ast: &DeriveInput) -> syn::Result<(syn::Expr, Option<LitStr>, boo
             } else if m.path.is_ident("new") {
                 new = true;
                 Ok(())
+            } else if m.path.is_ident("enable") {
+                enable = Some(m.value()?.parse::<syn::Expr>()?);
+                Ok(())
             } else {
-                Err(m.error("expected `kind = \"...\"`, `instance = \"...\"` or `new`"))
+                Err(m.error(
+                    "expected `kind = \"...\"`, `instance = \"...\"`, `enable = ...` or `new`",
+                ))
             }
         })?;
     }
@@ -194,7 +202,21 @@ fn module_args(ast: &DeriveInput) -> syn::Result<(syn::Expr, Option<LitStr>, boo
             "#[derive(Module)] needs #[module(kind = \"...\")]",
         )
     })?;
-    Ok((kind, instance, new))
+    Ok(ModuleArgs {
+        kind,
+        instance,
+        new,
+        enable,
+    })
+}
+
+/// What `#[module(...)]` says.
+struct ModuleArgs {
+    kind: syn::Expr,
+    instance: Option<LitStr>,
+    new: bool,
+    /// A clock enable: the edge is skipped while it is false (and reset is not asserted).
+    enable: Option<syn::Expr>,
 }
 
 /// `pub fn new() -> Self`: every field a signal or register of a declared format, named
@@ -329,7 +351,12 @@ fn roles(ast: &DeriveInput) -> syn::Result<Vec<Field>> {
 }
 
 fn expand(ast: &DeriveInput) -> syn::Result<Tokens> {
-    let (kind, fixed_instance, new) = module_args(ast)?;
+    let ModuleArgs {
+        kind,
+        instance: fixed_instance,
+        new,
+        enable,
+    } = module_args(ast)?;
     let fields = roles(ast)?;
     let hdl = hdl_path();
     let ctor = if new {
@@ -340,6 +367,7 @@ fn expand(ast: &DeriveInput) -> syn::Result<Tokens> {
     let name = &ast.ident;
     let (impl_g, ty_g, where_g) = ast.generics.split_for_impl();
     let decl = quote!(#hdl::kernel::declared);
+    let gate = enable.map(|e| quote!(if !reset && !(#e) { return; }));
     let mut ticks = Vec::new();
     let mut visits = Vec::new();
     let mut instance = match &fixed_instance {
@@ -386,6 +414,7 @@ fn expand(ast: &DeriveInput) -> syn::Result<Tokens> {
             #[inline]
             fn tick(&mut self, reset: bool) {
                 let _ = reset;
+                #gate
                 #(#ticks)*
             }
             fn visit(&self, v: &mut dyn #hdl::kernel::Visitor) {

@@ -117,40 +117,39 @@ impl Fifo {
         (0..self.len()).map(move |i| self.buf.read((head + i) % d) as u16)
     }
 
-    /// The error this cycle's inputs cause: clear first, then pop, then push.
-    fn fault(&self) -> Option<FifoError> {
-        let len = if self.clear.is_high() { 0 } else { self.len() };
-        let pop = self.pop.is_high();
-        if pop && len == 0 {
-            return Some(FifoError::Underflow);
-        }
-        let after_pop = len - usize::from(pop);
-        (self.push.is_high() && after_pop == self.depth()).then_some(FifoError::Overflow)
-    }
-
-    /// The outputs from the stored state; the edge's clear, then pop, then push (one that
-    /// would overflow or underflow does nothing).
+    /// The outputs from the stored state and this cycle's inputs; the edge's clear, then pop,
+    /// then push. A pop from empty (underflow) or a push into full (overflow) does nothing
+    /// but report itself on `error`.
     #[inline]
     pub fn eval(&mut self) {
         self.occupancy.set_bits(self.len.q().bits());
-        self.error.set_bits(self.fault().map_or(0, FifoError::code));
         self.buf.eval();
         let d = self.depth();
         let (mut head, mut len) = (self.head.q().bits() as usize, self.len());
         if self.clear.is_high() {
             (head, len) = (0, 0);
         }
-        if self.pop.is_high() && len > 0 {
-            head = if head + 1 == d { 0 } else { head + 1 };
-            len -= 1;
-        }
-        if self.push.is_high() && len < d {
-            self.buf.write((head + len) % d, self.push_data.bits());
-            len += 1;
-            if len > self.max_occupancy() {
-                self.max.set_next_bits(len as u64);
+        let mut fault = None;
+        if self.pop.is_high() {
+            if len > 0 {
+                head = if head + 1 == d { 0 } else { head + 1 };
+                len -= 1;
+            } else {
+                fault = Some(FifoError::Underflow);
             }
         }
+        if self.push.is_high() {
+            if len < d {
+                self.buf.write((head + len) % d, self.push_data.bits());
+                len += 1;
+                if len > self.max_occupancy() {
+                    self.max.set_next_bits(len as u64);
+                }
+            } else {
+                fault = fault.or(Some(FifoError::Overflow));
+            }
+        }
+        self.error.set_bits(fault.map_or(0, FifoError::code));
         self.head.set_next_bits(head as u64);
         self.len.set_next_bits(len as u64);
     }

@@ -5,8 +5,7 @@
 use super::fifo::Fifo;
 use super::mipmap_gen_816::Rounding;
 use crate::fx::Format;
-use crate::kernel::{Dir, Module, Reg, Signal, Visitor};
-use crate::signals;
+use crate::kernel::{Module, Reg, Signal};
 
 /// `sum / n` with the chosen rounding (n = 2 or 4).
 #[inline]
@@ -26,8 +25,10 @@ struct Ops {
 }
 
 /// One level of Figure 14: level `k` from the texel stream of level `k-1`.
-#[derive(Clone, Debug)]
+#[derive(Clone, Debug, Module)]
+#[module(kind = "mipmap_level_fig14", enable = self.busy.is_high())]
 pub struct Level {
+    #[instance]
     name: &'static str,
     /// Size of the level read.
     wp: u32,
@@ -37,28 +38,46 @@ pub struct Level {
     rounding: Rounding,
     /// Level 1 of interlaced video: vertical pairs from the shift register.
     interlaced: bool,
+    #[input]
     pub in_valid: Signal,
+    #[input]
     pub in_texel: Signal,
     /// Interlaced level 1: the partner line's texel from shift register 826.
-    pub sr_texel: Signal,
+    #[input]
+    pub sr_texel: Option<Signal>,
+    #[wire]
     pub sum1402: Signal,
+    #[wire]
     pub sum1410: Signal,
+    #[output]
     pub out_valid: Signal,
+    #[output]
     pub out_texel: Signal,
+    #[reg]
     x: Reg,
+    #[reg]
     y: Reg,
+    #[reg]
     r1404: Reg,
+    #[reg]
     out_v: Reg,
+    #[reg]
     out_t: Reg,
     /// Sticky FIFO error: 0 none, 1 overflow, 2 underflow.
+    #[reg]
     err: Reg,
+    #[child]
     pub fifo_1408: Fifo,
+    #[child]
     pub fifo_1412: Fifo,
     /// Frame and row (of this level) of the next line FIFO 1412 writes to the frame store.
-    frame: u64,
-    rows_out: u32,
-    /// Whether this cycle changes anything (an idle level skips its edge).
-    busy: bool,
+    #[reg]
+    frame: Reg,
+    #[reg]
+    rows_out: Reg,
+    /// The clock enable: whether this cycle changes anything (an idle level skips its edge).
+    #[wire]
+    busy: Signal,
 }
 
 const NAMES: [&str; 11] = [
@@ -87,7 +106,7 @@ impl Level {
             interlaced,
             in_valid: Signal::bit("in_valid"),
             in_texel: Signal::new("in_texel", c(8)),
-            sr_texel: Signal::new("sr826", c(8)),
+            sr_texel: interlaced.then(|| Signal::new("sr826", c(8))),
             sum1402: Signal::new("sum1402", c(9)),
             sum1410: Signal::new("sum1410", c(10)),
             out_valid: Signal::bit("out_valid"),
@@ -100,9 +119,13 @@ impl Level {
             err: Reg::new("fifo_error", c(2)),
             fifo_1408: Fifo::new("fifo_1408", wk, 9)?,
             fifo_1412: Fifo::new("fifo_1412", wk, 8)?,
-            frame: 0,
-            rows_out: 0,
-            busy: true,
+            frame: Reg::new("frame", c(40)),
+            rows_out: Reg::new("rows_out", c(11)),
+            busy: {
+                let mut b = Signal::bit("busy");
+                b.set_bool(true);
+                b
+            },
         })
     }
 
@@ -120,7 +143,7 @@ impl Level {
             && !self.out_valid.is_high()
             && !self.out_v.q().is_high()
             && !self.fifo_1412.is_full()
-            && !self.busy
+            && !self.busy.is_high()
     }
 
     /// When FIFO 1412's line goes to the frame store at the coming edge (decided by `eval`):
@@ -129,7 +152,7 @@ impl Level {
         self.fifo_1412
             .clear
             .is_high()
-            .then_some((self.frame, self.rows_out))
+            .then_some((self.frame.q().bits(), self.rows_out.q().bits() as u32))
     }
 
     /// FIFO 1408's oldest entry for adder 1410 (0 when empty: the FIFO reports the underflow).
@@ -149,7 +172,8 @@ impl Level {
     /// through FIFO 1408 (a one-entry register).
     fn reduce_interlaced(&mut self, t: u32, x: u32) -> (Ops, Option<u32>) {
         let r = self.rounding;
-        let s = t + self.sr_texel.bits() as u32;
+        let sr = self.sr_texel.as_ref().map_or(0, Signal::bits);
+        let s = t + sr as u32;
         self.sum1402.set_bits(u64::from(s));
         let mut ops = Ops::default();
         let out = if !self.pair_x {
@@ -243,25 +267,30 @@ impl Level {
     }
 }
 
-impl Module for Level {
-    fn instance(&self) -> &str {
-        self.name
-    }
-    fn kind(&self) -> &'static str {
-        "mipmap_level_fig14"
-    }
+impl Level {
     #[inline]
-    fn eval(&mut self) {
+    pub fn eval(&mut self) {
         self.out_valid.follow(self.out_v.q());
         self.out_texel.follow(self.out_t.q());
         let valid = self.in_valid.is_high();
         // A full FIFO 1412 holds a line: it goes to the frame store at this edge.
         let drain = self.fifo_1412.is_full();
         // Idle: no texel in, none out, no line to write: nothing can change at the edge.
-        let was_busy = self.busy;
-        self.busy = valid || drain || self.out_v.q().is_high();
-        if !self.busy && !was_busy {
+        let was_busy = self.busy.is_high();
+        let busy = valid || drain || self.out_v.q().is_high();
+        self.busy.set_bool(busy);
+        if !busy && !was_busy {
             return;
+        }
+        if drain {
+            // The line leaving FIFO 1412 is the next row of this level, or of the next frame.
+            let rows = self.rows_out.q().bits() + 1;
+            if rows == u64::from((self.hp / 2).max(1)) {
+                self.rows_out.set_next_bits(0);
+                self.frame.set_next_bits(self.frame.q().bits() + 1);
+            } else {
+                self.rows_out.set_next_bits(rows);
+            }
         }
         let ops = if valid {
             self.out_v.set_next_bool(false);
@@ -271,46 +300,5 @@ impl Module for Level {
             Ops::default()
         };
         self.drive_fifos(ops, drain);
-    }
-    #[inline]
-    fn tick(&mut self, reset: bool) {
-        if !self.busy && !reset {
-            return;
-        }
-        for r in [
-            &mut self.x,
-            &mut self.y,
-            &mut self.r1404,
-            &mut self.out_v,
-            &mut self.out_t,
-            &mut self.err,
-        ] {
-            r.tick(reset);
-        }
-        if reset {
-            (self.frame, self.rows_out) = (0, 0);
-        } else if self.fifo_1412.clear.is_high() {
-            self.rows_out += 1;
-            if self.rows_out == (self.hp / 2).max(1) {
-                self.rows_out = 0;
-                self.frame += 1;
-            }
-        }
-        self.fifo_1408.tick(reset);
-        self.fifo_1412.tick(reset);
-    }
-    fn visit(&self, v: &mut dyn Visitor) {
-        v.enter(self.instance(), self.kind());
-        signals!(v;
-            Input: self.in_valid, self.in_texel;
-            Wire: self.sum1402, self.sum1410;
-            Output: self.out_valid, self.out_texel;
-            Reg: self.r1404, self.x, self.y, self.err);
-        if self.interlaced {
-            v.signal(Dir::Input, &self.sr_texel);
-        }
-        self.fifo_1408.visit(v);
-        self.fifo_1412.visit(v);
-        v.leave();
     }
 }

@@ -431,7 +431,9 @@ impl Module for MipmapGen {
         if let Some(l1) = self.levels.first_mut() {
             l1.in_valid.set_bool(valid && second_field);
             l1.in_texel.follow(&self.texel);
-            l1.sr_texel.set_bits(u64::from(self.sr[x as usize]));
+            if let Some(sr) = &mut l1.sr_texel {
+                sr.set_bits(u64::from(self.sr[x as usize]));
+            }
             l1.eval();
             self.drains |= u32::from(l1.line_write().is_some());
         }
