@@ -421,9 +421,9 @@ impl Testbench for FootprintTb {
         };
         let mut stim = Stimulus::new(ctx.seed);
         let mut px = directed(wl.max(hl), k);
-        let tracer = ctx.tracer(&format!("{NAME} {}", ctx.label), CYCLE_PS)?;
+        let title = format!("{NAME} {}", ctx.label);
         let cfg = (p, wl.max(hl) as i32, border);
-        let (res, vcd_sim) = match unit {
+        match unit {
             Unit::Texram => {
                 let level0 = test_map(1 << wl, 1 << hl, &mut stim);
                 px.extend(pixels(wl, hl, ctx.count, &mut stim));
@@ -431,7 +431,7 @@ impl Testbench for FootprintTb {
                 chip.set_drf(0, Drf::new(wl, hl, border))?;
                 chip.load(0, &level0)?;
                 let dut = FootprintFig12::new(p, chip)?;
-                let sim = Sim::maybe_traced(dut, tracer).map_err(|e| e.to_string())?;
+                let (sim, _) = ctx.sim(dut, &title, CYCLE_PS, |_| ())?;
                 let reference = RefMipmap::build(1 << wl, 1 << hl, &level0);
                 let expect = |q: &Pixel| expect(&reference, border, &p, q);
                 let (sim, mut res) = run_pixels(sim, ctx, cfg, px, expect)?;
@@ -442,7 +442,8 @@ impl Testbench for FootprintTb {
                     chip.accesses.q().bits(),
                     chip.slots.q().bits()
                 ));
-                (res, sim.finish().map(|_| ()))
+                ctx.finish(sim, &mut res)?;
+                Ok(res)
             }
             Unit::Texture(f, cache) => {
                 let tex = crate::texture::test_pattern(1 << wl, 1 << hl);
@@ -458,21 +459,16 @@ impl Testbench for FootprintTb {
                     &words,
                 )?;
                 let dut = FootprintFig12::new(p, unit)?;
-                let sim = Sim::maybe_traced(dut, tracer).map_err(|e| e.to_string())?;
+                let (sim, _) = ctx.sim(dut, &title, CYCLE_PS, |_| ())?;
                 let expect = |q: &Pixel| {
                     let (a, mean) = ref_assemble_texture(&tex, f, &p, q);
                     (*q, a, mean)
                 };
-                let (sim, res) = run_pixels(sim, ctx, cfg, px, expect)?;
-                (res, sim.finish().map(|_| ()))
+                let (sim, mut res) = run_pixels(sim, ctx, cfg, px, expect)?;
+                ctx.finish(sim, &mut res)?;
+                Ok(res)
             }
-        };
-        let mut res = res;
-        if let Some(w) = &ctx.waves {
-            vcd_sim.map_err(|e| format!("{}: {e}", w.vcd.display()))?;
-            res.vcd = Some(w.vcd.clone());
         }
-        Ok(res)
     }
 }
 

@@ -263,14 +263,9 @@ impl Testbench for FootprintNormalsTb {
         }
         let want = expectations(&p, &map, &px)?;
         let dut = FootprintNormals::new(NormalPipeline::new("normal_pipeline_fig7", p, map, None)?);
-        let tracer = ctx.tracer(&format!("{NAME} {}", ctx.label), CYCLE_PS)?;
-        let sim = Sim::maybe_traced(dut, tracer).map_err(|e| e.to_string())?;
+        let (sim, _) = ctx.sim(dut, &format!("{NAME} {}", ctx.label), CYCLE_PS, |_| ())?;
         let (sim, mut res) = run_npixels(sim, ctx, &p, (filter, border), want)?;
-        if let Some(w) = &ctx.waves {
-            sim.finish()
-                .map_err(|e| format!("{}: {e}", w.vcd.display()))?;
-            res.vcd = Some(w.vcd.clone());
-        }
+        ctx.finish(sim, &mut res)?;
         Ok(res)
     }
 }

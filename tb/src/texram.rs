@@ -464,16 +464,10 @@ impl Testbench for TexramTb {
         chip.set_drf(0, drf)?;
         chip.load(0, &level0)?;
         chip.set_clut(clut.clone());
-        let tracer = ctx.tracer(&format!("texram_802 {}", ctx.label), CYCLE_PS)?;
-        let sim = Sim::maybe_traced(chip, tracer).map_err(|e| e.to_string())?;
-        let (sim, res) = one_config(sim, ctx, (drf, &clut), &level0, &mut stim)?;
-        if let Some(w) = &ctx.waves {
-            sim.finish()
-                .map_err(|e| format!("{}: {e}", w.vcd.display()))?;
-            let mut res = res;
-            res.vcd = Some(w.vcd.clone());
-            return Ok(res);
-        }
+        let title = format!("texram_802 {}", ctx.label);
+        let (sim, _) = ctx.sim(chip, &title, CYCLE_PS, |_| ())?;
+        let (sim, mut res) = one_config(sim, ctx, (drf, &clut), &level0, &mut stim)?;
+        ctx.finish(sim, &mut res)?;
         Ok(res)
     }
 }

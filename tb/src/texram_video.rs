@@ -324,18 +324,13 @@ impl Testbench for VideoPortTb {
         let frames: Vec<Vec<u8>> = (0..FRAMES)
             .map(|_| test_map(c.width, c.height, &mut stim))
             .collect();
-        let tracer = ctx.tracer(&format!("{NAME} {}", ctx.label), CYCLE_PS)?;
-        let sim = Sim::maybe_traced(chip, tracer).map_err(|e| e.to_string())?;
+        let (sim, _) = ctx.sim(chip, &format!("{NAME} {}", ctx.label), CYCLE_PS, |_| ())?;
         let mut stub = TexramStub::new();
         stub.set_drf(2, maps[2])?;
         stub.load(2, &level0)?;
         let reqs = requests(ctx.count, &mut stim);
         let (sim, mut res) = run_video(sim, ctx, (&c, [maps[0], maps[1]]), &frames, stub, reqs)?;
-        if let Some(w) = &ctx.waves {
-            sim.finish()
-                .map_err(|e| format!("{}: {e}", w.vcd.display()))?;
-            res.vcd = Some(w.vcd.clone());
-        }
+        ctx.finish(sim, &mut res)?;
         Ok(res)
     }
 }

@@ -307,15 +307,10 @@ impl Testbench for VolumeTb {
         let mut stim = Stimulus::new(ctx.seed);
         let vox = test_volume(dims, &mut stim);
         let dut = RayCaster::new(p, mode, &vox)?;
-        let tracer = ctx.tracer(&format!("{NAME} {}", ctx.label), CYCLE_PS)?;
-        let sim = Sim::maybe_traced(dut, tracer).map_err(|e| e.to_string())?;
+        let (sim, _) = ctx.sim(dut, &format!("{NAME} {}", ctx.label), CYCLE_PS, |_| ())?;
         let rs = rays(dims, ctx.count, &mut stim);
         let (sim, mut res) = run_rays(sim, ctx, (&p, mode, &vox), rs)?;
-        if let Some(w) = &ctx.waves {
-            sim.finish()
-                .map_err(|e| format!("{}: {e}", w.vcd.display()))?;
-            res.vcd = Some(w.vcd.clone());
-        }
+        ctx.finish(sim, &mut res)?;
         Ok(res)
     }
 }
