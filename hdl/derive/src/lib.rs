@@ -35,7 +35,7 @@
 //! hierarchy the attributes cannot say keeps a hand-written `impl Module`.
 //!
 //! `#[derive(Signals)]` makes a struct of signals a port bundle (an `Option` of one: ports a
-//! configuration may leave out); `#[derive(Group)]` makes a struct of children a group that
+//! configuration may leave out), `#[derive(Regs)]` a struct of registers a register bundle; `#[derive(Group)]` makes a struct of children a group that
 //! ticks and visits them into its owner's scope, with no scope of its own.
 
 use proc_macro::TokenStream;
@@ -85,6 +85,37 @@ pub fn derive_signals(input: TokenStream) -> TokenStream {
     expand_signals(&ast)
         .unwrap_or_else(|e| e.to_compile_error())
         .into()
+}
+
+/// Derives `Regs` for a register bundle: a struct of registers (or of bundles, arrays,
+/// vectors of them), ticked and visited field by field, in order, in the scope of the module
+/// that holds it (`#[reg] held: Held`): registers with names instead of positions.
+#[proc_macro_derive(Regs)]
+pub fn derive_regs(input: TokenStream) -> TokenStream {
+    let ast = parse_macro_input!(input as DeriveInput);
+    expand_regs(&ast)
+        .unwrap_or_else(|e| e.to_compile_error())
+        .into()
+}
+
+fn expand_regs(ast: &DeriveInput) -> syn::Result<Tokens> {
+    let fields = named_fields(ast, "Regs")?;
+    let hdl = hdl_path();
+    let decl = quote!(#hdl::kernel::declared);
+    let name = &ast.ident;
+    let (impl_g, ty_g, where_g) = ast.generics.split_for_impl();
+    let ids: Vec<_> = fields.named.iter().map(|f| &f.ident).collect();
+    Ok(quote! {
+        impl #impl_g #decl::Regs for #name #ty_g #where_g {
+            #[inline]
+            fn tick_regs(&mut self, reset: bool) {
+                #(#decl::Regs::tick_regs(&mut self.#ids, reset);)*
+            }
+            fn visit_regs(&self, v: &mut dyn #hdl::kernel::Visitor) {
+                #(#decl::Regs::visit_regs(&self.#ids, v);)*
+            }
+        }
+    })
 }
 
 /// Derives `Children` for a group of sub-modules that has no scope of its own (one MIP

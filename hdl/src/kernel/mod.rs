@@ -24,6 +24,9 @@ pub use texrtl_hdl_derive::Group;
 /// Derives [`Module`] from fields marked `#[input]`, `#[output]`, `#[wire]`, `#[reg]`,
 /// `#[child]` (see [`declared`]); the behaviour is the type's own `fn eval(&mut self)`.
 pub use texrtl_hdl_derive::Module;
+/// Derives [`declared::Regs`] for a register bundle, a struct of registers ticked and visited
+/// field by field.
+pub use texrtl_hdl_derive::Regs;
 /// Derives [`declared::Signals`] for a port bundle, a struct of signals visited field by field.
 pub use texrtl_hdl_derive::Signals;
 pub use typed::{Declare, DeclareTyped, RegOf, SignalOf};

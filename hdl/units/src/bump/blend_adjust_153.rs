@@ -30,7 +30,7 @@
 //! clears the output registers.
 
 use crate::fx::Format;
-use crate::kernel::{Module, Reg, Signal, Signals};
+use crate::kernel::{Module, Reg, Regs, Signal, Signals};
 
 /// Parameters an architect may sweep.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -108,9 +108,19 @@ pub struct BlendAdjust {
     pub i: BlendAdjustIn,
     #[output]
     pub o: BlendAdjustOut,
-    /// Output register stage, when `registered`: valid, u0, u1, v0, v1.
+    /// Output register stage, when `registered`.
     #[reg]
-    r: Option<[Reg; 5]>,
+    r: Option<BlendAdjustRegs>,
+}
+
+/// The output register stage: one register per output port.
+#[derive(Clone, Debug, Regs)]
+struct BlendAdjustRegs {
+    valid: Reg,
+    u0: Reg,
+    u1: Reg,
+    v0: Reg,
+    v1: Reg,
 }
 
 impl BlendAdjust {
@@ -135,14 +145,12 @@ impl BlendAdjust {
                 v0: Signal::new("v0", fo),
                 v1: Signal::new("v1", fo),
             },
-            r: params.registered.then(|| {
-                [
-                    Reg::new("valid_r", Format::uint(1)),
-                    Reg::new("u0_r", fo),
-                    Reg::new("u1_r", fo),
-                    Reg::new("v0_r", fo),
-                    Reg::new("v1_r", fo),
-                ]
+            r: params.registered.then(|| BlendAdjustRegs {
+                valid: Reg::new("valid_r", Format::uint(1)),
+                u0: Reg::new("u0_r", fo),
+                u1: Reg::new("u1_r", fo),
+                v0: Reg::new("v0_r", fo),
+                v1: Reg::new("v1_r", fo),
             }),
         })
     }
@@ -178,7 +186,8 @@ impl BlendAdjust {
         let o = &mut self.o;
         let outs = [&mut o.valid, &mut o.u0, &mut o.u1, &mut o.v0, &mut o.v1];
         if let Some(r) = &mut self.r {
-            for ((reg, out), next) in r.iter_mut().zip(outs).zip(comb) {
+            let regs = [&mut r.valid, &mut r.u0, &mut r.u1, &mut r.v0, &mut r.v1];
+            for ((reg, out), next) in regs.into_iter().zip(outs).zip(comb) {
                 reg.set_next_raw(next as i64);
                 out.set_bits(reg.q().bits());
             }

@@ -41,7 +41,8 @@ use super::trilinear_818::{trilinear, trilinear_sum};
 use super::video_port_808::{VideoParams, VideoPort808};
 use super::{Border, Config, Drf, DRFS};
 use crate::fx::Format;
-use crate::kernel::{Module, Reg, Signal, Visitor};
+use crate::kernel::declared::Regs as _;
+use crate::kernel::{Module, Reg, Regs, Signal, Visitor};
 use crate::pages::page_registers_824::{check_slot_cycles, PageRegisters824};
 use crate::signals;
 
@@ -193,6 +194,16 @@ impl Access {
     }
 }
 
+/// The request 812 is splitting into component accesses (a colour request of the planar or
+/// literal layout): its DRF, `u`, `v`, `lambda`.
+#[derive(Clone, Debug, Regs)]
+struct Held {
+    drf: Reg,
+    u: Reg,
+    v: Reg,
+    lambda: Reg,
+}
+
 /// The chip: request port, units 812, 824, 810, 818, and its DRFs and bank contents.
 #[derive(Clone, Debug)]
 pub struct Texram802 {
@@ -214,7 +225,7 @@ pub struct Texram802 {
     pub req_illum: Signal,
     /// 812's registers, and the request it is splitting into component accesses.
     addr: Access,
-    held: [Reg; 4],
+    held: Held,
     /// 824: per bank the open row.
     pages: PageRegisters824,
     /// 810: the access being served and the cycles left in its slot(s).
@@ -290,12 +301,12 @@ impl Texram802 {
             .map(|n| Signal::new(n, Format::uint(32))),
             vid_round: Reg::new("vid_round", Format::uint(4)),
             video: None,
-            held: [
-                Reg::new("held_drf", Format::uint(3)),
-                Reg::new("held_u", Format::signed(super::UV_BITS, 8)),
-                Reg::new("held_v", Format::signed(super::UV_BITS, 8)),
-                Reg::new("held_lambda", Format::signed(14, 8)),
-            ],
+            held: Held {
+                drf: Reg::new("held_drf", Format::uint(3)),
+                u: Reg::new("held_u", Format::signed(super::UV_BITS, 8)),
+                v: Reg::new("held_v", Format::signed(super::UV_BITS, 8)),
+                lambda: Reg::new("held_lambda", Format::signed(14, 8)),
+            },
         })
     }
 
@@ -642,19 +653,19 @@ impl Module for Texram802 {
         if take {
             let k = self.req_drf.bits();
             let uvl = [&self.req_u, &self.req_v, &self.req_lambda].map(|x| x.raw() as i32);
-            for (h, x) in self
-                .held
-                .iter_mut()
-                .zip([i64::from(k as u8)].into_iter().chain(uvl.map(i64::from)))
-            {
-                h.set_next_raw(x);
-            }
+            let h = &mut self.held;
+            h.drf.set_next_bits(k);
+            h.u.set_next_raw(i64::from(uvl[0]));
+            h.v.set_next_raw(i64::from(uvl[1]));
+            h.lambda.set_next_raw(i64::from(uvl[2]));
             self.address(0, k as usize, (uvl[0], uvl[1], uvl[2]));
             self.addr.illum.set_next_bits(self.req_illum.bits());
         } else if move_on && more {
-            let h = self.held.each_ref().map(|r| r.q().raw());
+            let h = &self.held;
+            let k = h.drf.q().bits() as usize;
+            let uvl = [&h.u, &h.v, &h.lambda].map(|r| r.q().raw() as i32);
             let part = self.addr.part.q().bits() as u32 + 1;
-            self.address(part, h[0] as usize, (h[1] as i32, h[2] as i32, h[3] as i32));
+            self.address(part, k, (uvl[0], uvl[1], uvl[2]));
         }
         if take || move_on {
             // A new access (or component), or the last one gone to the banks; else it waits.
@@ -664,9 +675,7 @@ impl Module for Texram802 {
 
     fn tick(&mut self, reset: bool) {
         self.addr.tick(reset);
-        for r in &mut self.held {
-            r.tick(reset);
-        }
+        self.held.tick_regs(reset);
         self.acc_rgba.tick(reset);
         self.pages.tick(reset);
         self.bank.tick(reset);
@@ -705,9 +714,7 @@ impl Module for Texram802 {
             Reg: self.slots, self.faults, self.accesses, self.fault_slots);
         v.enter("address_812", "address_812");
         self.addr.visit(v);
-        for r in &self.held {
-            v.reg(r);
-        }
+        self.held.visit_regs(v);
         v.reg(&self.conflicts);
         v.leave();
         self.pages.visit(v);
