@@ -98,24 +98,32 @@ pub fn derive_regs(input: TokenStream) -> TokenStream {
         .into()
 }
 
-fn expand_regs(ast: &DeriveInput) -> syn::Result<Tokens> {
-    let fields = named_fields(ast, "Regs")?;
+/// The impl of trait `[tr, tick, visit]` (`Regs` or `Children`, for the derive `what`) whose
+/// edge and visit call the same methods on every field of `ast`, in order.
+fn per_field(ast: &DeriveInput, what: &str, [tr, tick, visit]: [&str; 3]) -> syn::Result<Tokens> {
+    let fields = named_fields(ast, what)?;
     let hdl = hdl_path();
-    let decl = quote!(#hdl::kernel::declared);
+    let tr = format_ident!("{}", tr);
+    let tr = quote!(#hdl::kernel::declared::#tr);
+    let (tick, visit) = (format_ident!("{}", tick), format_ident!("{}", visit));
     let name = &ast.ident;
     let (impl_g, ty_g, where_g) = ast.generics.split_for_impl();
     let ids: Vec<_> = fields.named.iter().map(|f| &f.ident).collect();
     Ok(quote! {
-        impl #impl_g #decl::Regs for #name #ty_g #where_g {
+        impl #impl_g #tr for #name #ty_g #where_g {
             #[inline]
-            fn tick_regs(&mut self, reset: bool) {
-                #(#decl::Regs::tick_regs(&mut self.#ids, reset);)*
+            fn #tick(&mut self, reset: bool) {
+                #(#tr::#tick(&mut self.#ids, reset);)*
             }
-            fn visit_regs(&self, v: &mut dyn #hdl::kernel::Visitor) {
-                #(#decl::Regs::visit_regs(&self.#ids, v);)*
+            fn #visit(&self, v: &mut dyn #hdl::kernel::Visitor) {
+                #(#tr::#visit(&self.#ids, v);)*
             }
         }
     })
+}
+
+fn expand_regs(ast: &DeriveInput) -> syn::Result<Tokens> {
+    per_field(ast, "Regs", ["Regs", "tick_regs", "visit_regs"])
 }
 
 /// Derives `Children` for a group of sub-modules that has no scope of its own (one MIP
@@ -130,23 +138,11 @@ pub fn derive_group(input: TokenStream) -> TokenStream {
 }
 
 fn expand_group(ast: &DeriveInput) -> syn::Result<Tokens> {
-    let fields = named_fields(ast, "Group")?;
-    let hdl = hdl_path();
-    let decl = quote!(#hdl::kernel::declared);
-    let name = &ast.ident;
-    let (impl_g, ty_g, where_g) = ast.generics.split_for_impl();
-    let ids: Vec<_> = fields.named.iter().map(|f| &f.ident).collect();
-    Ok(quote! {
-        impl #impl_g #decl::Children for #name #ty_g #where_g {
-            #[inline]
-            fn tick_children(&mut self, reset: bool) {
-                #(#decl::Children::tick_children(&mut self.#ids, reset);)*
-            }
-            fn visit_children(&self, v: &mut dyn #hdl::kernel::Visitor) {
-                #(#decl::Children::visit_children(&self.#ids, v);)*
-            }
-        }
-    })
+    per_field(
+        ast,
+        "Group",
+        ["Children", "tick_children", "visit_children"],
+    )
 }
 
 /// The named fields of the struct `ast` (`what` names the derive in the error).
