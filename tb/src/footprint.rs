@@ -525,7 +525,7 @@ fn handover<U: SampleTarget>(d: &FootprintFig12<U>) -> (bool, bool, Handover) {
 /// Drives the pixels with random gaps and scores each against `expect` (the reference's
 /// result and the exact mean).
 fn run_pixels<U: SampleTarget, T: Trace>(
-    sim: Sim<FootprintFig12<U>, T>,
+    mut sim: Sim<FootprintFig12<U>, T>,
     ctx: &Ctx,
     (p, lmax, border): (SetupParams, i32, Border),
     px: Vec<Pixel>,
@@ -533,7 +533,6 @@ fn run_pixels<U: SampleTarget, T: Trace>(
 ) -> Result<(Sim<FootprintFig12<U>, T>, TbResult), String> {
     let mut res = TbResult::new(NAME, "");
     let mut cov = coverage_model();
-    let mut sim = sim.check_schedule(ctx.check_schedule);
     sim.reset(2);
     let n = px.len() as u64;
     let mut sb: Scoreboard<Expected, Assembled> =

@@ -273,7 +273,7 @@ impl Testbench for FootprintNormalsTb {
 /// Drives the pixels with random gaps; scores normals within 156's tolerance of the average's
 /// f64 normal and heights equal to the averaged height.
 fn run_npixels<T: Trace>(
-    sim: Sim<FootprintNormals, T>,
+    mut sim: Sim<FootprintNormals, T>,
     ctx: &Ctx,
     p: &BumpParams,
     (filter, border): (Filter, Border),
@@ -281,7 +281,6 @@ fn run_npixels<T: Trace>(
 ) -> Result<(Sim<FootprintNormals, T>, TbResult), String> {
     let mut res = TbResult::new(NAME, "");
     let mut cov = coverage_model();
-    let mut sim = sim.check_schedule(ctx.check_schedule);
     sim.reset(2);
     let tol = component_tolerance(p);
     let lsb = (-(p.out_frac as f64)).exp2();

@@ -541,7 +541,7 @@ impl Oracles<'_> {
 
 /// Runs one configuration's requests through the chip and scores them.
 fn one_config<T: Trace>(
-    sim: Sim<Texram802, T>,
+    mut sim: Sim<Texram802, T>,
     ctx: &Ctx,
     (drf, clut): (Drf, &Clut),
     level0: &[u8],
@@ -551,7 +551,6 @@ fn one_config<T: Trace>(
     let (wl, hl, border, config) = (drf.width_log2, drf.height_log2, drf.border, drf.config);
     let mut res = TbResult::new(NAME, "");
     let mut cov = coverage_model();
-    let mut sim = sim.check_schedule(ctx.check_schedule);
     sim.reset(2);
     let reference = RefMipmap::build(1 << wl, 1 << hl, level0);
     let mut stub = units::texram::stub::TexramStub::new();

@@ -337,7 +337,7 @@ impl Testbench for VideoPortTb {
 
 /// Drives the requests and the video, then clocks until every frame is ready; scores both.
 fn run_video<T: Trace>(
-    sim: Sim<Texram802, T>,
+    mut sim: Sim<Texram802, T>,
     ctx: &Ctx,
     (c, maps): (&VideoConfig, [Drf; 2]),
     frames: &[Vec<u8>],
@@ -345,7 +345,6 @@ fn run_video<T: Trace>(
     reqs: Vec<TexReq>,
 ) -> Result<(Sim<Texram802, T>, TbResult), String> {
     let mut res = TbResult::new(NAME, "");
-    let mut sim = sim.check_schedule(ctx.check_schedule);
     sim.reset(2);
     let mut source = VideoSource::new(c, frames);
     let n = reqs.len() as u64;

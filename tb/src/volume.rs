@@ -318,14 +318,13 @@ impl Testbench for VolumeTb {
 /// Drives the rays; every sample against the reference (bit-exact) and golden (value within
 /// 0.5 LSB at the weight-quantised point); slots against the page-register model.
 fn run_rays<T: Trace>(
-    sim: Sim<RayCaster, T>,
+    mut sim: Sim<RayCaster, T>,
     ctx: &Ctx,
     (p, mode, vox): (&VolumeParams, Mode, &[u8]),
     rs: Vec<Ray>,
 ) -> Result<(Sim<RayCaster, T>, TbResult), String> {
     let mut res = TbResult::new(NAME, "");
     let mut cov = coverage_model();
-    let mut sim = sim.check_schedule(ctx.check_schedule);
     sim.reset(2);
     let dims = p.dims;
     let expected: Vec<VolExpected> = rs
