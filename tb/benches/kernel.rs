@@ -190,7 +190,7 @@ fn mipmap(c: &mut Criterion) {
                     d.texel.set_bits(u64::from(t));
                     sim.step();
                 }
-                black_box(sim.dut.completed.len())
+                black_box(sim.dut.completed().len())
             })
         });
     }

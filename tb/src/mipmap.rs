@@ -171,9 +171,9 @@ pub struct FrameMonitor {
 impl Monitor<MipmapGen> for FrameMonitor {
     type Txn = (u64, FrameBuffer);
     fn sample(&mut self, dut: &MipmapGen) -> Option<(u64, FrameBuffer)> {
-        let &(f, _) = dut.completed.get(self.seen)?;
+        let &(f, _) = dut.completed().get(self.seen)?;
         self.seen += 1;
-        Some((f, dut.buffers[(f % 2) as usize].clone()))
+        Some((f, dut.frame_buffer(f).clone()))
     }
 }
 
@@ -231,7 +231,12 @@ fn drive<T: Trace>(
     .map_err(|t| format!("mipmap incomplete: {t}"))?;
     sim.eval();
     let error = sim.dut.err_code.bits();
-    let done_cycle = sim.dut.completed.last().map(|c| c.1).unwrap_or(last_texel);
+    let done_cycle = sim
+        .dut
+        .completed()
+        .last()
+        .map(|c| c.1)
+        .unwrap_or(last_texel);
     let r = &sim.dut.levels;
     let m1408: Vec<usize> = r.iter().map(|r| r.fifo_1408.max_occupancy()).collect();
     let m1412: Vec<usize> = r.iter().map(|r| r.fifo_1412.max_occupancy()).collect();
@@ -244,7 +249,7 @@ fn drive<T: Trace>(
         fifo_depth: r.iter().map(|r| r.fifo_1408.depth()).collect(),
         texels,
         texels_per_clock: texels as f64 / (last_texel - start) as f64,
-        page_activations: sim.dut.activations,
+        page_activations: sim.dut.activations(),
     };
     let frames = out
         .into_iter()

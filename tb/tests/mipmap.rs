@@ -197,22 +197,25 @@ fn opened_rows(p: MipmapParams, frames: &[Vec<u8>]) -> [Vec<u32>; 3] {
     let mut rows: [Vec<u32>; 3] = Default::default();
     for t in video_stream(&p, frames).iter().map(Some).chain([None; 256]) {
         VideoDriver.drive(&mut sim.dut, t);
-        let (before, done) = (sim.dut.activations, sim.dut.completed.len());
+        let (before, done) = (sim.dut.activations(), sim.dut.completed().len());
         sim.step();
         // A frame completes at this edge: recorded with the edge's cycle.
-        if sim.dut.completed.len() > done {
-            assert_eq!(sim.dut.completed[done].1, sim.cycle());
+        if sim.dut.completed().len() > done {
+            assert_eq!(sim.dut.completed()[done].1, sim.cycle());
         }
         for (b, r) in rows.iter_mut().enumerate() {
-            let n = sim.dut.activations[b] - before[b];
+            let n = sim.dut.activations()[b] - before[b];
             assert!(n <= 1, "bank {b}: {n} rows opened in a cycle");
             if n == 1 {
                 r.push(sim.dut.open_row(b).expect("a row opened") as u32);
             }
         }
     }
-    assert_eq!(sim.dut.activations, rows.each_ref().map(|r| r.len() as u64));
-    assert_eq!(sim.dut.completed.len(), frames.len());
+    assert_eq!(
+        sim.dut.activations(),
+        rows.each_ref().map(|r| r.len() as u64)
+    );
+    assert_eq!(sim.dut.completed().len(), frames.len());
     // Clean video: no error flagged, with or without a code.
     assert!(!sim.dut.error.is_high() && sim.dut.err_code.bits() == 0);
     rows

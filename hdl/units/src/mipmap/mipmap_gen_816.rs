@@ -33,10 +33,10 @@
 //! (`sof` high other than with a frame's first texel, or low with it).
 
 use crate::fx::Format;
+use crate::kernel::declared::Regs;
 use crate::kernel::{Module, Reg, Signal, Visitor};
 use crate::mipmap::level_fig14::Level;
 use crate::pages::page_registers_824::PageRegisters824;
-use crate::signals;
 
 /// Arrival order of a frame's lines.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
@@ -126,50 +126,192 @@ impl MipmapParams {
 /// One frame buffer: every level's texels, row-major.
 pub type FrameBuffer = Vec<Vec<u8>>;
 
-/// The mipmap generation unit 816 with its frame store.
+/// The frame store (two frame buffers, used by frame parity) and shift register 826, which
+/// reads it. The writes and the line read `eval` decides are made at the edge, as registers'
+/// next values are: the levels' lines, then the video texel, then the partner line into the
+/// shift register (which may be the line that texel completes).
 #[derive(Clone, Debug)]
+pub struct FrameStore {
+    width: u32,
+    dims: Vec<(u32, u32)>,
+    /// Empty on the TEXRAM banks, whose owner takes the writes and serves the partner line.
+    buffers: [FrameBuffer; 2],
+    /// Shift register 826 (interlaced: the partner line of the line arriving).
+    sr: Vec<u8>,
+    /// At the coming edge: the video texel, `(frame, x, y, texel)`.
+    texel: Option<(u64, u32, u32, u8)>,
+    /// At the coming edge: the level-0 line `(frame, row)` read into shift register 826.
+    partner: Option<(u64, u32)>,
+    /// At the coming edge, bit `k` for level `k + 1`: its FIFO 1412 writes the line `(frame,
+    /// row)` at index `k` of `lines`, with the texels at index `k` of `line_texels`.
+    staged: u32,
+    lines: Vec<(u64, u32)>,
+    line_texels: Vec<Vec<u8>>,
+}
+
+impl FrameStore {
+    fn new(dims: &[(u32, u32)], own: bool) -> FrameStore {
+        let buf: FrameBuffer = dims
+            .iter()
+            .map(|&(w, h)| vec![0u8; (w * h) as usize])
+            .collect();
+        let upper = &dims[1..];
+        FrameStore {
+            width: dims[0].0,
+            dims: dims.to_vec(),
+            buffers: if own {
+                [buf.clone(), buf]
+            } else {
+                Default::default()
+            },
+            sr: vec![0; dims[0].0 as usize],
+            texel: None,
+            partner: None,
+            staged: 0,
+            lines: vec![(0, 0); upper.len()],
+            line_texels: upper
+                .iter()
+                .map(|&(w, _)| Vec::with_capacity(w as usize))
+                .collect(),
+        }
+    }
+
+    fn own(&self) -> bool {
+        !self.buffers[0].is_empty()
+    }
+
+    fn clear_staged(&mut self) {
+        self.texel = None;
+        self.partner = None;
+        self.staged = 0;
+    }
+
+    /// Level `k + 1`'s FIFO 1412 line goes to the frame store at the coming edge.
+    fn stage_line(&mut self, k: usize, at: (u64, u32), texels: impl Iterator<Item = u16>) {
+        self.staged |= 1 << k;
+        self.lines[k] = at;
+        let t = &mut self.line_texels[k];
+        t.clear();
+        t.extend(texels.map(|v| v as u8));
+    }
+
+    /// The lines staged at the coming edge, level `k + 1`'s at `k`, lowest level first.
+    fn staged_lines(&self) -> impl Iterator<Item = (usize, (u64, u32), &[u8])> + '_ {
+        let mut bits = self.staged;
+        std::iter::from_fn(move || {
+            let k = bits.trailing_zeros() as usize;
+            bits &= bits.wrapping_sub(1);
+            (k < 32).then(|| (k, self.lines[k], &self.line_texels[k][..]))
+        })
+    }
+
+    fn write_lines(&mut self) {
+        let mut bits = self.staged;
+        while bits != 0 {
+            let k = bits.trailing_zeros() as usize;
+            bits &= bits - 1;
+            let ((frame, row), texels) = (self.lines[k], &self.line_texels[k]);
+            let lw = self.dims[k + 1].0 as usize;
+            let row = row as usize;
+            let dst = &mut self.buffers[(frame % 2) as usize][k + 1][row * lw..(row + 1) * lw];
+            dst.copy_from_slice(texels);
+        }
+    }
+}
+
+impl Regs for FrameStore {
+    fn tick_regs(&mut self, reset: bool) {
+        if !reset && self.own() {
+            self.write_lines();
+            let w = self.width as usize;
+            if let Some((frame, x, y, t)) = self.texel {
+                self.buffers[(frame % 2) as usize][0][y as usize * w + x as usize] = t;
+            }
+            if let Some((frame, row)) = self.partner {
+                let row = row as usize;
+                let b = &self.buffers[(frame % 2) as usize][0];
+                self.sr.copy_from_slice(&b[row * w..(row + 1) * w]);
+            }
+        }
+        self.clear_staged();
+    }
+    fn visit_regs(&self, _: &mut dyn Visitor) {}
+}
+
+/// The frames whose mipmap is complete, in order, each with the cycle of its edge; the one
+/// `eval` completes is recorded at the edge. Reset starts the record again (frame numbers
+/// start again at 0).
+#[derive(Clone, Debug, Default)]
+pub struct Completed {
+    frames: Vec<(u64, u64)>,
+    cycle: u64,
+    next: Option<u64>,
+}
+
+impl Regs for Completed {
+    fn tick_regs(&mut self, reset: bool) {
+        self.cycle += 1;
+        let next = self.next.take();
+        if reset {
+            self.frames.clear();
+        } else if let Some(f) = next {
+            self.frames.push((f, self.cycle));
+        }
+    }
+    fn visit_regs(&self, _: &mut dyn Visitor) {}
+}
+
+/// The mipmap generation unit 816 with its frame store.
+#[derive(Clone, Debug, Module)]
+#[module(kind = "mipmap_gen_816")]
 pub struct MipmapGen {
+    #[instance]
     name: String,
     p: MipmapParams,
     dims: Vec<(u32, u32)>,
+    #[input]
     pub valid: Signal,
+    #[input]
     pub texel: Signal,
+    #[input]
     pub sof: Signal,
+    #[output]
     pub error: Signal,
+    #[output]
     pub err_code: Signal,
+    #[output]
     pub frame_done: Signal,
-    /// Level-0 arrival counters: x, line within the field, field.
+    /// Level-0 arrival counters: x, line within the field, field; the frame arriving.
+    #[reg]
     x: Reg,
+    #[reg]
     line: Reg,
+    #[reg]
     field: Reg,
-    frame0: u64,
+    #[reg]
+    frame0: Reg,
+    /// Sticky error and its code.
+    #[reg]
     err: Reg,
+    #[reg]
     code: Reg,
     /// A frame's mipmap was completed at the last edge.
-    done: bool,
-    /// Levels 1.. of Figure 14.
-    pub levels: Vec<Level>,
-    /// Shift register 826 (interlaced: the partner line of the line arriving).
-    sr: Vec<u8>,
-    sr_load: Option<u32>,
+    #[reg]
+    done: Reg,
+    /// Row activations of the own frame store's banks 0, 1 and 2.
+    #[reg]
+    activations: [Reg; 3],
     /// The page registers 824 of the own frame store's three banks (none on the TEXRAM's,
-    /// whose own count), and row activations counted.
+    /// whose own count).
+    #[child]
     pages: Option<PageRegisters824>,
-    pub activations: [u64; 3],
-    /// Row activations per bank at the coming edge (decided by `eval`).
-    acts: [u64; 3],
-    /// Two frame buffers, used by frame parity.
-    pub buffers: [FrameBuffer; 2],
-    /// Frames whose mipmap is complete, in order, with the cycle.
-    pub completed: Vec<(u64, u64)>,
-    cycle: u64,
-    pending_store: Option<(u32, u32, u8)>,
-    /// Levels whose FIFO 1412 line goes to the frame store at the coming edge, bit `k` for
-    /// level `k + 1` (decided by `eval`).
-    drains: u32,
-    /// The frame store is the unit's own (`buffers`, three banks); false when it sits on the
-    /// TEXRAM banks, whose owner takes the writes and serves the shift register's line.
-    own_store: bool,
+    /// Levels 1.. of Figure 14.
+    #[child]
+    pub levels: Vec<Level>,
+    #[reg]
+    store: FrameStore,
+    #[reg]
+    completed: Completed,
 }
 
 impl MipmapGen {
@@ -180,38 +322,29 @@ impl MipmapGen {
         let levels = (1..dims.len())
             .map(|k| Level::new(k, dims[k - 1], p.rounding, interlaced && k == 1))
             .collect::<Result<_, _>>()?;
-        let buf: FrameBuffer = dims
-            .iter()
-            .map(|&(w, h)| vec![0u8; (w * h) as usize])
-            .collect();
+        let u = Format::uint;
         Ok(MipmapGen {
             name: name.into(),
             p,
             valid: Signal::bit("valid"),
-            texel: Signal::new("texel", Format::uint(8)),
+            texel: Signal::new("texel", u(8)),
             sof: Signal::bit("sof"),
             error: Signal::bit("error"),
-            err_code: Signal::new("err_code", Format::uint(2)),
+            err_code: Signal::new("err_code", u(2)),
             frame_done: Signal::bit("frame_done"),
-            x: Reg::new("x0", Format::uint(11)),
-            line: Reg::new("line0", Format::uint(11)),
-            field: Reg::new("field", Format::uint(1)),
-            frame0: 0,
-            err: Reg::new("error_r", Format::uint(1)),
-            code: Reg::new("err_code_r", Format::uint(2)),
-            done: false,
-            levels,
-            sr: vec![0; p.width as usize],
-            sr_load: None,
+            x: Reg::new("x0", u(11)),
+            line: Reg::new("line0", u(11)),
+            field: Reg::new("field", u(1)),
+            frame0: Reg::new("frame", u(40)),
+            err: Reg::new("error_r", u(1)),
+            code: Reg::new("err_code_r", u(2)),
+            done: Reg::new("frame_done_r", u(1)),
+            activations: ["activations0", "activations1", "activations2"]
+                .map(|n| Reg::new(n, u(40))),
             pages: Some(PageRegisters824::new(3, 16)),
-            activations: [0; 3],
-            acts: [0; 3],
-            buffers: [buf.clone(), buf],
-            completed: Vec::new(),
-            cycle: 0,
-            pending_store: None,
-            drains: 0,
-            own_store: true,
+            levels,
+            store: FrameStore::new(&dims, true),
+            completed: Completed::default(),
             dims,
         })
     }
@@ -223,37 +356,32 @@ impl MipmapGen {
     /// `completed` and `frame_done` then say that a frame's last line left FIFO 1412, not
     /// that it is in the banks (the owner knows when it is).
     pub fn on_banks(mut self) -> MipmapGen {
-        self.own_store = false;
         self.pages = None;
-        self.buffers = [Vec::new(), Vec::new()];
+        self.store = FrameStore::new(&self.dims, false);
         self
     }
 
     /// At the coming edge: the video texel written into level 0, as `(frame, x, y, texel)`.
     pub fn level0_write(&self) -> Option<(u64, u32, u32, u8)> {
-        self.pending_store.map(|(x, y, t)| (self.frame0, x, y, t))
+        self.store.texel
     }
 
     /// At the coming edge: the level-0 line of the current frame to load into shift register
     /// 826 for the next line of the second field (interlaced video only).
     pub fn partner_read(&self) -> Option<(u64, u32)> {
-        self.sr_load.map(|row| (self.frame0, row))
+        self.store.partner
     }
 
     /// At the coming edge: each level whose FIFO 1412 line goes to the frame store, as
     /// `(level, frame, row, texels)`.
     pub fn line_writes(&self) -> impl Iterator<Item = (u32, u64, u32, Vec<u8>)> + '_ {
-        (0..self.levels.len()).filter_map(move |k| {
-            let l = &self.levels[k];
-            let (frame, row) = l.line_write().filter(|_| self.drains >> k & 1 == 1)?;
-            let texels = l.fifo_1412.iter().map(|t| t as u8).collect();
-            Some((k as u32 + 1, frame, row, texels))
-        })
+        let lines = self.store.staged_lines();
+        lines.map(|(k, (f, row), t)| (k as u32 + 1, f, row, t.to_vec()))
     }
 
     /// Shift register 826 loaded with the partner line (the unit on the TEXRAM banks).
     pub fn load_partner(&mut self, line: &[u8]) {
-        self.sr.copy_from_slice(line);
+        self.store.sr.copy_from_slice(line);
     }
 
     /// This cycle the video texel is added to the shift register's (interlaced level 1 in the
@@ -265,6 +393,21 @@ impl MipmapGen {
     /// The row bank `bank` of the own frame store has open (at the last edge).
     pub fn open_row(&self, bank: usize) -> Option<u64> {
         self.pages.as_ref()?.open_row(bank)
+    }
+
+    /// Row activations of the own frame store's banks 0, 1, 2 since reset.
+    pub fn activations(&self) -> [u64; 3] {
+        self.activations.each_ref().map(|r| r.q().bits())
+    }
+
+    /// Frames whose mipmap is complete, in order, each with the cycle of its edge.
+    pub fn completed(&self) -> &[(u64, u64)] {
+        &self.completed.frames
+    }
+
+    /// The own frame store's buffer frame `frame` is written into (by frame parity).
+    pub fn frame_buffer(&self, frame: u64) -> &FrameBuffer {
+        &self.store.buffers[(frame % 2) as usize]
     }
 
     pub fn params(&self) -> &MipmapParams {
@@ -290,62 +433,80 @@ impl MipmapGen {
         }
     }
 
-    /// At the edge: each level whose FIFO 1412 holds a full line writes it into its frame's
-    /// buffer (bank 2); the last level's line completes the frame's mipmap.
-    fn store_lines(&mut self) {
-        let n = self.dims.len();
-        let mut d = self.drains;
-        while d != 0 {
-            let k = d.trailing_zeros() as usize;
-            d &= d - 1;
-            let l = &self.levels[k];
-            let Some((frame, row)) = l.line_write() else {
-                continue;
-            };
-            if self.own_store {
-                let lw = self.dims[k + 1].0;
-                let b = (frame % 2) as usize;
-                let dst =
-                    &mut self.buffers[b][k + 1][(row * lw) as usize..((row + 1) * lw) as usize];
-                for (d, s) in dst.iter_mut().zip(l.fifo_1412.iter()) {
-                    *d = s as u8;
+    /// The video port: the texel stored into level 0, the sync check, the next arrival
+    /// position and, at a line end into the second field, the partner line for shift register
+    /// 826. Returns the sync error code and the frame the texel completes, if any.
+    fn arrive(&mut self, x: u32, n: u32, f: u32) -> (u64, Option<u64>) {
+        let frame = self.frame0.q().bits();
+        let first = x == 0 && n == 0 && f == 0;
+        let code = if self.sof.is_high() != first { 3 } else { 0 };
+        let y = self.frame_line(f, n);
+        self.store.texel = Some((frame, x, y, self.texel.bits() as u8));
+        let interlaced = self.p.scan != Scan::Progressive;
+        let (mut nx, mut nn, mut nf) = (x + 1, n, f);
+        if nx == self.p.width {
+            nx = 0;
+            nn += 1;
+            if nn == self.lines_per_field() {
+                nn = 0;
+                nf += 1;
+                if nf == 1 + u32::from(interlaced) {
+                    nf = 0;
                 }
             }
-            if k + 2 == n {
-                self.completed.push((frame, self.cycle));
-                self.done = true;
+            if interlaced && nf == 1 {
+                self.store.partner = Some((frame, self.frame_line(nf, nn) ^ 1));
             }
         }
+        self.x.set_next_bits(u64::from(nx));
+        self.line.set_next_bits(u64::from(nn));
+        self.field.set_next_bits(u64::from(nf));
+        // The frame's last texel: the position starts again.
+        let last = (nx, nn, nf) == (0, 0, 0);
+        if last {
+            self.frame0.set_next_bits(frame + 1);
+        }
+        // A 1x1 frame is its own mipmap.
+        (code, (last && self.dims.len() == 1).then_some(frame))
     }
 
-    /// At the edge: the video texel into bank `y % 2` of its frame's buffer, and (interlaced)
-    /// the next line's partner from the frame store into shift register 826.
-    fn store_level0(&mut self) {
-        let w = self.p.width;
-        if let Some((x, y, t)) = self.pending_store {
-            if self.own_store {
-                let b = (self.frame0 % 2) as usize;
-                self.buffers[b][0][(y * w + x) as usize] = t;
-            }
-            let last = x + 1 == w
-                && y == self.frame_line(
-                    u32::from(self.p.scan != Scan::Progressive),
-                    self.lines_per_field() - 1,
-                );
-            if last {
-                if self.dims.len() == 1 {
-                    // A 1x1 frame is its own mipmap.
-                    self.completed.push((self.frame0, self.cycle));
-                    self.done = true;
-                }
-                self.frame0 += 1;
-            }
+    /// Levels 1.. of Figure 14: level 1 reads the video port (and, interlaced, the shift
+    /// register in the second field), each next level the one before. Each level's FIFO 1412
+    /// line is staged for the frame store; returns the frame the last level's line completes.
+    fn eval_levels(&mut self, x: u32, second_field: bool) -> Option<u64> {
+        let valid = self.valid.is_high();
+        let l1 = self.levels.first_mut()?;
+        l1.in_valid.set_bool(valid && second_field);
+        l1.in_texel.follow(&self.texel);
+        if let Some(sr) = &mut l1.sr_texel {
+            sr.set_bits(u64::from(self.store.sr[x as usize]));
         }
-        if let Some(row) = self.sr_load.filter(|_| self.own_store) {
-            let b = (self.frame0 % 2) as usize;
-            let line = &self.buffers[b][0][(row * w) as usize..((row + 1) * w) as usize];
-            self.sr.copy_from_slice(line);
+        l1.eval();
+        let mut completes = self.stage_line(0);
+        // An idle level with nothing arriving is not evaluated (most cycles, for the upper
+        // levels): it has no line to write.
+        for k in 1..self.levels.len() {
+            let (a, b) = self.levels.split_at_mut(k);
+            let (prev, l) = (&a[k - 1], &mut b[0]);
+            if !prev.out_valid.is_high() && l.quiescent() {
+                continue;
+            }
+            l.in_valid.follow(&prev.out_valid);
+            l.in_texel.follow(&prev.out_texel);
+            l.eval();
+            completes = self.stage_line(k).or(completes);
         }
+        completes
+    }
+
+    /// Level `k + 1`'s FIFO 1412 line, if it goes to the frame store at the coming edge, staged
+    /// there; returns the frame it completes (the last level's line).
+    #[inline]
+    fn stage_line(&mut self, k: usize) -> Option<u64> {
+        let l = &self.levels[k];
+        let at = l.line_write()?;
+        self.store.stage_line(k, at, l.fifo_1412.iter());
+        (k + 2 == self.dims.len()).then_some(at.0)
     }
 
     /// The bank accesses of this cycle on the own frame store, in the order the edge makes
@@ -360,96 +521,39 @@ impl MipmapGen {
         let mut open = |bank: usize, row: u32| {
             acts[bank] += u64::from(pages.open(bank, u64::from(row)));
         };
-        if let Some((_, y, _)) = self.pending_store {
+        let s = &self.store;
+        if let Some((_, _, y, _)) = s.texel {
             open((y % 2) as usize, y / 2);
         }
-        if let Some(row) = self.sr_load {
+        if let Some((_, row)) = s.partner {
             open((row % 2) as usize, row / 2);
         }
-        let mut d = self.drains;
-        while d != 0 {
-            let k = d.trailing_zeros() as usize;
-            d &= d - 1;
-            if let Some((_, row)) = self.levels[k].line_write() {
-                open(2, (k as u32) << 10 | row);
+        for (k, (_, row), _) in s.staged_lines() {
+            open(2, (k as u32) << 10 | row);
+        }
+        for (r, n) in self.activations.iter_mut().zip(acts) {
+            if n != 0 {
+                r.set_next_bits(r.q().bits() + n);
             }
         }
-        self.acts = acts;
     }
-}
 
-impl Module for MipmapGen {
-    fn instance(&self) -> &str {
-        &self.name
-    }
-    fn kind(&self) -> &'static str {
-        "mipmap_gen_816"
-    }
-    fn eval(&mut self) {
+    pub fn eval(&mut self) {
         self.error.follow(self.err.q());
         self.err_code.follow(self.code.q());
-        self.frame_done.set_bool(self.done);
-        self.pending_store = None;
-        self.sr_load = None;
-        let valid = self.valid.is_high();
+        self.frame_done.follow(self.done.q());
+        self.store.clear_staged();
         let (x, n, f) = (
             self.x.q().bits() as u32,
             self.line.q().bits() as u32,
             self.field.q().bits() as u32,
         );
-        let mut code = 0;
-        if valid {
-            let first = x == 0 && n == 0 && f == 0;
-            if self.sof.is_high() != first {
-                code = 3;
-            }
-            let y = self.frame_line(f, n);
-            self.pending_store = Some((x, y, self.texel.bits() as u8));
-            // Next position; at a line end, the next line's partner goes into the shift register.
-            let (mut nx, mut nn, mut nf) = (x + 1, n, f);
-            if nx == self.p.width {
-                nx = 0;
-                nn += 1;
-                if nn == self.lines_per_field() {
-                    nn = 0;
-                    nf += 1;
-                    if nf == 1 + u32::from(self.p.scan != Scan::Progressive) {
-                        nf = 0;
-                    }
-                }
-                if self.p.scan != Scan::Progressive && nf == 1 {
-                    self.sr_load = Some(self.frame_line(nf, nn) ^ 1);
-                }
-            }
-            self.x.set_next_bits(u64::from(nx));
-            self.line.set_next_bits(u64::from(nn));
-            self.field.set_next_bits(u64::from(nf));
+        let (mut code, mut completes) = (0, None);
+        if self.valid.is_high() {
+            (code, completes) = self.arrive(x, n, f);
         }
-        // Level 1 reads the video port (and, interlaced, the shift register in the second field).
         let second_field = self.p.scan == Scan::Progressive || f == 1;
-        self.drains = 0;
-        if let Some(l1) = self.levels.first_mut() {
-            l1.in_valid.set_bool(valid && second_field);
-            l1.in_texel.follow(&self.texel);
-            if let Some(sr) = &mut l1.sr_texel {
-                sr.set_bits(u64::from(self.sr[x as usize]));
-            }
-            l1.eval();
-            self.drains |= u32::from(l1.line_write().is_some());
-        }
-        // Each level reads the one before; an idle level with nothing arriving is not
-        // evaluated (most cycles, for the upper levels).
-        for k in 1..self.levels.len() {
-            let (a, b) = self.levels.split_at_mut(k);
-            let (prev, l) = (&a[k - 1], &mut b[0]);
-            if !prev.out_valid.is_high() && l.quiescent() {
-                continue;
-            }
-            l.in_valid.follow(&prev.out_valid);
-            l.in_texel.follow(&prev.out_texel);
-            l.eval();
-            self.drains |= u32::from(l.line_write().is_some()) << k;
-        }
+        completes = self.eval_levels(x, second_field).or(completes);
         self.page_registers();
         // A FIFO error of any level takes precedence over a sync error.
         if let Some(e) = self.levels.iter().map(Level::error_code).find(|&e| e != 0) {
@@ -459,51 +563,10 @@ impl Module for MipmapGen {
             self.err.set_next_bool(true);
             self.code.set_next_bits(code);
         }
-    }
-    fn tick(&mut self, reset: bool) {
-        self.done = false;
-        self.x.tick(reset);
-        self.line.tick(reset);
-        self.field.tick(reset);
-        self.err.tick(reset);
-        self.code.tick(reset);
-        if let Some(p) = &mut self.pages {
-            p.tick(reset);
+        if completes.is_some() || self.done.q().is_high() {
+            self.done.set_next_bool(completes.is_some());
+            self.completed.next = completes;
         }
-        self.cycle += 1;
-        if reset {
-            // Frame numbers start again at 0: the record of completed frames with them.
-            self.frame0 = 0;
-            self.completed.clear();
-            for l in &mut self.levels {
-                l.tick(true);
-            }
-            return;
-        }
-        for (a, n) in self.activations.iter_mut().zip(self.acts) {
-            *a += n;
-        }
-        // The levels' lines leave their FIFOs 1412 at this edge: store them first.
-        self.store_lines();
-        for l in &mut self.levels {
-            l.tick(false);
-        }
-        self.store_level0();
-    }
-    fn visit(&self, v: &mut dyn Visitor) {
-        v.enter(self.instance(), self.kind());
-        signals!(v;
-            Input: self.valid, self.texel, self.sof;
-            Output: self.error, self.err_code, self.frame_done;
-            Reg: self.x, self.line, self.field);
-        // On the TEXRAM banks the chip's page registers 824 are the ones that count.
-        if let Some(p) = &self.pages {
-            p.visit(v);
-        }
-        for l in &self.levels {
-            l.visit(v);
-        }
-        v.leave();
     }
 }
 
