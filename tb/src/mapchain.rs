@@ -11,7 +11,7 @@ use golden::mapchain::{GChain, GDetail, GEnv, GLayer, GMap, GPixel, Mode};
 use hdl::kernel::{Sim, Trace};
 use units::mapchain::drf_812::{ChainDrf, DetailMode, DrfFile, Kind, Placer};
 use units::mapchain::program::ChainRequest;
-use units::mapchain::walker_812::{walk_pixel, ChainResult, MapChain812};
+use units::mapchain::walker_812::{walk_pixel, ChainResult, MapChain812, Pixel, PixelField};
 use units::texram::output_820::Modulate;
 use units::texram::stub::{next_level, TexramStub};
 use units::texram::{Border, Drf, TexramAccess};
@@ -207,17 +207,19 @@ impl Scene {
     }
 }
 
-/// The raw request as the golden model's reals.
+/// The raw request as the golden model's reals, each field scaled by its port's format.
 pub fn gpixel(px: &ChainRequest) -> GPixel {
-    let q = |x: i64, f: i32| x as f64 * 2f64.powi(-f);
+    let f = Pixel::fields();
+    let raw = Pixel::of(px);
+    let q = |x: &i64, f: &PixelField| *x as f64 * 2f64.powi(-f.fmt.frac());
     GPixel {
-        u: q(px.u.into(), 8),
-        v: q(px.v.into(), 8),
-        lambda: q(px.lambda.into(), 8),
-        n: px.n.map(|c| q(c, 14)),
-        eye: px.eye.map(|c| q(c, 14)),
-        i_d: f64::from(px.i_d),
-        i_s: f64::from(px.i_s),
+        u: q(&raw.u, &f.u),
+        v: q(&raw.v, &f.v),
+        lambda: q(&raw.lambda, &f.lambda),
+        n: std::array::from_fn(|k| q(&raw.n[k], &f.n[k])),
+        eye: std::array::from_fn(|k| q(&raw.eye[k], &f.eye[k])),
+        i_d: q(&raw.i_d, &f.i_d),
+        i_s: q(&raw.i_s, &f.i_s),
     }
 }
 

@@ -384,7 +384,9 @@ pub fn volume() -> Result<UnitVectors, String> {
 pub fn mapchain() -> Result<UnitVectors, String> {
     use crate::mapchain::{clocked, scene, Maps, Shape};
     use units::mapchain::program::ChainRequest;
+    use units::mapchain::walker_812::Pixel;
     let maps = Maps::formula();
+    let fields = Pixel::fields();
     let mut rows = Vec::new();
     for (code, shape) in Shape::ALL.into_iter().enumerate() {
         let sc = scene(shape, &maps)?;
@@ -408,12 +410,12 @@ pub fn mapchain() -> Result<UnitVectors, String> {
             .collect();
         let (_, out) = clocked(&sc, &px)?;
         for (q, r) in px.iter().zip(out) {
-            let m = |x: i64, w: u32| mask(x, w);
-            let mut inp = vec![code as u64, m(q.u.into(), 21), m(q.v.into(), 21)];
-            inp.push(m(q.lambda.into(), 14));
-            inp.extend(q.n.map(|x| m(x, 17)));
-            inp.extend(q.eye.map(|x| m(x, 16)));
-            inp.extend([u64::from(q.i_d), u64::from(q.i_s)]);
+            // The port's fields but the DRF and the face, each masked to its format.
+            let raw = Pixel::of(q);
+            let cols = raw.each().into_iter().zip(fields.each()).skip(1);
+            let cols = cols.filter(|(_, f)| f.name != "face");
+            let mut inp = vec![code as u64];
+            inp.extend(cols.map(|(x, f)| mask(*x, f.fmt.width())));
             let out = [
                 r.colour.into(),
                 r.accesses,
@@ -429,17 +431,17 @@ pub fn mapchain() -> Result<UnitVectors, String> {
         description: "chain walker of 812 (section 14): the testbench's seven chain shapes over integer-formula maps (64x64 texture, offsets and reflectance, 256x256 detail, 32x32 faces), 48 hashed pixels each, results of the clocked walker on the stub".into(),
         inputs: vec![
             Field::new("shape", 3),
-            Field::new("u", 21),
-            Field::new("v", 21),
-            Field::new("lambda", 14),
-            Field::new("nx", 17),
-            Field::new("ny", 17),
-            Field::new("nz", 17),
-            Field::new("ex", 16),
-            Field::new("ey", 16),
-            Field::new("ez", 16),
-            Field::new("i_d", 8),
-            Field::new("i_s", 8),
+            Field::new("u", fields.u.fmt.width()),
+            Field::new("v", fields.v.fmt.width()),
+            Field::new("lambda", fields.lambda.fmt.width()),
+            Field::new("nx", fields.n[0].fmt.width()),
+            Field::new("ny", fields.n[1].fmt.width()),
+            Field::new("nz", fields.n[2].fmt.width()),
+            Field::new("ex", fields.eye[0].fmt.width()),
+            Field::new("ey", fields.eye[1].fmt.width()),
+            Field::new("ez", fields.eye[2].fmt.width()),
+            Field::new("i_d", fields.i_d.fmt.width()),
+            Field::new("i_s", fields.i_s.fmt.width()),
         ],
         outputs: vec![
             Field::new("colour", 8),

@@ -303,13 +303,14 @@ fn the_map_chain_and_per_pixel_units_visit_every_signal() {
         units::mapchain::walker_812::MapChain812::new(sc.file.clone(), sc.stub().unwrap(), 6)
             .unwrap();
     // req_valid, 13 pixel fields, req_ready, acc_valid, 5 access fields, 18 walk registers,
-    // 13 held fields, busy, rd_value, rd_slots, 3 counts, 3 out counts, out_valid, colour,
+    // 13 held fields (walker_812.pixel), busy, rd_value, rd_slots, 3 counts, 3 out counts, out_valid, colour,
     // error.
     assert_eq!(
         paths_with(&walker, "walker_812."),
         1 + 13 + 1 + 1 + 5 + 18 + 13 + 3 + 3 + 3 + 3
     );
-    assert_eq!(kinds(&walker), own(&[("walker_812", 1)]));
+    // The pixel it holds is its own scope.
+    assert_eq!(kinds(&walker), own(&[("walker_812", 1), ("pixel", 1)]));
     let fmt = PtmFormat {
         bits: 8,
         exp: [4; 6],

@@ -6,6 +6,7 @@ use std::fmt::Write;
 use std::path::{Path, PathBuf};
 use tb::mapchain::{run_mapchain, Scene};
 use units::mapchain::program::ChainRequest;
+use units::mapchain::walker_812::{Pixel, PixelField};
 
 /// Pixels through the map chain walker of 812 (section 14, Fig. 16).
 #[derive(Clone, Debug, clap::Args)]
@@ -44,36 +45,54 @@ pub fn run(a: &MapchainArgs) -> Result<String, CmdError> {
     guard.settle(mapchain(a, &outs))
 }
 
-/// The optional columns: name, scale (fraction bits), lower and upper limit (exclusive for
-/// the vectors), default raw value.
-const OPTIONAL: [(&str, i32, f64, f64, i64); 9] = [
-    ("nx", 14, -4.0, 4.0, 0),
-    ("ny", 14, -4.0, 4.0, 0),
-    ("nz", 14, -4.0, 4.0, 1 << 14),
-    ("vx", 14, -2.0, 2.0, 0),
-    ("vy", 14, -2.0, 2.0, 0),
-    ("vz", 14, -2.0, 2.0, 1 << 14),
-    ("face", 0, 0.0, 5.0, 0),
-    ("id", 0, 0.0, 255.0, 255),
-    ("is", 0, 0.0, 255.0, 0),
-];
+/// The columns every file has; any of the pixel's other fields may follow.
+const REQUIRED: [&str; 4] = ["drf", "u", "v", "lambda"];
+
+/// The pixel of a row before its columns are read: n = v = (0, 0, 1), face 0, id 255, is 0.
+fn defaults() -> Pixel<i64> {
+    Pixel::of(&ChainRequest {
+        n: [0, 0, 1 << 14],
+        eye: [0, 0, 1 << 14],
+        i_d: 255,
+        ..ChainRequest::default()
+    })
+}
+
+/// The values a column takes, `(low, high, closed)`: its field's format's range (closed for
+/// an integer), narrowed for the DRF, lambda and the face to what the walker accepts.
+fn range(f: &PixelField) -> (f64, f64, bool) {
+    match f.name {
+        "drf" => (0.0, 6.0, true),
+        "lambda" => (-4.0, 10.0, true),
+        "face" => (0.0, 5.0, true),
+        _ => {
+            let lsb = 2f64.powi(-f.fmt.frac());
+            let (lo, hi) = (f.fmt.min_raw() as f64, f.fmt.max_raw() as f64 + 1.0);
+            let closed = f.fmt.frac() == 0;
+            (lo * lsb, if closed { hi - 1.0 } else { hi } * lsb, closed)
+        }
+    }
+}
 
 /// The header, checked: drf,u,v,lambda then optional columns, each at most once.
 fn header(path: &Path, text: &str) -> Result<String, String> {
     let head = text.lines().next().unwrap_or("").trim();
     let cols: Vec<&str> = head.split(',').map(str::trim).collect();
+    let fields = Pixel::fields();
+    let optional: Vec<&str> = fields.each().iter().map(|f| f.name).skip(4).collect();
     let bad = || {
         format!(
-            "{}:1: header '{}' is not drf,u,v,lambda followed by any of nx,ny,nz,vx,vy,vz,face,id,is",
+            "{}:1: header '{}' is not drf,u,v,lambda followed by any of {}",
             path.display(),
-            formats::shorten(head)
+            formats::shorten(head),
+            optional.join(",")
         )
     };
-    if cols.len() < 4 || cols[..4] != ["drf", "u", "v", "lambda"] {
+    if cols.len() < 4 || cols[..4] != REQUIRED {
         return Err(bad());
     }
     for (k, c) in cols.iter().enumerate().skip(4) {
-        if !OPTIONAL.iter().any(|o| o.0 == *c) || cols[..k].contains(c) {
+        if !optional.contains(c) || cols[..k].contains(c) {
             return Err(bad());
         }
     }
@@ -94,46 +113,32 @@ fn read_requests(path: &Path) -> Result<Vec<ChainRequest>, String> {
     let text = std::fs::read_to_string(path).map_err(|e| format!("{}: {e}", path.display()))?;
     let head = header(path, &text)?;
     let t = formats::csv::parse(&path.display().to_string(), &text, &[&head])?;
+    let fields = Pixel::fields();
+    let columns: Vec<usize> = t
+        .columns
+        .iter()
+        .map(|c| fields.each().iter().position(|f| f.name == c))
+        .collect::<Option<_>>()
+        .ok_or("a column the header check let through")?;
     let mut out = Vec::with_capacity(t.rows.len());
     for r in &t.rows {
-        let mut raw = [0i64; 4 + OPTIONAL.len()];
-        for (k, o) in OPTIONAL.iter().enumerate() {
-            raw[4 + k] = o.4;
-        }
-        for (col, name) in t.columns.iter().enumerate() {
+        let mut px = defaults();
+        for (col, &k) in columns.iter().enumerate() {
+            let f = fields.each()[k];
+            let (lo, hi, closed) = range(f);
             let x = t.finite(r, col)?;
-            let (slot, frac, range, closed) = match name.as_str() {
-                "drf" => (0, 0, (0.0, 6.0), true),
-                "u" => (1, 8, (-4096.0, 4096.0), false),
-                "v" => (2, 8, (-4096.0, 4096.0), false),
-                "lambda" => (3, 8, (-4.0, 10.0), true),
-                n => {
-                    let k = OPTIONAL.iter().position(|o| o.0 == n).unwrap_or(0);
-                    let o = OPTIONAL[k];
-                    (4 + k, o.1, (o.2, o.3), o.1 == 0)
-                }
-            };
-            raw[slot] = quantise(x, frac, range, closed).ok_or_else(|| {
-                let f = formats::shorten(&r.fields[col]);
-                let what = if frac == 0 { "an integer in" } else { "in" };
+            *px.each_mut()[k] = quantise(x, f.fmt.frac(), (lo, hi), closed).ok_or_else(|| {
+                let v = formats::shorten(&r.fields[col]);
+                let what = if f.fmt.frac() == 0 {
+                    "an integer in"
+                } else {
+                    "in"
+                };
                 let end = if closed { "]" } else { ")" };
-                t.error(
-                    r,
-                    format!("{name} {f}: not {what} [{}, {}{end}", range.0, range.1),
-                )
+                t.error(r, format!("{} {v}: not {what} [{lo}, {hi}{end}", f.name))
             })?;
         }
-        out.push(ChainRequest {
-            drf: raw[0] as u8,
-            u: raw[1] as i32,
-            v: raw[2] as i32,
-            lambda: raw[3] as i32,
-            n: [raw[4], raw[5], raw[6]],
-            eye: [raw[7], raw[8], raw[9]],
-            face: raw[10] as u8,
-            i_d: raw[11] as u8,
-            i_s: raw[12] as u8,
-        });
+        out.push(px.request());
     }
     Ok(out)
 }

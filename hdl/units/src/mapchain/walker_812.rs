@@ -23,7 +23,7 @@
 //! | `req_u`, `req_v` | sQ12.8 |
 //! | `req_lambda` | sQ5.8 |
 //! | `req_nx/ny/nz` | sQ2.14 (n_b of eq. 3) |
-//! | `req_ex/ey/ez` | sQ1.14 (unit vector to the eye) |
+//! | `req_vx/vy/vz` | sQ1.14 (unit vector to the eye) |
 //! | `req_face` | u3 |
 //! | `req_id`, `req_is` | u8 |
 //! | `acc_drf`, `acc_plane` | u3 |
@@ -34,77 +34,106 @@ use super::drf_812::DrfFile;
 use super::program::{ChainRequest, Fetch, Program, State, Walk, STATES};
 use crate::envmap::cube_face::CubeFace;
 use crate::fx::Format;
-use crate::kernel::{Module, Reg, Signal, Visitor};
+use crate::kernel::declared::{Regs, Signals};
+use crate::kernel::{Dir, Module, Reg, Regs, Signal, Signals, Visitor};
 use crate::texram::{TexramAccess, UV_BITS};
 
-/// The walk's registers: name and width, in the order of [`fields`].
-const WALK: [(&str, u32); 18] = [
-    ("state", 4),
-    ("drf", 3),
-    ("steps", 4),
-    ("deferred", 1),
-    ("to_refl", 1),
-    ("tex", 8),
-    ("refl", 8),
-    ("env", 8),
-    ("ou", 8),
-    ("ov", 8),
-    ("offsets", 1),
-    ("detail", 8),
-    ("tex_drf", 3),
-    ("refl_drf", 3),
-    ("env_drf", 3),
-    ("face", 3),
-    ("s", 12),
-    ("t", 12),
-];
-
-fn fields(w: &Walk) -> [u64; 18] {
-    let b = |x: u8| u64::from(x);
-    let f = |x: bool| u64::from(x);
-    [
-        w.state.bits(),
-        b(w.drf),
-        b(w.steps),
-        f(w.deferred),
-        f(w.to_refl),
-        b(w.tex),
-        b(w.refl),
-        b(w.env),
-        b(w.ou),
-        b(w.ov),
-        f(w.offsets),
-        b(w.detail),
-        b(w.tex_drf),
-        b(w.refl_drf),
-        b(w.env_drf),
-        b(w.face),
-        u64::from(w.s),
-        u64::from(w.t),
-    ]
+/// The walk's registers ([`Walk`] as the walker holds it between cycles), `state` named by
+/// [`STATES`] in the waveform.
+#[derive(Clone, Debug, Regs)]
+struct WalkRegs {
+    state: Reg,
+    drf: Reg,
+    steps: Reg,
+    deferred: Reg,
+    to_refl: Reg,
+    tex: Reg,
+    refl: Reg,
+    env: Reg,
+    ou: Reg,
+    ov: Reg,
+    offsets: Reg,
+    detail: Reg,
+    tex_drf: Reg,
+    refl_drf: Reg,
+    env_drf: Reg,
+    face: Reg,
+    s: Reg,
+    t: Reg,
 }
 
-fn walk_of(f: [u64; 18]) -> Walk {
-    let (u8_, b) = (|x: u64| x as u8, |x: u64| x != 0);
-    Walk {
-        state: State::from_bits(f[0]),
-        drf: u8_(f[1]),
-        steps: u8_(f[2]),
-        deferred: b(f[3]),
-        to_refl: b(f[4]),
-        tex: u8_(f[5]),
-        refl: u8_(f[6]),
-        env: u8_(f[7]),
-        ou: u8_(f[8]),
-        ov: u8_(f[9]),
-        offsets: b(f[10]),
-        detail: u8_(f[11]),
-        tex_drf: u8_(f[12]),
-        refl_drf: u8_(f[13]),
-        env_drf: u8_(f[14]),
-        face: u8_(f[15]),
-        s: f[16] as u16,
-        t: f[17] as u16,
+impl WalkRegs {
+    fn new() -> WalkRegs {
+        let u = |name, bits| Reg::new(name, Format::uint(bits));
+        WalkRegs {
+            state: u("state", 4).with_states(&STATES),
+            drf: u("drf", 3),
+            steps: u("steps", 4),
+            deferred: u("deferred", 1),
+            to_refl: u("to_refl", 1),
+            tex: u("tex", 8),
+            refl: u("refl", 8),
+            env: u("env", 8),
+            ou: u("ou", 8),
+            ov: u("ov", 8),
+            offsets: u("offsets", 1),
+            detail: u("detail", 8),
+            tex_drf: u("tex_drf", 3),
+            refl_drf: u("refl_drf", 3),
+            env_drf: u("env_drf", 3),
+            face: u("face", 3),
+            s: u("s", 12),
+            t: u("t", 12),
+        }
+    }
+
+    /// The walk the registers hold.
+    fn walk(&self) -> Walk {
+        let b = |r: &Reg| r.q().bits() as u8;
+        let f = |r: &Reg| r.q().is_high();
+        Walk {
+            state: State::from_bits(self.state.q().bits()),
+            drf: b(&self.drf),
+            steps: b(&self.steps),
+            deferred: f(&self.deferred),
+            to_refl: f(&self.to_refl),
+            tex: b(&self.tex),
+            refl: b(&self.refl),
+            env: b(&self.env),
+            ou: b(&self.ou),
+            ov: b(&self.ov),
+            offsets: f(&self.offsets),
+            detail: b(&self.detail),
+            tex_drf: b(&self.tex_drf),
+            refl_drf: b(&self.refl_drf),
+            env_drf: b(&self.env_drf),
+            face: b(&self.face),
+            s: self.s.q().bits() as u16,
+            t: self.t.q().bits() as u16,
+        }
+    }
+
+    /// `w` into the registers at the coming edge.
+    fn set_next(&mut self, w: &Walk) {
+        let b = |r: &mut Reg, x: u8| r.set_next_bits(u64::from(x));
+        self.state.set_next_bits(w.state.bits());
+        b(&mut self.drf, w.drf);
+        b(&mut self.steps, w.steps);
+        self.deferred.set_next_bool(w.deferred);
+        self.to_refl.set_next_bool(w.to_refl);
+        b(&mut self.tex, w.tex);
+        b(&mut self.refl, w.refl);
+        b(&mut self.env, w.env);
+        b(&mut self.ou, w.ou);
+        b(&mut self.ov, w.ov);
+        self.offsets.set_next_bool(w.offsets);
+        b(&mut self.detail, w.detail);
+        b(&mut self.tex_drf, w.tex_drf);
+        b(&mut self.refl_drf, w.refl_drf);
+        b(&mut self.env_drf, w.env_drf);
+        b(&mut self.face, w.face);
+        self.s.set_next_bits(u64::from(w.s));
+        self.t.set_next_bits(u64::from(w.t));
     }
 }
 
@@ -118,80 +147,211 @@ pub struct ChainResult {
     pub error: bool,
 }
 
-/// The pixel's fields' formats, in the order of [`REQ`].
-fn pixel_formats() -> [Format; 13] {
-    let uv = Format::signed(UV_BITS, 8);
-    let (nf, ef) = (Format::signed(17, 14), Format::signed(16, 14));
-    let (u3, u8f) = (Format::uint(3), Format::uint(8));
-    [
-        u3,
-        uv,
-        uv,
-        Format::signed(14, 8),
-        nf,
-        nf,
-        nf,
-        ef,
-        ef,
-        ef,
-        u3,
-        u8f,
-        u8f,
-    ]
+/// A field of the pixel: its name (the command line's column), its port's name, its format.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct PixelField {
+    pub name: &'static str,
+    pub port: &'static str,
+    pub fmt: Format,
 }
 
-fn request_of(x: [i64; 13]) -> ChainRequest {
-    ChainRequest {
-        drf: x[0] as u8,
-        u: x[1] as i32,
-        v: x[2] as i32,
-        lambda: x[3] as i32,
-        n: [x[4], x[5], x[6]],
-        eye: [x[7], x[8], x[9]],
-        face: x[10] as u8,
-        i_d: x[11] as u8,
-        i_s: x[12] as u8,
+/// The rasterizer's pixel, each field once with its name and format: `Pixel<Signal>` is the
+/// walker's port (`req_drf` ...), `Pixel<Reg>` the pixel it holds while walking (scope
+/// `pixel`), `Pixel<PixelField>` ([`Pixel::fields`]) the names and formats alone, which the
+/// command line reads its columns by.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub struct Pixel<S> {
+    /// The leading DRF, u3.
+    pub drf: S,
+    /// sQ12.8, sQ12.8, sQ5.8.
+    pub u: S,
+    pub v: S,
+    pub lambda: S,
+    /// The perturbed normal n_b of eq. 3, sQ2.14.
+    pub n: [S; 3],
+    /// The unit vector to the eye, sQ1.14.
+    pub eye: [S; 3],
+    /// u3, the face when an environment DRF has no `new_coords`.
+    pub face: S,
+    /// Diffuse illumination and external specular term, u8.
+    pub i_d: S,
+    pub i_s: S,
+}
+
+impl Pixel<PixelField> {
+    /// Every field's name, port name and format.
+    pub fn fields() -> Pixel<PixelField> {
+        let uv = Format::signed(UV_BITS, 8);
+        let (nf, ef) = (Format::signed(17, 14), Format::signed(16, 14));
+        let (u3, u8f) = (Format::uint(3), Format::uint(8));
+        let f = |name, port, fmt| PixelField { name, port, fmt };
+        Pixel {
+            drf: f("drf", "req_drf", u3),
+            u: f("u", "req_u", uv),
+            v: f("v", "req_v", uv),
+            lambda: f("lambda", "req_lambda", Format::signed(14, 8)),
+            n: [
+                f("nx", "req_nx", nf),
+                f("ny", "req_ny", nf),
+                f("nz", "req_nz", nf),
+            ],
+            eye: [
+                f("vx", "req_vx", ef),
+                f("vy", "req_vy", ef),
+                f("vz", "req_vz", ef),
+            ],
+            face: f("face", "req_face", u3),
+            i_d: f("id", "req_id", u8f),
+            i_s: f("is", "req_is", u8f),
+        }
     }
 }
 
-fn raw_of(r: &ChainRequest) -> [i64; 13] {
-    let [nx, ny, nz] = r.n;
-    let [ex, ey, ez] = r.eye;
-    [
-        r.drf.into(),
-        r.u.into(),
-        r.v.into(),
-        r.lambda.into(),
-        nx,
-        ny,
-        nz,
-        ex,
-        ey,
-        ez,
-        r.face.into(),
-        r.i_d.into(),
-        r.i_s.into(),
-    ]
+impl<S> Pixel<S> {
+    /// Each field, in order.
+    pub fn each(&self) -> [&S; 13] {
+        let [nx, ny, nz] = &self.n;
+        let [ex, ey, ez] = &self.eye;
+        [
+            &self.drf,
+            &self.u,
+            &self.v,
+            &self.lambda,
+            nx,
+            ny,
+            nz,
+            ex,
+            ey,
+            ez,
+            &self.face,
+            &self.i_d,
+            &self.i_s,
+        ]
+    }
+
+    /// Each field, in order, to change.
+    pub fn each_mut(&mut self) -> [&mut S; 13] {
+        let [nx, ny, nz] = &mut self.n;
+        let [ex, ey, ez] = &mut self.eye;
+        [
+            &mut self.drf,
+            &mut self.u,
+            &mut self.v,
+            &mut self.lambda,
+            nx,
+            ny,
+            nz,
+            ex,
+            ey,
+            ez,
+            &mut self.face,
+            &mut self.i_d,
+            &mut self.i_s,
+        ]
+    }
+
+    /// The same pixel with each field mapped by `f`.
+    pub fn map<T>(&self, mut f: impl FnMut(&S) -> T) -> Pixel<T> {
+        Pixel {
+            drf: f(&self.drf),
+            u: f(&self.u),
+            v: f(&self.v),
+            lambda: f(&self.lambda),
+            n: self.n.each_ref().map(&mut f),
+            eye: self.eye.each_ref().map(&mut f),
+            face: f(&self.face),
+            i_d: f(&self.i_d),
+            i_s: f(&self.i_s),
+        }
+    }
 }
 
-const REQ: [&str; 13] = [
-    "req_drf",
-    "req_u",
-    "req_v",
-    "req_lambda",
-    "req_nx",
-    "req_ny",
-    "req_nz",
-    "req_ex",
-    "req_ey",
-    "req_ez",
-    "req_face",
-    "req_id",
-    "req_is",
-];
-const HELD: [&str; 13] = [
-    "drf_in", "u", "v", "lambda", "nx", "ny", "nz", "ex", "ey", "ez", "face_in", "i_d", "i_s",
-];
+impl Pixel<i64> {
+    /// The request the raw fields make.
+    pub fn request(&self) -> ChainRequest {
+        ChainRequest {
+            drf: self.drf as u8,
+            u: self.u as i32,
+            v: self.v as i32,
+            lambda: self.lambda as i32,
+            n: self.n,
+            eye: self.eye,
+            face: self.face as u8,
+            i_d: self.i_d as u8,
+            i_s: self.i_s as u8,
+        }
+    }
+
+    /// The raw fields of `r`.
+    pub fn of(r: &ChainRequest) -> Pixel<i64> {
+        Pixel {
+            drf: r.drf.into(),
+            u: r.u.into(),
+            v: r.v.into(),
+            lambda: r.lambda.into(),
+            n: r.n,
+            eye: r.eye,
+            face: r.face.into(),
+            i_d: r.i_d.into(),
+            i_s: r.i_s.into(),
+        }
+    }
+}
+
+impl Signals for Pixel<Signal> {
+    fn visit_signals(&self, dir: Dir, v: &mut dyn Visitor) {
+        self.each().into_iter().for_each(|s| v.signal(dir, s));
+    }
+}
+
+impl Regs for Pixel<Reg> {
+    fn tick_regs(&mut self, reset: bool) {
+        self.each_mut().into_iter().for_each(|r| r.tick(reset));
+    }
+    fn visit_regs(&self, v: &mut dyn Visitor) {
+        v.enter("pixel", "pixel");
+        self.each().into_iter().for_each(|r| v.reg(r));
+        v.leave();
+    }
+}
+
+/// What the walker asks the banks for, as its `acc_*` outputs carry it.
+#[derive(Clone, Debug, Signals)]
+struct AccessPort {
+    drf: Signal,
+    plane: Signal,
+    u: Signal,
+    v: Signal,
+    lambda: Signal,
+}
+
+/// A pixel's access, slot and fault counts.
+#[derive(Clone, Debug, Regs)]
+struct Counts {
+    accesses: Reg,
+    slots: Reg,
+    faults: Reg,
+}
+
+impl Counts {
+    fn new(accesses: &'static str, slots: &'static str, faults: &'static str) -> Counts {
+        Counts {
+            accesses: Reg::new(accesses, Format::uint(4)),
+            slots: Reg::new(slots, Format::uint(5)),
+            faults: Reg::new(faults, Format::uint(4)),
+        }
+    }
+
+    fn get(&self) -> [u64; 3] {
+        [&self.accesses, &self.slots, &self.faults].map(|r| r.q().bits())
+    }
+
+    fn set_next(&mut self, [a, s, f]: [u64; 3]) {
+        self.accesses.set_next_bits(a);
+        self.slots.set_next_bits(s);
+        self.faults.set_next_bits(f);
+    }
+}
 
 /// The walker with the banks it reads through.
 pub struct MapChain812<T: TexramAccess> {
@@ -201,20 +361,22 @@ pub struct MapChain812<T: TexramAccess> {
     slot_cycles: u32,
     pub req_valid: Signal,
     pub req_ready: Signal,
-    req: [Signal; 13],
+    /// The pixel port.
+    pub req: Pixel<Signal>,
     /// The pixel being walked.
-    held: [Reg; 13],
+    held: Pixel<Reg>,
     pub acc_valid: Signal,
-    acc: [Signal; 5],
-    walk: Vec<Reg>,
+    acc: AccessPort,
+    walk: WalkRegs,
     busy: Reg,
     rd_value: Reg,
     rd_slots: Reg,
-    px_acc: [Reg; 3],
+    /// The pixel's counts so far, and those of the result out.
+    px_acc: Counts,
     pub out_valid: Reg,
     pub out_colour: Reg,
     pub out_error: Reg,
-    out_acc: [Reg; 3],
+    out_acc: Counts,
     /// An access the banks refused (a format error: a bug of the walker), kept for the
     /// testbench.
     pub access_error: Option<String>,
@@ -225,7 +387,7 @@ impl<T: TexramAccess> MapChain812<T> {
     pub fn new(file: DrfFile, texram: T, slot_cycles: u32) -> Result<MapChain812<T>, String> {
         file.validate()?;
         crate::pages::page_registers_824::check_slot_cycles(slot_cycles)?;
-        let fmt = pixel_formats();
+        let fields = Pixel::fields();
         let uv = Format::signed(UV_BITS, 8);
         let (u3, u8f) = (Format::uint(3), Format::uint(8));
         Ok(MapChain812 {
@@ -235,43 +397,25 @@ impl<T: TexramAccess> MapChain812<T> {
             slot_cycles,
             req_valid: Signal::bit("req_valid"),
             req_ready: Signal::bit("req_ready"),
-            req: std::array::from_fn(|i| Signal::new(REQ[i], fmt[i])),
-            held: std::array::from_fn(|i| Reg::new(HELD[i], fmt[i])),
+            req: fields.map(|f| Signal::new(f.port, f.fmt)),
+            held: fields.map(|f| Reg::new(f.name, f.fmt)),
             acc_valid: Signal::bit("acc_valid"),
-            acc: [
-                Signal::new("acc_drf", u3),
-                Signal::new("acc_plane", u3),
-                Signal::new("acc_u", uv),
-                Signal::new("acc_v", uv),
-                Signal::new("acc_lambda", Format::signed(14, 8)),
-            ],
-            walk: WALK
-                .iter()
-                .map(|&(n, w)| {
-                    let r = Reg::new(n, Format::uint(w));
-                    if n == "state" {
-                        r.with_states(&STATES)
-                    } else {
-                        r
-                    }
-                })
-                .collect(),
+            acc: AccessPort {
+                drf: Signal::new("acc_drf", u3),
+                plane: Signal::new("acc_plane", u3),
+                u: Signal::new("acc_u", uv),
+                v: Signal::new("acc_v", uv),
+                lambda: Signal::new("acc_lambda", fields.lambda.fmt),
+            },
+            walk: WalkRegs::new(),
             busy: Reg::new("busy", Format::uint(5)),
             rd_value: Reg::new("rd_value", u8f),
             rd_slots: Reg::new("rd_slots", Format::uint(2)),
-            px_acc: [
-                Reg::new("accesses", Format::uint(4)),
-                Reg::new("slots", Format::uint(5)),
-                Reg::new("faults", Format::uint(4)),
-            ],
+            px_acc: Counts::new("accesses", "slots", "faults"),
             out_valid: Reg::new("out_valid", Format::uint(1)),
             out_colour: Reg::new("out_colour", u8f),
             out_error: Reg::new("out_error", Format::uint(1)),
-            out_acc: [
-                Reg::new("out_accesses", Format::uint(4)),
-                Reg::new("out_slots", Format::uint(5)),
-                Reg::new("out_faults", Format::uint(4)),
-            ],
+            out_acc: Counts::new("out_accesses", "out_slots", "out_faults"),
             access_error: None,
         })
     }
@@ -280,15 +424,16 @@ impl<T: TexramAccess> MapChain812<T> {
     pub fn drive(&mut self, px: Option<&ChainRequest>) {
         self.req_valid.set_bool(px.is_some());
         if let Some(px) = px {
-            for (s, x) in self.req.iter_mut().zip(raw_of(px)) {
-                s.set_raw(x);
+            let raw = Pixel::of(px);
+            for (s, x) in self.req.each_mut().into_iter().zip(raw.each()) {
+                s.set_raw(*x);
             }
         }
     }
 
     /// The result in the output registers (when `out_valid`).
     pub fn result(&self) -> ChainResult {
-        let [a, s, f] = self.out_acc.each_ref().map(|r| r.q().bits() as u32);
+        let [a, s, f] = self.out_acc.get().map(|x| x as u32);
         ChainResult {
             colour: self.out_colour.q().bits() as u8,
             accesses: a,
@@ -300,7 +445,7 @@ impl<T: TexramAccess> MapChain812<T> {
 
     /// The walker's state.
     pub fn state(&self) -> State {
-        State::from_bits(self.walk[0].q().bits())
+        State::from_bits(self.walk.state.q().bits())
     }
 
     /// The micro-program's next step for `px`: from its first DRF (`value` `None`) or after
@@ -326,30 +471,31 @@ impl<T: TexramAccess> MapChain812<T> {
     /// Sets the walk's next registers, the access to issue and, at the chain's end, the
     /// result (`colour`, 0 on an error). `counts`: the pixel's accesses, slots and faults.
     fn apply(&mut self, (w, f, colour): (Walk, Option<Fetch>, u8), mut counts: [u64; 3]) {
-        for (r, x) in self.walk.iter_mut().zip(fields(&w)) {
-            r.set_next_bits(x);
-        }
+        self.walk.set_next(&w);
         self.busy.set_next_bits(0);
         if let Some(f) = f {
             counts[0] += 1;
             self.acc_valid.set_bool(true);
-            let raw = [f.drf.into(), f.plane.into(), f.u, f.v, f.lambda];
-            for (s, x) in self.acc.iter_mut().zip(raw) {
-                s.set_raw(i64::from(x));
-            }
+            let a = &mut self.acc;
+            a.drf.set_raw(f.drf.into());
+            a.plane.set_raw(f.plane.into());
+            a.u.set_raw(f.u.into());
+            a.v.set_raw(f.v.into());
+            a.lambda.set_raw(f.lambda.into());
         }
-        for (r, x) in self.px_acc.iter_mut().zip(counts) {
-            r.set_next_bits(x);
-        }
+        self.px_acc.set_next(counts);
         let error = w.state == State::Error;
         if error || w.state == State::Combine {
             self.out_valid.set_next_bool(true);
             self.out_error.set_next_bool(error);
             self.out_colour.set_next_bits(u64::from(colour));
-            for (r, x) in self.out_acc.iter_mut().zip(counts) {
-                r.set_next_bits(x);
-            }
+            self.out_acc.set_next(counts);
         }
+    }
+
+    /// The pixel on the port.
+    fn port_pixel(&self) -> ChainRequest {
+        self.req.map(Signal::raw).request()
     }
 
     /// In the cycle a pixel's last access ends, the next pixel is taken if its first DRF
@@ -359,8 +505,11 @@ impl<T: TexramAccess> MapChain812<T> {
         if !self.req_valid.is_high() {
             return;
         }
-        let px = request_of(self.req.each_ref().map(|s| s.raw()));
-        if self.step(&px, Walk::start(), None).1.is_some() {
+        if self
+            .step(&self.port_pixel(), Walk::start(), None)
+            .1
+            .is_some()
+        {
             self.req_ready.set_bool(true);
             self.begin();
         }
@@ -368,12 +517,36 @@ impl<T: TexramAccess> MapChain812<T> {
 
     /// A new pixel from the port: held, and its first DRF visited.
     fn begin(&mut self) {
-        let raw = self.req.each_ref().map(|s| s.raw());
-        for (r, x) in self.held.iter_mut().zip(raw) {
-            r.set_next_raw(x);
+        for (r, s) in self.held.each_mut().into_iter().zip(self.req.each()) {
+            r.set_next_raw(s.raw());
         }
-        let next = self.step(&request_of(raw), Walk::start(), None);
+        let next = self.step(&self.port_pixel(), Walk::start(), None);
         self.apply(next, [0; 3]);
+    }
+
+    /// The access issued this cycle, read at the edge: its value and slots into the read
+    /// registers.
+    fn read_banks(&mut self) {
+        let a = &self.acc;
+        let [drf, plane, u, v, l] = [&a.drf, &a.plane, &a.u, &a.v, &a.lambda].map(|s| s.raw());
+        let got = self
+            .file
+            .get(drf as u8)
+            .filter(|d| (plane as usize) < d.plane_count())
+            .ok_or_else(|| format!("drf {drf} plane {plane}: no such map"))
+            .and_then(|d| {
+                self.texram
+                    .access_with(&d.access(plane as usize), u as i32, v as i32, l as i32)
+            });
+        let (value, slots) = match got {
+            Ok(r) => (r.value, r.slots.min(3)),
+            Err(e) => {
+                self.access_error.get_or_insert(e);
+                (0, 1)
+            }
+        };
+        self.rd_value.set_next_bits(u64::from(value));
+        self.rd_slots.set_next_bits(u64::from(slots));
     }
 }
 
@@ -392,12 +565,12 @@ impl<T: TexramAccess> Module for MapChain812<T> {
             if self.req_valid.is_high() {
                 self.begin();
             } else {
-                self.walk[0].set_next_bits(State::Idle.bits());
+                self.walk.state.set_next_bits(State::Idle.bits());
             }
             return;
         }
         let slots = self.rd_slots.q().bits();
-        let mut counts = self.px_acc.each_ref().map(|r| r.q().bits());
+        let mut counts = self.px_acc.get();
         if st.reads() {
             let busy = self.busy.q().bits() + 1;
             if busy < slots * u64::from(self.slot_cycles) {
@@ -407,9 +580,8 @@ impl<T: TexramAccess> Module for MapChain812<T> {
             counts[1] += slots;
             counts[2] += u64::from(slots > 1);
         }
-        let px = request_of(self.held.each_ref().map(|r| r.q().raw()));
-        let w = walk_of(std::array::from_fn(|i| self.walk[i].q().bits()));
-        let next = self.step(&px, w, Some(self.rd_value.q().bits() as u8));
+        let px = self.held.map(|r| r.q().raw()).request();
+        let next = self.step(&px, self.walk.walk(), Some(self.rd_value.q().bits() as u8));
         let done = matches!(next.0.state, State::Combine | State::Error);
         self.apply(next, counts);
         if done {
@@ -419,54 +591,39 @@ impl<T: TexramAccess> Module for MapChain812<T> {
 
     fn tick(&mut self, reset: bool) {
         if !reset && self.acc_valid.is_high() {
-            let [drf, plane, u, v, l] = self.acc.each_ref().map(|s| s.raw());
-            let got = self
-                .file
-                .get(drf as u8)
-                .filter(|d| (plane as usize) < d.plane_count())
-                .ok_or_else(|| format!("drf {drf} plane {plane}: no such map"))
-                .and_then(|d| {
-                    self.texram
-                        .access_with(&d.access(plane as usize), u as i32, v as i32, l as i32)
-                });
-            let (value, slots) = match got {
-                Ok(r) => (r.value, r.slots.min(3)),
-                Err(e) => {
-                    self.access_error.get_or_insert(e);
-                    (0, 1)
-                }
-            };
-            self.rd_value.set_next_bits(u64::from(value));
-            self.rd_slots.set_next_bits(u64::from(slots));
+            self.read_banks();
         }
-        let regs = self.held.iter_mut().chain(&mut self.walk);
-        let regs = regs.chain([&mut self.busy, &mut self.rd_value, &mut self.rd_slots]);
-        let regs = regs.chain(&mut self.px_acc).chain(&mut self.out_acc);
-        for r in regs.chain([
+        self.held.tick_regs(reset);
+        self.walk.tick_regs(reset);
+        for r in [&mut self.busy, &mut self.rd_value, &mut self.rd_slots] {
+            r.tick(reset);
+        }
+        self.px_acc.tick_regs(reset);
+        self.out_acc.tick_regs(reset);
+        for r in [
             &mut self.out_valid,
             &mut self.out_colour,
             &mut self.out_error,
-        ]) {
+        ] {
             r.tick(reset);
         }
     }
 
     fn visit(&self, v: &mut dyn Visitor) {
-        use crate::kernel::Dir;
         v.enter(self.instance(), self.kind());
         v.signal(Dir::Input, &self.req_valid);
-        for s in &self.req {
-            v.signal(Dir::Input, s);
-        }
+        self.req.visit_signals(Dir::Input, v);
         v.signal(Dir::Output, &self.req_ready);
         v.signal(Dir::Output, &self.acc_valid);
-        for s in &self.acc {
-            v.signal(Dir::Output, s);
+        self.acc.visit_signals(Dir::Output, v);
+        self.walk.visit_regs(v);
+        self.held.visit_regs(v);
+        for r in [&self.busy, &self.rd_value, &self.rd_slots] {
+            v.reg(r);
         }
-        let regs = self.walk.iter().chain(&self.held);
-        let regs = regs.chain([&self.busy, &self.rd_value, &self.rd_slots]);
-        let regs = regs.chain(&self.px_acc).chain(&self.out_acc);
-        for r in regs.chain([&self.out_valid, &self.out_colour, &self.out_error]) {
+        self.px_acc.visit_regs(v);
+        self.out_acc.visit_regs(v);
+        for r in [&self.out_valid, &self.out_colour, &self.out_error] {
             v.reg(r);
         }
         v.leave();
