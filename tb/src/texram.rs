@@ -223,11 +223,11 @@ pub struct TexMonitor;
 impl Monitor<Texram802> for TexMonitor {
     type Txn = TexOut;
     fn sample(&mut self, dut: &Texram802) -> Option<TexOut> {
-        dut.out_valid.q().is_high().then(|| TexOut {
-            value: dut.out_value.q().bits() as u8,
-            rgba: (dut.out_rgba.q().bits() as u32).to_be_bytes(),
-            texels: dut.out_texels.q().bits().to_le_bytes(),
-            fault: dut.out_fault.q().is_high(),
+        dut.output.out_valid.q().is_high().then(|| TexOut {
+            value: dut.output.out_value.q().bits() as u8,
+            rgba: (dut.output.out_rgba.q().bits() as u32).to_be_bytes(),
+            texels: dut.output.out_texels.q().bits().to_le_bytes(),
+            fault: dut.output.out_fault.q().is_high(),
         })
     }
 }
@@ -685,7 +685,7 @@ fn time_stream(chip: Texram802, reqs: &[(u8, i32, i32, i32)]) -> (u64, u64) {
         if sim.dut.req_valid.is_high() && sim.dut.req_ready.is_high() {
             next += 1;
         }
-        if sim.dut.out_valid.q().is_high() {
+        if sim.dut.output.out_valid.q().is_high() {
             first.get_or_insert(sim.cycle());
             last = sim.cycle();
             seen += 1;
@@ -939,7 +939,7 @@ impl TexramStats {
             slots: d.slots.q().bits(),
             page_faults: d.fault_slots.q().bits(),
             bank_misses: d.faults.q().bits(),
-            bank_conflicts: d.conflicts.q().bits(),
+            bank_conflicts: d.address.conflicts.q().bits(),
             video_slots: d.video().map_or(0, |v| v.slots.q().bits()),
             cycles,
             ns,

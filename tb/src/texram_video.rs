@@ -518,7 +518,7 @@ pub fn video_cost(w: u32, h: u32, fps: u32) -> Result<VideoCost, String> {
             src.drive(&mut sim.dut, 0);
             sim.eval();
             k += i32::from(sim.dut.req_ready.is_high());
-            done += u64::from(sim.dut.out_valid.q().is_high());
+            done += u64::from(sim.dut.output.out_valid.q().is_high());
             sim.tick();
         }
         Ok((sim.dut, done))

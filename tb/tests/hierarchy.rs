@@ -201,7 +201,9 @@ fn the_texram_side_units_visit_every_scope() {
         ("footprint_setup.", 23),
         ("footprint_assembly.generator.", 7),
         ("footprint_assembly.accumulator.", 9),
-        ("footprint_assembly.texram_802.address_812.", 47),
+        // The access (valid, read, 32 bank words, src, border, weights, colour, index, part,
+        // last, illum, modulate), the held request's four and conflicts.
+        ("footprint_assembly.texram_802.address_812.", 48),
         ("footprint_assembly.px_", 9),
     ] {
         assert_eq!(paths_with(&fa, part), n, "{part}");

@@ -197,18 +197,21 @@ fn run_chip(
         if d.req_valid.is_high() && d.req_ready.is_high() {
             next += 1;
         }
-        if d.out_valid.q().is_high() {
+        if d.output.out_valid.q().is_high() {
             out.push(Out {
                 cycle: sim.cycle(),
-                value: d.out_value.q().bits() as u8,
-                rgba: (d.out_rgba.q().bits() as u32).to_be_bytes(),
-                texels: d.out_texels.q().bits().to_le_bytes(),
-                fault: d.out_fault.q().is_high(),
+                value: d.output.out_value.q().bits() as u8,
+                rgba: (d.output.out_rgba.q().bits() as u32).to_be_bytes(),
+                texels: d.output.out_texels.q().bits().to_le_bytes(),
+                fault: d.output.out_fault.q().is_high(),
             });
         }
         sim.tick();
     }
-    let (slots, conflicts) = (sim.dut.slots.q().bits(), sim.dut.conflicts.q().bits());
+    let (slots, conflicts) = (
+        sim.dut.slots.q().bits(),
+        sim.dut.address.conflicts.q().bits(),
+    );
     sim.finish().unwrap();
     (out, slots, conflicts)
 }
@@ -459,13 +462,13 @@ fn the_clut_shows_the_entries_it_looked_up() {
         sim.eval();
         let d = &sim.dut;
         sent += i32::from(d.req_valid.is_high() && d.req_ready.is_high());
-        if d.out_valid.q().is_high() {
-            let texels = d.out_texels.q().bits().to_le_bytes();
+        if d.output.out_valid.q().is_high() {
+            let texels = d.output.out_texels.q().bits().to_le_bytes();
             let want = texels.map(|t| u32::from_be_bytes(clut.rgba(t)));
             assert_eq!(shown, Some(want), "cycle {cycle}");
             results += 1;
         }
-        let now = d.clut_entries.each_ref().map(|e| e.bits() as u32);
+        let now = d.clut.entries.each_ref().map(|e| e.bits() as u32);
         shown = now.iter().any(|&e| e != 0).then_some(now);
         sim.tick();
     }

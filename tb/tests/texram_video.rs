@@ -255,7 +255,7 @@ fn video_rounds_hold_the_banks_six_cycles_a_slot() {
         let c = VideoConfig::of(32, 8, scan, 1, 30);
         let (mut serving, mut first_round) = (0u64, None);
         let (sim, src) = video_only_watching(&c, frames, 50_000, |chip| {
-            serving += u64::from(chip.vid_round.q().bits() != 0);
+            serving += u64::from(chip.banks.vid_round.q().bits() != 0);
             // Slots are counted at the edge a round starts: the first count seen is its.
             let slots = chip.video().unwrap().slots.q().bits();
             if first_round.is_none() && slots > 0 {

@@ -44,13 +44,13 @@
 //! | mipmap generation unit 816 (FIG. 14) with page registers 824 and shift register 826 | `mipmap/mipmap_gen_816.rs` | `mipmap_gen_816` | `mipmap_gen_816` | `tb.mipmap_gen_816` |
 //! | a level of FIG. 14a/b: adders 1402, 1410, register 1404 | `mipmap/level_fig14.rs` | `mipmap_level_fig14` = `level1` … | `mipmap_gen_816` | `tb.mipmap_gen_816.level1` |
 //! | FIFOs 1408 and 1412 | `mipmap/fifo.rs` | `fifo_1408`, `fifo_1412` | `mipmap_gen_816` | `tb.mipmap_gen_816.level1.fifo_1408` |
-//! | TEXRAM chip 802 (Schilling & Knittel Figure 8): request port, units 812, 824, 810, 818 cycle by cycle | `texram/texram_802.rs` | `texram_802` | `texram_802`; `tb/tests/texram.rs` | `tb.texram_802` |
-//! | address and control unit 812: levels, weights, border operations | `texram/address_812.rs` | scope `address_812` | `texram_802` | `tb.texram_802.address_812` |
+//! | TEXRAM chip 802 (Schilling & Knittel Figure 8): request port, its units as children, its memory | `texram/texram_802.rs` | `texram_802` | `texram_802`; `tb/tests/texram.rs` | `tb.texram_802` |
+//! | address and control unit 812: levels, weights, border operations, the access registers | `texram/address_812.rs` | `address_812` | `texram_802` | `tb.texram_802.address_812` |
 //! | page registers 824: open rows, slots (also of the ray caster and the mipmap generator's own store) | `pages/page_registers_824.rs` | `page_registers_824` | `texram_802` | `tb.texram_802.page_registers_824` |
-//! | banks 810 and their address decoders 822: the two-level layout | `texram/banks_810.rs` | scopes `banks_810`, `banks_810.address_decoders_822` | `texram_802` | `tb.texram_802.banks_810.address_decoders_822` |
-//! | trilinear interpolator 818 | `texram/trilinear_818.rs` | scope `trilinear_818` | `texram_802` | `tb.texram_802.trilinear_818` |
-//! | CLUT 814 | `texram/clut_814.rs` | scope `clut_814` (the eight entries an index access looked up) | `texram_802`; `tb/tests/texram.rs` | `tb.texram_802.clut_814` |
-//! | output and combination stage 820 (eq. 5) | `texram/output_820.rs` | scope `output_820` | `texram_802`; `tb/tests/texram.rs` | `tb.texram_802.output_820` |
+//! | banks 810 and their address decoders 822: the two-level layout | `texram/banks_810.rs` | `banks_810` (the bank stage), scope `banks_810.address_decoders_822` | `texram_802` | `tb.texram_802.banks_810.address_decoders_822` |
+//! | trilinear interpolator 818 | `texram/trilinear_818.rs` | `trilinear_818` | `texram_802` | `tb.texram_802.trilinear_818` |
+//! | CLUT 814 | `texram/clut_814.rs` | `clut_814` (the eight entries an index access looked up) | `texram_802`; `tb/tests/texram.rs` | `tb.texram_802.clut_814` |
+//! | output and combination stage 820 (eq. 5) | `texram/output_820.rs` | `output_820` | `texram_802`; `tb/tests/texram.rs` | `tb.texram_802.output_820` |
 //! | one colour component per chip, four chips 802 in lock-step | `texram/lockstep.rs` | `texram_lockstep`, chips `chip_r` … | `tb/tests/texram.rs` | `texram_lockstep.chip_r` … |
 //! | footprint assembly setup unit (section 10, eqs 19-21) | `footprint/setup_fig12.rs` | `footprint_setup` | `footprint_fig12`; `tb/tests/footprint.rs` | `tb.footprint_fig12.footprint_setup` |
 //! | footprint sample generator and accumulator (eq. 22) | `footprint/assembly_fig12.rs` | `footprint_assembly`, scopes `generator`, `accumulator` | `footprint_fig12` | `tb.footprint_fig12.footprint_assembly.generator` … |

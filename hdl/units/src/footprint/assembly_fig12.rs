@@ -140,10 +140,11 @@ impl SampleTarget for Texram802 {
         self.req_valid.is_high() && self.req_ready.is_high()
     }
     fn result(&self) -> Option<[u64; 3]> {
-        self.out_valid
+        self.output
+            .out_valid
             .q()
             .is_high()
-            .then(|| [self.out_sum.q().bits(), 0, 0])
+            .then(|| [self.output.out_sum.q().bits(), 0, 0])
     }
 }
 

@@ -8,7 +8,12 @@
 //! `u_k = u * 2^-k - 1/2`: `i = floor(u_k)`, `a = frac(u_k)` truncated to 8 bits (v alike).
 //! All of it is exact integer arithmetic on the raw sQ12.8 / sQ5.8 values.
 
-use super::{Drf, FRAC};
+use super::banks_810::{locate, BANKS};
+use super::output_820::Modulate;
+use super::{Config, Drf, FRAC, UV_BITS};
+use crate::fx::Format;
+use crate::kernel::declared::Regs;
+use crate::kernel::{Module, Reg, Regs, Visitor};
 
 /// What a texel index outside `0 .. size` becomes.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Default)]
@@ -144,6 +149,303 @@ impl Footprint {
             (fp.a[n], fp.b[n]) = (a, b);
         }
         fp
+    }
+}
+
+/// Words one bank may be asked for in one access: one, but four in the literal colour layout
+/// (a component's 2x2 all in one bank), read in successive rounds.
+pub const ROUNDS: usize = 4;
+/// Bank words need 19 bits (280,064 words in banks 0-3).
+const WORD_BITS: u32 = 19;
+const WORD_NAMES: [[&str; ROUNDS]; BANKS] = [
+    ["word0_0", "word0_1", "word0_2", "word0_3"],
+    ["word1_0", "word1_1", "word1_2", "word1_3"],
+    ["word2_0", "word2_1", "word2_2", "word2_3"],
+    ["word3_0", "word3_1", "word3_2", "word3_3"],
+    ["word4_0", "word4_1", "word4_2", "word4_3"],
+    ["word5_0", "word5_1", "word5_2", "word5_3"],
+    ["word6_0", "word6_1", "word6_2", "word6_3"],
+    ["word7_0", "word7_1", "word7_2", "word7_3"],
+];
+
+/// The bank words an access reads: per bank and round a word (`word[bank][round]`), and in
+/// `read` (bit `4 bank + round`) which of them it reads. In the bank stage they are the
+/// address decoders 822's, in their own scope.
+#[derive(Clone, Debug)]
+pub struct BankWords {
+    scope: Option<&'static str>,
+    pub read: Reg,
+    pub word: [[Reg; ROUNDS]; BANKS],
+}
+
+impl BankWords {
+    fn new(scope: Option<&'static str>) -> BankWords {
+        BankWords {
+            scope,
+            read: Reg::new("read", Format::uint((BANKS * ROUNDS) as u32)),
+            word: WORD_NAMES.map(|b| b.map(|n| Reg::new(n, Format::uint(WORD_BITS)))),
+        }
+    }
+
+    /// Whether the access reads bank `bank` in round `round`, and the word.
+    pub fn reads(&self, bank: usize, round: usize) -> Option<u64> {
+        let on = self.read.q().bits() >> (bank * ROUNDS + round) & 1 == 1;
+        on.then(|| self.word[bank][round].q().bits())
+    }
+
+    /// The round in which `bank` reads `word` (the next values being set): the round that
+    /// already reads it, else the next free one (`read` marks the taken ones).
+    fn round_for(&mut self, bank: usize, word: u64, read: &mut u64) -> usize {
+        for (r, reg) in self.word[bank].iter_mut().enumerate() {
+            let at = bank * ROUNDS + r;
+            if *read >> at & 1 == 0 {
+                reg.set_next_bits(word);
+                *read |= 1 << at;
+                return r;
+            }
+            if reg.next_bits() == word {
+                return r;
+            }
+        }
+        unreachable!("a footprint reads at most four texels of one bank");
+    }
+}
+
+impl Regs for BankWords {
+    fn tick_regs(&mut self, reset: bool) {
+        self.read.tick(reset);
+        self.word.tick_regs(reset);
+    }
+    fn visit_regs(&self, v: &mut dyn Visitor) {
+        if let Some(s) = self.scope {
+            v.enter(s, s);
+        }
+        v.reg(&self.read);
+        self.word.visit_regs(v);
+        if self.scope.is_some() {
+            v.leave();
+        }
+    }
+}
+
+/// One access as it goes from 812 to the banks 810: the words it reads, where each of its
+/// eight texels comes from, its weights and the output stage's inputs.
+#[derive(Clone, Debug, Regs)]
+pub struct AccessRegs {
+    pub valid: Reg,
+    pub words: BankWords,
+    /// Texel t's bank and round, `4 bank + round`, in bits `5t..5t+5`.
+    pub src: Reg,
+    /// Texel t is the border colour instead (bit t): no bank is read for it.
+    pub border: Reg,
+    /// a0, b0, a1, b1, f in bytes 0-4.
+    pub weights: Reg,
+    /// The border colour.
+    pub colour: Reg,
+    /// The DRF's configuration is index (CLUT 814).
+    pub index: Reg,
+    /// The colour component this access reads (planar, literal) and whether it is the
+    /// request's last; a luminance or index access is part 0 and last.
+    pub part: Reg,
+    pub last: Reg,
+    /// Eq. 5: the request's illumination, and the DRF's choice (0 I_d, 1 k_T, 2 one) with k_T.
+    pub illum: Reg,
+    pub modulate: Reg,
+}
+
+impl AccessRegs {
+    /// The registers; the bank words in the scope `decoders` if given.
+    pub fn new(decoders: Option<&'static str>) -> AccessRegs {
+        let u = |name, bits| Reg::new(name, Format::uint(bits));
+        AccessRegs {
+            valid: u("valid", 1),
+            words: BankWords::new(decoders),
+            src: u("src", 40),
+            border: u("border", 8),
+            weights: u("weights", 40),
+            colour: u("colour", 8),
+            index: u("index", 1),
+            part: u("part", 2),
+            last: u("last", 1),
+            illum: u("illum", 32),
+            modulate: u("modulate", 10),
+        }
+    }
+
+    /// At the edge every register but `valid` takes `o`'s value: the access moving on.
+    pub fn take_from(&mut self, o: &AccessRegs) {
+        let copy = |to: &mut Reg, from: &Reg| to.set_next_bits(from.q().bits());
+        copy(&mut self.words.read, &o.words.read);
+        let words = self.words.word.iter_mut().flatten();
+        for (to, from) in words.zip(o.words.word.iter().flatten()) {
+            copy(to, from);
+        }
+        copy(&mut self.src, &o.src);
+        copy(&mut self.border, &o.border);
+        copy(&mut self.weights, &o.weights);
+        copy(&mut self.colour, &o.colour);
+        copy(&mut self.index, &o.index);
+        copy(&mut self.part, &o.part);
+        copy(&mut self.last, &o.last);
+        copy(&mut self.illum, &o.illum);
+        copy(&mut self.modulate, &o.modulate);
+    }
+
+    /// Texel `t`'s bank and word, or `None` when it is the border colour.
+    pub fn texel_word(&self, t: usize) -> Option<(usize, u64)> {
+        if self.border.q().bits() >> t & 1 == 1 {
+            return None;
+        }
+        let at = (self.src.q().bits() >> (5 * t) & 0x1F) as usize;
+        let (bank, round) = (at / ROUNDS, at % ROUNDS);
+        Some((bank, self.words.word[bank][round].q().bits()))
+    }
+
+    /// The weights `a`, `b` per level and `f`.
+    pub fn weights(&self) -> ([u8; 2], [u8; 2], u8) {
+        let w = self.weights.q().bits().to_le_bytes();
+        ([w[0], w[2]], [w[1], w[3]], w[4])
+    }
+
+    /// Eq. 5's factor.
+    pub fn modulate(&self) -> Modulate {
+        let m = self.modulate.q().bits();
+        match m >> 8 {
+            0 => Modulate::Illumination,
+            1 => Modulate::Constant(m as u8),
+            _ => Modulate::One,
+        }
+    }
+}
+
+/// The request 812 is splitting into component accesses (a colour request of the planar or
+/// literal layout): its DRF, `u`, `v`, `lambda`.
+#[derive(Clone, Debug, Regs)]
+struct Held {
+    drf: Reg,
+    u: Reg,
+    v: Reg,
+    lambda: Reg,
+}
+
+/// The address and control unit 812: the access it computes from a request, or from the next
+/// component of the colour request it holds, registered for the banks. The chip drives it
+/// ([`Address812::take`], [`Address812::next_part`]) in its own `eval`.
+#[derive(Clone, Debug, Module)]
+#[module(kind = "address_812")]
+pub struct Address812 {
+    #[reg]
+    pub access: AccessRegs,
+    #[reg]
+    held: Held,
+    /// Accesses whose 2x2 took a bank more than one round (the literal layout), since reset.
+    #[reg]
+    pub conflicts: Reg,
+}
+
+impl Default for Address812 {
+    fn default() -> Self {
+        Address812::new()
+    }
+}
+
+impl Address812 {
+    pub fn new() -> Address812 {
+        Address812 {
+            access: AccessRegs::new(None),
+            held: Held {
+                drf: Reg::new("held_drf", Format::uint(3)),
+                u: Reg::new("held_u", Format::signed(UV_BITS, 8)),
+                v: Reg::new("held_v", Format::signed(UV_BITS, 8)),
+                lambda: Reg::new("held_lambda", Format::signed(14, 8)),
+            },
+            conflicts: Reg::new("conflicts", Format::uint(40)),
+        }
+    }
+
+    /// Nothing of its own: its registers are set by the chip's `eval` through `take` and
+    /// `next_part`.
+    pub fn eval(&mut self) {}
+
+    /// A request taken: `k` (DRF number, `d` its descriptor), raw `u`, `v`, `lambda` and the
+    /// illumination, held, and its first access (part 0) addressed.
+    pub fn take(&mut self, k: u64, d: Option<Drf>, (u, v, l): (i32, i32, i32), illum: u64) {
+        let h = &mut self.held;
+        h.drf.set_next_bits(k);
+        h.u.set_next_raw(i64::from(u));
+        h.v.set_next_raw(i64::from(v));
+        h.lambda.set_next_raw(i64::from(l));
+        self.address(0, d, (u, v, l));
+        self.access.illum.set_next_bits(illum);
+    }
+
+    /// The DRF number of the request held.
+    pub fn held_drf(&self) -> usize {
+        self.held.drf.q().bits() as usize
+    }
+
+    /// The held request's next component addressed (`d` the held DRF's descriptor).
+    pub fn next_part(&mut self, d: Option<Drf>) {
+        let h = &self.held;
+        let uvl = [&h.u, &h.v, &h.lambda].map(|r| r.q().raw() as i32);
+        let part = self.access.part.q().bits() as u32 + 1;
+        self.address(part, d, (uvl[0], uvl[1], uvl[2]));
+    }
+
+    /// Part `part` of a request on the map of `d` into the access registers: its footprint,
+    /// on the component's map for the colour layouts. An unset DRF reads nothing: every texel
+    /// is the border colour 0 (the testbench checks DRFs are set).
+    fn address(&mut self, part: u32, d: Option<Drf>, (u, v, l): (i32, i32, i32)) {
+        let colour_map = d.is_some_and(|d| matches!(d.config, Config::Planar | Config::Literal));
+        let a = &mut self.access;
+        a.part.set_next_bits(u64::from(part));
+        a.last.set_next_bool(!colour_map || part == 3);
+        let Some(d) = d else {
+            a.words.read.set_next_bits(0);
+            a.border.set_next_bits(0xFF);
+            a.colour.set_next_bits(0);
+            return;
+        };
+        let plane = if colour_map { d.component_map() } else { d };
+        let fp = Footprint::of(&plane, u, v, l);
+        let (mut read, mut src, mut border, mut rounds) = (0u64, 0u64, 0u64, 1);
+        for (n, lv) in [fp.fine, fp.coarse].into_iter().enumerate() {
+            for (t, at) in fp.texels[n].iter().enumerate() {
+                let texel = 4 * n + t;
+                let Some((x, y)) = at else {
+                    border |= 1 << texel;
+                    continue;
+                };
+                let (gx, gy) = d.config.place(&plane, part, lv, *x, *y);
+                let (bank, word) = locate(&d, lv, gx, gy);
+                let round = a.words.round_for(bank, u64::from(word), &mut read);
+                rounds = rounds.max(round + 1);
+                src |= ((bank * ROUNDS + round) as u64) << (5 * texel);
+            }
+        }
+        a.words.read.set_next_bits(read);
+        a.src.set_next_bits(src);
+        a.border.set_next_bits(border);
+        // Only the literal colour layout asks a bank for more than one word.
+        self.conflicts
+            .set_next_bits(self.conflicts.q().bits() + u64::from(rounds > 1));
+        let w = [fp.a[0], fp.b[0], fp.a[1], fp.b[1], fp.f];
+        let packed =
+            (w.iter().enumerate()).fold(0u64, |acc, (i, x)| acc | u64::from(*x) << (8 * i));
+        let a = &mut self.access;
+        a.weights.set_next_bits(packed);
+        let colour = match d.border {
+            Border::Colour(c) => c,
+            _ => 0,
+        };
+        a.colour.set_next_bits(u64::from(colour));
+        a.index.set_next_bool(d.config == Config::Index);
+        let m = match d.modulate {
+            Modulate::Illumination => 0,
+            Modulate::Constant(k) => 1 << 8 | u64::from(k),
+            Modulate::One => 2 << 8,
+        };
+        a.modulate.set_next_bits(m);
     }
 }
 

@@ -11,7 +11,10 @@
 //! reads all eight texels. The tests prove it for every position of every level of several
 //! maps under every border operation.
 
+use super::address_812::AccessRegs;
 use super::Drf;
+use crate::fx::Format;
+use crate::kernel::{Module, Reg};
 
 /// Banks on the chip.
 pub const BANKS: usize = 8;
@@ -76,6 +79,53 @@ pub fn store_level(banks: &mut [Vec<u8>], d: &Drf, k: u32, texels: &[u8]) -> Res
 pub fn bank_words(bank: usize) -> u32 {
     let full = Drf::new(10, 10, super::Border::Wrap);
     group_words(&full, (bank / 4) as u32).next_multiple_of(ROW_WORDS)
+}
+
+/// The bank stage: the access being served (its bank words decoded by the address decoders
+/// 822), the cycles left in its slot(s), whether it faulted, and how many video segments it
+/// is when the video port has the banks. The chip drives it in its own `eval`.
+#[derive(Clone, Debug, Module)]
+#[module(kind = "banks_810")]
+pub struct Banks810 {
+    #[reg]
+    pub access: AccessRegs,
+    #[reg]
+    pub left: Reg,
+    #[reg]
+    pub fault: Reg,
+    /// The bank stage serves `vid_round` segments of the video port (0: a rasterizer access).
+    #[reg]
+    pub vid_round: Reg,
+}
+
+impl Default for Banks810 {
+    fn default() -> Self {
+        Banks810::new()
+    }
+}
+
+impl Banks810 {
+    pub fn new() -> Banks810 {
+        Banks810 {
+            access: AccessRegs::new(Some("address_decoders_822")),
+            left: Reg::new("left", Format::uint(8)),
+            fault: Reg::new("fault", Format::uint(1)),
+            vid_round: Reg::new("vid_round", Format::uint(4)),
+        }
+    }
+
+    /// Nothing of its own: the chip's `eval` sets its registers.
+    pub fn eval(&mut self) {}
+
+    /// The eight texels of the access served, from the banks' contents `memory` (or the
+    /// border colour).
+    pub fn texels(&self, memory: &[Vec<u8>]) -> [u8; 8] {
+        let a = &self.access;
+        std::array::from_fn(|t| match a.texel_word(t) {
+            Some((bank, word)) => memory[bank][word as usize],
+            None => a.colour.q().bits() as u8,
+        })
+    }
 }
 
 #[cfg(test)]

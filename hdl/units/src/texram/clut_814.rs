@@ -5,6 +5,8 @@
 //! colours). \[C\] 818 handles the four components in the same slot.
 
 use super::trilinear_818::trilinear;
+use crate::fx::Format;
+use crate::kernel::{Module, Signal};
 
 /// The table.
 #[derive(Clone, Debug, PartialEq, Eq)]
@@ -35,6 +37,49 @@ impl Clut {
     pub fn filter(&self, indices: &[u8; 8], a: [u8; 2], b: [u8; 2], f: u8) -> [u8; 4] {
         let colours = indices.map(|i| self.rgba(i));
         std::array::from_fn(|c| trilinear(&colours.map(|x| x[c]), a, b, f))
+    }
+}
+
+/// The table in the chip, its eight read ports traced: the entries an index access's texels
+/// look up, as it finishes (0 otherwise).
+#[derive(Clone, Debug, Module)]
+#[module(kind = "clut_814")]
+pub struct Clut814 {
+    pub table: Clut,
+    #[wire]
+    pub entries: [Signal; 8],
+}
+
+impl Default for Clut814 {
+    fn default() -> Self {
+        Clut814::new()
+    }
+}
+
+impl Clut814 {
+    pub fn new() -> Clut814 {
+        let names = [
+            "entry0", "entry1", "entry2", "entry3", "entry4", "entry5", "entry6", "entry7",
+        ];
+        Clut814 {
+            table: Clut::identity(),
+            entries: names.map(|n| Signal::new(n, Format::uint(32))),
+        }
+    }
+
+    /// No look-up unless an index access finishes.
+    pub fn eval(&mut self) {
+        for e in &mut self.entries {
+            e.set_bits(0);
+        }
+    }
+
+    /// The eight indices looked up and filtered per component: the colour (R top byte).
+    pub fn look_up(&mut self, indices: &[u8; 8], a: [u8; 2], b: [u8; 2], f: u8) -> u32 {
+        for (e, &i) in self.entries.iter_mut().zip(indices) {
+            e.set_bits(u64::from(u32::from_be_bytes(self.table.rgba(i))));
+        }
+        u32::from_be_bytes(self.table.filter(indices, a, b, f))
     }
 }
 

@@ -130,10 +130,11 @@ impl LockstepChip for Texram802 {
         self.req_ready.is_high()
     }
     fn out(&self) -> Option<u8> {
-        self.out_valid
+        self.output
+            .out_valid
             .q()
             .is_high()
-            .then(|| self.out_value.q().bits() as u8)
+            .then(|| self.output.out_value.q().bits() as u8)
     }
 }
 
@@ -204,7 +205,7 @@ mod tests {
             let c = &sim.dut.chips;
             let differ = |f: &dyn Fn(&Texram802) -> bool| c.iter().any(|x| f(x) != f(&c[0]));
             let r = differ(&|x| x.req_ready.is_high());
-            let v = differ(&|x| x.out_valid.q().is_high());
+            let v = differ(&|x| x.output.out_valid.q().is_high());
             if (r || v) && first_apart.is_none() {
                 first_apart = Some(sim.cycle());
             }

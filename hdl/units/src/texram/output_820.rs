@@ -4,6 +4,9 @@
 //! 0 ..= 1. \[C\] `x . y = round(x y / 255)`, exactly, half up, with no division:
 //! `t = x y + 128; (t + (t >> 8)) >> 8` (so 255 is the neutral element: `255 . y = y`).
 
+use crate::fx::Format;
+use crate::kernel::{Module, Reg};
+
 /// What eq. 5 multiplies the texture colour by (a DRF field).
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Default)]
 pub enum Modulate {
@@ -69,6 +72,72 @@ pub fn reflectance(base: [u8; 4], r: [u8; 4], light: [u8; 4]) -> [u8; 4] {
         out[c] = add_sat(base[c], mul255(r[c], light[c]));
     }
     out
+}
+
+/// The output registers of the chip: `out_valid` one cycle with the finished colour after
+/// eq. 5 (`out_value` its top byte, `out_rgba` R, G, B, alpha from the top byte down), the
+/// eight texels (texel t in bits `8t..8t+8`), whether the access faulted, and 818's exact sum
+/// before its rounding (luminance: `value * 2^24`, for the footprint accumulator).
+#[derive(Clone, Debug, Module)]
+#[module(kind = "output_820")]
+pub struct Output820 {
+    #[reg]
+    pub out_valid: Reg,
+    #[reg]
+    pub out_value: Reg,
+    #[reg]
+    pub out_rgba: Reg,
+    #[reg]
+    pub out_texels: Reg,
+    #[reg]
+    pub out_fault: Reg,
+    #[reg]
+    pub out_sum: Reg,
+}
+
+impl Default for Output820 {
+    fn default() -> Self {
+        Output820::new()
+    }
+}
+
+impl Output820 {
+    pub fn new() -> Output820 {
+        let u = |name, bits| Reg::new(name, Format::uint(bits));
+        Output820 {
+            out_valid: u("out_valid", 1),
+            out_value: u("out_value", 8),
+            out_rgba: u("out_rgba", 32),
+            out_texels: u("out_texels", 64),
+            out_fault: u("out_fault", 1),
+            out_sum: Reg::new("out_sum", Format::unsigned(32, 24)),
+        }
+    }
+
+    /// No result unless one finishes this cycle.
+    pub fn eval(&mut self) {
+        self.out_valid.set_next_bool(false);
+    }
+
+    /// A request finished: eq. 5 on its colour `rgba` with the illumination `illum` (R top
+    /// byte), out at the edge with its texels, fault and exact sum.
+    pub fn finish(
+        &mut self,
+        m: Modulate,
+        illum: u32,
+        rgba: u32,
+        texels: [u8; 8],
+        fault: bool,
+        sum: u64,
+    ) {
+        let rgba = u32::from_be_bytes(shade(m, illum.to_be_bytes(), rgba.to_be_bytes()));
+        self.out_valid.set_next_bool(true);
+        self.out_value.set_next_bits(u64::from(rgba >> 24));
+        self.out_rgba.set_next_bits(u64::from(rgba));
+        self.out_texels.set_next_bits(u64::from_le_bytes(texels));
+        self.out_fault.set_next_bool(fault);
+        self.out_sum.set_next_bits(sum);
+    }
 }
 
 #[cfg(test)]

@@ -1,7 +1,9 @@
 //! The TEXRAM chip 802 (Figure 8), cycle by cycle: a request port from the rasterizer 804,
-//! the address and control unit 812, the page registers 824, the banks 810 and the trilinear
-//! interpolator 818, the output stage 820 (eq. 5). In the waveform each unit is its own scope
-//! under `texram_802`.
+//! the address and control unit 812, the page registers 824, the banks 810, the CLUT 814, the
+//! trilinear interpolator 818 and the output stage 820 (eq. 5). Each unit is a child module
+//! with its registers in its own file (`address_812.rs`, `banks_810.rs`, ...) and its own
+//! scope under `texram_802` in the waveform; this file says how the chip moves an access
+//! through them.
 //!
 //! # Timing (\[C\], the document gives the 30 ns slot only)
 //! The clock is 5 ns (as `dram_604`); one access slot is `slot_cycles` = 6 cycles.
@@ -33,32 +35,17 @@
 //! from the rasterizer are counted in `video_port_808/shift_registers_826/video_slots`, and
 //! in `slots` with the rasterizer's.
 
-use super::address_812::Footprint;
-use super::banks_810::{bank_words, locate, store_level, BANKS, ROW_WORDS};
-use super::clut_814::Clut;
-use super::output_820::{shade, Modulate};
-use super::trilinear_818::{trilinear, trilinear_sum};
+use super::address_812::{Address812, Footprint, ROUNDS};
+use super::banks_810::{bank_words, locate, store_level, Banks810, BANKS, ROW_WORDS};
+use super::clut_814::{Clut, Clut814};
+use super::output_820::Output820;
+use super::trilinear_818::{trilinear, trilinear_sum, Trilinear818};
 use super::video_port_808::{VideoParams, VideoPort808};
-use super::{Border, Config, Drf, DRFS};
+use super::{Config, Drf, DRFS};
 use crate::fx::Format;
-use crate::kernel::declared::Regs as _;
-use crate::kernel::{Module, Reg, Regs, Signal, Visitor};
+use crate::kernel::declared::Regs;
+use crate::kernel::{Module, Reg, Signal, Visitor};
 use crate::pages::page_registers_824::{check_slot_cycles, PageRegisters824};
-use crate::signals;
-
-/// Bank words need 19 bits (280,064 words in banks 0-3).
-const WORD_BITS: u32 = 19;
-/// Words one bank may be asked for in one access: one, but four in the literal colour layout
-/// (a component's 2x2 all in one bank), read in successive rounds.
-const ROUNDS: usize = 4;
-/// A texel's source: `4 bank + round`, or 32 for the border colour (6 bits per texel).
-const COLOUR: u64 = 32;
-const WORD_NAMES: [&str; BANKS * ROUNDS] = [
-    "word0_0", "word0_1", "word0_2", "word0_3", "word1_0", "word1_1", "word1_2", "word1_3",
-    "word2_0", "word2_1", "word2_2", "word2_3", "word3_0", "word3_1", "word3_2", "word3_3",
-    "word4_0", "word4_1", "word4_2", "word4_3", "word5_0", "word5_1", "word5_2", "word5_3",
-    "word6_0", "word6_1", "word6_2", "word6_3", "word7_0", "word7_1", "word7_2", "word7_3",
-];
 
 /// The chip's timing.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -79,198 +66,91 @@ impl TexramParams {
     }
 }
 
-/// One access's registers between units: words per bank and round, texel sources, weights,
-/// the component it reads.
+/// The chip's memory: the DRFs, the banks' contents they describe, and the video port 808
+/// (with the generator 816 and the shift registers 826) whose row transfers write frames
+/// into the banks, and read partner lines out of them, at the clock edge. The host loads it
+/// between cycles.
 #[derive(Clone, Debug)]
-struct Access {
-    valid: Reg,
-    word: Vec<Reg>,
-    read: Reg,
-    src: Reg,
-    weights: Reg,
-    colour: Reg,
-    /// The DRF's configuration: 1 for index (CLUT 814), 0 otherwise.
-    index: Reg,
-    /// The colour component this access reads (planar, literal) and whether it is the
-    /// request's last; a luminance or index access is part 0 and last.
-    part: Reg,
-    last: Reg,
-    /// Eq. 5: the request's illumination and the DRF's choice (0 I_d, 1 k_T, 2 one) and k_T.
-    illum: Reg,
-    modulate: Reg,
+pub struct ChipMemory {
+    drfs: [Option<Drf>; DRFS],
+    banks: Vec<Vec<u8>>,
+    video: Option<Box<VideoPort808>>,
 }
 
-impl Access {
-    fn new() -> Access {
-        Access {
-            valid: Reg::new("valid", Format::uint(1)),
-            word: WORD_NAMES
-                .iter()
-                .map(|n| Reg::new(n, Format::uint(WORD_BITS)))
-                .collect(),
-            // Which bank words the access reads: bit 4 bank + round.
-            read: Reg::new("read", Format::uint((BANKS * ROUNDS) as u32)),
-            // Texel t's source in bits 6t..6t+6.
-            src: Reg::new("src", Format::uint(48)),
-            // a0, b0, a1, b1, f in bytes 0-4.
-            weights: Reg::new("weights", Format::uint(40)),
-            colour: Reg::new("colour", Format::uint(8)),
-            index: Reg::new("index", Format::uint(1)),
-            part: Reg::new("part", Format::uint(2)),
-            last: Reg::new("last", Format::uint(1)),
-            illum: Reg::new("illum", Format::uint(32)),
-            modulate: Reg::new("modulate", Format::uint(10)),
+impl Regs for ChipMemory {
+    fn tick_regs(&mut self, reset: bool) {
+        if let Some(v) = self.video.as_deref_mut() {
+            v.tick(reset, &self.drfs, &mut self.banks);
         }
     }
-
-    fn regs(&self) -> impl Iterator<Item = &Reg> {
-        let one = [&self.read, &self.src, &self.weights, &self.colour];
-        one.into_iter()
-            .chain([
-                &self.index,
-                &self.part,
-                &self.last,
-                &self.illum,
-                &self.modulate,
-            ])
-            .chain(&self.word)
-    }
-
-    fn regs_mut(&mut self) -> impl Iterator<Item = &mut Reg> {
-        let one = [
-            &mut self.read,
-            &mut self.src,
-            &mut self.weights,
-            &mut self.colour,
-        ];
-        one.into_iter()
-            .chain([&mut self.index, &mut self.part, &mut self.last])
-            .chain([&mut self.illum, &mut self.modulate])
-            .chain(&mut self.word)
-    }
-
-    fn copy_from(&mut self, o: &Access) {
-        for (to, from) in self.regs_mut().zip(o.regs()) {
-            to.set_next_bits(from.q().bits());
-        }
-    }
-
-    fn tick(&mut self, reset: bool) {
-        self.valid.tick(reset);
-        for r in self.regs_mut() {
-            r.tick(reset);
-        }
-    }
-
-    fn visit(&self, v: &mut dyn Visitor) {
-        v.reg(&self.valid);
-        for r in self.regs() {
-            v.reg(r);
-        }
-    }
-
-    /// The bank stage: its decoded bank words and which it reads in the scope of the
-    /// address decoders 822, the rest beside them.
-    fn visit_banks(&self, v: &mut dyn Visitor) {
-        v.enter("address_decoders_822", "address_decoders_822");
-        v.reg(&self.read);
-        for r in &self.word {
-            v.reg(r);
-        }
-        v.leave();
-        v.reg(&self.valid);
-        for r in [
-            &self.src,
-            &self.weights,
-            &self.colour,
-            &self.index,
-            &self.part,
-            &self.last,
-            &self.illum,
-            &self.modulate,
-        ] {
-            v.reg(r);
+    fn visit_regs(&self, v: &mut dyn Visitor) {
+        if let Some(port) = &self.video {
+            port.visit(v);
         }
     }
 }
 
-/// The request 812 is splitting into component accesses (a colour request of the planar or
-/// literal layout): its DRF, `u`, `v`, `lambda`.
-#[derive(Clone, Debug, Regs)]
-struct Held {
-    drf: Reg,
-    u: Reg,
-    v: Reg,
-    lambda: Reg,
-}
-
-/// The chip: request port, units 812, 824, 810, 818, and its DRFs and bank contents.
-#[derive(Clone, Debug)]
+/// The chip: request port, units 812, 824, 810, 814, 818, 820 as its children, and its
+/// memory.
+#[derive(Clone, Debug, Module)]
+#[module(kind = "texram_802")]
 pub struct Texram802 {
+    #[instance]
     name: String,
     p: TexramParams,
-    drfs: [Option<Drf>; DRFS],
     /// 812's working descriptor (request pointer [`super::WORKING`]): the map the chain
     /// walker selected for its next access.
     working: Option<Drf>,
-    banks: Vec<Vec<u8>>,
-    clut: Clut,
+    #[input]
     pub req_valid: Signal,
-    pub req_ready: Signal,
+    #[input]
     pub req_drf: Signal,
+    #[input]
     pub req_u: Signal,
+    #[input]
     pub req_v: Signal,
+    #[input]
     pub req_lambda: Signal,
     /// The rasterizer's interpolated illumination `I_d` (R top byte), for eq. 5.
+    #[input]
     pub req_illum: Signal,
-    /// 812's registers, and the request it is splitting into component accesses.
-    addr: Access,
-    held: Held,
-    /// 824: per bank the open row.
-    pages: PageRegisters824,
-    /// 810: the access being served and the cycles left in its slot(s).
-    bank: Access,
-    left: Reg,
-    fault: Reg,
-    /// Counters: slots, faulting banks and bank conflicts since reset.
+    #[output]
+    pub req_ready: Signal,
+    /// Counters since reset: slots (the rasterizer's and the video port's), faulting banks,
+    /// component accesses served, and the slots their page faults added.
+    #[reg]
     pub slots: Reg,
-    /// Component accesses served, and the slots their page faults added.
-    pub accesses: Reg,
-    pub fault_slots: Reg,
-    pub conflicts: Reg,
+    #[reg]
     pub faults: Reg,
-    /// 818's output registers.
-    pub out_valid: Reg,
-    pub out_value: Reg,
-    /// R, G, B, alpha from the top byte down (luminance: the value four times).
-    pub out_rgba: Reg,
-    pub out_texels: Reg,
-    pub out_fault: Reg,
-    /// 818's exact sum before its rounding (luminance: `value * 2^24`, u32), for the
-    /// footprint accumulator.
-    pub out_sum: Reg,
-    /// The components of a colour request finished so far (R top byte).
-    acc_rgba: Reg,
-    /// 814: the eight texels' table entries (R top byte) as an index access finishes.
-    pub clut_entries: [Signal; 8],
-    /// The bank stage serves `vid_round` segments of the video port (0: a rasterizer access).
-    pub vid_round: Reg,
-    /// The video port 808 with the generator 816 and shift registers 826, when set up.
-    video: Option<Box<VideoPort808>>,
+    #[reg]
+    pub accesses: Reg,
+    #[reg]
+    pub fault_slots: Reg,
+    #[child]
+    pub address: Address812,
+    /// 824: per bank the open row.
+    #[child]
+    pages: PageRegisters824,
+    #[child]
+    pub banks: Banks810,
+    #[child]
+    pub clut: Clut814,
+    #[child]
+    pub trilinear: Trilinear818,
+    #[child]
+    pub output: Output820,
+    #[reg]
+    memory: ChipMemory,
 }
 
 impl Texram802 {
     pub fn new(p: TexramParams) -> Result<Texram802, String> {
         p.validate()?;
+        let u = |name, bits| Reg::new(name, Format::uint(bits));
         Ok(Texram802 {
             name: "texram_802".into(),
             p,
-            drfs: [None; DRFS],
             working: None,
-            banks: (0..BANKS)
-                .map(|b| vec![0; bank_words(b) as usize])
-                .collect(),
-            clut: Clut::identity(),
             req_valid: Signal::bit("req_valid"),
             req_ready: Signal::bit("req_ready"),
             req_drf: Signal::new("req_drf", Format::uint(3)),
@@ -278,34 +158,22 @@ impl Texram802 {
             req_v: Signal::new("req_v", Format::signed(super::UV_BITS, 8)),
             req_lambda: Signal::new("req_lambda", Format::signed(14, 8)),
             req_illum: Signal::new("req_illum", Format::uint(32)),
-            addr: Access::new(),
+            slots: u("slots", 40),
+            faults: u("faults", 40),
+            accesses: u("accesses", 40),
+            fault_slots: u("fault_slots", 40),
+            address: Address812::new(),
             pages: PageRegisters824::new(BANKS, 11),
-            bank: Access::new(),
-            left: Reg::new("left", Format::uint(8)),
-            fault: Reg::new("fault", Format::uint(1)),
-            slots: Reg::new("slots", Format::uint(40)),
-            conflicts: Reg::new("conflicts", Format::uint(40)),
-            accesses: Reg::new("accesses", Format::uint(40)),
-            fault_slots: Reg::new("fault_slots", Format::uint(40)),
-            faults: Reg::new("faults", Format::uint(40)),
-            out_valid: Reg::new("out_valid", Format::uint(1)),
-            out_value: Reg::new("out_value", Format::uint(8)),
-            out_rgba: Reg::new("out_rgba", Format::uint(32)),
-            out_texels: Reg::new("out_texels", Format::uint(64)),
-            out_fault: Reg::new("out_fault", Format::uint(1)),
-            out_sum: Reg::new("out_sum", Format::unsigned(32, 24)),
-            acc_rgba: Reg::new("acc_rgba", Format::uint(32)),
-            clut_entries: [
-                "entry0", "entry1", "entry2", "entry3", "entry4", "entry5", "entry6", "entry7",
-            ]
-            .map(|n| Signal::new(n, Format::uint(32))),
-            vid_round: Reg::new("vid_round", Format::uint(4)),
-            video: None,
-            held: Held {
-                drf: Reg::new("held_drf", Format::uint(3)),
-                u: Reg::new("held_u", Format::signed(super::UV_BITS, 8)),
-                v: Reg::new("held_v", Format::signed(super::UV_BITS, 8)),
-                lambda: Reg::new("held_lambda", Format::signed(14, 8)),
+            banks: Banks810::new(),
+            clut: Clut814::new(),
+            trilinear: Trilinear818::new(),
+            output: Output820::new(),
+            memory: ChipMemory {
+                drfs: [None; DRFS],
+                banks: (0..BANKS)
+                    .map(|b| vec![0; bank_words(b) as usize])
+                    .collect(),
+                video: None,
             },
         })
     }
@@ -316,18 +184,23 @@ impl Texram802 {
         self
     }
 
+    /// DRF `k`'s descriptor, if set.
+    pub fn drf(&self, k: usize) -> Option<Drf> {
+        self.memory.drfs.get(k).copied().flatten()
+    }
+
     /// Sets DRF `k` (its map must then be loaded). A video map's DRF keeps its size.
     pub fn set_drf(&mut self, k: usize, drf: Drf) -> Result<(), String> {
         drf.validate()?;
-        let mut drfs = self.drfs;
+        let mut drfs = self.memory.drfs;
         let slot = drfs
             .get_mut(k)
             .ok_or_else(|| format!("drf {k}: 0..{DRFS}"))?;
         *slot = Some(drf);
-        if let Some(v) = &self.video {
+        if let Some(v) = &self.memory.video {
             v.params().validate(&drfs)?;
         }
-        self.drfs = drfs;
+        self.memory.drfs = drfs;
         Ok(())
     }
 
@@ -335,34 +208,34 @@ impl Texram802 {
     /// (set before, luminance, of the frames' size), their upper levels made by the
     /// generator 816. Takes effect at the next reset.
     pub fn attach_video(&mut self, p: VideoParams) -> Result<(), String> {
-        self.video = Some(Box::new(VideoPort808::new(p, &self.drfs)?));
+        self.memory.video = Some(Box::new(VideoPort808::new(p, &self.memory.drfs)?));
         Ok(())
     }
 
     /// The video port, when set up.
     pub fn video(&self) -> Option<&VideoPort808> {
-        self.video.as_deref()
+        self.memory.video.as_deref()
     }
 
     /// The video port, to drive its inputs.
     pub fn video_mut(&mut self) -> Option<&mut VideoPort808> {
-        self.video.as_deref_mut()
+        self.memory.video.as_deref_mut()
+    }
+
+    /// DRF `k`'s descriptor, or why there is none.
+    fn set(&self, k: usize) -> Result<Drf, String> {
+        self.drf(k).ok_or(format!("drf {k}: not set"))
     }
 
     /// Texels of level `lv` of DRF `k`'s map as the banks hold them, row-major.
     pub fn read_level(&self, k: usize, lv: u32) -> Result<Vec<u8>, String> {
-        let d = self
-            .drfs
-            .get(k)
-            .copied()
-            .flatten()
-            .ok_or(format!("drf {k}: not set"))?;
+        let d = self.set(k)?;
         let (w, h) = d.level_size(lv);
         Ok((0..h)
             .flat_map(|y| (0..w).map(move |x| (x, y)))
             .map(|(x, y)| {
                 let (b, word) = locate(&d, lv, x, y);
-                self.banks[b][word as usize]
+                self.memory.banks[b][word as usize]
             })
             .collect())
     }
@@ -370,7 +243,7 @@ impl Texram802 {
     /// 824 for a video round starting: the rows its segments write or read, the slots it
     /// takes (one, two if any bank has another row open). False when there is none to start.
     fn video_round(&mut self) -> bool {
-        let Some(v) = self.video.as_deref_mut() else {
+        let Some(v) = self.memory.video.as_deref_mut() else {
             return false;
         };
         let segments = v.round();
@@ -384,38 +257,34 @@ impl Texram802 {
             .round(rows.map(|s| (s.bank, u64::from(s.word / ROW_WORDS))));
         let slots = u64::from(cost.slots);
         v.start(slots);
-        self.left
+        self.banks
+            .left
             .set_next_bits(slots * u64::from(self.p.slot_cycles));
         self.slots.set_next_bits(self.slots.q().bits() + slots);
-        self.vid_round.set_next_bits(n as u64);
+        self.banks.vid_round.set_next_bits(n as u64);
         true
     }
 
     /// Loads the CLUT 814.
     pub fn set_clut(&mut self, clut: Clut) {
-        self.clut = clut;
+        self.clut.table = clut;
     }
 
     /// Writes level `lv` of DRF `k`'s map (levels made by the host, e.g. an index map's).
     pub fn write_level(&mut self, k: usize, lv: u32, texels: &[u8]) -> Result<(), String> {
-        let d = self
-            .drfs
-            .get(k)
-            .copied()
-            .flatten()
-            .ok_or(format!("drf {k}: not set"))?;
+        let d = self.set(k)?;
         if lv > d.max_level() {
             return Err(format!(
                 "level {lv}: the map has levels 0..={}",
                 d.max_level()
             ));
         }
-        store_level(&mut self.banks, &d, lv, texels).map_err(|e| format!("drf {k}: {e}"))
+        store_level(&mut self.memory.banks, &d, lv, texels).map_err(|e| format!("drf {k}: {e}"))
     }
 
     /// Writes the map `d` describes, every level, wherever its bases say.
     pub fn load_map(&mut self, d: &Drf, level0: &[u8]) -> Result<(), String> {
-        let banks = &mut self.banks;
+        let banks = &mut self.memory.banks;
         super::load_levels(d, level0, |k, t| store_level(banks, d, k, t))
     }
 
@@ -428,110 +297,30 @@ impl Texram802 {
 
     /// Loads level 0 of DRF `k`'s map and the levels above it (as the stub does).
     pub fn load(&mut self, k: usize, level0: &[u8]) -> Result<(), String> {
-        let d = self
-            .drfs
-            .get(k)
-            .copied()
-            .flatten()
-            .ok_or(format!("drf {k}: not set"))?;
-        let banks = &mut self.banks;
+        let d = self.set(k)?;
+        let banks = &mut self.memory.banks;
         super::load_levels(&d, level0, |lv, t| {
             store_level(banks, &d, lv, t).map_err(|e| format!("drf {k}: {e}"))
         })
     }
 
-    /// 812: part `part` of the request (DRF `k`, raw `u`, `v`, `lambda`) into the address
-    /// registers: its footprint, on the component's map for the colour layouts.
-    fn address(&mut self, part: u32, k: usize, (u, v, l): (i32, i32, i32)) {
-        // An unset DRF reads nothing: every texel is 0 (the testbench checks DRFs are set).
-        let d = if k == usize::from(super::WORKING) {
+    /// The descriptor a request's DRF number reads: DRF `k`, or 812's working descriptor.
+    fn request_drf(&self, k: usize) -> Option<Drf> {
+        if k == usize::from(super::WORKING) {
             self.working
         } else {
-            self.drfs.get(k).copied().flatten()
-        };
-        let colour_map = d.is_some_and(|d| matches!(d.config, Config::Planar | Config::Literal));
-        self.addr.part.set_next_bits(u64::from(part));
-        self.addr.last.set_next_bool(!colour_map || part == 3);
-        let Some(d) = d else {
-            self.addr.read.set_next_bits(0);
-            self.addr
-                .src
-                .set_next_bits((0..8).fold(0, |a, t| a | COLOUR << (6 * t)));
-            self.addr.colour.set_next_bits(0);
-            return;
-        };
-        let plane = if colour_map { d.component_map() } else { d };
-        let fp = Footprint::of(&plane, u, v, l);
-        let (mut read, mut src, mut rounds) = (0u64, 0u64, 1);
-        for (n, lv) in [fp.fine, fp.coarse].into_iter().enumerate() {
-            for (t, at) in fp.texels[n].iter().enumerate() {
-                let from = match at {
-                    Some((x, y)) => {
-                        let (gx, gy) = d.config.place(&plane, part, lv, *x, *y);
-                        let (bank, word) = locate(&d, lv, gx, gy);
-                        let slot = self.word_slot(bank, u64::from(word), &mut read);
-                        rounds = rounds.max(slot % ROUNDS + 1);
-                        slot as u64
-                    }
-                    None => COLOUR,
-                };
-                src |= from << (6 * (4 * n + t));
-            }
+            self.drf(k)
         }
-        self.addr.read.set_next_bits(read);
-        self.addr.src.set_next_bits(src);
-        // Only the literal colour layout asks a bank for more than one word.
-        self.conflicts
-            .set_next_bits(self.conflicts.q().bits() + u64::from(rounds > 1));
-        let w = [fp.a[0], fp.b[0], fp.a[1], fp.b[1], fp.f];
-        let packed = w
-            .iter()
-            .enumerate()
-            .fold(0u64, |acc, (i, x)| acc | u64::from(*x) << (8 * i));
-        self.addr.weights.set_next_bits(packed);
-        let colour = match d.border {
-            Border::Colour(c) => c,
-            _ => 0,
-        };
-        self.addr.colour.set_next_bits(u64::from(colour));
-        self.addr.index.set_next_bool(d.config == Config::Index);
-        let m = match d.modulate {
-            Modulate::Illumination => 0,
-            Modulate::Constant(k) => 1 << 8 | u64::from(k),
-            Modulate::One => 2 << 8,
-        };
-        self.addr.modulate.set_next_bits(m);
-    }
-
-    /// The round in which `bank` reads `word`: the round that already reads it, else the next
-    /// free one (`read` marks the taken ones). Returns `4 bank + round`.
-    fn word_slot(&mut self, bank: usize, word: u64, read: &mut u64) -> usize {
-        for r in 0..ROUNDS {
-            let at = bank * ROUNDS + r;
-            let reg = &mut self.addr.word[at];
-            if *read >> at & 1 == 0 {
-                reg.set_next_bits(word);
-                *read |= 1 << at;
-                return at;
-            }
-            if reg.next_bits() == word {
-                return at;
-            }
-        }
-        unreachable!("a footprint reads at most four texels of one bank");
     }
 
     /// 824: the access moving into the banks, round by round: its cost in slots (one a round,
     /// two when a bank misses its open row), the rows it leaves open.
     fn open_rows(&mut self) {
-        let read = self.addr.read.q().bits();
+        let words = &self.address.access.words;
         let (mut slots, mut missed, mut fault_slots) = (0u64, 0u64, 0u64);
         for r in 0..ROUNDS {
-            let reads = (0..BANKS).filter(|b| read >> (b * ROUNDS + r) & 1 == 1);
-            let rows = reads.map(|b| {
-                let word = self.addr.word[b * ROUNDS + r].q().bits();
-                (b, word / u64::from(ROW_WORDS))
-            });
+            let reads = (0..BANKS).filter_map(|b| words.reads(b, r).map(|w| (b, w)));
+            let rows = reads.map(|(b, word)| (b, word / u64::from(ROW_WORDS)));
             let any = rows.clone().next().is_some();
             if any || r == 0 {
                 let cost = self.pages.round(rows);
@@ -540,9 +329,10 @@ impl Texram802 {
                 missed += u64::from(cost.faults);
             }
         }
-        self.left
+        self.banks
+            .left
             .set_next_bits(slots * u64::from(self.p.slot_cycles));
-        self.fault.set_next_bool(missed > 0);
+        self.banks.fault.set_next_bool(missed > 0);
         self.slots.set_next_bits(self.slots.q().bits() + slots);
         self.faults.set_next_bits(self.faults.q().bits() + missed);
         self.accesses.set_next_bits(self.accesses.q().bits() + 1);
@@ -550,193 +340,91 @@ impl Texram802 {
             .set_next_bits(self.fault_slots.q().bits() + fault_slots);
     }
 
-    /// 810 and 818: the banks' data at the end of the slot(s), interpolated; a colour request's
-    /// components are collected and come out with its last.
+    /// 810, 814 and 818: the banks' data at the end of the slot(s), interpolated (an index
+    /// access's looked up first); a colour request's components are collected and come out
+    /// through 820 with its last.
     fn interpolate(&mut self) {
-        let src = self.bank.src.q().bits();
-        let mut texels = [0u8; 8];
-        for (t, x) in texels.iter_mut().enumerate() {
-            let from = src >> (6 * t) & 0x3F;
-            *x = if from == COLOUR {
-                self.bank.colour.q().bits() as u8
-            } else {
-                let word = self.bank.word[from as usize].q().bits();
-                self.banks[from as usize / ROUNDS][word as usize]
-            };
-        }
-        let w = self.bank.weights.q().bits().to_le_bytes();
-        let (a, b, f) = ([w[0], w[2]], [w[1], w[3]], w[4]);
-        let value = trilinear(&texels, a, b, f);
+        let access = &self.banks.access;
+        let texels = self.banks.texels(&self.memory.banks);
+        let (a, b, f) = access.weights();
         let sum = trilinear_sum(&texels, a, b, f);
-        let part = self.bank.part.q().bits();
-        let rgba = if self.bank.index.q().is_high() {
-            for (e, &t) in self.clut_entries.iter_mut().zip(&texels) {
-                e.set_bits(u64::from(u32::from_be_bytes(self.clut.rgba(t))));
-            }
-            u32::from_be_bytes(self.clut.filter(&texels, a, b, f))
-        } else if self.bank.last.q().is_high() && part == 0 {
-            u32::from_be_bytes([value; 4])
+        let last = access.last.q().is_high();
+        let rgba = if access.index.q().is_high() {
+            let rgba = self.clut.look_up(&texels, a, b, f);
+            self.trilinear.keep(rgba);
+            rgba
         } else {
-            // Component `part` of a colour request: R in the top byte.
-            let shift = 8 * (3 - part);
-            (self.acc_rgba.q().bits() as u32 & !(0xFF << shift)) | u32::from(value) << shift
+            let value = trilinear(&texels, a, b, f);
+            self.trilinear.collect(value, access.part.q().bits(), last)
         };
-        self.acc_rgba.set_next_bits(u64::from(rgba));
-        let done = self.bank.last.q().is_high();
-        self.out_valid.set_next_bool(done);
-        if done {
-            // 820: eq. 5 on the finished colour.
-            let m = self.bank.modulate.q().bits();
-            let m = match m >> 8 {
-                0 => Modulate::Illumination,
-                1 => Modulate::Constant(m as u8),
-                _ => Modulate::One,
-            };
-            let illum = (self.bank.illum.q().bits() as u32).to_be_bytes();
-            let rgba = u32::from_be_bytes(shade(m, illum, rgba.to_be_bytes()));
-            self.out_value.set_next_bits(u64::from(rgba >> 24));
-            self.out_rgba.set_next_bits(u64::from(rgba));
-            self.out_texels.set_next_bits(u64::from_le_bytes(texels));
-            self.out_fault.set_next_bits(self.fault.q().bits());
-            self.out_sum.set_next_bits(sum);
+        if last {
+            let illum = access.illum.q().bits() as u32;
+            let fault = self.banks.fault.q().is_high();
+            let m = access.modulate();
+            self.output.finish(m, illum, rgba, texels, fault, sum);
         }
     }
-}
 
-impl Module for Texram802 {
-    fn instance(&self) -> &str {
-        &self.name
-    }
-    fn kind(&self) -> &'static str {
-        "texram_802"
+    /// The bank stage this cycle: the video port's round or the access waiting in 812 moves
+    /// in at a slot boundary (video first: video cannot wait), or the access under way goes
+    /// on. Returns whether 812's access moved on.
+    fn bank_stage(&mut self, busy: bool, finishing: bool) -> bool {
+        let waiting = self.address.access.valid.q().is_high();
+        let video = (!busy || finishing) && self.video_round();
+        let move_on = waiting && (!busy || finishing) && !video;
+        if video {
+            self.banks.access.valid.set_next_bool(true);
+        } else if move_on {
+            self.open_rows();
+            let b = &mut self.banks;
+            b.vid_round.set_next_bits(0);
+            b.access.take_from(&self.address.access);
+            b.access.valid.set_next_bool(true);
+        } else if finishing {
+            self.banks.access.valid.set_next_bool(false);
+            self.banks.vid_round.set_next_bits(0);
+        } else if busy {
+            let left = &mut self.banks.left;
+            left.set_next_bits(left.q().bits() - 1);
+        }
+        move_on
     }
 
-    fn eval(&mut self) {
+    pub fn eval(&mut self) {
         self.pages.eval();
-        let busy = self.bank.valid.q().is_high();
-        let finishing = busy && self.left.q().bits() == 1;
-        self.out_valid.set_next_bool(false);
-        for e in &mut self.clut_entries {
-            e.set_bits(0);
-        }
-        let served = self.vid_round.q().bits() as usize;
-        if let Some(v) = self.video.as_deref_mut() {
+        self.output.eval();
+        self.clut.eval();
+        let busy = self.banks.access.valid.q().is_high();
+        let finishing = busy && self.banks.left.q().bits() == 1;
+        let served = self.banks.vid_round.q().bits() as usize;
+        if let Some(v) = self.memory.video.as_deref_mut() {
             v.eval(finishing && served > 0);
         }
         if finishing && served == 0 {
             self.interpolate();
         }
-        let waiting = self.addr.valid.q().is_high();
-        // The video port goes first at a slot boundary: video cannot wait.
-        let video = (!busy || finishing) && self.video_round();
-        let move_on = waiting && (!busy || finishing) && !video;
-        if video {
-            self.bank.valid.set_next_bool(true);
-        } else if move_on {
-            self.open_rows();
-            self.vid_round.set_next_bits(0);
-            let (a, b) = (&self.addr, &mut self.bank);
-            b.copy_from(a);
-            b.valid.set_next_bool(true);
-        } else if finishing {
-            self.bank.valid.set_next_bool(false);
-            self.vid_round.set_next_bits(0);
-        } else if busy {
-            self.left.set_next_bits(self.left.q().bits() - 1);
-        }
+        let waiting = self.address.access.valid.q().is_high();
+        let move_on = self.bank_stage(busy, finishing);
         // A colour request's next component follows its last into 812; a new request is
         // taken only when 812 holds nothing more of the last one.
-        let more = waiting && !self.addr.last.q().is_high();
+        let more = waiting && !self.address.access.last.q().is_high();
         let ready = (!waiting || move_on) && !more;
         self.req_ready.set_bool(ready);
         let take = ready && self.req_valid.is_high();
         if take {
             let k = self.req_drf.bits();
+            let d = self.request_drf(k as usize);
             let uvl = [&self.req_u, &self.req_v, &self.req_lambda].map(|x| x.raw() as i32);
-            let h = &mut self.held;
-            h.drf.set_next_bits(k);
-            h.u.set_next_raw(i64::from(uvl[0]));
-            h.v.set_next_raw(i64::from(uvl[1]));
-            h.lambda.set_next_raw(i64::from(uvl[2]));
-            self.address(0, k as usize, (uvl[0], uvl[1], uvl[2]));
-            self.addr.illum.set_next_bits(self.req_illum.bits());
+            let illum = self.req_illum.bits();
+            self.address.take(k, d, (uvl[0], uvl[1], uvl[2]), illum);
         } else if move_on && more {
-            let h = &self.held;
-            let k = h.drf.q().bits() as usize;
-            let uvl = [&h.u, &h.v, &h.lambda].map(|r| r.q().raw() as i32);
-            let part = self.addr.part.q().bits() as u32 + 1;
-            self.address(part, k, (uvl[0], uvl[1], uvl[2]));
+            let d = self.request_drf(self.address.held_drf());
+            self.address.next_part(d);
         }
         if take || move_on {
             // A new access (or component), or the last one gone to the banks; else it waits.
-            self.addr.valid.set_next_bool(take || more);
+            self.address.access.valid.set_next_bool(take || more);
         }
-    }
-
-    fn tick(&mut self, reset: bool) {
-        self.addr.tick(reset);
-        self.held.tick_regs(reset);
-        self.acc_rgba.tick(reset);
-        self.pages.tick(reset);
-        self.bank.tick(reset);
-        if let Some(v) = self.video.as_deref_mut() {
-            v.tick(reset, &self.drfs, &mut self.banks);
-        }
-        for r in [
-            &mut self.vid_round,
-            &mut self.left,
-            &mut self.fault,
-            &mut self.slots,
-            &mut self.faults,
-            &mut self.conflicts,
-            &mut self.accesses,
-            &mut self.fault_slots,
-        ] {
-            r.tick(reset);
-        }
-        for r in [
-            &mut self.out_valid,
-            &mut self.out_value,
-            &mut self.out_rgba,
-            &mut self.out_texels,
-            &mut self.out_fault,
-            &mut self.out_sum,
-        ] {
-            r.tick(reset);
-        }
-    }
-
-    fn visit(&self, v: &mut dyn Visitor) {
-        v.enter(self.instance(), self.kind());
-        signals!(v;
-            Input: self.req_valid, self.req_drf, self.req_u, self.req_v, self.req_lambda, self.req_illum;
-            Output: self.req_ready;
-            Reg: self.slots, self.faults, self.accesses, self.fault_slots);
-        v.enter("address_812", "address_812");
-        self.addr.visit(v);
-        self.held.visit_regs(v);
-        v.reg(&self.conflicts);
-        v.leave();
-        self.pages.visit(v);
-        v.enter("banks_810", "banks_810");
-        self.bank.visit_banks(v);
-        signals!(v; Reg: self.left, self.fault, self.vid_round);
-        v.leave();
-        v.enter("clut_814", "clut_814");
-        for e in &self.clut_entries {
-            v.signal(crate::kernel::Dir::Wire, e);
-        }
-        v.leave();
-        v.enter("trilinear_818", "trilinear_818");
-        v.reg(&self.acc_rgba);
-        v.leave();
-        v.enter("output_820", "output_820");
-        signals!(v; Reg: self.out_valid, self.out_value, self.out_rgba, self.out_texels, self.out_fault, self.out_sum);
-        v.leave();
-        if let Some(port) = &self.video {
-            port.visit(v);
-        }
-        v.leave();
     }
 }
 
@@ -769,8 +457,7 @@ impl super::TexramAccess for Texram802Access {
 
     fn access(&mut self, req: super::TexramRequest) -> Result<super::TexramReply, String> {
         req.validate()?;
-        let d =
-            self.sim.dut.drfs[usize::from(req.drf)].ok_or(format!("drf {}: not set", req.drf))?;
+        let d = self.sim.dut.set(usize::from(req.drf))?;
         self.run(d, req)
     }
 
@@ -823,10 +510,10 @@ impl Texram802Access {
             self.sim.dut.req_valid.set_bool(!sent);
             self.sim.eval();
             sent |= self.sim.dut.req_ready.is_high();
-            let done = self.sim.dut.out_valid.q().is_high() && sent;
+            let done = self.sim.dut.output.out_valid.q().is_high() && sent;
             if done {
                 let dut = &self.sim.dut;
-                let rgba = (dut.out_rgba.q().bits() as u32).to_be_bytes();
+                let rgba = (dut.output.out_rgba.q().bits() as u32).to_be_bytes();
                 let plane = match d.config {
                     Config::Planar | Config::Literal => d.component_map(),
                     _ => d,
@@ -835,7 +522,7 @@ impl Texram802Access {
                 let reply = super::TexramReply {
                     fine: fp.fine,
                     coarse: fp.coarse,
-                    texels: dut.out_texels.q().bits().to_le_bytes(),
+                    texels: dut.output.out_texels.q().bits().to_le_bytes(),
                     a: fp.a,
                     b: fp.b,
                     f: fp.f,

@@ -3,6 +3,9 @@
 //! rounded once to 8 bits, half up: `(sum + 2^23) >> 24`. The sum fits 32 bits
 //! (`255 * 2^24 < 2^32`); it is carried in a u64.
 
+use crate::fx::Format;
+use crate::kernel::{Module, Reg};
+
 /// The weights of one level's 2x2 in texel order (i, j), (i+1, j), (i, j+1), (i+1, j+1):
 /// each at most `2^16`, together `2^16`.
 pub fn bilinear_weights(a: u8, b: u8) -> [u32; 4] {
@@ -28,6 +31,50 @@ pub fn trilinear_sum(texels: &[u8; 8], a: [u8; 2], b: [u8; 2], f: u8) -> u64 {
         }
     }
     sum
+}
+
+/// The interpolator's register: the components of a colour request finished so far (R in the
+/// top byte), which come out with its last.
+#[derive(Clone, Debug, Module)]
+#[module(kind = "trilinear_818")]
+pub struct Trilinear818 {
+    #[reg]
+    pub acc_rgba: Reg,
+}
+
+impl Default for Trilinear818 {
+    fn default() -> Self {
+        Trilinear818::new()
+    }
+}
+
+impl Trilinear818 {
+    pub fn new() -> Trilinear818 {
+        Trilinear818 {
+            acc_rgba: Reg::new("acc_rgba", Format::uint(32)),
+        }
+    }
+
+    /// Nothing of its own: the chip's `eval` sets its register.
+    pub fn eval(&mut self) {}
+
+    /// The colour so far with this access's interpolated `value`: all four components for a
+    /// luminance access (`part` 0, the last), else component `part` (R top byte); kept.
+    pub fn collect(&mut self, value: u8, part: u64, last: bool) -> u32 {
+        let rgba = if last && part == 0 {
+            u32::from_be_bytes([value; 4])
+        } else {
+            let shift = 8 * (3 - part);
+            (self.acc_rgba.q().bits() as u32 & !(0xFF << shift)) | u32::from(value) << shift
+        };
+        self.keep(rgba);
+        rgba
+    }
+
+    /// `rgba` (an index access's looked-up colour) kept as the colour so far.
+    pub fn keep(&mut self, rgba: u32) {
+        self.acc_rgba.set_next_bits(u64::from(rgba));
+    }
 }
 
 #[cfg(test)]
