@@ -3,7 +3,7 @@
 //! model, and the golden value beside `out` in the waveform.
 
 use crate::blend::{golden, Blend};
-use verif::{run, Coverage, Coverpoint, Ctx, Driver, Event, Monitor, Pacing, RunSpec};
+use verif::{run_scored, Coverage, Coverpoint, Ctx, Driver, Monitor, Pacing, RunSpec, Scored};
 use verif::{ProbeSink, Scoreboard, Stimulus, TbResult, Testbench};
 
 /// One blend: the raw codes of `a`, `b` and `alpha` (LSB 2^-8).
@@ -79,28 +79,27 @@ impl Testbench for BlendTb {
         };
         let n = txns.len() as u64;
         let mut spec = RunSpec::new(n, 4 * n + 10).pacing(pacing);
-        let r = run(
+        let r = run_scored(
             &mut sim,
             &mut Drv,
             &mut Mon,
             txns,
             &mut spec,
             |sim, ev| match ev {
-                Event::Sent {
+                Scored::Sent {
                     txn: &(a, b, alpha),
                     ..
                 } => {
                     sb.expect(golden(a as f64 * LSB, b as f64 * LSB, alpha as f64 * LSB));
                     cov.sample(&[alpha as i64, (a as i64 - b as i64).signum()]);
                 }
-                Event::Received { cycle, txn } => {
+                Scored::Received { cycle, txn } => {
                     let out = sb.observe(cycle, txn);
                     if let (Some(p), Some(t), Some(g)) = (probe, sim.trace_mut(), out.expected) {
                         t.real(p, g);
                     }
                     res.stats.record(txn, out.expected.unwrap_or(txn), LSB);
                 }
-                Event::Settled { .. } => {}
             },
         );
         res.score(&sb);

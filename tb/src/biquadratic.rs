@@ -5,7 +5,7 @@ use hdl::kernel::Sim;
 use units::bump::biquadratic_0087::{Biquadratic0087, ColourMap, POS_FRAC};
 use units::bump::params::Border;
 use verif::{
-    run, Coverage, Coverpoint, Ctx, Driver, Event, Monitor, RunSpec, Scoreboard, Stimulus,
+    run_scored, Coverage, Coverpoint, Ctx, Driver, Monitor, RunSpec, Scoreboard, Scored, Stimulus,
     TbResult, Testbench,
 };
 use waves::VcdTracer;
@@ -177,15 +177,15 @@ fn run_samples(
     let mut spec =
         RunSpec::new(n, 3 * n + 50).pacing(verif::Pacing::random(200, ctx.seed.derive(9)));
     let side = 16i64 << POS_FRAC;
-    let r = run(
+    let r = run_scored(
         &mut sim,
         &mut UvDriver,
         &mut RgbMonitor,
         qs,
         &mut spec,
         |_, ev| match ev {
-            Event::Sent { .. } => sb.expect(pending.next().expect("one a sample")),
-            Event::Received { cycle, txn } => {
+            Scored::Sent { .. } => sb.expect(pending.next().expect("one a sample")),
+            Scored::Received { cycle, txn } => {
                 if let Some(q) = sb.observe(cycle, txn).expected {
                     let g = golden(map, q.0, q.1);
                     for c in 0..3 {
@@ -196,7 +196,6 @@ fn run_samples(
                     cov.sample(&[(q.0 >> (POS_FRAC - 8)) & 255, i64::from(edge)]);
                 }
             }
-            Event::Settled { .. } => {}
         },
     );
     res.score(&sb);

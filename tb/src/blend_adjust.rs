@@ -16,8 +16,8 @@ use hdl::kernel::{Sim, Trace};
 use proptest::prelude::*;
 use units::bump::blend_adjust_153::{BlendAdjust, BlendAdjustParams};
 use verif::{
-    run, Coverage, Coverpoint, Ctx, Driver, Event, Monitor, Pacing, ProbeSink, RunSpec, Scoreboard,
-    Stimulus, TbResult, Testbench,
+    run_scored, Coverage, Coverpoint, Ctx, Driver, Monitor, Pacing, ProbeSink, RunSpec, Scoreboard,
+    Scored, Stimulus, TbResult, Testbench,
 };
 use waves::{ProbeId, VcdTracer};
 
@@ -258,14 +258,14 @@ fn one_width<T: Trace + ProbeSink>(
         };
         let mut sb = scoreboard(lsb);
         let mut spec = RunSpec::new(n, 8 * n + 100).pacing(pacing);
-        let r = run(
+        let r = run_scored(
             &mut sim,
             &mut BaDriver,
             &mut monitor,
             stimulus,
             &mut spec,
             |sim, ev| match ev {
-                Event::Sent { txn, .. } => {
+                Scored::Sent { txn, .. } => {
                     cov.sample(&[
                         f as i64,
                         i64::from(txn.bypass),
@@ -274,7 +274,7 @@ fn one_width<T: Trace + ProbeSink>(
                     ]);
                     sb.expect((*txn, golden(txn, f)));
                 }
-                Event::Received { cycle, txn } => {
+                Scored::Received { cycle, txn } => {
                     let out = sb.observe(cycle, txn);
                     let got = [txn.u0, txn.u1, txn.v0, txn.v1].map(|x| f64::from(x) * lsb);
                     if let Some((_, g)) = out.expected {
@@ -289,7 +289,6 @@ fn one_width<T: Trace + ProbeSink>(
                         }
                     }
                 }
-                Event::Settled { .. } => {}
             },
         );
         res.transactions += n;

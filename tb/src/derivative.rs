@@ -8,7 +8,7 @@ use units::bump::derivative_0086::{five_point, DerivFilter, Derivative, Derivati
 use units::bump::height_map::HeightMap;
 use units::bump::params::{Border, BumpParams};
 use verif::{
-    run, Coverage, Coverpoint, Ctx, Driver, Event, Monitor, RunSpec, Scoreboard, Stimulus,
+    run_scored, Coverage, Coverpoint, Ctx, Driver, Monitor, RunSpec, Scoreboard, Scored, Stimulus,
     TbResult, Testbench,
 };
 use waves::VcdTracer;
@@ -191,15 +191,15 @@ fn run_queries(
     let mut spec =
         RunSpec::new(n, 3 * n + 50).pacing(verif::Pacing::random(200, ctx.seed.derive(8)));
     let side = 32i64 << POS_FRAC;
-    let r = run(
+    let r = run_scored(
         &mut sim,
         &mut QDriver,
         &mut NMonitor,
         qs,
         &mut spec,
         |_, ev| match ev {
-            Event::Sent { .. } => sb.expect(pending.next().expect("one a query")),
-            Event::Received { cycle, txn } => {
+            Scored::Sent { .. } => sb.expect(pending.next().expect("one a query")),
+            Scored::Received { cycle, txn } => {
                 if let Some((q, g)) = sb.observe(cycle, txn).expected {
                     for c in 0..3 {
                         res.stats.record(txn[c] as f64 * lsb, g[c], lsb);
@@ -216,7 +216,6 @@ fn run_queries(
                     cov.sample(&[slope, i64::from(q.0 < near || q.0 > side - near)]);
                 }
             }
-            Event::Settled { .. } => {}
         },
     );
     res.score(&sb);

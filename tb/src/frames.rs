@@ -7,7 +7,7 @@ use hdl::kernel::Sim;
 use units::frames::frame_unit::{decode_rgb8, Decode, FrameUnit, VEC_FRAC, W_FRAC};
 use units::frames::parallax::ParallaxUnit;
 use verif::{
-    run, Coverage, Coverpoint, Ctx, Driver, Event, Monitor, RunSpec, Scoreboard, Stimulus,
+    run_scored, Coverage, Coverpoint, Ctx, Driver, Monitor, RunSpec, Scoreboard, Scored, Stimulus,
     TbResult, Testbench,
 };
 use waves::VcdTracer;
@@ -251,15 +251,15 @@ fn run_frames(
     let mut spec =
         RunSpec::new(n, 3 * n + 50).pacing(verif::Pacing::random(200, ctx.seed.derive(6)));
     let lsb = 2f64.powi(-(VEC_FRAC as i32));
-    let r = run(
+    let r = run_scored(
         &mut sim,
         &mut FrameDriver,
         &mut NormalMonitor,
         px,
         &mut spec,
         |_, ev| match ev {
-            Event::Sent { .. } => sb.expect(pending.next().expect("one a pixel")),
-            Event::Received { cycle, txn } => {
+            Scored::Sent { .. } => sb.expect(pending.next().expect("one a pixel")),
+            Scored::Received { cycle, txn } => {
                 if let Some(p) = sb.observe(cycle, txn).expected {
                     if let Some((g, _)) = golden_frame(&p) {
                         for (x, gc) in txn.0.iter().zip(g) {
@@ -269,7 +269,6 @@ fn run_frames(
                     cov.sample(&[p.kind, i64::from(p.gs), i64::from(p.left_handed())]);
                 }
             }
-            Event::Settled { .. } => {}
         },
     );
     res.score(&sb);
@@ -479,15 +478,15 @@ impl Testbench for ParallaxTb {
         let mut pending = qs.clone().into_iter();
         let mut spec =
             RunSpec::new(n, 3 * n + 50).pacing(verif::Pacing::random(200, ctx.seed.derive(7)));
-        let r = run(
+        let r = run_scored(
             &mut sim,
             &mut ParallaxDriver,
             &mut UvMonitor,
             qs,
             &mut spec,
             |_, ev| match ev {
-                Event::Sent { .. } => sb.expect(pending.next().expect("one a query")),
-                Event::Received { cycle, txn } => {
+                Scored::Sent { .. } => sb.expect(pending.next().expect("one a query")),
+                Scored::Received { cycle, txn } => {
                     if let Some(q) = sb.observe(cycle, txn).expected {
                         let (g, _) = golden_parallax(&q);
                         for c in 0..2 {
@@ -499,7 +498,6 @@ impl Testbench for ParallaxTb {
                         ]);
                     }
                 }
-                Event::Settled { .. } => {}
             },
         );
         res.score(&sb);

@@ -16,8 +16,8 @@ use units::texram::output_820::Modulate;
 use units::texram::stub::{next_level, TexramStub};
 use units::texram::{Border, Drf, TexramAccess};
 use verif::{
-    run, Coverage, Coverpoint, Ctx, Driver, Event, Monitor, Pacing, RunSpec, Scoreboard, Stimulus,
-    TbResult, Testbench,
+    run_scored, Coverage, Coverpoint, Ctx, Driver, Monitor, Pacing, RunSpec, Scoreboard, Scored,
+    Stimulus, TbResult, Testbench,
 };
 use waves::VcdTracer;
 
@@ -729,18 +729,18 @@ fn run_pixels<A: TexramAccess>(
     let mut spec = RunSpec::new(n, 120 * n + 200).pacing(pacing);
     let si = Shape::ALL.iter().position(|s| *s == shape).unwrap_or(0) as i64;
     let (mut slots, mut faults) = (0u64, 0u64);
-    let r = run(
+    let r = run_scored(
         &mut sim,
         &mut ChainDriver,
         &mut ChainMonitor,
         px,
         &mut spec,
         |_, ev| match ev {
-            Event::Sent { cycle, .. } => {
+            Scored::Sent { cycle, .. } => {
                 sent.push_back(cycle);
                 sb.expect(pending.next().expect("one a pixel"));
             }
-            Event::Received { cycle, txn } => {
+            Scored::Received { cycle, txn } => {
                 let at = sent.pop_front().unwrap_or(cycle);
                 if let Some(e) = sb.observe(cycle, txn).expected {
                     late += u64::from(cycle - at != e.latency);
@@ -753,7 +753,6 @@ fn run_pixels<A: TexramAccess>(
                     cov.sample(&[si, lambda_bin(e.px.lambda), e.face, acc]);
                 }
             }
-            Event::Settled { .. } => {}
         },
     );
     res.score(&sb);

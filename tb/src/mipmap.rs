@@ -12,8 +12,8 @@ use serde::{Deserialize, Serialize};
 use std::path::PathBuf;
 use units::mipmap::{FrameBuffer, MipmapGen, MipmapParams, Rounding, Scan};
 use verif::{
-    run, Coverage, Coverpoint, Ctx, Driver, ErrorStats, Event, Monitor, RunSpec, Scoreboard, Seed,
-    Stimulus, TbResult, Testbench,
+    run_scored, Coverage, Coverpoint, Ctx, Driver, ErrorStats, Monitor, RunSpec, Scoreboard,
+    Scored, Seed, Stimulus, TbResult, Testbench,
 };
 use waves::{TraceConfig, VcdTracer};
 
@@ -212,20 +212,19 @@ fn drive<T: Trace>(
     let mut last_texel = start;
     let limit = texels + 64 + 4 * u64::from(p.width) + 8;
     let mut spec = RunSpec::new(frames.len() as u64, limit);
-    run(
+    run_scored(
         &mut sim,
         &mut VideoDriver,
         &mut FrameMonitor { seen: 0 },
         stream,
         &mut spec,
         |_, ev| match ev {
-            Event::Sent { cycle, .. } => last_texel = cycle + 1,
-            Event::Received { txn: (f, buf), .. } => {
+            Scored::Sent { cycle, .. } => last_texel = cycle + 1,
+            Scored::Received { txn: (f, buf), .. } => {
                 if let Some(slot) = out.get_mut(f as usize) {
                     *slot = Some(buf);
                 }
             }
-            Event::Settled { .. } => {}
         },
     )
     .map_err(|t| format!("mipmap incomplete: {t}"))?;

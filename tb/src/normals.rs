@@ -18,8 +18,8 @@ use units::bump::height_map::HeightMap;
 use units::bump::normal_pipeline_fig7::NormalPipeline;
 use units::bump::params::{Border, BumpParams, Filter};
 use verif::{
-    run, Coverage, Coverpoint, Ctx, Driver, ErrorStats, Event, Monitor, Pacing, ProbeSink, RunSpec,
-    Scoreboard, TbResult, Testbench,
+    run_scored, Coverage, Coverpoint, Ctx, Driver, ErrorStats, Monitor, Pacing, ProbeSink, RunSpec,
+    Scoreboard, Scored, TbResult, Testbench,
 };
 use waves::{ProbeId, TraceConfig, VcdTracer};
 
@@ -375,14 +375,14 @@ fn drive<T: Trace + ProbeSink>(
     let tf = p.texel_fmt();
     let tmax = tf.max_raw() as f64 / f64::from(1u32 << tf.frac());
     let fb = p.pos_frac - p.blend_bits;
-    let r = run(
+    let r = run_scored(
         &mut sim,
         &mut Drv,
         &mut Mon,
         raws,
         &mut RunSpec::new(n, 4 * n + 100).pacing(pacing),
         |sim, ev| match ev {
-            Event::Sent { txn, .. } => {
+            Scored::Sent { txn, .. } => {
                 sb.expect(golden_normal(&p, fine, coarse, txn));
                 let blend = |x: i64| {
                     let b = (x >> fb) & ((1 << p.blend_bits) - 1);
@@ -413,7 +413,7 @@ fn drive<T: Trace + ProbeSink>(
                     ext,
                 ]);
             }
-            Event::Received { cycle, txn } => {
+            Scored::Received { cycle, txn } => {
                 let out = sb.observe(cycle, txn);
                 if let Some((gn, gh)) = out.expected {
                     max_height = max_height.max((real(txn.height as i64, hf) - gh).abs());
@@ -433,7 +433,6 @@ fn drive<T: Trace + ProbeSink>(
                 }
                 outputs.push(txn);
             }
-            Event::Settled { .. } => {}
         },
     );
     res.transactions = n;

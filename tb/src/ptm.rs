@@ -14,7 +14,7 @@ use units::ptm::fitter_604::Fitter604;
 use units::ptm::shader_608::Shader608;
 use units::ptm::texture_612::{p_raw, PtmFormat};
 use verif::{
-    run, Coverage, Coverpoint, Ctx, Driver, Event, Monitor, RunSpec, Scoreboard, Stimulus,
+    run_scored, Coverage, Coverpoint, Ctx, Driver, Monitor, RunSpec, Scoreboard, Scored, Stimulus,
     TbResult, Testbench,
 };
 use waves::VcdTracer;
@@ -348,20 +348,20 @@ fn run_fitter_tb(
     let (mut sent, mut seen, mut outside) = (0usize, 0usize, 0u64);
     let pacing = verif::Pacing::random(150, ctx.seed.derive(3));
     let mut spec = RunSpec::new(texels as u64, 4 * sw.samples.len() as u64 + 100).pacing(pacing);
-    let r = run(
+    let r = run_scored(
         &mut sim,
         &mut SampleDriver,
         &mut TexelMonitor,
         sw.samples.clone(),
         &mut spec,
         |_, ev| match ev {
-            Event::Sent { .. } => {
+            Scored::Sent { .. } => {
                 sent += 1;
                 if sent % l == 0 {
                     sb.expect(ref_fit(p, fmt, sw.texel_samples(sent / l - 1)));
                 }
             }
-            Event::Received { cycle, txn } => {
+            Scored::Received { cycle, txn } => {
                 let s = sw.texel_samples(seen);
                 seen += 1;
                 sb.observe(cycle, txn);
@@ -374,7 +374,6 @@ fn run_fitter_tb(
                 }
                 cov.sample(&[occluded_class(s), l as i64, i64::from(grey)]);
             }
-            Event::Settled { .. } => {}
         },
     );
     res.score(&sb);
@@ -574,22 +573,21 @@ fn run_shader_tb(
     let mut pending = qs.clone().into_iter();
     let mut spec =
         RunSpec::new(n, 3 * n + 50).pacing(verif::Pacing::random(200, ctx.seed.derive(4)));
-    let r = run(
+    let r = run_scored(
         &mut sim,
         &mut QueryDriver,
         &mut KMonitor,
         qs,
         &mut spec,
         |_, ev| match ev {
-            Event::Sent { .. } => sb.expect(pending.next().expect("one a query")),
-            Event::Received { cycle, txn } => {
+            Scored::Sent { .. } => sb.expect(pending.next().expect("one a query")),
+            Scored::Received { cycle, txn } => {
                 if let Some((q, u, v)) = sb.observe(cycle, txn).expected {
                     let g = golden_k(fmt, &q, u, v) * 256.0;
                     res.stats.record(f64::from(txn.0), g.min(255.0), 1.0);
                     cov.sample(&[i64::from(txn.0), i64::from(u < 0) + 2 * i64::from(v < 0)]);
                 }
             }
-            Event::Settled { .. } => {}
         },
     );
     res.score(&sb);

@@ -13,7 +13,7 @@ use hdl::kernel::Sim;
 use std::collections::HashMap;
 use units::frames::tangent_setup::{TangentSetup, POS_FRAC, VEC_FRAC};
 use verif::{
-    run, Coverage, Coverpoint, Ctx, Driver, Event, Monitor, RunSpec, Scoreboard, Stimulus,
+    run_scored, Coverage, Coverpoint, Ctx, Driver, Monitor, RunSpec, Scoreboard, Scored, Stimulus,
     TbResult, Testbench,
 };
 use waves::VcdTracer;
@@ -347,15 +347,15 @@ fn run_setup(
     let mut spec =
         RunSpec::new(n, 3 * n + 50).pacing(verif::Pacing::random(200, ctx.seed.derive(5)));
     let lsb = 2f64.powi(-(VEC_FRAC as i32));
-    let r = run(
+    let r = run_scored(
         &mut sim,
         &mut TriDriver,
         &mut SetupMonitor,
         tris,
         &mut spec,
         |_, ev| match ev {
-            Event::Sent { .. } => sb.expect(pending.next().expect("one a triangle")),
-            Event::Received { cycle, txn } => {
+            Scored::Sent { .. } => sb.expect(pending.next().expect("one a triangle")),
+            Scored::Received { cycle, txn } => {
                 if let Some(q) = sb.observe(cycle, txn).expected {
                     let (ft, fr, _) = golden_setup(&q);
                     if !fr.zero {
@@ -373,7 +373,6 @@ fn run_setup(
                     cov.sample(&[kind, i64::from(hand < 0.0)]);
                 }
             }
-            Event::Settled { .. } => {}
         },
     );
     res.score(&sb);

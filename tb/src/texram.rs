@@ -166,8 +166,8 @@ use units::texram::clut_814::Clut;
 use units::texram::texram_802::{Texram802, TexramParams};
 use units::texram::{Border, Config, Drf};
 use verif::{
-    run, Coverage, Coverpoint, Ctx, Driver, Event, Monitor, Pacing, RunSpec, Scoreboard, Stimulus,
-    TbResult, Testbench,
+    run, run_scored, Coverage, Coverpoint, Ctx, Driver, Event, Monitor, Pacing, RunSpec,
+    Scoreboard, Scored, Stimulus, TbResult, Testbench,
 };
 
 /// The testbench's name: the chip's.
@@ -589,15 +589,15 @@ fn one_config<T: Trace>(
     // Up to four components of four rounds of two slots each, a request.
     let mut spec = RunSpec::new(n, 200 * n + 100).pacing(pacing);
     let (w, h) = ((1i32 << wl) << 8, (1i32 << hl) << 8);
-    let r = run(
+    let r = run_scored(
         &mut sim,
         &mut TexDriver::default(),
         &mut TexMonitor,
         reqs,
         &mut spec,
         |_, ev| match ev {
-            Event::Sent { txn, .. } => sb.expect(oracles.expect(txn)),
-            Event::Received { cycle, txn } => {
+            Scored::Sent { txn, .. } => sb.expect(oracles.expect(txn)),
+            Scored::Received { cycle, txn } => {
                 if let Some((q, _, want)) = sb.observe(cycle, txn).expected {
                     if want.is_finite() {
                         res.stats.record(f64::from(txn.value), want, 1.0);
@@ -610,7 +610,6 @@ fn one_config<T: Trace>(
                     cov.sample(&[b, l, i64::from(beyond), f, level, c]);
                 }
             }
-            Event::Settled { .. } => {}
         },
     );
     res.score(&sb);

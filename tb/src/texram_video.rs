@@ -20,7 +20,7 @@ use units::texram::texram_802::{Texram802, TexramParams};
 use units::texram::video_port_808::VideoParams;
 use units::texram::{Border, Drf, TexramAccess, TexramRequest};
 use verif::{
-    run_beside, Background, Coverage, Coverpoint, Ctx, Event, Pacing, RunSpec, Scoreboard,
+    run_scored_beside, Background, Coverage, Coverpoint, Ctx, Pacing, RunSpec, Scoreboard, Scored,
     Stimulus, TbResult, Testbench,
 };
 
@@ -359,7 +359,7 @@ fn run_video<T: Trace>(
     let video_cycles = source.texels.len() as u64 * (c.period + c.blank);
     let pacing = Pacing::random(300, ctx.seed.derive(3));
     let mut spec = RunSpec::new(n, 40 * n + 2 * video_cycles + 10_000).pacing(pacing);
-    let r = run_beside(
+    let r = run_scored_beside(
         &mut sim,
         &mut TexDriver { drf: 2 },
         &mut TexMonitor,
@@ -367,11 +367,10 @@ fn run_video<T: Trace>(
         &mut spec,
         &mut source,
         |_, ev| match ev {
-            Event::Sent { txn, .. } => sb.expect(stub_result(&mut stub, txn)),
-            Event::Received { cycle, txn } => {
+            Scored::Sent { txn, .. } => sb.expect(stub_result(&mut stub, txn)),
+            Scored::Received { cycle, txn } => {
                 sb.observe(cycle, txn);
             }
-            Event::Settled { .. } => {}
         },
     );
     res.ran(&r);

@@ -73,8 +73,8 @@ pub use protocol::{Handshake, Violation};
 pub use random::{seeded_runner, seeded_stimulus, Seed, Shard, Stimulus, SEED_ENV};
 pub use result::TbResult;
 pub use run::{
-    run, run_beside, Background, Driver, Event, Monitor, Pacing, RunSpec, RunStats, Timeout,
-    Watchdog,
+    run, run_beside, run_scored, run_scored_beside, Background, Driver, Event, Monitor, Pacing,
+    RunSpec, RunStats, Scored, Timeout, Watchdog,
 };
 pub use scoreboard::{Mismatch, Outcome, Scoreboard};
 pub use stats::ErrorStats;

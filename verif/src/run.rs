@@ -48,6 +48,16 @@ pub enum Event<'a, I, O> {
     Settled { cycle: u64 },
 }
 
+/// What a scored run ([`run_scored`]) reports: the two events a scoreboard needs.
+// Each variant's line names its fields.
+#[allow(missing_docs)]
+pub enum Scored<'a, I, O> {
+    /// Transaction `txn` was accepted by the DUT in `cycle` (compute its golden result now).
+    Sent { cycle: u64, txn: &'a I },
+    /// The monitor saw `txn` in `cycle` (score it now).
+    Received { cycle: u64, txn: O },
+}
+
 /// When a side of the handshake is willing: every cycle, at a fixed interval after each
 /// transfer, or with random idle cycles drawn from a seeded RNG.
 pub struct Pacing {
@@ -256,6 +266,59 @@ where
     F: FnMut(&mut Sim<M, T>, Event<'_, D::Txn, Mo::Txn>),
 {
     run_beside(sim, driver, monitor, stimulus, spec, &mut (), on)
+}
+
+/// [`run`] for a testbench that scores and needs nothing else: `on` hears each accepted and
+/// each received transaction, not every settled cycle.
+pub fn run_scored<M, T, D, Mo, F>(
+    sim: &mut Sim<M, T>,
+    driver: &mut D,
+    monitor: &mut Mo,
+    stimulus: impl IntoIterator<Item = D::Txn>,
+    spec: &mut RunSpec,
+    on: F,
+) -> Result<RunStats, Timeout>
+where
+    M: Module,
+    T: Trace,
+    D: Driver<M>,
+    Mo: Monitor<M>,
+    F: FnMut(&mut Sim<M, T>, Scored<'_, D::Txn, Mo::Txn>),
+{
+    run_scored_beside(sim, driver, monitor, stimulus, spec, &mut (), on)
+}
+
+/// [`run_beside`] as [`run_scored`]: with a second port, `on` hearing the scored events only.
+pub fn run_scored_beside<M, T, D, Mo, B, F>(
+    sim: &mut Sim<M, T>,
+    driver: &mut D,
+    monitor: &mut Mo,
+    stimulus: impl IntoIterator<Item = D::Txn>,
+    spec: &mut RunSpec,
+    side: &mut B,
+    mut on: F,
+) -> Result<RunStats, Timeout>
+where
+    M: Module,
+    T: Trace,
+    D: Driver<M>,
+    Mo: Monitor<M>,
+    B: Background<M> + ?Sized,
+    F: FnMut(&mut Sim<M, T>, Scored<'_, D::Txn, Mo::Txn>),
+{
+    run_beside(
+        sim,
+        driver,
+        monitor,
+        stimulus,
+        spec,
+        side,
+        |sim, ev| match ev {
+            Event::Sent { cycle, txn } => on(sim, Scored::Sent { cycle, txn }),
+            Event::Received { cycle, txn } => on(sim, Scored::Received { cycle, txn }),
+            Event::Settled { .. } => {}
+        },
+    )
 }
 
 /// A port driven on its own schedule beside the transaction stream of [`run`] (a video

@@ -93,18 +93,17 @@ fn bench(
         }
     });
     let stim = Stimulus::new(Seed(7)).draw_n(&proptest::num::u8::ANY, n);
-    let r = run(
+    let r = run_scored(
         &mut sim,
         &mut Drv,
         &mut Mon,
         stim,
         &mut RunSpec::new(n as u64, 1000).pacing(pacing),
         |_, ev| match ev {
-            Event::Sent { txn, .. } => sb.expect(u16::from(*txn) + 1),
-            Event::Received { cycle, txn } => {
+            Scored::Sent { txn, .. } => sb.expect(u16::from(*txn) + 1),
+            Scored::Received { cycle, txn } => {
                 sb.observe(cycle, txn);
             }
-            Event::Settled { .. } => {}
         },
     );
     (r, sb)

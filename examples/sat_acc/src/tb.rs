@@ -1,6 +1,6 @@
 //! The testbench: seeded stimulus, a scoreboard against golden, coverage, probes in the waveform.
 use crate::unit::{golden, SatAcc};
-use verif::{run, Coverage, Coverpoint, Ctx, Driver, Event, Monitor, Pacing, RunSpec, Scoreboard};
+use verif::{run_scored, Coverage, Coverpoint, Ctx, Driver, Monitor, Pacing, RunSpec, Scoreboard, Scored};
 use verif::{ProbeSink, TbResult, Testbench};
 
 struct Drv; // a transaction, the raw value of `x`, to the pins
@@ -50,13 +50,13 @@ impl Testbench for SatAccTb {
         let (mut res, mut cov, mut acc) = (TbResult::new(self.name(), self.unit()), self.coverage(), 0.0);
         let pacing = if ctx.index == 0 { Pacing::full() } else { Pacing::random(300, ctx.seed) };
         let mut spec = RunSpec::new(txns.len() as u64, 4 * txns.len() as u64 + 10).pacing(pacing);
-        let r = run(&mut sim, &mut Drv, &mut Mon, txns, &mut spec, |sim, ev| match ev {
-            Event::Sent { txn, .. } => {
+        let r = run_scored(&mut sim, &mut Drv, &mut Mon, txns, &mut spec, |sim, ev| match ev {
+            Scored::Sent { txn, .. } => {
                 acc = golden(acc, *txn as f64 / 16.0);
                 sb.expect(acc);
                 cov.sample(&[(acc * 16.0) as i64]);
             }
-            Event::Received { cycle, txn } => {
+            Scored::Received { cycle, txn } => {
                 let out = sb.observe(cycle, txn);
                 if let (Some((g, m)), Some(t), Some(e)) = (probe, sim.trace_mut(), out.expected) {
                     t.real(g, e);
@@ -64,7 +64,6 @@ impl Testbench for SatAccTb {
                 }
                 res.stats.record(txn, out.expected.unwrap_or(txn), 1.0 / 16.0);
             }
-            Event::Settled { .. } => {}
         });
         res.score(&sb);
         res.cycles = r.map_err(|t| t.to_string())?.cycles;
