@@ -12,10 +12,10 @@ fn texrtl(args: &[&str]) -> std::process::Output {
         .expect("runs")
 }
 
-fn tmp(name: &str) -> PathBuf {
-    let d = std::env::temp_dir().join(format!("texrtl-cli-{}-{name}", std::process::id()));
-    let _ = std::fs::remove_dir_all(&d);
-    d
+mod common;
+
+fn tmp(name: &str) -> common::TestDir {
+    common::fresh("cli", name)
 }
 
 #[test]
@@ -185,7 +185,8 @@ fn no_partials(dir: &Path) -> bool {
 #[test]
 fn bad_input_is_one_line_exit_2_and_no_output() {
     let out = tmp("bad");
-    let file = std::env::temp_dir().join(format!("texrtl-cli-{}-file", std::process::id()));
+    let file_dir = common::dir("cli", "file");
+    let file = file_dir.join("file");
     std::fs::write(&file, "x").unwrap();
     let o_s = out.to_str().unwrap();
     let cases: Vec<(Vec<&str>, &str)> = vec![

@@ -1,9 +1,10 @@
 //! The `texrtl` commands of the dram path, run as a user runs them.
 
+mod common;
+
 #[test]
 fn dram_command() {
-    let d = std::env::temp_dir().join(format!("texrtl-dram-{}", std::process::id()));
-    std::fs::create_dir_all(&d).unwrap();
+    let d = common::dir("dram", "command");
     let t = d.join("t.csv");
     std::fs::write(&t, "addr\n0\n1\n2\n600\n601\n3\n").unwrap();
     let vcd = d.join("d.vcd");

@@ -7,8 +7,10 @@
 //! (134). Seeds are printed; replay with `TEXRTL_SEED`. `TEXRTL_FUZZ_CASES=N` runs N cases a
 //! front end (a campaign; the default is what `cargo test` runs).
 
+mod common;
+
 use proptest::test_runner::TestCaseError;
-use std::path::{Path, PathBuf};
+use std::path::Path;
 use std::process::Command;
 use verif::mutate::{mutated, mutations};
 
@@ -24,11 +26,8 @@ fn cases() -> u32 {
 /// Seconds one case may take (the program is killed at twice its CPU time).
 const CASE_SECONDS: u64 = 10;
 
-fn dir(name: &str) -> PathBuf {
-    let d = std::env::temp_dir().join(format!("texrtl-fuzz-{}-{name}", std::process::id()));
-    let _ = std::fs::remove_dir_all(&d);
-    std::fs::create_dir_all(&d).unwrap();
-    d
+fn dir(name: &str) -> common::TestDir {
+    common::dir("fuzz", name)
 }
 
 fn names(d: &Path) -> Vec<String> {
@@ -409,7 +408,7 @@ fn shard_summary(k: u32) -> Vec<u8> {
         .arg("--shard")
         .arg(format!("{k}/2"))
         .arg("--out")
-        .arg(&d)
+        .arg(&*d)
         .output()
         .unwrap();
     assert!(o.status.code().is_some_and(|c| c <= 1), "{o:?}");

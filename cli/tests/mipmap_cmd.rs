@@ -1,12 +1,11 @@
 //! The `texrtl` commands of the mipmap path, run as a user runs them.
 
+mod common;
+
 use std::path::{Path, PathBuf};
 use std::process::Command;
-fn dir(name: &str) -> PathBuf {
-    let d = std::env::temp_dir().join(format!("texrtl-mip-{}-{name}", std::process::id()));
-    let _ = std::fs::remove_dir_all(&d);
-    std::fs::create_dir_all(&d).unwrap();
-    d
+fn dir(name: &str) -> common::TestDir {
+    common::dir("mip", name)
 }
 fn pgm(d: &Path, name: &str, w: u32, h: u32) -> PathBuf {
     let p = d.join(name);

@@ -2,14 +2,13 @@
 //! write error is exit 2 naming the option's file), regular files are replaced atomically,
 //! and a command that fails on bad input or I/O leaves no new file, waves included.
 
+mod common;
+
 use std::path::{Path, PathBuf};
 use std::process::{Command, Output};
 
-fn dir(name: &str) -> PathBuf {
-    let d = std::env::temp_dir().join(format!("texrtl-out-{}-{name}", std::process::id()));
-    let _ = std::fs::remove_dir_all(&d);
-    std::fs::create_dir_all(&d).unwrap();
-    d
+fn dir(name: &str) -> common::TestDir {
+    common::dir("out", name)
 }
 
 fn texrtl(args: &[&str]) -> Output {

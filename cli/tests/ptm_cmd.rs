@@ -6,7 +6,7 @@ mod common;
 use common::{assert_refused, csv_lines, ran, s};
 use std::path::{Path, PathBuf};
 
-fn dir(name: &str) -> PathBuf {
+fn dir(name: &str) -> common::TestDir {
     common::dir("ptm", name)
 }
 

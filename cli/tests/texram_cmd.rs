@@ -8,7 +8,7 @@ use common::{assert_refused, s, texrtl};
 use std::path::{Path, PathBuf};
 use std::process::Output;
 
-fn dir(name: &str) -> PathBuf {
+fn dir(name: &str) -> common::TestDir {
     common::dir("texram", name)
 }
 

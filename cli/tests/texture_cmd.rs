@@ -2,11 +2,10 @@
 
 use formats::ccc::Ccc;
 use tb::texture::reference_filter;
-fn dir(name: &str) -> std::path::PathBuf {
-    let d = std::env::temp_dir().join(format!("texrtl-tex-{}-{name}", std::process::id()));
-    let _ = std::fs::remove_dir_all(&d);
-    std::fs::create_dir_all(&d).unwrap();
-    d
+mod common;
+
+fn dir(name: &str) -> common::TestDir {
+    common::dir("tex", name)
 }
 fn ppm(w: u32, h: u32) -> Vec<u8> {
     let mut px = Vec::new();
@@ -24,7 +23,7 @@ fn texrtl(args: &[&str]) -> std::process::Output {
         .expect("runs")
 }
 /// A folder with the test texture as `t.ppm`, encoded by `texrtl ccc encode` into `t.ccc`.
-fn encoded(name: &str) -> (std::path::PathBuf, std::path::PathBuf, std::path::PathBuf) {
+fn encoded(name: &str) -> (common::TestDir, std::path::PathBuf, std::path::PathBuf) {
     let d = dir(name);
     let (t, c) = (d.join("t.ppm"), d.join("t.ccc"));
     std::fs::write(&t, ppm(32, 16)).unwrap();

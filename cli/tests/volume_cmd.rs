@@ -6,7 +6,7 @@ mod common;
 use common::{assert_refused, s, texrtl};
 use std::path::{Path, PathBuf};
 
-fn dir(name: &str) -> PathBuf {
+fn dir(name: &str) -> common::TestDir {
     common::dir("volume", name)
 }
 

@@ -348,6 +348,7 @@ fn the_chip_waveform_has_one_scope_per_unit() {
         );
     }
     waves::check::check_gtkw(&vcd, &rb).unwrap();
+    std::fs::remove_dir_all(&dir).unwrap();
 }
 
 #[test]

@@ -62,6 +62,7 @@ fn readmemh_export() {
         .unwrap()
         .contains("u0[8:0] u1[8:0] v0[8:0] v1[8:0]"));
     assert!(unit_vectors("nope").is_err());
+    std::fs::remove_dir_all(&d).unwrap();
 }
 
 #[test]

@@ -6,12 +6,45 @@
 use std::path::{Path, PathBuf};
 use std::process::{Command, Output};
 
-/// A fresh folder for test `name` of command `cmd`.
-pub fn dir(cmd: &str, name: &str) -> PathBuf {
+/// A fresh folder for test `name` of command `cmd`, removed when the test passes (kept, to
+/// look at, when it fails).
+pub fn dir(cmd: &str, name: &str) -> TestDir {
     let d = std::env::temp_dir().join(format!("texrtl-{cmd}-{}-{name}", std::process::id()));
     let _ = std::fs::remove_dir_all(&d);
     std::fs::create_dir_all(&d).unwrap();
+    TestDir(d)
+}
+
+/// The path of a folder for test `name` of command `cmd`, not created (for a command that
+/// must create it, or must not), removed as [`TestDir`] is.
+pub fn fresh(cmd: &str, name: &str) -> TestDir {
+    let d = dir(cmd, name);
+    std::fs::remove_dir(&d.0).unwrap();
     d
+}
+
+/// A test's folder: a path, removed on drop unless the test is failing.
+pub struct TestDir(PathBuf);
+
+impl std::ops::Deref for TestDir {
+    type Target = Path;
+    fn deref(&self) -> &Path {
+        &self.0
+    }
+}
+
+impl AsRef<Path> for TestDir {
+    fn as_ref(&self) -> &Path {
+        &self.0
+    }
+}
+
+impl Drop for TestDir {
+    fn drop(&mut self) {
+        if !std::thread::panicking() {
+            let _ = std::fs::remove_dir_all(&self.0);
+        }
+    }
 }
 
 pub fn texrtl(args: &[&str]) -> Output {
