@@ -19,7 +19,7 @@ use verif::{
     run_scored, Coverage, Coverpoint, Ctx, Driver, Monitor, Pacing, ProbeSink, RunSpec, Scoreboard,
     Scored, Stimulus, TbResult, Testbench,
 };
-use waves::{ProbeId, VcdTracer};
+use waves::ProbeId;
 
 /// An input transaction: one pair of blend factors (raw `uQ0.F` bits) and the mode.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -144,23 +144,21 @@ impl Testbench for BlendAdjustTb {
         };
         params.validate()?;
         let dut = BlendAdjust::new("blend_adjust_153", params)?;
-        let Some(w) = &ctx.waves else {
-            return Ok(one_width(Sim::new(dut), self, ctx, f, None).1);
-        };
-        let mut t = VcdTracer::create(&w.vcd, &format!("blend_adjust F={f}"), w.config(10_000))
-            .map_err(|e| format!("{}: {e}", w.vcd.display()))?;
-        let probes = [
-            t.probe_real("u0_golden", Some("tb.blend_adjust_153.u0")),
-            t.probe_real("u1_golden", Some("tb.blend_adjust_153.u1")),
-            t.probe_real("v0_golden", Some("tb.blend_adjust_153.v0")),
-            t.probe_real("v1_golden", Some("tb.blend_adjust_153.v1")),
-        ];
-        let miss = t.probe_bits("mismatch", 1, Some("tb.blend_adjust_153.valid"));
-        let sim = Sim::traced(dut, t).map_err(|e| e.to_string())?;
-        let (sim, mut res) = one_width(sim, self, ctx, f, Some((probes, miss)));
-        sim.finish()
-            .map_err(|e| format!("{}: {e}", w.vcd.display()))?;
-        res.vcd = Some(w.vcd.clone());
+        // The golden factors beside the unit's, and a flag where they differ.
+        let (sim, probes) = ctx.sim(dut, &format!("blend_adjust F={f}"), 10_000, |t| {
+            let probes = [
+                t.probe_real("u0_golden", Some("tb.blend_adjust_153.u0")),
+                t.probe_real("u1_golden", Some("tb.blend_adjust_153.u1")),
+                t.probe_real("v0_golden", Some("tb.blend_adjust_153.v0")),
+                t.probe_real("v1_golden", Some("tb.blend_adjust_153.v1")),
+            ];
+            (
+                probes,
+                t.probe_bits("mismatch", 1, Some("tb.blend_adjust_153.valid")),
+            )
+        })?;
+        let (sim, mut res) = one_width(sim, self, ctx, f, probes);
+        ctx.finish(sim, &mut res)?;
         Ok(res)
     }
 }
@@ -229,7 +227,7 @@ type Probes = ([ProbeId; 4], ProbeId);
 
 /// Resets the unit, runs the full-rate sweep and the randomly paced transactions of one width.
 fn one_width<T: Trace + ProbeSink>(
-    sim: Sim<BlendAdjust, T>,
+    mut sim: Sim<BlendAdjust, T>,
     tb: &BlendAdjustTb,
     ctx: &Ctx,
     f: u32,
@@ -238,7 +236,6 @@ fn one_width<T: Trace + ProbeSink>(
     let mut res = TbResult::new(NAME, "");
     let mut cov = coverage_model();
     let mut stim = Stimulus::new(ctx.seed);
-    let mut sim = sim.check_schedule(ctx.check_schedule);
     sim.reset(2);
     let lsb = (-(f as f64 + 1.0)).exp2();
     let latency = u64::from(sim.dut.params().latency());

@@ -1,15 +1,16 @@
 //! The DRAM 604 and control unit 607 on an address trace (`texrtl dram`), every word read
 //! checked against the DRAM's power-up contents.
 
-use hdl::kernel::{NoTrace, Sim, Trace};
+use hdl::kernel::{Sim, Trace};
 use serde::Serialize;
 use std::path::{Path, PathBuf};
 use units::texmem::control_607::DramCtrl;
 use units::texmem::dram_604::DramParams;
 use verif::{
     run, Coverage, Coverpoint, Ctx, Driver, Event, Monitor, Pacing, RunSpec, TbResult, Testbench,
+    Workload,
 };
-use waves::{TraceConfig, VcdTracer};
+use waves::TraceConfig;
 
 /// What a trace run measured.
 #[derive(Clone, Debug, Serialize, PartialEq)]
@@ -187,21 +188,11 @@ pub fn run_paced(
     let ctrl = DramCtrl::new("control_607", p)?;
     let cov = setup.coverage.then(coverage_model);
     let check = setup.check_schedule;
-    match setup.wave {
-        Some((path, cfg)) => {
-            let t = VcdTracer::create(&path, NAME, cfg)
-                .map_err(|e| format!("{}: {e}", path.display()))?;
-            let sim = Sim::traced(ctrl, t).map_err(|e| e.to_string())?;
-            let (sim, st, cov) = drive(sim.check_schedule(check), addrs, setup.pacing, cov)?;
-            sim.finish()
-                .map_err(|e| format!("{}: {e}", path.display()))?;
-            Ok((st, cov))
-        }
-        None => {
-            let sim = Sim::<DramCtrl, NoTrace>::new(ctrl).check_schedule(check);
-            drive(sim, addrs, setup.pacing, cov).map(|x| (x.1, x.2))
-        }
-    }
+    let work = Workload::traced(setup.wave);
+    let (sim, _) = work.sim(ctrl, NAME, 0, |_| ())?;
+    let (sim, st, cov) = drive(sim.check_schedule(check), addrs, setup.pacing, cov)?;
+    work.finish(sim)?;
+    Ok((st, cov))
 }
 
 /// A finished run: the simulation (to close its trace), the statistics, the coverage.

@@ -15,7 +15,7 @@ use units::texram::texram_802::{Texram802, TexramParams};
 use units::texram::{Border, Drf};
 use verif::{
     run, Coverage, Coverpoint, Ctx, Driver, Event, Handshake, Monitor, Pacing, RunSpec, Scoreboard,
-    Stimulus, TbResult, Testbench,
+    Stimulus, TbResult, Testbench, Workload,
 };
 
 pub const NAME: &str = "footprint_fig12";
@@ -813,18 +813,10 @@ fn drive_pixels<U: SampleTarget>(
     (vcd, period_ps): (Option<&std::path::Path>, u64),
     want: impl Fn(usize) -> Assembled,
 ) -> Result<(Vec<Assembled>, u64, FootprintFig12<U>), crate::RunError> {
-    let bad = |e: std::io::Error| crate::waveform_error(vcd.unwrap_or(std::path::Path::new("")), e);
-    let tracer = match vcd {
-        Some(path) => {
-            let cfg = waves::TraceConfig {
-                period_ps,
-                ..Default::default()
-            };
-            Some(waves::VcdTracer::create(path, NAME, cfg).map_err(bad)?)
-        }
-        None => None,
-    };
-    let mut sim = Sim::maybe_traced(dut, tracer).map_err(bad)?;
+    let work = Workload::vcd(vcd);
+    let (mut sim, _) = work
+        .sim(dut, NAME, period_ps, |_| ())
+        .map_err(crate::RunError::Waveform)?;
     sim.reset(2);
     let n = pixels.len() as u64;
     let mut results = Vec::with_capacity(pixels.len());
@@ -851,7 +843,7 @@ fn drive_pixels<U: SampleTarget>(
     if let Some(e) = wrong {
         return Err(e.into());
     }
-    let dut = sim.finish().map_err(bad)?;
+    let dut = work.finish(sim).map_err(crate::RunError::Waveform)?;
     Ok((results, st.cycles, dut))
 }
 

@@ -17,7 +17,7 @@ use units::texram::stub::{next_level, TexramStub};
 use units::texram::{Border, Drf, TexramAccess};
 use verif::{
     run_scored, Coverage, Coverpoint, Ctx, Driver, Monitor, Pacing, RunSpec, Scoreboard, Scored,
-    Stimulus, TbResult, Testbench,
+    Stimulus, TbResult, Testbench, Workload,
 };
 use waves::VcdTracer;
 
@@ -847,25 +847,14 @@ pub fn run_mapchain(
     px: &[ChainRequest],
     vcd: Option<&std::path::Path>,
 ) -> Result<(Vec<ChainResult>, ChainStats), String> {
-    let tracer = match vcd {
-        Some(p) => {
-            let cfg = waves::TraceConfig {
-                period_ps: CYCLE_PS,
-                ..Default::default()
-            };
-            Some(waves::VcdTracer::create(p, NAME, cfg).map_err(|e| e.to_string())?)
-        }
-        None => None,
-    };
+    let work = Workload::vcd(vcd);
     let dut = MapChain812::new(sc.file.clone(), sc.stub()?, SLOT_CYCLES)?;
-    let sim = Sim::maybe_traced(dut, tracer).map_err(|e| e.to_string())?;
+    let (sim, _) = work.sim(dut, NAME, CYCLE_PS, |_| ())?;
     let (cycles, out, mut sim) = clocked_sim(sim, px)?;
     if let Some(e) = sim.dut.access_error.take() {
         return Err(format!("the banks refused an access: {e}"));
     }
-    if let Some(p) = vcd {
-        sim.finish().map_err(|e| format!("{}: {e}", p.display()))?;
-    }
+    work.finish(sim)?;
     let sum = |f: fn(&ChainResult) -> u32| out.iter().map(|r| u64::from(f(r))).sum::<u64>();
     let ns = cycles as f64 * CYCLE_PS as f64 / 1000.0;
     let st = ChainStats {

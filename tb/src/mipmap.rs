@@ -7,15 +7,15 @@
 //! loop over the whole frame that shares nothing with the hardware's structure, and with the
 //! real-valued block averages of `golden::mipmap` against the analytic bound.
 
-use hdl::kernel::{NoTrace, Sim, Trace};
+use hdl::kernel::{Sim, Trace};
 use serde::{Deserialize, Serialize};
 use std::path::PathBuf;
 use units::mipmap::{FrameBuffer, MipmapGen, MipmapParams, Rounding, Scan};
 use verif::{
     run_scored, Coverage, Coverpoint, Ctx, Driver, ErrorStats, Monitor, RunSpec, Scoreboard,
-    Scored, Seed, Stimulus, TbResult, Testbench,
+    Scored, Seed, Stimulus, TbResult, Testbench, Workload,
 };
-use waves::{TraceConfig, VcdTracer};
+use waves::TraceConfig;
 
 /// The integer reference: every level from the one before, `(a+b+c+d+2)>>2` (or `>>2`), pairs
 /// once a side is 1.
@@ -129,19 +129,11 @@ pub fn run_mipmap_checked(
             p.height
         ));
     }
-    match vcd {
-        Some((path, cfg)) => {
-            let t = VcdTracer::create(&path, NAME, cfg).map_err(|e| e.to_string())?;
-            let sim = Sim::traced(dut, t).map_err(|e| e.to_string())?;
-            let (sim, o) = drive(sim.check_schedule(check), frames)?;
-            sim.finish().map_err(|e| e.to_string())?;
-            Ok(o)
-        }
-        None => {
-            let sim = Sim::<MipmapGen, NoTrace>::new(dut).check_schedule(check);
-            drive(sim, frames).map(|x| x.1)
-        }
-    }
+    let work = Workload::traced(vcd);
+    let (sim, _) = work.sim(dut, NAME, 0, |_| ())?;
+    let (sim, o) = drive(sim.check_schedule(check), frames)?;
+    work.finish(sim)?;
+    Ok(o)
 }
 
 /// One level-0 texel of the video stream, with its start-of-frame flag.

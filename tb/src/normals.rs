@@ -11,7 +11,7 @@
 
 use golden::bump::{self as g, Heights};
 use hdl::fx::{Format, Fx, Overflow, Quant};
-use hdl::kernel::{NoTrace, Sim, Trace};
+use hdl::kernel::{Sim, Trace};
 use serde::{Deserialize, Serialize};
 use std::path::PathBuf;
 use units::bump::height_map::HeightMap;
@@ -19,9 +19,9 @@ use units::bump::normal_pipeline_fig7::NormalPipeline;
 use units::bump::params::{Border, BumpParams, Filter};
 use verif::{
     run_scored, Coverage, Coverpoint, Ctx, Driver, ErrorStats, Monitor, Pacing, ProbeSink, RunSpec,
-    Scoreboard, Scored, TbResult, Testbench,
+    Scoreboard, Scored, TbResult, Testbench, Workload,
 };
-use waves::{ProbeId, TraceConfig, VcdTracer};
+use waves::{ProbeId, TraceConfig};
 
 /// One sample request.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -206,31 +206,20 @@ pub fn run_normals(cfg: &NormalsRun) -> Result<NormalsOutcome, String> {
         .collect::<Result<Vec<_>, _>>()?;
     let fine = heights(&cfg.map);
     let coarse = coarse_map.as_ref().map(heights);
-    match &cfg.vcd {
-        Some(path) => {
-            let mut t =
-                VcdTracer::create(path, &cfg.name, cfg.trace.clone()).map_err(|e| e.to_string())?;
-            let probes = [
-                t.probe_real("nx_golden", Some("tb.normal_pipeline_fig7.nx")),
-                t.probe_real("ny_golden", Some("tb.normal_pipeline_fig7.ny")),
-                t.probe_real("nz_golden", Some("tb.normal_pipeline_fig7.nz")),
-                t.probe_real("angle_err_deg", Some("tb.normal_pipeline_fig7.nz")),
-            ];
-            let sim = Sim::traced(dut, t).map_err(|e| e.to_string())?;
-            let (sim, out) = drive(sim, cfg, raws, &fine, coarse.as_ref(), Some(probes));
-            let dut = sim.finish().map_err(|e| e.to_string())?;
-            let mut out = out;
-            out.result.vcd = Some(path.clone());
-            out.result.narrowings = narrowings(&dut);
-            Ok(out)
-        }
-        None => {
-            let sim: Sim<NormalPipeline, NoTrace> = Sim::new(dut);
-            let (sim, mut out) = drive(sim, cfg, raws, &fine, coarse.as_ref(), None);
-            out.result.narrowings = narrowings(&sim.dut);
-            Ok(out)
-        }
-    }
+    let work = Workload::traced(cfg.vcd.clone().map(|p| (p, cfg.trace.clone())));
+    let (sim, probes) = work.sim(dut, &cfg.name, cfg.trace.period_ps, |t| {
+        [
+            t.probe_real("nx_golden", Some("tb.normal_pipeline_fig7.nx")),
+            t.probe_real("ny_golden", Some("tb.normal_pipeline_fig7.ny")),
+            t.probe_real("nz_golden", Some("tb.normal_pipeline_fig7.nz")),
+            t.probe_real("angle_err_deg", Some("tb.normal_pipeline_fig7.nz")),
+        ]
+    })?;
+    let (sim, mut out) = drive(sim, cfg, raws, &fine, coarse.as_ref(), probes);
+    let dut = work.finish(sim)?;
+    out.result.vcd = cfg.vcd.clone();
+    out.result.narrowings = narrowings(&dut);
+    Ok(out)
 }
 
 /// What the pipeline's narrowings met, when numeric tracking is on.

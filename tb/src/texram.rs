@@ -167,7 +167,7 @@ use units::texram::texram_802::{Texram802, TexramParams};
 use units::texram::{Border, Config, Drf};
 use verif::{
     run, run_scored, Coverage, Coverpoint, Ctx, Driver, Event, Monitor, Pacing, RunSpec,
-    Scoreboard, Scored, Stimulus, TbResult, Testbench,
+    Scoreboard, Scored, Stimulus, TbResult, Testbench, Workload,
 };
 
 /// The testbench's name: the chip's.
@@ -863,21 +863,8 @@ pub fn run_texram(
     let (chip, mut stub) = tex.load()?;
     let level0 = &tex.levels[0];
     let (wl, hl, border) = (drf.width_log2, drf.height_log2, drf.border);
-    let tracer = match vcd {
-        Some(p) => Some(
-            waves::VcdTracer::create(
-                p,
-                "texram_802",
-                waves::TraceConfig {
-                    period_ps: CYCLE_PS,
-                    ..Default::default()
-                },
-            )
-            .map_err(|e| e.to_string())?,
-        ),
-        None => None,
-    };
-    let mut sim = Sim::maybe_traced(chip, tracer).map_err(|e| e.to_string())?;
+    let work = Workload::vcd(vcd);
+    let (mut sim, _) = work.sim(chip, "texram_802", CYCLE_PS, |_| ())?;
     sim.reset(2);
     let reference = RefMipmap::build(1 << wl, 1 << hl, level0);
     let n = reqs.len() as u64;
@@ -924,7 +911,7 @@ pub fn run_texram(
         return Err(w);
     }
     let stats = TexramStats::of(&sim.dut, n, st.cycles);
-    sim.finish().map_err(|e| e.to_string())?;
+    work.finish(sim)?;
     Ok(TexramRun { values, stats })
 }
 

@@ -11,7 +11,7 @@
 
 use formats::ccc::Ccc;
 use formats::netpbm::Ppm;
-use hdl::kernel::{NoTrace, Sim, Trace};
+use hdl::kernel::{Sim, Trace};
 use serde::{Deserialize, Serialize};
 use std::collections::HashSet;
 use std::path::PathBuf;
@@ -20,9 +20,9 @@ use units::texmem::layout::Layout;
 use units::texmem::texture_unit_602::{TexParams, TextureUnit};
 use verif::{
     run, Coverage, Coverpoint, Ctx, Driver, Event, Handshake, Monitor, Pacing, ProbeSink, RunSpec,
-    Seed, TbResult, Testbench,
+    Seed, TbResult, Testbench, WaveOut, Workload,
 };
-use waves::{ProbeId, TraceConfig, VcdTracer};
+use waves::{ProbeId, TraceConfig};
 
 /// One rasterizer request: raw `uQ12.F` coordinates and the scanline-change flag.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -233,35 +233,26 @@ pub fn run_texread_checked(
     }
     let words = tex.dram_words(&p.block_map());
     let unit = TextureUnit::new("texture_unit_602", p, &tex.clut, &words)?;
-    match vcd {
-        Some((path, cfg)) => {
-            let t = VcdTracer::create(
-                &path,
-                "texread",
-                TraceConfig {
-                    period_ps: u64::from(p.dram.cycle_ns) * 1000,
-                    ..cfg
-                },
-            )
-            .map_err(|e| format!("{}: {e}", path.display()))?;
-            let mut t = t;
-            // The integer reference beside the unit's output, and a flag where they differ.
-            let probes = (
-                t.probe_bits("rgb_reference", 24, Some("tb.texture_unit_602.out_rgb")),
-                t.probe_bits("mismatch", 1, Some("tb.texture_unit_602.out_valid")),
-            );
-            let sim = Sim::traced(unit, t).map_err(|e| e.to_string())?;
-            let sim = sim.check_schedule(check);
-            let (sim, run) = drive(sim, reqs, interval, Some((tex, probes)))?;
-            sim.finish()
-                .map_err(|e| format!("{}: {e}", path.display()))?;
-            Ok(run)
-        }
-        None => {
-            let sim = Sim::<TextureUnit, NoTrace>::new(unit).check_schedule(check);
-            drive(sim, reqs, interval, None).map(|x| x.1)
-        }
-    }
+    // Traced at the unit's own clock, whatever the configuration's period.
+    let work = Workload {
+        wave: vcd.map(|(vcd, trace)| WaveOut {
+            vcd,
+            trace,
+            period_ps: None,
+        }),
+    };
+    let own_period_ps = u64::from(p.dram.cycle_ns) * 1000;
+    // The integer reference beside the unit's output, and a flag where they differ.
+    let (sim, probes) = work.sim(unit, "texread", own_period_ps, |t| {
+        (
+            t.probe_bits("rgb_reference", 24, Some("tb.texture_unit_602.out_rgb")),
+            t.probe_bits("mismatch", 1, Some("tb.texture_unit_602.out_valid")),
+        )
+    })?;
+    let probes = probes.map(|p| (tex, p));
+    let (sim, run) = drive(sim.check_schedule(check), reqs, interval, probes)?;
+    work.finish(sim)?;
+    Ok(run)
 }
 
 /// Reference probes of a traced run: the texture, the reference colour's and the mismatch

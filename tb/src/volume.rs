@@ -10,7 +10,7 @@ use units::volume::layout::{locate, Mode, Order, VolumeParams, POS_FRAC};
 use units::volume::ray_caster_fig15::RayCaster;
 use verif::{
     run, Coverage, Coverpoint, Ctx, Driver, Event, Monitor, Pacing, RunSpec, Scoreboard, Stimulus,
-    TbResult, Testbench,
+    TbResult, Testbench, Workload,
 };
 
 pub const NAME: &str = "ray_caster_fig15";
@@ -630,18 +630,10 @@ pub fn run_volume(
     vcd: Option<&std::path::Path>,
 ) -> Result<VolumeRun, crate::RunError> {
     let dut = RayCaster::new(p, mode, vox)?;
-    let bad = |e: std::io::Error| crate::waveform_error(vcd.unwrap_or(std::path::Path::new("")), e);
-    let tracer = match vcd {
-        Some(path) => {
-            let cfg = waves::TraceConfig {
-                period_ps: CYCLE_PS,
-                ..Default::default()
-            };
-            Some(waves::VcdTracer::create(path, NAME, cfg).map_err(bad)?)
-        }
-        None => None,
-    };
-    let mut sim = Sim::maybe_traced(dut, tracer).map_err(bad)?;
+    let work = Workload::vcd(vcd);
+    let (mut sim, _) = work
+        .sim(dut, NAME, CYCLE_PS, |_| ())
+        .map_err(crate::RunError::Waveform)?;
     sim.reset(2);
     let want: Vec<[i64; 3]> = rs
         .iter()
@@ -692,7 +684,7 @@ pub fn run_volume(
             n as f64 / ns as f64 * 1e9
         },
     };
-    sim.finish().map_err(bad)?;
+    work.finish(sim).map_err(crate::RunError::Waveform)?;
     Ok(VolumeRun { samples, stats })
 }
 

@@ -66,6 +66,7 @@ mod scoreboard;
 mod stats;
 mod testbench;
 pub mod vectors;
+mod workload;
 
 pub use coverage::{Coverage, Coverpoint, Cross};
 pub use probe::ProbeSink;
@@ -82,6 +83,7 @@ pub use testbench::{
     aggregate, conclude, config_seed, run_jobs, run_testbench, Ctx, Registry, RunOptions,
     Testbench, WaveOut,
 };
+pub use workload::Workload;
 
 #[cfg(test)]
 mod tests;

@@ -225,15 +225,14 @@ fn derivative_normals(
         .collect::<Result<_, String>>()?;
     let scale = (a.scale * 256.0).round() as i64;
     let d = Derivative::new(f.clone(), map, a.border, tb::derivative::POS_FRAC);
-    let tracer = match &a.vcd {
-        Some(path) => Some(
-            waves::VcdTracer::create(path, "derivative_0086", TraceConfig::default())
-                .map_err(|e| e.to_string())?,
-        ),
-        None => None,
-    };
-    let mut sim = hdl::kernel::Sim::maybe_traced(DerivativeUnit::new(d), tracer)
-        .map_err(|e| e.to_string())?;
+    let work = verif::Workload::vcd(a.vcd.as_deref());
+    let own_period_ps = TraceConfig::default().period_ps;
+    let (mut sim, _) = work.sim(
+        DerivativeUnit::new(d),
+        "derivative_0086",
+        own_period_ps,
+        |_| (),
+    )?;
     sim.reset(1);
     let mut csv = String::from("u,v,nx,ny,nz\n");
     for &(u, v) in &q {
@@ -256,10 +255,7 @@ fn derivative_normals(
             d(n[2], 14)
         );
     }
-    if let Some(path) = &a.vcd {
-        sim.finish()
-            .map_err(|e| format!("{}: {e}", path.display()))?;
-    }
+    work.finish(sim)?;
     write_out(&a.out, csv.as_bytes())?;
     Ok(format!(
         "{} normals written to {} (derivative filter {} of para. 0086, {} texels a sample)",
