@@ -56,9 +56,10 @@ impl Ctx {
         own_period_ps: u64,
         probes: impl FnOnce(&mut VcdTracer) -> P,
     ) -> Result<(Sim<M, VcdTracer>, Option<P>), String> {
-        let mut t = self.tracer(title, own_period_ps)?;
-        let p = t.as_mut().map(probes);
-        let sim = Sim::maybe_traced(dut, t).map_err(|e| e.to_string())?;
+        let work = crate::Workload {
+            wave: self.waves.clone(),
+        };
+        let (sim, p) = work.sim(dut, title, own_period_ps, probes)?;
         Ok((sim.check_schedule(self.check_schedule), p))
     }
 
