@@ -17,7 +17,7 @@ use units::texram::stub::{next_level, TexramStub};
 use units::texram::{Border, Drf, TexramAccess};
 use verif::{
     run_scored, Coverage, Coverpoint, Ctx, Driver, Monitor, Pacing, RunSpec, Scoreboard, Scored,
-    Stimulus, TbResult, Testbench, Workload,
+    Stimulus, StreamDriver, TbResult, Testbench, Workload,
 };
 use waves::VcdTracer;
 
@@ -491,18 +491,6 @@ fn random_pixels(n: usize, stim: &mut Stimulus) -> Vec<ChainRequest> {
         .collect()
 }
 
-pub struct ChainDriver;
-
-impl<T: TexramAccess> Driver<MapChain812<T>> for ChainDriver {
-    type Txn = ChainRequest;
-    fn drive(&mut self, dut: &mut MapChain812<T>, t: Option<&ChainRequest>) {
-        dut.drive(t);
-    }
-    fn accepted(&self, dut: &MapChain812<T>) -> bool {
-        dut.req_ready.is_high()
-    }
-}
-
 pub struct ChainMonitor;
 
 impl<T: TexramAccess> Monitor<MapChain812<T>> for ChainMonitor {
@@ -731,7 +719,7 @@ fn run_pixels<A: TexramAccess>(
     let (mut slots, mut faults) = (0u64, 0u64);
     let r = run_scored(
         &mut sim,
-        &mut ChainDriver,
+        &mut StreamDriver::new(verif::stream!(MapChain812<A>, req)),
         &mut ChainMonitor,
         px,
         &mut spec,
@@ -807,10 +795,11 @@ pub fn clocked_sim<T: Trace>(
 ) -> Result<(u64, Vec<ChainResult>, WalkerSim<T>), String> {
     sim.reset(2);
     let (mut next, mut out, mut first) = (0usize, Vec::with_capacity(px.len()), None);
+    let mut port = StreamDriver::new(verif::stream!(MapChain812<TexramStub>, req));
     for _ in 0..200 * (px.len() as u64 + 1) {
-        sim.dut.drive(px.get(next));
+        port.drive(&mut sim.dut, px.get(next));
         sim.eval();
-        if next < px.len() && sim.dut.req_ready.is_high() {
+        if next < px.len() && port.accepted(&sim.dut) {
             first.get_or_insert(sim.cycle());
             next += 1;
         }

@@ -64,6 +64,7 @@ mod result;
 mod run;
 mod scoreboard;
 mod stats;
+mod stream;
 mod testbench;
 pub mod vectors;
 mod workload;
@@ -79,6 +80,7 @@ pub use run::{
 };
 pub use scoreboard::{Mismatch, Outcome, Scoreboard};
 pub use stats::ErrorStats;
+pub use stream::{StreamAt, StreamDriver, StreamMonitor};
 pub use testbench::{
     aggregate, conclude, config_seed, run_jobs, run_testbench, Ctx, Registry, RunOptions,
     Testbench, WaveOut,

@@ -12,6 +12,7 @@ mod mem;
 mod module;
 mod signal;
 mod sim;
+mod stream;
 mod typed;
 
 pub use delay::Delay;
@@ -19,6 +20,7 @@ pub use mem::Mem;
 pub use module::{Dir, Module, Visitor};
 pub use signal::{Reg, Signal};
 pub use sim::{instances, narrowings, signal_dirs, signal_paths, NoTrace, Sim, Trace};
+pub use stream::{Payload, Stream};
 /// Derives [`declared::Children`] for a group of sub-modules without a scope of its own.
 pub use texrtl_hdl_derive::Group;
 /// Derives [`Module`] from fields marked `#[input]`, `#[output]`, `#[wire]`, `#[reg]`,

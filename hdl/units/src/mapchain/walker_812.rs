@@ -35,7 +35,7 @@ use super::program::{ChainRequest, Fetch, Program, State, Walk, STATES};
 use crate::envmap::cube_face::CubeFace;
 use crate::fx::Format;
 use crate::kernel::declared::{Regs, Signals};
-use crate::kernel::{Dir, Module, Reg, Regs, Signal, Signals, Visitor};
+use crate::kernel::{Dir, Module, Payload, Reg, Regs, Signal, Signals, Stream, Visitor};
 use crate::texram::{TexramAccess, UV_BITS};
 
 /// The walk's registers ([`Walk`] as the walker holds it between cycles), `state` named by
@@ -298,6 +298,19 @@ impl Pixel<i64> {
     }
 }
 
+/// The pixel port carries a request: each field raw on its signal.
+impl Payload<Pixel<Signal>> for ChainRequest {
+    fn put(&self, port: &mut Pixel<Signal>) {
+        let raw = Pixel::of(self);
+        for (s, x) in port.each_mut().into_iter().zip(raw.each()) {
+            s.set_raw(*x);
+        }
+    }
+    fn take(port: &Pixel<Signal>) -> ChainRequest {
+        port.map(Signal::raw).request()
+    }
+}
+
 impl Signals for Pixel<Signal> {
     fn visit_signals(&self, dir: Dir, v: &mut dyn Visitor) {
         self.each().into_iter().for_each(|s| v.signal(dir, s));
@@ -359,10 +372,8 @@ pub struct MapChain812<T: TexramAccess> {
     texram: T,
     tab: [u64; 64],
     slot_cycles: u32,
-    pub req_valid: Signal,
-    pub req_ready: Signal,
-    /// The pixel port.
-    pub req: Pixel<Signal>,
+    /// The pixel port: `req_valid`, the pixel's fields, `req_ready`.
+    pub req: Stream<Pixel<Signal>>,
     /// The pixel being walked.
     held: Pixel<Reg>,
     pub acc_valid: Signal,
@@ -395,9 +406,11 @@ impl<T: TexramAccess> MapChain812<T> {
             texram,
             tab: *CubeFace::new().table(),
             slot_cycles,
-            req_valid: Signal::bit("req_valid"),
-            req_ready: Signal::bit("req_ready"),
-            req: fields.map(|f| Signal::new(f.port, f.fmt)),
+            req: Stream::new(
+                "req_valid",
+                "req_ready",
+                fields.map(|f| Signal::new(f.port, f.fmt)),
+            ),
             held: fields.map(|f| Reg::new(f.name, f.fmt)),
             acc_valid: Signal::bit("acc_valid"),
             acc: AccessPort {
@@ -418,17 +431,6 @@ impl<T: TexramAccess> MapChain812<T> {
             out_acc: Counts::new("out_accesses", "out_slots", "out_faults"),
             access_error: None,
         })
-    }
-
-    /// Drives the pixel port (valid and fields).
-    pub fn drive(&mut self, px: Option<&ChainRequest>) {
-        self.req_valid.set_bool(px.is_some());
-        if let Some(px) = px {
-            let raw = Pixel::of(px);
-            for (s, x) in self.req.each_mut().into_iter().zip(raw.each()) {
-                s.set_raw(*x);
-            }
-        }
     }
 
     /// The result in the output registers (when `out_valid`).
@@ -495,14 +497,14 @@ impl<T: TexramAccess> MapChain812<T> {
 
     /// The pixel on the port.
     fn port_pixel(&self) -> ChainRequest {
-        self.req.map(Signal::raw).request()
+        ChainRequest::take(&self.req.payload)
     }
 
     /// In the cycle a pixel's last access ends, the next pixel is taken if its first DRF
     /// reads the banks (its access then follows without a gap); one that would end at once
     /// (an unset DRF) waits for the next cycle, so that two results never meet.
     fn overlap(&mut self) {
-        if !self.req_valid.is_high() {
+        if !self.req.valid.is_high() {
             return;
         }
         if self
@@ -510,14 +512,19 @@ impl<T: TexramAccess> MapChain812<T> {
             .1
             .is_some()
         {
-            self.req_ready.set_bool(true);
+            self.req.ready.set_bool(true);
             self.begin();
         }
     }
 
     /// A new pixel from the port: held, and its first DRF visited.
     fn begin(&mut self) {
-        for (r, s) in self.held.each_mut().into_iter().zip(self.req.each()) {
+        for (r, s) in self
+            .held
+            .each_mut()
+            .into_iter()
+            .zip(self.req.payload.each())
+        {
             r.set_next_raw(s.raw());
         }
         let next = self.step(&self.port_pixel(), Walk::start(), None);
@@ -560,9 +567,9 @@ impl<T: TexramAccess> Module for MapChain812<T> {
         self.acc_valid.set_bool(false);
         self.out_valid.set_next_bool(false);
         let idle = matches!(st, State::Idle | State::Combine | State::Error);
-        self.req_ready.set_bool(idle);
+        self.req.ready.set_bool(idle);
         if idle {
-            if self.req_valid.is_high() {
+            if self.req.valid.is_high() {
                 self.begin();
             } else {
                 self.walk.state.set_next_bits(State::Idle.bits());
@@ -611,9 +618,7 @@ impl<T: TexramAccess> Module for MapChain812<T> {
 
     fn visit(&self, v: &mut dyn Visitor) {
         v.enter(self.instance(), self.kind());
-        v.signal(Dir::Input, &self.req_valid);
         self.req.visit_signals(Dir::Input, v);
-        v.signal(Dir::Output, &self.req_ready);
         v.signal(Dir::Output, &self.acc_valid);
         self.acc.visit_signals(Dir::Output, v);
         self.walk.visit_regs(v);
