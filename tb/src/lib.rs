@@ -51,17 +51,6 @@ impl From<RunError> for String {
     }
 }
 
-/// A waveform's I/O error, naming the file.
-pub fn waveform_error(path: &std::path::Path, e: impl std::fmt::Display) -> RunError {
-    let e = e.to_string();
-    let shown = path.display().to_string();
-    RunError::Waveform(if e.starts_with(&shown) {
-        e
-    } else {
-        format!("{shown}: {e}")
-    })
-}
-
 #[cfg(test)]
 mod tests {
     /// tests/mutants.rs, the mutation run's one test binary, gathers every test file of tests/

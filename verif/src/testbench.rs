@@ -34,18 +34,6 @@ pub struct Ctx {
 }
 
 impl Ctx {
-    /// The VCD tracer of this configuration when it writes the waveform (titled `title`,
-    /// clocked at `own_period_ps` unless the user chose a period), else `None`. Pass it to
-    /// [`Sim::maybe_traced`]: an untraced run then costs one branch per cycle.
-    pub fn tracer(&self, title: &str, own_period_ps: u64) -> Result<Option<VcdTracer>, String> {
-        let Some(w) = &self.waves else {
-            return Ok(None);
-        };
-        VcdTracer::create(&w.vcd, title, w.config(own_period_ps))
-            .map(Some)
-            .map_err(|e| format!("{}: {e}", w.vcd.display()))
-    }
-
     /// A simulation of `dut` for this configuration: traced when it writes the waveform, with
     /// the schedule check when asked. `probes` declares the golden values and flags shown
     /// beside the design (called only when traced).
