@@ -7,10 +7,12 @@
 // `start` (with start_bx, start_by, start_prefetch) is taken only when idle; a word is asked
 // for (word_req, word_addr: Moore outputs) while fetching and fewer than two were accepted
 // (`word_ready`); the second response (`word_resp`) moves to DECODE; `line_done` back to
-// IDLE. Block addresses (the layout of hdl/units/src/texmem/layout.rs): LAYOUT 0 row-major, block
-// (bx, by) at BASE + 2 (by BW + bx); LAYOUT 1 tiled, TW x TH blocks to a DRAM page of
-// PAGE_WORDS words (TW x TH = PAGE_WORDS / 2, TW = 2^ceil(lg / 2)), tiles row-major, blocks
-// row-major inside a tile. States (state): 0 IDLE, 1 FETCH, 2 DECODE. Synchronous reset.
+// IDLE. The block being filled (bx, by) and its prefetch flag are registered outputs: they
+// address the line's write into cache 614. Block addresses (the layout of
+// hdl/units/src/texmem/layout.rs): LAYOUT 0 row-major, block (bx, by) at BASE + 2 (by BW + bx);
+// LAYOUT 1 tiled, TW x TH blocks to a DRAM page of PAGE_WORDS words (TW x TH = PAGE_WORDS / 2,
+// TW = 2^ceil(lg / 2)), tiles row-major, blocks row-major inside a tile. States (state):
+// 0 IDLE, 1 FETCH, 2 DECODE. Synchronous reset.
 module fill_engine_607 #(
     parameter integer LAYOUT = 0,
     parameter integer BW = 16,
@@ -31,6 +33,8 @@ module fill_engine_607 #(
     output wire          word_req,
     output wire [AB-1:0] word_addr,
     output reg  [1:0]    state,
+    output reg  [BB-1:0] bx,
+    output reg  [BB-1:0] by,
     output reg           prefetch
 );
     localparam [1:0] IDLE = 2'd0, FETCH = 2'd1, DECODE = 2'd2;
@@ -41,7 +45,6 @@ module fill_engine_607 #(
     localparam integer LGH = LG - LGW;
     localparam integer TILES_X = (BW + (1 << LGW) - 1) >> LGW;
 
-    reg [BB-1:0] bx, by;
     reg [1:0] words_issued;
 
     // Word 0 of block (bx, by).

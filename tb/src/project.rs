@@ -8,6 +8,7 @@ use crate::cosim::{self as c, vectors as directed};
 use crate::pictures::{self, one};
 use crate::vectors as v;
 use units::mipmap::mipmap_gen_816::{MipmapParams, Rounding, Scan};
+use units::texmem::texture_unit_602::TexParams;
 use verif::project::{Project, Unit};
 
 /// The texture project, as the `texrtl` command runs it.
@@ -59,6 +60,7 @@ fn figure_6_memory_path(p: Project) -> Project {
                 "texture mapping unit 602 (Schilling & Knittel Figure 6): DRAM 604, control 607, CCC decode 608-612, cache 614, extract 618, bilinear 622",
             )
             .testbench(crate::texture::TextureTb)
+            .twin(c::TextureCosim(TexParams::new(64, 64)))
             .vectors(v::texture)
             .pictures(pictures::memory),
         )

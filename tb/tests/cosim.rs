@@ -7,7 +7,7 @@ use std::path::PathBuf;
 use tb::cosim::{
     AddressCosim, BilinearCosim, BlendAdjustCosim, CacheCosim, ControlCosim, FillCosim,
     LookaheadCosim, MipmapCosim, NormalCosim, PipelineCosim, ReplicateCosim, RsqrtCosim,
-    TangentCosim, TexelFetchCosim,
+    TangentCosim, TexelFetchCosim, TextureCosim,
 };
 use units::bump::blend_adjust_153::BlendAdjustParams;
 use units::bump::params::{Border, BumpParams, Filter, HeightTexel, RsqrtParams};
@@ -15,6 +15,7 @@ use units::mipmap::mipmap_gen_816::{MipmapParams, Rounding, Scan};
 use units::texmem::cache_614::Lookahead;
 use units::texmem::dram_604::DramParams;
 use units::texmem::layout::Layout;
+use units::texmem::texture_unit_602::TexParams;
 use verif::cosim::{run, CosimUnit, Simulator};
 use verif::Seed;
 
@@ -163,7 +164,55 @@ fn memory_twins() -> Vec<Twin> {
     for (label, u) in fill_configs() {
         v.push((format!("fill_engine_607 {label}"), Box::new(u)));
     }
+    for (label, p) in texture_configs() {
+        v.push((
+            format!("texture_unit_602 {label}"),
+            Box::new(TextureCosim(p)),
+        ));
+    }
     v
+}
+
+/// Texture unit 602: 64x64 texels, quadrant lookahead (the default); direction lookahead over
+/// a 40x24 tiled texture at word 4096 with F = 8 and the slow DRAM; the cache off (every
+/// request fetches every block) on one 4x4 block with F = 1; tiny pages with the shortest
+/// timing (a fault on nearly every word).
+fn texture_configs() -> Vec<(&'static str, TexParams)> {
+    let d = TexParams::new(64, 64);
+    let dram = |k: usize| control_configs()[k].1;
+    vec![
+        ("64x64 quadrant (default)", d),
+        (
+            "40x24 tiled at 4096, direction, F=8, slow DRAM",
+            TexParams {
+                frac_bits: 8,
+                layout: Layout::Tiled,
+                base: 4096,
+                lookahead: Lookahead::Direction,
+                dram: DramParams {
+                    cols: 512,
+                    rows: 512,
+                    ..dram(3)
+                },
+                ..TexParams::new(40, 24)
+            },
+        ),
+        (
+            "4x4 cache off, F=1",
+            TexParams {
+                frac_bits: 1,
+                cache: false,
+                ..TexParams::new(4, 4)
+            },
+        ),
+        (
+            "16x8 on 4 x 8-word pages, shortest timing",
+            TexParams {
+                dram: dram(2),
+                ..TexParams::new(16, 8)
+            },
+        ),
+    ]
 }
 
 /// The mipmap generator: progressive 16x16 back to back; both interlaced field orders with
@@ -497,7 +546,7 @@ fn every_twin_matches_its_model_on_every_cycle() {
     sweep(&|sim, _, first_of_unit| first_of_unit.then(|| first(sim)));
 }
 
-/// Every configuration of every twin (59: widths, modes, borders, sizes, timings), 100 k
+/// Every configuration of every twin (63: widths, modes, borders, sizes, timings), 100 k
 /// cycles each in Verilator, the first configuration of each unit 20 k in Icarus. Slow:
 /// `cargo test -- --ignored`, which `.ci/run` runs; `TEXRTL_COSIM_ONLY=text` narrows it to
 /// configurations whose label contains `text`.
@@ -589,7 +638,14 @@ fn assert_caught(u: &dyn CosimUnit, bug: Bug, n: usize, seed: Seed, want: (usize
         if !available(sim) {
             continue;
         }
-        let d = dir(&format!("bug-{}-{}", u.name(), sim.name()));
+        // One folder per bug: two bugs of one unit may run at once.
+        let tag = {
+            use std::hash::{Hash, Hasher};
+            let mut h = std::collections::hash_map::DefaultHasher::new();
+            bug.1.hash(&mut h);
+            h.finish() as u16
+        };
+        let d = dir(&format!("bug-{}-{tag:04x}-{}", u.name(), sim.name()));
         let sources: Vec<PathBuf> = u
             .rtl()
             .into_iter()
@@ -1280,4 +1336,75 @@ fn regression_vectors_cosimulate_equal() {
             }
         }
     }
+}
+
+/// Texture unit 602 whose bilinear interpolator 622 rounds with a quarter instead of a half
+/// (a shift constant off by one): caught on port `out_rgb` in the first cycle that shows a
+/// colour whose exact sums (the model's `sums` registers) round differently.
+#[test]
+fn texture_rounding_bug_is_caught_with_its_cycle_and_port() {
+    use units::texmem::texture_unit_602::TextureUnit;
+    let p = TexParams::new(64, 64);
+    let u = TextureCosim(p);
+    let bug = Bug(
+        "texmem/bilinear_622.v",
+        "SW'(1) << (2 * F - 1)",
+        "SW'(1) << (2 * F - 2)",
+    );
+    let (n, seed) = (3_000, Seed(21));
+    let stim = u.stimulus(seed, n);
+    let dut = TextureUnit::new("t", p, &TextureCosim::clut(), &[]).unwrap();
+    let f2 = 2 * p.frac_bits;
+    let rounds_apart = |d: &TextureUnit, _: &[u64]| {
+        let b = &d.bilinear;
+        let round = |s: u64, half: u64| (s + half) >> f2;
+        b.valid.q().is_high()
+            && b.sums.iter().any(|s| {
+                let s = s.q().bits();
+                round(s, 1 << (f2 - 1)) != round(s, 1 << (f2 - 2))
+            })
+    };
+    let want = first_cycle(dut, &stim, tb::cosim::drive_texture, rounds_apart)
+        .expect("a colour rounds differently");
+    assert_caught(&u, bug, n, seed, (want, "out_rgb"));
+}
+
+/// Texture unit 602 whose footprint forgets the clamp at the texture's right edge (x1 =
+/// x0 + 1 always): caught in the first cycle stage 0 holds a request in the last column, on
+/// `in_ready` when the model completes it that cycle (the twin waits for a block beyond the
+/// edge), else on `need_mask` (the twin needs that block's entry too).
+#[test]
+fn texture_edge_clamp_bug_is_caught_with_its_cycle_and_port() {
+    use units::texmem::texture_unit_602::TextureUnit;
+    let p = TexParams::new(64, 64);
+    let u = TextureCosim(p);
+    let bug = Bug(
+        "texmem/texture_unit_602.v",
+        "wire [11:0] x1 = ({1'b0, x0} + 13'd1 > 13'(W - 1)) ? 12'(W - 1) : x0 + 12'd1;",
+        "wire [11:0] x1 = x0 + 12'd1;",
+    );
+    let (n, seed) = (20_000, Seed(22));
+    let stim = u.stimulus(seed, n);
+    let dut = TextureUnit::new("t", p, &TextureCosim::clut(), &[]).unwrap();
+    let at_edge = |d: &TextureUnit, _: &[u64]| {
+        d.req_valid.q().is_high() && d.req_u.q().bits() >> p.frac_bits == u64::from(p.width - 1)
+    };
+    let want = first_cycle(dut.clone(), &stim, tb::cosim::drive_texture, at_edge)
+        .expect("a request in the last column");
+    // The model at that cycle: does it complete the request?
+    let mut sim = hdl::kernel::Sim::new(dut);
+    for (c, s) in stim.iter().enumerate().take(want + 1) {
+        sim.set_reset(c < verif::cosim::RESET_CYCLES);
+        tb::cosim::drive_texture(&mut sim.dut, s);
+        sim.eval();
+        if c < want {
+            sim.tick();
+        }
+    }
+    let port = if sim.dut.in_ready.is_high() {
+        "in_ready"
+    } else {
+        "need_mask"
+    };
+    assert_caught(&u, bug, n, seed, (want, port));
 }

@@ -289,7 +289,7 @@ impl CosimUnit for CacheCosim {
 
 /// The block fetch of control unit 607 against `rtl/texmem/fill_engine_607.v`: a texture of
 /// `blocks` 4x4 blocks from DRAM word `base` in `layout`, on `dram`'s pages and addresses.
-/// Compared besides its ports: its state and prefetch flag.
+/// Compared besides its ports: its state and the block it fills (coordinates, prefetch flag).
 pub struct FillCosim {
     pub layout: Layout,
     pub blocks: (u32, u32),
@@ -334,8 +334,16 @@ impl CosimUnit for FillCosim {
         let m = ModelSim::new(dut, drive_fill);
         let p = Port::uint;
         Ok(Box::new(m.probes(
-            vec![p("state", 2), p("prefetch", 1)],
-            |d: &FillEngine| vec![d.state.q().bits(), d.prefetch.q().bits()],
+            vec![
+                p("state", 2),
+                p("bx", BLOCK_BITS),
+                p("by", BLOCK_BITS),
+                p("prefetch", 1),
+            ],
+            |d: &FillEngine| {
+                let (bx, by, pre) = d.block();
+                vec![d.state.q().bits(), bx.into(), by.into(), pre.into()]
+            },
         )))
     }
     /// Blocks anywhere in the texture (its corners a quarter of the time); starts, grants and
@@ -355,5 +363,149 @@ impl CosimUnit for FillCosim {
                 vec![go, bx, by, pre, ready, resp, u64::from(done == 0)]
             })
             .collect()
+    }
+}
+
+/// Drives texture unit 602's request port from one cycle of [`TextureCosim`]'s stimulus.
+pub fn drive_texture(d: &mut units::texmem::texture_unit_602::TextureUnit, v: &[u64]) {
+    d.in_valid.set_bits(v[0]);
+    d.in_u.set_bits(v[1]);
+    d.in_v.set_bits(v[2]);
+    d.in_newline.set_bits(v[3]);
+}
+
+/// Texture mapping unit 602 end to end against `rtl/texmem/texture_unit_602.v` and its
+/// children's twins (control 607's block fetch, lookahead queue and word controller, CCC
+/// decode 608-612, cache 614, extract 618, bilinear 622), driving the behavioural
+/// `rtl/texmem/dram_604.v`. The texture is the DRAM's power-up pattern (both DRAM models hold
+/// it), read through [`TextureCosim::clut`]. Compared besides the unit's ports: the stage-0
+/// need and hit masks, the DRAM pins and its count of timing violations.
+pub struct TextureCosim(pub units::texmem::texture_unit_602::TexParams);
+
+impl TextureCosim {
+    /// CLUT 612 of the co-simulation: 256 scattered 24-bit colours (a multiplicative hash of
+    /// the index), so every index and every channel is told apart.
+    pub fn clut() -> Vec<u32> {
+        (0..256u32)
+            .map(|i| (i.wrapping_mul(0x9e37_79b9) >> 8) & 0xff_ffff)
+            .collect()
+    }
+}
+
+impl CosimUnit for TextureCosim {
+    fn name(&self) -> &str {
+        "texture_unit_602"
+    }
+    fn top(&self) -> &str {
+        "texture_unit_602_with_dram"
+    }
+    fn rtl(&self) -> Vec<PathBuf> {
+        twin(vec![
+            "texmem/texture_unit_602.v",
+            "texmem/fill_engine_607.v",
+            "texmem/lookahead_queue_607.v",
+            "texmem/control_607.v",
+            "texmem/ccc_decode_608.v",
+            "texmem/cache_614.v",
+            "texmem/extract_618.v",
+            "texmem/bilinear_622.v",
+        ])
+    }
+    fn bench_rtl(&self) -> Vec<PathBuf> {
+        twin(vec![
+            "texmem/texture_unit_602_with_dram.v",
+            "texmem/dram_604.v",
+        ])
+    }
+    fn parameters(&self) -> Vec<(&'static str, i64)> {
+        let p = &self.0;
+        let mode = match p.lookahead {
+            Lookahead::Off => 0,
+            Lookahead::Quadrant => 1,
+            Lookahead::Direction => 2,
+        };
+        vec![
+            ("W", p.width.into()),
+            ("H", p.height.into()),
+            ("F", p.frac_bits.into()),
+            ("LAYOUT", i64::from(p.layout == Layout::Tiled)),
+            ("BASE", p.base as i64),
+            ("CACHE", i64::from(p.cache)),
+            ("MODE", mode),
+            ("ROWS", p.dram.rows.into()),
+            ("COLS", p.dram.cols.into()),
+            ("T_RP", p.dram.t_rp.into()),
+            ("T_RCD", p.dram.t_rcd.into()),
+            ("T_CAS", p.dram.t_cas.into()),
+            ("T_CP", p.dram.t_cp.into()),
+        ]
+    }
+    fn memories(&self) -> Vec<(String, String)> {
+        let text = Self::clut().iter().map(|c| format!("{c:06x}\n")).collect();
+        vec![("clut_612.hex".into(), text)]
+    }
+    fn model(&self) -> Result<Box<dyn CosimModel>, String> {
+        use units::texmem::texture_unit_602::TextureUnit;
+        let dut = TextureUnit::new(self.name(), self.0, &Self::clut(), &[])?;
+        let m = ModelSim::new(dut, drive_texture);
+        let mut ports = vec![Port::uint("need_mask", 4), Port::uint("hit_mask", 4)];
+        ports.extend(dram_probes());
+        Ok(Box::new(m.probes(ports, |d: &TextureUnit| {
+            let r = &d.mem.dram;
+            vec![
+                d.need_mask.bits(),
+                d.hit_mask.bits(),
+                r.ras_n.bits(),
+                r.cas_n.bits(),
+                r.oe_n.bits(),
+                r.addr.bits(),
+                r.violations() & 0xffff_ffff,
+            ]
+        })))
+    }
+    /// A rasterizer's walk, one point a cycle whether or not the unit took the last (so steps
+    /// are small: a sixteenth to a quarter of a texel at `F = 4`, either way): scanlines of 16
+    /// to 256 points flagged `newline` at their first, a jump anywhere in the texture one
+    /// point in 64 (its far corner included); a request seven cycles in eight.
+    fn stimulus(&self, seed: verif::Seed, cycles: usize) -> Vec<Vec<u64>> {
+        let f = self.0.frac_bits;
+        let (tw, th) = (i64::from(self.0.width) << f, i64::from(self.0.height) << f);
+        let one = 1i64 << f;
+        let mut st = verif::Stimulus::new(seed);
+        let (mut u, mut v, mut du, mut left) = (0i64, 0i64, one, 0u32);
+        (0..cycles)
+            .map(|_| {
+                let (valid, kind) = st.draw(&(0u32..8, 0u32..64));
+                let mut newline = false;
+                if kind == 0 {
+                    (u, v) = st.draw(&(
+                        proptest::prop_oneof![0..tw, proptest::strategy::Just(tw - 1)],
+                        proptest::prop_oneof![0..th, proptest::strategy::Just(th - 1)],
+                    ));
+                } else if left == 0 {
+                    let (len, step, back, dv) = st.draw(&(
+                        16u32..256,
+                        1.max(one / 16)..=1.max(one / 4),
+                        proptest::bool::ANY,
+                        0..=one,
+                    ));
+                    (left, du, newline) = (len, if back { -step } else { step }, true);
+                    v = (v + dv) % th;
+                    u = st.draw(&(0..tw));
+                } else {
+                    u = (u + du).clamp(0, tw - 1);
+                    left -= 1;
+                }
+                vec![
+                    u64::from(valid != 0),
+                    u as u64,
+                    v as u64,
+                    u64::from(newline),
+                ]
+            })
+            .collect()
+    }
+    fn history(&self) -> usize {
+        8
     }
 }
