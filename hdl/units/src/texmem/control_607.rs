@@ -450,10 +450,14 @@ impl LookaheadQueue {
     pub fn eval(&mut self) {
         let complete = self.complete.is_high();
         let (u, v) = (self.u.bits(), self.v.bits());
-        let (mut m, q) = if complete {
-            self.candidates(u, v, self.newline.is_high())
+        // The registered slots are read only when taken: copying them into an array of pairs
+        // made a store-forwarding stall (narrow stores, one wide load) a quarter of the
+        // texture unit's cycle.
+        let (mut m, fresh) = if complete {
+            let (m, q) = self.candidates(u, v, self.newline.is_high());
+            (m, Some(q))
         } else {
-            self.queued()
+            (self.mask.q().bits(), None)
         };
         if complete && self.mode == Lookahead::Direction {
             self.prev_valid.set_next_bool(true);
@@ -465,10 +469,13 @@ impl LookaheadQueue {
             m = 0;
         } else if self.engine_free.is_high() && m != 0 && !self.stage0_missing.is_high() {
             let k = m.trailing_zeros() as usize;
-            take = Some(q[k]);
+            take = Some(match &fresh {
+                Some(q) => q[k],
+                None => (self.bx[k].q().bits() as u32, self.by[k].q().bits() as u32),
+            });
             m &= !(1 << k);
         }
-        if complete {
+        if let Some(q) = fresh {
             for (k, &(bx, by)) in q.iter().enumerate() {
                 self.bx[k].set_next_bits(u64::from(bx));
                 self.by[k].set_next_bits(u64::from(by));
