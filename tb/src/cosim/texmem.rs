@@ -16,6 +16,29 @@ use verif::cosim::{field, CosimModel, CosimUnit, ModelSim, Port};
 /// and the DRAM's count of timing violations (both DRAM models check the same timing).
 pub struct ControlCosim(pub DramParams);
 
+/// The DRAM's [`dram_probes`] in the model.
+fn dram_probe_values(r: &units::texmem::dram_604::Dram) -> Vec<u64> {
+    vec![
+        r.ras_n.bits(),
+        r.cas_n.bits(),
+        r.oe_n.bits(),
+        r.addr.bits(),
+        r.violations() & 0xffff_ffff,
+    ]
+}
+
+/// The DRAM's geometry and timing as the twins' Verilog parameters.
+fn dram_parameters(p: &DramParams) -> Vec<(&'static str, i64)> {
+    vec![
+        ("ROWS", p.rows.into()),
+        ("COLS", p.cols.into()),
+        ("T_RP", p.t_rp.into()),
+        ("T_RCD", p.t_rcd.into()),
+        ("T_CAS", p.t_cas.into()),
+        ("T_CP", p.t_cp.into()),
+    ]
+}
+
 /// The pins and the violation count, compared after the controller's ports.
 fn dram_probes() -> Vec<Port> {
     let p = Port::uint;
@@ -42,15 +65,7 @@ impl CosimUnit for ControlCosim {
         twin(vec!["texmem/control_607_with_dram.v", "texmem/dram_604.v"])
     }
     fn parameters(&self) -> Vec<(&'static str, i64)> {
-        let p = &self.0;
-        vec![
-            ("ROWS", p.rows.into()),
-            ("COLS", p.cols.into()),
-            ("T_RP", p.t_rp.into()),
-            ("T_RCD", p.t_rcd.into()),
-            ("T_CAS", p.t_cas.into()),
-            ("T_CP", p.t_cp.into()),
-        ]
+        dram_parameters(&self.0)
     }
     fn model(&self) -> Result<Box<dyn CosimModel>, String> {
         let dut = DramCtrl::new(self.name(), self.0)?;
@@ -59,14 +74,7 @@ impl CosimUnit for ControlCosim {
             d.req_addr.set_bits(v[1]);
         });
         Ok(Box::new(m.probes(dram_probes(), |d: &DramCtrl| {
-            let r = &d.dram;
-            vec![
-                r.ras_n.bits(),
-                r.cas_n.bits(),
-                r.oe_n.bits(),
-                r.addr.bits(),
-                r.violations() & 0xffff_ffff,
-            ]
+            dram_probe_values(&d.dram)
         })))
     }
     /// Requests three times in four; addresses in one of four rows three times in four (page
@@ -129,6 +137,15 @@ pub struct LookaheadCosim {
     pub frac_bits: u32,
 }
 
+/// The lookahead mode as the twins' `MODE`.
+fn mode_code(m: Lookahead) -> i64 {
+    match m {
+        Lookahead::Off => 0,
+        Lookahead::Quadrant => 1,
+        Lookahead::Direction => 2,
+    }
+}
+
 /// Block coordinates of texture unit 602 (12-bit texel coordinates, 4x4 blocks).
 const BLOCK_BITS: u32 = 10;
 
@@ -140,13 +157,8 @@ impl CosimUnit for LookaheadCosim {
         twin(vec!["texmem/lookahead_queue_607.v"])
     }
     fn parameters(&self) -> Vec<(&'static str, i64)> {
-        let mode = match self.mode {
-            Lookahead::Off => 0,
-            Lookahead::Quadrant => 1,
-            Lookahead::Direction => 2,
-        };
         vec![
-            ("MODE", mode),
+            ("MODE", mode_code(self.mode)),
             ("BW", self.blocks.0.into()),
             ("BH", self.blocks.1.into()),
             ("F", self.frac_bits.into()),
@@ -419,26 +431,17 @@ impl CosimUnit for TextureCosim {
     }
     fn parameters(&self) -> Vec<(&'static str, i64)> {
         let p = &self.0;
-        let mode = match p.lookahead {
-            Lookahead::Off => 0,
-            Lookahead::Quadrant => 1,
-            Lookahead::Direction => 2,
-        };
-        vec![
+        let mut v = vec![
             ("W", p.width.into()),
             ("H", p.height.into()),
             ("F", p.frac_bits.into()),
             ("LAYOUT", i64::from(p.layout == Layout::Tiled)),
             ("BASE", p.base as i64),
             ("CACHE", i64::from(p.cache)),
-            ("MODE", mode),
-            ("ROWS", p.dram.rows.into()),
-            ("COLS", p.dram.cols.into()),
-            ("T_RP", p.dram.t_rp.into()),
-            ("T_RCD", p.dram.t_rcd.into()),
-            ("T_CAS", p.dram.t_cas.into()),
-            ("T_CP", p.dram.t_cp.into()),
-        ]
+            ("MODE", mode_code(p.lookahead)),
+        ];
+        v.extend(dram_parameters(&p.dram));
+        v
     }
     fn memories(&self) -> Vec<(String, String)> {
         let text = Self::clut().iter().map(|c| format!("{c:06x}\n")).collect();
@@ -451,16 +454,9 @@ impl CosimUnit for TextureCosim {
         let mut ports = vec![Port::uint("need_mask", 4), Port::uint("hit_mask", 4)];
         ports.extend(dram_probes());
         Ok(Box::new(m.probes(ports, |d: &TextureUnit| {
-            let r = &d.mem.dram;
-            vec![
-                d.need_mask.bits(),
-                d.hit_mask.bits(),
-                r.ras_n.bits(),
-                r.cas_n.bits(),
-                r.oe_n.bits(),
-                r.addr.bits(),
-                r.violations() & 0xffff_ffff,
-            ]
+            let mut v = vec![d.need_mask.bits(), d.hit_mask.bits()];
+            v.extend(dram_probe_values(&d.mem.dram));
+            v
         })))
     }
     /// A rasterizer's walk, one point a cycle whether or not the unit took the last (so steps
