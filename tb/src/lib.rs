@@ -1,7 +1,8 @@
 //! texrtl's testbenches of the texture units: one module per testbench, named after the unit it
 //! verifies, each a [`verif::Testbench`] with its driver, monitor, golden comparison, integer
 //! reference and coverage model; [`cosim`] the units' Verilog twins as co-simulation adapters;
-//! [`vectors`] their bit-accuracy vectors; [`pictures`] their report pictures; and
+//! [`vectors`] their bit-accuracy vectors; [`runs`] what the `texrtl` commands run on a user's
+//! input; [`pictures`] their report pictures; and
 //! [`project`] the one list that describes every unit to the framework.
 
 pub mod biquadratic;
@@ -12,7 +13,6 @@ pub mod dram;
 pub mod footprint;
 pub mod footprint_normals;
 pub mod frames;
-pub mod lighting;
 pub mod mapchain;
 pub mod maps;
 pub mod mipmap;
@@ -20,6 +20,7 @@ pub mod normals;
 pub mod pictures;
 pub mod project;
 pub mod ptm;
+pub mod runs;
 pub mod tangents;
 pub mod texram;
 pub mod texram_video;

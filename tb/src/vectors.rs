@@ -191,7 +191,8 @@ pub fn mipmap() -> Result<UnitVectors, String> {
 /// hash over the map and a texel beyond it, every lambda class: (config, u, v, lambda) ->
 /// R, G, B, alpha.
 pub fn texram() -> Result<UnitVectors, String> {
-    use crate::texram::{run_texram, TexReq, TexramTexture};
+    use crate::runs::texram::{run_texram, TexramTexture};
+    use crate::texram::TexReq;
     use units::texram::clut_814::Clut;
     use units::texram::{Border, Config, Drf};
     let level0: Vec<u8> = (0..32 * 32u32)
@@ -247,7 +248,8 @@ pub fn texram() -> Result<UnitVectors, String> {
 /// and on the texture unit 602 (the `texture` vectors' CCC texture): (config, u, v, r1, r2) ->
 /// N, R, G, B.
 pub fn footprint() -> Result<UnitVectors, String> {
-    use crate::footprint::{run_footprint, run_footprint_texture, FootprintRun, Pixel};
+    use crate::footprint::Pixel;
+    use crate::runs::footprint::{run_footprint, run_footprint_texture, FootprintRun};
     use units::footprint::setup_fig12::SetupParams;
     use units::texram::{Border, Drf};
     let level0: Vec<u8> = (0..32 * 32u32)
@@ -313,7 +315,8 @@ pub fn footprint() -> Result<UnitVectors, String> {
 /// 64-word rows), 64 hashed rays of up to 8 samples anywhere in and around it, in value and in
 /// gradient mode: (mode, x0, y0, z0, dx, dy, dz, steps) -> per sample value, gx, gy, gz.
 pub fn volume() -> Result<UnitVectors, String> {
-    use crate::volume::{run_volume, Ray};
+    use crate::runs::volume::run_volume;
+    use crate::volume::Ray;
     use units::volume::layout::{Mode, VolumeParams};
     let p = VolumeParams {
         row_words: 64,

@@ -778,7 +778,7 @@ fn the_chip_behind_the_interface_answers_like_the_stub() {
 /// switch between the quadrants' rows; the literal layout adds conflict rounds.
 #[test]
 fn slots_per_pixel_by_configuration() {
-    let rows = tb::texram::layout_rows();
+    let rows = tb::pictures::texram::layout_rows();
     for (name, slots, faults) in &rows {
         eprintln!("{name}: {slots:.3} slots a pixel, {faults:.2} slots lost a scanline");
     }

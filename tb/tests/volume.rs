@@ -168,7 +168,7 @@ fn chips_out_of_step_are_flagged_at_once() {
 
 #[test]
 fn four_chips_in_lock_step_render_the_built_in_volume() {
-    let (px, samples) = tb::volume::render(16, 12).unwrap();
+    let (px, samples) = tb::pictures::volume::render(16, 12).unwrap();
     assert_eq!(px.len(), 144);
     assert_eq!(samples, 144 * 32);
     assert!(px.iter().any(|c| c.iter().any(|&x| x > 30)), "{px:?}");

@@ -5,7 +5,8 @@
 use super::{input, write_out, CmdError};
 use std::fmt::Write;
 use std::path::{Path, PathBuf};
-use tb::footprint::{run_footprint, run_footprint_texture, FootprintRun, Pixel};
+use tb::footprint::Pixel;
+use tb::runs::footprint::{run_footprint, run_footprint_texture, FootprintRun};
 use units::footprint::setup_fig12::{NRounding, SetupParams, MAX_LOG2_N};
 use units::texram::{Border, Drf};
 

@@ -4,7 +4,8 @@
 use super::{input, write_out, CmdError};
 use std::fmt::Write;
 use std::path::{Path, PathBuf};
-use tb::mapchain::{run_mapchain, Scene};
+use tb::mapchain::Scene;
+use tb::runs::mapchain::run_mapchain;
 use units::mapchain::program::ChainRequest;
 use units::mapchain::walker_812::{Pixel, PixelField};
 

@@ -5,7 +5,7 @@ use super::widths::Widths;
 use super::{parse_finite, write_out, CmdError};
 use clap::Args;
 use std::path::PathBuf;
-use tb::lighting::render_png;
+use tb::pictures::lighting::render_png;
 
 /// Pixels of one panel at most (1024 x 1024: about 2.5 s and 190 MB on 2 cores; past it the
 /// four panels' normals runs grow beyond a few seconds and hundreds of megabytes).

@@ -4,7 +4,8 @@
 use super::{input, write_out, CmdError};
 use std::fmt::Write;
 use std::path::{Path, PathBuf};
-use tb::texram::{run_texram, TexReq, TexramTexture};
+use tb::runs::texram::{run_texram, TexramTexture};
+use tb::texram::TexReq;
 use units::texram::clut_814::Clut;
 use units::texram::{Border, Config, Drf};
 

@@ -4,7 +4,8 @@
 use super::{input, write_out, CmdError};
 use std::fmt::Write;
 use std::path::{Path, PathBuf};
-use tb::volume::{run_volume, Ray};
+use tb::runs::volume::run_volume;
+use tb::volume::Ray;
 use units::volume::layout::{Mode, Order, VolumeParams};
 
 /// Rays through the TEXRAM as a ray caster (section 13, Figure 15).

@@ -3,6 +3,12 @@
 //! TEXRAM's slots, the footprint quality map, the ray-cast volume, the map chain's quad, the
 //! PTM swatch and the derivative filters.
 
+pub mod derivative;
+pub mod lighting;
+pub mod quad;
+pub mod texram;
+pub mod volume;
+
 use std::path::Path;
 use verif::plot::grouped_bars_svg;
 use verif::project::Picture;
@@ -43,7 +49,7 @@ pub fn normals_picture(out: &std::path::Path) -> Result<(String, String), String
     use units::bump::params::BumpParams;
     let p = BumpParams::default();
     let map = crate::maps::builtin("bumps", 48, 48, p.texel_fmt())?;
-    let (png, worst) = crate::lighting::render_png(&map, &p, [1.0, 1.0, 2.0], 0.5, 4)?;
+    let (png, worst) = lighting::render_png(&map, &p, [1.0, 1.0, 2.0], 0.5, 4)?;
     let f = "normals_render.png";
     write_output(&out.join(f), &png).map_err(|e| e.to_string())?;
     Ok((
@@ -123,7 +129,7 @@ pub fn footprint_picture(out: &std::path::Path) -> Result<(String, String), Stri
 /// `(file, caption)`.
 pub fn volume_picture(out: &std::path::Path) -> Result<(String, String), String> {
     let side = 48u32;
-    let (px, samples) = crate::volume::render(24, side)?;
+    let (px, samples) = volume::render(24, side)?;
     let img = enlarged(&px, side, 4);
     let f = "volume_render.png";
     write_output(&out.join(f), &png(&img)?).map_err(|e| e.to_string())?;
@@ -137,7 +143,7 @@ pub fn volume_picture(out: &std::path::Path) -> Result<(String, String), String>
 /// `(file, caption)`.
 pub fn mapchain_picture(out: &std::path::Path) -> Result<(String, String), String> {
     let side = 160u32;
-    let px = crate::mapchain::render_quad(side as usize)?;
+    let px = quad::render_quad(side as usize)?;
     let img = enlarged(&px, side, 2);
     let f = "mapchain_quad.png";
     write_output(&out.join(f), &png(&img)?).map_err(|e| e.to_string())?;
@@ -175,7 +181,7 @@ pub fn derivative_picture(out: &std::path::Path) -> Result<(String, String), Str
     let side = 32 * zoom;
     let mut panels = Vec::new();
     for filter in [Filter::BSpline, Filter::Blinn] {
-        panels.push(crate::lighting::dot3_panel(
+        panels.push(lighting::dot3_panel(
             &map,
             &BumpParams { filter, ..p },
             l,
@@ -184,7 +190,7 @@ pub fn derivative_picture(out: &std::path::Path) -> Result<(String, String), Str
         )?);
     }
     for f in crate::derivative::filters() {
-        panels.push(crate::derivative::render(&map, f, scale, zoom, l));
+        panels.push(derivative::render(&map, f, scale, zoom, l));
     }
     let gap = 4;
     let mut img = image::RgbImage::new(panels.len() as u32 * (side + gap) - gap, side);
@@ -302,9 +308,9 @@ fn memory_plots(
 }
 
 /// The TEXRAM picture of the report: slots per pixel and page faults per scanline of each
-/// configuration (`crate::texram::layout_rows`). Returns `(file, caption)`.
+/// configuration (`texram::layout_rows`). Returns `(file, caption)`.
 pub fn texram_plot(out: &std::path::Path) -> Result<(String, String), String> {
-    let rows = crate::texram::layout_rows();
+    let rows = texram::layout_rows();
     let groups: Vec<String> = rows.iter().map(|r| r.0.clone()).collect();
     let series = vec![
         (
