@@ -163,6 +163,7 @@ fn texram_figure_8(p: Project) -> Project {
             "TEXRAM chip 802 (Schilling & Knittel Figure 8)",
         )
         .testbench(crate::texram::TexramTb)
+        .twin(c::TexramCosim { slot_cycles: 6 })
         .vectors(v::texram)
         .pictures(one(pictures::texram_plot)),
     )

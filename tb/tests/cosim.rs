@@ -7,7 +7,7 @@ use std::path::PathBuf;
 use tb::cosim::{
     AddressCosim, BilinearCosim, BlendAdjustCosim, CacheCosim, ControlCosim, FillCosim,
     LookaheadCosim, MipmapCosim, NormalCosim, PipelineCosim, ReplicateCosim, RsqrtCosim,
-    TangentCosim, TexelFetchCosim, TextureCosim,
+    TangentCosim, TexelFetchCosim, TexramCosim, TextureCosim,
 };
 use units::bump::blend_adjust_153::BlendAdjustParams;
 use units::bump::params::{Border, BumpParams, Filter, HeightTexel, RsqrtParams};
@@ -163,6 +163,12 @@ fn memory_twins() -> Vec<Twin> {
     }
     for (label, u) in fill_configs() {
         v.push((format!("fill_engine_607 {label}"), Box::new(u)));
+    }
+    for slot_cycles in [6, 1, 15] {
+        v.push((
+            format!("texram_802 slots of {slot_cycles} cycles"),
+            Box::new(TexramCosim { slot_cycles }),
+        ));
     }
     for (label, p) in texture_configs() {
         v.push((
@@ -546,7 +552,7 @@ fn every_twin_matches_its_model_on_every_cycle() {
     sweep(&|sim, _, first_of_unit| first_of_unit.then(|| first(sim)));
 }
 
-/// Every configuration of every twin (63: widths, modes, borders, sizes, timings), 100 k
+/// Every configuration of every twin (66: widths, modes, borders, sizes, timings), 100 k
 /// cycles each in Verilator, the first configuration of each unit 20 k in Icarus. Slow:
 /// `cargo test -- --ignored`, which `.ci/run` runs; `TEXRTL_COSIM_ONLY=text` narrows it to
 /// configurations whose label contains `text`.
@@ -681,8 +687,12 @@ fn mutant(d: &std::path::Path, file: &str, from: &str, to: &str) -> PathBuf {
 /// The first cycle and port where the model with `alt` parameters differs from the model with
 /// `base` on the harness's stimulus (what a bug equivalent to that change must report).
 fn first_difference(base: BlendAdjustParams, alt: BlendAdjustParams, n: usize) -> (usize, String) {
-    let (a, b) = (BlendAdjustCosim(base), BlendAdjustCosim(alt));
-    let stim = a.stimulus(Seed(9), n);
+    models_differ(&BlendAdjustCosim(base), &BlendAdjustCosim(alt), Seed(9), n)
+}
+
+/// The first cycle and port where the models of `a` and `b` differ on `a`'s stimulus.
+fn models_differ(a: &dyn CosimUnit, b: &dyn CosimUnit, seed: Seed, n: usize) -> (usize, String) {
+    let stim = a.stimulus(seed, n);
     let (mut ma, mut mb) = (a.model().unwrap(), b.model().unwrap());
     let (_, outs) = ma.ports();
     for (c, s) in stim.iter().enumerate() {
@@ -1407,4 +1417,39 @@ fn texture_edge_clamp_bug_is_caught_with_its_cycle_and_port() {
         "need_mask"
     };
     assert_caught(&u, bug, n, seed, (want, port));
+}
+
+/// The TEXRAM chip whose page registers 824 charge a miss no second slot: caught on port
+/// `slots` in the first cycle after an access that missed an open row moved into the banks.
+#[test]
+fn texram_fault_slot_bug_is_caught_with_its_cycle_and_port() {
+    use units::texram::texram_802::Texram802;
+    let u = TexramCosim { slot_cycles: 6 };
+    let bug = Bug(
+        "texram/page_registers_824.v",
+        "slots = slots + ((faults != 4'd0) ? 4'd2 : 4'd1);",
+        "slots = slots + 4'd1;",
+    );
+    let (n, seed) = (3_000, Seed(23));
+    let stim = u.stimulus(seed, n);
+    let faulted = |d: &Texram802, _: &[u64]| d.faults.q().bits() > 0;
+    let dut = u.chip().unwrap();
+    let want = first_cycle(dut, &stim, tb::cosim::drive_texram, faulted).expect("a page fault");
+    assert_caught(&u, bug, n, seed, (want, "slots"));
+}
+
+/// The TEXRAM chip whose banks hold an access one cycle short of its slots (SLOT_CYCLES - 1):
+/// caught where the model with slots of 5 cycles first differs from the model with 6.
+#[test]
+fn texram_slot_length_bug_is_caught_with_its_cycle_and_port() {
+    let u = TexramCosim { slot_cycles: 6 };
+    let bug = Bug(
+        "texram/texram_802.v",
+        ".in_left(8'(cost_slots * 4'(SLOT_CYCLES)))",
+        ".in_left(8'(cost_slots * 4'(SLOT_CYCLES - 1)))",
+    );
+    let (n, seed) = (3_000, Seed(24));
+    let short = TexramCosim { slot_cycles: 5 };
+    let want = models_differ(&u, &short, seed, n);
+    assert_caught(&u, bug, n, seed, (want.0, want.1.as_str()));
 }

@@ -6,11 +6,13 @@
 pub mod bump;
 pub mod mipmap;
 pub mod texmem;
+pub mod texram;
 pub mod vectors;
 
 pub use bump::*;
 pub use mipmap::*;
 pub use texmem::*;
+pub use texram::*;
 
 use std::path::{Path, PathBuf};
 
