@@ -305,7 +305,8 @@ mod lists {
     }
 
     /// The unit table of the units crate names every unit of the project as a kind (or an
-    /// instance), and every testbench it names is one of the project's.
+    /// instance), every testbench it names is one of the project's, and it names every twin's
+    /// sources and every unit's kept vectors, which exist.
     #[test]
     fn the_unit_table_agrees_with_the_project() {
         let p = project();
@@ -330,6 +331,27 @@ mod lists {
         }
         for t in p.registry().names() {
             assert!(tbs.contains(t), "testbench {t} is not in the unit table");
+        }
+        let twins = column(&table, 5);
+        for f in &twins {
+            let path = crate::cosim::rtl_dir().join(f);
+            assert!(path.exists(), "the unit table names twin {f}, not in rtl/");
+        }
+        for u in p.twins() {
+            for f in u.rtl() {
+                let f = f.to_string_lossy();
+                let name = &f[f.rfind("rtl/").map_or(0, |k| k + 4)..];
+                assert!(twins.contains(name), "{} is not in the unit table", name);
+            }
+        }
+        let vectors = column(&table, 6);
+        for f in &vectors {
+            let path = crate::vectors::vectors_dir().join(f);
+            assert!(path.exists(), "the unit table names vectors {f}, not kept");
+        }
+        for u in p.units().filter(|u| u.vectors_fn().is_some()) {
+            let f = format!("{}.json", u.name());
+            assert!(vectors.contains(&f), "{f} is not in the unit table");
         }
     }
 
