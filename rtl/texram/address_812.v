@@ -218,8 +218,6 @@ module address_812 #(
         end
     end
 
-    wire [1:0] p_now = take ? 2'd0 : part + 2'd1;
-    wire colour_layout = drf[58:57] == PLANAR || drf[58:57] == LITERAL;
     integer e;
     always @(posedge clk) begin
         if (rst) begin
@@ -250,8 +248,8 @@ module address_812 #(
                 illum <= req_illum;
             end
             if (take || next_part) begin
-                part <= p_now;
-                last <= !(drf[69] && colour_layout) || p_now == 2'd3;
+                part <= p;
+                last <= !colour_map || p == 2'd3;
                 if (!drf[69]) begin
                     read <= 32'd0;
                     border <= 8'hff;

@@ -77,7 +77,7 @@ impl TexramCosim {
 
     /// The chip as the co-simulation starts it: the DRFs set, their maps and the CLUT loaded.
     pub fn chip(&self) -> Result<Texram802, String> {
-        Self::banks()?;
+        Self::check_fits()?;
         let mut chip = Texram802::new(TexramParams {
             slot_cycles: self.slot_cycles,
         })?;
@@ -91,9 +91,20 @@ impl TexramCosim {
 
     /// The banks as both sides hold them after the host's loads.
     fn banks() -> Result<Vec<Vec<u8>>, String> {
+        Self::check_fits()?;
         let mut banks: Vec<Vec<u8>> = (0..BANKS)
             .map(|b| vec![0; bank_words(b) as usize])
             .collect();
+        for (k, d) in Self::drfs().iter().enumerate() {
+            load_levels(d, &Self::level0(k, d), |lv, t| {
+                store_level(&mut banks, d, lv, t)
+            })?;
+        }
+        Ok(banks)
+    }
+
+    /// Every DRF's map within the twin's banks.
+    fn check_fits() -> Result<(), String> {
         for (k, d) in Self::drfs().iter().enumerate() {
             for g in 0..2 {
                 let base = if g == 0 { d.base_even } else { d.base_odd };
@@ -101,11 +112,8 @@ impl TexramCosim {
                     return Err(format!("texram_802: DRF {k} beyond the twin's banks"));
                 }
             }
-            load_levels(d, &Self::level0(k, d), |lv, t| {
-                store_level(&mut banks, d, lv, t)
-            })?;
         }
-        Ok(banks)
+        Ok(())
     }
 }
 
@@ -204,6 +212,7 @@ impl CosimUnit for TexramCosim {
         let drf_text = (0..8)
             .map(|k| format!("{:018x}\n", packed(drfs.get(k))))
             .collect();
+        // A DRF beyond the twin's banks fails `model` first, so no empty image is used.
         let banks = Self::banks().unwrap_or_default();
         let bank_text = banks
             .iter()
