@@ -750,7 +750,7 @@ fn run_pixels<A: TexramAccess>(
             "{late} pixels out at a cycle other than slots x {SLOT_CYCLES} + coordinates + 1"
         ));
     }
-    if let Some(e) = sim.dut.access_error.take() {
+    if let Some(e) = sim.dut.banks.error.take() {
         res.failures
             .push(format!("the banks refused an access: {e}"));
     }

@@ -304,15 +304,24 @@ fn the_map_chain_and_per_pixel_units_visit_every_signal() {
     let walker =
         units::mapchain::walker_812::MapChain812::new(sc.file.clone(), sc.stub().unwrap(), 6)
             .unwrap();
-    // req_valid, 13 pixel fields, req_ready, acc_valid, 5 access fields, 18 walk registers,
-    // 13 held fields (walker_812.pixel), busy, rd_value, rd_slots, 3 counts, 3 out counts, out_valid, colour,
-    // error.
+    // req_valid, 13 pixel fields, req_ready, 18 walk registers, 13 held fields
+    // (walker_812.pixel), busy, 3 counts, out_valid, colour, error, 3 out counts; the banks:
+    // acc_valid, 5 access fields, rd_value, rd_slots, refused, and the stub's 8 open rows.
     assert_eq!(
         paths_with(&walker, "walker_812."),
-        1 + 13 + 1 + 1 + 5 + 18 + 13 + 3 + 3 + 3 + 3
+        1 + 13 + 1 + 18 + 13 + 1 + 3 + 3 + 3 + (1 + 5 + 3 + 8)
     );
-    // The pixel it holds is its own scope.
-    assert_eq!(kinds(&walker), own(&[("walker_812", 1), ("pixel", 1)]));
+    assert_eq!(paths_with(&walker, "walker_812.banks."), 1 + 5 + 3 + 8);
+    // The pixel it holds and the banks are scopes of their own.
+    assert_eq!(
+        kinds(&walker),
+        own(&[
+            ("walker_812", 1),
+            ("pixel", 1),
+            ("bank_port_810", 1),
+            ("page_registers_824", 1)
+        ])
+    );
     let fmt = PtmFormat {
         bits: 8,
         exp: [4; 6],

@@ -365,7 +365,13 @@ fn the_waveform_names_the_walkers_state() {
     assert!(r.passed, "{:?}", r.failures);
     let vcd = dir.join("walker_812.vcd");
     let rb = waves::check::read_vcd(&vcd).unwrap();
-    for v in ["state", "acc_drf", "acc_u", "out_colour", "rd_slots"] {
+    for v in [
+        "state",
+        "banks.acc_drf",
+        "banks.acc_u",
+        "out_colour",
+        "banks.rd_slots",
+    ] {
         let name = format!("tb.walker_812.{v}");
         assert!(rb.vars.contains_key(&name), "no {name}");
     }

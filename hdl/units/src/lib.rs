@@ -65,6 +65,7 @@
 //! | reflection vector, eq. 4, and cube-face selection (section 7) | `envmap/reflect_eq4.rs`, `envmap/cube_face.rs` | `reflect_eq4`, `cube_face`; in the walker's `ENV_COORDS` state | `walker_812`; `tb/tests/envmap.rs` | `tb.walker_812` (`face`, `s`, `t`) | - | - |
 //! | description register files of 812 (section 14) | `mapchain/drf_812.rs` | (registers of the walker) | `walker_812` | - | - | - |
 //! | chain walker of 812 with the output stage 820's eqs 5-7 | `mapchain/walker_812.rs`, `mapchain/program.rs` | `walker_812` | `walker_812`; `tb/tests/mapchain.rs` | `tb.walker_812` | - | `walker_812.json` |
+//! | the walker's port to the banks 810 (the stub's or the chip 802's, traced as state) | `mapchain/bank_port_810.rs` | `bank_port_810`, instance `banks` | `walker_812` | `tb.walker_812.banks` | - | - |
 //! | detail path, units 902-914 (Figs 9a/9b) | `mapchain/detail_fig9.rs` | (the walker's offset and detail states) | `walker_812` | `tb.walker_812` | - | - |
 //! | PTM fitter 604 and light shader 608 (001, Fig. 6), occlusion PTM 612 | `ptm/fitter_604.rs`, `ptm/shader_608.rs`, `ptm/texture_612.rs` | `ptm_fitter_604`, `ptm_shader_608` | `ptm_fitter_604`, `ptm_shader_608`; `tb/tests/ptm.rs` | `tb.ptm_fitter_604`, `tb.ptm_shader_608` | - | `ptm_fitter_604.json`, `ptm_shader_608.json` |
 //! | tangent setup (003) | `frames/tangent_setup.rs` | `tangent_setup` | `tangent_setup`; `tb/tests/tangents.rs` | `tb.tangent_setup` | - | `tangent_setup.json` |

@@ -31,7 +31,7 @@ pub fn run_mapchain(
     let dut = MapChain812::new(sc.file.clone(), sc.stub()?, SLOT_CYCLES)?;
     let (sim, _) = work.sim(dut, NAME, CYCLE_PS, |_| ())?;
     let (cycles, out, mut sim) = clocked_sim(sim, px)?;
-    if let Some(e) = sim.dut.access_error.take() {
+    if let Some(e) = sim.dut.banks.error.take() {
         return Err(format!("the banks refused an access: {e}"));
     }
     work.finish(sim)?;

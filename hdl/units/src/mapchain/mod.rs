@@ -5,8 +5,11 @@
 //! * [`drf_812`](crate::mapchain::drf_812): the seven description register files of unit 812 and where maps go;
 //! * [`detail_fig9`](crate::mapchain::detail_fig9): the detail path's arithmetic, units 902-914;
 //! * [`program`](crate::mapchain::program): the walker's micro-program, one step per access;
-//! * [`walker_812`](crate::mapchain::walker_812): the walker cycle by cycle over the banks ([`crate::texram::TexramAccess`]:
-//!   the stub or the chip), with the output stage 820's eqs 5-7 at the chain's end.
+//! * [`walker_812`](crate::mapchain::walker_812): the walker cycle by cycle, with the output stage 820's eqs 5-7
+//!   at the chain's end;
+//! * [`bank_port_810`](crate::mapchain::bank_port_810): the walker's child that holds the banks
+//!   ([`crate::texram::TexramAccess`]: the stub or the chip) and makes the access the walker
+//!   stages, at the clock edge, as a synchronous memory does.
 //!
 //! ## Map linking, detail, reflectance and environment maps (Schilling & Knittel, sections 7-9 and 14)
 //!
@@ -112,6 +115,7 @@
 //! (section 14 mentions them); the frame unit of eqs 2-3 as a clocked stage (it stays a function
 //! on the rasterizer's side: the walker takes the perturbed normal).
 
+pub mod bank_port_810;
 pub mod detail_fig9;
 pub mod drf_812;
 pub mod program;

@@ -1,13 +1,13 @@
 //! The chain walker of the address and control unit 812 (section 14, Fig. 16), cycle by
 //! cycle: a pixel port from the rasterizer, the micro-program of [`super::program`] as a
-//! state machine whose state is named in the waveform, the banks behind [`TexramAccess`] and
-//! the output stage 820.
+//! state machine whose state is named in the waveform, the banks behind [`TexramAccess`] as its
+//! child [`BankPort810`] (scope `banks`) and the output stage 820.
 //!
 //! # Timing (\[C\]; the document gives the 30 ns slot and "a linked-map access will most
 //! probably cause a page fault")
 //! The clock is 5 ns. A pixel is taken in a cycle where `req_ready` is high (idle, the
-//! cycle a result is out, or the last cycle of a pixel's last access). An access is issued on `acc_*` in the cycle the
-//! walker decides it and read at that clock edge; the walker stays in the access's state for
+//! cycle a result is out, or the last cycle of a pixel's last access). An access is staged on the bank port's `acc_*` in
+//! the cycle the walker decides it and made at that clock edge; the walker stays in the access's state for
 //! its slots (one, two after a page fault, from the banks' open rows) times `slot_cycles`.
 //! Computing an environment map's coordinates (eq. 4 and the cube face) takes one cycle
 //! (`ENV_COORDS`); the result is out in the cycle after the last access (`COMBINE`, or
@@ -26,16 +26,15 @@
 //! | `req_vx/vy/vz` | sQ1.14 (unit vector to the eye) |
 //! | `req_face` | u3 |
 //! | `req_id`, `req_is` | u8 |
-//! | `acc_drf`, `acc_plane` | u3 |
-//! | `acc_u`, `acc_v`, `acc_lambda` | sQ12.8, sQ12.8, sQ5.8 |
 //! | `out_colour` | u8 |
 
+use super::bank_port_810::BankPort810;
 use super::drf_812::DrfFile;
 use super::program::{ChainRequest, Fetch, Program, State, Walk, STATES};
 use crate::envmap::cube_face::CubeFace;
 use crate::fx::Format;
 use crate::kernel::declared::{Regs, Signals};
-use crate::kernel::{Dir, Module, Payload, Reg, Regs, Signal, Signals, Stream, Visitor};
+use crate::kernel::{Dir, Module, Payload, Reg, Regs, Signal, Stream, Visitor};
 use crate::texram::{TexramAccess, UV_BITS};
 
 /// The walk's registers ([`Walk`] as the walker holds it between cycles), `state` named by
@@ -328,16 +327,6 @@ impl Regs for Pixel<Reg> {
     }
 }
 
-/// What the walker asks the banks for, as its `acc_*` outputs carry it.
-#[derive(Clone, Debug, Signals)]
-struct AccessPort {
-    drf: Signal,
-    plane: Signal,
-    u: Signal,
-    v: Signal,
-    lambda: Signal,
-}
-
 /// A pixel's access, slot and fault counts.
 #[derive(Clone, Debug, Regs)]
 struct Counts {
@@ -367,30 +356,36 @@ impl Counts {
 }
 
 /// The walker with the banks it reads through.
+#[derive(Module)]
+#[module(kind = "walker_812")]
 pub struct MapChain812<T: TexramAccess> {
-    file: DrfFile,
-    texram: T,
+    /// The pixel port: `req_valid`, the pixel's fields, `req_ready`.
+    #[input]
+    pub req: Stream<Pixel<Signal>>,
+    #[reg]
+    walk: WalkRegs,
+    /// The pixel being walked.
+    #[reg]
+    held: Pixel<Reg>,
+    #[reg]
+    busy: Reg,
+    /// The pixel's counts so far.
+    #[reg]
+    px_acc: Counts,
+    #[reg]
+    pub out_valid: Reg,
+    #[reg]
+    pub out_colour: Reg,
+    #[reg]
+    pub out_error: Reg,
+    /// The counts of the result out.
+    #[reg]
+    out_acc: Counts,
+    /// The banks, with the access port the walker drives and the value and slots it reads.
+    #[child]
+    pub banks: BankPort810<T>,
     tab: [u64; 64],
     slot_cycles: u32,
-    /// The pixel port: `req_valid`, the pixel's fields, `req_ready`.
-    pub req: Stream<Pixel<Signal>>,
-    /// The pixel being walked.
-    held: Pixel<Reg>,
-    pub acc_valid: Signal,
-    acc: AccessPort,
-    walk: WalkRegs,
-    busy: Reg,
-    rd_value: Reg,
-    rd_slots: Reg,
-    /// The pixel's counts so far, and those of the result out.
-    px_acc: Counts,
-    pub out_valid: Reg,
-    pub out_colour: Reg,
-    pub out_error: Reg,
-    out_acc: Counts,
-    /// An access the banks refused (a format error: a bug of the walker), kept for the
-    /// testbench.
-    pub access_error: Option<String>,
 }
 
 impl<T: TexramAccess> MapChain812<T> {
@@ -399,37 +394,23 @@ impl<T: TexramAccess> MapChain812<T> {
         file.validate()?;
         crate::pages::page_registers_824::check_slot_cycles(slot_cycles)?;
         let fields = Pixel::fields();
-        let uv = Format::signed(UV_BITS, 8);
-        let (u3, u8f) = (Format::uint(3), Format::uint(8));
         Ok(MapChain812 {
-            file,
-            texram,
-            tab: *CubeFace::new().table(),
-            slot_cycles,
             req: Stream::new(
                 "req_valid",
                 "req_ready",
                 fields.map(|f| Signal::new(f.port, f.fmt)),
             ),
-            held: fields.map(|f| Reg::new(f.name, f.fmt)),
-            acc_valid: Signal::bit("acc_valid"),
-            acc: AccessPort {
-                drf: Signal::new("acc_drf", u3),
-                plane: Signal::new("acc_plane", u3),
-                u: Signal::new("acc_u", uv),
-                v: Signal::new("acc_v", uv),
-                lambda: Signal::new("acc_lambda", fields.lambda.fmt),
-            },
             walk: WalkRegs::new(),
+            held: fields.map(|f| Reg::new(f.name, f.fmt)),
             busy: Reg::new("busy", Format::uint(5)),
-            rd_value: Reg::new("rd_value", u8f),
-            rd_slots: Reg::new("rd_slots", Format::uint(2)),
             px_acc: Counts::new("accesses", "slots", "faults"),
             out_valid: Reg::new("out_valid", Format::uint(1)),
-            out_colour: Reg::new("out_colour", u8f),
+            out_colour: Reg::new("out_colour", Format::uint(8)),
             out_error: Reg::new("out_error", Format::uint(1)),
             out_acc: Counts::new("out_accesses", "out_slots", "out_faults"),
-            access_error: None,
+            banks: BankPort810::new(file, texram, fields.lambda.fmt),
+            tab: *CubeFace::new().table(),
+            slot_cycles,
         })
     }
 
@@ -454,7 +435,7 @@ impl<T: TexramAccess> MapChain812<T> {
     /// the access that gave `value`; with the output stage's colour at the chain's end.
     fn step(&self, px: &ChainRequest, w: Walk, value: Option<u8>) -> (Walk, Option<Fetch>, u8) {
         let prog = Program {
-            file: &self.file,
+            file: self.banks.file(),
             px,
             tab: &self.tab,
         };
@@ -477,8 +458,8 @@ impl<T: TexramAccess> MapChain812<T> {
         self.busy.set_next_bits(0);
         if let Some(f) = f {
             counts[0] += 1;
-            self.acc_valid.set_bool(true);
-            let a = &mut self.acc;
+            let a = &mut self.banks.acc;
+            a.valid.set_bool(true);
             a.drf.set_raw(f.drf.into());
             a.plane.set_raw(f.plane.into());
             a.u.set_raw(f.u.into());
@@ -530,41 +511,12 @@ impl<T: TexramAccess> MapChain812<T> {
         let next = self.step(&self.port_pixel(), Walk::start(), None);
         self.apply(next, [0; 3]);
     }
-
-    /// The access issued this cycle, read at the edge: its value and slots into the read
-    /// registers.
-    fn read_banks(&mut self) {
-        let a = &self.acc;
-        let [drf, plane, u, v, l] = [&a.drf, &a.plane, &a.u, &a.v, &a.lambda].map(|s| s.raw());
-        let got = self
-            .file
-            .get(drf as u8)
-            .filter(|d| (plane as usize) < d.plane_count())
-            .ok_or_else(|| format!("drf {drf} plane {plane}: no such map"))
-            .and_then(|d| {
-                self.texram
-                    .access_with(&d.access(plane as usize), u as i32, v as i32, l as i32)
-            });
-        let (value, slots) = match got {
-            Ok(r) => (r.value, r.slots.min(3)),
-            Err(e) => {
-                self.access_error.get_or_insert(e);
-                (0, 1)
-            }
-        };
-        self.rd_value.set_next_bits(u64::from(value));
-        self.rd_slots.set_next_bits(u64::from(slots));
-    }
 }
 
-impl<T: TexramAccess> Module for MapChain812<T> {
-    fn kind(&self) -> &'static str {
-        "walker_812"
-    }
-
+impl<T: TexramAccess> MapChain812<T> {
     fn eval(&mut self) {
         let st = self.state();
-        self.acc_valid.set_bool(false);
+        self.banks.acc.valid.set_bool(false);
         self.out_valid.set_next_bool(false);
         let idle = matches!(st, State::Idle | State::Combine | State::Error);
         self.req.ready.set_bool(idle);
@@ -576,7 +528,7 @@ impl<T: TexramAccess> Module for MapChain812<T> {
             }
             return;
         }
-        let slots = self.rd_slots.q().bits();
+        let slots = self.banks.rd_slots.q().bits();
         let mut counts = self.px_acc.get();
         if st.reads() {
             let busy = self.busy.q().bits() + 1;
@@ -588,50 +540,16 @@ impl<T: TexramAccess> Module for MapChain812<T> {
             counts[2] += u64::from(slots > 1);
         }
         let px = self.held.map(|r| r.q().raw()).request();
-        let next = self.step(&px, self.walk.walk(), Some(self.rd_value.q().bits() as u8));
+        let next = self.step(
+            &px,
+            self.walk.walk(),
+            Some(self.banks.rd_value.q().bits() as u8),
+        );
         let done = matches!(next.0.state, State::Combine | State::Error);
         self.apply(next, counts);
         if done {
             self.overlap();
         }
-    }
-
-    fn tick(&mut self, reset: bool) {
-        if !reset && self.acc_valid.is_high() {
-            self.read_banks();
-        }
-        self.held.tick_regs(reset);
-        self.walk.tick_regs(reset);
-        for r in [&mut self.busy, &mut self.rd_value, &mut self.rd_slots] {
-            r.tick(reset);
-        }
-        self.px_acc.tick_regs(reset);
-        self.out_acc.tick_regs(reset);
-        for r in [
-            &mut self.out_valid,
-            &mut self.out_colour,
-            &mut self.out_error,
-        ] {
-            r.tick(reset);
-        }
-    }
-
-    fn visit(&self, v: &mut dyn Visitor) {
-        v.enter(self.instance(), self.kind());
-        self.req.visit_signals(Dir::Input, v);
-        v.signal(Dir::Output, &self.acc_valid);
-        self.acc.visit_signals(Dir::Output, v);
-        self.walk.visit_regs(v);
-        self.held.visit_regs(v);
-        for r in [&self.busy, &self.rd_value, &self.rd_slots] {
-            v.reg(r);
-        }
-        self.px_acc.visit_regs(v);
-        self.out_acc.visit_regs(v);
-        for r in [&self.out_valid, &self.out_colour, &self.out_error] {
-            v.reg(r);
-        }
-        v.leave();
     }
 }
 

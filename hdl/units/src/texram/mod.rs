@@ -391,6 +391,9 @@ pub trait TexramAccess {
         v: i32,
         lambda: i32,
     ) -> Result<TexramReply, String>;
+    /// The state accesses leave (open rows, counters, the chip's registers), for the
+    /// waveform of a module that holds the banks; nothing by default.
+    fn visit(&self, _v: &mut dyn crate::kernel::Visitor) {}
 }
 
 /// The request pointer of 812's working descriptor: the DRF the chain walker fills for one

@@ -236,6 +236,11 @@ impl TexramAccess for TexramStub {
         TexramRequest { drf: 0, ..req }.validate()?;
         Ok(self.access_drf(*drf, req))
     }
+
+    /// The page registers 824: the rows each access leaves open.
+    fn visit(&self, v: &mut dyn crate::kernel::Visitor) {
+        self.pages.visit(v);
+    }
 }
 
 impl TexramStub {

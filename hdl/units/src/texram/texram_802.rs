@@ -490,6 +490,11 @@ impl super::TexramAccess for Texram802Access {
     fn slots(&self) -> u64 {
         self.sim.dut.slots.q().bits()
     }
+
+    /// The chip, as its last access left it.
+    fn visit(&self, v: &mut dyn crate::kernel::Visitor) {
+        self.sim.dut.visit(v);
+    }
 }
 
 impl Texram802Access {
