@@ -738,6 +738,7 @@ fn injected_bugs_are_caught_with_their_cycle_and_port() {
             "{}: {diff}",
             sim.name()
         );
+        let _ = std::fs::remove_dir_all(&d);
         // The register stage removed: the twin answers in the same cycle.
         let d = dir(&format!("bug-reg-{}", sim.name()));
         let m = mutant(

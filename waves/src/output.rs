@@ -234,11 +234,12 @@ mod tests {
         assert_eq!(shorten("a\nb"), "a\\nb");
     }
 
-    fn dir(name: &str) -> PathBuf {
-        let d = std::env::temp_dir().join(format!("texrtl-output-{name}-{}", std::process::id()));
-        let _ = std::fs::remove_dir_all(&d);
-        std::fs::create_dir_all(&d).unwrap();
-        d
+    /// A scratch folder, removed when the test ends.
+    fn dir(name: &str) -> tempfile::TempDir {
+        tempfile::Builder::new()
+            .prefix(&format!("texrtl-output-{name}-"))
+            .tempdir()
+            .unwrap()
     }
 
     fn names(d: &Path) -> Vec<String> {
@@ -253,29 +254,29 @@ mod tests {
     #[test]
     fn a_regular_file_is_replaced_and_no_partial_is_left() {
         let d = dir("regular");
-        let p = d.join("o.csv");
+        let p = d.path().join("o.csv");
         std::fs::write(&p, "old").unwrap();
         write_output(&p, b"new").unwrap();
         assert_eq!(std::fs::read(&p).unwrap(), b"new");
-        assert_eq!(names(&d), ["o.csv"]);
+        assert_eq!(names(d.path()), ["o.csv"]);
     }
 
     #[test]
     fn an_uncommitted_output_leaves_nothing() {
         let d = dir("uncommitted");
-        let out = Staged::new(&d.join("o.csv"));
+        let out = Staged::new(&d.path().join("o.csv"));
         out.create().unwrap().write_all(b"half").unwrap();
         drop(out);
-        assert!(names(&d).is_empty());
+        assert!(names(d.path()).is_empty());
     }
 
     #[cfg(unix)]
     #[test]
     fn a_symlink_is_written_through_and_stays_a_link() {
         let d = dir("symlink");
-        let target = d.join("target.csv");
+        let target = d.path().join("target.csv");
         std::fs::write(&target, "old").unwrap();
-        let link = d.join("link.csv");
+        let link = d.path().join("link.csv");
         std::os::unix::fs::symlink(&target, &link).unwrap();
         write_output(&link, b"new").unwrap();
         assert!(std::fs::symlink_metadata(&link)
@@ -283,17 +284,17 @@ mod tests {
             .file_type()
             .is_symlink());
         assert_eq!(std::fs::read(&target).unwrap(), b"new");
-        assert_eq!(names(&d), ["link.csv", "target.csv"]);
+        assert_eq!(names(d.path()), ["link.csv", "target.csv"]);
     }
 
     #[cfg(unix)]
     #[test]
     fn a_dangling_symlink_creates_its_target() {
         let d = dir("dangling");
-        let link = d.join("link.csv");
-        std::os::unix::fs::symlink(d.join("t.csv"), &link).unwrap();
+        let link = d.path().join("link.csv");
+        std::os::unix::fs::symlink(d.path().join("t.csv"), &link).unwrap();
         write_output(&link, b"x").unwrap();
-        assert_eq!(std::fs::read(d.join("t.csv")).unwrap(), b"x");
+        assert_eq!(std::fs::read(d.path().join("t.csv")).unwrap(), b"x");
     }
 
     #[cfg(target_os = "linux")]
@@ -315,7 +316,7 @@ mod tests {
     #[test]
     fn a_missing_folder_is_an_error_naming_the_output() {
         let d = dir("missing");
-        let p = d.join("no").join("o.csv");
+        let p = d.path().join("no").join("o.csv");
         let e = write_output(&p, b"x").unwrap_err();
         assert!(
             e.to_string().starts_with(&format!("{}: ", p.display())),

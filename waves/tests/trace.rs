@@ -2,15 +2,44 @@
 //! companions, probes, filters, windows and the save file.
 
 use hdl::kernel::Sim;
-use std::path::PathBuf;
+use std::path::{Path, PathBuf};
 use units::bump::blend_adjust_153::{BlendAdjust, BlendAdjustParams};
 use waves::check::{check_gtkw, read_vcd, Value};
 use waves::{TraceConfig, VcdTracer};
 
-fn tmpdir(name: &str) -> PathBuf {
-    let d = std::env::temp_dir().join(format!("texrtl-waves-{}-{name}", std::process::id()));
-    std::fs::create_dir_all(&d).unwrap();
-    d
+/// A scratch folder, removed when the test ends.
+fn tmpdir(name: &str) -> tempfile::TempDir {
+    tempfile::Builder::new()
+        .prefix(&format!("texrtl-waves-{name}-"))
+        .tempdir()
+        .unwrap()
+}
+
+/// A file's path in a scratch folder of its own, removed with the folder when the test ends.
+struct Scratch {
+    _dir: tempfile::TempDir,
+    path: PathBuf,
+}
+
+impl Scratch {
+    fn new(name: &str, file: &str) -> Scratch {
+        let dir = tmpdir(name);
+        let path = dir.path().join(file);
+        Scratch { _dir: dir, path }
+    }
+}
+
+impl std::ops::Deref for Scratch {
+    type Target = Path;
+    fn deref(&self) -> &Path {
+        &self.path
+    }
+}
+
+impl AsRef<Path> for Scratch {
+    fn as_ref(&self) -> &Path {
+        &self.path
+    }
 }
 
 /// Two cycles of reset, then 20 with u = 10 * cycle; `settled` sees each cycle before its edge.
@@ -29,8 +58,8 @@ fn drive<T: hdl::kernel::Trace>(
 }
 
 /// Runs the blend adjust unit for 20 cycles with u = 10 * cycle, traced by `cfg`.
-fn run(name: &str, cfg: TraceConfig, finish: bool) -> PathBuf {
-    let path = tmpdir(name).join("ba.vcd");
+fn run(name: &str, cfg: TraceConfig, finish: bool) -> Scratch {
+    let path = Scratch::new(name, "ba.vcd");
     let mut t = VcdTracer::create(&path, "blend adjust", cfg).unwrap();
     assert_eq!(t.gtkw_path(), path.with_extension("gtkw"));
     let gold = t.probe_real("u0", Some("tb.blend_adjust_153.u0"));
@@ -171,7 +200,7 @@ fn depth_filter_window() {
 fn abandoned_trace_leaves_no_file() {
     let p = run("abandon", TraceConfig::default(), false);
     assert!(!p.exists());
-    let mut partial = p.clone().into_os_string();
+    let mut partial = p.to_path_buf().into_os_string();
     partial.push(".partial");
     assert!(!PathBuf::from(partial).exists());
     assert!(!p.with_extension("gtkw").exists());
@@ -181,7 +210,7 @@ fn abandoned_trace_leaves_no_file() {
 fn bad_configs_are_refused() {
     let dir = tmpdir("bad");
     let e = VcdTracer::create(
-        dir.join("x.vcd"),
+        dir.path().join("x.vcd"),
         "x",
         TraceConfig {
             window: Some((4, 4)),
@@ -191,7 +220,12 @@ fn bad_configs_are_refused() {
     .err()
     .unwrap();
     assert!(e.to_string().contains("x.vcd"), "{e}");
-    assert!(VcdTracer::create(dir.join("no/such/dir/x.vcd"), "x", TraceConfig::default()).is_err());
+    assert!(VcdTracer::create(
+        dir.path().join("no/such/dir/x.vcd"),
+        "x",
+        TraceConfig::default()
+    )
+    .is_err());
 }
 
 #[test]
@@ -239,8 +273,8 @@ fn fst_of_a_windowed_trace() {
 
 /// The blend adjust unit's run of [`run`] traced directly to FST (no companions, no probes),
 /// with the writer's section and batch sizes `limits` when given.
-fn run_fst(name: &str, cfg: TraceConfig, limits: Option<(usize, usize)>) -> PathBuf {
-    let path = tmpdir(name).join("ba.fst");
+fn run_fst(name: &str, cfg: TraceConfig, limits: Option<(usize, usize)>) -> Scratch {
+    let path = Scratch::new(name, "ba.fst");
     let mut t = waves::FstTracer::create(&path, cfg).unwrap();
     if let Some((flush, batch)) = limits {
         t = t.with_limits(flush, batch);
@@ -318,7 +352,7 @@ fn long_run(bits: u32, cycles: u64) {
         ..Default::default()
     };
     let dir = tmpdir(&format!("long{bits}"));
-    let (vcd, fst) = (dir.join("r.vcd"), dir.join("r.fst"));
+    let (vcd, fst) = (dir.path().join("r.vcd"), dir.path().join("r.fst"));
     let unit = || Replicate::new("replicate_152", Format::unsigned(bits, 2), false);
     let mut a = Sim::traced(
         unit(),
@@ -437,7 +471,7 @@ fn flags_of<'a>(gtkw: &'a str, name: &str) -> Option<&'a str> {
 /// as GTKWave names them (a vector with its range, a bit without), as are the design's.
 #[test]
 fn probes_and_single_bits_are_named_as_gtkwave_names_them() {
-    let path = tmpdir("probes").join("p.vcd");
+    let path = Scratch::new("probes", "p.vcd");
     let mut t = VcdTracer::create(&path, "probes", TraceConfig::default()).unwrap();
     let f = t.probe_bits("f", 1, None);
     let b = t.probe_bits("b", 8, None);
@@ -523,7 +557,7 @@ fn an_fst_beside_the_vcd_holds_its_values() {
 #[test]
 fn time_never_goes_backwards() {
     use hdl::kernel::Trace;
-    let path = tmpdir("order").join("o.vcd");
+    let path = Scratch::new("order", "o.vcd");
     let mut t = VcdTracer::create(&path, "order", TraceConfig::default()).unwrap();
     let dut = BlendAdjust::new("blend_adjust_153", BlendAdjustParams::default()).unwrap();
     t.start(&dut).unwrap();
@@ -539,8 +573,8 @@ fn time_never_goes_backwards() {
 
 /// A hand-written dump: timescale 10 ps, a bit `tb.a` (0, then 1 at time 3) and a vector
 /// `tb.v` numbered 8..1 (5).
-fn written_vcd(name: &str) -> PathBuf {
-    let vcd = tmpdir("written").join(format!("{name}.vcd"));
+fn written_vcd(name: &str) -> Scratch {
+    let vcd = Scratch::new("written", &format!("{name}.vcd"));
     let text = "$timescale 10 ps $end\n$scope module tb $end\n$var wire 1 ! a $end\n\
                 $var wire 8 \" v [8:1] $end\n$upscope $end\n$enddefinitions $end\n\
                 #0\n$dumpvars\n0!\nb101 \"\n$end\n#3\n1!\n";
@@ -609,7 +643,7 @@ fn check_written(name: &str, lines: &str) -> Result<usize, String> {
 fn save_files_are_checked_line_by_line() {
     let dir = tmpdir("written");
     let filter = |name: &str, text: &str| {
-        let p = dir.join(name);
+        let p = dir.path().join(name);
         std::fs::write(&p, text).unwrap();
         p.display().to_string()
     };
@@ -667,7 +701,7 @@ fn save_files_are_checked_line_by_line() {
 /// each port's three traces grouped.
 #[test]
 fn a_comparison_waveform_shows_model_rtl_and_mismatch() {
-    let path = tmpdir("compare").join("c.vcd");
+    let path = Scratch::new("compare", "c.vcd");
     let ports = [("ok", 1, false), ("u", 8, false)];
     let model = vec![vec![1, 5], vec![1, 6], vec![0, 6], vec![0, 7]];
     let rtl = vec![
@@ -807,7 +841,7 @@ fn each_kind_of_state_machine_has_its_filter_file() {
         fsm("a1", "ctl", &["IDLE", "RUN"]),
         fsm("b0", "fill", &["WAIT", "LOAD", "DONE"]),
     ]);
-    let path = tmpdir("fsm").join("m.vcd");
+    let path = Scratch::new("fsm", "m.vcd");
     let t = VcdTracer::create(&path, "machines", TraceConfig::default()).unwrap();
     let mut sim = Sim::traced(dut, t).unwrap();
     sim.reset(1);
@@ -835,10 +869,10 @@ fn each_kind_of_state_machine_has_its_filter_file() {
     // A copy of the folder, the original gone: its save file still finds its filters.
     let copy = tmpdir("fsm-copy");
     for f in ["m.vcd", "m.gtkw", "m.ctl.state.txt", "m.fill.state.txt"] {
-        std::fs::copy(dir.join(f), copy.join(f)).unwrap();
+        std::fs::copy(dir.join(f), copy.path().join(f)).unwrap();
     }
     std::fs::remove_dir_all(dir).unwrap();
-    let moved = copy.join("m.vcd");
+    let moved = copy.path().join("m.vcd");
     assert_eq!(check_gtkw(&moved, &read_vcd(&moved).unwrap()), Ok(2 + 3));
 }
 
@@ -887,7 +921,7 @@ fn radix_companions_and_the_opening_view_follow_the_formats() {
         odd: sig("odd", Format::uint(1)),
         n: 0,
     };
-    let path = tmpdir("radix").join("c.vcd");
+    let path = Scratch::new("radix", "c.vcd");
     let cfg = TraceConfig {
         hex: vec!["*.addr".into()],
         ..TraceConfig::default()
@@ -939,7 +973,7 @@ fn radix_companions_and_the_opening_view_follow_the_formats() {
 /// companions and probes included.
 #[test]
 fn the_change_count_is_what_the_file_holds() {
-    let path = tmpdir("count").join("c.vcd");
+    let path = Scratch::new("count", "c.vcd");
     let mut t = VcdTracer::create(&path, "count", TraceConfig::default()).unwrap();
     let gold = t.probe_real("u0", None);
     let dut = BlendAdjust::new("blend_adjust_153", BlendAdjustParams::default()).unwrap();

@@ -136,11 +136,12 @@ impl Outputs {
 mod tests {
     use super::*;
 
-    fn dir(name: &str) -> PathBuf {
-        let d = std::env::temp_dir().join(format!("texrtl-outputs-{name}-{}", std::process::id()));
-        let _ = std::fs::remove_dir_all(&d);
-        std::fs::create_dir_all(&d).unwrap();
-        d
+    /// A scratch folder, removed when the test ends.
+    fn dir(name: &str) -> tempfile::TempDir {
+        tempfile::Builder::new()
+            .prefix(&format!("texrtl-outputs-{name}-"))
+            .tempdir()
+            .unwrap()
     }
 
     fn names(d: &Path) -> Vec<String> {
@@ -155,9 +156,9 @@ mod tests {
     #[test]
     fn bad_input_removes_new_files_and_their_companions_only() {
         let d = dir("files");
-        std::fs::write(d.join("w.old"), "keep").unwrap();
-        std::fs::write(d.join("other.txt"), "keep").unwrap();
-        let o = Outputs::check(&[("--vcd", &d.join("w.vcd"))], &[]).unwrap();
+        std::fs::write(d.path().join("w.old"), "keep").unwrap();
+        std::fs::write(d.path().join("other.txt"), "keep").unwrap();
+        let o = Outputs::check(&[("--vcd", &d.path().join("w.vcd"))], &[]).unwrap();
         for f in [
             "w.vcd",
             "w.gtkw",
@@ -165,22 +166,22 @@ mod tests {
             "w.vcd.partial",
             "w2.vcd",
         ] {
-            std::fs::write(d.join(f), "new").unwrap();
+            std::fs::write(d.path().join(f), "new").unwrap();
         }
         let r: Result<(), _> = o.settle(Err(CmdError::Input("x".into())));
         assert!(r.is_err());
-        assert_eq!(names(&d), ["other.txt", "w.old", "w2.vcd"]);
+        assert_eq!(names(d.path()), ["other.txt", "w.old", "w2.vcd"]);
     }
 
     #[test]
     fn success_and_a_failed_testbench_keep_everything() {
         let d = dir("keep");
         for r in [Ok(()), Err(CmdError::Failed("tb".into()))] {
-            let o = Outputs::check(&[("--out", &d.join("o.csv"))], &[]).unwrap();
-            std::fs::write(d.join("o.csv"), "new").unwrap();
+            let o = Outputs::check(&[("--out", &d.path().join("o.csv"))], &[]).unwrap();
+            std::fs::write(d.path().join("o.csv"), "new").unwrap();
             let _ = o.settle(r);
-            assert_eq!(names(&d), ["o.csv"]);
-            std::fs::remove_file(d.join("o.csv")).unwrap();
+            assert_eq!(names(d.path()), ["o.csv"]);
+            std::fs::remove_file(d.path().join("o.csv")).unwrap();
         }
     }
 
@@ -188,12 +189,12 @@ mod tests {
     fn a_new_folder_goes_and_an_old_one_keeps_its_old_entries() {
         let d = dir("folder");
         let mut o = Outputs::default();
-        o.folder(&d.join("new"));
-        o.folder(&d);
-        std::fs::create_dir_all(d.join("new/frame0")).unwrap();
-        std::fs::write(d.join("new/frame0/level0.pgm"), "x").unwrap();
-        std::fs::write(d.join("stats.json"), "x").unwrap();
+        o.folder(&d.path().join("new"));
+        o.folder(d.path());
+        std::fs::create_dir_all(d.path().join("new/frame0")).unwrap();
+        std::fs::write(d.path().join("new/frame0/level0.pgm"), "x").unwrap();
+        std::fs::write(d.path().join("stats.json"), "x").unwrap();
         o.remove_new();
-        assert!(names(&d).is_empty(), "{:?}", names(&d));
+        assert!(names(d.path()).is_empty(), "{:?}", names(d.path()));
     }
 }
