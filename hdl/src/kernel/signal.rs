@@ -18,6 +18,8 @@ pub struct Signal {
     /// Range of raw values.
     pub(super) lo: i64,
     pub(super) hi: i64,
+    /// The shift that sign-extends the bits: `64 - width` for a signed format, else 0.
+    sx: u32,
     fmt: Format,
     name: &'static str,
     /// Names of the values of an enumerated signal (a state register), by value.
@@ -38,6 +40,7 @@ impl Signal {
             mask: fmt.mask() as u64,
             lo: fmt.min_raw().max(i128::from(i64::MIN)) as i64,
             hi: fmt.max_raw().min(i128::from(i64::MAX)) as i64,
+            sx: if fmt.is_signed() { 64 - fmt.width() } else { 0 },
             fmt,
             name,
             states: None,
@@ -96,13 +99,9 @@ impl Signal {
     /// The value as a signed integer (sign-extended for signed formats).
     #[inline]
     pub fn raw(&self) -> i64 {
-        let w = self.fmt.width();
-        if self.fmt.is_signed() && w < 64 {
-            let sh = 64 - w;
-            ((self.bits << sh) as i64) >> sh
-        } else {
-            self.bits as i64
-        }
+        // One shift pair for every format: a shift of 0 leaves an unsigned value (or a
+        // 64-bit signed one) as it is.
+        ((self.bits << self.sx) as i64) >> self.sx
     }
 
     /// The value as an unsigned integer (for unsigned formats; panics on a negative value).

@@ -272,3 +272,30 @@ fn state_names_follow_the_value_and_width_is_declared() {
     assert_eq!((plain.width(), plain.state_name()), (13, None));
     assert_eq!(Signal::bit("b").width(), 1);
 }
+
+/// Every width of both signednesses: a raw value written is read back, the ends of the range
+/// and the values around zero included (the sign extension is one shift pair for all).
+#[test]
+fn raw_values_read_back_at_every_width() {
+    for w in 1..=64u32 {
+        for fmt in [Format::uint(w), Format::signed(w, 0)] {
+            let mut s = Signal::new("s", fmt);
+            let (lo, hi) = (
+                fmt.min_raw().max(i128::from(i64::MIN)) as i64,
+                fmt.max_raw().min(i128::from(i64::MAX)) as i64,
+            );
+            for raw in [lo, lo.saturating_add(1), 0, 1, -1, hi.saturating_sub(1), hi] {
+                if raw < lo || raw > hi {
+                    continue;
+                }
+                s.set_raw(raw);
+                assert_eq!(s.raw(), raw, "{fmt}");
+                assert_eq!(
+                    s.bits() & !(fmt.mask() as u64),
+                    0,
+                    "{fmt}: bits above the width"
+                );
+            }
+        }
+    }
+}

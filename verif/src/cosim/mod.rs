@@ -92,7 +92,7 @@ fn bench_loop<M: Module, T: hdl::kernel::Trace>(
     mut sim: Sim<M, T>,
     stim: &[Vec<u64>],
     resets: usize,
-    drive: fn(&mut M, &[u64]),
+    drive: impl Fn(&mut M, &[u64]),
 ) -> std::io::Result<std::time::Duration> {
     // One contiguous array, as the Verilator side replays it: no pointer per cycle.
     let n = stim.first().map_or(0, Vec::len);
@@ -109,12 +109,14 @@ fn bench_loop<M: Module, T: hdl::kernel::Trace>(
     Ok(t0.elapsed())
 }
 
-/// A co-simulation model of a [`Module`] whose inputs `drive` sets from raw bits.
-pub struct ModelSim<M: Module> {
+/// A co-simulation model of a [`Module`] whose inputs `drive` sets from raw bits (a
+/// function or a closure that captures nothing: its own type, so that the benchmark's cycle
+/// loop inlines it).
+pub struct ModelSim<M: Module, D = fn(&mut M, &[u64])> {
     sim: Sim<M>,
     /// The design as built, for benchmark runs.
     pristine: M,
-    drive: fn(&mut M, &[u64]),
+    drive: D,
     /// Values inside the model compared as further output ports (see [`ModelSim::probes`]).
     probes: Vec<Port>,
     probe: fn(&M) -> Vec<u64>,
@@ -123,10 +125,10 @@ pub struct ModelSim<M: Module> {
     watch_fn: fn(&M) -> Vec<u64>,
 }
 
-impl<M: Module + Clone> ModelSim<M> {
+impl<M: Module + Clone, D: Fn(&mut M, &[u64]) + Copy> ModelSim<M, D> {
     /// The model `dut` (kept as built for benchmark runs), its inputs set from raw bits in
     /// input-port order by `drive`.
-    pub fn new(dut: M, drive: fn(&mut M, &[u64])) -> Self {
+    pub fn new(dut: M, drive: D) -> Self {
         ModelSim {
             pristine: dut.clone(),
             sim: Sim::new(dut).check_schedule(true),
@@ -202,7 +204,7 @@ fn top_ports(m: &dyn Module) -> TopPorts {
     t
 }
 
-impl<M: Module + Clone> CosimModel for ModelSim<M> {
+impl<M: Module + Clone, D: Fn(&mut M, &[u64]) + Copy> CosimModel for ModelSim<M, D> {
     fn ports(&self) -> (Vec<Port>, Vec<Port>) {
         let t = top_ports(&self.sim.dut);
         let mut outs = t.outputs;
