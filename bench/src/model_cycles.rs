@@ -1,16 +1,30 @@
-//! One untraced run of a twin's model on its seeded stimulus, nothing else: what
+//! One run of a twin's model on its seeded stimulus, nothing else: what
 //! `bench/model-instructions` counts under callgrind, to compare two builds of a unit (the
 //! derive against a hand-written `Module`, say) exactly, whatever else the machine runs.
-//! Usage: model-cycles UNIT CYCLES
+//! Untraced, or traced to the VCD or FST file named third (to count a tracer's cost).
+//! Usage: model-cycles UNIT CYCLES [FILE.vcd|FILE.fst]
 
 use std::process::ExitCode;
 use verif::cosim::BenchTrace;
 
 fn main() -> ExitCode {
     let args: Vec<String> = std::env::args().skip(1).collect();
-    let [unit, cycles] = args.as_slice() else {
-        eprintln!("model-cycles: usage: model-cycles UNIT CYCLES");
-        return ExitCode::from(2);
+    let (unit, cycles, file) = match args.as_slice() {
+        [u, c] => (u, c, None),
+        [u, c, f] => (u, c, Some(std::path::Path::new(f))),
+        _ => {
+            eprintln!("model-cycles: usage: model-cycles UNIT CYCLES [FILE.vcd|FILE.fst]");
+            return ExitCode::from(2);
+        }
+    };
+    let trace = match file {
+        None => BenchTrace::None,
+        Some(f) if f.extension().is_some_and(|e| e == "vcd") => BenchTrace::Vcd(f),
+        Some(f) if f.extension().is_some_and(|e| e == "fst") => BenchTrace::Fst(f),
+        Some(f) => {
+            eprintln!("model-cycles: {}: a .vcd or .fst file", f.display());
+            return ExitCode::from(2);
+        }
     };
     let Ok(cycles) = cycles.parse::<usize>() else {
         eprintln!("model-cycles: CYCLES {cycles}: a number");
@@ -21,7 +35,7 @@ fn main() -> ExitCode {
         let u = project.twin(unit, "UNIT")?;
         let stim = u.stimulus(verif::Seed(0xbe7c), cycles);
         let resets = verif::cosim::reset_cycles(u);
-        u.model()?.bench(&stim, resets, BenchTrace::None)?;
+        u.model()?.bench(&stim, resets, trace)?;
         Ok(())
     };
     match run() {
