@@ -90,11 +90,7 @@ impl Monitor<Biquadratic0087> for RgbMonitor {
 fn coverage_model() -> Coverage {
     let mut c = Coverage::new();
     c.add(Coverpoint::new("t").ranges("t", 0, 255, 4));
-    c.add(
-        Coverpoint::new("edge")
-            .value("inside", 0)
-            .value("across the border", 1),
-    );
+    c.add(Coverpoint::new("edge").values(&["inside", "across the border"]));
     c
 }
 

@@ -192,11 +192,7 @@ fn random(f: u32, n: usize, stim: &mut Stimulus) -> Vec<BaIn> {
 fn coverage_model() -> Coverage {
     let mut c = Coverage::new();
     let w = c.add(Coverpoint::new("frac_bits").ranges("F", 4, 16, 13));
-    let m = c.add(
-        Coverpoint::new("mode")
-            .value("adjust", 0)
-            .value("bypass", 1),
-    );
+    let m = c.add(Coverpoint::new("mode").values(&["adjust", "bypass"]));
     let classes = |name: &str| {
         Coverpoint::new(name)
             .value("zero", 0)

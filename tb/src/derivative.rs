@@ -88,17 +88,8 @@ impl Monitor<DerivativeUnit> for NMonitor {
 
 fn coverage_model() -> Coverage {
     let mut c = Coverage::new();
-    c.add(
-        Coverpoint::new("slope")
-            .value("flat", 0)
-            .value("gentle", 1)
-            .value("steep", 2),
-    );
-    c.add(
-        Coverpoint::new("edge")
-            .value("inside", 0)
-            .value("across the border", 1),
-    );
+    c.add(Coverpoint::new("slope").values(&["flat", "gentle", "steep"]));
+    c.add(Coverpoint::new("edge").values(&["inside", "across the border"]));
     c
 }
 

@@ -104,14 +104,13 @@ impl Monitor<DramCtrl> for DramMonitor {
 pub fn coverage_model() -> Coverage {
     let mut c = Coverage::new();
     let page = c.add(Coverpoint::new("page").value("hit", 1).value("fault", 2));
-    c.add(
-        Coverpoint::new("after")
-            .value("first_read", 0)
-            .value("hit_after_hit", 1)
-            .value("fault_after_hit", 2)
-            .value("hit_after_fault", 3)
-            .value("fault_after_fault", 4),
-    );
+    c.add(Coverpoint::new("after").values(&[
+        "first_read",
+        "hit_after_hit",
+        "fault_after_hit",
+        "hit_after_fault",
+        "fault_after_fault",
+    ]));
     let rows = c.add(
         Coverpoint::new("row")
             .value("first", 0)
@@ -124,11 +123,7 @@ pub fn coverage_model() -> Coverage {
             .ranges("inner", 1, 14, 2)
             .value("last", 15),
     );
-    let spacing = c.add(
-        Coverpoint::new("spacing")
-            .value("back_to_back", 0)
-            .value("after_idle", 1),
-    );
+    let spacing = c.add(Coverpoint::new("spacing").values(&["back_to_back", "after_idle"]));
     c.cross("page_x_spacing", page, spacing);
     c.cross("row_x_column", rows, cols);
     c

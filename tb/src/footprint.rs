@@ -300,36 +300,13 @@ fn coverage_model() -> Coverage {
     let mut c = Coverage::new();
     let n = c.add(
         Coverpoint::new("n")
-            .value("1", 0)
-            .value("2", 1)
-            .value("4", 2)
-            .value("8", 3)
-            .value("16", 4)
+            .values(&["1", "2", "4", "8", "16"])
             .bin("32..64", 5, 6),
     );
-    let l = c.add(
-        Coverpoint::new("lambda")
-            .value("magnified", 0)
-            .value("between_levels", 1)
-            .value("last_level", 2),
-    );
-    c.add(
-        Coverpoint::new("border")
-            .value("wrap", 0)
-            .value("clamp", 1)
-            .value("mirror", 2)
-            .value("colour", 3),
-    );
-    c.add(
-        Coverpoint::new("rounding")
-            .value("log", 0)
-            .value("linear", 1),
-    );
-    let u = c.add(
-        Coverpoint::new("unit")
-            .value("texram_802", 0)
-            .value("texture_unit_602", 1),
-    );
+    let l = c.add(Coverpoint::new("lambda").values(&["magnified", "between_levels", "last_level"]));
+    c.add(Coverpoint::new("border").values(&["wrap", "clamp", "mirror", "colour"]));
+    c.add(Coverpoint::new("rounding").values(&["log", "linear"]));
+    let u = c.add(Coverpoint::new("unit").values(&["texram_802", "texture_unit_602"]));
     c.cross("n_x_lambda", n, l);
     c.cross("n_x_unit", n, u);
     c

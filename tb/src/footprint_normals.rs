@@ -190,27 +190,9 @@ const CONFIGS: [(Filter, Border); 4] = [
 
 fn coverage_model() -> Coverage {
     let mut c = Coverage::new();
-    let n = c.add(
-        Coverpoint::new("n")
-            .value("1", 0)
-            .value("2", 1)
-            .value("4", 2)
-            .value("8", 3)
-            .value("16", 4),
-    );
-    let f = c.add(
-        Coverpoint::new("filter")
-            .value("bspline", 0)
-            .value("blinn", 1)
-            .value("bezier", 2),
-    );
-    c.add(
-        Coverpoint::new("border")
-            .value("wrap", 0)
-            .value("clamp", 1)
-            .value("mirror", 2)
-            .value("constant", 3),
-    );
+    let n = c.add(Coverpoint::new("n").values(&["1", "2", "4", "8", "16"]));
+    let f = c.add(Coverpoint::new("filter").values(&["bspline", "blinn", "bezier"]));
+    c.add(Coverpoint::new("border").values(&["wrap", "clamp", "mirror", "constant"]));
     c.cross("n_x_filter", n, f);
     c
 }

@@ -163,23 +163,14 @@ impl Monitor<FrameUnit> for NormalMonitor {
 
 fn frame_coverage() -> Coverage {
     let mut c = Coverage::new();
-    let k = c.add(
-        Coverpoint::new("weights")
-            .value("bump", 0)
-            .value("normal map c-128", 1)
-            .value("normal map 2c-255", 2),
-    );
-    let g = c.add(
-        Coverpoint::new("gram_schmidt")
-            .value("off", 0)
-            .value("on", 1),
-    );
+    let k = c.add(Coverpoint::new("weights").values(&[
+        "bump",
+        "normal map c-128",
+        "normal map 2c-255",
+    ]));
+    let g = c.add(Coverpoint::new("gram_schmidt").values(&["off", "on"]));
     c.cross("weights_x_gram_schmidt", k, g);
-    let h = c.add(
-        Coverpoint::new("handedness")
-            .value("right", 0)
-            .value("left", 1),
-    );
+    let h = c.add(Coverpoint::new("handedness").values(&["right", "left"]));
     c.cross("handedness_x_gram_schmidt", h, g);
     c
 }
@@ -418,16 +409,8 @@ impl Monitor<ParallaxUnit> for UvMonitor {
 
 fn parallax_coverage() -> Coverage {
     let mut c = Coverage::new();
-    let f = c.add(
-        Coverpoint::new("form")
-            .value("divided", 0)
-            .value("limited", 1),
-    );
-    let z = c.add(
-        Coverpoint::new("vz")
-            .value("held at 1/8", 0)
-            .value("above", 1),
-    );
+    let f = c.add(Coverpoint::new("form").values(&["divided", "limited"]));
+    let z = c.add(Coverpoint::new("vz").values(&["held at 1/8", "above"]));
     c.cross("form_x_vz", f, z);
     c
 }

@@ -517,13 +517,7 @@ fn coverage_model() -> Coverage {
     }
     let shape = c.add(shape);
     let lambda = c.add(
-        Coverpoint::new("lambda")
-            .value("-4..-3", 0)
-            .value("-3..-2", 1)
-            .value("-2..-1", 2)
-            .value("-1..0", 3)
-            .value("0..1", 4)
-            .value("1..10", 5),
+        Coverpoint::new("lambda").values(&["-4..-3", "-3..-2", "-2..-1", "-1..0", "0..1", "1..10"]),
     );
     let mut face = Coverpoint::new("face");
     for (i, f) in units::envmap::cube_face::FACES.iter().enumerate() {

@@ -387,29 +387,14 @@ fn check_timing(res: &mut TbResult, s: &MipmapStats, levels: u64, tag: &str) {
 
 fn coverage_model() -> Coverage {
     let mut c = Coverage::new();
-    let s = c.add(
-        Coverpoint::new("scan")
-            .value("progressive", 0)
-            .value("interlaced_top", 1)
-            .value("interlaced_bottom", 2),
-    );
-    let r = c.add(
-        Coverpoint::new("rounding")
-            .value("round", 0)
-            .value("truncate", 1),
-    );
-    c.add(
-        Coverpoint::new("shape")
-            .value("square", 0)
-            .value("wide", 1)
-            .value("tall", 2)
-            .value("one_texel_side", 3),
-    );
-    c.add(
-        Coverpoint::new("frame")
-            .value("first", 0)
-            .value("back_to_back", 1),
-    );
+    let s = c.add(Coverpoint::new("scan").values(&[
+        "progressive",
+        "interlaced_top",
+        "interlaced_bottom",
+    ]));
+    let r = c.add(Coverpoint::new("rounding").values(&["round", "truncate"]));
+    c.add(Coverpoint::new("shape").values(&["square", "wide", "tall", "one_texel_side"]));
+    c.add(Coverpoint::new("frame").values(&["first", "back_to_back"]));
     c.cross("scan_x_rounding", s, r);
     c
 }

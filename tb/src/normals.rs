@@ -253,40 +253,12 @@ pub fn bench_cycles<T: Trace>(sim: &mut Sim<NormalPipeline, T>, cycles: u64) -> 
 
 pub fn coverage_model() -> Coverage {
     let mut c = Coverage::new();
-    let b = c.add(
-        Coverpoint::new("border")
-            .value("wrap", 0)
-            .value("clamp", 1)
-            .value("mirror", 2)
-            .value("constant", 3),
-    );
-    let v = c.add(
-        Coverpoint::new("variant")
-            .value("bspline", 0)
-            .value("bezier", 1)
-            .value("blinn", 2)
-            .value("trilinear", 3),
-    );
-    let f = c.add(
-        Coverpoint::new("blend_u")
-            .value("zero", 0)
-            .value("interior", 1)
-            .value("max", 2),
-    );
-    let g = c.add(
-        Coverpoint::new("blend_v")
-            .value("zero", 0)
-            .value("interior", 1)
-            .value("max", 2),
-    );
-    c.add(Coverpoint::new("cell").value("inside", 0).value("edge", 1));
-    let h = c.add(
-        Coverpoint::new("height_extremes")
-            .value("neither", 0)
-            .value("min", 1)
-            .value("max", 2)
-            .value("both", 3),
-    );
+    let b = c.add(Coverpoint::new("border").values(&["wrap", "clamp", "mirror", "constant"]));
+    let v = c.add(Coverpoint::new("variant").values(&["bspline", "bezier", "blinn", "trilinear"]));
+    let f = c.add(Coverpoint::new("blend_u").values(&["zero", "interior", "max"]));
+    let g = c.add(Coverpoint::new("blend_v").values(&["zero", "interior", "max"]));
+    c.add(Coverpoint::new("cell").values(&["inside", "edge"]));
+    let h = c.add(Coverpoint::new("height_extremes").values(&["neither", "min", "max", "both"]));
     c.cross("border_x_variant", b, v);
     c.cross("blend_u_x_blend_v", f, g);
     c.cross("variant_x_height_extremes", v, h);

@@ -224,11 +224,7 @@ fn fitter_coverage() -> Coverage {
             .bin("48", 48, 48)
             .bin("80", 80, 80),
     );
-    c.add(
-        Coverpoint::new("samples")
-            .value("binary", 0)
-            .value("grey", 1),
-    );
+    c.add(Coverpoint::new("samples").values(&["binary", "grey"]));
     c.cross("occluded_x_lights", occ, lights);
     c
 }
@@ -457,13 +453,8 @@ fn shader_coverage() -> Coverage {
             .bin("inside", 1, 254)
             .value("255 (held)", 255),
     );
-    let quad = c.add(
-        Coverpoint::new("light_quadrant")
-            .value("+u +v", 0)
-            .value("-u +v", 1)
-            .value("+u -v", 2)
-            .value("-u -v", 3),
-    );
+    let quad =
+        c.add(Coverpoint::new("light_quadrant").values(&["+u +v", "-u +v", "+u -v", "-u -v"]));
     c.cross("k_x_quadrant", k, quad);
     c
 }

@@ -257,18 +257,13 @@ pub fn triangles(n: usize, stim: &mut Stimulus) -> Vec<Tri> {
 fn coverage_model() -> Coverage {
     let mut c = Coverage::new();
     // A degenerate triangle has no dP/dv: its handedness is right by definition.
-    c.add(
-        Coverpoint::new("uvs")
-            .value("triangle", 0)
-            .value("on a line", 1)
-            .value("one point", 2)
-            .value("first edge a point", 3),
-    );
-    c.add(
-        Coverpoint::new("handedness")
-            .value("right", 0)
-            .value("left", 1),
-    );
+    c.add(Coverpoint::new("uvs").values(&[
+        "triangle",
+        "on a line",
+        "one point",
+        "first edge a point",
+    ]));
+    c.add(Coverpoint::new("handedness").values(&["right", "left"]));
     c
 }
 

@@ -324,41 +324,19 @@ fn directed(wl: u32, hl: u32) -> Vec<TexReq> {
 
 fn coverage_model() -> Coverage {
     let mut c = Coverage::new();
-    let b = c.add(
-        Coverpoint::new("border")
-            .value("wrap", 0)
-            .value("clamp", 1)
-            .value("mirror", 2)
-            .value("colour", 3),
-    );
-    let l = c.add(
-        Coverpoint::new("lambda")
-            .value("negative", 0)
-            .value("integer", 1)
-            .value("fraction", 2)
-            .value("last_level", 3),
-    );
-    c.add(
-        Coverpoint::new("position")
-            .value("inside", 0)
-            .value("beyond_an_edge", 1),
-    );
-    c.add(Coverpoint::new("page").value("hit", 0).value("fault", 1));
+    let b = c.add(Coverpoint::new("border").values(&["wrap", "clamp", "mirror", "colour"]));
+    let l =
+        c.add(Coverpoint::new("lambda").values(&["negative", "integer", "fraction", "last_level"]));
+    c.add(Coverpoint::new("position").values(&["inside", "beyond_an_edge"]));
+    c.add(Coverpoint::new("page").values(&["hit", "fault"]));
     c.add(
         Coverpoint::new("level")
-            .value("0", 0)
-            .value("1", 1)
+            .values(&["0", "1"])
             .bin("2..4", 2, 4)
             .bin("5..9", 5, 9)
             .value("10", 10),
     );
-    c.add(
-        Coverpoint::new("config")
-            .value("luminance", 0)
-            .value("index", 1)
-            .value("planar", 2)
-            .value("literal", 3),
-    );
+    c.add(Coverpoint::new("config").values(&["luminance", "index", "planar", "literal"]));
     c.cross("border_x_lambda", b, l);
     c
 }

@@ -226,11 +226,7 @@ fn coverage_model() -> Coverage {
             .value("interlaced_top", Scan::InterlacedTop as i64)
             .value("interlaced_bottom", Scan::InterlacedBottom as i64),
     );
-    c.add(
-        Coverpoint::new("frame_ready_in")
-            .value("drf0", 0)
-            .value("drf1", 1),
-    );
+    c.add(Coverpoint::new("frame_ready_in").values(&["drf0", "drf1"]));
     c.add(
         Coverpoint::new("segments_per_round")
             .value("1", 1)

@@ -612,30 +612,16 @@ fn coverage_model() -> Coverage {
             .value("two", 2)
             .value("four", 4),
     );
-    c.add(
-        Coverpoint::new("first_lookup")
-            .value("all_miss", 0)
-            .value("partial", 1)
-            .value("all_hit", 2),
-    );
-    let any = c.add(Coverpoint::new("missed").value("no", 0).value("yes", 1));
-    c.add(
-        Coverpoint::new("mode")
-            .value("cache_quadrant", 0)
-            .value("cache_only", 1)
-            .value("no_cache", 2)
-            .value("cache_direction", 3),
-    );
-    c.add(
-        Coverpoint::new("layout")
-            .value("row_major", 0)
-            .value("tiled", 1),
-    );
-    c.add(
-        Coverpoint::new("edge")
-            .value("inside", 0)
-            .value("clamped", 1),
-    );
+    c.add(Coverpoint::new("first_lookup").values(&["all_miss", "partial", "all_hit"]));
+    let any = c.add(Coverpoint::new("missed").values(&["no", "yes"]));
+    c.add(Coverpoint::new("mode").values(&[
+        "cache_quadrant",
+        "cache_only",
+        "no_cache",
+        "cache_direction",
+    ]));
+    c.add(Coverpoint::new("layout").values(&["row_major", "tiled"]));
+    c.add(Coverpoint::new("edge").values(&["inside", "clamped"]));
     c.cross("blocks_x_missed", blocks, any);
     c
 }

@@ -208,23 +208,10 @@ const CONFIGS: [(Dims, Order, u32, Mode); 5] = [
 
 fn coverage_model() -> Coverage {
     let mut c = Coverage::new();
-    let m = c.add(
-        Coverpoint::new("mode")
-            .value("value", 0)
-            .value("gradient", 1),
-    );
-    c.add(
-        Coverpoint::new("order")
-            .value("slice_major", 0)
-            .value("column_major", 1),
-    );
-    let e = c.add(
-        Coverpoint::new("position")
-            .value("interior", 0)
-            .value("at_a_face", 1)
-            .value("outside", 2),
-    );
-    c.add(Coverpoint::new("page").value("hits", 0).value("a_fault", 1));
+    let m = c.add(Coverpoint::new("mode").values(&["value", "gradient"]));
+    c.add(Coverpoint::new("order").values(&["slice_major", "column_major"]));
+    let e = c.add(Coverpoint::new("position").values(&["interior", "at_a_face", "outside"]));
+    c.add(Coverpoint::new("page").values(&["hits", "a_fault"]));
     c.cross("mode_x_position", m, e);
     c
 }

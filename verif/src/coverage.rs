@@ -55,6 +55,15 @@ impl Coverpoint {
         self.bin(name, v, v)
     }
 
+    /// Adds a bin for each of the values 0, 1, 2 ..., named by `names` in order (an
+    /// enumeration's coverpoint: modes, states, borders).
+    pub fn values(mut self, names: &[&str]) -> Coverpoint {
+        for (v, name) in names.iter().enumerate() {
+            self = self.value(name, v as i64);
+        }
+        self
+    }
+
     /// Splits `lo..=hi` into `n` bins of (nearly) equal size, named `name[k]`.
     pub fn ranges(mut self, name: &str, lo: i64, hi: i64, n: usize) -> Coverpoint {
         let span = (hi - lo + 1) as i128;
@@ -329,6 +338,14 @@ mod tests {
         let b = c.add(Coverpoint::new("b").value("p", 0));
         c.cross("ab", a, b);
         assert!(c.validate().is_ok());
+        // An enumeration's bins are its values in order.
+        let e = Coverpoint::new("a").values(&["x", "y"]);
+        let bins: Vec<_> = e
+            .bins
+            .iter()
+            .map(|b| (b.name.as_str(), b.lo, b.hi))
+            .collect();
+        assert_eq!(bins, [("x", 0, 0), ("y", 1, 1)]);
         let mut short = c.clone();
         short.crosses[0].hits.pop();
         assert!(short.validate().unwrap_err().contains("not 2 x 1"));
