@@ -199,6 +199,7 @@ fn texram_figure_8(p: Project) -> Project {
             "chain walker of 812 with the output stage 820 (section 14)",
         )
         .testbench(crate::mapchain::WalkerTb)
+        .twin(c::WalkerCosim { slot_cycles: 6 })
         .vectors(v::mapchain)
         .pictures(one(pictures::mapchain_picture)),
     )

@@ -7,7 +7,7 @@ use std::path::PathBuf;
 use tb::cosim::{
     AddressCosim, BilinearCosim, BlendAdjustCosim, CacheCosim, ControlCosim, FillCosim,
     LookaheadCosim, MipmapCosim, NormalCosim, PipelineCosim, ReplicateCosim, RsqrtCosim,
-    TangentCosim, TexelFetchCosim, TexramCosim, TextureCosim,
+    TangentCosim, TexelFetchCosim, TexramCosim, TextureCosim, WalkerCosim,
 };
 use units::bump::blend_adjust_153::BlendAdjustParams;
 use units::bump::params::{Border, BumpParams, Filter, HeightTexel, RsqrtParams};
@@ -174,6 +174,12 @@ fn memory_twins() -> Vec<Twin> {
         v.push((
             format!("texture_unit_602 {label}"),
             Box::new(TextureCosim(p)),
+        ));
+    }
+    for slot_cycles in [6, 1, 15] {
+        v.push((
+            format!("walker_812 slots of {slot_cycles} cycles"),
+            Box::new(WalkerCosim { slot_cycles }),
         ));
     }
     v
@@ -1451,6 +1457,56 @@ fn texram_slot_length_bug_is_caught_with_its_cycle_and_port() {
     );
     let (n, seed) = (3_000, Seed(24));
     let short = TexramCosim { slot_cycles: 5 };
+    let want = models_differ(&u, &short, seed, n);
+    assert_caught(&u, bug, n, seed, (want.0, want.1.as_str()));
+}
+
+/// The walker that defers a texture's read for the detail at every level, not only below
+/// level 0 (`below0` lost): caught on port `acc_drf` in the first cycle the model reads
+/// texture DRF 0, which links to offsets, at a lambda of 0 or more (the mutant goes on to the
+/// reflectance instead).
+#[test]
+fn walker_deferral_bug_is_caught_with_its_cycle_and_port() {
+    let u = WalkerCosim { slot_cycles: 6 };
+    let bug = Bug(
+        "mapchain/walker_812.v",
+        "ws_deferred = below0 && d_linked(k)",
+        "ws_deferred = d_linked(k)",
+    );
+    let (n, seed) = (3_000, Seed(25));
+    let stim = u.stimulus(seed, n);
+    let file = WalkerCosim::file();
+    let dut = units::mapchain::walker_812::MapChain812::new(file, Default::default(), 6).unwrap();
+    let mut sim = hdl::kernel::Sim::new(dut);
+    let mut want = None;
+    for (c, s) in stim.iter().enumerate() {
+        sim.set_reset(c < verif::cosim::RESET_CYCLES);
+        tb::cosim::drive_walker(&mut sim.dut, s);
+        sim.eval();
+        let a = &sim.dut.banks.acc;
+        let texture_at_lambda_0_up = a.valid.is_high() && a.drf.bits() == 0 && a.lambda.raw() >= 0;
+        if c >= verif::cosim::FIRST_COMPARED && texture_at_lambda_0_up {
+            want = Some(c);
+            break;
+        }
+        sim.tick();
+    }
+    let want = want.expect("a texture read at lambda >= 0");
+    assert_caught(&u, bug, n, seed, (want, "acc_drf"));
+}
+
+/// The walker holding an access one cycle short of its slots (SLOT_CYCLES - 1): caught where
+/// the model with slots of 5 cycles first differs from the model with 6.
+#[test]
+fn walker_slot_length_bug_is_caught_with_its_cycle_and_port() {
+    let u = WalkerCosim { slot_cycles: 6 };
+    let bug = Bug(
+        "mapchain/walker_812.v",
+        "{30'd0, rd_slots} * SLOT_CYCLES",
+        "{30'd0, rd_slots} * (SLOT_CYCLES - 1)",
+    );
+    let (n, seed) = (3_000, Seed(26));
+    let short = WalkerCosim { slot_cycles: 5 };
     let want = models_differ(&u, &short, seed, n);
     assert_caught(&u, bug, n, seed, (want.0, want.1.as_str()));
 }

@@ -4,12 +4,14 @@
 //! The descriptors of [`crate::project`] register them; the harness is the framework's.
 
 pub mod bump;
+pub mod mapchain;
 pub mod mipmap;
 pub mod texmem;
 pub mod texram;
 pub mod vectors;
 
 pub use bump::*;
+pub use mapchain::*;
 pub use mipmap::*;
 pub use texmem::*;
 pub use texram::*;

@@ -56,6 +56,7 @@ impl AccessPort {
 }
 
 /// The banks behind the walker, with the access port and the read registers.
+#[derive(Clone)]
 pub struct BankPort810<T: TexramAccess> {
     file: DrfFile,
     texram: T,

@@ -356,7 +356,7 @@ impl Counts {
 }
 
 /// The walker with the banks it reads through.
-#[derive(Module)]
+#[derive(Clone, Module)]
 #[module(kind = "walker_812")]
 pub struct MapChain812<T: TexramAccess> {
     /// The pixel port: `req_valid`, the pixel's fields, `req_ready`.
