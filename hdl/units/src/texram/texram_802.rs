@@ -80,7 +80,7 @@ pub struct ChipMemory {
 impl Regs for ChipMemory {
     fn tick_regs(&mut self, reset: bool) {
         if let Some(v) = self.video.as_deref_mut() {
-            v.tick(reset, &self.drfs, &mut self.banks);
+            v.tick(reset, &mut self.banks);
         }
     }
     fn visit_regs(&self, v: &mut dyn Visitor) {
@@ -397,8 +397,9 @@ impl Texram802 {
         let busy = self.banks.access.valid.q().is_high();
         let finishing = busy && self.banks.left.q().bits() == 1;
         let served = self.banks.vid_round.q().bits() as usize;
-        if let Some(v) = self.memory.video.as_deref_mut() {
-            v.eval(finishing && served > 0);
+        let memory = &mut self.memory;
+        if let Some(v) = memory.video.as_deref_mut() {
+            v.eval(finishing && served > 0, &memory.drfs);
         }
         if finishing && served == 0 {
             self.interpolate();

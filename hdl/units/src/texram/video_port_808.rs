@@ -31,6 +31,9 @@
 //!   in the banks (`frames_ready`).
 //! * The port has priority over the rasterizer (video cannot wait): a waiting segment takes
 //!   the banks at the first slot boundary. Counters: `transfers` (segments), `slots`.
+//! * Two-process, as a memory is: `eval` stages the segments the coming edge buffers (and the
+//!   overrun checks them against the buffers as that edge leaves them); the edge completes
+//!   the round under way (its bank writes, its partner-line reads), then appends them.
 
 use std::collections::VecDeque;
 
@@ -140,6 +143,19 @@ pub struct VideoPort808 {
     /// The most row buffers in use at once.
     pub max_buffered: usize,
     cycle: u64,
+    /// What this cycle's `eval` decided the coming edge buffers.
+    staged: Staged,
+}
+
+/// What the coming edge buffers, decided in `eval` from the generator's outputs: the new
+/// segments (numbered on from the last), frames whose last segment they hold, how many are
+/// partner-line reads, and level 0's texel into shift register 826.
+#[derive(Clone, Debug, Default)]
+struct Staged {
+    segments: Vec<Segment>,
+    frames: Vec<(u64, u64)>,
+    partner: u32,
+    texel: Option<(u32, u8)>,
 }
 
 impl VideoPort808 {
@@ -170,6 +186,7 @@ impl VideoPort808 {
             frames_ready: Vec::new(),
             max_buffered: 0,
             cycle: 0,
+            staged: Staged::default(),
         })
     }
 
@@ -200,9 +217,10 @@ impl VideoPort808 {
         self.slots.set_next_bits(self.slots.q().bits() + slots);
     }
 
-    /// The generator and the port for this cycle: video in, the underrun check; the round
-    /// under way finishes at the coming edge when `finishing`.
-    pub fn eval(&mut self, finishing: bool) {
+    /// The generator and the port for this cycle: video in, the underrun check, the lines
+    /// the coming edge buffers (against the chip's `drfs`); the round under way finishes at
+    /// the coming edge when `finishing`.
+    pub fn eval(&mut self, finishing: bool, drfs: &[Option<Drf>; DRFS]) {
         self.finishing = finishing;
         self.next_round.clear();
         self.gen.valid.follow(&self.valid);
@@ -213,6 +231,7 @@ impl VideoPort808 {
             self.flag(2);
         }
         self.occupancy.set_next_bits(self.buffers.len() as u64);
+        self.stage_lines(drfs);
     }
 
     fn flag(&mut self, code: u64) {
@@ -223,10 +242,11 @@ impl VideoPort808 {
     }
 
     /// The edge: the served segments leave (written into `banks`, or read into the partner
-    /// line), then the lines finished at this edge are buffered.
-    pub fn tick(&mut self, reset: bool, drfs: &[Option<Drf>; DRFS], banks: &mut [Vec<u8>]) {
+    /// line), then the segments `eval` staged are buffered.
+    pub fn tick(&mut self, reset: bool, banks: &mut [Vec<u8>]) {
         self.cycle += 1;
         if reset {
+            self.staged = Staged::default();
             self.buffers.clear();
             self.partner_left = 0;
             self.in_round.clear();
@@ -240,7 +260,7 @@ impl VideoPort808 {
             if !self.next_round.is_empty() {
                 std::mem::swap(&mut self.in_round, &mut self.next_round);
             }
-            self.buffer_lines(drfs);
+            self.commit_lines();
         }
         for r in [
             &mut self.occupancy,
@@ -290,39 +310,65 @@ impl VideoPort808 {
         }
     }
 
-    /// The generator's writes and reads of the coming edge into the row buffers.
-    fn buffer_lines(&mut self, drfs: &[Option<Drf>; DRFS]) {
+    /// The row buffers held, and the frames ready, after the coming edge's completion: what
+    /// the lines buffered at that edge are checked against.
+    fn after_edge(&self) -> (usize, usize) {
+        if !self.finishing {
+            return (self.buffers.len(), self.frames_ready.len());
+        }
+        let done = &self.in_round;
+        let mut left = self.buffers.iter().filter(|s| !done.contains(&s.seq));
+        let oldest = left.clone().next().map_or(u64::MAX, |s| s.seq);
+        let ready = self
+            .pending_frames
+            .iter()
+            .take_while(|&&(_, last)| last < oldest)
+            .count();
+        (left.by_ref().count(), self.frames_ready.len() + ready)
+    }
+
+    /// The generator's writes and reads of the coming edge, as row-buffer segments staged
+    /// for the edge (the overrun checks against the buffers as the edge leaves them).
+    fn stage_lines(&mut self, drfs: &[Option<Drf>; DRFS]) {
+        self.staged.segments.clear();
+        self.staged.frames.clear();
+        self.staged.partner = 0;
+        self.staged.texel = None;
+        let (held, ready) = self.after_edge();
         let which = self.p.drfs;
         let drf = |f: u64| drfs[which[(f % 2) as usize]].expect("video DRFs are checked");
         let levels = self.gen.dims().len() as u32;
         if let Some((f, x, y, t)) = self.gen.level0_write() {
-            self.collect[(x & 1) as usize][(x >> 1) as usize] = t;
+            self.staged.texel = Some((x, t));
             if x + 1 == self.p.mipmap.width {
-                let line = self.collect.clone();
+                let mut line = self.collect.clone();
+                line[(x & 1) as usize][(x >> 1) as usize] = t;
                 // A map of one level is 1 x 1: its one line completes the frame.
                 let last = (levels == 1).then_some(f);
                 // Frame f goes into frame f - 2's map: that one must be ready by now.
-                if f >= self.frames_ready.len() as u64 + 2 {
+                if f >= ready as u64 + 2 {
                     self.flag(1);
                 }
-                self.push_line(&drf(f), 0, y, Some(line), last);
+                self.push_line(held, &drf(f), 0, y, Some(line), last);
             }
         }
         if let Some((f, row)) = self.gen.partner_read() {
-            self.partner_left += self.push_line(&drf(f), 0, row, None, None);
+            self.staged.partner += self.push_line(held, &drf(f), 0, row, None, None);
         }
         let lines: Vec<_> = self.gen.line_writes().collect();
         for (k, f, row, texels) in lines {
             let halves = [0, 1].map(|p| texels.iter().skip(p).step_by(2).copied().collect());
             let last = (k + 1 == levels).then_some(f);
-            self.push_line(&drf(f), k, row, Some(halves), last);
+            self.push_line(held, &drf(f), k, row, Some(halves), last);
         }
     }
 
-    /// Line `y` of level `k` (its even and odd columns, or a read) into row buffers, one
-    /// segment per bank and row; the last segment carries `last`. Returns the segments.
+    /// Line `y` of level `k` (its even and odd columns, or a read) staged into row buffers,
+    /// one segment per bank and row, beside the `held` ones; the last segment carries `last`.
+    /// Returns the segments.
     fn push_line(
         &mut self,
+        held: usize,
         d: &Drf,
         k: u32,
         y: u32,
@@ -330,6 +376,7 @@ impl VideoPort808 {
         last: Option<u64>,
     ) -> u32 {
         let (w, _) = d.level_size(k);
+        let staged = &mut self.staged.segments;
         let mut n = 0;
         for x0 in 0..w.min(2) {
             let (bank, first) = locate(d, k, x0, y);
@@ -341,27 +388,41 @@ impl VideoPort808 {
                 let part = data
                     .as_ref()
                     .map(|h| h[x0 as usize][done as usize..(done + take) as usize].to_vec());
-                self.buffers.push_back(Segment {
+                let seq = self.seq + staged.len() as u64;
+                staged.push(Segment {
                     bank,
                     word,
                     data: part,
                     len: take,
                     x0: x0 + 2 * done,
-                    seq: self.seq,
+                    seq,
                 });
-                self.seq += 1;
                 done += take;
                 n += 1;
             }
         }
+        let count = staged.len();
         if let Some(f) = last {
-            self.pending_frames.push_back((f, self.seq - 1));
+            self.staged.frames.push((f, self.seq + count as u64 - 1));
         }
-        self.max_buffered = self.max_buffered.max(self.buffers.len());
-        if self.buffers.len() > self.p.queue {
+        if held + count > self.p.queue {
             self.flag(1);
         }
         n
+    }
+
+    /// The staged segments into the row buffers (after the edge's completion), level 0's
+    /// texel into the shift register.
+    fn commit_lines(&mut self) {
+        if let Some((x, t)) = self.staged.texel.take() {
+            self.collect[(x & 1) as usize][(x >> 1) as usize] = t;
+        }
+        self.seq += self.staged.segments.len() as u64;
+        self.buffers.extend(self.staged.segments.drain(..));
+        self.pending_frames.extend(self.staged.frames.drain(..));
+        self.partner_left += self.staged.partner;
+        self.staged.partner = 0;
+        self.max_buffered = self.max_buffered.max(self.buffers.len());
     }
 
     pub fn visit(&self, v: &mut dyn Visitor) {
