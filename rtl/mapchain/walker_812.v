@@ -486,24 +486,24 @@ module walker_812 #(
         end
     endtask
 
-    // The output stage 820 on a finished walk: eq. 5, then eq. 6 or 7.
-    function automatic [7:0] colour(input dummy);
+    // The output stage 820 on the walk computed (ws_*) for a pixel lit by I_d = id and
+    // I_s = is: eq. 5, then eq. 6 or 7.
+    function automatic [7:0] colour(input [7:0] id, input [7:0] is);
         reg [7:0] cd, factor, light, base;
         reg [2:0] k;
         begin
             case (drfs[ws_tex_drf][26:25])
-                2'd0: factor = p_id;
+                2'd0: factor = id;
                 2'd1: factor = drfs[ws_tex_drf][34:27];
                 default: factor = 8'd255;
             endcase
-            cd = d_set(ws_tex_drf) ? mul255(factor, ws_tex) : p_id;
+            cd = d_set(ws_tex_drf) ? mul255(factor, ws_tex) : id;
             k = d_set(ws_refl_drf) ? ws_refl_drf : ws_env_drf;
-            base = (d_set(k) && !drfs[k][19]) ? p_id : cd;
-            light = drfs[ws_refl_drf][20] ? ws_env : p_is;
+            base = (d_set(k) && !drfs[k][19]) ? id : cd;
+            light = drfs[ws_refl_drf][20] ? ws_env : is;
             if (d_set(ws_refl_drf)) colour = add_sat(base, mul255(ws_refl, light));
             else if (d_set(ws_env_drf)) colour = add_sat(base, mul255(drfs[ws_env_drf][16:9], ws_env));
             else colour = cd;
-            if (dummy) colour = colour;
         end
     endfunction
 
@@ -528,7 +528,7 @@ module walker_812 #(
             if (ws_state == ERROR || ws_state == COMBINE) begin
                 out_valid_n = 1'b1;
                 out_error_n = ws_state == ERROR;
-                out_colour_n = ws_state == COMBINE ? colour(1'b0) : 8'd0;
+                out_colour_n = ws_state == COMBINE ? colour(p_id, p_is) : 8'd0;
                 out_accesses_n = a; out_slots_n = slots; out_faults_n = faults;
             end
         end

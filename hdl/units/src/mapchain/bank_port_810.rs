@@ -89,11 +89,6 @@ impl<T: TexramAccess> BankPort810<T> {
         &self.file
     }
 
-    /// The banks.
-    pub fn banks(&self) -> &T {
-        &self.texram
-    }
-
     /// The access staged on the port, made: its value and slots, or why the banks refused it.
     fn access(&mut self) -> Result<(u8, u32), String> {
         let a = &self.acc;
