@@ -110,8 +110,7 @@ fn bench_loop<M: Module, T: hdl::kernel::Trace>(
 }
 
 /// A co-simulation model of a [`Module`] whose inputs `drive` sets from raw bits (a
-/// function or a closure that captures nothing: its own type, so that the benchmark's cycle
-/// loop inlines it).
+/// function or a closure, each its own type, so that the benchmark's cycle loop inlines it).
 pub struct ModelSim<M: Module, D = fn(&mut M, &[u64])> {
     sim: Sim<M>,
     /// The design as built, for benchmark runs.
@@ -125,7 +124,7 @@ pub struct ModelSim<M: Module, D = fn(&mut M, &[u64])> {
     watch_fn: fn(&M) -> Vec<u64>,
 }
 
-impl<M: Module + Clone, D: Fn(&mut M, &[u64]) + Copy> ModelSim<M, D> {
+impl<M: Module + Clone, D: Fn(&mut M, &[u64])> ModelSim<M, D> {
     /// The model `dut` (kept as built for benchmark runs), its inputs set from raw bits in
     /// input-port order by `drive`.
     pub fn new(dut: M, drive: D) -> Self {
@@ -204,7 +203,7 @@ fn top_ports(m: &dyn Module) -> TopPorts {
     t
 }
 
-impl<M: Module + Clone, D: Fn(&mut M, &[u64]) + Copy> CosimModel for ModelSim<M, D> {
+impl<M: Module + Clone, D: Fn(&mut M, &[u64])> CosimModel for ModelSim<M, D> {
     fn ports(&self) -> (Vec<Port>, Vec<Port>) {
         let t = top_ports(&self.sim.dut);
         let mut outs = t.outputs;
@@ -239,16 +238,16 @@ impl<M: Module + Clone, D: Fn(&mut M, &[u64]) + Copy> CosimModel for ModelSim<M,
             ..Default::default()
         };
         let r = match trace {
-            BenchTrace::None => bench_loop(Sim::new(dut), stim, resets, self.drive),
+            BenchTrace::None => bench_loop(Sim::new(dut), stim, resets, &self.drive),
             BenchTrace::Vcd(p) => {
                 let title = format!("{} benchmark", self.pristine.kind());
                 waves::VcdTracer::create(p, &title, cfg)
                     .and_then(|t| Sim::traced(dut, t))
-                    .and_then(|s| bench_loop(s, stim, resets, self.drive))
+                    .and_then(|s| bench_loop(s, stim, resets, &self.drive))
             }
             BenchTrace::Fst(p) => waves::FstTracer::create(p, cfg)
                 .and_then(|t| Sim::traced(dut, t))
-                .and_then(|s| bench_loop(s, stim, resets, self.drive)),
+                .and_then(|s| bench_loop(s, stim, resets, &self.drive)),
         };
         r.map_err(|e| e.to_string())
     }
