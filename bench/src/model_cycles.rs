@@ -1,7 +1,8 @@
 //! One run of a twin's model on its seeded stimulus, nothing else: what
 //! `bench/model-instructions` counts under callgrind, to compare two builds of a unit (the
 //! derive against a hand-written `Module`, say) exactly, whatever else the machine runs.
-//! Untraced, or traced to the VCD or FST file named third (to count a tracer's cost).
+//! Untraced, or traced to the VCD or FST file named third (to count a tracer's cost). Prints
+//! the cycle loop's time (one run: a rough figure; the benchmark's are best of several).
 //! Usage: model-cycles UNIT CYCLES [FILE.vcd|FILE.fst]
 
 use std::process::ExitCode;
@@ -35,7 +36,10 @@ fn main() -> ExitCode {
         let u = project.twin(unit, "UNIT")?;
         let stim = u.stimulus(verif::Seed(0xbe7c), cycles);
         let resets = verif::cosim::reset_cycles(u);
-        u.model()?.bench(&stim, resets, trace)?;
+        let t = u.model()?.bench(&stim, resets, trace)?;
+        let secs = t.as_secs_f64();
+        let rate = cycles as f64 / secs.max(1e-9);
+        eprintln!("model-cycles: {cycles} cycles in {secs:.3} s ({rate:.0} cycles/s)");
         Ok(())
     };
     match run() {

@@ -305,28 +305,19 @@ impl Visitor for Declare<'_> {
     }
 }
 
-/// Collects the changed signals of one cycle.
-struct Changes<'a> {
-    vars: &'a mut [Var],
-    next: usize,
-    all: bool,
-    out: &'a mut Vec<Rec>,
-}
-
-impl Visitor for Changes<'_> {
-    fn enter(&mut self, _: &str, _: &str) {}
-    fn leave(&mut self) {}
-    #[inline]
-    fn signal(&mut self, _: Dir, s: &Signal) {
-        let v = &mut self.vars[self.next];
-        self.next += 1;
+/// Collects the changed signals of one cycle (every one when `all`).
+#[inline]
+fn changes<M: Module>(top: &M, vars: &mut [Var], all: bool, out: &mut Vec<Rec>) {
+    let mut next = 0;
+    top.visit_bits(&mut |bits| {
+        let v = &mut vars[next];
+        next += 1;
         let Some(id) = v.id else { return };
-        let bits = s.bits();
-        if self.all || bits != v.last {
+        if all || bits != v.last {
             v.last = bits;
-            self.out.push(Rec::Change(id, v.width, bits));
+            out.push(Rec::Change(id, v.width, bits));
         }
-    }
+    });
 }
 
 impl Trace for FstTracer {
@@ -378,7 +369,7 @@ impl Trace for FstTracer {
         Ok(())
     }
 
-    fn sample(&mut self, cycle: u64, reset: bool, top: &dyn Module) -> io::Result<()> {
+    fn sample<M: Module>(&mut self, cycle: u64, reset: bool, top: &M) -> io::Result<()> {
         if !self.in_window(cycle) {
             return Ok(());
         }
@@ -393,12 +384,7 @@ impl Trace for FstTracer {
             self.batch.push(Rec::Change(rst, 1, u64::from(reset)));
             self.rst_last = Some(reset);
         }
-        top.visit(&mut Changes {
-            vars: &mut self.vars,
-            next: 0,
-            all,
-            out: &mut self.batch,
-        });
+        changes(top, &mut self.vars, all, &mut self.batch);
         self.time(t + self.cfg.period_ps / 2);
         self.batch.push(Rec::Change(clk, 1, 0));
         // Every record since the cycle's first time step is a change, but the second time

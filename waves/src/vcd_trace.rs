@@ -117,7 +117,16 @@ struct Entry {
     code: Box<[u8]>,
     real_code: Box<[u8]>,
     fmt: Format,
+}
+
+/// What sampling reads and writes of an entry, kept dense (an entry's codes and format are
+/// for the header and the writer thread): the last value, whether traced, whether it has a
+/// real companion.
+#[derive(Clone, Copy)]
+struct Hot {
     last: u64,
+    traced: bool,
+    real: bool,
 }
 
 /// An identifier code as the VCD writes it.
@@ -133,7 +142,7 @@ pub(crate) fn push_time(buf: &mut Vec<u8>, t: u64) {
 }
 
 /// Every byte in binary digits, most significant first.
-static BINARY: [[u8; 8]; 256] = {
+pub(crate) static BINARY: [[u8; 8]; 256] = {
     let mut t = [[b'0'; 8]; 256];
     let mut v = 0;
     while v < 256 {
@@ -211,6 +220,8 @@ pub struct VcdTracer {
     cfg: TraceConfig,
     title: String,
     entries: Vec<Entry>,
+    /// The entries' sampling state, in the same order.
+    hot: Vec<Hot>,
     probes: Vec<Probe>,
     clk: Option<IdCode>,
     rst: Option<IdCode>,
@@ -275,6 +286,7 @@ impl VcdTracer {
             cfg,
             title: title.to_string(),
             entries: Vec::new(),
+            hot: Vec::new(),
             probes: Vec::new(),
             clk: None,
             rst: None,
@@ -581,7 +593,6 @@ impl Visitor for Declare<'_> {
             code: Box::default(),
             real_code: Box::default(),
             fmt,
-            last: 0,
         };
         if keep {
             let w = fmt.width();
@@ -647,34 +658,21 @@ impl Visitor for Declare<'_> {
     }
 }
 
-/// Collects the changes of one cycle as records for the writer thread.
-struct Sample<'a> {
-    recs: &'a mut Vec<Rec>,
-    entries: &'a mut [Entry],
-    next: usize,
-    all: bool,
-    changes: u64,
-}
-
-impl Visitor for Sample<'_> {
-    fn enter(&mut self, _: &str, _: &str) {}
-    fn leave(&mut self) {}
-    #[inline]
-    fn signal(&mut self, _: Dir, s: &Signal) {
-        let i = self.next;
-        let e = &mut self.entries[i];
-        self.next += 1;
-        if e.id.is_none() {
-            return;
+/// Collects the changes of one cycle (every value when `all`) as records for the writer
+/// thread; the count of value changes the dump gets (a real companion's too).
+#[inline]
+fn sample_changes<M: Module>(top: &M, hot: &mut [Hot], recs: &mut Vec<Rec>, all: bool) -> u64 {
+    let (mut i, mut changes) = (0usize, 0u64);
+    top.visit_bits(&mut |bits| {
+        let h = &mut hot[i];
+        i += 1;
+        if h.traced && (all || bits != h.last) {
+            h.last = bits;
+            recs.push(Rec::bits(i as u32 - 1, bits));
+            changes += 1 + u64::from(h.real);
         }
-        let bits = s.bits();
-        if !self.all && bits == e.last {
-            return;
-        }
-        e.last = bits;
-        self.recs.push(Rec::bits(i as u32, bits));
-        self.changes += 1 + u64::from(e.real.is_some());
-    }
+    });
+    changes
 }
 
 impl VcdTracer {
@@ -758,6 +756,12 @@ impl Trace for VcdTracer {
         if let Some(e) = d.err {
             return Err(e);
         }
+        let hot = self.entries.iter().map(|e| Hot {
+            last: 0,
+            traced: e.id.is_some(),
+            real: e.real.is_some(),
+        });
+        self.hot = hot.collect();
         if !self.probes.is_empty() {
             self.writer().add_module("golden")?;
             for i in 0..self.probes.len() {
@@ -803,7 +807,7 @@ impl Trace for VcdTracer {
         Ok(())
     }
 
-    fn sample(&mut self, cycle: u64, reset: bool, top: &dyn Module) -> io::Result<()> {
+    fn sample<M: Module>(&mut self, cycle: u64, reset: bool, top: &M) -> io::Result<()> {
         if let Some(f) = self.fst.as_mut() {
             fst_sample(f, cycle, reset, top)?;
         }
@@ -832,15 +836,7 @@ impl Trace for VcdTracer {
             }
             n += 1;
         }
-        let mut s = Sample {
-            recs: &mut recs,
-            entries: &mut self.entries,
-            next: 0,
-            all,
-            changes: 0,
-        };
-        top.visit(&mut s);
-        n += s.changes;
+        n += sample_changes(top, &mut self.hot, &mut recs, all);
         for (k, p) in self.probes.iter_mut().enumerate() {
             if all || p.last != Some(p.value) {
                 let i = probes + k as u32;
@@ -874,11 +870,11 @@ impl Trace for VcdTracer {
 /// The FST companion's cycle, out of line: inlined, it made the VCD tracer's own cycle slower
 /// even without a companion.
 #[inline(never)]
-fn fst_sample(
+fn fst_sample<M: Module>(
     f: &mut crate::FstTracer,
     cycle: u64,
     reset: bool,
-    top: &dyn Module,
+    top: &M,
 ) -> io::Result<()> {
     f.sample(cycle, reset, top)
 }

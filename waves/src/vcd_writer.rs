@@ -3,7 +3,7 @@
 //! writes the file, so formatting and writing overlap with simulating. The text is exactly
 //! what formatting in the simulation's thread gave (same functions, same order).
 
-use crate::vcd_trace::{binary_digits, push_change, push_real, push_time, real_of};
+use crate::vcd_trace::{push_change, push_real, push_time, real_of, BINARY};
 use hdl::fx::Format;
 use std::fs::File;
 use std::io::{self, BufWriter, Write};
@@ -46,6 +46,27 @@ impl Tail {
             bytes,
             len: code.len() + 1,
         })
+    }
+}
+
+/// How a variable's change is formatted, dense and read once per record: its [`Tail`] (if
+/// its code is short enough) and width, and whether the line is [`Text::change`] alone (a
+/// tail, no `real` companion) or takes the general path through its [`Code`].
+#[derive(Clone, Copy)]
+struct Line {
+    tail: Option<Tail>,
+    width: u32,
+    alone: bool,
+}
+
+impl Line {
+    fn of(c: &Code) -> Line {
+        let tail = Tail::of(&c.code);
+        Line {
+            tail,
+            width: c.width,
+            alone: tail.is_some() && c.real.is_none(),
+        }
     }
 }
 
@@ -132,21 +153,38 @@ impl Text {
         self.pos = end;
     }
 
-    /// A value change, as [`push_change`] writes it.
-    #[inline]
+    /// A value change, as [`push_change`] writes it. The line is formatted within the
+    /// [`LINE`] bytes of room at the cursor, in whole 8-byte moves: the digits of the bits
+    /// above a whole number of bytes as the tail of a byte's eight (the bytes after them are
+    /// overwritten by the next digits, or the space), then a byte's eight at a time.
+    #[inline(always)]
     fn change(&mut self, tail: &Tail, width: u32, bits: u64) {
-        let (w, mut p) = (width as usize, self.pos);
-        if w == 1 {
-            self.buf[p] = b'0' + (bits & 1) as u8;
-            p += 1;
+        let p = self.pos;
+        let line: &mut [u8; LINE] = (&mut self.buf[p..p + LINE]).try_into().expect("LINE");
+        let w = (width as usize).min(64);
+        let end = if w == 1 {
+            line[0] = b'0' + (bits & 1) as u8;
+            1
         } else {
-            self.buf[p] = b'b';
-            binary_digits(&mut self.buf[p + 1..p + 1 + w], bits);
-            self.buf[p + 1 + w] = b' ';
-            p += w + 2;
-        }
-        self.buf[p..p + 16].copy_from_slice(&tail.bytes);
-        self.pos = p + tail.len;
+            line[0] = b'b';
+            let top = w % 8;
+            let mut q = 1;
+            if top != 0 {
+                let byte = ((bits >> (w - top)) & 0xff) as usize;
+                let digits = u64::from_le_bytes(BINARY[byte]) >> (8 * (8 - top));
+                line[1..9].copy_from_slice(&digits.to_le_bytes());
+                q += top;
+            }
+            for k in (0..w / 8).rev() {
+                let byte = ((bits >> (8 * k)) & 0xff) as usize;
+                line[q..q + 8].copy_from_slice(&BINARY[byte]);
+                q += 8;
+            }
+            line[q] = b' ';
+            q + 1
+        };
+        line[end..end + 16].copy_from_slice(&tail.bytes);
+        self.pos = p + end + tail.len;
     }
 
     /// Appends what a `Vec` formatter wrote.
@@ -163,7 +201,7 @@ fn format(
     text: &mut Text,
     scratch: &mut Vec<u8>,
     codes: &[Code],
-    tails: &[Option<Tail>],
+    lines: &[Line],
     recs: &[Rec],
 ) -> io::Result<()> {
     for r in recs {
@@ -176,11 +214,15 @@ fn format(
             Rec::TIME => text.with_vec(scratch, |b| push_time(b, r.value)),
             Rec::TEXT => text.put(TEXTS[i]),
             Rec::BITS => {
+                let l = &lines[i];
+                if let (true, Some(tail)) = (l.alone, &l.tail) {
+                    text.change(tail, l.width, r.value);
+                    continue;
+                }
                 let c = &codes[i];
-                if let Some(tail) = &tails[i] {
-                    text.change(tail, c.width, r.value);
-                } else {
-                    text.with_vec(scratch, |b| push_change(b, &c.code, c.width, r.value));
+                match &l.tail {
+                    Some(tail) => text.change(tail, c.width, r.value),
+                    None => text.with_vec(scratch, |b| push_change(b, &c.code, c.width, r.value)),
                 }
                 if let Some((code, fmt)) = &c.real {
                     text.with_vec(scratch, |b| push_real(b, code, real_of(r.value, *fmt)));
@@ -204,9 +246,9 @@ fn run(
     recycle: Sender<Vec<Rec>>,
 ) -> (Out, io::Result<()>) {
     let (mut text, mut scratch) = (Text::new(), Vec::with_capacity(64));
-    let tails: Vec<Option<Tail>> = codes.iter().map(|c| Tail::of(&c.code)).collect();
+    let lines: Vec<Line> = codes.iter().map(Line::of).collect();
     for mut batch in batches {
-        if let Err(e) = format(&mut w, &mut text, &mut scratch, &codes, &tails, &batch) {
+        if let Err(e) = format(&mut w, &mut text, &mut scratch, &codes, &lines, &batch) {
             return (w, Err(e));
         }
         batch.clear();

@@ -1,7 +1,8 @@
 //! `#[derive(Module)]`: a module's ports, registers, wires and children are declared once, by
-//! an attribute on their field, and its `tick` and `visit` are generated from them, so a
-//! register added to the struct is committed at the clock edge, traced and schedule-checked
-//! with no other edit. The behaviour stays hand-written: an inherent `fn eval(&mut self)`.
+//! an attribute on their field, and its `tick`, `visit` and `visit_bits` (the values a tracer
+//! samples, statically dispatched) are generated from them, so a register added to the struct
+//! is committed at the clock edge, traced and schedule-checked with no other edit. The
+//! behaviour stays hand-written: an inherent `fn eval(&mut self)`.
 //!
 //! ```text
 //! #[derive(Module)]
@@ -100,12 +101,17 @@ pub fn derive_regs(input: TokenStream) -> TokenStream {
 
 /// The impl of trait `[tr, tick, visit]` (`Regs` or `Children`, for the derive `what`) whose
 /// edge and visit call the same methods on every field of `ast`, in order.
-fn per_field(ast: &DeriveInput, what: &str, [tr, tick, visit]: [&str; 3]) -> syn::Result<Tokens> {
+fn per_field(
+    ast: &DeriveInput,
+    what: &str,
+    [tr, tick, visit, bits]: [&str; 4],
+) -> syn::Result<Tokens> {
     let fields = named_fields(ast, what)?;
     let hdl = hdl_path();
     let tr = format_ident!("{}", tr);
     let tr = quote!(#hdl::kernel::declared::#tr);
     let (tick, visit) = (format_ident!("{}", tick), format_ident!("{}", visit));
+    let bits = format_ident!("{}", bits);
     let name = &ast.ident;
     let (impl_g, ty_g, where_g) = ast.generics.split_for_impl();
     let ids: Vec<_> = fields.named.iter().map(|f| &f.ident).collect();
@@ -118,12 +124,20 @@ fn per_field(ast: &DeriveInput, what: &str, [tr, tick, visit]: [&str; 3]) -> syn
             fn #visit(&self, v: &mut dyn #hdl::kernel::Visitor) {
                 #(#tr::#visit(&self.#ids, v);)*
             }
+            #[inline]
+            fn #bits<__F: FnMut(u64)>(&self, __f: &mut __F) {
+                #(#tr::#bits(&self.#ids, __f);)*
+            }
         }
     })
 }
 
 fn expand_regs(ast: &DeriveInput) -> syn::Result<Tokens> {
-    per_field(ast, "Regs", ["Regs", "tick_regs", "visit_regs"])
+    per_field(
+        ast,
+        "Regs",
+        ["Regs", "tick_regs", "visit_regs", "bits_regs"],
+    )
 }
 
 /// Derives `Children` for a group of sub-modules that has no scope of its own (one MIP
@@ -141,7 +155,12 @@ fn expand_group(ast: &DeriveInput) -> syn::Result<Tokens> {
     per_field(
         ast,
         "Group",
-        ["Children", "tick_children", "visit_children"],
+        [
+            "Children",
+            "tick_children",
+            "visit_children",
+            "bits_children",
+        ],
     )
 }
 
@@ -171,10 +190,15 @@ fn expand_signals(ast: &DeriveInput) -> syn::Result<Tokens> {
         let id = &f.ident;
         quote!(#hdl::kernel::declared::Signals::visit_signals(&self.#id, dir, v);)
     });
+    let ids = fields.named.iter().map(|f| &f.ident);
     Ok(quote! {
         impl #impl_g #hdl::kernel::declared::Signals for #name #ty_g #where_g {
             fn visit_signals(&self, dir: #hdl::kernel::Dir, v: &mut dyn #hdl::kernel::Visitor) {
                 #(#visits)*
+            }
+            #[inline]
+            fn bits_signals<__F: FnMut(u64)>(&self, __f: &mut __F) {
+                #(#hdl::kernel::declared::Signals::bits_signals(&self.#ids, __f);)*
             }
         }
     })
@@ -377,6 +401,49 @@ fn roles(ast: &DeriveInput) -> syn::Result<Vec<Field>> {
     Ok(out)
 }
 
+/// A marked field's part of the generated `tick` (registers and children only), `visit` and
+/// `visit_bits`: the same fields in the same order for both walks.
+fn field_code(field: &Field, hdl: &Tokens) -> (Option<Tokens>, Tokens, Tokens) {
+    let decl = quote!(#hdl::kernel::declared);
+    let f = &field.id;
+    let each = |tr: &str, method: &str| {
+        let (tr, method) = (format_ident!("{}", tr), format_ident!("{}", method));
+        quote!(#decl::#tr::#method(&self.#f, __f);)
+    };
+    match field.role {
+        Role::Reg => (
+            Some(quote!(#decl::Regs::tick_regs(&mut self.#f, reset);)),
+            quote!(#decl::Regs::visit_regs(&self.#f, v);),
+            each("Regs", "bits_regs"),
+        ),
+        Role::Child => (
+            Some(quote!(#decl::Children::tick_children(&mut self.#f, reset);)),
+            quote!(#decl::Children::visit_children(&self.#f, v);),
+            each("Children", "bits_children"),
+        ),
+        Role::Narrow => (
+            None,
+            quote!(#decl::Narrowings::visit_narrowings(&self.#f, v);),
+            each("Narrowings", "bits_narrowings"),
+        ),
+        role => {
+            let d = format_ident!(
+                "{}",
+                match role {
+                    Role::Input => "Input",
+                    Role::Output => "Output",
+                    _ => "Wire",
+                }
+            );
+            (
+                None,
+                quote!(#decl::Signals::visit_signals(&self.#f, #hdl::kernel::Dir::#d, v);),
+                each("Signals", "bits_signals"),
+            )
+        }
+    }
+}
+
 fn expand(ast: &DeriveInput) -> syn::Result<Tokens> {
     let ModuleArgs {
         kind,
@@ -393,34 +460,22 @@ fn expand(ast: &DeriveInput) -> syn::Result<Tokens> {
     };
     let name = &ast.ident;
     let (impl_g, ty_g, where_g) = ast.generics.split_for_impl();
-    let decl = quote!(#hdl::kernel::declared);
     let gate = enable.map(|e| quote!(if !reset && !(#e) { return; }));
-    let mut ticks = Vec::new();
-    let mut visits = Vec::new();
     let mut instance = match &fixed_instance {
         Some(i) => quote!(#i),
         None => quote!(#kind),
     };
-    for Field { id: f, role, .. } in &fields {
-        let dir = |d: &str| {
-            let d = format_ident!("{}", d);
-            quote!(#decl::Signals::visit_signals(&self.#f, #hdl::kernel::Dir::#d, v);)
-        };
-        match role {
-            Role::Input => visits.push(dir("Input")),
-            Role::Output => visits.push(dir("Output")),
-            Role::Wire => visits.push(dir("Wire")),
-            Role::Reg => {
-                ticks.push(quote!(#decl::Regs::tick_regs(&mut self.#f, reset);));
-                visits.push(quote!(#decl::Regs::visit_regs(&self.#f, v);));
-            }
-            Role::Child => {
-                ticks.push(quote!(#decl::Children::tick_children(&mut self.#f, reset);));
-                visits.push(quote!(#decl::Children::visit_children(&self.#f, v);));
-            }
-            Role::Narrow => visits.push(quote!(#decl::Narrowings::visit_narrowings(&self.#f, v);)),
-            Role::Instance => instance = quote!(&self.#f),
+    let (mut ticks, mut visits, mut bits) = (Vec::new(), Vec::new(), Vec::new());
+    for f in &fields {
+        if f.role == Role::Instance {
+            let id = &f.id;
+            instance = quote!(&self.#id);
+            continue;
         }
+        let (tick, visit, bit) = field_code(f, &hdl);
+        ticks.extend(tick);
+        visits.push(visit);
+        bits.push(bit);
     }
     Ok(quote! {
         #ctor
@@ -448,6 +503,11 @@ fn expand(ast: &DeriveInput) -> syn::Result<Tokens> {
                 v.enter(#hdl::kernel::Module::instance(self), #kind);
                 #(#visits)*
                 v.leave();
+            }
+            #[inline]
+            fn visit_bits<__F: FnMut(u64)>(&self, __f: &mut __F) {
+                let _ = &__f;
+                #(#bits)*
             }
         }
     })

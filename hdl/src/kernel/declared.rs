@@ -5,7 +5,7 @@
 //! registers or of sub-units is declared with one attribute, with no index kept in step by
 //! hand. A port bundle (a struct of signals) is `Signals` by `#[derive(Signals)]`.
 
-use super::module::{Dir, Module, Visitor};
+use super::module::{BitsOf, Dir, Module, Visitor};
 use super::signal::{Reg, Signal};
 use crate::fx::Narrowing;
 
@@ -13,6 +13,15 @@ use crate::fx::Narrowing;
 pub trait Signals {
     /// Visits every signal, in order.
     fn visit_signals(&self, dir: Dir, v: &mut dyn Visitor);
+    /// Every signal's bits, in the order `visit_signals` visits them
+    /// ([`Module::visit_bits`]); by default through `visit_signals`.
+    #[inline]
+    fn bits_signals<F: FnMut(u64)>(&self, f: &mut F)
+    where
+        Self: Sized,
+    {
+        self.visit_signals(Dir::Wire, &mut BitsOf(f));
+    }
 }
 
 impl Signals for Signal {
@@ -20,26 +29,29 @@ impl Signals for Signal {
     fn visit_signals(&self, dir: Dir, v: &mut dyn Visitor) {
         v.signal(dir, self);
     }
-}
-
-impl<T: Signals, const N: usize> Signals for [T; N] {
-    fn visit_signals(&self, dir: Dir, v: &mut dyn Visitor) {
-        self.iter().for_each(|s| s.visit_signals(dir, v));
+    #[inline]
+    fn bits_signals<F: FnMut(u64)>(&self, f: &mut F) {
+        f(self.bits());
     }
 }
 
-impl<T: Signals> Signals for Vec<T> {
-    fn visit_signals(&self, dir: Dir, v: &mut dyn Visitor) {
-        self.iter().for_each(|s| s.visit_signals(dir, v));
-    }
+/// `Signals` for arrays, `Vec`s and `Option`s (ports a configuration may leave out, such as a
+/// trilinear unit's second level): each item in order.
+macro_rules! signal_collections {
+    ($([$($g:tt)*] $ty:ty),*) => {$(
+        impl<$($g)*> Signals for $ty {
+            fn visit_signals(&self, dir: Dir, v: &mut dyn Visitor) {
+                self.iter().for_each(|s| s.visit_signals(dir, v));
+            }
+            #[inline]
+            fn bits_signals<F: FnMut(u64)>(&self, f: &mut F) {
+                self.iter().for_each(|s| s.bits_signals(f));
+            }
+        }
+    )*};
 }
 
-/// Ports a configuration may leave out (a trilinear unit's second level): visited when present.
-impl<T: Signals> Signals for Option<T> {
-    fn visit_signals(&self, dir: Dir, v: &mut dyn Visitor) {
-        self.iter().for_each(|s| s.visit_signals(dir, v));
-    }
-}
+signal_collections!([T: Signals, const N: usize] [T; N], [T: Signals] Vec<T>, [T: Signals] Option<T>);
 
 /// Registers: committed at the clock edge, visited as registers.
 pub trait Regs {
@@ -47,6 +59,14 @@ pub trait Regs {
     fn tick_regs(&mut self, reset: bool);
     /// Visits every register, in order.
     fn visit_regs(&self, v: &mut dyn Visitor);
+    /// Every register's current bits, in visit order ([`Module::visit_bits`]).
+    #[inline]
+    fn bits_regs<F: FnMut(u64)>(&self, f: &mut F)
+    where
+        Self: Sized,
+    {
+        self.visit_regs(&mut BitsOf(f));
+    }
 }
 
 impl Regs for Reg {
@@ -58,6 +78,10 @@ impl Regs for Reg {
     fn visit_regs(&self, v: &mut dyn Visitor) {
         v.reg(self);
     }
+    #[inline]
+    fn bits_regs<F: FnMut(u64)>(&self, f: &mut F) {
+        f(self.q().bits());
+    }
 }
 
 /// Named narrowings ([`Narrowing`]): visited for numeric coverage (and their overflow flags
@@ -65,17 +89,33 @@ impl Regs for Reg {
 pub trait Narrowings {
     /// Visits every narrowing, in order.
     fn visit_narrowings(&self, v: &mut dyn Visitor);
+    /// Every narrowing's flag bits, in visit order ([`Module::visit_bits`]).
+    #[inline]
+    fn bits_narrowings<F: FnMut(u64)>(&self, f: &mut F)
+    where
+        Self: Sized,
+    {
+        self.visit_narrowings(&mut BitsOf(f));
+    }
 }
 
 impl Narrowings for Narrowing {
     fn visit_narrowings(&self, v: &mut dyn Visitor) {
         v.narrowing(self);
     }
+    #[inline]
+    fn bits_narrowings<F: FnMut(u64)>(&self, f: &mut F) {
+        f(self.flag().bits());
+    }
 }
 
-impl<F: crate::fx::Fmt> Narrowings for crate::fx::NarrowingOf<F> {
+impl<Q: crate::fx::Fmt> Narrowings for crate::fx::NarrowingOf<Q> {
     fn visit_narrowings(&self, v: &mut dyn Visitor) {
         v.narrowing(self);
+    }
+    #[inline]
+    fn bits_narrowings<F: FnMut(u64)>(&self, f: &mut F) {
+        f(self.flag().bits());
     }
 }
 
@@ -83,11 +123,19 @@ impl<T: Narrowings, const N: usize> Narrowings for [T; N] {
     fn visit_narrowings(&self, v: &mut dyn Visitor) {
         self.iter().for_each(|n| n.visit_narrowings(v));
     }
+    #[inline]
+    fn bits_narrowings<F: FnMut(u64)>(&self, f: &mut F) {
+        self.iter().for_each(|n| n.bits_narrowings(f));
+    }
 }
 
 impl<T: Narrowings> Narrowings for Vec<T> {
     fn visit_narrowings(&self, v: &mut dyn Visitor) {
         self.iter().for_each(|n| n.visit_narrowings(v));
+    }
+    #[inline]
+    fn bits_narrowings<F: FnMut(u64)>(&self, f: &mut F) {
+        self.iter().for_each(|n| n.bits_narrowings(f));
     }
 }
 
@@ -97,6 +145,14 @@ pub trait Children {
     fn tick_children(&mut self, reset: bool);
     /// Visits every child, in order.
     fn visit_children(&self, v: &mut dyn Visitor);
+    /// Every child's signals' bits, in visit order ([`Module::visit_bits`]).
+    #[inline]
+    fn bits_children<F: FnMut(u64)>(&self, f: &mut F)
+    where
+        Self: Sized,
+    {
+        self.visit_children(&mut BitsOf(f));
+    }
 }
 
 impl<M: Module> Children for M {
@@ -107,17 +163,21 @@ impl<M: Module> Children for M {
     fn visit_children(&self, v: &mut dyn Visitor) {
         self.visit(v);
     }
+    #[inline]
+    fn bits_children<F: FnMut(u64)>(&self, f: &mut F) {
+        self.visit_bits(f);
+    }
 }
 
 /// `$trait` for arrays, `Vec`s and `Option`s of `$bound`: each item (an `Option` holds none
 /// or one) ticked by `$tick` and visited by `$visit`, in order.
 macro_rules! collections {
-    ($trait:ident, $bound:ident, $tick_fn:ident => $tick:ident, $visit_fn:ident => $visit:ident) => {
-        collections!(@one [T: $bound, const N: usize] [T; N], $trait, $tick_fn => $tick, $visit_fn => $visit);
-        collections!(@one [T: $bound] Vec<T>, $trait, $tick_fn => $tick, $visit_fn => $visit);
-        collections!(@one [T: $bound] Option<T>, $trait, $tick_fn => $tick, $visit_fn => $visit);
+    ($trait:ident, $bound:ident, $tick_fn:ident => $tick:ident, $visit_fn:ident => $visit:ident, $bits_fn:ident) => {
+        collections!(@one [T: $bound, const N: usize] [T; N], $trait, $tick_fn => $tick, $visit_fn => $visit, $bits_fn);
+        collections!(@one [T: $bound] Vec<T>, $trait, $tick_fn => $tick, $visit_fn => $visit, $bits_fn);
+        collections!(@one [T: $bound] Option<T>, $trait, $tick_fn => $tick, $visit_fn => $visit, $bits_fn);
     };
-    (@one [$($g:tt)*] $ty:ty, $trait:ident, $tick_fn:ident => $tick:ident, $visit_fn:ident => $visit:ident) => {
+    (@one [$($g:tt)*] $ty:ty, $trait:ident, $tick_fn:ident => $tick:ident, $visit_fn:ident => $visit:ident, $bits_fn:ident) => {
         impl<$($g)*> $trait for $ty {
             #[inline]
             fn $tick_fn(&mut self, reset: bool) {
@@ -130,9 +190,15 @@ macro_rules! collections {
                     x.$visit(v);
                 }
             }
+            #[inline]
+            fn $bits_fn<F: FnMut(u64)>(&self, f: &mut F) {
+                for x in self.iter() {
+                    x.$bits_fn(f);
+                }
+            }
         }
     };
 }
 
-collections!(Regs, Regs, tick_regs => tick_regs, visit_regs => visit_regs);
-collections!(Children, Children, tick_children => tick_children, visit_children => visit_children);
+collections!(Regs, Regs, tick_regs => tick_regs, visit_regs => visit_regs, bits_regs);
+collections!(Children, Children, tick_children => tick_children, visit_children => visit_children, bits_children);

@@ -108,4 +108,8 @@ impl Module for Delay {
         }
         v.leave();
     }
+    #[inline]
+    fn visit_bits<F: FnMut(u64)>(&self, f: &mut F) {
+        self.i.iter().chain(&self.o).for_each(|s| f(s.bits()));
+    }
 }

@@ -94,6 +94,12 @@ impl Module for Mem {
         v.signal(Dir::Wire, &self.wdata);
         v.leave();
     }
+    #[inline]
+    fn visit_bits<F: FnMut(u64)>(&self, f: &mut F) {
+        f(self.we.bits());
+        f(self.waddr.bits());
+        f(self.wdata.bits());
+    }
 }
 
 #[cfg(test)]

@@ -65,6 +65,30 @@ pub trait Module {
     /// Declares the instance's signals and children: call `v.enter`, list every port and
     /// register, visit the children, `v.leave`.
     fn visit(&self, v: &mut dyn Visitor);
+    /// The bits of every signal [`Module::visit`] lists, in the same order: what a tracer
+    /// samples and the schedule check compares each cycle. By default it walks `visit`;
+    /// `#[derive(Module)]` writes it field by field, statically dispatched, so a tracer's
+    /// per-signal work inlines into one loop-free pass over the design.
+    #[inline]
+    fn visit_bits<F: FnMut(u64)>(&self, f: &mut F)
+    where
+        Self: Sized,
+    {
+        self.visit(&mut BitsOf(f));
+    }
+}
+
+/// A visitor handing each signal's bits to a function: the default [`Module::visit_bits`],
+/// and the default of the declared traits' `bits_*` methods.
+pub struct BitsOf<'a, F>(pub &'a mut F);
+
+impl<F: FnMut(u64)> Visitor for BitsOf<'_, F> {
+    fn enter(&mut self, _: &str, _: &str) {}
+    fn leave(&mut self) {}
+    #[inline]
+    fn signal(&mut self, _: Dir, s: &Signal) {
+        (self.0)(s.bits());
+    }
 }
 
 /// Lists signals of a module for [`Module::visit`]:

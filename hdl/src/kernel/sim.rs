@@ -11,8 +11,9 @@ use crate::fx::Narrowing;
 pub trait Trace {
     /// Called once before the first cycle with the whole hierarchy.
     fn start(&mut self, top: &dyn Module) -> std::io::Result<()>;
-    /// Records cycle `cycle` (reset asserted or not).
-    fn sample(&mut self, cycle: u64, reset: bool, top: &dyn Module) -> std::io::Result<()>;
+    /// Records cycle `cycle` (reset asserted or not). `top` is the design's own type, so
+    /// that [`Module::visit_bits`] reads every signal without dynamic dispatch.
+    fn sample<M: Module>(&mut self, cycle: u64, reset: bool, top: &M) -> std::io::Result<()>;
     /// Ends the recording after `cycles` cycles.
     fn finish(&mut self, cycles: u64) -> std::io::Result<()>;
 }
@@ -25,7 +26,7 @@ impl Trace for NoTrace {
         Ok(())
     }
     #[inline(always)]
-    fn sample(&mut self, _: u64, _: bool, _: &dyn Module) -> std::io::Result<()> {
+    fn sample<M: Module>(&mut self, _: u64, _: bool, _: &M) -> std::io::Result<()> {
         Ok(())
     }
     fn finish(&mut self, _: u64) -> std::io::Result<()> {
@@ -145,15 +146,22 @@ impl<M: Module, T: Trace> Sim<M, T> {
     fn checked_edge(&mut self) {
         let (mut a, mut b) = std::mem::take(&mut self.snap);
         snapshot(&self.dut, &mut a);
-        self.dut.tick(self.reset);
-        snapshot(&self.dut, &mut b);
         if self.is_reg.len() != a.len() {
-            // The hierarchy is fixed: which signals are registers is found once.
+            // The hierarchy is fixed: which signals are registers is found once, and once
+            // that `visit_bits` lists what `visit` lists (a hand-written one could differ).
+            assert_eq!(
+                visited_bits(&self.dut),
+                a,
+                "'{}': visit_bits lists other values than visit",
+                self.dut.instance()
+            );
             self.is_reg = signal_dirs(&self.dut)
                 .iter()
                 .map(|&d| d == Dir::Reg)
                 .collect();
         }
+        self.dut.tick(self.reset);
+        snapshot(&self.dut, &mut b);
         let is_reg = &self.is_reg;
         let bad = (0..a.len()).find(|&i| a[i] != b[i] && !is_reg[i]);
         if let Some(i) = bad {
@@ -208,17 +216,16 @@ impl<M: Module, T: Trace> Sim<M, T> {
     }
 }
 
-fn snapshot(top: &dyn Module, out: &mut Vec<u64>) {
-    struct Snap<'a>(&'a mut Vec<u64>);
-    impl Visitor for Snap<'_> {
-        fn enter(&mut self, _: &str, _: &str) {}
-        fn leave(&mut self) {}
-        fn signal(&mut self, _: Dir, s: &Signal) {
-            self.0.push(s.bits());
-        }
-    }
+fn snapshot<M: Module>(top: &M, out: &mut Vec<u64>) {
     out.clear();
-    top.visit(&mut Snap(out));
+    top.visit_bits(&mut |b| out.push(b));
+}
+
+/// Every signal's bits as [`Module::visit`] lists them.
+pub(super) fn visited_bits(top: &dyn Module) -> Vec<u64> {
+    let mut out = Vec::new();
+    top.visit(&mut super::module::BitsOf(&mut |b| out.push(b)));
+    out
 }
 
 /// What every signal is to its module, in visit order.

@@ -59,4 +59,10 @@ impl<P: Signals> Signals for Stream<P> {
         };
         v.signal(back, &self.ready);
     }
+    #[inline]
+    fn bits_signals<F: FnMut(u64)>(&self, f: &mut F) {
+        f(self.valid.bits());
+        self.payload.bits_signals(f);
+        f(self.ready.bits());
+    }
 }

@@ -141,6 +141,10 @@ impl<F> Signals for SignalOf<F> {
     fn visit_signals(&self, dir: Dir, v: &mut dyn Visitor) {
         v.signal(dir, &self.s);
     }
+    #[inline]
+    fn bits_signals<G: FnMut(u64)>(&self, f: &mut G) {
+        f(self.s.bits());
+    }
 }
 
 /// A [`Reg`] of format `F`: `q()` is a [`SignalOf<F>`], and every next-value write is checked
@@ -262,6 +266,10 @@ impl<F: Fmt> Regs for RegOf<F> {
     /// Visited as a register: its current value, as [`Visitor::reg`] visits a [`Reg`].
     fn visit_regs(&self, v: &mut dyn Visitor) {
         v.signal(Dir::Reg, &self.q.s);
+    }
+    #[inline]
+    fn bits_regs<G: FnMut(u64)>(&self, f: &mut G) {
+        f(self.q.s.bits());
     }
 }
 
