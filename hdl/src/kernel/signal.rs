@@ -136,7 +136,7 @@ impl Signal {
     #[track_caller]
     pub fn set_bits(&mut self, bits: u64) {
         if bits & !self.mask != 0 {
-            self.overflow(format!("bits {bits:#x}"));
+            self.misfit(Misfit::Bits(bits));
         }
         self.bits = bits;
     }
@@ -146,7 +146,7 @@ impl Signal {
     #[track_caller]
     pub fn set_raw(&mut self, raw: i64) {
         if raw < self.lo || raw > self.hi {
-            self.overflow(format!("raw {raw}"));
+            self.misfit(Misfit::Raw(raw));
         }
         self.bits = (raw as u64) & self.mask;
     }
@@ -210,6 +210,15 @@ impl Signal {
         }
     }
 
+    /// [`Signal::overflow`] for a value that did not fit: the message is formatted here, on
+    /// the cold path, so a checked write inlines as a compare and a call.
+    #[cold]
+    #[inline(never)]
+    #[track_caller]
+    pub(super) fn misfit(&self, m: Misfit) -> ! {
+        self.overflow(m.to_string())
+    }
+
     #[cold]
     #[track_caller]
     pub(super) fn overflow(&self, what: String) -> ! {
@@ -219,6 +228,26 @@ impl Signal {
             self.fmt,
             self.fmt.width()
         )
+    }
+}
+
+/// A value a checked write found out of its signal's format.
+#[derive(Clone, Copy, Debug)]
+pub(super) enum Misfit {
+    Bits(u64),
+    Raw(i64),
+    NextBits(u64),
+    NextRaw(i64),
+}
+
+impl std::fmt::Display for Misfit {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        match self {
+            Misfit::Bits(b) => write!(f, "bits {b:#x}"),
+            Misfit::Raw(r) => write!(f, "raw {r}"),
+            Misfit::NextBits(b) => write!(f, "next bits {b:#x}"),
+            Misfit::NextRaw(r) => write!(f, "next raw {r}"),
+        }
     }
 }
 
@@ -292,7 +321,7 @@ impl Reg {
     #[track_caller]
     pub fn set_next_raw(&mut self, raw: i64) {
         if raw < self.q.lo || raw > self.q.hi {
-            self.q.overflow(format!("next raw {raw}"));
+            self.q.misfit(Misfit::NextRaw(raw));
         }
         self.d = (raw as u64) & self.q.mask;
     }
@@ -302,7 +331,7 @@ impl Reg {
     #[track_caller]
     pub fn set_next_bits(&mut self, bits: u64) {
         if bits & !self.q.mask != 0 {
-            self.q.overflow(format!("next bits {bits:#x}"));
+            self.q.misfit(Misfit::NextBits(bits));
         }
         self.d = bits;
     }

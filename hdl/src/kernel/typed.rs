@@ -4,7 +4,7 @@
 
 use super::declared::{Regs, Signals};
 use super::module::{Dir, Visitor};
-use super::signal::{Reg, Signal};
+use super::signal::{Misfit, Reg, Signal};
 use crate::fx::{Fmt, Format, Fx};
 use std::marker::PhantomData;
 use std::ops::{Deref, DerefMut};
@@ -88,7 +88,7 @@ impl<F: Fmt> SignalOf<F> {
     #[track_caller]
     pub fn set_raw(&mut self, raw: i64) {
         if !F::FMT.contains_raw(i128::from(raw)) {
-            self.s.overflow(format!("raw {raw}"));
+            self.s.misfit(Misfit::Raw(raw));
         }
         self.s.bits = (raw as u64) & mask_of::<F>();
     }
@@ -200,7 +200,7 @@ impl<F: Fmt> RegOf<F> {
     #[track_caller]
     pub fn set_next_raw(&mut self, raw: i64) {
         if !F::FMT.contains_raw(i128::from(raw)) {
-            self.q.s.overflow(format!("next raw {raw}"));
+            self.q.s.misfit(Misfit::NextRaw(raw));
         }
         self.d = (raw as u64) & mask_of::<F>();
     }
@@ -210,7 +210,7 @@ impl<F: Fmt> RegOf<F> {
     #[track_caller]
     pub fn set_next_bits(&mut self, bits: u64) {
         if bits & !mask_of::<F>() != 0 {
-            self.q.s.overflow(format!("next bits {bits:#x}"));
+            self.q.s.misfit(Misfit::NextBits(bits));
         }
         self.d = bits;
     }

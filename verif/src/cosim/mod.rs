@@ -88,11 +88,11 @@ pub enum BenchTrace<'a> {
 }
 
 /// The cycle loop of a benchmark run; its time, the trace finished.
-fn bench_loop<M: Module, T: hdl::kernel::Trace>(
+fn bench_loop<M: Module, T: hdl::kernel::Trace, D: Fn(&mut M, &[u64])>(
     mut sim: Sim<M, T>,
     stim: &[Vec<u64>],
     resets: usize,
-    drive: impl Fn(&mut M, &[u64]),
+    drive: &D,
 ) -> std::io::Result<std::time::Duration> {
     // One contiguous array, as the Verilator side replays it: no pointer per cycle.
     let n = stim.first().map_or(0, Vec::len);
