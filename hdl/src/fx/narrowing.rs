@@ -4,7 +4,7 @@
 //! as the mode says), rounding ties, values that lost fraction bits, and the range of the
 //! values before narrowing.
 
-use super::value::{dropped, rounded};
+use super::value::{dropped, round_shift, rounded};
 use super::{quantise, Fmt, Format, Fx, Overflow, Quant};
 use crate::kernel::Signal;
 use std::cell::Cell;
@@ -205,6 +205,12 @@ pub struct Narrowing {
     /// under symmetric saturation), and whether the rounding mode has a tie rule.
     top: i128,
     bottom: i128,
+    /// The same range in machine words, with the destination's fraction bits, for the fast
+    /// path ([`Narrowing::in_words`]); `word` is false for a destination of 63 bits or more.
+    lo: i64,
+    hi: i64,
+    dst_frac: i32,
+    word: bool,
     tie_rule: bool,
     /// The modes, as one of the common pairs (one byte to test where a narrowing is applied).
     modes: Modes,
@@ -241,6 +247,13 @@ impl Modes {
 impl Narrowing {
     /// A narrowing named `name` into `dst`, rounding by `q`, overflow by `o`.
     pub fn new(name: &'static str, dst: Format, q: Quant, o: Overflow) -> Narrowing {
+        let top = dst.max_raw();
+        let bottom = if o == Overflow::SaturateSymmetric && dst.is_signed() {
+            -dst.max_raw()
+        } else {
+            dst.min_raw()
+        };
+        let word = dst.width() < 63;
         Narrowing {
             name,
             dst,
@@ -249,12 +262,12 @@ impl Narrowing {
             stats: NarrowStats::default(),
             flag: Signal::bit(flag_name(name, o)),
             unreachable: Vec::new(),
-            top: dst.max_raw(),
-            bottom: if o == Overflow::SaturateSymmetric && dst.is_signed() {
-                -dst.max_raw()
-            } else {
-                dst.min_raw()
-            },
+            top,
+            bottom,
+            lo: if word { bottom as i64 } else { 0 },
+            hi: if word { top as i64 } else { -1 },
+            dst_frac: dst.frac(),
+            word,
             tie_rule: has_tie_rule(q),
             modes: Modes::of(q, o),
         }
@@ -324,6 +337,22 @@ impl Narrowing {
         self.raw_to(dst, raw, src_frac)
     }
 
+    /// [`quantise`]'s result where it is found in machine words with nothing to resolve: a
+    /// value and result within 64 bits, fewer than 63 bits dropped, the result inside the
+    /// destination's range (under the overflow mode), which the constructor worked out once.
+    /// `None` where `quantise` has more to do.
+    #[inline(always)]
+    fn in_words(&self, raw: i128, src_frac: i32, q: Quant) -> Option<i128> {
+        let r = i64::try_from(raw).ok().filter(|_| self.word)?;
+        let shift = src_frac - self.dst_frac;
+        let v = match shift {
+            0 => r,
+            1..63 => round_shift(r, shift as u32, q),
+            _ => return None,
+        };
+        (v >= self.lo && v <= self.hi).then_some(i128::from(v))
+    }
+
     /// [`Narrowing::raw`] into `dst`, which is the destination (a constant where the caller
     /// knows it at compile time, so the narrowing folds as a `convert` naming it does).
     #[inline(always)]
@@ -338,26 +367,32 @@ impl Narrowing {
                 if tracked {
                     self.record::<EVEN>(raw, src_frac);
                 }
-                quantise(raw, src_frac, dst, Quant::RoundHalfEven, Overflow::Saturate)
+                let (q, o) = (Quant::RoundHalfEven, Overflow::Saturate);
+                self.in_words(raw, src_frac, q)
+                    .unwrap_or_else(|| quantise(raw, src_frac, dst, q, o))
             }
             Modes::EvenSymmetric => {
                 if tracked {
                     self.record::<EVEN>(raw, src_frac);
                 }
-                let o = Overflow::SaturateSymmetric;
-                quantise(raw, src_frac, dst, Quant::RoundHalfEven, o)
+                let (q, o) = (Quant::RoundHalfEven, Overflow::SaturateSymmetric);
+                self.in_words(raw, src_frac, q)
+                    .unwrap_or_else(|| quantise(raw, src_frac, dst, q, o))
             }
             Modes::TruncWrap => {
                 if tracked {
                     self.record::<TRUNC>(raw, src_frac);
                 }
-                quantise(raw, src_frac, dst, Quant::Trunc, Overflow::Wrap)
+                let (q, o) = (Quant::Trunc, Overflow::Wrap);
+                self.in_words(raw, src_frac, q)
+                    .unwrap_or_else(|| quantise(raw, src_frac, dst, q, o))
             }
             Modes::Other => {
                 if tracked {
                     self.record::<ANY>(raw, src_frac);
                 }
-                quantise(raw, src_frac, dst, self.q, self.o)
+                self.in_words(raw, src_frac, self.q)
+                    .unwrap_or_else(|| quantise(raw, src_frac, dst, self.q, self.o))
             }
         }
     }

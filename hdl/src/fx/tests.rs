@@ -555,3 +555,45 @@ fn zero_prints_unsigned_and_compares_across_far_binary_points() {
         (Less, Greater)
     );
 }
+
+/// A named narrowing gives exactly what `quantise` gives (its machine-word path included),
+/// with tracking off and on: every value of the small source formats into the small
+/// destinations, and the edges of the word path (destinations of 1 to 65 bits, shifts up to
+/// 66, values around every power of two up to 2^69), in every mode.
+#[test]
+fn a_narrowing_is_quantise() {
+    let check = |raws: &mut dyn Iterator<Item = (i128, i32)>, dst: Format| {
+        let cases: Vec<(i128, i32)> = raws.collect();
+        for q in Quant::ALL {
+            for o in Overflow::ALL {
+                let mut n = Narrowing::new("n", dst, q, o);
+                for tracked in [false, true] {
+                    set_tracking(tracked);
+                    for &(raw, frac) in &cases {
+                        let want = quantise(raw, frac, dst, q, o);
+                        assert_eq!(n.raw(raw, frac), want, "{raw} >> {frac} into {dst} {q} {o}");
+                    }
+                }
+                set_tracking(false);
+            }
+        }
+    };
+    for dst in formats(5, -2..=6) {
+        for src in formats(7, -2..=6) {
+            check(&mut all_raw(src).map(|r| (r, src.frac())), dst);
+        }
+    }
+    let mut values = vec![0i128];
+    for k in 0..70 {
+        for d in [-1i128, 0, 1] {
+            values.extend([(1i128 << k) + d, -(1i128 << k) + d]);
+        }
+    }
+    for w in (1..=65u32).step_by(4).chain([61, 62, 63, 64]) {
+        for signed in [false, true] {
+            let shifts = [0, 1, 2, 31, 61, 62, 63, 64, 66];
+            let mut cases = values.iter().flat_map(|&r| shifts.map(|s| (r, s)));
+            check(&mut cases, Format::new(w, 0, signed));
+        }
+    }
+}

@@ -167,7 +167,11 @@ fn quantise_wide(raw: i128, shift: i32, src_frac: i32, dst: Format, q: Quant, o:
 
 /// `r >> s` (1 <= s < bits) rounded by `q`, in any signed machine integer.
 #[inline]
-fn round_shift<T: num_traits::PrimInt + num_traits::Signed>(r: T, s: u32, q: Quant) -> T {
+pub(crate) fn round_shift<T: num_traits::PrimInt + num_traits::Signed>(
+    r: T,
+    s: u32,
+    q: Quant,
+) -> T {
     let (zero, one) = (T::zero(), T::one());
     let floor = r >> s as usize;
     let half_bit = one << (s - 1) as usize;
