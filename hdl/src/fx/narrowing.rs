@@ -205,12 +205,10 @@ pub struct Narrowing {
     /// under symmetric saturation), and whether the rounding mode has a tie rule.
     top: i128,
     bottom: i128,
-    /// The same range in machine words, with the destination's fraction bits, for the fast
-    /// path ([`Narrowing::in_words`]); `word` is false for a destination of 63 bits or more.
+    /// The same range in machine words, for the fast path ([`Narrowing::in_words`]); empty
+    /// (`0..=-1`) for a destination of 63 bits or more, which that path leaves to `quantise`.
     lo: i64,
     hi: i64,
-    dst_frac: i32,
-    word: bool,
     tie_rule: bool,
     /// The modes, as one of the common pairs (one byte to test where a narrowing is applied).
     modes: Modes,
@@ -266,8 +264,6 @@ impl Narrowing {
             bottom,
             lo: if word { bottom as i64 } else { 0 },
             hi: if word { top as i64 } else { -1 },
-            dst_frac: dst.frac(),
-            word,
             tie_rule: has_tie_rule(q),
             modes: Modes::of(q, o),
         }
@@ -343,8 +339,8 @@ impl Narrowing {
     /// `None` where `quantise` has more to do.
     #[inline(always)]
     fn in_words(&self, raw: i128, src_frac: i32, q: Quant) -> Option<i128> {
-        let r = i64::try_from(raw).ok().filter(|_| self.word)?;
-        let shift = src_frac - self.dst_frac;
+        let r = i64::try_from(raw).ok()?;
+        let shift = src_frac - self.dst.frac();
         let v = match shift {
             0 => r,
             1..63 => round_shift(r, shift as u32, q),
