@@ -6,6 +6,14 @@ use fst_writer::{FstFileType, FstInfo, FstScopeType, FstSignalType, FstVarDirect
 use std::path::Path;
 use wellen::{simple, SignalValue, SignalValueRef};
 
+/// An fst-writer error as one line (its I/O variant with the operating system's words).
+fn fst_message(e: &fst_writer::FstWriteError) -> String {
+    match e {
+        fst_writer::FstWriteError::Io(io) => io.to_string(),
+        e => e.to_string(),
+    }
+}
+
 /// Writes `fst` with everything `vcd` holds (through `fst.partial`, renamed when complete).
 pub fn vcd_to_fst(vcd: &Path, fst: &Path) -> Result<(), String> {
     let err = |m: String| format!("{}: {m}", fst.display());
@@ -22,8 +30,7 @@ pub fn vcd_to_fst(vcd: &Path, fst: &Path) -> Result<(), String> {
         file_type: FstFileType::Verilog,
     };
     let out = crate::output::Staged::new(fst);
-    let mut hw = fst_writer::open_fst(out.write_path(), &info)
-        .map_err(|e| err(crate::fst_trace::fst_message(&e)))?;
+    let mut hw = fst_writer::open_fst(out.write_path(), &info).map_err(|e| err(fst_message(&e)))?;
     // Hierarchy: walk scopes depth first, declaring each scope's variables.
     let mut ids = Vec::new(); // (signal ref, fst id, is real, width)
     fn walk(
@@ -34,7 +41,7 @@ pub fn vcd_to_fst(vcd: &Path, fst: &Path) -> Result<(), String> {
     ) -> Result<(), String> {
         let scope = &h[s];
         hw.scope(scope.name(h), "", FstScopeType::Module)
-            .map_err(|e| crate::fst_trace::fst_message(&e))?;
+            .map_err(|e| fst_message(&e))?;
         for v in scope.vars(h) {
             let var = &h[v];
             let real = var.is_real(h);
@@ -46,13 +53,13 @@ pub fn vcd_to_fst(vcd: &Path, fst: &Path) -> Result<(), String> {
             };
             let id = hw
                 .var(var.name(h), st, vt, FstVarDirection::Implicit, None)
-                .map_err(|e| crate::fst_trace::fst_message(&e))?;
+                .map_err(|e| fst_message(&e))?;
             ids.push((var.signal_ref(), id, real, width));
         }
         for c in scope.scopes(h) {
             walk(h, c, hw, ids)?;
         }
-        hw.up_scope().map_err(|e| crate::fst_trace::fst_message(&e))
+        hw.up_scope().map_err(|e| fst_message(&e))
     }
     for s in h.scopes() {
         walk(h, s, &mut hw, &mut ids).map_err(err)?;
@@ -77,26 +84,22 @@ pub fn vcd_to_fst(vcd: &Path, fst: &Path) -> Result<(), String> {
         }
     }
     changes.sort_by_key(|c| (c.0, c.1));
-    let mut bw = hw
-        .finish()
-        .map_err(|e| err(crate::fst_trace::fst_message(&e)))?;
+    let mut bw = hw.finish().map_err(|e| err(fst_message(&e)))?;
     let mut current = None;
     for (ti, k, bytes) in &changes {
         if current != Some(*ti) {
             bw.time_change(times[*ti as usize])
-                .map_err(|e| err(crate::fst_trace::fst_message(&e)))?;
+                .map_err(|e| err(fst_message(&e)))?;
             current = Some(*ti);
         }
         bw.signal_change(ids[*k].1, bytes)
-            .map_err(|e| err(crate::fst_trace::fst_message(&e)))?;
+            .map_err(|e| err(fst_message(&e)))?;
     }
     // The VCD's closing timestamp, so the trace does not look as if it ended early.
     if let Some(&end) = times.last() {
-        bw.time_change(end)
-            .map_err(|e| err(crate::fst_trace::fst_message(&e)))?;
+        bw.time_change(end).map_err(|e| err(fst_message(&e)))?;
     }
-    bw.finish()
-        .map_err(|e| err(crate::fst_trace::fst_message(&e)))?;
+    bw.finish().map_err(|e| err(fst_message(&e)))?;
     out.commit().map_err(|e| e.to_string())
 }
 

@@ -1,21 +1,17 @@
 //! An FST tracer: the compact waveform written directly while simulating (no VCD first),
-//! through `fst-writer`. Same hierarchy and names as [`crate::VcdTracer`] (`tb.clk`, `tb.rst`,
+//! with texrtl's own encoder ([`crate::fst_file`]). Same hierarchy and names as [`crate::VcdTracer`] (`tb.clk`, `tb.rst`,
 //! the design under `tb`), the same depth and name filters and trace window; bit-vector
 //! variables only (no `real` companions, no probes), no `.gtkw`.
 //!
 //! The simulation only collects each cycle's changes (value and identifier, no formatting)
-//! into batches of [`BATCH`] records; a writer thread encodes them with `fst-writer`, as
-//! Verilator's FST writer compresses in a thread of its own. The batches pass through a
-//! channel of eight, and the writer flushes a new value-change section whenever its buffer
-//! passes [`FLUSH_BYTES`] (small enough that fst-writer's per-signal walk through it stays in
-//! cache), so a run of any length needs bounded memory.
+//! into batches of [`BATCH`] records; a writer thread encodes them, as Verilator's FST writer
+//! compresses in a thread of its own. The batches pass through a channel of eight, and the
+//! writer writes a new value-change section whenever the changes it holds pass
+//! [`FLUSH_BYTES`], so a run of any length needs bounded memory.
 
+use crate::fst_file::{FstBody, FstHeader};
 use crate::output::Staged;
 use crate::TraceConfig;
-use fst_writer::{
-    FstBodyWriter, FstFileType, FstHeaderWriter, FstInfo, FstScopeType, FstSignalId, FstSignalType,
-    FstVarDirection, FstVarType, FstWriteError,
-};
 use hdl::kernel::{Dir, Module, Signal, Trace, Visitor};
 use std::fs::File;
 use std::io::{self, BufWriter};
@@ -35,15 +31,15 @@ type Out = BufWriter<File>;
 #[derive(Clone, Copy)]
 enum Rec {
     Time(u64),
-    Change(FstSignalId, u32, u64),
+    /// A variable's handle and its new bits.
+    Change(u32, u64),
 }
 
-/// The writer thread's side: the FST body and a scratch buffer for one value's digits.
+/// The writer thread's side: the FST body.
 struct Writer {
-    body: FstBodyWriter<Out>,
+    body: FstBody<Out>,
     /// The output as named (for messages).
     path: PathBuf,
-    bits: Vec<u8>,
     flush_bytes: usize,
 }
 
@@ -55,30 +51,23 @@ impl Writer {
             for &r in &batch {
                 match r {
                     Rec::Time(t) => self.time(t)?,
-                    Rec::Change(id, width, bits) => self.change(id, width, bits)?,
+                    Rec::Change(h, bits) => self.body.change(h, bits),
                 }
             }
             batch.clear();
             let _ = recycle.send(batch);
         }
-        let mut out = self.body.finish().map_err(|e| fst_err(&self.path, e))?;
-        io::Write::flush(&mut out)
+        let path = self.path;
+        let mut out = self.body.finish().map_err(|e| named(&path, e))?;
+        io::Write::flush(&mut out).map_err(|e| named(&path, e))
     }
 
-    /// A new time step (flushing a full buffer first, which fst-writer allows only here).
+    /// A new time step, a full section written out first.
     fn time(&mut self, t: u64) -> io::Result<()> {
         if self.body.size() > self.flush_bytes {
-            self.body.flush().map_err(|e| fst_err(&self.path, e))?;
+            self.body.flush().map_err(|e| named(&self.path, e))?;
         }
-        self.body.time_change(t).map_err(|e| fst_err(&self.path, e))
-    }
-
-    fn change(&mut self, id: FstSignalId, width: u32, bits: u64) -> io::Result<()> {
-        self.bits.clear();
-        crate::vcd_trace::push_binary(&mut self.bits, width, bits);
-        self.body
-            .signal_change(id, &self.bits)
-            .map_err(|e| fst_err(&self.path, e))
+        self.body.time(t).map_err(|e| named(&self.path, e))
     }
 }
 
@@ -125,10 +114,9 @@ impl WriterThread {
     }
 }
 
-/// One traced signal: its FST id, width and last value (in visit order; `None` = not traced).
+/// One traced signal: its FST handle and last value (in visit order; `None` = not traced).
 struct Var {
-    id: Option<FstSignalId>,
-    width: u32,
+    id: Option<u32>,
     last: u64,
 }
 
@@ -139,11 +127,11 @@ pub struct FstTracer {
     /// The file being written (`None` once committed).
     out: Option<Staged>,
     cfg: TraceConfig,
-    header: Option<FstHeaderWriter<Out>>,
+    header: Option<FstHeader<Out>>,
     writer: Option<WriterThread>,
     vars: Vec<Var>,
-    clk: Option<FstSignalId>,
-    rst: Option<FstSignalId>,
+    clk: Option<u32>,
+    rst: Option<u32>,
     rst_last: Option<bool>,
     started: bool,
     last_time: Option<u64>,
@@ -155,20 +143,9 @@ pub struct FstTracer {
     changes: u64,
 }
 
-fn fst_err(path: &Path, e: FstWriteError) -> io::Error {
-    let kind = match &e {
-        FstWriteError::Io(io) => io.kind(),
-        _ => io::ErrorKind::Other,
-    };
-    io::Error::new(kind, format!("{}: {}", path.display(), fst_message(&e)))
-}
-
-/// An fst-writer error as one line (its I/O variant with the operating system's words).
-pub(crate) fn fst_message(e: &FstWriteError) -> String {
-    match e {
-        FstWriteError::Io(io) => io.to_string(),
-        e => e.to_string(),
-    }
+/// `e` with the file's name in front, of the same kind (a full disk stays a full disk).
+fn named(path: &Path, e: io::Error) -> io::Error {
+    io::Error::new(e.kind(), format!("{}: {e}", path.display()))
 }
 
 impl FstTracer {
@@ -182,17 +159,10 @@ impl FstTracer {
             )
         })?;
         let out = Staged::new(&path);
-        let info = FstInfo {
-            // fst-writer writes this into the header's time zero, an offset GTKWave adds to
-            // every time it shows; the times here are absolute (a window's too).
-            start_time: 0,
-            timescale_exponent: -12,
-            version: concat!("texrtl ", env!("CARGO_PKG_VERSION")).into(),
-            date: String::new(),
-            file_type: FstFileType::Verilog,
-        };
-        let header =
-            fst_writer::open_fst(out.write_path(), &info).map_err(|e| fst_err(&path, e))?;
+        let version = concat!("texrtl ", env!("CARGO_PKG_VERSION"));
+        let header = File::create(out.write_path())
+            .and_then(|f| FstHeader::new(BufWriter::new(f), -12, version))
+            .map_err(|e| named(&path, e))?;
         Ok(FstTracer {
             path,
             out: Some(out),
@@ -258,7 +228,7 @@ impl FstTracer {
 
 /// Declares the design's scopes and the variables the configuration keeps.
 struct Declare<'a> {
-    h: &'a mut FstHeaderWriter<Out>,
+    h: &'a mut FstHeader<Out>,
     cfg: &'a TraceConfig,
     vars: &'a mut Vec<Var>,
     scope: Vec<String>,
@@ -268,15 +238,11 @@ struct Declare<'a> {
 impl Visitor for Declare<'_> {
     fn enter(&mut self, instance: &str, kind: &str) {
         self.scope.push(instance.to_string());
-        if let Err(e) = self.h.scope(instance, kind, FstScopeType::Module) {
-            self.err.get_or_insert(format!("{e:?}"));
-        }
+        self.h.scope(instance, kind);
     }
     fn leave(&mut self) {
         self.scope.pop();
-        if let Err(e) = self.h.up_scope() {
-            self.err.get_or_insert(format!("{e:?}"));
-        }
+        self.h.up_scope();
     }
     fn signal(&mut self, _: Dir, s: &Signal) {
         let depth = self.scope.len();
@@ -284,24 +250,17 @@ impl Visitor for Declare<'_> {
         let keep = self.cfg.keeps(depth, &full);
         let width = s.fmt().width();
         let id = if keep {
-            let t = FstSignalType::bit_vec(width);
-            match self.h.var(
-                s.name(),
-                t,
-                FstVarType::Wire,
-                FstVarDirection::Implicit,
-                None,
-            ) {
+            match self.h.var(s.name(), width) {
                 Ok(id) => Some(id),
                 Err(e) => {
-                    self.err.get_or_insert(format!("{e:?}"));
+                    self.err.get_or_insert(e.to_string());
                     None
                 }
             }
         } else {
             None
         };
-        self.vars.push(Var { id, width, last: 0 });
+        self.vars.push(Var { id, last: 0 });
     }
 }
 
@@ -315,7 +274,7 @@ fn changes<M: Module>(top: &M, vars: &mut [Var], all: bool, out: &mut Vec<Rec>) 
         let Some(id) = v.id else { return };
         if all || bits != v.last {
             v.last = bits;
-            out.push(Rec::Change(id, v.width, bits));
+            out.push(Rec::Change(id, bits));
         }
     });
 }
@@ -323,29 +282,9 @@ fn changes<M: Module>(top: &M, vars: &mut [Var], all: bool, out: &mut Vec<Rec>) 
 impl Trace for FstTracer {
     fn start(&mut self, top: &dyn Module) -> io::Result<()> {
         let mut h = self.header.take().expect("started once");
-        let e = |e| fst_err(&self.path, e);
-        h.scope(crate::ROOT, "", FstScopeType::Module).map_err(e)?;
-        let bit = FstSignalType::bit_vec(1);
-        self.clk = Some(
-            h.var(
-                "clk",
-                bit,
-                FstVarType::Wire,
-                FstVarDirection::Implicit,
-                None,
-            )
-            .map_err(e)?,
-        );
-        self.rst = Some(
-            h.var(
-                "rst",
-                bit,
-                FstVarType::Wire,
-                FstVarDirection::Implicit,
-                None,
-            )
-            .map_err(e)?,
-        );
+        h.scope(crate::ROOT, "");
+        self.clk = Some(h.var("clk", 1)?);
+        self.rst = Some(h.var("rst", 1)?);
         let mut d = Declare {
             h: &mut h,
             cfg: &self.cfg,
@@ -357,13 +296,11 @@ impl Trace for FstTracer {
         if let Some(m) = d.err {
             return Err(io::Error::other(format!("{}: {m}", self.path.display())));
         }
-        h.up_scope().map_err(e)?;
-        let mut body = h.finish().map_err(e)?;
-        body.set_deduplicate(false);
+        h.up_scope();
+        let body = h.finish().map_err(|e| named(&self.path, e))?;
         self.writer = Some(WriterThread::spawn(Writer {
             body,
             path: self.path.clone(),
-            bits: Vec::with_capacity(64),
             flush_bytes: self.flush_bytes,
         })?);
         Ok(())
@@ -379,14 +316,14 @@ impl Trace for FstTracer {
         let all = !self.started;
         self.started = true;
         let (clk, rst) = (self.clk.expect("started"), self.rst.expect("started"));
-        self.batch.push(Rec::Change(clk, 1, 1));
+        self.batch.push(Rec::Change(clk, 1));
         if all || self.rst_last != Some(reset) {
-            self.batch.push(Rec::Change(rst, 1, u64::from(reset)));
+            self.batch.push(Rec::Change(rst, u64::from(reset)));
             self.rst_last = Some(reset);
         }
         changes(top, &mut self.vars, all, &mut self.batch);
         self.time(t + self.cfg.period_ps / 2);
-        self.batch.push(Rec::Change(clk, 1, 0));
+        self.batch.push(Rec::Change(clk, 0));
         // Every record since the cycle's first time step is a change, but the second time
         // step and the clock's fall (counted as the VCD tracer counts).
         self.changes += (self.batch.len() - before - 2) as u64;
@@ -431,16 +368,13 @@ impl Drop for FstTracer {
 mod tests {
     use super::*;
 
-    /// An fst-writer I/O error keeps its kind (a full disk stays a full disk for the caller)
-    /// and is named after the file.
+    /// A write error keeps its kind (a full disk stays a full disk for the caller) and is
+    /// named after the file.
     #[test]
     fn write_errors_keep_their_kind_and_name_the_file() {
         let full = io::Error::new(io::ErrorKind::StorageFull, "no space left");
-        let e = fst_err(Path::new("w.fst"), FstWriteError::Io(full));
+        let e = named(Path::new("w.fst"), full);
         assert_eq!(e.kind(), io::ErrorKind::StorageFull);
         assert_eq!(e.to_string(), "w.fst: no space left");
-        let e = fst_err(Path::new("w.fst"), FstWriteError::TimeDecrease(5, 4));
-        assert_eq!(e.kind(), io::ErrorKind::Other);
-        assert!(e.to_string().starts_with("w.fst: "), "{e}");
     }
 }

@@ -13,6 +13,7 @@
 
 #![warn(missing_docs)]
 
+mod fst_file;
 mod fst_trace;
 pub mod glob;
 pub mod gtkw;

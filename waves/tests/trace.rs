@@ -443,7 +443,8 @@ fn a_full_device_is_an_error_naming_it() {
         a.eval();
         a.tick();
     }
-    // fst-writer writes its header when the hierarchy is declared: the error comes there.
+    // The FST tracer writes its header out when the hierarchy is declared: the error comes
+    // there.
     let e = Sim::traced(unit(), fst)
         .err()
         .expect("the FST header cannot be written");
