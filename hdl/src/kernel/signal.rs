@@ -15,9 +15,9 @@ pub struct Signal {
     pub(super) bits: u64,
     /// `width` low bits set.
     pub(super) mask: u64,
-    /// Range of raw values.
+    /// Range of raw values: `lo ..= lo + span` (one unsigned compare checks a value).
     pub(super) lo: i64,
-    pub(super) hi: i64,
+    pub(super) span: u64,
     /// The shift that sign-extends the bits: `64 - width` for a signed format, else 0.
     sx: u32,
     fmt: Format,
@@ -39,7 +39,8 @@ impl Signal {
             bits: 0,
             mask: fmt.mask() as u64,
             lo: fmt.min_raw().max(i128::from(i64::MIN)) as i64,
-            hi: fmt.max_raw().min(i128::from(i64::MAX)) as i64,
+            span: (fmt.max_raw().min(i128::from(i64::MAX))
+                - fmt.min_raw().max(i128::from(i64::MIN))) as u64,
             sx: if fmt.is_signed() { 64 - fmt.width() } else { 0 },
             fmt,
             name,
@@ -135,7 +136,9 @@ impl Signal {
     #[inline]
     #[track_caller]
     pub fn set_bits(&mut self, bits: u64) {
-        if bits & !self.mask != 0 {
+        // `mask` is the low `width` bits: a value has a bit above them exactly when it is
+        // greater (one compare, where `bits & !mask` takes three instructions).
+        if bits > self.mask {
             self.misfit(Misfit::Bits(bits));
         }
         self.bits = bits;
@@ -145,10 +148,17 @@ impl Signal {
     #[inline]
     #[track_caller]
     pub fn set_raw(&mut self, raw: i64) {
-        if raw < self.lo || raw > self.hi {
+        if self.out_of_range(raw) {
             self.misfit(Misfit::Raw(raw));
         }
         self.bits = (raw as u64) & self.mask;
+    }
+
+    /// Whether a raw value is outside the format's range: below `lo` it wraps to above
+    /// `span`.
+    #[inline(always)]
+    pub(super) fn out_of_range(&self, raw: i64) -> bool {
+        raw.wrapping_sub(self.lo) as u64 > self.span
     }
 
     /// Copies another signal's value (a wire between two ports); the formats must agree.
@@ -181,11 +191,11 @@ impl Signal {
         self.bits = u64::from(b);
     }
 
-    /// Writes a bool to a one-bit signal.
+    /// Writes a bool to a one-bit signal (as the bit pattern 0 or 1, which fits every
+    /// format: none is narrower than one bit, so nothing is checked).
     #[inline]
-    #[track_caller]
     pub fn set_bool(&mut self, b: bool) {
-        self.set_bits(u64::from(b));
+        self.bits = u64::from(b);
     }
 
     /// Writes a fixed-point value, which must be exactly representable in the signal's format
@@ -320,7 +330,7 @@ impl Reg {
     #[inline]
     #[track_caller]
     pub fn set_next_raw(&mut self, raw: i64) {
-        if raw < self.q.lo || raw > self.q.hi {
+        if self.q.out_of_range(raw) {
             self.q.misfit(Misfit::NextRaw(raw));
         }
         self.d = (raw as u64) & self.q.mask;
@@ -330,7 +340,7 @@ impl Reg {
     #[inline]
     #[track_caller]
     pub fn set_next_bits(&mut self, bits: u64) {
-        if bits & !self.q.mask != 0 {
+        if bits > self.q.mask {
             self.q.misfit(Misfit::NextBits(bits));
         }
         self.d = bits;
@@ -340,7 +350,12 @@ impl Reg {
     #[inline]
     #[track_caller]
     pub fn set_next_bool(&mut self, b: bool) {
-        self.set_next_raw(i64::from(b));
+        // As `set_next_raw` checks it: 0 fits every format, 1 all but a signed bit's (the
+        // one whose sign extension shifts by 63).
+        if b && self.q.sx == 63 {
+            self.q.misfit(Misfit::NextRaw(1));
+        }
+        self.d = u64::from(b);
     }
 
     /// The pending next value's bits (what the edge will commit unless reset).

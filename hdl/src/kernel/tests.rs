@@ -175,6 +175,58 @@ fn signals_check_every_write() {
     assert!(std::panic::catch_unwind(|| Signal::new("w", Format::uint(65))).is_err());
 }
 
+/// The one-compare checks take exactly the values the full ones take, at every width: a
+/// pattern fits up to `2^width - 1`, a raw value the format's range; a bool always (as bits),
+/// and as a next raw value 1 is refused only by a signed bit.
+#[test]
+fn bit_pattern_and_bool_checks_at_every_width() {
+    let fits = |f: &(dyn Fn() + std::panic::RefUnwindSafe)| std::panic::catch_unwind(f).is_ok();
+    for width in 1..=64u32 {
+        for signed in [false, true] {
+            let fmt = Format::new(width, 0, signed);
+            let top = u64::MAX >> (64 - width);
+            for bits in [0, 1, top, top.wrapping_add(1), top << 1, u64::MAX] {
+                let ok = bits & !top == 0;
+                assert_eq!(
+                    fits(&|| Signal::new("s", fmt).set_bits(bits)),
+                    ok,
+                    "{fmt} {bits:#x}"
+                );
+                let next = || Reg::new("r", fmt).set_next_bits(bits);
+                assert_eq!(fits(&next), ok, "{fmt} next {bits:#x}");
+            }
+            let (lo, hi) = (fmt.min_raw(), fmt.max_raw());
+            for raw in [lo - 1, lo, lo + 1, -1, 0, 1, hi - 1, hi, hi + 1] {
+                let ok = raw >= lo && raw <= hi;
+                // A raw value is an i64: outside it there is nothing to write.
+                let Ok(r) = i64::try_from(raw) else { continue };
+                assert_eq!(
+                    fits(&|| Signal::new("s", fmt).set_raw(r)),
+                    ok,
+                    "{fmt} raw {r}"
+                );
+                let next = || Reg::new("r", fmt).set_next_raw(r);
+                assert_eq!(fits(&next), ok, "{fmt} next raw {r}");
+            }
+            for b in [false, true] {
+                let mut s = Signal::new("s", fmt);
+                s.set_bool(b);
+                assert_eq!(s.bits(), u64::from(b));
+                let ok = !(b && signed && width == 1);
+                let mut r = Reg::new("r", fmt);
+                let set = std::panic::catch_unwind(std::panic::AssertUnwindSafe(|| {
+                    r.set_next_bool(b);
+                }));
+                assert_eq!(set.is_ok(), ok, "{fmt} next {b}");
+                if ok {
+                    r.tick(false);
+                    assert_eq!(r.q().bits(), u64::from(b));
+                }
+            }
+        }
+    }
+}
+
 /// A counter whose `tick` also writes its output port: the two-process rule broken at the
 /// edge.
 struct EdgeWriter {
