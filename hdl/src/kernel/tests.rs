@@ -185,28 +185,42 @@ fn bit_pattern_and_bool_checks_at_every_width() {
         for signed in [false, true] {
             let fmt = Format::new(width, 0, signed);
             let top = u64::MAX >> (64 - width);
+            // A write to a signal and the same to a register's next value: both fit or not.
+            let both = |sig: &(dyn Fn(&mut Signal) + std::panic::RefUnwindSafe),
+                        reg: &(dyn Fn(&mut Reg) + std::panic::RefUnwindSafe),
+                        ok: bool,
+                        what: String| {
+                assert_eq!(
+                    fits(&|| sig(&mut Signal::new("s", fmt))),
+                    ok,
+                    "{fmt} {what}"
+                );
+                assert_eq!(
+                    fits(&|| reg(&mut Reg::new("r", fmt))),
+                    ok,
+                    "{fmt} next {what}"
+                );
+            };
             for bits in [0, 1, top, top.wrapping_add(1), top << 1, u64::MAX] {
                 let ok = bits & !top == 0;
-                assert_eq!(
-                    fits(&|| Signal::new("s", fmt).set_bits(bits)),
+                both(
+                    &|s| s.set_bits(bits),
+                    &|r| r.set_next_bits(bits),
                     ok,
-                    "{fmt} {bits:#x}"
+                    format!("{bits:#x}"),
                 );
-                let next = || Reg::new("r", fmt).set_next_bits(bits);
-                assert_eq!(fits(&next), ok, "{fmt} next {bits:#x}");
             }
             let (lo, hi) = (fmt.min_raw(), fmt.max_raw());
             for raw in [lo - 1, lo, lo + 1, -1, 0, 1, hi - 1, hi, hi + 1] {
                 let ok = raw >= lo && raw <= hi;
                 // A raw value is an i64: outside it there is nothing to write.
                 let Ok(r) = i64::try_from(raw) else { continue };
-                assert_eq!(
-                    fits(&|| Signal::new("s", fmt).set_raw(r)),
+                both(
+                    &|s| s.set_raw(r),
+                    &|g| g.set_next_raw(r),
                     ok,
-                    "{fmt} raw {r}"
+                    format!("raw {r}"),
                 );
-                let next = || Reg::new("r", fmt).set_next_raw(r);
-                assert_eq!(fits(&next), ok, "{fmt} next raw {r}");
             }
             for b in [false, true] {
                 let mut s = Signal::new("s", fmt);
