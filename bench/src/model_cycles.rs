@@ -5,6 +5,9 @@
 //! the cycle loop's time (one run: a rough figure; the benchmark's are best of several).
 //! Usage: model-cycles UNIT CYCLES [FILE.vcd|FILE.fst]
 
+#[path = "styles.rs"]
+mod styles;
+
 use std::process::ExitCode;
 use verif::cosim::BenchTrace;
 
@@ -31,7 +34,10 @@ fn main() -> ExitCode {
         eprintln!("model-cycles: CYCLES {cycles}: a number");
         return ExitCode::from(2);
     };
-    let project = tb::project::project();
+    // The units of `bench/vs-verilator`: the texture project's and the four style units.
+    let project = styles::units()
+        .into_iter()
+        .fold(tb::project::project(), |p, u| p.unit(u));
     let run = || -> Result<(), String> {
         let u = project.twin(unit, "UNIT")?;
         let stim = u.stimulus(verif::Seed(0xbe7c), cycles);

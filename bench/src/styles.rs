@@ -138,9 +138,9 @@ pub fn units() -> [Unit; 4] {
             "sat_acc",
             "the worked example (documented fixed-point style)",
         )
-        .twin(Twin::new(documented::SatAcc::new, sat_acc).sources([sat_acc_v.clone()])),
+        .twin(Twin::with_drive(documented::SatAcc::new, sat_acc).sources([sat_acc_v.clone()])),
         Unit::new("sat_acc_raw", "the same accumulator on raw integers").twin(
-            Twin::new(SatAccRaw::new, sat_acc_raw)
+            Twin::with_drive(SatAccRaw::new, sat_acc_raw)
                 .top("sat_acc")
                 .sources([sat_acc_v]),
         ),
@@ -148,9 +148,9 @@ pub fn units() -> [Unit; 4] {
             "blend",
             "the user guide's blend (documented fixed-point style)",
         )
-        .twin(Twin::new(blend::Blend::new, blend).sources([blend_v.clone()])),
+        .twin(Twin::with_drive(blend::Blend::new, blend).sources([blend_v.clone()])),
         Unit::new("blend_raw", "the same blend on raw integers").twin(
-            Twin::new(BlendRaw::new, blend_raw)
+            Twin::with_drive(BlendRaw::new, blend_raw)
                 .top("blend")
                 .sources([blend_v]),
         ),

@@ -8,13 +8,14 @@ use verif::cosim::{CosimUnit, Twin};
 use verif::project::{Project, Unit};
 use verif::vectors::{Field, UnitVectors};
 
-/// The unit against its Verilog: inputs set from raw bits in port order (valid_in, x).
-pub fn twin() -> Twin<unit::SatAcc> {
+/// The unit against its Verilog: inputs set from raw bits in port order (valid_in, x); the
+/// drive keeps its own type (`with_drive`), so `bench` inlines it.
+pub fn twin() -> impl CosimUnit {
     let drive = |d: &mut unit::SatAcc, v: &[u64]| {
         d.valid_in.set_bits(v[0]);
         d.x.set_bits(v[1]);
     };
-    Twin::new(unit::SatAcc::default, drive)
+    Twin::with_drive(unit::SatAcc::default, drive)
         .sources([Path::new(env!("CARGO_MANIFEST_DIR")).join("rtl/sat_acc.v")])
 }
 

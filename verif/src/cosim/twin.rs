@@ -19,9 +19,14 @@ type Stimulus = dyn Fn(Seed, usize) -> Vec<Vec<u64>> + Send + Sync;
 ///     .sources([std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("rtl/unit.v")]);
 /// # }
 /// ```
-pub struct Twin<M> {
+///
+/// `Twin::new` keeps the drive function as a function pointer, so the type is always
+/// `Twin<M>` (a closure bound with `let` fits too). [`Twin::with_drive`] keeps the function's
+/// own type instead, so the benchmark's cycle loop inlines it: faster, but the type can only
+/// be returned as `impl CosimUnit`.
+pub struct Twin<M, D = fn(&mut M, &[u64])> {
     make: fn() -> M,
-    drive: fn(&mut M, &[u64]),
+    drive: D,
     name: &'static str,
     top: Option<&'static str>,
     rtl: Vec<PathBuf>,
@@ -39,6 +44,27 @@ impl<M: Module + Clone + Send + Sync + 'static> Twin<M> {
     /// The module `make` builds, its inputs set from raw bits (input-port order) by `drive`;
     /// clocked by `clk` with `rst` active high (see [`Twin::clocked_by`]).
     pub fn new(make: fn() -> M, drive: fn(&mut M, &[u64])) -> Twin<M> {
+        Twin::with_drive(make, drive)
+    }
+}
+
+impl<M, D> Twin<M, D>
+where
+    M: Module + Clone + Send + Sync + 'static,
+    D: Fn(&mut M, &[u64]) + Clone + Send + Sync + 'static,
+{
+    /// As [`Twin::new`], with `drive` kept as its own type (a function item or a closure), so
+    /// that a benchmark run inlines it into the cycle loop.
+    ///
+    /// ```no_run
+    /// # use hdl::kernel::{Module, Signal};
+    /// # use verif::cosim::{CosimUnit, Twin};
+    /// # fn demo<M: Module + Clone + Send + Sync + 'static>(make: fn() -> M, x: fn(&mut M) -> &mut Signal) {
+    /// let twin = Twin::with_drive(make, move |m: &mut M, v: &[u64]| x(m).set_bits(v[0]));
+    /// # let _: &dyn CosimUnit = &twin;
+    /// # }
+    /// ```
+    pub fn with_drive(make: fn() -> M, drive: D) -> Twin<M, D> {
         Twin {
             name: make().kind(),
             top: None,
@@ -55,6 +81,7 @@ impl<M: Module + Clone + Send + Sync + 'static> Twin<M> {
             watch_fn: |_| Vec::new(),
         }
     }
+
     /// Signals inside the model shown in the co-simulation's waveform, not compared
     /// ([`ModelSim::watch`]).
     pub fn watch(mut self, ports: Vec<Port>, f: fn(&M) -> Vec<u64>) -> Self {
@@ -122,7 +149,11 @@ pub fn random_inputs(inputs: &[Port], seed: Seed, cycles: usize) -> Vec<Vec<u64>
         .collect()
 }
 
-impl<M: Module + Clone + Send + Sync + 'static> CosimUnit for Twin<M> {
+impl<M, D> CosimUnit for Twin<M, D>
+where
+    M: Module + Clone + Send + Sync + 'static,
+    D: Fn(&mut M, &[u64]) + Clone + Send + Sync + 'static,
+{
     fn name(&self) -> &str {
         self.name
     }
@@ -139,7 +170,7 @@ impl<M: Module + Clone + Send + Sync + 'static> CosimUnit for Twin<M> {
         self.parameters.clone()
     }
     fn model(&self) -> Result<Box<dyn CosimModel>, String> {
-        let m = ModelSim::new((self.make)(), self.drive);
+        let m = ModelSim::new((self.make)(), self.drive.clone());
         Ok(Box::new(m.watch(self.watch.clone(), self.watch_fn)))
     }
     fn stimulus(&self, seed: Seed, cycles: usize) -> Vec<Vec<u64>> {
