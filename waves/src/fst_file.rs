@@ -95,7 +95,8 @@ impl<W: Write + Seek> FstHeader<W> {
         h.extend_from_slice(version.as_bytes());
         h.resize(h.len() + VERSION_LEN - version.len(), 0);
         h.resize(h.len() + DATE_LEN, 0);
-        // File type Verilog, time zero.
+        // File type Verilog; time zero 0, an offset GTKWave adds to every time it shows (the
+        // tracer's times are absolute, a window's too).
         h.push(0);
         h.extend_from_slice(&[0; 8]);
         out.write_all(&h)?;

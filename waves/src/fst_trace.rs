@@ -1,7 +1,7 @@
 //! An FST tracer: the compact waveform written directly while simulating (no VCD first),
-//! with texrtl's own encoder ([`crate::fst_file`]). Same hierarchy and names as [`crate::VcdTracer`] (`tb.clk`, `tb.rst`,
-//! the design under `tb`), the same depth and name filters and trace window; bit-vector
-//! variables only (no `real` companions, no probes), no `.gtkw`.
+//! with texrtl's own encoder (`fst_file`). Same hierarchy and names as [`crate::VcdTracer`]
+//! (`tb.clk`, `tb.rst`, the design under `tb`), the same depth and name filters and trace
+//! window; bit-vector variables only (no `real` companions, no probes), no `.gtkw`.
 //!
 //! The simulation only collects each cycle's changes (value and identifier, no formatting)
 //! into batches of [`BATCH`] records; a writer thread encodes them, as Verilator's FST writer
