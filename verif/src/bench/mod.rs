@@ -15,7 +15,8 @@ use std::path::{Path, PathBuf};
 /// What `bench` measures.
 #[derive(Clone, Debug)]
 pub struct BenchConfig {
-    /// Cycles of the untraced runs (1..=100000000; the fastest of three passes counts).
+    /// Cycles of the untraced runs (1..=100000000; the fastest of at least three passes
+    /// counts, and of more while they add up to less than a quarter of a second).
     pub cycles: usize,
     /// Cycles of the traced runs, VCD and FST (1..=10000000, at most `cycles`).
     pub traced_cycles: usize,
@@ -111,11 +112,14 @@ fn measure(a: &BenchConfig, unit: &dyn CosimUnit) -> Result<Row, String> {
     let traced = &stim[..a.traced_cycles];
     let tdir = trace_dir(name, &dir)?;
     let (vcd, fst) = (tdir.join("model.vcd"), tdir.join("model.fst"));
-    // The fastest of `PASSES` runs of each (traces overwritten), as the harness does untraced.
+    // The fastest of `PASSES` runs of each (traces overwritten); untraced, of as many more
+    // as the harness makes (`harness::enough`).
     let best = |trace: BenchTrace, stim: &[Vec<u64>]| -> Result<f64, String> {
-        let mut t = f64::MAX;
-        for _ in 0..harness::PASSES {
-            t = t.min(model.bench(stim, resets, trace)?.as_secs_f64());
+        let (mut t, mut total, mut passes) = (f64::MAX, 0.0, 0);
+        let untraced = matches!(trace, BenchTrace::None);
+        while passes < harness::PASSES || (untraced && !harness::enough(passes, total)) {
+            let s = model.bench(stim, resets, trace)?.as_secs_f64();
+            (t, total, passes) = (t.min(s), total + s, passes + 1);
         }
         Ok(t)
     };

@@ -28,7 +28,7 @@ clap_args!(BenchArgs);
 impl BenchArgs {
     pub(super) fn augment(c: Command) -> Command {
         c.args([
-            value("cycles", "CYCLES", value_parser!(usize), "Cycles of the untraced runs (1..=100000000; the fastest of three passes counts)").default_value("1000000"),
+            value("cycles", "CYCLES", value_parser!(usize), "Cycles of the untraced runs (1..=100000000; the fastest of three passes counts, or of more while they take under a quarter second)").default_value("1000000"),
             value("traced-cycles", "TRACED_CYCLES", value_parser!(usize), "Cycles of the traced runs, VCD and FST (1..=10000000; the fastest of three runs counts)").default_value("1000000"),
             values("unit", "UNIT", value_parser!(String), "Units to measure (repeatable; default every twin)"),
             path("out", "OUT", "Folder for the harnesses, builds, stimulus and table.md (default target/NAME-bench; traces go to /dev/shm when there is one, and are deleted)"),
