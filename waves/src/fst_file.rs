@@ -170,9 +170,8 @@ pub(crate) struct FstBody<W: Write + Seek> {
     out: W,
     widths: Vec<u32>,
     scopes: u64,
-    /// Each handle's value now and whether it has one (`x` until then).
-    value: Vec<u64>,
-    known: Vec<bool>,
+    /// Each handle's value now (`None`, shown as `x`, until it has one).
+    value: Vec<Option<u64>>,
     /// Each handle's changes in this section, and the time-table index of its last one.
     lists: Vec<Vec<u8>>,
     last_index: Vec<u32>,
@@ -194,8 +193,7 @@ impl<W: Write + Seek> FstBody<W> {
             out,
             widths,
             scopes,
-            value: vec![0; n],
-            known: vec![false; n],
+            value: vec![None; n],
             lists: vec![Vec::new(); n],
             last_index: vec![0; n],
             list_bytes: 0,
@@ -236,8 +234,7 @@ impl<W: Write + Seek> FstBody<W> {
         let h = h as usize;
         let w = self.widths[h];
         let bits = bits & (u64::MAX >> (64 - w));
-        self.value[h] = bits;
-        self.known[h] = true;
+        self.value[h] = Some(bits);
         if self.time_table.is_empty() {
             // Before this section's first step: the value belongs in its frame.
             return;
@@ -267,13 +264,9 @@ impl<W: Write + Seek> FstBody<W> {
         for h in 0..self.widths.len() {
             let w = self.widths[h] as usize;
             let digits = &mut self.frame[at..at + w];
-            if self.known[h] {
-                let v = self.value[h];
-                for (i, d) in digits.iter_mut().enumerate() {
-                    *d = b'0' + (v >> (w - 1 - i) & 1) as u8;
-                }
-            } else {
-                digits.fill(b'x');
+            match self.value[h] {
+                Some(v) => crate::vcd_trace::binary_digits(digits, v),
+                None => digits.fill(b'x'),
             }
             at += w;
         }
@@ -425,25 +418,26 @@ mod tests {
         h.up_scope();
         h.up_scope();
         let mut b = h.finish().unwrap();
-        let mut t = 0;
-        for c in calls {
-            match *c {
-                Call::Time(dt) => {
-                    t += dt;
-                    b.time(t).unwrap();
-                }
-                Call::Change(i, v) => b.change(ids[i], v),
-                Call::Flush => b.flush().unwrap(),
-            }
-        }
+        replay(calls, |c| match c {
+            Call::Time(t) => b.time(t).unwrap(),
+            Call::Change(i, v) => b.change(ids[i], v),
+            Call::Flush => b.flush().unwrap(),
+        });
         b.finish().unwrap().into_inner()
     }
 
-    fn digits(width: u32, v: u64) -> Vec<u8> {
-        (0..width)
-            .rev()
-            .map(|i| b'0' + (v >> i & 1) as u8)
-            .collect()
+    /// Plays `calls` to `f` with each time step's advance turned into the absolute time.
+    fn replay(calls: &[Call], mut f: impl FnMut(Call)) {
+        let mut t = 0;
+        for c in calls {
+            f(match *c {
+                Call::Time(dt) => {
+                    t += dt;
+                    Call::Time(t)
+                }
+                ref other => other.clone(),
+            });
+        }
     }
 
     fn theirs(widths: &[u32], calls: &[Call]) -> Vec<u8> {
@@ -468,20 +462,16 @@ mod tests {
         h.up_scope().unwrap();
         let mut b = h.finish().unwrap();
         b.set_deduplicate(false);
-        let mut t = 0;
-        for c in calls {
-            match *c {
-                Call::Time(dt) => {
-                    t += dt;
-                    b.time_change(t).unwrap();
-                }
-                Call::Change(i, v) => {
-                    let w = widths[i];
-                    b.signal_change(ids[i], &digits(w, v)).unwrap();
-                }
-                Call::Flush => b.flush().unwrap(),
+        let mut text = Vec::new();
+        replay(calls, |c| match c {
+            Call::Time(t) => b.time_change(t).unwrap(),
+            Call::Change(i, v) => {
+                text.clear();
+                crate::vcd_trace::push_binary(&mut text, widths[i], v);
+                b.signal_change(ids[i], &text).unwrap();
             }
-        }
+            Call::Flush => b.flush().unwrap(),
+        });
         b.finish().unwrap().into_inner()
     }
 
