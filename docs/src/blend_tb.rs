@@ -3,8 +3,8 @@
 //! model, and the golden value beside `out` in the waveform.
 
 use crate::blend::{golden, Blend};
-use verif::{run_scored, Coverage, Coverpoint, Ctx, Driver, Monitor, Pacing, RunSpec, Scored};
-use verif::{ProbeSink, Scoreboard, Stimulus, TbResult, Testbench};
+use verif::{Coverage, Coverpoint, Ctx, Pacing, PinDriver, PinMonitor, ProbeSink, RunSpec};
+use verif::{Scoreboard, Stimulus, TbResult, Testbench};
 
 /// One blend: the raw codes of `a`, `b` and `alpha` (LSB 2^-8).
 pub type Txn = (u64, u64, u64);
@@ -12,24 +12,18 @@ pub type Txn = (u64, u64, u64);
 /// The output's LSB.
 const LSB: f64 = 1.0 / 256.0;
 
-struct Drv;
-impl Driver<Blend> for Drv {
-    type Txn = Txn;
-    fn drive(&mut self, d: &mut Blend, t: Option<&Txn>) {
-        let &(a, b, alpha) = t.unwrap_or(&(0, 0, 0));
-        d.valid_in.set_bool(t.is_some());
-        d.a.set_bits(a);
-        d.b.set_bits(b);
-        d.alpha.set_bits(alpha);
-    }
+/// The driver: a blend onto the pins (an idle cycle drives `valid_in` low).
+fn drive(d: &mut Blend, t: Option<&Txn>) {
+    let &(a, b, alpha) = t.unwrap_or(&(0, 0, 0));
+    d.valid_in.set_bool(t.is_some());
+    d.a.set_bits(a);
+    d.b.set_bits(b);
+    d.alpha.set_bits(alpha);
 }
 
-struct Mon;
-impl Monitor<Blend> for Mon {
-    type Txn = f64;
-    fn sample(&mut self, d: &Blend) -> Option<f64> {
-        d.out_valid.is_high().then(|| d.out.fx().to_f64())
-    }
+/// The monitor: `out` in each cycle `out_valid` is high.
+fn sample(d: &Blend) -> Option<f64> {
+    d.out_valid.is_high().then(|| d.out.fx().to_f64())
 }
 
 /// The blend's testbench: two configurations, back-to-back blends and random idle cycles.
@@ -66,8 +60,15 @@ impl Testbench for BlendTb {
         let mut txns: Vec<Txn> = codes.chunks(3).map(|c| (c[0], c[1], c[2])).collect();
         // The weight's ends, which random draws reach rarely.
         txns.extend([(200, 10, 0), (10, 200, 255), (255, 0, 255), (0, 255, 0)]);
+        // Each blend with what the scoreboard expects of it: itself (for coverage) and the
+        // golden model's value.
+        let real = |code: u64| code as f64 * LSB;
+        let n = txns.len() as u64;
+        let pairs = txns
+            .into_iter()
+            .map(|t| (t, (t, golden(real(t.0), real(t.1), real(t.2)))));
         // One rounding of an exact value: within half an LSB of the golden blend.
-        let mut sb = Scoreboard::new(|g: &f64, d: &f64| {
+        let mut sb = Scoreboard::new(|&(_, g): &(Txn, f64), d: &f64| {
             ((d - g).abs() <= LSB / 2.0)
                 .then_some(())
                 .ok_or(format!("out {d} vs golden {g}"))
@@ -77,29 +78,20 @@ impl Testbench for BlendTb {
             0 => Pacing::full(),
             _ => Pacing::random(500, ctx.seed),
         };
-        let n = txns.len() as u64;
         let mut spec = RunSpec::new(n, 4 * n + 10).pacing(pacing);
-        let r = run_scored(
+        let (drv, mon) = (&mut PinDriver::new(drive), &mut PinMonitor::new(sample));
+        let r = sb.run(
             &mut sim,
-            &mut Drv,
-            &mut Mon,
-            txns,
+            drv,
+            mon,
+            pairs,
             &mut spec,
-            |sim, ev| match ev {
-                Scored::Sent {
-                    txn: &(a, b, alpha),
-                    ..
-                } => {
-                    sb.expect(golden(a as f64 * LSB, b as f64 * LSB, alpha as f64 * LSB));
-                    cov.sample(&[alpha as i64, (a as i64 - b as i64).signum()]);
+            |sim, ((a, b, alpha), g), out| {
+                if let (Some(p), Some(t)) = (probe, sim.trace_mut()) {
+                    t.real(p, g);
                 }
-                Scored::Received { cycle, txn } => {
-                    let out = sb.observe(cycle, txn);
-                    if let (Some(p), Some(t), Some(g)) = (probe, sim.trace_mut(), out.expected) {
-                        t.real(p, g);
-                    }
-                    res.stats.record(txn, out.expected.unwrap_or(txn), LSB);
-                }
+                res.stats.record(out, g, LSB);
+                cov.sample(&[alpha as i64, (a as i64 - b as i64).signum()]);
             },
         );
         res.score(&sb);

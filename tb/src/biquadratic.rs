@@ -5,8 +5,8 @@ use hdl::kernel::Sim;
 use units::bump::biquadratic_0087::{Biquadratic0087, ColourMap, POS_FRAC};
 use units::bump::params::Border;
 use verif::{
-    run_scored, Coverage, Coverpoint, Ctx, Driver, Monitor, RunSpec, Scoreboard, Scored, Stimulus,
-    TbResult, Testbench,
+    Coverage, Coverpoint, Ctx, PinDriver, PinMonitor, RunSpec, Scoreboard, Stimulus, TbResult,
+    Testbench,
 };
 use waves::VcdTracer;
 
@@ -62,29 +62,19 @@ pub fn test_map(n: u32, border: Border, stim: &mut Stimulus) -> ColourMap {
     }
 }
 
-struct UvDriver;
-
-impl Driver<Biquadratic0087> for UvDriver {
-    type Txn = (i64, i64);
-    fn drive(&mut self, d: &mut Biquadratic0087, t: Option<&(i64, i64)>) {
-        d.valid_in.set_bool(t.is_some());
-        if let Some((u, v)) = t {
-            d.u.set_raw(*u);
-            d.v.set_raw(*v);
-        }
+fn drive_uv(d: &mut Biquadratic0087, t: Option<&(i64, i64)>) {
+    d.valid_in.set_bool(t.is_some());
+    if let Some((u, v)) = t {
+        d.u.set_raw(*u);
+        d.v.set_raw(*v);
     }
 }
 
-struct RgbMonitor;
-
-impl Monitor<Biquadratic0087> for RgbMonitor {
-    type Txn = [u8; 3];
-    fn sample(&mut self, d: &Biquadratic0087) -> Option<[u8; 3]> {
-        d.valid
-            .q()
-            .is_high()
-            .then(|| d.rgb.each_ref().map(|r| r.q().bits() as u8))
-    }
+fn sample_rgb(d: &Biquadratic0087) -> Option<[u8; 3]> {
+    d.valid
+        .q()
+        .is_high()
+        .then(|| d.rgb.each_ref().map(|r| r.q().bits() as u8))
 }
 
 fn coverage_model() -> Coverage {
@@ -169,29 +159,22 @@ fn run_samples(
             }
         });
     let n = qs.len() as u64;
-    let mut pending = qs.clone().into_iter();
     let mut spec =
         RunSpec::new(n, 3 * n + 50).pacing(verif::Pacing::random(200, ctx.seed.derive(9)));
     let side = 16i64 << POS_FRAC;
-    let r = run_scored(
+    let r = sb.run(
         &mut sim,
-        &mut UvDriver,
-        &mut RgbMonitor,
-        qs,
+        &mut PinDriver::new(drive_uv),
+        &mut PinMonitor::new(sample_rgb),
+        qs.into_iter().map(|q| (q, q)),
         &mut spec,
-        |_, ev| match ev {
-            Scored::Sent { .. } => sb.expect(pending.next().expect("one a sample")),
-            Scored::Received { cycle, txn } => {
-                if let Some(q) = sb.observe(cycle, txn).expected {
-                    let g = golden(map, q.0, q.1);
-                    for c in 0..3 {
-                        res.stats.record(f64::from(txn[c]), g[c], 1.0);
-                    }
-                    let edge =
-                        q.0 < 1 << POS_FRAC || q.0 >= side - (1 << POS_FRAC) || q.1 < 1 << POS_FRAC;
-                    cov.sample(&[(q.0 >> (POS_FRAC - 8)) & 255, i64::from(edge)]);
-                }
+        |_, q, txn| {
+            let g = golden(map, q.0, q.1);
+            for c in 0..3 {
+                res.stats.record(f64::from(txn[c]), g[c], 1.0);
             }
+            let edge = q.0 < 1 << POS_FRAC || q.0 >= side - (1 << POS_FRAC) || q.1 < 1 << POS_FRAC;
+            cov.sample(&[(q.0 >> (POS_FRAC - 8)) & 255, i64::from(edge)]);
         },
     );
     res.score(&sb);

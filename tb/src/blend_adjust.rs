@@ -16,8 +16,8 @@ use hdl::kernel::{Sim, Trace};
 use proptest::prelude::*;
 use units::bump::blend_adjust_153::{BlendAdjust, BlendAdjustParams};
 use verif::{
-    run_scored, Coverage, Coverpoint, Ctx, Driver, Monitor, Pacing, ProbeSink, RunSpec, Scoreboard,
-    Scored, Stimulus, TbResult, Testbench,
+    run_scored, Coverage, Coverpoint, Ctx, Monitor, Pacing, PinDriver, ProbeSink, RunSpec,
+    Scoreboard, Scored, Stimulus, TbResult, Testbench,
 };
 use waves::ProbeId;
 
@@ -39,21 +39,16 @@ pub struct BaOut {
 }
 
 /// Drives `valid_in`, `bypass`, `u_in`, `v_in`.
-pub struct BaDriver;
-
-impl Driver<BlendAdjust> for BaDriver {
-    type Txn = BaIn;
-    fn drive(&mut self, dut: &mut BlendAdjust, t: Option<&BaIn>) {
-        dut.i.valid_in.set_bool(t.is_some());
-        let t = t.copied().unwrap_or(BaIn {
-            u: 0,
-            v: 0,
-            bypass: false,
-        });
-        dut.i.bypass.set_bool(t.bypass);
-        dut.i.u_in.set_bits(u64::from(t.u));
-        dut.i.v_in.set_bits(u64::from(t.v));
-    }
+pub fn drive_ba(dut: &mut BlendAdjust, t: Option<&BaIn>) {
+    dut.i.valid_in.set_bool(t.is_some());
+    let t = t.copied().unwrap_or(BaIn {
+        u: 0,
+        v: 0,
+        bypass: false,
+    });
+    dut.i.bypass.set_bool(t.bypass);
+    dut.i.u_in.set_bits(u64::from(t.u));
+    dut.i.v_in.set_bits(u64::from(t.v));
 }
 
 /// Collects the four outputs whenever `valid` is high. With `fault`, flips the LSB of `u1` in
@@ -253,7 +248,7 @@ fn one_width<T: Trace + ProbeSink>(
         let mut spec = RunSpec::new(n, 8 * n + 100).pacing(pacing);
         let r = run_scored(
             &mut sim,
-            &mut BaDriver,
+            &mut PinDriver::new(drive_ba),
             &mut monitor,
             stimulus,
             &mut spec,

@@ -7,8 +7,8 @@ use hdl::kernel::Sim;
 use units::bump::derivative_0086::{five_point, DerivFilter, Derivative, DerivativeUnit};
 use units::bump::params::{Border, BumpParams};
 use verif::{
-    run_scored, Coverage, Coverpoint, Ctx, Driver, Monitor, RunSpec, Scoreboard, Scored, Stimulus,
-    TbResult, Testbench,
+    Coverage, Coverpoint, Ctx, PinDriver, PinMonitor, RunSpec, Scoreboard, Stimulus, TbResult,
+    Testbench,
 };
 use waves::VcdTracer;
 
@@ -60,30 +60,20 @@ pub fn bound() -> f64 {
 
 type Query = (i64, i64, i64);
 
-struct QDriver;
-
-impl Driver<DerivativeUnit> for QDriver {
-    type Txn = Query;
-    fn drive(&mut self, d: &mut DerivativeUnit, t: Option<&Query>) {
-        d.valid_in.set_bool(t.is_some());
-        if let Some((u, v, s)) = t {
-            d.u.set_raw(*u);
-            d.v.set_raw(*v);
-            d.scale.set_raw(*s);
-        }
+fn drive_query(d: &mut DerivativeUnit, t: Option<&Query>) {
+    d.valid_in.set_bool(t.is_some());
+    if let Some((u, v, s)) = t {
+        d.u.set_raw(*u);
+        d.v.set_raw(*v);
+        d.scale.set_raw(*s);
     }
 }
 
-struct NMonitor;
-
-impl Monitor<DerivativeUnit> for NMonitor {
-    type Txn = [i64; 3];
-    fn sample(&mut self, d: &DerivativeUnit) -> Option<[i64; 3]> {
-        d.valid
-            .q()
-            .is_high()
-            .then(|| d.n.each_ref().map(|r| r.q().raw()))
-    }
+fn sample_normal(d: &DerivativeUnit) -> Option<[i64; 3]> {
+    d.valid
+        .q()
+        .is_high()
+        .then(|| d.n.each_ref().map(|r| r.q().raw()))
 }
 
 fn coverage_model() -> Coverage {
@@ -176,36 +166,29 @@ fn run_queries(
             }
         });
     let n = want.len() as u64;
-    let qs: Vec<Query> = want.iter().map(|w| w.0).collect();
-    let mut pending = want.into_iter();
     let mut spec =
         RunSpec::new(n, 3 * n + 50).pacing(verif::Pacing::random(200, ctx.seed.derive(8)));
     let side = 32i64 << POS_FRAC;
-    let r = run_scored(
+    let r = sb.run(
         &mut sim,
-        &mut QDriver,
-        &mut NMonitor,
-        qs,
+        &mut PinDriver::new(drive_query),
+        &mut PinMonitor::new(sample_normal),
+        want.into_iter().map(|w| (w.0, w)),
         &mut spec,
-        |_, ev| match ev {
-            Scored::Sent { .. } => sb.expect(pending.next().expect("one a query")),
-            Scored::Received { cycle, txn } => {
-                if let Some((q, g)) = sb.observe(cycle, txn).expected {
-                    for c in 0..3 {
-                        res.stats.record(txn[c] as f64 * lsb, g[c], lsb);
-                    }
-                    let tilt = 1.0 - g[2];
-                    let slope = if tilt < 1e-9 {
-                        0
-                    } else if tilt < 0.05 {
-                        1
-                    } else {
-                        2
-                    };
-                    let near = 2i64 << POS_FRAC;
-                    cov.sample(&[slope, i64::from(q.0 < near || q.0 > side - near)]);
-                }
+        |_, (q, g), txn| {
+            for c in 0..3 {
+                res.stats.record(txn[c] as f64 * lsb, g[c], lsb);
             }
+            let tilt = 1.0 - g[2];
+            let slope = if tilt < 1e-9 {
+                0
+            } else if tilt < 0.05 {
+                1
+            } else {
+                2
+            };
+            let near = 2i64 << POS_FRAC;
+            cov.sample(&[slope, i64::from(q.0 < near || q.0 > side - near)]);
         },
     );
     res.score(&sb);

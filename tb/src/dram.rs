@@ -7,8 +7,8 @@ use std::path::{Path, PathBuf};
 use units::texmem::control_607::DramCtrl;
 use units::texmem::dram_604::DramParams;
 use verif::{
-    run, Coverage, Coverpoint, Ctx, Driver, Event, Monitor, Pacing, RunSpec, TbResult, Testbench,
-    Workload,
+    run, Coverage, Coverpoint, Ctx, Event, Pacing, PinDriver, PinMonitor, RunSpec, TbResult,
+    Testbench, Workload,
 };
 use waves::TraceConfig;
 
@@ -68,33 +68,23 @@ pub type Addr = u64;
 
 /// Presents word-read requests to control unit 607 (`req_valid`, `req_addr`); a request is
 /// taken in a cycle with `ready` high.
-pub struct DramDriver;
-
-impl Driver<DramCtrl> for DramDriver {
-    type Txn = Addr;
-    #[inline]
-    fn drive(&mut self, dut: &mut DramCtrl, a: Option<&Addr>) {
-        dut.req_valid.set_bool(a.is_some());
-        if let Some(&a) = a {
-            dut.req_addr.set_bits(a);
-        }
-    }
-    #[inline]
-    fn accepted(&self, dut: &DramCtrl) -> bool {
-        dut.ready.is_high()
+pub fn drive_dram(dut: &mut DramCtrl, a: Option<&Addr>) {
+    dut.req_valid.set_bool(a.is_some());
+    if let Some(&a) = a {
+        dut.req_addr.set_bits(a);
     }
 }
 
-/// Collects each read's data word when `resp_valid` is high.
-pub struct DramMonitor;
+/// Whether the unit takes the presented transaction.
+pub fn dram_ready(dut: &DramCtrl) -> bool {
+    dut.ready.is_high()
+}
 
-impl Monitor<DramCtrl> for DramMonitor {
-    type Txn = u16;
-    fn sample(&mut self, dut: &DramCtrl) -> Option<u16> {
-        dut.resp_valid
-            .is_high()
-            .then(|| dut.resp_data.bits() as u16)
-    }
+/// Collects each read's data word when `resp_valid` is high.
+pub fn sample_dram(dut: &DramCtrl) -> Option<u16> {
+    dut.resp_valid
+        .is_high()
+        .then(|| dut.resp_data.bits() as u16)
 }
 
 /// The coverage model of DRAM 604 + 607: each read's page outcome (hit or fault) and what it
@@ -215,8 +205,8 @@ fn drive<T: Trace>(
     let n = addrs.len();
     let r = run(
         &mut sim,
-        &mut DramDriver,
-        &mut DramMonitor,
+        &mut PinDriver::new(drive_dram).ready(dram_ready),
+        &mut PinMonitor::new(sample_dram),
         addrs.iter().copied(),
         &mut spec,
         |sim, ev| match ev {

@@ -14,8 +14,8 @@ use units::footprint::setup_fig12::{NRounding, SetupParams};
 use units::texram::texram_802::{Texram802, TexramParams};
 use units::texram::{Border, Drf};
 use verif::{
-    run, Coverage, Coverpoint, Ctx, Driver, Event, Handshake, Monitor, Pacing, RunSpec, Scoreboard,
-    Stimulus, TbResult, Testbench,
+    run, Coverage, Coverpoint, Ctx, Event, Handshake, Pacing, PinDriver, PinMonitor, RunSpec,
+    Scoreboard, Stimulus, TbResult, Testbench,
 };
 
 pub const NAME: &str = "footprint_fig12";
@@ -124,49 +124,41 @@ pub fn ref_assemble(
 }
 
 /// Drives the setup unit's inputs.
-pub struct PixelDriver;
-
-impl<U: SampleTarget> Driver<FootprintFig12<U>> for PixelDriver {
-    type Txn = Pixel;
-    fn drive(&mut self, dut: &mut FootprintFig12<U>, t: Option<&Pixel>) {
-        let s = &mut dut.setup;
-        s.in_valid.set_bool(t.is_some());
-        let t = t.copied().unwrap_or(Pixel {
-            u: 0,
-            v: 0,
-            r1: (0, 0),
-            r2: (0, 0),
-        });
-        s.u.set_raw(i64::from(t.u));
-        s.v.set_raw(i64::from(t.v));
-        for (sig, x) in [
-            (&mut s.r1u, t.r1.0),
-            (&mut s.r1v, t.r1.1),
-            (&mut s.r2u, t.r2.0),
-            (&mut s.r2v, t.r2.1),
-        ] {
-            sig.set_raw(i64::from(x));
-        }
-    }
-    fn accepted(&self, dut: &FootprintFig12<U>) -> bool {
-        dut.setup.in_ready.is_high()
+pub fn drive_pixel<U: SampleTarget>(dut: &mut FootprintFig12<U>, t: Option<&Pixel>) {
+    let s = &mut dut.setup;
+    s.in_valid.set_bool(t.is_some());
+    let t = t.copied().unwrap_or(Pixel {
+        u: 0,
+        v: 0,
+        r1: (0, 0),
+        r2: (0, 0),
+    });
+    s.u.set_raw(i64::from(t.u));
+    s.v.set_raw(i64::from(t.v));
+    for (sig, x) in [
+        (&mut s.r1u, t.r1.0),
+        (&mut s.r1v, t.r1.1),
+        (&mut s.r2u, t.r2.0),
+        (&mut s.r2v, t.r2.1),
+    ] {
+        sig.set_raw(i64::from(x));
     }
 }
 
-/// Reports each assembled pixel.
-pub struct PixelMonitor;
+/// Whether the unit takes the presented transaction.
+pub fn pixel_ready<U: SampleTarget>(dut: &FootprintFig12<U>) -> bool {
+    dut.setup.in_ready.is_high()
+}
 
-impl<U: SampleTarget> Monitor<FootprintFig12<U>> for PixelMonitor {
-    type Txn = Assembled;
-    fn sample(&mut self, dut: &FootprintFig12<U>) -> Option<Assembled> {
-        let a = &dut.assembly;
-        let r = &a.acc;
-        r.out_valid.q().is_high().then(|| Assembled {
-            value: r.out_value.q().bits() as u8,
-            n: r.out_n.q().bits() as u32,
-            rgb: r.out_rgb.q().bits() as u32,
-        })
-    }
+/// Reports each assembled pixel.
+pub fn sample_pixel<U: SampleTarget>(dut: &FootprintFig12<U>) -> Option<Assembled> {
+    let a = &dut.assembly;
+    let r = &a.acc;
+    r.out_valid.q().is_high().then(|| Assembled {
+        value: r.out_value.q().bits() as u8,
+        n: r.out_n.q().bits() as u32,
+        rgb: r.out_rgb.q().bits() as u32,
+    })
 }
 
 /// The reference on Figure 6's texture unit 602 (`F` fraction bits): the same sample points,
@@ -527,8 +519,8 @@ fn run_pixels<U: SampleTarget, T: Trace>(
     let mut pins = Handshake::<Handover>::new("footprint_fig12.footprint_assembly.px_valid");
     let r = run(
         &mut sim,
-        &mut PixelDriver,
-        &mut PixelMonitor,
+        &mut PinDriver::new(drive_pixel).ready(pixel_ready),
+        &mut PinMonitor::new(sample_pixel),
         px,
         &mut spec,
         |sim, ev| match ev {

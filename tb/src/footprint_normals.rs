@@ -13,8 +13,8 @@ use units::bump::params::{Border, BumpParams, Filter};
 use units::footprint::normals_0081::FootprintNormals;
 use units::footprint::setup_fig12::{setup, SetupParams, SetupUnit};
 use verif::{
-    run, Coverage, Coverpoint, Ctx, Driver, Event, Monitor, Pacing, RunSpec, Scoreboard, Stimulus,
-    TbResult, Testbench,
+    run, Coverage, Coverpoint, Ctx, Event, Pacing, PinDriver, PinMonitor, RunSpec, Scoreboard,
+    Stimulus, TbResult, Testbench,
 };
 
 pub const NAME: &str = "footprint_normals_0081";
@@ -123,37 +123,29 @@ pub fn component_tolerance(p: &BumpParams) -> f64 {
         + 0.5 * (-(p.out_frac as f64)).exp2()
 }
 
-pub struct NDriver;
-
-impl Driver<FootprintNormals> for NDriver {
-    type Txn = NPixel;
-    fn drive(&mut self, dut: &mut FootprintNormals, t: Option<&NPixel>) {
-        dut.px_valid.set_bool(t.is_some());
-        if let Some(t) = t {
-            dut.px_u.set_raw(t.u);
-            dut.px_v.set_raw(t.v);
-            dut.px_du.set_raw(i64::from(t.du));
-            dut.px_dv.set_raw(i64::from(t.dv));
-            dut.px_log2_n.set_bits(u64::from(t.log2_n));
-            dut.px_scale.set_raw(t.scale);
-        }
-    }
-    fn accepted(&self, dut: &FootprintNormals) -> bool {
-        dut.px_ready.is_high()
+pub fn drive_pixel(dut: &mut FootprintNormals, t: Option<&NPixel>) {
+    dut.px_valid.set_bool(t.is_some());
+    if let Some(t) = t {
+        dut.px_u.set_raw(t.u);
+        dut.px_v.set_raw(t.v);
+        dut.px_du.set_raw(i64::from(t.du));
+        dut.px_dv.set_raw(i64::from(t.dv));
+        dut.px_log2_n.set_bits(u64::from(t.log2_n));
+        dut.px_scale.set_raw(t.scale);
     }
 }
 
-pub struct NMonitor;
+/// Whether the unit takes the presented transaction.
+pub fn pixel_ready(dut: &FootprintNormals) -> bool {
+    dut.px_ready.is_high()
+}
 
-impl Monitor<FootprintNormals> for NMonitor {
-    type Txn = NOut;
-    fn sample(&mut self, dut: &FootprintNormals) -> Option<NOut> {
-        let p = &dut.pipe;
-        p.valid.is_high().then(|| NOut {
-            n: [p.nx.raw(), p.ny.raw(), p.nz.raw()],
-            height: p.height.raw(),
-        })
-    }
+pub fn sample_normal(dut: &FootprintNormals) -> Option<NOut> {
+    let p = &dut.pipe;
+    p.valid.is_high().then(|| NOut {
+        n: [p.nx.raw(), p.ny.raw(), p.nz.raw()],
+        height: p.height.raw(),
+    })
 }
 
 /// Random pixels over a `w x h` map: the setup unit's N and step of random derivatives
@@ -290,8 +282,8 @@ fn run_npixels<T: Trace>(
     let bi = crate::normals::border_id(&BumpParams { border, ..*p });
     let r = run(
         &mut sim,
-        &mut NDriver,
-        &mut NMonitor,
+        &mut PinDriver::new(drive_pixel).ready(pixel_ready),
+        &mut PinMonitor::new(sample_normal),
         px,
         &mut spec,
         |sim, ev| match ev {

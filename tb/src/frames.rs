@@ -7,8 +7,8 @@ use hdl::kernel::Sim;
 use units::frames::frame_unit::{decode_rgb8, Decode, FrameUnit, VEC_FRAC, W_FRAC};
 use units::frames::parallax::ParallaxUnit;
 use verif::{
-    run_scored, Coverage, Coverpoint, Ctx, Driver, Monitor, RunSpec, Scoreboard, Scored, Stimulus,
-    TbResult, Testbench,
+    Coverage, Coverpoint, Ctx, PinDriver, PinMonitor, RunSpec, Scoreboard, Stimulus, TbResult,
+    Testbench,
 };
 use waves::VcdTracer;
 
@@ -131,34 +131,24 @@ pub fn frame_pixels(n: usize, stim: &mut Stimulus) -> Vec<FramePx> {
         .collect()
 }
 
-struct FrameDriver;
-
-impl Driver<FrameUnit> for FrameDriver {
-    type Txn = FramePx;
-    fn drive(&mut self, dut: &mut FrameUnit, t: Option<&FramePx>) {
-        dut.valid_in.set_bool(t.is_some());
-        if let Some(p) = t {
-            dut.gram_schmidt.set_bool(p.gs);
-            for r in 0..3 {
-                for c in 0..3 {
-                    dut.frame[r][c].set_raw(p.frame[r][c]);
-                }
-                dut.w[r].set_raw(p.w[r]);
+fn drive_frame(dut: &mut FrameUnit, t: Option<&FramePx>) {
+    dut.valid_in.set_bool(t.is_some());
+    if let Some(p) = t {
+        dut.gram_schmidt.set_bool(p.gs);
+        for r in 0..3 {
+            for c in 0..3 {
+                dut.frame[r][c].set_raw(p.frame[r][c]);
             }
+            dut.w[r].set_raw(p.w[r]);
         }
     }
 }
 
-struct NormalMonitor;
-
-impl Monitor<FrameUnit> for NormalMonitor {
-    type Txn = ([i64; 3], bool);
-    fn sample(&mut self, d: &FrameUnit) -> Option<([i64; 3], bool)> {
-        d.valid
-            .q()
-            .is_high()
-            .then(|| (d.nout.each_ref().map(|r| r.q().raw()), d.zero.q().is_high()))
-    }
+fn sample_normal(d: &FrameUnit) -> Option<([i64; 3], bool)> {
+    d.valid
+        .q()
+        .is_high()
+        .then(|| (d.nout.each_ref().map(|r| r.q().raw()), d.zero.q().is_high()))
 }
 
 fn frame_coverage() -> Coverage {
@@ -238,28 +228,22 @@ fn run_frames(
     sim.reset(2);
     let mut sb: Scoreboard<FramePx, ([i64; 3], bool)> = Scoreboard::new(check_frame);
     let n = px.len() as u64;
-    let mut pending = px.clone().into_iter();
     let mut spec =
         RunSpec::new(n, 3 * n + 50).pacing(verif::Pacing::random(200, ctx.seed.derive(6)));
     let lsb = 2f64.powi(-(VEC_FRAC as i32));
-    let r = run_scored(
+    let r = sb.run(
         &mut sim,
-        &mut FrameDriver,
-        &mut NormalMonitor,
-        px,
+        &mut PinDriver::new(drive_frame),
+        &mut PinMonitor::new(sample_normal),
+        px.into_iter().map(|q| (q, q)),
         &mut spec,
-        |_, ev| match ev {
-            Scored::Sent { .. } => sb.expect(pending.next().expect("one a pixel")),
-            Scored::Received { cycle, txn } => {
-                if let Some(p) = sb.observe(cycle, txn).expected {
-                    if let Some((g, _)) = golden_frame(&p) {
-                        for (x, gc) in txn.0.iter().zip(g) {
-                            res.stats.record(*x as f64 * lsb, gc, lsb);
-                        }
-                    }
-                    cov.sample(&[p.kind, i64::from(p.gs), i64::from(p.left_handed())]);
+        |_, p, txn| {
+            if let Some((g, _)) = golden_frame(&p) {
+                for (x, gc) in txn.0.iter().zip(g) {
+                    res.stats.record(*x as f64 * lsb, gc, lsb);
                 }
             }
+            cov.sample(&[p.kind, i64::from(p.gs), i64::from(p.left_handed())]);
         },
     );
     res.score(&sb);
@@ -386,25 +370,11 @@ pub fn drive_parallax(d: &mut ParallaxUnit, t: Option<&ParallaxQ>) {
     }
 }
 
-struct ParallaxDriver;
-
-impl Driver<ParallaxUnit> for ParallaxDriver {
-    type Txn = ParallaxQ;
-    fn drive(&mut self, d: &mut ParallaxUnit, t: Option<&ParallaxQ>) {
-        drive_parallax(d, t);
-    }
-}
-
-struct UvMonitor;
-
-impl Monitor<ParallaxUnit> for UvMonitor {
-    type Txn = [i64; 2];
-    fn sample(&mut self, d: &ParallaxUnit) -> Option<[i64; 2]> {
-        d.valid
-            .q()
-            .is_high()
-            .then(|| d.out.each_ref().map(|r| r.q().raw()))
-    }
+fn sample_uv(d: &ParallaxUnit) -> Option<[i64; 2]> {
+    d.valid
+        .q()
+        .is_high()
+        .then(|| d.out.each_ref().map(|r| r.q().raw()))
 }
 
 fn parallax_coverage() -> Coverage {
@@ -458,29 +428,23 @@ impl Testbench for ParallaxTb {
                 }
             });
         let n = qs.len() as u64;
-        let mut pending = qs.clone().into_iter();
         let mut spec =
             RunSpec::new(n, 3 * n + 50).pacing(verif::Pacing::random(200, ctx.seed.derive(7)));
-        let r = run_scored(
+        let r = sb.run(
             &mut sim,
-            &mut ParallaxDriver,
-            &mut UvMonitor,
-            qs,
+            &mut PinDriver::new(drive_parallax),
+            &mut PinMonitor::new(sample_uv),
+            qs.into_iter().map(|q| (q, q)),
             &mut spec,
-            |_, ev| match ev {
-                Scored::Sent { .. } => sb.expect(pending.next().expect("one a query")),
-                Scored::Received { cycle, txn } => {
-                    if let Some(q) = sb.observe(cycle, txn).expected {
-                        let (g, _) = golden_parallax(&q);
-                        for c in 0..2 {
-                            res.stats.record(txn[c] as f64 / 256.0, g[c], 1.0 / 256.0);
-                        }
-                        cov.sample(&[
-                            i64::from(q.limited),
-                            i64::from(q.eye[2] >= units::frames::parallax::VZ_MIN),
-                        ]);
-                    }
+            |_, q, txn| {
+                let (g, _) = golden_parallax(&q);
+                for c in 0..2 {
+                    res.stats.record(txn[c] as f64 / 256.0, g[c], 1.0 / 256.0);
                 }
+                cov.sample(&[
+                    i64::from(q.limited),
+                    i64::from(q.eye[2] >= units::frames::parallax::VZ_MIN),
+                ]);
             },
         );
         res.score(&sb);

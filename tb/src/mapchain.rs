@@ -16,7 +16,7 @@ use units::texram::output_820::Modulate;
 use units::texram::stub::{next_level, TexramStub};
 use units::texram::{Border, Drf, TexramAccess};
 use verif::{
-    run_scored, Coverage, Coverpoint, Ctx, Driver, Monitor, Pacing, RunSpec, Scoreboard, Scored,
+    run_scored, Coverage, Coverpoint, Ctx, Driver, Pacing, PinMonitor, RunSpec, Scoreboard, Scored,
     Stimulus, StreamDriver, TbResult, Testbench,
 };
 use waves::VcdTracer;
@@ -491,13 +491,8 @@ fn random_pixels(n: usize, stim: &mut Stimulus) -> Vec<ChainRequest> {
         .collect()
 }
 
-pub struct ChainMonitor;
-
-impl<T: TexramAccess> Monitor<MapChain812<T>> for ChainMonitor {
-    type Txn = ChainResult;
-    fn sample(&mut self, dut: &MapChain812<T>) -> Option<ChainResult> {
-        dut.out_valid.q().is_high().then(|| dut.result())
-    }
+pub fn sample_chain<T: TexramAccess>(dut: &MapChain812<T>) -> Option<ChainResult> {
+    dut.out_valid.q().is_high().then(|| dut.result())
 }
 
 /// The lambda range a pixel falls in (the coverage bins).
@@ -714,7 +709,7 @@ fn run_pixels<A: TexramAccess>(
     let r = run_scored(
         &mut sim,
         &mut StreamDriver::new(verif::stream!(MapChain812<A>, req)),
-        &mut ChainMonitor,
+        &mut PinMonitor::new(sample_chain),
         px,
         &mut spec,
         |_, ev| match ev {

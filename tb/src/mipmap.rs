@@ -12,7 +12,7 @@ use serde::{Deserialize, Serialize};
 use std::path::PathBuf;
 use units::mipmap::{FrameBuffer, MipmapGen, MipmapParams, Rounding, Scan};
 use verif::{
-    run_scored, Coverage, Coverpoint, Ctx, Driver, ErrorStats, Monitor, RunSpec, Scoreboard,
+    run_scored, Coverage, Coverpoint, Ctx, ErrorStats, Monitor, PinDriver, RunSpec, Scoreboard,
     Scored, Seed, Stimulus, TbResult, Testbench, Workload,
 };
 use waves::TraceConfig;
@@ -144,15 +144,10 @@ pub struct VideoTexel {
 }
 
 /// Drives the video port (`valid`, `sof`, `texel`); the generator takes a texel every cycle.
-pub struct VideoDriver;
-
-impl Driver<MipmapGen> for VideoDriver {
-    type Txn = VideoTexel;
-    fn drive(&mut self, dut: &mut MipmapGen, t: Option<&VideoTexel>) {
-        dut.valid.set_bool(t.is_some());
-        dut.sof.set_bool(t.is_some_and(|t| t.sof));
-        dut.texel.set_bits(u64::from(t.map_or(0, |t| t.texel)));
-    }
+pub fn drive_video(dut: &mut MipmapGen, t: Option<&VideoTexel>) {
+    dut.valid.set_bool(t.is_some());
+    dut.sof.set_bool(t.is_some_and(|t| t.sof));
+    dut.texel.set_bits(u64::from(t.map_or(0, |t| t.texel)));
 }
 
 /// Reports each completed frame (`frame_done`) with its mipmap, read from the frame store.
@@ -206,7 +201,7 @@ fn drive<T: Trace>(
     let mut spec = RunSpec::new(frames.len() as u64, limit);
     run_scored(
         &mut sim,
-        &mut VideoDriver,
+        &mut PinDriver::new(drive_video),
         &mut FrameMonitor { seen: 0 },
         stream,
         &mut spec,

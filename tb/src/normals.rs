@@ -18,8 +18,8 @@ use units::bump::height_map::HeightMap;
 use units::bump::normal_pipeline_fig7::NormalPipeline;
 use units::bump::params::{Border, BumpParams, Filter};
 use verif::{
-    run_scored, Coverage, Coverpoint, Ctx, Driver, ErrorStats, Monitor, Pacing, ProbeSink, RunSpec,
-    Scoreboard, Scored, TbResult, Testbench, Workload,
+    run_scored, Coverage, Coverpoint, Ctx, ErrorStats, Pacing, PinDriver, PinMonitor, ProbeSink,
+    RunSpec, Scoreboard, Scored, TbResult, Testbench, Workload,
 };
 use waves::{ProbeId, TraceConfig};
 
@@ -126,29 +126,21 @@ pub fn heights(m: &HeightMap) -> Heights {
     )
 }
 
-struct Drv;
-impl Driver<NormalPipeline> for Drv {
-    type Txn = RawSample;
-    fn drive(&mut self, dut: &mut NormalPipeline, t: Option<&RawSample>) {
-        dut.valid_in.set_bool(t.is_some());
-        if let Some(t) = t {
-            dut.u.set_raw(t.u);
-            dut.v.set_raw(t.v);
-            dut.scale.set_raw(t.scale as i64);
-            dut.lod.set_raw(t.lod as i64);
-        }
+fn drive_sample(dut: &mut NormalPipeline, t: Option<&RawSample>) {
+    dut.valid_in.set_bool(t.is_some());
+    if let Some(t) = t {
+        dut.u.set_raw(t.u);
+        dut.v.set_raw(t.v);
+        dut.scale.set_raw(t.scale as i64);
+        dut.lod.set_raw(t.lod as i64);
     }
 }
 
-struct Mon;
-impl Monitor<NormalPipeline> for Mon {
-    type Txn = RawNormal;
-    fn sample(&mut self, dut: &NormalPipeline) -> Option<RawNormal> {
-        dut.valid.is_high().then(|| RawNormal {
-            n: [dut.nx.raw(), dut.ny.raw(), dut.nz.raw()],
-            height: dut.height.bits(),
-        })
-    }
+fn sample_normal(dut: &NormalPipeline) -> Option<RawNormal> {
+    dut.valid.is_high().then(|| RawNormal {
+        n: [dut.nx.raw(), dut.ny.raw(), dut.nz.raw()],
+        height: dut.height.bits(),
+    })
 }
 
 /// What to run.
@@ -338,8 +330,8 @@ fn drive<T: Trace + ProbeSink>(
     let fb = p.pos_frac - p.blend_bits;
     let r = run_scored(
         &mut sim,
-        &mut Drv,
-        &mut Mon,
+        &mut PinDriver::new(drive_sample),
+        &mut PinMonitor::new(sample_normal),
         raws,
         &mut RunSpec::new(n, 4 * n + 100).pacing(pacing),
         |sim, ev| match ev {

@@ -14,8 +14,8 @@ use units::ptm::fitter_604::Fitter604;
 use units::ptm::shader_608::Shader608;
 use units::ptm::texture_612::{p_raw, PtmFormat};
 use verif::{
-    run_scored, Coverage, Coverpoint, Ctx, Driver, Monitor, RunSpec, Scoreboard, Scored, Stimulus,
-    TbResult, Testbench,
+    run_scored, Coverage, Coverpoint, Ctx, PinDriver, PinMonitor, RunSpec, Scoreboard, Scored,
+    Stimulus, TbResult, Testbench,
 };
 use waves::VcdTracer;
 
@@ -186,26 +186,16 @@ const FIT_CONFIGS: [((usize, usize), u32, bool); 4] = [
     ((5, 16), 8, false),
 ];
 
-struct SampleDriver;
-
-impl Driver<Fitter604> for SampleDriver {
-    type Txn = u8;
-    fn drive(&mut self, dut: &mut Fitter604, t: Option<&u8>) {
-        dut.in_valid.set_bool(t.is_some());
-        dut.in_sample.set_bits(u64::from(t.copied().unwrap_or(0)));
-    }
+fn drive_sample(dut: &mut Fitter604, t: Option<&u8>) {
+    dut.in_valid.set_bool(t.is_some());
+    dut.in_sample.set_bits(u64::from(t.copied().unwrap_or(0)));
 }
 
-struct TexelMonitor;
-
-impl Monitor<Fitter604> for TexelMonitor {
-    type Txn = [u64; 6];
-    fn sample(&mut self, dut: &Fitter604) -> Option<[u64; 6]> {
-        dut.out_valid
-            .q()
-            .is_high()
-            .then(|| dut.out_q.each_ref().map(|r| r.q().bits()))
-    }
+fn sample_texel(dut: &Fitter604) -> Option<[u64; 6]> {
+    dut.out_valid
+        .q()
+        .is_high()
+        .then(|| dut.out_q.each_ref().map(|r| r.q().bits()))
 }
 
 fn fitter_coverage() -> Coverage {
@@ -346,8 +336,8 @@ fn run_fitter_tb(
     let mut spec = RunSpec::new(texels as u64, 4 * sw.samples.len() as u64 + 100).pacing(pacing);
     let r = run_scored(
         &mut sim,
-        &mut SampleDriver,
-        &mut TexelMonitor,
+        &mut PinDriver::new(drive_sample),
+        &mut PinMonitor::new(sample_texel),
         sw.samples.clone(),
         &mut spec,
         |_, ev| match ev {
@@ -417,32 +407,22 @@ pub fn ref_k(fmt: &PtmFormat, q: &[u64; 6], u: i64, v: i64) -> u8 {
 
 const SHADE_CONFIGS: [((usize, usize), u32); 2] = [((3, 8), 8), ((4, 12), 16)];
 
-struct QueryDriver;
-
-impl Driver<Shader608> for QueryDriver {
-    type Txn = Query;
-    fn drive(&mut self, dut: &mut Shader608, t: Option<&Query>) {
-        dut.in_valid.set_bool(t.is_some());
-        if let Some((q, u, v)) = t {
-            for (s, x) in dut.q.iter_mut().zip(q) {
-                s.set_bits(*x);
-            }
-            dut.u.set_raw(*u);
-            dut.v.set_raw(*v);
+fn drive_query(dut: &mut Shader608, t: Option<&Query>) {
+    dut.in_valid.set_bool(t.is_some());
+    if let Some((q, u, v)) = t {
+        for (s, x) in dut.q.iter_mut().zip(q) {
+            s.set_bits(*x);
         }
+        dut.u.set_raw(*u);
+        dut.v.set_raw(*v);
     }
 }
 
-struct KMonitor;
-
-impl Monitor<Shader608> for KMonitor {
-    type Txn = (u8, u8);
-    fn sample(&mut self, dut: &Shader608) -> Option<(u8, u8)> {
-        dut.out_valid
-            .q()
-            .is_high()
-            .then(|| (dut.k.q().bits() as u8, dut.visibility.q().bits() as u8))
-    }
+fn sample_k(dut: &Shader608) -> Option<(u8, u8)> {
+    dut.out_valid
+        .q()
+        .is_high()
+        .then(|| (dut.k.q().bits() as u8, dut.visibility.q().bits() as u8))
 }
 
 fn shader_coverage() -> Coverage {
@@ -561,24 +541,18 @@ fn run_shader_tb(
             }
         });
     let n = qs.len() as u64;
-    let mut pending = qs.clone().into_iter();
     let mut spec =
         RunSpec::new(n, 3 * n + 50).pacing(verif::Pacing::random(200, ctx.seed.derive(4)));
-    let r = run_scored(
+    let r = sb.run(
         &mut sim,
-        &mut QueryDriver,
-        &mut KMonitor,
-        qs,
+        &mut PinDriver::new(drive_query),
+        &mut PinMonitor::new(sample_k),
+        qs.into_iter().map(|q| (q, q)),
         &mut spec,
-        |_, ev| match ev {
-            Scored::Sent { .. } => sb.expect(pending.next().expect("one a query")),
-            Scored::Received { cycle, txn } => {
-                if let Some((q, u, v)) = sb.observe(cycle, txn).expected {
-                    let g = golden_k(fmt, &q, u, v) * 256.0;
-                    res.stats.record(f64::from(txn.0), g.min(255.0), 1.0);
-                    cov.sample(&[i64::from(txn.0), i64::from(u < 0) + 2 * i64::from(v < 0)]);
-                }
-            }
+        |_, (q, u, v), txn| {
+            let g = golden_k(fmt, &q, u, v) * 256.0;
+            res.stats.record(f64::from(txn.0), g.min(255.0), 1.0);
+            cov.sample(&[i64::from(txn.0), i64::from(u < 0) + 2 * i64::from(v < 0)]);
         },
     );
     res.score(&sb);

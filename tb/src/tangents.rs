@@ -13,8 +13,8 @@ use hdl::kernel::Sim;
 use std::collections::HashMap;
 use units::frames::tangent_setup::{TangentSetup, POS_FRAC, VEC_FRAC};
 use verif::{
-    run_scored, Coverage, Coverpoint, Ctx, Driver, Monitor, RunSpec, Scoreboard, Scored, Stimulus,
-    TbResult, Testbench,
+    Coverage, Coverpoint, Ctx, PinDriver, PinMonitor, RunSpec, Scoreboard, Stimulus, TbResult,
+    Testbench,
 };
 use waves::VcdTracer;
 
@@ -189,42 +189,32 @@ pub fn golden_setup(q: &Tri) -> (golden::tangents::FaceTangent, Frame, f64) {
     (ft, fr, bound)
 }
 
-struct TriDriver;
-
-impl Driver<TangentSetup> for TriDriver {
-    type Txn = Tri;
-    fn drive(&mut self, dut: &mut TangentSetup, t: Option<&Tri>) {
-        dut.valid_in.set_bool(t.is_some());
-        if let Some(t) = t {
-            for r in 0..2 {
-                for c in 0..3 {
-                    dut.v[r][c].set_raw(t.v[r][c]);
-                }
-                for c in 0..2 {
-                    dut.d[r][c].set_raw(t.d[r][c]);
-                }
-            }
+fn drive_tri(dut: &mut TangentSetup, t: Option<&Tri>) {
+    dut.valid_in.set_bool(t.is_some());
+    if let Some(t) = t {
+        for r in 0..2 {
             for c in 0..3 {
-                dut.n[c].set_raw(t.n[c]);
+                dut.v[r][c].set_raw(t.v[r][c]);
             }
+            for c in 0..2 {
+                dut.d[r][c].set_raw(t.d[r][c]);
+            }
+        }
+        for c in 0..3 {
+            dut.n[c].set_raw(t.n[c]);
         }
     }
 }
 
-struct SetupMonitor;
-
-impl Monitor<TangentSetup> for SetupMonitor {
-    type Txn = SetupOut;
-    fn sample(&mut self, d: &TangentSetup) -> Option<SetupOut> {
-        let raw = |r: &[hdl::kernel::Reg; 3]| r.each_ref().map(|x| x.q().raw());
-        d.valid.q().is_high().then(|| SetupOut {
-            t: raw(&d.t),
-            b: raw(&d.b),
-            dpdu: raw(&d.dpdu),
-            degenerate: d.degenerate.q().is_high(),
-            zero: d.zero.q().is_high(),
-        })
-    }
+fn sample_setup(d: &TangentSetup) -> Option<SetupOut> {
+    let raw = |r: &[hdl::kernel::Reg; 3]| r.each_ref().map(|x| x.q().raw());
+    d.valid.q().is_high().then(|| SetupOut {
+        t: raw(&d.t),
+        b: raw(&d.b),
+        dpdu: raw(&d.dpdu),
+        degenerate: d.degenerate.q().is_high(),
+        zero: d.zero.q().is_high(),
+    })
 }
 
 /// Random triangles: positions within 8 units, UVs within 2, the face normal (or a
@@ -338,36 +328,30 @@ fn run_setup(
     sim.reset(2);
     let mut sb: Scoreboard<Tri, SetupOut> = Scoreboard::new(check);
     let n = tris.len() as u64;
-    let mut pending = tris.clone().into_iter();
     let mut spec =
         RunSpec::new(n, 3 * n + 50).pacing(verif::Pacing::random(200, ctx.seed.derive(5)));
     let lsb = 2f64.powi(-(VEC_FRAC as i32));
-    let r = run_scored(
+    let r = sb.run(
         &mut sim,
-        &mut TriDriver,
-        &mut SetupMonitor,
-        tris,
+        &mut PinDriver::new(drive_tri),
+        &mut PinMonitor::new(sample_setup),
+        tris.into_iter().map(|q| (q, q)),
         &mut spec,
-        |_, ev| match ev {
-            Scored::Sent { .. } => sb.expect(pending.next().expect("one a triangle")),
-            Scored::Received { cycle, txn } => {
-                if let Some(q) = sb.observe(cycle, txn).expected {
-                    let (ft, fr, _) = golden_setup(&q);
-                    if !fr.zero {
-                        for c in 0..3 {
-                            res.stats.record(txn.t[c] as f64 * lsb, fr.t[c], lsb);
-                        }
-                    }
-                    let kind = match (ft.degenerate, fr.zero) {
-                        (false, _) => 0,
-                        (true, false) if q.d[0] == [0, 0] => 3,
-                        (true, false) => 1,
-                        (true, true) => 2,
-                    };
-                    let hand = golden::tangents::handedness(fr.n, fr.t, ft.dpdv);
-                    cov.sample(&[kind, i64::from(hand < 0.0)]);
+        |_, q, txn| {
+            let (ft, fr, _) = golden_setup(&q);
+            if !fr.zero {
+                for c in 0..3 {
+                    res.stats.record(txn.t[c] as f64 * lsb, fr.t[c], lsb);
                 }
             }
+            let kind = match (ft.degenerate, fr.zero) {
+                (false, _) => 0,
+                (true, false) if q.d[0] == [0, 0] => 3,
+                (true, false) => 1,
+                (true, true) => 2,
+            };
+            let hand = golden::tangents::handedness(fr.n, fr.t, ft.dpdv);
+            cov.sample(&[kind, i64::from(hand < 0.0)]);
         },
     );
     res.score(&sb);

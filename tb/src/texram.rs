@@ -166,7 +166,7 @@ use units::texram::clut_814::Clut;
 use units::texram::texram_802::{Texram802, TexramParams};
 use units::texram::{Border, Config, Drf};
 use verif::{
-    run_scored, Coverage, Coverpoint, Ctx, Driver, Monitor, Pacing, RunSpec, Scoreboard, Scored,
+    run_scored, Coverage, Coverpoint, Ctx, Driver, Pacing, PinMonitor, RunSpec, Scoreboard, Scored,
     Stimulus, TbResult, Testbench,
 };
 
@@ -218,18 +218,13 @@ impl Driver<Texram802> for TexDriver {
     }
 }
 
-pub struct TexMonitor;
-
-impl Monitor<Texram802> for TexMonitor {
-    type Txn = TexOut;
-    fn sample(&mut self, dut: &Texram802) -> Option<TexOut> {
-        dut.output.out_valid.q().is_high().then(|| TexOut {
-            value: dut.output.out_value.q().bits() as u8,
-            rgba: (dut.output.out_rgba.q().bits() as u32).to_be_bytes(),
-            texels: dut.output.out_texels.q().bits().to_le_bytes(),
-            fault: dut.output.out_fault.q().is_high(),
-        })
-    }
+pub fn sample_tex(dut: &Texram802) -> Option<TexOut> {
+    dut.output.out_valid.q().is_high().then(|| TexOut {
+        value: dut.output.out_value.q().bits() as u8,
+        rgba: (dut.output.out_rgba.q().bits() as u32).to_be_bytes(),
+        texels: dut.output.out_texels.q().bits().to_le_bytes(),
+        fault: dut.output.out_fault.q().is_high(),
+    })
 }
 
 /// The configurations: map sizes (log2) and border operations.
@@ -570,7 +565,7 @@ fn one_config<T: Trace>(
     let r = run_scored(
         &mut sim,
         &mut TexDriver::default(),
-        &mut TexMonitor,
+        &mut PinMonitor::new(sample_tex),
         reqs,
         &mut spec,
         |_, ev| match ev {

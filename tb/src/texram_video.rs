@@ -10,7 +10,7 @@
 //! row segments the frames' lines make; no video error (overrun, underrun, generator).
 
 use crate::mipmap::{video_stream, VideoTexel};
-use crate::texram::{test_map, RefMipmap, TexDriver, TexMonitor, TexOut, TexReq, CYCLE_PS};
+use crate::texram::{sample_tex, test_map, RefMipmap, TexDriver, TexOut, TexReq, CYCLE_PS};
 use hdl::kernel::{Sim, Trace};
 use proptest::prelude::*;
 use units::mipmap::{MipmapParams, Rounding, Scan};
@@ -20,8 +20,8 @@ use units::texram::texram_802::{Texram802, TexramParams};
 use units::texram::video_port_808::VideoParams;
 use units::texram::{Border, Drf, TexramAccess, TexramRequest};
 use verif::{
-    run_scored_beside, Background, Coverage, Coverpoint, Ctx, Pacing, RunSpec, Scoreboard, Scored,
-    Stimulus, TbResult, Testbench,
+    run_scored_beside, Background, Coverage, Coverpoint, Ctx, Pacing, PinMonitor, RunSpec,
+    Scoreboard, Scored, Stimulus, TbResult, Testbench,
 };
 
 pub const NAME: &str = "video_port_808";
@@ -358,7 +358,7 @@ fn run_video<T: Trace>(
     let r = run_scored_beside(
         &mut sim,
         &mut TexDriver { drf: 2 },
-        &mut TexMonitor,
+        &mut PinMonitor::new(sample_tex),
         reqs,
         &mut spec,
         &mut source,

@@ -19,8 +19,8 @@ use units::texmem::cache_614::Lookahead;
 use units::texmem::layout::Layout;
 use units::texmem::texture_unit_602::{TexParams, TextureUnit};
 use verif::{
-    run, Coverage, Coverpoint, Ctx, Driver, Event, Handshake, Monitor, Pacing, ProbeSink, RunSpec,
-    Seed, TbResult, Testbench, WaveOut, Workload,
+    run, Coverage, Coverpoint, Ctx, Event, Handshake, Pacing, PinDriver, PinMonitor, ProbeSink,
+    RunSpec, Seed, TbResult, Testbench, WaveOut, Workload,
 };
 use waves::{ProbeId, TraceConfig};
 
@@ -261,31 +261,23 @@ pub type RefProbes<'a> = (&'a Ccc, (ProbeId, ProbeId));
 
 /// Presents rasterizer requests (`in_valid`, `in_u`, `in_v`, `in_newline`); a request is
 /// taken in a cycle with `in_ready` high.
-pub struct RasterDriver;
-
-impl Driver<TextureUnit> for RasterDriver {
-    type Txn = TexRequest;
-    fn drive(&mut self, dut: &mut TextureUnit, r: Option<&TexRequest>) {
-        dut.in_valid.set_bool(r.is_some());
-        if let Some(r) = r {
-            dut.in_u.set_bits(u64::from(r.u));
-            dut.in_v.set_bits(u64::from(r.v));
-            dut.in_newline.set_bool(r.newline);
-        }
-    }
-    fn accepted(&self, dut: &TextureUnit) -> bool {
-        dut.in_ready.is_high()
+pub fn drive_raster(dut: &mut TextureUnit, r: Option<&TexRequest>) {
+    dut.in_valid.set_bool(r.is_some());
+    if let Some(r) = r {
+        dut.in_u.set_bits(u64::from(r.u));
+        dut.in_v.set_bits(u64::from(r.v));
+        dut.in_newline.set_bool(r.newline);
     }
 }
 
-/// Collects the filtered colour of bilinear 622 when `out_valid` is high.
-pub struct ColorMonitor;
+/// Whether the unit takes the presented transaction.
+pub fn raster_ready(dut: &TextureUnit) -> bool {
+    dut.in_ready.is_high()
+}
 
-impl Monitor<TextureUnit> for ColorMonitor {
-    type Txn = u32;
-    fn sample(&mut self, dut: &TextureUnit) -> Option<u32> {
-        dut.out_valid.is_high().then(|| dut.out_rgb.bits() as u32)
-    }
+/// Collects the filtered colour of bilinear 622 when `out_valid` is high.
+pub fn sample_color(dut: &TextureUnit) -> Option<u32> {
+    dut.out_valid.is_high().then(|| dut.out_rgb.bits() as u32)
 }
 
 /// First-lookup outcomes and the shadow cache's miss split, sampled every cycle.
@@ -371,8 +363,8 @@ pub fn drive<T: Trace + ProbeSink>(
     let mut spec = RunSpec::new(reqs.len() as u64, limit).pacing(Pacing::every(interval));
     run(
         &mut sim,
-        &mut RasterDriver,
-        &mut ColorMonitor,
+        &mut PinDriver::new(drive_raster).ready(raster_ready),
+        &mut PinMonitor::new(sample_color),
         reqs.iter().copied(),
         &mut spec,
         |sim, ev| match ev {

@@ -9,8 +9,8 @@ use proptest::prelude::*;
 use units::volume::layout::{locate, Mode, Order, VolumeParams, POS_FRAC};
 use units::volume::ray_caster_fig15::RayCaster;
 use verif::{
-    run, Coverage, Coverpoint, Ctx, Driver, Event, Monitor, Pacing, RunSpec, Scoreboard, Stimulus,
-    TbResult, Testbench,
+    run, Coverage, Coverpoint, Ctx, Event, Pacing, PinDriver, PinMonitor, RunSpec, Scoreboard,
+    Stimulus, TbResult, Testbench,
 };
 
 pub const NAME: &str = "ray_caster_fig15";
@@ -127,38 +127,30 @@ pub fn count_slots(
     (accesses, slots, misses)
 }
 
-pub struct RayDriver;
-
-impl Driver<RayCaster> for RayDriver {
-    type Txn = Ray;
-    fn drive(&mut self, dut: &mut RayCaster, t: Option<&Ray>) {
-        dut.ray.valid.set_bool(t.is_some());
-        if let Some(t) = t {
-            for c in 0..3 {
-                dut.ray.p[c].set_raw(i64::from(t.p[c]));
-                dut.ray.d[c].set_raw(i64::from(t.d[c]));
-            }
-            dut.ray.steps.set_bits(u64::from(t.steps));
+pub fn drive_ray(dut: &mut RayCaster, t: Option<&Ray>) {
+    dut.ray.valid.set_bool(t.is_some());
+    if let Some(t) = t {
+        for c in 0..3 {
+            dut.ray.p[c].set_raw(i64::from(t.p[c]));
+            dut.ray.d[c].set_raw(i64::from(t.d[c]));
         }
-    }
-    fn accepted(&self, dut: &RayCaster) -> bool {
-        dut.ray_ready.is_high()
+        dut.ray.steps.set_bits(u64::from(t.steps));
     }
 }
 
-pub struct SampleMonitor;
+/// Whether the unit takes the presented transaction.
+pub fn ray_ready(dut: &RayCaster) -> bool {
+    dut.ray_ready.is_high()
+}
 
-impl Monitor<RayCaster> for SampleMonitor {
-    type Txn = VolSample;
-    fn sample(&mut self, dut: &RayCaster) -> Option<VolSample> {
-        dut.out.valid.q().is_high().then(|| VolSample {
-            ray: dut.out.ray.q().bits() as u32,
-            k: dut.out.k.q().bits() as u16,
-            p: dut.out.p.each_ref().map(|r| r.q().raw()),
-            value: dut.out.value.q().bits() as u8,
-            g: dut.out.g.each_ref().map(|r| r.q().raw()),
-        })
-    }
+pub fn sample_ray(dut: &RayCaster) -> Option<VolSample> {
+    dut.out.valid.q().is_high().then(|| VolSample {
+        ray: dut.out.ray.q().bits() as u32,
+        k: dut.out.k.q().bits() as u16,
+        p: dut.out.p.each_ref().map(|r| r.q().raw()),
+        value: dut.out.value.q().bits() as u8,
+        g: dut.out.g.each_ref().map(|r| r.q().raw()),
+    })
 }
 
 /// A test volume with structure at every scale: a sphere's distance, a slab, seeded noise.
@@ -354,8 +346,8 @@ fn run_rays<T: Trace>(
     let mut last_slots = 0;
     let r = run(
         &mut sim,
-        &mut RayDriver,
-        &mut SampleMonitor,
+        &mut PinDriver::new(drive_ray).ready(ray_ready),
+        &mut PinMonitor::new(sample_ray),
         rs,
         &mut spec,
         |s, ev| {

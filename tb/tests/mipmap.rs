@@ -3,9 +3,8 @@
 //! frames back to back, errors reported; and the `texrtl mipmap` command.
 
 use hdl::kernel::Sim;
-use tb::mipmap::{reference, run_mipmap, synthetic_video, video_stream, VideoDriver};
+use tb::mipmap::{drive_video, reference, run_mipmap, synthetic_video, video_stream};
 use units::mipmap::{MipmapGen, MipmapParams, Rounding, Scan};
-use verif::Driver;
 use verif::{seeded_stimulus, Seed};
 
 const SCANS: [Scan; 3] = [
@@ -141,7 +140,7 @@ fn a_quiescent_level_is_left_exactly_as_evaluating_it_would_leave_it() {
     let stream = video_stream(&p, &frames);
     let (mut skipped, mut checked) = (0usize, 0usize);
     for (i, t) in stream.iter().map(Some).chain([None; 64]).enumerate() {
-        VideoDriver.drive(&mut sim.dut, t);
+        drive_video(&mut sim.dut, t);
         sim.eval();
         let levels = &sim.dut.levels;
         for k in 1..levels.len() {
@@ -175,10 +174,10 @@ fn a_reset_part_way_restores_every_level() {
     let (p, frames, mut sim) = generator_16x8(Scan::Progressive, Seed(12));
     let fresh = run_mipmap(p, &frames, None).unwrap();
     for t in &video_stream(&p, &frames)[..128 + 40] {
-        VideoDriver.drive(&mut sim.dut, Some(t));
+        drive_video(&mut sim.dut, Some(t));
         sim.step();
     }
-    VideoDriver.drive(&mut sim.dut, None);
+    drive_video(&mut sim.dut, None);
     for _ in 0..50 {
         sim.step();
     }
@@ -196,7 +195,7 @@ fn opened_rows(p: MipmapParams, frames: &[Vec<u8>]) -> [Vec<u32>; 3] {
     sim.reset(1);
     let mut rows: [Vec<u32>; 3] = Default::default();
     for t in video_stream(&p, frames).iter().map(Some).chain([None; 256]) {
-        VideoDriver.drive(&mut sim.dut, t);
+        drive_video(&mut sim.dut, t);
         let (before, done) = (sim.dut.activations(), sim.dut.completed().len());
         sim.step();
         // A frame completes at this edge: recorded with the edge's cycle.

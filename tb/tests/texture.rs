@@ -7,13 +7,13 @@ use formats::ccc::Ccc;
 use hdl::kernel::Sim;
 use proptest::prelude::*;
 use tb::texture::reference_filter;
-use tb::texture::{drive, run_texread, RasterDriver, TexRequest};
+use tb::texture::{drive, drive_raster, run_texread, TexRequest};
 use units::texmem::bilinear_622::lerp2;
 use units::texmem::cache_614::Lookahead;
 use units::texmem::ccc_decode_608::CccBlock;
 use units::texmem::layout::Layout;
 use units::texmem::texture_unit_602::{TexParams, TextureUnit};
-use verif::{Driver, Handshake};
+use verif::Handshake;
 
 fn modes() -> Vec<(Layout, bool, Lookahead, u32)> {
     let mut v = Vec::new();
@@ -474,7 +474,7 @@ fn point(x: u32, y: u32, newline: bool) -> TexRequest {
 }
 
 /// A texture unit holding `tex`, just out of reset, clocked by hand (requests presented with
-/// [`RasterDriver`]).
+/// [`drive_raster`]).
 fn unit_after_reset(tex: &Ccc, p: TexParams) -> Sim<TextureUnit> {
     let words = tex.dram_words(&p.block_map());
     let unit = TextureUnit::new("texture_unit_602", p, &tex.clut, &words).unwrap();
@@ -496,7 +496,7 @@ fn a_fill_asks_for_two_words_then_decodes() {
     let mut words = Handshake::new("fill.word_req");
     for c in 0..200u64 {
         // One request inside block (2, 2), a new scanline (so no lookahead follows).
-        RasterDriver.drive(&mut sim.dut, (c == 0).then_some(&point(10, 10, true)));
+        drive_raster(&mut sim.dut, (c == 0).then_some(&point(10, 10, true)));
         sim.eval();
         let f = &sim.dut.fill;
         assert!(c > 0 || sim.dut.in_ready.is_high(), "the request is taken");
@@ -563,7 +563,7 @@ fn the_lookup_masks_show_the_entries_a_footprint_needs_and_hits() {
     let mut firsts = Vec::new();
     for c in 0..200u64 {
         let offer = c == 0 || c == 100;
-        RasterDriver.drive(&mut sim.dut, offer.then_some(&point(3, 3, true)));
+        drive_raster(&mut sim.dut, offer.then_some(&point(3, 3, true)));
         sim.eval();
         let d = &sim.dut;
         if d.lookup.first {
@@ -594,7 +594,7 @@ fn a_new_scanline_flushes_the_queue() {
         for c in 0..300u64 {
             let offer = (sent == 0) || (sent == 1 && c >= k);
             let next = [point(10, 10, false), point(second, second, true)];
-            RasterDriver.drive(&mut sim.dut, next.get(sent).filter(|_| offer));
+            drive_raster(&mut sim.dut, next.get(sent).filter(|_| offer));
             sim.eval();
             let d = &sim.dut;
             if offer && d.in_ready.is_high() {

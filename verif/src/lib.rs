@@ -53,6 +53,7 @@ pub mod jobs;
 pub mod junit;
 pub mod mutate;
 pub mod numeric;
+mod pins;
 pub mod plot;
 mod probe;
 pub mod project;
@@ -70,6 +71,7 @@ pub mod vectors;
 mod workload;
 
 pub use coverage::{Coverage, Coverpoint, Cross};
+pub use pins::{PinDriver, PinMonitor};
 pub use probe::ProbeSink;
 pub use protocol::{Handshake, Violation};
 pub use random::{seeded_runner, seeded_stimulus, Seed, Shard, Stimulus, SEED_ENV};

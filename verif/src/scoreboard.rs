@@ -1,5 +1,7 @@
 //! In-order scoreboard: golden transactions in, DUT transactions in, every mismatch recorded.
 
+use crate::run::{run_scored, Driver, Monitor, RunSpec, RunStats, Scored, Timeout};
+use hdl::kernel::{Module, Sim, Trace};
 use serde::Serialize;
 use std::collections::VecDeque;
 use std::fmt::Debug;
@@ -100,6 +102,39 @@ impl<E: Debug, A: Debug> Scoreboard<E, A> {
                 }
             }
         }
+    }
+
+    /// Runs `stimulus` through the DUT ([`run_scored`]) and scores it. Each item pairs a
+    /// transaction with its expectation: when the DUT accepts the transaction, the
+    /// expectation is queued; each transaction the monitor receives is compared with the
+    /// oldest one queued, and `compared` hears it with that expectation (error statistics,
+    /// coverage, probes); one the DUT produced with nothing queued is only a mismatch.
+    pub fn run<M, T, D, Mo>(
+        &mut self,
+        sim: &mut Sim<M, T>,
+        driver: &mut D,
+        monitor: &mut Mo,
+        stimulus: impl IntoIterator<Item = (D::Txn, E)>,
+        spec: &mut RunSpec,
+        mut compared: impl FnMut(&mut Sim<M, T>, E, A),
+    ) -> Result<RunStats, Timeout>
+    where
+        M: Module,
+        T: Trace,
+        D: Driver<M>,
+        Mo: Monitor<M, Txn = A>,
+        A: Clone,
+    {
+        let (txns, expected): (Vec<D::Txn>, VecDeque<E>) = stimulus.into_iter().unzip();
+        let mut expected = expected.into_iter();
+        run_scored(sim, driver, monitor, txns, spec, |sim, ev| match ev {
+            Scored::Sent { .. } => self.expect(expected.next().expect("one a transaction")),
+            Scored::Received { cycle, txn } => {
+                if let Some(e) = self.observe(cycle, txn.clone()).expected {
+                    compared(sim, e, txn);
+                }
+            }
+        })
     }
 
     /// At the end of a run: every golden transaction still waiting is a mismatch.

@@ -1,22 +1,17 @@
 //! The testbench: seeded stimulus, a scoreboard against golden, coverage, probes in the waveform.
 use crate::unit::{golden, SatAcc};
-use verif::{run_scored, Coverage, Coverpoint, Ctx, Driver, Monitor, Pacing, RunSpec, Scoreboard, Scored};
-use verif::{ProbeSink, TbResult, Testbench};
+use verif::{Coverage, Coverpoint, Ctx, Pacing, PinDriver, PinMonitor, ProbeSink, RunSpec, Scoreboard};
+use verif::{TbResult, Testbench};
 
-struct Drv; // a transaction, the raw value of `x`, to the pins
-impl Driver<SatAcc> for Drv {
-    type Txn = i64;
-    fn drive(&mut self, d: &mut SatAcc, x: Option<&i64>) {
-        d.valid_in.set_bool(x.is_some());
-        d.x.set_raw(x.copied().unwrap_or(0));
-    }
+/// A transaction, the raw value of `x`, to the pins.
+fn drive(d: &mut SatAcc, x: Option<&i64>) {
+    d.valid_in.set_bool(x.is_some());
+    d.x.set_raw(x.copied().unwrap_or(0));
 }
-struct Mon; // the accumulator whenever `out_valid` is high
-impl Monitor<SatAcc> for Mon {
-    type Txn = f64;
-    fn sample(&mut self, d: &SatAcc) -> Option<f64> {
-        d.out_valid.is_high().then(|| d.acc.fx().to_f64())
-    }
+
+/// The accumulator whenever `out_valid` is high.
+fn sample(d: &SatAcc) -> Option<f64> {
+    d.out_valid.is_high().then(|| d.acc.fx().to_f64())
 }
 
 pub struct SatAccTb;
@@ -44,26 +39,28 @@ impl Testbench for SatAccTb {
         // Seeded; long runs of one sign drive the accumulator into both rails.
         let mut stim = verif::Stimulus::new(ctx.seed);
         let xs = stim.draw_n(&(-128i64..128), ctx.count).into_iter().enumerate();
-        let txns: Vec<i64> = xs.map(|(i, x)| if (i / 200) % 2 == 0 { x.abs() / 2 } else { x }).collect();
+        let txns = xs.map(|(i, x)| if (i / 200) % 2 == 0 { x.abs() / 2 } else { x });
+        // Each transaction with the accumulator the golden model expects after it.
+        let mut acc = 0.0;
+        let pairs: Vec<(i64, f64)> = txns
+            .map(|x| {
+                acc = golden(acc, x as f64 / 16.0);
+                (x, acc)
+            })
+            .collect();
         let mut sb =
             Scoreboard::new(|g: &f64, d: &f64| (g == d).then_some(()).ok_or(format!("acc {d} != {g}")));
-        let (mut res, mut cov, mut acc) = (TbResult::new(self.name(), self.unit()), self.coverage(), 0.0);
+        let (mut res, mut cov) = (TbResult::new(self.name(), self.unit()), self.coverage());
         let pacing = if ctx.index == 0 { Pacing::full() } else { Pacing::random(300, ctx.seed) };
-        let mut spec = RunSpec::new(txns.len() as u64, 4 * txns.len() as u64 + 10).pacing(pacing);
-        let r = run_scored(&mut sim, &mut Drv, &mut Mon, txns, &mut spec, |sim, ev| match ev {
-            Scored::Sent { txn, .. } => {
-                acc = golden(acc, *txn as f64 / 16.0);
-                sb.expect(acc);
-                cov.sample(&[(acc * 16.0) as i64]);
+        let mut spec = RunSpec::new(pairs.len() as u64, 4 * pairs.len() as u64 + 10).pacing(pacing);
+        let (drv, mon) = (&mut PinDriver::new(drive), &mut PinMonitor::new(sample));
+        let r = sb.run(&mut sim, drv, mon, pairs, &mut spec, |sim, g, d| {
+            if let (Some((p, m)), Some(t)) = (probe, sim.trace_mut()) {
+                t.real(p, g);
+                t.flag(m, d != g);
             }
-            Scored::Received { cycle, txn } => {
-                let out = sb.observe(cycle, txn);
-                if let (Some((g, m)), Some(t), Some(e)) = (probe, sim.trace_mut(), out.expected) {
-                    t.real(g, e);
-                    t.flag(m, !out.ok);
-                }
-                res.stats.record(txn, out.expected.unwrap_or(txn), 1.0 / 16.0);
-            }
+            res.stats.record(d, g, 1.0 / 16.0);
+            cov.sample(&[(g * 16.0) as i64]);
         });
         res.score(&sb);
         res.cycles = r.map_err(|t| t.to_string())?.cycles;

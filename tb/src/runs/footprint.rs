@@ -2,8 +2,8 @@
 //! Figure 12 and the TEXRAM chip 802 or texture unit 602, each checked against the reference.
 
 use crate::footprint::{
-    ref_assemble, ref_assemble_texture, ref_setup, Assembled, Pixel, PixelDriver, PixelMonitor,
-    NAME,
+    drive_pixel, pixel_ready, ref_assemble, ref_assemble_texture, ref_setup, sample_pixel,
+    Assembled, Pixel, NAME,
 };
 use crate::texram::{ref_border, RefMipmap, CYCLE_PS};
 use formats::ccc::Ccc;
@@ -12,7 +12,7 @@ use units::footprint::footprint_fig12::FootprintFig12;
 use units::footprint::setup_fig12::SetupParams;
 use units::texram::texram_802::{Texram802, TexramParams};
 use units::texram::Drf;
-use verif::{run, Event, RunSpec, Workload};
+use verif::{run, Event, PinDriver, PinMonitor, RunSpec, Workload};
 
 /// What a run of pixels cost.
 #[derive(Clone, Debug, PartialEq, serde::Serialize)]
@@ -58,8 +58,8 @@ fn drive_pixels<U: SampleTarget>(
     let mut spec = RunSpec::new(n, 200 * 64 * n + 1000);
     let st = run(
         &mut sim,
-        &mut PixelDriver,
-        &mut PixelMonitor,
+        &mut PinDriver::new(drive_pixel).ready(pixel_ready),
+        &mut PinMonitor::new(sample_pixel),
         pixels.to_vec(),
         &mut spec,
         |_, ev| {

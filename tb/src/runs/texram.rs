@@ -1,11 +1,11 @@
 //! `texrtl texram`: requests back to back through the TEXRAM chip 802 holding a map, every
 //! result checked against the integer reference or the behavioural stub.
 
-use crate::texram::{ref_border, RefMipmap, TexDriver, TexMonitor, TexReq, CYCLE_PS};
+use crate::texram::{ref_border, sample_tex, RefMipmap, TexDriver, TexReq, CYCLE_PS};
 use units::texram::clut_814::Clut;
 use units::texram::texram_802::{Texram802, TexramParams};
 use units::texram::Drf;
-use verif::{run, Event, RunSpec, Workload};
+use verif::{run, Event, PinMonitor, RunSpec, Workload};
 
 /// What `texrtl texram` measured (its `--stats`).
 #[derive(Clone, Debug, serde::Serialize)]
@@ -102,7 +102,7 @@ pub fn run_texram(
     let st = run(
         &mut sim,
         &mut TexDriver::default(),
-        &mut TexMonitor,
+        &mut PinMonitor::new(sample_tex),
         reqs.to_vec(),
         &mut spec,
         |_, ev| {

@@ -2,11 +2,11 @@
 //! caster of Figure 15, each sample checked against the integer reference.
 
 use crate::volume::{
-    ray_points, ref_sample, Ray, RayDriver, SampleMonitor, VolSample, CYCLE_PS, NAME,
+    drive_ray, ray_points, ray_ready, ref_sample, sample_ray, Ray, VolSample, CYCLE_PS, NAME,
 };
 use units::volume::layout::{Mode, VolumeParams};
 use units::volume::ray_caster_fig15::RayCaster;
-use verif::{run, Event, RunSpec, Workload};
+use verif::{run, Event, PinDriver, PinMonitor, RunSpec, Workload};
 
 /// What a run cost.
 #[derive(Clone, Debug, PartialEq, serde::Serialize)]
@@ -55,8 +55,8 @@ pub fn run_volume(
     let mut spec = RunSpec::new(n, per_ray * (n + rs.len() as u64) + 100);
     let st = run(
         &mut sim,
-        &mut RayDriver,
-        &mut SampleMonitor,
+        &mut PinDriver::new(drive_ray).ready(ray_ready),
+        &mut PinMonitor::new(sample_ray),
         rs.to_vec(),
         &mut spec,
         |_, ev| {
