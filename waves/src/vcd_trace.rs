@@ -134,7 +134,8 @@ fn code_of(id: IdCode) -> Box<[u8]> {
     id.to_string().into_bytes().into_boxed_slice()
 }
 
-/// `#t` and a newline.
+/// `#t` and a newline (the writer's own formatting is tested against it).
+#[cfg(test)]
 pub(crate) fn push_time(buf: &mut Vec<u8>, t: u64) {
     buf.push(b'#');
     buf.extend_from_slice(itoa::Buffer::new().format(t).as_bytes());
