@@ -75,7 +75,7 @@ pub fn drive_dram(dut: &mut DramCtrl, a: Option<&Addr>) {
     }
 }
 
-/// Whether the unit takes the presented transaction.
+/// Control unit 607 takes a request in a cycle with `ready` high.
 pub fn dram_ready(dut: &DramCtrl) -> bool {
     dut.ready.is_high()
 }

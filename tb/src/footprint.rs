@@ -145,7 +145,7 @@ pub fn drive_pixel<U: SampleTarget>(dut: &mut FootprintFig12<U>, t: Option<&Pixe
     }
 }
 
-/// Whether the unit takes the presented transaction.
+/// The setup unit takes a pixel in a cycle with `in_ready` high.
 pub fn pixel_ready<U: SampleTarget>(dut: &FootprintFig12<U>) -> bool {
     dut.setup.in_ready.is_high()
 }

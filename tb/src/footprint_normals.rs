@@ -123,6 +123,7 @@ pub fn component_tolerance(p: &BumpParams) -> f64 {
         + 0.5 * (-(p.out_frac as f64)).exp2()
 }
 
+/// Presents a pixel (`px_valid`, position, footprint step, `log2 N`, scale).
 pub fn drive_pixel(dut: &mut FootprintNormals, t: Option<&NPixel>) {
     dut.px_valid.set_bool(t.is_some());
     if let Some(t) = t {
@@ -135,11 +136,12 @@ pub fn drive_pixel(dut: &mut FootprintNormals, t: Option<&NPixel>) {
     }
 }
 
-/// Whether the unit takes the presented transaction.
+/// The unit takes a pixel in a cycle with `px_ready` high.
 pub fn pixel_ready(dut: &FootprintNormals) -> bool {
     dut.px_ready.is_high()
 }
 
+/// The averaged normal and height, in a cycle with the pipeline's `valid` high.
 pub fn sample_normal(dut: &FootprintNormals) -> Option<NOut> {
     let p = &dut.pipe;
     p.valid.is_high().then(|| NOut {

@@ -491,6 +491,7 @@ fn random_pixels(n: usize, stim: &mut Stimulus) -> Vec<ChainRequest> {
         .collect()
 }
 
+/// A pixel's chain result, in a cycle with `out_valid` high.
 pub fn sample_chain<T: TexramAccess>(dut: &MapChain812<T>) -> Option<ChainResult> {
     dut.out_valid.q().is_high().then(|| dut.result())
 }

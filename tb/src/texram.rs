@@ -218,6 +218,7 @@ impl Driver<Texram802> for TexDriver {
     }
 }
 
+/// The output unit's result, in a cycle with `out_valid` high.
 pub fn sample_tex(dut: &Texram802) -> Option<TexOut> {
     dut.output.out_valid.q().is_high().then(|| TexOut {
         value: dut.output.out_value.q().bits() as u8,

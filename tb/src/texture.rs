@@ -270,7 +270,7 @@ pub fn drive_raster(dut: &mut TextureUnit, r: Option<&TexRequest>) {
     }
 }
 
-/// Whether the unit takes the presented transaction.
+/// The unit takes a request in a cycle with `in_ready` high.
 pub fn raster_ready(dut: &TextureUnit) -> bool {
     dut.in_ready.is_high()
 }

@@ -127,6 +127,7 @@ pub fn count_slots(
     (accesses, slots, misses)
 }
 
+/// Presents a ray (start, step, sample count) on the ray port.
 pub fn drive_ray(dut: &mut RayCaster, t: Option<&Ray>) {
     dut.ray.valid.set_bool(t.is_some());
     if let Some(t) = t {
@@ -138,11 +139,12 @@ pub fn drive_ray(dut: &mut RayCaster, t: Option<&Ray>) {
     }
 }
 
-/// Whether the unit takes the presented transaction.
+/// The ray caster takes a ray in a cycle with `ray_ready` high.
 pub fn ray_ready(dut: &RayCaster) -> bool {
     dut.ray_ready.is_high()
 }
 
+/// A sample along a ray, in a cycle with the output's `valid` high.
 pub fn sample_ray(dut: &RayCaster) -> Option<VolSample> {
     dut.out.valid.q().is_high().then(|| VolSample {
         ray: dut.out.ray.q().bits() as u32,
