@@ -99,14 +99,29 @@ fn bench_loop<M: Module, T: hdl::kernel::Trace, D: Fn(&mut M, &[u64])>(
     let flat: Vec<u64> = stim.iter().flatten().copied().collect();
     assert_eq!(flat.len(), n * stim.len(), "every cycle drives every input");
     let t0 = std::time::Instant::now();
-    for c in 0..stim.len() {
+    cycle_loop(&mut sim, &flat, stim.len(), resets, drive);
+    sim.finish()?;
+    Ok(t0.elapsed())
+}
+
+/// The timed cycles of a benchmark run, `n` inputs a cycle from `flat`: a function of its own,
+/// never inlined, so that callgrind counts the cycles alone
+/// (`--toggle-collect='*cosim::cycle_loop*'`), not the stimulus copy before them.
+#[inline(never)]
+fn cycle_loop<M: Module, T: hdl::kernel::Trace, D: Fn(&mut M, &[u64])>(
+    sim: &mut Sim<M, T>,
+    flat: &[u64],
+    cycles: usize,
+    resets: usize,
+    drive: &D,
+) {
+    let n = flat.len() / cycles.max(1);
+    for c in 0..cycles {
         sim.set_reset(c < resets);
         drive(&mut sim.dut, &flat[c * n..(c + 1) * n]);
         sim.eval();
         sim.tick();
     }
-    sim.finish()?;
-    Ok(t0.elapsed())
 }
 
 /// A co-simulation model of a [`Module`] whose inputs `drive` sets from raw bits (a
