@@ -160,6 +160,7 @@ fn packed(d: &ChainDrf) -> u128 {
 type Walker = MapChain812<HashBanks>;
 
 /// Drives the pixel port from one cycle of [`WalkerCosim`]'s stimulus.
+#[inline]
 pub fn drive_walker(d: &mut Walker, v: &[u64]) {
     d.req.valid.set_bits(v[0]);
     for (s, x) in d.req.payload.each_mut().into_iter().zip(&v[1..]) {

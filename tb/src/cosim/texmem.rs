@@ -97,6 +97,7 @@ impl CosimUnit for ControlCosim {
 }
 
 /// Drives the lookahead queue's inputs from one cycle of [`LookaheadCosim`]'s stimulus.
+#[inline]
 pub fn drive_lookahead(d: &mut LookaheadQueue, v: &[u64]) {
     let ins = [
         &mut d.complete,
@@ -113,6 +114,7 @@ pub fn drive_lookahead(d: &mut LookaheadQueue, v: &[u64]) {
 }
 
 /// Drives the block fetch's inputs from one cycle of [`FillCosim`]'s stimulus.
+#[inline]
 pub fn drive_fill(d: &mut FillEngine, v: &[u64]) {
     let ins = [
         &mut d.start,
@@ -379,6 +381,7 @@ impl CosimUnit for FillCosim {
 }
 
 /// Drives texture unit 602's request port from one cycle of [`TextureCosim`]'s stimulus.
+#[inline]
 pub fn drive_texture(d: &mut units::texmem::texture_unit_602::TextureUnit, v: &[u64]) {
     d.in_valid.set_bits(v[0]);
     d.in_u.set_bits(v[1]);

@@ -172,6 +172,7 @@ fn texram_probes() -> Vec<Port> {
 }
 
 /// Drives the chip's request port from one cycle of [`TexramCosim`]'s stimulus.
+#[inline]
 pub fn drive_texram(d: &mut Texram802, v: &[u64]) {
     let ins = [
         &mut d.req_valid,
