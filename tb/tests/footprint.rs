@@ -221,16 +221,7 @@ fn the_fig7_tangent_average_is_the_mean_of_the_plain_pipelines_tangents() {
     sim.reset(2);
     let (mut next, mut avgs, mut normals) = (0, Vec::new(), Vec::new());
     for _ in 0..40 * px.len() {
-        let d = &mut sim.dut;
-        d.px_valid.set_bool(next < px.len());
-        if let Some(q) = px.get(next) {
-            d.px_u.set_raw(q.u);
-            d.px_v.set_raw(q.v);
-            d.px_du.set_raw(i64::from(q.du));
-            d.px_dv.set_raw(i64::from(q.dv));
-            d.px_log2_n.set_bits(u64::from(q.log2_n));
-            d.px_scale.set_raw(q.scale);
-        }
+        tb::footprint_normals::drive_pixel(&mut sim.dut, px.get(next));
         sim.eval();
         let d = &sim.dut;
         next += usize::from(d.px_valid.is_high() && d.px_ready.is_high());
