@@ -10,40 +10,37 @@ use super::module::{Dir, Module, Visitor};
 use super::signal::Signal;
 use crate::fx::Format;
 
-/// `depth` register stages for each of a bundle of signals. Depth 0 is a wire.
+/// `depth` register stages for each of a bundle of `N` signals. Depth 0 is a wire.
+///
+/// The bundle's size is a type parameter, so the per-signal copies of `eval` and `tick`
+/// unroll into straight-line code (no loop or bounds check per signal).
 #[derive(Clone, Debug)]
-pub struct Delay {
+pub struct Delay<const N: usize> {
     name: String,
     /// The inputs, one a signal.
-    pub i: Vec<Signal>,
+    pub i: [Signal; N],
     /// The outputs, each its input `depth` cycles later.
-    pub o: Vec<Signal>,
+    pub o: [Signal; N],
     depth: usize,
-    /// `depth` slots of `n` values; `head` is the oldest (the stage the outputs show).
-    ring: Vec<u64>,
+    /// `depth` slots of `N` values; `head` is the oldest (the stage the outputs show).
+    ring: Vec<[u64; N]>,
     head: usize,
 }
 
-impl Delay {
+impl<const N: usize> Delay<N> {
     /// Inputs named and formatted by `sigs`, outputs named by `out_names`.
     pub fn new(
         name: &str,
-        sigs: &[(&'static str, Format)],
+        sigs: [(&'static str, Format); N],
         depth: usize,
-        out_names: &[&'static str],
-    ) -> Delay {
-        assert_eq!(sigs.len(), out_names.len());
-        let n = sigs.len();
+        out_names: [&'static str; N],
+    ) -> Delay<N> {
         Delay {
             name: name.into(),
-            i: sigs.iter().map(|(n, f)| Signal::new(n, *f)).collect(),
-            o: sigs
-                .iter()
-                .zip(out_names)
-                .map(|((_, f), n)| Signal::new(n, *f))
-                .collect(),
+            i: sigs.map(|(n, f)| Signal::new(n, f)),
+            o: std::array::from_fn(|k| Signal::new(out_names[k], sigs[k].1)),
             depth,
-            ring: vec![0; depth * n],
+            ring: vec![[0; N]; depth],
             head: 0,
         }
     }
@@ -54,7 +51,7 @@ impl Delay {
     }
 }
 
-impl Module for Delay {
+impl<const N: usize> Module for Delay<N> {
     fn instance(&self) -> &str {
         &self.name
     }
@@ -63,36 +60,31 @@ impl Module for Delay {
     }
     #[inline(always)]
     fn eval(&mut self) {
-        let n = self.i.len();
-        if self.depth == 0 {
+        let Some(oldest) = self.ring.get(self.head) else {
+            // Depth 0: a wire.
             for (o, i) in self.o.iter_mut().zip(&self.i) {
                 o.follow(i);
             }
             return;
-        }
+        };
         // The ring holds only values the inputs held, each checked against the format that
         // the output shares, so the outputs take them without a second check.
-        let oldest = &self.ring[self.head * n..(self.head + 1) * n];
         for (o, &old) in self.o.iter_mut().zip(oldest) {
             o.set_checked_bits(old);
         }
     }
     #[inline(always)]
     fn tick(&mut self, reset: bool) {
-        if self.depth == 0 {
-            return;
-        }
-        let n = self.i.len();
         if reset {
-            self.ring.fill(0);
+            self.ring.fill([0; N]);
             self.head = 0;
             return;
         }
+        let Some(slot) = self.ring.get_mut(self.head) else {
+            return;
+        };
         // The oldest slot takes the inputs and becomes the youngest stage.
-        let slot = &mut self.ring[self.head * n..(self.head + 1) * n];
-        for (r, i) in slot.iter_mut().zip(&self.i) {
-            *r = i.bits();
-        }
+        *slot = std::array::from_fn(|k| self.i[k].bits());
         self.head += 1;
         if self.head == self.depth {
             self.head = 0;

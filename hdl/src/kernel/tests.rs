@@ -309,7 +309,7 @@ fn follow_between_formats_panics_in_debug_builds() {
 /// A delay line is named as its parent asked: its waveform scope is that name.
 #[test]
 fn a_delay_line_is_the_instance_it_was_named() {
-    let d = Delay::new("align_3", &[("x", Format::uint(4))], 3, &["x_out"]);
+    let d = Delay::new("align_3", [("x", Format::uint(4))], 3, ["x_out"]);
     assert_eq!(d.instance(), "align_3");
     assert_eq!(d.kind(), "delay");
     assert_eq!(
@@ -459,4 +459,44 @@ fn derived_visit_bits_follows_visit() {
     top.visit_bits(&mut |b| listed.push(b));
     assert_eq!(listed, [0, 3, 0, 4, 0, 5, 0, 6, 0, 7, 0, 9]);
     assert_eq!(listed, sim::visited_bits(&top));
+}
+
+/// A delay line of each depth shows each input `depth` cycles later (depth 0: the same
+/// cycle), every signal of the bundle on its own, and zeros after reset until its inputs
+/// reach the outputs again.
+#[test]
+fn a_delay_line_shows_each_input_depth_cycles_later() {
+    for depth in 0..5 {
+        let d = Delay::new(
+            "line",
+            [("a", Format::uint(8)), ("b", Format::signed(5, 0))],
+            depth,
+            ["a_d", "b_d"],
+        );
+        let mut sim = Sim::new(d).check_schedule(true);
+        let input = |c: usize| ((c * 37 + 11) as u64 % 256, (c as i64 * 7) % 16 - 8);
+        let mut seen = Vec::new();
+        for c in 0..40 {
+            // The edge of cycle 20 is a reset edge.
+            sim.set_reset(c == 20);
+            let (a, b) = input(c);
+            sim.dut.i[0].set_bits(a);
+            sim.dut.i[1].set_raw(b);
+            sim.eval();
+            seen.push((sim.dut.o[0].bits(), sim.dut.o[1].raw()));
+            sim.tick();
+        }
+        for (c, &got) in seen.iter().enumerate() {
+            // The input `depth` cycles ago, unless that was before the start or the reset
+            // edge came in between.
+            let from = c.checked_sub(depth);
+            let cleared = from.is_none_or(|f| depth > 0 && f <= 20 && c > 20);
+            let want = if cleared {
+                (0, 0)
+            } else {
+                input(from.unwrap())
+            };
+            assert_eq!(got, want, "depth {depth}, cycle {c}");
+        }
+    }
 }

@@ -122,7 +122,7 @@ pub struct Normal {
     #[child]
     pub rsqrt: Rsqrt,
     #[child]
-    carry: Delay,
+    carry: Delay<3>,
     /// Multiply stage: nx, ny, nz.
     #[reg]
     mul: [Reg; 3],
@@ -140,9 +140,9 @@ impl Normal {
         let rsqrt = Rsqrt::new("rsqrt_156", p.rsqrt)?;
         let carry = Delay::new(
             "carry",
-            &[("nx_in", tan), ("ny_in", tan), ("k_in", K_FMT)],
+            [("nx_in", tan), ("ny_in", tan), ("k_in", K_FMT)],
             rsqrt.latency(),
-            &["nx_d", "ny_d", "k_d"],
+            ["nx_d", "ny_d", "k_d"],
         );
         Ok(Normal {
             name: name.into(),

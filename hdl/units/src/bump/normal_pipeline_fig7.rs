@@ -168,7 +168,7 @@ pub struct FootprintTags {
 /// Para. 0081's tangent average and the tags carried to it, 4 stages, from the inputs.
 #[derive(Clone, Debug, Group)]
 struct Average {
-    tags: Delay,
+    tags: Delay<3>,
     average: TangentAverage,
 }
 
@@ -203,10 +203,10 @@ pub struct NormalPipeline {
     levels: Vec<Level>,
     /// tu, tv (and tu1, tv1) from the address units to the tangent unit: 2 stages.
     #[child]
-    blend_d: Delay,
+    blend_d: Delay<4>,
     /// scale, lod from the inputs to the tangent unit: 3 stages.
     #[child]
-    side_d: Delay,
+    side_d: Delay<2>,
     #[child]
     pub tangent: Tangent,
     /// Footprint assembly (para. 0081): each sample's `first`, `last` and `log2_n` of its
@@ -218,9 +218,9 @@ pub struct NormalPipeline {
     #[child]
     pub normal: Normal,
     #[child]
-    height_d: Delay,
+    height_d: Delay<1>,
     #[child]
-    valid_d: Delay,
+    valid_d: Delay<1>,
 }
 
 impl NormalPipeline {
@@ -267,29 +267,29 @@ impl NormalPipeline {
             levels,
             blend_d: Delay::new(
                 "blend_carry",
-                &[("tu", blend), ("tv", blend), ("tu1", blend), ("tv1", blend)],
+                [("tu", blend), ("tv", blend), ("tu1", blend), ("tv1", blend)],
                 2,
-                &["tu_d", "tv_d", "tu1_d", "tv1_d"],
+                ["tu_d", "tv_d", "tu1_d", "tv1_d"],
             ),
             side_d: Delay::new(
                 "side_carry",
-                &[("scale", p.scale_fmt()), ("lod", blend)],
+                [("scale", p.scale_fmt()), ("lod", blend)],
                 3,
-                &["scale_d", "lod_d"],
+                ["scale_d", "lod_d"],
             ),
             tangent: Tangent::new("tangent_155", &p),
             height_d: Delay::new(
                 "height_carry",
-                &[("height", p.height_out_fmt())],
+                [("height", p.height_out_fmt())],
                 normal.latency(),
-                &["height_d"],
+                ["height_d"],
             ),
             normal,
             valid_d: Delay::new(
                 "valid_carry",
-                &[("valid", Format::uint(1))],
+                [("valid", Format::uint(1))],
                 latency,
-                &["valid_d"],
+                ["valid_d"],
             ),
             fa: None,
             average: None,
@@ -307,13 +307,13 @@ impl NormalPipeline {
     pub fn with_tangent_average(mut self) -> NormalPipeline {
         let tags = Delay::new(
             "fa_carry",
-            &[
+            [
                 ("first", Format::uint(1)),
                 ("last", Format::uint(1)),
                 ("log2_n", Format::uint(3)),
             ],
             4,
-            &["first_d", "last_d", "log2_n_d"],
+            ["first_d", "last_d", "log2_n_d"],
         );
         self.fa = Some(FootprintTags {
             first: Signal::bit("fa_first"),
