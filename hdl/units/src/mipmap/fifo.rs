@@ -28,6 +28,18 @@ impl FifoError {
     }
 }
 
+/// `i % d` for `i < 2 d` (a place past the head, which is below `d`): a compare, not a
+/// division.
+#[inline(always)]
+fn wrap(i: usize, d: usize) -> usize {
+    debug_assert!(i < 2 * d);
+    if i >= d {
+        i - d
+    } else {
+        i
+    }
+}
+
 /// A FIFO of `depth` entries of `width` bits; its kind names the unit (`fifo_1408`).
 #[derive(Clone, Debug, Module)]
 #[module(kind = self.kind)]
@@ -114,7 +126,7 @@ impl Fifo {
     /// The stored entries, oldest first.
     pub fn iter(&self) -> impl Iterator<Item = u16> + '_ {
         let (d, head) = (self.depth(), self.head.q().bits() as usize);
-        (0..self.len()).map(move |i| self.buf.read((head + i) % d) as u16)
+        (0..self.len()).map(move |i| self.buf.read(wrap(head + i, d)) as u16)
     }
 
     /// The outputs from the stored state and this cycle's inputs; the edge's clear, then pop,
@@ -140,7 +152,7 @@ impl Fifo {
         }
         if self.push.is_high() {
             if len < d {
-                self.buf.write((head + len) % d, self.push_data.bits());
+                self.buf.write(wrap(head + len, d), self.push_data.bits());
                 len += 1;
                 if len > self.max_occupancy() {
                     self.max.set_next_bits(len as u64);

@@ -102,7 +102,6 @@ impl DramCtrl {
     pub fn eval(&mut self) {
         let st = self.state.q().bits();
         let n = self.count.q().bits() as u32;
-        let cols = u64::from(self.p.cols);
         // A new request is taken when idle, or in the last cycle of CAS# precharge, so page-mode
         // reads follow each other every t_cas + t_cp cycles.
         let last_cp = st == State::CasHigh as u64 && n >= self.p.t_cp;
@@ -114,7 +113,7 @@ impl DramCtrl {
         } else {
             self.addr_r.q().bits()
         };
-        let (row, col) = (addr / cols, addr % cols);
+        let (row, col) = self.p.row_col(addr);
         let open = self.row_open.q().is_high() && self.open_row.q().bits() == row;
         // Pins from the current state (Moore outputs).
         let (ras_n, cas_n, a) = match st {

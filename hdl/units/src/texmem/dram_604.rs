@@ -60,6 +60,17 @@ impl DramParams {
         }
     }
 
+    /// A word address as `(row, column)`. `cols` is a power of two (see
+    /// [`DramParams::validate`]), so this is a shift and a mask, not a division.
+    #[inline]
+    pub fn row_col(&self, addr: u64) -> (u64, u64) {
+        debug_assert!(self.cols.is_power_of_two());
+        (
+            addr >> self.cols.trailing_zeros(),
+            addr & u64::from(self.cols - 1),
+        )
+    }
+
     /// Words in the array.
     pub fn words(&self) -> u64 {
         u64::from(self.rows) * u64::from(self.cols)
@@ -155,6 +166,10 @@ impl Regs for ViolationLog {
         self.cycle += 1;
         if reset {
             self.next.clear();
+            return;
+        }
+        if self.next.is_empty() {
+            // The count holds (the common cycle: no violation).
             return;
         }
         let n = self.count.bits() + self.next.len() as u64;
@@ -329,7 +344,8 @@ impl Dram {
             self.check(rule::ROW, a >= p.rows, || {
                 format!("row {a} beyond {} rows", p.rows)
             });
-            self.page_row.set_next_bits(u64::from(a % p.rows));
+            // Powers of two: the modulo is a mask.
+            self.page_row.set_next_bits(u64::from(a & (p.rows - 1)));
         }
         if cas_was && !cas_n {
             self.check(rule::NO_ROW, ras_n, || {
@@ -344,7 +360,7 @@ impl Dram {
             self.check(rule::COL, a >= p.cols, || {
                 format!("column {a} beyond {} words per page", p.cols)
             });
-            self.col.set_next_bits(u64::from(a % p.cols));
+            self.col.set_next_bits(u64::from(a & (p.cols - 1)));
         }
         let short = !cas_was && cas_n && cas_for < u64::from(p.t_cas);
         self.check(rule::T_CAS, short, || {

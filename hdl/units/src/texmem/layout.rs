@@ -55,6 +55,9 @@ pub struct BlockMap {
     pub base: u64,
     tw: u32,
     th: u32,
+    /// log2 of `tw` and `th` (both powers of two): the tile arithmetic is shifts and masks.
+    tw_log: u32,
+    th_log: u32,
 }
 
 impl BlockMap {
@@ -72,6 +75,8 @@ impl BlockMap {
             base,
             tw,
             th,
+            tw_log: tw.trailing_zeros(),
+            th_log: th.trailing_zeros(),
         }
     }
 
@@ -88,9 +93,9 @@ impl BlockMap {
                 self.base + 2 * (u64::from(by) * u64::from(self.bw) + u64::from(bx))
             }
             Layout::Tiled => {
-                let tiles_x = u64::from(self.bw.div_ceil(self.tw));
-                let (tx, ty) = (u64::from(bx / self.tw), u64::from(by / self.th));
-                let inner = u64::from((by % self.th) * self.tw + bx % self.tw);
+                let tiles_x = u64::from((self.bw + self.tw - 1) >> self.tw_log);
+                let (tx, ty) = (u64::from(bx >> self.tw_log), u64::from(by >> self.th_log));
+                let inner = u64::from((by & (self.th - 1)) << self.tw_log | bx & (self.tw - 1));
                 self.base + u64::from(self.page_words) * (ty * tiles_x + tx) + 2 * inner
             }
         }
