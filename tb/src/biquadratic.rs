@@ -148,15 +148,7 @@ fn run_samples(
     let m2 = map.clone();
     let mut sb: Scoreboard<(i64, i64), [u8; 3]> =
         Scoreboard::new(move |q: &(i64, i64), a: &[u8; 3]| {
-            let g = golden(&m2, q.0, q.1);
-            let worst = (0..3)
-                .map(|c| (f64::from(a[c]) - g[c]).abs())
-                .fold(0.0, f64::max);
-            if worst <= 0.5 + 1e-9 {
-                Ok(())
-            } else {
-                Err(format!("{a:?} is {worst:.3} from {g:?}"))
-            }
+            verif::within(&a.map(f64::from), &golden(&m2, q.0, q.1), 0.5 + 1e-9)
         });
     let n = qs.len() as u64;
     let mut spec =

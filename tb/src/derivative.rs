@@ -156,14 +156,7 @@ fn run_queries(
     let b = bound();
     let mut sb: Scoreboard<(Query, [f64; 3]), [i64; 3]> =
         Scoreboard::new(move |(_, g): &(Query, [f64; 3]), a: &[i64; 3]| {
-            let worst = (0..3)
-                .map(|c| (a[c] as f64 * lsb - g[c]).abs())
-                .fold(0.0, f64::max);
-            if worst <= b {
-                Ok(())
-            } else {
-                Err(format!("{a:?} is {worst:.2e} from {g:?}"))
-            }
+            verif::within(&a.map(|x| x as f64 * lsb), g, b)
         });
     let n = want.len() as u64;
     let mut spec =

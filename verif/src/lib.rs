@@ -80,7 +80,7 @@ pub use run::{
     run, run_beside, run_scored, run_scored_beside, Background, Driver, Event, Monitor, Pacing,
     RunSpec, RunStats, Scored, Timeout, Watchdog,
 };
-pub use scoreboard::{Mismatch, Outcome, Scoreboard};
+pub use scoreboard::{within, Mismatch, Outcome, Scoreboard};
 pub use stats::ErrorStats;
 pub use stream::{StreamAt, StreamDriver, StreamMonitor};
 pub use testbench::{

@@ -24,6 +24,33 @@ pub struct Mismatch {
 /// Says what differs between a golden and a DUT transaction, or `Ok` when they agree.
 pub type Comparator<E, A> = Box<dyn Fn(&E, &A) -> Result<(), String>>;
 
+/// A comparator's verdict on values that may differ from their golden ones by a derived
+/// bound: `Ok` when every `actual[k]` is within `bound` of `expected[k]`, else what the
+/// largest difference was. Both in the same unit (scale raw integers by their LSB first).
+///
+/// ```
+/// assert!(verif::within(&[1.0, 2.25], &[1.2, 2.0], 0.25).is_ok());
+/// let e = verif::within(&[1.0, 2.5], &[1.0, 2.0], 0.25).unwrap_err();
+/// assert_eq!(e, "[1.0, 2.5] is 5.000e-1 from [1.0, 2.0] (bound 2.500e-1)");
+/// assert!(verif::within(&[f64::NAN], &[0.0], 1.0).is_err());
+/// ```
+pub fn within(actual: &[f64], expected: &[f64], bound: f64) -> Result<(), String> {
+    debug_assert_eq!(actual.len(), expected.len());
+    let worst = actual
+        .iter()
+        .zip(expected)
+        .map(|(a, e)| (a - e).abs())
+        // A NaN difference is the worst (`f64::max` would drop it).
+        .fold(0.0, |w, d| if d > w || d.is_nan() { d } else { w });
+    if worst <= bound {
+        Ok(())
+    } else {
+        Err(format!(
+            "{actual:?} is {worst:.3e} from {expected:?} (bound {bound:.3e})"
+        ))
+    }
+}
+
 /// The result of comparing one DUT transaction.
 #[derive(Clone, Debug, PartialEq)]
 pub struct Outcome<E> {
