@@ -351,8 +351,10 @@ impl Reg {
     #[track_caller]
     pub fn set_next_bool(&mut self, b: bool) {
         // As `set_next_raw` checks it: 0 fits every format, 1 all but a signed bit's (the
-        // one whose sign extension shifts by 63).
-        if b && self.q.sx == 63 {
+        // one whose sign extension shifts by 63). The format is tested first: it is the same
+        // every cycle, so the branch is always predicted, where a branch on the value is
+        // mispredicted as often as the value changes.
+        if self.q.sx == 63 && b {
             self.q.misfit(Misfit::NextRaw(1));
         }
         self.d = u64::from(b);
