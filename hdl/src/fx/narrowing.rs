@@ -242,6 +242,23 @@ impl Modes {
     }
 }
 
+/// A value wider than a word whose rounded result fits one (a product such as rsqrt 156's
+/// `m y^2`), for [`Narrowing`]'s word path: the kept bits shifted down, the rounding bits
+/// from the low word; `None` for any other. Out of line, so that the word path, inlined at
+/// every narrowing, stays small.
+#[inline(never)]
+fn wide_in_words(raw: i128, shift: i32, q: Quant) -> Option<i64> {
+    if !(1..64).contains(&shift) {
+        return None;
+    }
+    let floor = i64::try_from(raw >> shift).ok()?;
+    let (low, s) = (raw as u64, shift as u32);
+    let half = (low >> (s - 1)) & 1 == 1;
+    let sticky = low & ((1u64 << (s - 1)) - 1) != 0;
+    let inc = q.increment(raw < 0, floor & 1 == 1, half, sticky);
+    floor.checked_add(i64::from(inc))
+}
+
 impl Narrowing {
     /// A narrowing named `name` into `dst`, rounding by `q`, overflow by `o`.
     pub fn new(name: &'static str, dst: Format, q: Quant, o: Overflow) -> Narrowing {
@@ -339,12 +356,14 @@ impl Narrowing {
     /// `None` where `quantise` has more to do.
     #[inline(always)]
     fn in_words(&self, raw: i128, src_frac: i32, q: Quant) -> Option<i128> {
-        let r = i64::try_from(raw).ok()?;
         let shift = src_frac - self.dst.frac();
-        let v = match shift {
-            0 => r,
-            1..63 => round_shift(r, shift as u32, q),
-            _ => return None,
+        let v = match i64::try_from(raw) {
+            Ok(r) => match shift {
+                0 => r,
+                1..63 => round_shift(r, shift as u32, q),
+                _ => return None,
+            },
+            Err(_) => wide_in_words(raw, shift, q)?,
         };
         (v >= self.lo && v <= self.hi).then_some(i128::from(v))
     }

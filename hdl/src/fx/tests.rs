@@ -596,4 +596,24 @@ fn a_narrowing_is_quantise() {
             check(&mut cases, Format::new(w, 0, signed));
         }
     }
+    // Values wider than a word with every pattern of rounding bits (a product such as rsqrt
+    // 156's `m y^2`, whose rounded result the word path finds from the low word): seeded
+    // pseudo-random 65- to 127-bit values of both signs, every shift that path takes and
+    // either side of it, into destinations whose range holds some results and not others.
+    let mut x = 0x9e37_79b9_7f4a_7c15_u64;
+    let mut next = move || {
+        x ^= x << 13;
+        x ^= x >> 7;
+        x ^= x << 17;
+        x
+    };
+    let wide: Vec<i128> = (0..400)
+        .map(|_| ((i128::from(next()) << 64 | i128::from(next())) >> (next() % 63)))
+        .collect();
+    for w in [8, 33, 62, 63, 64] {
+        for signed in [false, true] {
+            let mut cases = wide.iter().flat_map(|&r| (0..=65).map(move |s| (r, s)));
+            check(&mut cases, Format::new(w, 0, signed));
+        }
+    }
 }
