@@ -608,7 +608,7 @@ fn a_narrowing_is_quantise() {
         x
     };
     let wide: Vec<i128> = (0..400)
-        .map(|_| ((i128::from(next()) << 64 | i128::from(next())) >> (next() % 63)))
+        .map(|_| (i128::from(next()) << 64 | i128::from(next())) >> (next() % 63))
         .collect();
     for w in [8, 33, 62, 63, 64] {
         for signed in [false, true] {
