@@ -3,7 +3,7 @@
 //! model, and the golden value beside `out` in the waveform.
 
 use crate::blend::{golden, Blend};
-use verif::{Coverage, Coverpoint, Ctx, Pacing, PinDriver, PinMonitor, ProbeSink, RunSpec};
+use verif::{About, Coverage, Coverpoint, Ctx, Pacing, PinDriver, PinMonitor, ProbeSink, RunSpec};
 use verif::{Scoreboard, Stimulus, TbResult, Testbench};
 
 /// One blend: the raw codes of `a`, `b` and `alpha` (LSB 2^-8).
@@ -30,11 +30,8 @@ fn sample(d: &Blend) -> Option<f64> {
 pub struct BlendTb;
 
 impl Testbench for BlendTb {
-    fn name(&self) -> &'static str {
-        "blend"
-    }
-    fn unit(&self) -> &'static str {
-        "a two-stage alpha blend, out = b + alpha (a - b)"
+    fn about(&self) -> About {
+        About::new("blend", "a two-stage alpha blend, out = b + alpha (a - b)")
     }
     fn configurations(&self) -> Vec<String> {
         vec!["back to back".into(), "random idle cycles".into()]

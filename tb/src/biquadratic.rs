@@ -5,8 +5,8 @@ use hdl::kernel::Sim;
 use units::bump::biquadratic_0087::{Biquadratic0087, ColourMap, POS_FRAC};
 use units::bump::params::Border;
 use verif::{
-    Coverage, Coverpoint, Ctx, PinDriver, PinMonitor, RunSpec, Scoreboard, Stimulus, TbResult,
-    Testbench,
+    About, Coverage, Coverpoint, Ctx, PinDriver, PinMonitor, RunSpec, Scoreboard, Stimulus,
+    TbResult, Testbench,
 };
 use waves::VcdTracer;
 
@@ -88,20 +88,12 @@ fn coverage_model() -> Coverage {
 pub struct BiquadraticTb;
 
 impl Testbench for BiquadraticTb {
-    fn name(&self) -> &'static str {
-        NAME
-    }
-    fn unit(&self) -> &'static str {
-        "bi-quadratic B-spline colour filter of para. 0087 over 3 x 3 texels, per channel (Fenney)"
+    fn about(&self) -> About {
+        About::new(NAME, "bi-quadratic B-spline colour filter of para. 0087 over 3 x 3 texels, per channel (Fenney)")
+            .count(2000, "samples")
     }
     fn configurations(&self) -> Vec<String> {
         vec!["16x16 wrap".into(), "16x16 clamp".into()]
-    }
-    fn default_count(&self) -> usize {
-        2000
-    }
-    fn count_unit(&self) -> &'static str {
-        "samples"
     }
     fn coverage(&self) -> Coverage {
         coverage_model()

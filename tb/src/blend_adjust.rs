@@ -16,7 +16,7 @@ use hdl::kernel::{Sim, Trace};
 use proptest::prelude::*;
 use units::bump::blend_adjust_153::{BlendAdjust, BlendAdjustParams};
 use verif::{
-    run_scored, Coverage, Coverpoint, Ctx, Monitor, Pacing, PinDriver, ProbeSink, RunSpec,
+    run_scored, About, Coverage, Coverpoint, Ctx, Monitor, Pacing, PinDriver, ProbeSink, RunSpec,
     Scoreboard, Scored, Stimulus, TbResult, Testbench,
 };
 use waves::ProbeId;
@@ -113,20 +113,13 @@ pub const NAME: &str = "blend_adjust_153";
 const TRACED_FRAC: u32 = 8;
 
 impl Testbench for BlendAdjustTb {
-    fn name(&self) -> &'static str {
-        NAME
-    }
-    fn unit(&self) -> &'static str {
-        "unit 153 (FIG. 7, para. 0058-0061, 0085)"
+    fn about(&self) -> About {
+        About::new(NAME, "unit 153 (FIG. 7, para. 0058-0061, 0085)")
+            .count(2000, "random transactions")
+            .traced(TRACED_FRAC.saturating_sub(*self.widths.start()) as usize)
     }
     fn configurations(&self) -> Vec<String> {
         self.widths.clone().map(|f| format!("F={f}")).collect()
-    }
-    fn default_count(&self) -> usize {
-        2000
-    }
-    fn traced(&self) -> usize {
-        TRACED_FRAC.saturating_sub(*self.widths.start()) as usize
     }
     fn coverage(&self) -> Coverage {
         coverage_model()

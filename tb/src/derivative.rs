@@ -7,8 +7,8 @@ use hdl::kernel::Sim;
 use units::bump::derivative_0086::{five_point, DerivFilter, Derivative, DerivativeUnit};
 use units::bump::params::{Border, BumpParams};
 use verif::{
-    Coverage, Coverpoint, Ctx, PinDriver, PinMonitor, RunSpec, Scoreboard, Stimulus, TbResult,
-    Testbench,
+    About, Coverage, Coverpoint, Ctx, PinDriver, PinMonitor, RunSpec, Scoreboard, Stimulus,
+    TbResult, Testbench,
 };
 use waves::VcdTracer;
 
@@ -87,20 +87,12 @@ fn coverage_model() -> Coverage {
 pub struct DerivativeTb;
 
 impl Testbench for DerivativeTb {
-    fn name(&self) -> &'static str {
-        NAME
-    }
-    fn unit(&self) -> &'static str {
-        "derivative filters of para. 0086 (central, Sobel, Prewitt, antisymmetric table) at four texel centres, bilinear, normal by 156's rsqrt (Fenney)"
+    fn about(&self) -> About {
+        About::new(NAME, "derivative filters of para. 0086 (central, Sobel, Prewitt, antisymmetric table) at four texel centres, bilinear, normal by 156's rsqrt (Fenney)")
+            .count(2000, "samples")
     }
     fn configurations(&self) -> Vec<String> {
         filters().iter().map(|f| f.name()).collect()
-    }
-    fn default_count(&self) -> usize {
-        2000
-    }
-    fn count_unit(&self) -> &'static str {
-        "samples"
     }
     fn coverage(&self) -> Coverage {
         coverage_model()

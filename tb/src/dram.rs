@@ -7,7 +7,7 @@ use std::path::{Path, PathBuf};
 use units::texmem::control_607::DramCtrl;
 use units::texmem::dram_604::DramParams;
 use verif::{
-    run, Coverage, Coverpoint, Ctx, Event, Pacing, PinDriver, PinMonitor, RunSpec, TbResult,
+    run, About, Coverage, Coverpoint, Ctx, Event, Pacing, PinDriver, PinMonitor, RunSpec, TbResult,
     Testbench, Workload,
 };
 use waves::TraceConfig;
@@ -326,20 +326,12 @@ fn random_trace(p: &DramParams, n: usize, seed: verif::Seed) -> Vec<u64> {
 }
 
 impl Testbench for DramTb {
-    fn name(&self) -> &'static str {
-        NAME
-    }
-    fn unit(&self) -> &'static str {
-        "DRAM 604 + control unit 607 (Figure 6, section 5)"
+    fn about(&self) -> About {
+        About::new(NAME, "DRAM 604 + control unit 607 (Figure 6, section 5)")
+            .count(2000, "random reads per random configuration")
     }
     fn configurations(&self) -> Vec<String> {
         CONFIGS.iter().map(|s| s.to_string()).collect()
-    }
-    fn default_count(&self) -> usize {
-        2000
-    }
-    fn count_unit(&self) -> &'static str {
-        "random reads per random configuration"
     }
     fn coverage(&self) -> Coverage {
         coverage_model()

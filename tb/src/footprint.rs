@@ -14,8 +14,8 @@ use units::footprint::setup_fig12::{NRounding, SetupParams};
 use units::texram::texram_802::{Texram802, TexramParams};
 use units::texram::{Border, Drf};
 use verif::{
-    run, Coverage, Coverpoint, Ctx, Event, Handshake, Pacing, PinDriver, PinMonitor, RunSpec,
-    Scoreboard, Stimulus, TbResult, Testbench,
+    run, About, Coverage, Coverpoint, Ctx, Event, Handshake, Pacing, PinDriver, PinMonitor,
+    RunSpec, Scoreboard, Stimulus, TbResult, Testbench,
 };
 
 pub const NAME: &str = "footprint_fig12";
@@ -310,11 +310,9 @@ fn coverage_model() -> Coverage {
 pub struct FootprintTb;
 
 impl Testbench for FootprintTb {
-    fn name(&self) -> &'static str {
-        NAME
-    }
-    fn unit(&self) -> &'static str {
-        "footprint assembly, section 10: setup unit, sample generator and accumulator before the TEXRAM chip 802"
+    fn about(&self) -> About {
+        About::new(NAME, "footprint assembly, section 10: setup unit, sample generator and accumulator before the TEXRAM chip 802")
+            .count(1500, "random pixels")
     }
     fn configurations(&self) -> Vec<String> {
         CONFIGS
@@ -335,12 +333,6 @@ impl Testbench for FootprintTb {
                 )
             })
             .collect()
-    }
-    fn default_count(&self) -> usize {
-        1500
-    }
-    fn count_unit(&self) -> &'static str {
-        "random pixels"
     }
     fn coverage(&self) -> Coverage {
         coverage_model()

@@ -13,8 +13,8 @@ use units::bump::params::{Border, BumpParams, Filter};
 use units::footprint::normals_0081::FootprintNormals;
 use units::footprint::setup_fig12::{setup, SetupParams, SetupUnit};
 use verif::{
-    run, Coverage, Coverpoint, Ctx, Event, Pacing, PinDriver, PinMonitor, RunSpec, Scoreboard,
-    Stimulus, TbResult, Testbench,
+    run, About, Coverage, Coverpoint, Ctx, Event, Pacing, PinDriver, PinMonitor, RunSpec,
+    Scoreboard, Stimulus, TbResult, Testbench,
 };
 
 pub const NAME: &str = "footprint_normals_0081";
@@ -195,23 +195,15 @@ fn coverage_model() -> Coverage {
 pub struct FootprintNormalsTb;
 
 impl Testbench for FootprintNormalsTb {
-    fn name(&self) -> &'static str {
-        NAME
-    }
-    fn unit(&self) -> &'static str {
-        "footprint assembly on the FIG. 7 pipeline (Fenney para. 0081): generator, tangent average before normal unit 156"
+    fn about(&self) -> About {
+        About::new(NAME, "footprint assembly on the FIG. 7 pipeline (Fenney para. 0081): generator, tangent average before normal unit 156")
+            .count(600, "random pixels")
     }
     fn configurations(&self) -> Vec<String> {
         CONFIGS
             .iter()
             .map(|(f, b)| format!("32x32 bumps, {f:?}, {b:?}"))
             .collect()
-    }
-    fn default_count(&self) -> usize {
-        600
-    }
-    fn count_unit(&self) -> &'static str {
-        "random pixels"
     }
     fn coverage(&self) -> Coverage {
         coverage_model()

@@ -7,8 +7,8 @@ use hdl::kernel::Sim;
 use units::frames::frame_unit::{decode_rgb8, Decode, FrameUnit, VEC_FRAC, W_FRAC};
 use units::frames::parallax::ParallaxUnit;
 use verif::{
-    Coverage, Coverpoint, Ctx, PinDriver, PinMonitor, RunSpec, Scoreboard, Stimulus, TbResult,
-    Testbench,
+    About, Coverage, Coverpoint, Ctx, PinDriver, PinMonitor, RunSpec, Scoreboard, Stimulus,
+    TbResult, Testbench,
 };
 use waves::VcdTracer;
 
@@ -184,17 +184,9 @@ fn check_frame(p: &FramePx, a: &([i64; 3], bool)) -> Result<(), String> {
 pub struct FrameUnitTb;
 
 impl Testbench for FrameUnitTb {
-    fn name(&self) -> &'static str {
-        FRAME
-    }
-    fn unit(&self) -> &'static str {
-        "per-pixel frame unit: optional Gram-Schmidt, n' = a N + gx T + gy B through 156's rsqrt; bump slopes and RGB8 normal-map texels (003, 002)"
-    }
-    fn default_count(&self) -> usize {
-        3000
-    }
-    fn count_unit(&self) -> &'static str {
-        "pixels"
+    fn about(&self) -> About {
+        About::new(FRAME, "per-pixel frame unit: optional Gram-Schmidt, n' = a N + gx T + gy B through 156's rsqrt; bump slopes and RGB8 normal-map texels (003, 002)")
+            .count(3000, "pixels")
     }
     fn coverage(&self) -> Coverage {
         frame_coverage()
@@ -383,17 +375,9 @@ fn parallax_coverage() -> Coverage {
 pub struct ParallaxTb;
 
 impl Testbench for ParallaxTb {
-    fn name(&self) -> &'static str {
-        PARALLAX
-    }
-    fn unit(&self) -> &'static str {
-        "parallax offset uv + h V.xy / V.z (reciprocal by table + Newton) and the offset-limited uv + h V.xy (002's reading list)"
-    }
-    fn default_count(&self) -> usize {
-        3000
-    }
-    fn count_unit(&self) -> &'static str {
-        "queries"
+    fn about(&self) -> About {
+        About::new(PARALLAX, "parallax offset uv + h V.xy / V.z (reciprocal by table + Newton) and the offset-limited uv + h V.xy (002's reading list)")
+            .count(3000, "queries")
     }
     fn coverage(&self) -> Coverage {
         parallax_coverage()

@@ -16,8 +16,8 @@ use units::texram::output_820::Modulate;
 use units::texram::stub::{next_level, TexramStub};
 use units::texram::{Border, Drf, TexramAccess};
 use verif::{
-    run_scored, Coverage, Coverpoint, Ctx, Driver, Pacing, PinMonitor, RunSpec, Scoreboard, Scored,
-    Stimulus, StreamDriver, TbResult, Testbench,
+    run_scored, About, Coverage, Coverpoint, Ctx, Driver, Pacing, PinMonitor, RunSpec, Scoreboard,
+    Scored, Stimulus, StreamDriver, TbResult, Testbench,
 };
 use waves::VcdTracer;
 
@@ -614,11 +614,11 @@ const CONFIGS: [(Shape, bool); 8] = [
 pub struct WalkerTb;
 
 impl Testbench for WalkerTb {
-    fn name(&self) -> &'static str {
-        NAME
-    }
-    fn unit(&self) -> &'static str {
-        "chain walker of 812 with detail (Fig. 9), reflectance (eq. 7) and environment maps (eqs 4, 6) (Schilling & Knittel section 14, Fig. 16)"
+    fn about(&self) -> About {
+        About::new(NAME, "chain walker of 812 with detail (Fig. 9), reflectance (eq. 7) and environment maps (eqs 4, 6) (Schilling & Knittel section 14, Fig. 16)")
+            .count(400, "random pixels")
+            // The waveform of the longest chain on the stub: every state of the walker appears.
+            .traced(5)
     }
     fn configurations(&self) -> Vec<String> {
         CONFIGS
@@ -631,16 +631,6 @@ impl Testbench for WalkerTb {
                 )
             })
             .collect()
-    }
-    fn default_count(&self) -> usize {
-        400
-    }
-    fn count_unit(&self) -> &'static str {
-        "random pixels"
-    }
-    /// The waveform of the longest chain on the stub: every state of the walker appears.
-    fn traced(&self) -> usize {
-        5
     }
     fn coverage(&self) -> Coverage {
         coverage_model()

@@ -12,8 +12,8 @@ use serde::{Deserialize, Serialize};
 use std::path::PathBuf;
 use units::mipmap::{FrameBuffer, MipmapGen, MipmapParams, Rounding, Scan};
 use verif::{
-    run_scored, Coverage, Coverpoint, Ctx, ErrorStats, Monitor, PinDriver, RunSpec, Scoreboard,
-    Scored, Seed, Stimulus, TbResult, Testbench, Workload,
+    run_scored, About, Coverage, Coverpoint, Ctx, ErrorStats, Monitor, PinDriver, RunSpec,
+    Scoreboard, Scored, Seed, Stimulus, TbResult, Testbench, Workload,
 };
 use waves::TraceConfig;
 
@@ -451,27 +451,17 @@ impl MipmapTb {
 }
 
 impl Testbench for MipmapTb {
-    fn name(&self) -> &'static str {
-        NAME
-    }
-    fn unit(&self) -> &'static str {
-        "mipmap generator 816 (section 12, FIG. 14a-b)"
+    fn about(&self) -> About {
+        About::new(NAME, "mipmap generator 816 (section 12, FIG. 14a-b)")
+            .count(2, "frames per configuration")
+            // 64x32, interlaced top field first, rounding.
+            .traced(2)
     }
     fn configurations(&self) -> Vec<String> {
         MipmapTb::params()
             .iter()
             .map(|p| format!("{}x{} {:?} {:?}", p.width, p.height, p.scan, p.rounding))
             .collect()
-    }
-    fn default_count(&self) -> usize {
-        2
-    }
-    fn count_unit(&self) -> &'static str {
-        "frames per configuration"
-    }
-    fn traced(&self) -> usize {
-        // 64x32, interlaced top field first, rounding.
-        2
     }
     fn coverage(&self) -> Coverage {
         coverage_model()

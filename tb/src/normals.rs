@@ -18,8 +18,8 @@ use units::bump::height_map::HeightMap;
 use units::bump::normal_pipeline_fig7::NormalPipeline;
 use units::bump::params::{Border, BumpParams, Filter};
 use verif::{
-    run_scored, Coverage, Coverpoint, Ctx, ErrorStats, Pacing, PinDriver, PinMonitor, ProbeSink,
-    RunSpec, Scoreboard, Scored, TbResult, Testbench, Workload,
+    run_scored, About, Coverage, Coverpoint, Ctx, ErrorStats, Pacing, PinDriver, PinMonitor,
+    ProbeSink, RunSpec, Scoreboard, Scored, TbResult, Testbench, Workload,
 };
 use waves::{ProbeId, TraceConfig};
 
@@ -549,11 +549,14 @@ impl NormalsTb {
 }
 
 impl Testbench for NormalsTb {
-    fn name(&self) -> &'static str {
-        NAME
-    }
-    fn unit(&self) -> &'static str {
-        "FIG. 7 pipeline (units 150-156, para. 0050-0087)"
+    fn about(&self) -> About {
+        About::new(NAME, "FIG. 7 pipeline (units 150-156, para. 0050-0087)")
+            .count(
+                150,
+                "random positions (plus the directed blend and border positions)",
+            )
+            // noise, B-spline, wrap.
+            .traced(3 * 16)
     }
     fn configurations(&self) -> Vec<String> {
         (0..MAPS.len() * 16)
@@ -562,16 +565,6 @@ impl Testbench for NormalsTb {
                 format!("{map} {filter} trilinear={trilinear} {border}")
             })
             .collect()
-    }
-    fn default_count(&self) -> usize {
-        150
-    }
-    fn count_unit(&self) -> &'static str {
-        "random positions (plus the directed blend and border positions)"
-    }
-    fn traced(&self) -> usize {
-        // noise, B-spline, wrap.
-        3 * 16
     }
     fn coverage(&self) -> Coverage {
         coverage_model()

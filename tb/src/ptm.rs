@@ -14,8 +14,8 @@ use units::ptm::fitter_604::Fitter604;
 use units::ptm::shader_608::Shader608;
 use units::ptm::texture_612::{p_raw, PtmFormat};
 use verif::{
-    run_scored, Coverage, Coverpoint, Ctx, PinDriver, PinMonitor, RunSpec, Scoreboard, Scored,
-    Stimulus, TbResult, Testbench,
+    run_scored, About, Coverage, Coverpoint, Ctx, PinDriver, PinMonitor, RunSpec, Scoreboard,
+    Scored, Stimulus, TbResult, Testbench,
 };
 use waves::VcdTracer;
 
@@ -234,11 +234,9 @@ fn occluded_class(s: &[u8]) -> i64 {
 pub struct PtmFitterTb;
 
 impl Testbench for PtmFitterTb {
-    fn name(&self) -> &'static str {
-        FITTER
-    }
-    fn unit(&self) -> &'static str {
-        "PTM fitter 604: six multiply-accumulate lanes against the pseudo-inverse, one light a cycle (001, Fig. 6, [0049])"
+    fn about(&self) -> About {
+        About::new(FITTER, "PTM fitter 604: six multiply-accumulate lanes against the pseudo-inverse, one light a cycle (001, Fig. 6, [0049])")
+            .count(256, "texels")
     }
     fn configurations(&self) -> Vec<String> {
         FIT_CONFIGS
@@ -248,12 +246,6 @@ impl Testbench for PtmFitterTb {
                 format!("{r} rings x {a}, {bits}-bit coefficients, {s} samples")
             })
             .collect()
-    }
-    fn default_count(&self) -> usize {
-        256
-    }
-    fn count_unit(&self) -> &'static str {
-        "texels"
     }
     fn coverage(&self) -> Coverage {
         fitter_coverage()
@@ -475,23 +467,15 @@ pub fn queries(
 pub struct PtmShaderTb;
 
 impl Testbench for PtmShaderTb {
-    fn name(&self) -> &'static str {
-        SHADER
-    }
-    fn unit(&self) -> &'static str {
-        "PTM evaluator of the light shader 608: K = (A1 u + A3 v + A2) u + (A5 v + A4) v + A6, visibility 1 - K (001, Fig. 6, [0030])"
+    fn about(&self) -> About {
+        About::new(SHADER, "PTM evaluator of the light shader 608: K = (A1 u + A3 v + A2) u + (A5 v + A4) v + A6, visibility 1 - K (001, Fig. 6, [0030])")
+            .count(4000, "light queries")
     }
     fn configurations(&self) -> Vec<String> {
         SHADE_CONFIGS
             .iter()
             .map(|((r, a), bits)| format!("{r} rings x {a}, {bits}-bit coefficients"))
             .collect()
-    }
-    fn default_count(&self) -> usize {
-        4000
-    }
-    fn count_unit(&self) -> &'static str {
-        "light queries"
     }
     fn coverage(&self) -> Coverage {
         shader_coverage()

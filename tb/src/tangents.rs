@@ -13,8 +13,8 @@ use hdl::kernel::Sim;
 use std::collections::HashMap;
 use units::frames::tangent_setup::{TangentSetup, POS_FRAC, VEC_FRAC};
 use verif::{
-    Coverage, Coverpoint, Ctx, PinDriver, PinMonitor, RunSpec, Scoreboard, Stimulus, TbResult,
-    Testbench,
+    About, Coverage, Coverpoint, Ctx, PinDriver, PinMonitor, RunSpec, Scoreboard, Stimulus,
+    TbResult, Testbench,
 };
 use waves::VcdTracer;
 
@@ -261,17 +261,9 @@ fn coverage_model() -> Coverage {
 pub struct TangentSetupTb;
 
 impl Testbench for TangentSetupTb {
-    fn name(&self) -> &'static str {
-        NAME
-    }
-    fn unit(&self) -> &'static str {
-        "tangent setup: dP/du, dP/dv by the reciprocal of the UV determinant (table + Newton), Gram-Schmidt and the general handedness (003)"
-    }
-    fn default_count(&self) -> usize {
-        3000
-    }
-    fn count_unit(&self) -> &'static str {
-        "triangles"
+    fn about(&self) -> About {
+        About::new(NAME, "tangent setup: dP/du, dP/dv by the reciprocal of the UV determinant (table + Newton), Gram-Schmidt and the general handedness (003)")
+            .count(3000, "triangles")
     }
     fn coverage(&self) -> Coverage {
         coverage_model()

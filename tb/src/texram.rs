@@ -166,8 +166,8 @@ use units::texram::clut_814::Clut;
 use units::texram::texram_802::{Texram802, TexramParams};
 use units::texram::{Border, Config, Drf};
 use verif::{
-    run_scored, Coverage, Coverpoint, Ctx, Driver, Pacing, PinMonitor, RunSpec, Scoreboard, Scored,
-    Stimulus, TbResult, Testbench,
+    run_scored, About, Coverage, Coverpoint, Ctx, Driver, Pacing, PinMonitor, RunSpec, Scoreboard,
+    Scored, Stimulus, TbResult, Testbench,
 };
 
 /// The testbench's name: the chip's.
@@ -369,11 +369,9 @@ pub struct TexramTb;
 type Expected = (TexReq, TexOut, f64);
 
 impl Testbench for TexramTb {
-    fn name(&self) -> &'static str {
-        NAME
-    }
-    fn unit(&self) -> &'static str {
-        "TEXRAM chip 802: units 810, 812, 818, 824 (Schilling & Knittel, Figure 8, sections 5-6)"
+    fn about(&self) -> About {
+        About::new(NAME, "TEXRAM chip 802: units 810, 812, 818, 824 (Schilling & Knittel, Figure 8, sections 5-6)")
+            .count(3000, "random transactions")
     }
     fn configurations(&self) -> Vec<String> {
         CONFIGS
@@ -383,9 +381,6 @@ impl Testbench for TexramTb {
                 format!("{}x{} {} {c}", 1u32 << w, 1u32 << h, b.name())
             })
             .collect()
-    }
-    fn default_count(&self) -> usize {
-        3000
     }
     fn coverage(&self) -> Coverage {
         coverage_model()

@@ -20,7 +20,7 @@ use units::texram::texram_802::{Texram802, TexramParams};
 use units::texram::video_port_808::VideoParams;
 use units::texram::{Border, Drf, TexramAccess, TexramRequest};
 use verif::{
-    run_scored_beside, Background, Coverage, Coverpoint, Ctx, Pacing, PinMonitor, RunSpec,
+    run_scored_beside, About, Background, Coverage, Coverpoint, Ctx, Pacing, PinMonitor, RunSpec,
     Scoreboard, Scored, Stimulus, TbResult, Testbench,
 };
 
@@ -293,20 +293,12 @@ fn requests(n: usize, stim: &mut Stimulus) -> Vec<TexReq> {
 pub struct VideoPortTb;
 
 impl Testbench for VideoPortTb {
-    fn name(&self) -> &'static str {
-        NAME
-    }
-    fn unit(&self) -> &'static str {
-        "TEXRAM video port 808, mipmap generator 816 on the banks, shift registers 826 (sections 11-12)"
+    fn about(&self) -> About {
+        About::new(NAME, "TEXRAM video port 808, mipmap generator 816 on the banks, shift registers 826 (sections 11-12)")
+            .count(2000, "rasterizer requests beside the video")
     }
     fn configurations(&self) -> Vec<String> {
         CONFIGS.iter().map(VideoConfig::label).collect()
-    }
-    fn default_count(&self) -> usize {
-        2000
-    }
-    fn count_unit(&self) -> &'static str {
-        "rasterizer requests beside the video"
     }
     fn coverage(&self) -> Coverage {
         coverage_model()

@@ -19,8 +19,8 @@ use units::texmem::cache_614::Lookahead;
 use units::texmem::layout::Layout;
 use units::texmem::texture_unit_602::{TexParams, TextureUnit};
 use verif::{
-    run, Coverage, Coverpoint, Ctx, Event, Handshake, Pacing, PinDriver, PinMonitor, ProbeSink,
-    RunSpec, Seed, TbResult, Testbench, WaveOut, Workload,
+    run, About, Coverage, Coverpoint, Ctx, Event, Handshake, Pacing, PinDriver, PinMonitor,
+    ProbeSink, RunSpec, Seed, TbResult, Testbench, WaveOut, Workload,
 };
 use waves::{ProbeId, TraceConfig};
 
@@ -804,11 +804,9 @@ fn fixture() -> Result<&'static (Ppm, Ccc), String> {
 }
 
 impl Testbench for TextureTb {
-    fn name(&self) -> &'static str {
-        NAME
-    }
-    fn unit(&self) -> &'static str {
-        "texture unit 602: DRAM 604, control 607, CCC 608-612, cache 614, extract 618, bilinear 622 (Figures 4-7)"
+    fn about(&self) -> About {
+        About::new(NAME, "texture unit 602: DRAM 604, control 607, CCC 608-612, cache 614, extract 618, bilinear 622 (Figures 4-7)")
+            .count(TB_REQUESTS, "requests per trace")
     }
     fn configurations(&self) -> Vec<String> {
         let mut v = vec!["horizontal + edges, 104 requests, default mode (traced)".to_string()];
@@ -818,12 +816,6 @@ impl Testbench for TextureTb {
                 .map(|k| format!("{} trace, every mode", k.name())),
         );
         v
-    }
-    fn default_count(&self) -> usize {
-        TB_REQUESTS
-    }
-    fn count_unit(&self) -> &'static str {
-        "requests per trace"
     }
     fn coverage(&self) -> Coverage {
         coverage_model()

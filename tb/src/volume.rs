@@ -9,8 +9,8 @@ use proptest::prelude::*;
 use units::volume::layout::{locate, Mode, Order, VolumeParams, POS_FRAC};
 use units::volume::ray_caster_fig15::RayCaster;
 use verif::{
-    run, Coverage, Coverpoint, Ctx, Event, Pacing, PinDriver, PinMonitor, RunSpec, Scoreboard,
-    Stimulus, TbResult, Testbench,
+    run, About, Coverage, Coverpoint, Ctx, Event, Pacing, PinDriver, PinMonitor, RunSpec,
+    Scoreboard, Stimulus, TbResult, Testbench,
 };
 
 pub const NAME: &str = "ray_caster_fig15";
@@ -230,23 +230,15 @@ pub struct VolumeTb;
 type VolExpected = ([i64; 3], (u8, [i64; 3]), f64);
 
 impl Testbench for VolumeTb {
-    fn name(&self) -> &'static str {
-        NAME
-    }
-    fn unit(&self) -> &'static str {
-        "TEXRAM ray caster (Schilling & Knittel section 13, Figure 15): stepper, value and gradient accesses, page registers 824, trilinear 818"
+    fn about(&self) -> About {
+        About::new(NAME, "TEXRAM ray caster (Schilling & Knittel section 13, Figure 15): stepper, value and gradient accesses, page registers 824, trilinear 818")
+            .count(300, "random rays")
     }
     fn configurations(&self) -> Vec<String> {
         CONFIGS
             .iter()
             .map(|((x, y, z), o, r, m)| format!("{x}x{y}x{z} {o:?}, rows of {r}, {m:?} mode"))
             .collect()
-    }
-    fn default_count(&self) -> usize {
-        300
-    }
-    fn count_unit(&self) -> &'static str {
-        "random rays"
     }
     fn coverage(&self) -> Coverage {
         coverage_model()

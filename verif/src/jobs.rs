@@ -170,7 +170,7 @@ mod tests {
     use super::*;
     use crate::project::{Project, Unit};
     use crate::regress::{merge_shards, regress, RegressConfig, Summary};
-    use crate::{Coverage, Coverpoint, Ctx};
+    use crate::{About, Coverage, Coverpoint, Ctx};
     use std::path::PathBuf;
 
     /// A testbench of no design whose figures depend on its seed in floating point (so an
@@ -182,11 +182,8 @@ mod tests {
     }
 
     impl Testbench for Dice {
-        fn name(&self) -> &'static str {
-            self.name
-        }
-        fn unit(&self) -> &'static str {
-            "dice"
+        fn about(&self) -> About {
+            About::new(self.name, "dice")
         }
         fn configurations(&self) -> Vec<String> {
             (0..self.labels).map(|i| format!("c{i}")).collect()

@@ -84,7 +84,7 @@ pub use scoreboard::{within, Mismatch, Outcome, Scoreboard};
 pub use stats::ErrorStats;
 pub use stream::{StreamAt, StreamDriver, StreamMonitor};
 pub use testbench::{
-    aggregate, conclude, config_seed, run_jobs, run_testbench, Ctx, Registry, RunOptions,
+    aggregate, conclude, config_seed, run_jobs, run_testbench, About, Ctx, Registry, RunOptions,
     Testbench, WaveOut,
 };
 pub use workload::Workload;

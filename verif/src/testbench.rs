@@ -88,29 +88,68 @@ impl WaveOut {
     }
 }
 
-/// A testbench: named configurations, a coverage model, and a run of one configuration.
-pub trait Testbench: Sync {
+/// What a testbench is, declared once ([`Testbench::about`]): the name it runs under, the unit
+/// it verifies, how many random transactions a configuration draws when `--count` is not
+/// given and what one is, and which configuration writes the waveform.
+///
+/// ```
+/// use verif::About;
+///
+/// let a = About::new("blend", "a two-stage alpha blend");
+/// assert_eq!((a.count, a.count_unit, a.traced), (1000, "random transactions", 0));
+/// let a = a.count(500, "pixels").traced(1);
+/// assert_eq!((a.name, a.count, a.count_unit, a.traced), ("blend", 500, "pixels", 1));
+/// ```
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct About {
     /// Its name in the table, in `summary.json`, in `--only` and as its waveform's file name.
-    fn name(&self) -> &'static str;
+    pub name: &'static str,
     /// The unit it verifies, with its number and where the document describes it.
-    fn unit(&self) -> &'static str;
+    pub unit: &'static str,
+    /// Random transactions per configuration when `--count` is not given.
+    pub count: usize,
+    /// What one of `--count` is, in the progress line and `--list`.
+    pub count_unit: &'static str,
+    /// The configuration that writes the waveform.
+    pub traced: usize,
+}
+
+impl About {
+    /// Testbench `name` of `unit`: 1000 random transactions a configuration, the first
+    /// configuration traced.
+    pub const fn new(name: &'static str, unit: &'static str) -> About {
+        About {
+            name,
+            unit,
+            count: 1000,
+            count_unit: "random transactions",
+            traced: 0,
+        }
+    }
+
+    /// `n` of `what` per configuration when `--count` is not given.
+    pub const fn count(self, n: usize, what: &'static str) -> About {
+        About {
+            count: n,
+            count_unit: what,
+            ..self
+        }
+    }
+
+    /// Configuration `k` writes the waveform.
+    pub const fn traced(self, k: usize) -> About {
+        About { traced: k, ..self }
+    }
+}
+
+/// A testbench: what it is ([`About`]), named configurations, a coverage model, and a run of
+/// one configuration.
+pub trait Testbench: Sync {
+    /// What it is, declared once; the accessors below read it.
+    fn about(&self) -> About;
     /// The labels of its configurations, in run order (by default one, `default`).
     fn configurations(&self) -> Vec<String> {
         vec!["default".into()]
-    }
-    /// Random transactions per configuration when `--count` is not given (by default 1000),
-    /// and what one is.
-    fn default_count(&self) -> usize {
-        1000
-    }
-    /// What one of `--count` is, in the progress line and `--list` (by default "random
-    /// transactions").
-    fn count_unit(&self) -> &'static str {
-        "random transactions"
-    }
-    /// The configuration that writes the waveform.
-    fn traced(&self) -> usize {
-        0
     }
     /// A fresh coverage model (no hits); every configuration's result carries one like it.
     fn coverage(&self) -> Coverage;
@@ -120,6 +159,27 @@ pub trait Testbench: Sync {
     /// After every configuration (or every shard, in `texrtl merge`): notes and tables from the
     /// merged records and extra checks across configurations.
     fn conclude(&self, _merged: &mut TbResult) {}
+
+    /// [`About::name`].
+    fn name(&self) -> &'static str {
+        self.about().name
+    }
+    /// [`About::unit`].
+    fn unit(&self) -> &'static str {
+        self.about().unit
+    }
+    /// [`About::count`].
+    fn default_count(&self) -> usize {
+        self.about().count
+    }
+    /// [`About::count_unit`].
+    fn count_unit(&self) -> &'static str {
+        self.about().count_unit
+    }
+    /// [`About::traced`].
+    fn traced(&self) -> usize {
+        self.about().traced
+    }
 }
 
 /// What a regression run applies to every testbench.
@@ -454,11 +514,8 @@ mod tests {
         period_ps: Option<u64>,
     }
     impl Testbench for Toy {
-        fn name(&self) -> &'static str {
-            self.name
-        }
-        fn unit(&self) -> &'static str {
-            "none"
+        fn about(&self) -> About {
+            About::new(self.name, "none")
         }
         fn configurations(&self) -> Vec<String> {
             self.labels
@@ -501,11 +558,8 @@ mod tests {
     fn a_testbench_s_defaults() {
         struct Plain;
         impl Testbench for Plain {
-            fn name(&self) -> &'static str {
-                "plain"
-            }
-            fn unit(&self) -> &'static str {
-                "none"
+            fn about(&self) -> About {
+                About::new("plain", "none")
             }
             fn coverage(&self) -> Coverage {
                 Coverage::new()

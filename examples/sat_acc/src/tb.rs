@@ -1,6 +1,6 @@
 //! The testbench: seeded stimulus, a scoreboard against golden, coverage, probes in the waveform.
 use crate::unit::{golden, SatAcc};
-use verif::{Coverage, Coverpoint, Ctx, Pacing, PinDriver, PinMonitor, ProbeSink, RunSpec, Scoreboard};
+use verif::{About, Coverage, Coverpoint, Ctx, Pacing, PinDriver, PinMonitor, ProbeSink, RunSpec, Scoreboard};
 use verif::{TbResult, Testbench};
 
 /// A transaction, the raw value of `x`, to the pins.
@@ -16,11 +16,8 @@ fn sample(d: &SatAcc) -> Option<f64> {
 
 pub struct SatAccTb;
 impl Testbench for SatAccTb {
-    fn name(&self) -> &'static str {
-        "sat_acc"
-    }
-    fn unit(&self) -> &'static str {
-        "a saturating accumulator"
+    fn about(&self) -> About {
+        About::new("sat_acc", "a saturating accumulator")
     }
     fn configurations(&self) -> Vec<String> {
         vec!["full rate".into(), "random idle cycles".into()]
