@@ -35,7 +35,11 @@ pub type Comparator<E, A> = Box<dyn Fn(&E, &A) -> Result<(), String>>;
 /// assert!(verif::within(&[f64::NAN], &[0.0], 1.0).is_err());
 /// ```
 pub fn within(actual: &[f64], expected: &[f64], bound: f64) -> Result<(), String> {
-    debug_assert_eq!(actual.len(), expected.len());
+    assert_eq!(
+        actual.len(),
+        expected.len(),
+        "within: values against golden values"
+    );
     let worst = actual
         .iter()
         .zip(expected)
