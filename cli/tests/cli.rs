@@ -196,6 +196,13 @@ fn bad_input_is_one_line_exit_2_and_no_output() {
         (vec!["--out", o_s, "--period-ps", "3"], "period 3 ps"),
         (vec!["--out", file.to_str().unwrap()], "not a directory"),
         (vec!["frobnicate"], "frobnicate"),
+        (vec!["bench", "--out", o_s, "--rounds", "0"], "--rounds 0"),
+        (vec!["bench", "--out", o_s, "--rounds", "21"], "--rounds 21"),
+        (
+            vec!["bench", "--out", o_s, "--traced-cycles", "0"],
+            "--traced-cycles 0",
+        ),
+        (vec!["bench", "--out", o_s, "--unit", "nope"], "nope"),
     ];
     for (args, needle) in cases {
         let o = texrtl(&args);

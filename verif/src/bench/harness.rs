@@ -8,8 +8,8 @@ use std::fmt::Write as _;
 use std::path::{Path, PathBuf};
 use std::process::Command;
 
-/// Passes over the stimulus (untraced, inside one run) or runs (traced); the fastest counts,
-/// on both sides.
+/// Untraced passes over the stimulus in one round, at the least; the fastest counts, on both
+/// sides (a traced run is one pass).
 pub const PASSES: usize = 3;
 
 /// Untraced, both sides go on past [`PASSES`] until their passes add up to this many seconds

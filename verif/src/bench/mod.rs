@@ -2,7 +2,9 @@
 //! the same seeded stimulus for the same number of cycles in its Rust model (no schedule check,
 //! as in a regression) and in its twin built by Verilator -O3, untraced, traced to VCD and
 //! traced to FST (written while simulating); one table gives cycles per second and the model's
-//! ratio (above 1: the model is faster).
+//! ratio (above 1: the model is faster). Measurements alternate between the two sides in
+//! rounds, and a unit's row is its median round, with the range of the ratios over all rounds:
+//! the machine's speed drifts over minutes, and a ratio of two runs minutes apart drifts with it.
 
 mod harness;
 
@@ -15,10 +17,11 @@ use std::path::{Path, PathBuf};
 /// What `bench` measures.
 #[derive(Clone, Debug)]
 pub struct BenchConfig {
-    /// Cycles of the untraced runs (1..=100000000; the fastest of at least three passes
-    /// counts, and of more while they add up to less than a quarter of a second).
+    /// Cycles of the untraced runs (1..=100000000; in each round the fastest of at least three
+    /// passes counts, and of more while they add up to less than a quarter of a second).
     pub cycles: usize,
-    /// Cycles of the traced runs, VCD and FST (1..=10000000, at most `cycles`).
+    /// Cycles of the traced runs, VCD and FST (1..=10000000, at most `cycles`; one run a
+    /// round).
     pub traced_cycles: usize,
     /// The twins to measure (empty: every one).
     pub units: Vec<String>,
@@ -26,12 +29,18 @@ pub struct BenchConfig {
     pub out: PathBuf,
     /// The stimulus seed.
     pub seed: Seed,
+    /// Rounds (1..=20). A round measures each mode on both sides, the model and then the twin;
+    /// a unit's figures are those of the round with the median ratio.
+    pub rounds: usize,
 }
 
 /// Checks the options and the tool; the twins to measure.
 pub fn check<'p>(project: &'p Project, a: &BenchConfig) -> Result<Vec<&'p dyn CosimUnit>, String> {
     if !(1..=100_000_000).contains(&a.cycles) {
         return Err(format!("--cycles {}: 1..=100000000", a.cycles));
+    }
+    if !(1..=20).contains(&a.rounds) {
+        return Err(format!("--rounds {}: 1..=20", a.rounds));
     }
     if !(1..=10_000_000).contains(&a.traced_cycles) || a.traced_cycles > a.cycles {
         return Err(format!(
@@ -67,11 +76,41 @@ pub fn measure_all(a: &BenchConfig, units: &[&dyn CosimUnit]) -> Result<String, 
     Ok(t)
 }
 
-/// One unit's figures: cycles per second of texrtl and Verilator in each mode.
+/// One unit's figures in each mode: the round with the median ratio (both sides' cycles per
+/// second in it) and the lowest and highest ratio of all rounds.
 struct Row {
     unit: String,
     ours: [f64; 3],
     theirs: [f64; 3],
+    range: [(f64, f64); 3],
+}
+
+impl Row {
+    /// From each round's seconds, `[(model, Verilator); 3]` by mode, over `counts` cycles.
+    fn from_rounds(unit: &str, counts: [usize; 3], rounds: &[[(f64, f64); 3]]) -> Row {
+        let per_s = |secs: f64, n: usize| n as f64 / secs.max(1e-9);
+        let mut row = Row {
+            unit: unit.into(),
+            ours: [0.0; 3],
+            theirs: [0.0; 3],
+            range: [(0.0, 0.0); 3],
+        };
+        for k in 0..3 {
+            let mut r: Vec<(f64, f64, f64)> = rounds
+                .iter()
+                .map(|x| {
+                    let (o, t) = (per_s(x[k].0, counts[k]), per_s(x[k].1, counts[k]));
+                    (o / t, o, t)
+                })
+                .collect();
+            r.sort_by(|a, b| a.0.total_cmp(&b.0));
+            // The lower middle of an even count: the claim errs towards Verilator.
+            let (_, o, t) = r[(r.len() - 1) / 2];
+            (row.ours[k], row.theirs[k]) = (o, t);
+            row.range[k] = (r[0].0, r[r.len() - 1].0);
+        }
+        row
+    }
 }
 
 /// Where a unit's traces go: a folder in memory (`/dev/shm`) when the machine has one, so that
@@ -96,6 +135,26 @@ fn write_bin(path: &Path, stim: &[Vec<u64>]) -> Result<(), String> {
     std::fs::write(path, bytes).map_err(|e| format!("{}: {e}", path.display()))
 }
 
+/// The model's seconds for `stim` in one round: untraced, the fastest of its passes (at least
+/// [`harness::PASSES`], more while they add up to under [`harness::MIN_SECONDS`]); traced, one
+/// run (the trace overwritten).
+fn model_secs(
+    model: &dyn crate::cosim::CosimModel,
+    stim: &[Vec<u64>],
+    resets: usize,
+    trace: BenchTrace,
+) -> Result<f64, String> {
+    if !matches!(trace, BenchTrace::None) {
+        return Ok(model.bench(stim, resets, trace)?.as_secs_f64());
+    }
+    let (mut t, mut total, mut passes) = (f64::MAX, 0.0, 0);
+    while !harness::enough(passes, total) {
+        let s = model.bench(stim, resets, trace)?.as_secs_f64();
+        (t, total, passes) = (t.min(s), total + s, passes + 1);
+    }
+    Ok(t)
+}
+
 fn measure(a: &BenchConfig, unit: &dyn CosimUnit) -> Result<Row, String> {
     let name = unit.name();
     let resets = crate::cosim::reset_cycles(unit);
@@ -109,49 +168,32 @@ fn measure(a: &BenchConfig, unit: &dyn CosimUnit) -> Result<Row, String> {
     let stim = unit.stimulus(a.seed, a.cycles);
     let bin = dir.join("stim.bin");
     write_bin(&bin, &stim)?;
-    let traced = &stim[..a.traced_cycles];
+    let mut exes = Vec::with_capacity(Mode::ALL.len());
+    for mode in Mode::ALL {
+        let cpp = harness::main_cpp(unit, &ins, &outs, mode);
+        exes.push(harness::build(unit, &cpp, mode, &dir)?);
+    }
     let tdir = trace_dir(name, &dir)?;
     let (vcd, fst) = (tdir.join("model.vcd"), tdir.join("model.fst"));
-    // The fastest of `PASSES` runs of each (traces overwritten); untraced, of as many more
-    // as the harness makes (`harness::enough`).
-    let best = |trace: BenchTrace, stim: &[Vec<u64>]| -> Result<f64, String> {
-        let (mut t, mut total, mut passes) = (f64::MAX, 0.0, 0);
-        let untraced = matches!(trace, BenchTrace::None);
-        while passes < harness::PASSES || (untraced && !harness::enough(passes, total)) {
-            let s = model.bench(stim, resets, trace)?.as_secs_f64();
-            (t, total, passes) = (t.min(s), total + s, passes + 1);
+    let counts = [a.cycles, a.traced_cycles, a.traced_cycles];
+    // Round by round, mode by mode, the model and then the twin: a slow stretch of the
+    // machine falls on both sides of one round's ratio, or on one round of several.
+    let mut rounds = Vec::with_capacity(a.rounds);
+    for _ in 0..a.rounds {
+        let mut secs = [(0.0, 0.0); 3];
+        for (k, mode) in Mode::ALL.into_iter().enumerate() {
+            let (trace, rtl) = match mode {
+                Mode::Untraced => (BenchTrace::None, None),
+                Mode::Vcd => (BenchTrace::Vcd(&vcd), Some(tdir.join("rtl.vcd"))),
+                Mode::Fst => (BenchTrace::Fst(&fst), Some(tdir.join("rtl.fst"))),
+            };
+            secs[k].0 = model_secs(model.as_ref(), &stim[..counts[k]], resets, trace)?;
+            secs[k].1 = harness::time(&exes[k], &bin, counts[k], rtl.as_deref(), &dir)?;
+            if let Some(t) = rtl {
+                let _ = std::fs::remove_file(t);
+            }
         }
-        Ok(t)
-    };
-    let ours = [
-        best(BenchTrace::None, &stim)?,
-        best(BenchTrace::Vcd(&vcd), traced)?,
-        best(BenchTrace::Fst(&fst), traced)?,
-    ];
-    let mut theirs = [0.0; 3];
-    for (k, mode) in Mode::ALL.into_iter().enumerate() {
-        let exe = harness::build(
-            unit,
-            &harness::main_cpp(unit, &ins, &outs, mode),
-            mode,
-            &dir,
-        )?;
-        let trace = tdir.join(format!("rtl.{}", mode.name()));
-        let (n, t) = match mode {
-            Mode::Untraced => (a.cycles, None),
-            _ => (a.traced_cycles, Some(trace.as_path())),
-        };
-        // Untraced, the harness takes the best of its passes itself; traced, run it again.
-        let runs = if mode == Mode::Untraced {
-            1
-        } else {
-            harness::PASSES
-        };
-        theirs[k] = f64::MAX;
-        for _ in 0..runs {
-            theirs[k] = theirs[k].min(harness::time(&exe, &bin, n, t, &dir)?);
-        }
-        let _ = std::fs::remove_file(&trace);
+        rounds.push(secs);
     }
     for f in [&vcd, &fst, &vcd.with_extension("gtkw")] {
         let _ = std::fs::remove_file(f);
@@ -159,13 +201,7 @@ fn measure(a: &BenchConfig, unit: &dyn CosimUnit) -> Result<Row, String> {
     if tdir != dir {
         let _ = std::fs::remove_dir_all(&tdir);
     }
-    let per_s = |secs: f64, n: usize| n as f64 / secs.max(1e-9);
-    let counts = [a.cycles, a.traced_cycles, a.traced_cycles];
-    Ok(Row {
-        unit: name.into(),
-        ours: [0, 1, 2].map(|k| per_s(ours[k], counts[k])),
-        theirs: [0, 1, 2].map(|k| per_s(theirs[k], counts[k])),
-    })
+    Ok(Row::from_rounds(name, counts, &rounds))
 }
 
 /// Cycles per second, short: `4.81 M`, `390 k`.
@@ -182,8 +218,14 @@ fn rate(x: f64) -> String {
 fn line(r: &Row) -> String {
     let mut s = format!("| {} |", r.unit);
     for k in 0..3 {
+        let (lo, hi) = r.range[k];
+        let spread = if lo < hi {
+            format!(" ({lo:.2}-{hi:.2})")
+        } else {
+            String::new()
+        };
         s += &format!(
-            " {} | {} | {:.2} |",
+            " {} | {} | {:.2}{spread} |",
             rate(r.ours[k]),
             rate(r.theirs[k]),
             r.ours[k] / r.theirs[k]
@@ -193,8 +235,16 @@ fn line(r: &Row) -> String {
 }
 
 fn table(a: &BenchConfig, rows: &[Row]) -> String {
+    let rounds = if a.rounds == 1 {
+        "one round".to_string()
+    } else {
+        format!(
+            "{} rounds, each side in turn in every mode; the round with the median ratio, the lowest and highest ratio in brackets",
+            a.rounds
+        )
+    };
     let mut s = format!(
-        "Cycles/s: untraced over {} cycles, traced over {} (seed {}); ratio = model / Verilator.\n\n",
+        "Cycles/s: untraced over {} cycles, traced over {} (seed {}); {rounds}; ratio = model / Verilator.\n\n",
         a.cycles, a.traced_cycles, a.seed
     );
     s += "| unit | model | Verilator -O3 | ratio | model VCD | Verilator --trace | ratio | model FST | Verilator --trace-fst | ratio |\n";
@@ -204,4 +254,29 @@ fn table(a: &BenchConfig, rows: &[Row]) -> String {
         s += "\n";
     }
     s
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// A row is the round with the median ratio, both sides' rates from that round; the
+    /// range is the lowest and highest ratio; an even count takes the lower middle.
+    #[test]
+    fn a_row_is_its_median_round() {
+        // Seconds over 100 cycles; ratios by round in the untraced mode: 2, 0.5, 1.
+        let round = |o: f64, t: f64| [(o, t), (1.0, 1.0), (1.0, 2.0)];
+        let rounds = [round(1.0, 2.0), round(4.0, 2.0), round(3.0, 3.0)];
+        let r = Row::from_rounds("u", [100; 3], &rounds);
+        assert_eq!((r.ours[0], r.theirs[0]), (100.0 / 3.0, 100.0 / 3.0));
+        assert_eq!(r.range[0], (0.5, 2.0));
+        assert_eq!(
+            (r.ours[2], r.theirs[2], r.range[2]),
+            (100.0, 50.0, (2.0, 2.0))
+        );
+        let r = Row::from_rounds("u", [100; 3], &rounds[..2]);
+        assert_eq!((r.ours[0], r.theirs[0]), (25.0, 50.0));
+        assert!(line(&r).contains("| 0.50 (0.50-2.00) |"), "{}", line(&r));
+        assert!(line(&r).contains("| 2.00 |"), "{}", line(&r));
+    }
 }

@@ -21,6 +21,8 @@ pub struct BenchArgs {
     pub out: Option<PathBuf>,
     /// Stimulus seed.
     pub seed: Seed,
+    /// Rounds, alternating between the two sides.
+    pub rounds: usize,
 }
 
 clap_args!(BenchArgs);
@@ -28,8 +30,9 @@ clap_args!(BenchArgs);
 impl BenchArgs {
     pub(super) fn augment(c: Command) -> Command {
         c.args([
-            value("cycles", "CYCLES", value_parser!(usize), "Cycles of the untraced runs (1..=100000000; the fastest of three passes counts, or of more while they take under a quarter second)").default_value("1000000"),
-            value("traced-cycles", "TRACED_CYCLES", value_parser!(usize), "Cycles of the traced runs, VCD and FST (1..=10000000; the fastest of three runs counts)").default_value("1000000"),
+            value("cycles", "CYCLES", value_parser!(usize), "Cycles of the untraced runs (1..=100000000; in each round the fastest of three passes counts, or of more while they take under a quarter second)").default_value("1000000"),
+            value("traced-cycles", "TRACED_CYCLES", value_parser!(usize), "Cycles of the traced runs, VCD and FST (1..=10000000; one run a round)").default_value("1000000"),
+            value("rounds", "ROUNDS", value_parser!(usize), "Rounds (1..=20), each measuring every mode on both sides in turn; a unit's row is its round with the median ratio, the range of the ratios beside it").default_value("3"),
             values("unit", "UNIT", value_parser!(String), "Units to measure (repeatable; default every twin)"),
             path("out", "OUT", "Folder for the harnesses, builds, stimulus and table.md (default target/NAME-bench; traces go to /dev/shm when there is one, and are deleted)"),
             value("seed", "SEED", Seed::parse, "Stimulus seed").default_value("0xbe7c"),
@@ -43,6 +46,7 @@ impl BenchArgs {
             unit: all(m, "unit"),
             out: one(m, "out"),
             seed: given(m, "seed"),
+            rounds: given(m, "rounds"),
         }
     }
 }
@@ -58,6 +62,7 @@ pub fn run(project: &Project, a: &BenchArgs) -> Result<String, CmdError> {
             .clone()
             .unwrap_or_else(|| PathBuf::from(format!("target/{}-bench", project.name()))),
         seed: a.seed,
+        rounds: a.rounds,
     };
     let units = check(project, &cfg).map_err(CmdError::Input)?;
     measure_all(&cfg, &units)
