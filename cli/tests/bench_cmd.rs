@@ -1,0 +1,92 @@
+//! `texrtl bench` as a user runs it: one small twin against Verilator in two rounds of a few
+//! thousand cycles. One row, every rate positive, every ratio its row's quotient and inside the
+//! range of its rounds, the table also in `table.md`, no trace left behind. Without Verilator
+//! the test says so and passes, unless `TEXRTL_REQUIRE_COSIM=1`.
+
+mod common;
+use common::dir;
+use std::path::Path;
+use std::process::{Command, Stdio};
+
+/// Cycles per second as the table prints them: `4.81 M`, `390 k`, `950`.
+fn rate(cell: &str) -> f64 {
+    let (num, scale) = match cell.split_once(' ') {
+        Some((n, "M")) => (n, 1e6),
+        Some((n, "k")) => (n, 1e3),
+        _ => (cell, 1.0),
+    };
+    num.parse::<f64>()
+        .unwrap_or_else(|_| panic!("rate '{cell}'"))
+        * scale
+}
+
+/// A ratio cell: the median round's ratio and the range of the rounds, `1.22 (1.15-1.28)`
+/// (the range alone when every round gave the same, `1.22`).
+fn ratio(cell: &str) -> (f64, f64, f64) {
+    let num = |s: &str| {
+        s.parse::<f64>()
+            .unwrap_or_else(|_| panic!("ratio '{cell}'"))
+    };
+    match cell.split_once(" (") {
+        Some((r, range)) => {
+            let (lo, hi) = range.trim_end_matches(')').split_once('-').unwrap();
+            (num(r), num(lo), num(hi))
+        }
+        None => (num(cell), num(cell), num(cell)),
+    }
+}
+
+#[test]
+fn bench_measures_a_twin_in_alternating_rounds() {
+    if Command::new("verilator").arg("--version").output().is_err() {
+        assert!(
+            std::env::var("TEXRTL_REQUIRE_COSIM").as_deref() != Ok("1"),
+            "no Verilator"
+        );
+        eprintln!("Verilator not installed: bench is not tried");
+        return;
+    }
+    let d = dir("bench", "rounds");
+    let child = Command::new(env!("CARGO_BIN_EXE_texrtl"))
+        .args(["bench", "--unit", "address_150", "--cycles", "5000"])
+        .args(["--traced-cycles", "2000", "--rounds", "2", "--out"])
+        .arg(d.as_os_str())
+        .stdout(Stdio::piped())
+        .stderr(Stdio::piped())
+        .spawn()
+        .unwrap();
+    let pid = child.id();
+    let o = child.wait_with_output().unwrap();
+    let err = String::from_utf8_lossy(&o.stderr);
+    assert_eq!(o.status.code(), Some(0), "{err}");
+    let table = String::from_utf8(o.stdout).unwrap();
+    assert!(
+        table.contains("over 5000 cycles, traced over 2000"),
+        "{table}"
+    );
+    assert!(table.contains("2 rounds, each side in turn"), "{table}");
+    let rows: Vec<&str> = table
+        .lines()
+        .filter(|l| l.starts_with("| address"))
+        .collect();
+    assert_eq!(rows.len(), 1, "{table}");
+    let cells: Vec<&str> = rows[0].split('|').map(str::trim).collect();
+    assert_eq!(cells.len(), 12, "{}", rows[0]);
+    for mode in 0..3 {
+        let (ours, theirs) = (rate(cells[2 + 3 * mode]), rate(cells[3 + 3 * mode]));
+        let (r, lo, hi) = ratio(cells[4 + 3 * mode]);
+        assert!(ours > 0.0 && theirs > 0.0, "{}", rows[0]);
+        // The rates are printed to three or four digits, the ratio to two decimals.
+        assert!((r - ours / theirs).abs() <= 0.01 + 0.01 * r, "{}", rows[0]);
+        assert!(lo <= r && r <= hi, "{}", rows[0]);
+    }
+    let md = std::fs::read_to_string(d.join("table.md")).unwrap();
+    assert_eq!(md.trim_end(), table.trim_end());
+    // The traces went to a folder of the process's own, removed with them.
+    let shm = Path::new("/dev/shm").join(format!("texrtl-vs-verilator-{pid}-address_150"));
+    assert!(!shm.exists(), "{} left behind", shm.display());
+    let unit = d.join("address_150");
+    for f in ["model.vcd", "model.fst", "rtl.vcd", "rtl.fst"] {
+        assert!(!unit.join(f).exists(), "{f} left behind");
+    }
+}
