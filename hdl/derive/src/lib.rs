@@ -19,6 +19,9 @@
 //!                                    // numeric coverage
 //!     #[instance] name: &'static str, // optional: the instance name
 //!     params: Params,                 // anything unmarked is neither ticked nor visited
+//!     #[skip] probe: Signal,          // ... but a signal, register, memory, delay line,
+//!                                    // narrowing or stream left unmarked is a compile
+//!                                    // error unless `#[skip]` says it is left out on purpose
 //! }
 //! // `#[module(kind = "...", enable = self.busy.is_high())]`: a clock enable, the edge of
 //! // every register and child skipped while it is low (reset still applies).
@@ -69,7 +72,7 @@ const ROLES: [(&str, Role); 7] = [
 /// Derives `Module` (see the crate documentation).
 #[proc_macro_derive(
     Module,
-    attributes(module, input, output, wire, reg, child, narrow, instance)
+    attributes(module, input, output, wire, reg, child, narrow, instance, skip)
 )]
 pub fn derive_module(input: TokenStream) -> TokenStream {
     let ast = parse_macro_input!(input as DeriveInput);
@@ -366,7 +369,7 @@ fn field_args(a: &syn::Attribute, f: &mut Field) -> syn::Result<()> {
 /// Each named field's role, in declaration order; a field with two roles is an error.
 fn roles(ast: &DeriveInput) -> syn::Result<Vec<Field>> {
     let fields = named_fields(ast, "Module")?;
-    let mut out = Vec::new();
+    let (mut out, mut unmarked) = (Vec::new(), None::<syn::Error>);
     for f in &fields.named {
         let mut found: Option<Field> = None;
         for a in &f.attrs {
@@ -390,7 +393,18 @@ fn roles(ast: &DeriveInput) -> syn::Result<Vec<Field>> {
             field_args(a, &mut field)?;
             found = Some(field);
         }
+        if found.is_none() && !f.attrs.iter().any(|a| a.path().is_ident("skip")) {
+            if let Err(e) = forgotten(f) {
+                match &mut unmarked {
+                    None => unmarked = Some(e),
+                    Some(all) => all.combine(e),
+                }
+            }
+        }
         out.extend(found);
+    }
+    if let Some(e) = unmarked {
+        return Err(e);
     }
     if out.iter().filter(|f| f.role == Role::Instance).count() > 1 {
         return Err(syn::Error::new_spanned(
@@ -399,6 +413,51 @@ fn roles(ast: &DeriveInput) -> syn::Result<Vec<Field>> {
         ));
     }
     Ok(out)
+}
+
+/// The kernel's types that hold a module's state or ports: a field of one of them (or of an
+/// array, vector, option or tuple of them) must say what it is.
+const STATE_TYPES: [&str; 9] = [
+    "Signal",
+    "SignalOf",
+    "Reg",
+    "RegOf",
+    "Mem",
+    "Delay",
+    "Narrowing",
+    "NarrowingOf",
+    "Stream",
+];
+
+/// An error for an unmarked field whose type names one of [`STATE_TYPES`]: left unmarked it
+/// would be neither ticked nor visited, so neither committed at the edge, traced nor checked.
+fn forgotten(f: &syn::Field) -> syn::Result<()> {
+    let ty = &f.ty;
+    let named = quote!(#ty).into_iter().find_map(|t| match t {
+        proc_macro2::TokenTree::Ident(i) if STATE_TYPES.iter().any(|s| i == s) => Some(i),
+        _ => mentions(&t),
+    });
+    match named {
+        Some(t) => Err(syn::Error::new_spanned(
+            f,
+            format!(
+                "this field holds a {t}: mark it #[input], #[output], #[wire], #[reg], #[child] or #[narrow], or #[skip] to leave it out of tick and visit on purpose"
+            ),
+        )),
+        None => Ok(()),
+    }
+}
+
+/// The first of [`STATE_TYPES`] inside a bracketed or parenthesised group (an array's element
+/// type, a tuple's).
+fn mentions(t: &proc_macro2::TokenTree) -> Option<proc_macro2::Ident> {
+    let proc_macro2::TokenTree::Group(g) = t else {
+        return None;
+    };
+    g.stream().into_iter().find_map(|t| match t {
+        proc_macro2::TokenTree::Ident(i) if STATE_TYPES.iter().any(|s| i == s) => Some(i),
+        _ => mentions(&t),
+    })
 }
 
 /// A marked field's part of the generated `tick` (registers and children only), `visit` and

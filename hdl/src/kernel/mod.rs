@@ -25,6 +25,52 @@ pub use stream::{Payload, Stream};
 pub use texrtl_hdl_derive::Group;
 /// Derives [`Module`] from fields marked `#[input]`, `#[output]`, `#[wire]`, `#[reg]`,
 /// `#[child]` (see [`declared`]); the behaviour is the type's own `fn eval(&mut self)`.
+///
+/// A register, signal, memory, delay line, narrowing or stream cannot be forgotten: a field
+/// holding one (or an array, vector, option or tuple of them) without a mark does not compile,
+/// since it would be neither committed at the edge, traced nor schedule-checked.
+///
+/// ```compile_fail
+/// use hdl::kernel::{Module, Reg, Signal};
+/// #[derive(Module)]
+/// #[module(kind = "count")]
+/// struct Count {
+///     #[output]
+///     q: Signal,
+///     #[reg]
+///     n: Reg,
+///     carry: Reg, // added, but not marked
+/// }
+/// # impl Count { fn eval(&mut self) {} }
+/// ```
+///
+/// ```compile_fail
+/// use hdl::kernel::{Module, Reg, Signal};
+/// #[derive(Module)]
+/// #[module(kind = "count")]
+/// struct Count {
+///     #[output]
+///     q: Signal,
+///     taps: Vec<[Reg; 2]>, // the same inside a collection
+/// }
+/// # impl Count { fn eval(&mut self) {} }
+/// ```
+///
+/// `#[skip]` leaves one out on purpose (and anything that is not the kernel's needs no mark):
+///
+/// ```
+/// use hdl::kernel::{Module, Reg, Signal};
+/// #[derive(Module)]
+/// #[module(kind = "count")]
+/// struct Count {
+///     #[output]
+///     q: Signal,
+///     #[skip]
+///     spare: Option<Reg>,
+///     limit: u32,
+/// }
+/// # impl Count { fn eval(&mut self) {} }
+/// ```
 pub use texrtl_hdl_derive::Module;
 /// Derives [`declared::Regs`] for a register bundle, a struct of registers ticked and visited
 /// field by field.
