@@ -38,12 +38,7 @@ fn ratio(cell: &str) -> (f64, f64, f64) {
 
 #[test]
 fn bench_measures_a_twin_in_alternating_rounds() {
-    if Command::new("verilator").arg("--version").output().is_err() {
-        assert!(
-            std::env::var("TEXRTL_REQUIRE_COSIM").as_deref() != Ok("1"),
-            "no Verilator"
-        );
-        eprintln!("Verilator not installed: bench is not tried");
+    if !common::simulator("verilator", "--version") {
         return;
     }
     let d = dir("bench", "rounds");

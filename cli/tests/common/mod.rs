@@ -47,6 +47,20 @@ impl Drop for TestDir {
     }
 }
 
+/// Whether the simulator `tool` runs (`tool arg`); when it does not, says so on stderr, and
+/// fails the test if `TEXRTL_REQUIRE_COSIM=1` (as `.ci/run` sets).
+pub fn simulator(tool: &str, arg: &str) -> bool {
+    if Command::new(tool).arg(arg).output().is_ok() {
+        return true;
+    }
+    assert!(
+        std::env::var("TEXRTL_REQUIRE_COSIM").as_deref() != Ok("1"),
+        "TEXRTL_REQUIRE_COSIM=1 and no {tool}"
+    );
+    eprintln!("{tool} not installed: the test is skipped");
+    false
+}
+
 pub fn texrtl(args: &[&str]) -> Output {
     Command::new(env!("CARGO_BIN_EXE_texrtl"))
         .args(args)
