@@ -137,7 +137,7 @@ fn write_bin(path: &Path, stim: &[Vec<u64>]) -> Result<(), String> {
 
 /// The model's seconds for `stim` in one round: untraced, the fastest of its passes (at least
 /// [`harness::PASSES`], more while they add up to under [`harness::MIN_SECONDS`]); traced, one
-/// run (the trace overwritten).
+/// run (its trace for the caller to delete).
 fn model_secs(
     model: &dyn crate::cosim::CosimModel,
     stim: &[Vec<u64>],
