@@ -174,40 +174,66 @@ fn measure(a: &BenchConfig, unit: &dyn CosimUnit) -> Result<Row, String> {
         exes.push(harness::build(unit, &cpp, mode, &dir)?);
     }
     let tdir = trace_dir(name, &dir)?;
-    let (vcd, fst) = (tdir.join("model.vcd"), tdir.join("model.fst"));
     let counts = [a.cycles, a.traced_cycles, a.traced_cycles];
-    // Round by round, mode by mode, the model and then the twin: a slow stretch of the
-    // machine falls on both sides of one round's ratio, or on one round of several.
-    let mut rounds = Vec::with_capacity(a.rounds);
-    for _ in 0..a.rounds {
-        let mut secs = [(0.0, 0.0); 3];
-        for (k, mode) in Mode::ALL.into_iter().enumerate() {
-            let (trace, rtl) = match mode {
-                Mode::Untraced => (BenchTrace::None, None),
-                Mode::Vcd => (BenchTrace::Vcd(&vcd), Some(tdir.join("rtl.vcd"))),
-                Mode::Fst => (BenchTrace::Fst(&fst), Some(tdir.join("rtl.fst"))),
-            };
-            // Each trace is deleted as soon as it is written: a run that overwrote the last
-            // one's file (350 MB for replicate 152) ran at a third of the speed of a run into
-            // a new file, the kernel freeing the old pages while the new ones were written.
-            secs[k].0 = model_secs(model.as_ref(), &stim[..counts[k]], resets, trace)?;
-            for f in [&vcd, &fst] {
-                let _ = std::fs::remove_file(f);
-            }
-            secs[k].1 = harness::time(&exes[k], &bin, counts[k], rtl.as_deref(), &dir)?;
-            if let Some(t) = rtl {
-                let _ = std::fs::remove_file(t);
-            }
-        }
-        rounds.push(secs);
-    }
-    for f in [&vcd, &fst, &vcd.with_extension("gtkw")] {
-        let _ = std::fs::remove_file(f);
-    }
+    let run = Run {
+        model: model.as_ref(),
+        stim: &stim,
+        resets,
+        exes: &exes,
+        bin: &bin,
+        dir: &dir,
+        tdir: &tdir,
+        counts,
+    };
+    let rounds: Result<Vec<_>, String> = (0..a.rounds).map(|_| run.round()).collect();
+    // The traces' folder goes whether the rounds ran or one failed.
+    let gtkw = tdir.join("model.gtkw");
+    let _ = std::fs::remove_file(gtkw);
     if tdir != dir {
         let _ = std::fs::remove_dir_all(&tdir);
     }
-    Ok(Row::from_rounds(name, counts, &rounds))
+    Ok(Row::from_rounds(name, counts, &rounds?))
+}
+
+/// What one unit's rounds run: its model and stimulus, the twin's three builds, and where the
+/// stimulus, the memory images and the traces are.
+struct Run<'a> {
+    model: &'a dyn crate::cosim::CosimModel,
+    stim: &'a [Vec<u64>],
+    resets: usize,
+    exes: &'a [PathBuf],
+    bin: &'a Path,
+    dir: &'a Path,
+    tdir: &'a Path,
+    counts: [usize; 3],
+}
+
+impl Run<'_> {
+    /// One round: mode by mode, the model and then the twin, so that a slow stretch of the
+    /// machine falls on both sides of one round's ratio, or on one round of several. Each
+    /// trace is deleted as soon as it is written: a run that overwrote the last one's file
+    /// (350 MB for replicate 152) ran at a third of the speed of a run into a new file, the
+    /// kernel freeing the old pages while the new ones were written.
+    fn round(&self) -> Result<[(f64, f64); 3], String> {
+        let mut secs = [(0.0, 0.0); 3];
+        for (k, mode) in Mode::ALL.into_iter().enumerate() {
+            let file = |side: &str| self.tdir.join(format!("{side}.{}", mode.name()));
+            let (ours, theirs) = (file("model"), file("rtl"));
+            let (trace, rtl) = match mode {
+                Mode::Untraced => (BenchTrace::None, None),
+                Mode::Vcd => (BenchTrace::Vcd(&ours), Some(theirs.as_path())),
+                Mode::Fst => (BenchTrace::Fst(&ours), Some(theirs.as_path())),
+            };
+            let n = self.counts[k];
+            let model = model_secs(self.model, &self.stim[..n], self.resets, trace);
+            let _ = std::fs::remove_file(&ours);
+            secs[k].0 = model?;
+            let twin = harness::time(&self.exes[k], self.bin, n, rtl, self.dir);
+            let _ = std::fs::remove_file(&theirs);
+            secs[k].1 = twin?;
+        }
+        Ok(secs)
+    }
 }
 
 /// Cycles per second, short: `4.81 M`, `390 k`.
