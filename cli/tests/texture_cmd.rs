@@ -308,7 +308,7 @@ fn texread_sizes_and_options() {
 #[test]
 fn every_stats_field_is_documented() {
     let s = serde_json::to_value(
-        tb::texture::run_texread(
+        tb::runs::texture::run_texread(
             &tb::texture::test_pattern(16, 16),
             units::texmem::texture_unit_602::TexParams::new(16, 16),
             &[],

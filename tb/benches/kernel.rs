@@ -215,7 +215,8 @@ fn dram(c: &mut Criterion) {
 /// DRAM cycles). The texture is encoded once, outside the timing; each iteration builds the
 /// unit (loading the DRAM image) and runs the trace.
 fn texture(c: &mut Criterion) {
-    use tb::texture::{run_texread, synthetic_texture, trace, TraceKind};
+    use tb::runs::texture::run_texread;
+    use tb::texture::{synthetic_texture, trace, TraceKind};
     let orig = synthetic_texture(256, 256, verif::Seed(1));
     let tex = formats::ccc::encode(&orig).unwrap();
     let p = units::texmem::texture_unit_602::TexParams::new(256, 256);

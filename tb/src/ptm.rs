@@ -1,6 +1,6 @@
 //! PTM micro-occlusion (001, Figs 2, 3 and 6): the host's part (samples by marching toward
 //! each light of a dome, the pseudo-inverse), the fitter 604 and the light shader 608, their
-//! testbenches, and the fit's quality against the ray-marched truth.
+//! testbenches (the fit's quality against the ray-marched truth is [`crate::runs::ptm`]).
 //!
 //! `ptm_fitter_604`: swatches of tileable height fields under domes of lights; each texel's
 //! six stored coefficients equal the integer reference (bit for bit) and, dequantised, lie
@@ -251,7 +251,7 @@ impl Testbench for PtmFitterTb {
         fitter_coverage()
     }
     fn conclude(&self, merged: &mut TbResult) {
-        match swatch_picture() {
+        match crate::pictures::ptm::swatch_picture() {
             Ok((_, side, q)) => {
                 merged.notes.push(format!(
                     "{side}x{side} woven swatch, {} lights: fit RMSE a texel {:.3} mean, {:.3} worst (occlusion in [0, 1], the 8-bit PTM against the marched samples)",
@@ -548,103 +548,4 @@ fn run_shader_tb(
     res.coverage = Some(cov);
     ctx.finish(sim, &mut res)?;
     Ok(res)
-}
-
-/// How well a PTM fits its samples, and what it costs to store.
-#[derive(Clone, Debug, PartialEq, serde::Serialize)]
-pub struct PtmQuality {
-    pub texels: usize,
-    pub lights: usize,
-    pub bits: u32,
-    /// Per texel: the RMS over the lights of the stored PTM's occlusion (the shader's, exact)
-    /// against the marched samples, in [0, 1]; its mean and largest over the texels.
-    pub rmse_mean: f64,
-    pub rmse_max: f64,
-    /// Bytes: the PTM (six coefficients a texel, no header), the binary sample images (one
-    /// bit a texel a light), a 4096 x 4096 shadow map of 32-bit depths (\[0006\]) per light.
-    pub ptm_bytes: u64,
-    pub images_bytes: u64,
-    pub shadow_map_bytes: u64,
-}
-
-/// The quality of the fits `q` (one a texel) of `sw` stored as `fmt`.
-pub fn quality(sw: &Swatch, q: &[[u64; 6]], fmt: &PtmFormat) -> PtmQuality {
-    let uv: Vec<(i64, i64)> = sw
-        .lights
-        .iter()
-        .map(|l| {
-            let (u, v) = l.uv();
-            let r = |x: f64| (x * 16384.0).round() as i64;
-            (r(u), r(v))
-        })
-        .collect();
-    let mut rmse = Vec::with_capacity(q.len());
-    for (t, c) in q.iter().enumerate() {
-        let s = sw.texel_samples(t);
-        let se: f64 = uv
-            .iter()
-            .zip(s)
-            .map(|(&(u, v), &x)| {
-                let k = f64::from(ref_k(fmt, c, u, v)) / 256.0;
-                (k - (1.0 - f64::from(x) / 255.0)).powi(2)
-            })
-            .sum();
-        rmse.push((se / s.len() as f64).sqrt());
-    }
-    let texels = q.len();
-    let lights = sw.lights.len();
-    PtmQuality {
-        texels,
-        lights,
-        bits: fmt.bits,
-        rmse_mean: rmse.iter().sum::<f64>() / texels.max(1) as f64,
-        rmse_max: rmse.iter().copied().fold(0.0, f64::max),
-        ptm_bytes: (6 * texels as u64 * u64::from(fmt.bits)).div_ceil(8),
-        images_bytes: (texels as u64 * lights as u64).div_ceil(8),
-        shadow_map_bytes: 4096 * 4096 * 4 * lights as u64,
-    }
-}
-
-/// The fits of every texel of `sw` through the clocked fitter.
-pub fn fit_swatch(sw: &Swatch, bits: u32) -> Result<(Vec<[u64; 6]>, PtmFormat), String> {
-    let p = host_pinv(&sw.lights)?;
-    let fmt = PtmFormat::for_pinv(&p, bits)?;
-    let (q, _) = run_fitter(Sim::new(Fitter604::new(p, fmt)?), &sw.samples);
-    Ok((q, fmt))
-}
-
-/// The report's swatch: a 32 x 32 woven cloth fitted under a 4 x 12 dome, then lit from four
-/// directions at 30 degrees that are not in the dome: the marched truth (top row) and the
-/// shader's visibility from the 8-bit PTM (bottom row), each `side` texels. Returns the
-/// pixels (row-major, 4 side x 2 side) and the fit's quality.
-pub fn swatch_picture() -> Result<(Vec<u8>, usize, PtmQuality), String> {
-    let side = 32;
-    let sw = Swatch::new(
-        side,
-        golden::ptm::woven(side, 2.5),
-        golden::ptm::dome(4, 12),
-    );
-    let (q, fmt) = fit_swatch(&sw, 8)?;
-    let qual = quality(&sw, &q, &fmt);
-    let w = 4 * side;
-    let mut px = vec![0u8; w * 2 * side];
-    for k in 0..4 {
-        let l = Light {
-            elevation: 30.0,
-            azimuth: 20.0 + 90.0 * k as f64,
-        };
-        let (u, v) = l.uv();
-        let (u, v) = ((u * 16384.0).round() as i64, (v * 16384.0).round() as i64);
-        for (t, qt) in q.iter().enumerate() {
-            let (x, y) = (t % side, t / side);
-            let truth = if golden::ptm::lit(&sw.heights, side, x, y, l) {
-                255
-            } else {
-                0
-            };
-            px[y * w + k * side + x] = truth;
-            px[(side + y) * w + k * side + x] = 255 - ref_k(&fmt, qt, u, v);
-        }
-    }
-    Ok((px, side, qual))
 }

@@ -385,7 +385,8 @@ pub fn volume() -> Result<UnitVectors, String> {
 /// The map chain: every shape of the testbench over the formula maps, 48 hashed pixels each
 /// (lambda over -4 ..= 4, vectors facing +z), through the clocked walker on the stub.
 pub fn mapchain() -> Result<UnitVectors, String> {
-    use crate::mapchain::{clocked, scene, Maps, Shape};
+    use crate::mapchain::{scene, Maps, Shape};
+    use crate::runs::mapchain::clocked;
     use units::mapchain::program::ChainRequest;
     use units::mapchain::walker_812::Pixel;
     let maps = Maps::formula();
@@ -843,7 +844,7 @@ pub fn vector_texture() -> formats::ccc::Ccc {
 }
 
 pub fn texture() -> Result<UnitVectors, String> {
-    use crate::texture::TexRequest;
+    use crate::runs::texture::TexRequest;
     use units::texmem::texture_unit_602::TexParams;
     let tex = vector_texture();
     // Two horizontal scanlines, then positions from an integer hash (a `newline` every 16).
@@ -876,7 +877,7 @@ pub fn texture() -> Result<UnitVectors, String> {
         let mut p = TexParams::new(32, 32);
         p.cache = cache;
         p.lookahead = look;
-        let run = crate::texture::run_texread(&tex, p, &reqs, 1, None)?;
+        let run = crate::runs::texture::run_texread(&tex, p, &reqs, 1, None)?;
         for (k, r) in reqs.iter().enumerate() {
             rows.push((
                 vec![mode, u64::from(r.u), u64::from(r.v), u64::from(r.newline)],

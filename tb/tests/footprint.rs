@@ -185,7 +185,7 @@ fn the_testbench_passes_with_full_coverage() {
 fn footprint_assembly_beats_trilinear_on_tilted_planes() {
     let p = SetupParams::default();
     for tilt in [0.0, 60.0, 75.0, 85.0] {
-        let r = tb::footprint::quality(tilt, &p).unwrap();
+        let r = tb::runs::footprint::quality(tilt, &p).unwrap();
         eprintln!("{r:?}");
         assert!(r.pixels > 1000, "{r:?}");
         if tilt == 0.0 {

@@ -1,7 +1,8 @@
 //! Map linking (section 14) with detail, reflectance and environment maps: the regress
 //! testbench, the document's timings, and the detail path's properties.
 
-use tb::mapchain::{expectations, pixels, scene, timings, Maps, Scene, Shape, WalkerTb};
+use tb::mapchain::{expectations, pixels, scene, Maps, Scene, Shape, WalkerTb};
+use tb::runs::mapchain::timings;
 use units::mapchain::drf_812::{DetailMode, DrfFile, Kind};
 use units::mapchain::program::{ChainRequest, Fetch, Program, State};
 use units::mapchain::walker_812::walk_pixel;

@@ -2,9 +2,8 @@
 //! that fails on the printed form, and the fit's quality.
 
 use golden::ptm::dome;
-use tb::ptm::{
-    fit_swatch, golden_fit, host_pinv, quality, ref_fit, PtmFitterTb, PtmShaderTb, Swatch,
-};
+use tb::ptm::{golden_fit, host_pinv, ref_fit, PtmFitterTb, PtmShaderTb, Swatch};
+use tb::runs::ptm::{fit_swatch, quality};
 use units::ptm::shader_608::occlusion_at;
 use units::ptm::texture_612::PtmFormat;
 

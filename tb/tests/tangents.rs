@@ -3,7 +3,8 @@
 //! opposite handedness, degenerate UVs never NaN.
 
 use golden::tangents::{cross, dot};
-use tb::tangents::{frames, Mode, TangentSetupTb};
+use tb::runs::tangents::{frames, Mode};
+use tb::tangents::TangentSetupTb;
 
 #[test]
 fn the_testbench_passes_with_full_coverage() {

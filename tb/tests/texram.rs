@@ -353,7 +353,7 @@ fn the_chip_waveform_has_one_scope_per_unit() {
 
 #[test]
 fn the_documents_pixel_rates_come_from_the_page_registers() {
-    let f = tb::texram::figures();
+    let f = tb::runs::texram::figures();
     let rate = |what: &str| {
         f.iter()
             .find(|x| x.what.starts_with(what))

@@ -140,7 +140,7 @@ fn video_needing_exactly_the_row_buffers_there_are_does_not_overrun() {
 #[test]
 fn video_at_25_frames_a_second_costs_the_rasterizer_under_one_percent() {
     use units::texram::{Border, Drf};
-    let c = tb::texram_video::video_cost(1024, 512, 25).unwrap();
+    let c = tb::runs::texram_video::video_cost(1024, 512, 25).unwrap();
     eprintln!("{c:?}: {:.3} % of the accesses lost", 100.0 * c.lost());
     assert_eq!(c.error, 0);
     assert_eq!(c.frame_cycles, 8_000_000);

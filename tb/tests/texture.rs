@@ -6,8 +6,8 @@
 use formats::ccc::Ccc;
 use hdl::kernel::Sim;
 use proptest::prelude::*;
+use tb::runs::texture::{drive, drive_raster, run_texread, TexRequest};
 use tb::texture::reference_filter;
-use tb::texture::{drive, drive_raster, run_texread, TexRequest};
 use units::texmem::bilinear_622::lerp2;
 use units::texmem::cache_614::Lookahead;
 use units::texmem::ccc_decode_608::CccBlock;
@@ -158,7 +158,7 @@ fn bilinear_622_arithmetic_exhaustive_over_weights() {
     }
 }
 
-fn cycles(tex: &Ccc, p: TexParams, pts: &[(u32, u32)]) -> tb::texture::TexRun {
+fn cycles(tex: &Ccc, p: TexParams, pts: &[(u32, u32)]) -> tb::runs::texture::TexRun {
     let reqs: Vec<TexRequest> = pts
         .iter()
         .map(|&(x, y)| TexRequest {
@@ -289,7 +289,7 @@ fn a_newline_request_does_not_prefetch() {
 
 #[test]
 fn the_shadow_cache_splits_misses() {
-    use tb::texture::{MissKind, Shadow};
+    use tb::runs::texture::{MissKind, Shadow};
     let mut s = Shadow::new(4);
     assert_eq!(s.reference((0, 0), false), Some(MissKind::Cold));
     assert_eq!(s.reference((2, 0), false), Some(MissKind::Cold));

@@ -1,7 +1,8 @@
 //! Volume rendering on the TEXRAM (section 13): the regress testbench, the document's two
 //! timings from the page-register model, and the linear-field properties.
 
-use tb::volume::{ref_sample, timings, Axis};
+use tb::runs::volume::{timings, Axis};
+use tb::volume::ref_sample;
 use units::volume::layout::{Mode, Order, VolumeParams};
 
 /// The testbench over every configuration with the schedule check: bit-exact against the

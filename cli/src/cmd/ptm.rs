@@ -141,8 +141,8 @@ fn fit(
     let n = img.width as usize;
     let heights = img.pixels.iter().map(|&h| f64::from(h) * scale).collect();
     let sw = tb::ptm::Swatch::new(n, heights, ls);
-    let (q, fmt) = tb::ptm::fit_swatch(&sw, bits).map_err(input)?;
-    let qual = tb::ptm::quality(&sw, &q, &fmt);
+    let (q, fmt) = tb::runs::ptm::fit_swatch(&sw, bits).map_err(input)?;
+    let qual = tb::runs::ptm::quality(&sw, &q, &fmt);
     let ptm = Ptm {
         width: img.width,
         height: img.height,

@@ -5,7 +5,7 @@
 use super::{input, write_out, CmdError};
 use std::fmt::Write;
 use std::path::PathBuf;
-use tb::tangents::{frames, Mode};
+use tb::runs::tangents::{frames, Mode};
 
 /// Tangent frames of a mesh, one row per face corner (003).
 #[derive(Clone, Debug, clap::Args)]

@@ -4,7 +4,7 @@ use super::{input, write_out, CmdError};
 use formats::ccc::{self, Ccc};
 use std::fmt::Write;
 use std::path::{Path, PathBuf};
-use tb::texture::{run_texread, TexRequest};
+use tb::runs::texture::{run_texread, TexRequest};
 use units::texmem::cache_614::Lookahead;
 use units::texmem::layout::Layout;
 use units::texmem::texture_unit_602::TexParams;

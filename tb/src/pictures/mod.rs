@@ -5,6 +5,7 @@
 
 pub mod derivative;
 pub mod lighting;
+pub mod ptm;
 pub mod quad;
 pub mod texram;
 pub mod volume;
@@ -94,9 +95,9 @@ pub fn mipmap_picture(out: &std::path::Path) -> Result<(String, String), String>
 /// trilinear and footprint assembly, side by side, four times enlarged; pixels whose
 /// footprint is longer than 128 texels (not measured) dark red. Returns `(file, caption)`.
 pub fn footprint_picture(out: &std::path::Path) -> Result<(String, String), String> {
-    use crate::footprint::VIEW;
+    use crate::runs::footprint::VIEW;
     use units::footprint::setup_fig12::SetupParams;
-    let v = crate::footprint::view(85.0, &SetupParams::default())?;
+    let v = crate::runs::footprint::view(85.0, &SetupParams::default())?;
     let (s, gap) = (4u32, 8u32);
     let side = VIEW as u32 * s;
     let mut img = image::RgbImage::new(3 * side + 2 * gap, side);
@@ -156,7 +157,7 @@ pub fn mapchain_picture(out: &std::path::Path) -> Result<(String, String), Strin
 /// The PTM swatch lit from four directions: marched truth over the PTM's visibility, three
 /// times enlarged. Returns `(file, caption)`.
 pub fn ptm_picture(out: &std::path::Path) -> Result<(String, String), String> {
-    let (px, side, q) = crate::ptm::swatch_picture()?;
+    let (px, side, q) = ptm::swatch_picture()?;
     let grey: Vec<[u8; 3]> = px.iter().map(|&c| [c; 3]).collect();
     let img = enlarged(&grey, 4 * side as u32, 3);
     let f = "ptm_swatch.png";
@@ -238,7 +239,7 @@ fn memory_plots(
                 cache: bool,
                 look: &str,
                 interval: u32,
-                f: &dyn Fn(&crate::texture::TexReadStats) -> f64| {
+                f: &dyn Fn(&crate::runs::texture::TexReadStats) -> f64| {
         traces
             .iter()
             .map(|t| {
@@ -254,9 +255,9 @@ fn memory_plots(
             })
             .collect::<Vec<f64>>()
     };
-    let hit = |s: &crate::texture::TexReadStats| 100.0 * s.hit_rate;
-    let mpx = |s: &crate::texture::TexReadStats| s.pixels_per_second / 1e6;
-    let pf = |s: &crate::texture::TexReadStats| s.page_faults_per_scanline;
+    let hit = |s: &crate::runs::texture::TexReadStats| 100.0 * s.hit_rate;
+    let mpx = |s: &crate::runs::texture::TexReadStats| s.pixels_per_second / 1e6;
+    let pf = |s: &crate::runs::texture::TexReadStats| s.page_faults_per_scanline;
     let plots = [
         (
             "texture_hit_rate.svg",

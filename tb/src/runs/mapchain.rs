@@ -1,10 +1,13 @@
 //! `texrtl mapchain`: pixels through the clocked chain walker 812 over the TEXRAM stub loaded
-//! with a scene's maps, perhaps traced.
+//! with a scene's maps, perhaps traced; and section 14's timing claims measured on the clocked
+//! walker, which the testbench's conclusion holds against the document.
 
-use crate::mapchain::{clocked_sim, Scene, CYCLE_PS, NAME, SLOT_CYCLES};
+use crate::mapchain::{scene, Maps, Scene, Shape, CYCLE_PS, NAME, SLOT_CYCLES};
+use hdl::kernel::{Sim, Trace};
 use units::mapchain::program::ChainRequest;
 use units::mapchain::walker_812::{ChainResult, MapChain812};
-use verif::Workload;
+use units::texram::stub::TexramStub;
+use verif::{Driver, Stimulus, StreamDriver, Workload};
 
 /// What `texrtl mapchain` writes to its statistics.
 #[derive(Clone, Debug, Default, serde::Serialize)]
@@ -48,4 +51,114 @@ pub fn run_mapchain(
         ns_per_pixel: ns / px.len().max(1) as f64,
     };
     Ok((out, st))
+}
+/// One of section 14's timing claims, measured on the clocked walker.
+#[derive(Clone, Debug)]
+pub struct Timing {
+    pub what: &'static str,
+    pub pixels: usize,
+    pub accesses: f64,
+    pub faults: f64,
+    pub ns: f64,
+    /// The document's figure, when it gives one.
+    pub document_ns: Option<f64>,
+}
+
+/// The clocked walker over the stub at full rate: the cycles from the first pixel taken to
+/// the last result, and the results.
+pub fn clocked(sc: &Scene, px: &[ChainRequest]) -> Result<(u64, Vec<ChainResult>), String> {
+    let sim = Sim::new(MapChain812::new(sc.file.clone(), sc.stub()?, SLOT_CYCLES)?);
+    clocked_sim(sim, px).map(|(c, r, _)| (c, r))
+}
+
+/// The walker over the stub in a (perhaps traced) simulation.
+pub type WalkerSim<T> = Sim<MapChain812<TexramStub>, T>;
+
+/// [`clocked`] on a given simulation, which it hands back.
+pub fn clocked_sim<T: Trace>(
+    mut sim: WalkerSim<T>,
+    px: &[ChainRequest],
+) -> Result<(u64, Vec<ChainResult>, WalkerSim<T>), String> {
+    sim.reset(2);
+    let (mut next, mut out, mut first) = (0usize, Vec::with_capacity(px.len()), None);
+    let mut port = StreamDriver::new(verif::stream!(MapChain812<TexramStub>, req));
+    for _ in 0..200 * (px.len() as u64 + 1) {
+        port.drive(&mut sim.dut, px.get(next));
+        sim.eval();
+        if next < px.len() && port.accepted(&sim.dut) {
+            first.get_or_insert(sim.cycle());
+            next += 1;
+        }
+        if sim.dut.out_valid.q().is_high() {
+            out.push(sim.dut.result());
+        }
+        sim.tick();
+        if out.len() == px.len() {
+            let cycles = sim.cycle() - 1 - first.unwrap_or(0);
+            return Ok((cycles, out, sim));
+        }
+    }
+    Err("the walker stalled".into())
+}
+
+/// Pixels along a texture row at `lambda`, a third of a texel apart, looking at one face.
+fn scanline(n: usize, lambda: i32) -> Vec<ChainRequest> {
+    (0..n)
+        .map(|i| ChainRequest {
+            drf: 0,
+            u: 300 + 85 * i as i32,
+            v: 9 << 8 | 0x40,
+            lambda,
+            n: [1200, -800, 16000],
+            eye: [2000, 1500, 16100],
+            face: 0,
+            i_d: 200,
+            i_s: 0,
+        })
+        .collect()
+}
+
+/// The chains of section 14's claims and the document's figures: texture + detail (4
+/// accesses, about 240 ns) and the longest chain (9 accesses, about 540 ns); beside them
+/// texture alone and texture + environment, for which the document gives accesses only.
+pub fn timings() -> Result<Vec<Timing>, String> {
+    let maps = Maps::new(&mut Stimulus::new(verif::Seed(15)));
+    let cases = [
+        ("texture, lambda 0.5", Shape::Texture, 128, None),
+        (
+            "texture + environment, lambda 0.5",
+            Shape::Environment,
+            128,
+            None,
+        ),
+        (
+            "texture + detail, lambda -2.5",
+            Shape::Detail,
+            -640,
+            Some(240.0),
+        ),
+        (
+            "longest chain, lambda -2.5",
+            Shape::Longest,
+            -640,
+            Some(540.0),
+        ),
+    ];
+    let n = 256;
+    cases
+        .into_iter()
+        .map(|(what, shape, lambda, document_ns)| {
+            let sc = scene(shape, &maps)?;
+            let (cycles, out) = clocked(&sc, &scanline(n, lambda))?;
+            let sum = |f: fn(&ChainResult) -> u32| out.iter().map(|r| f64::from(f(r))).sum::<f64>();
+            Ok(Timing {
+                what,
+                pixels: n,
+                accesses: sum(|r| r.accesses) / n as f64,
+                faults: sum(|r| r.faults) / n as f64,
+                ns: cycles as f64 * CYCLE_PS as f64 / 1000.0 / n as f64,
+                document_ns,
+            })
+        })
+        .collect()
 }

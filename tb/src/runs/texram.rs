@@ -1,10 +1,13 @@
 //! `texrtl texram`: requests back to back through the TEXRAM chip 802 holding a map, every
-//! result checked against the integer reference or the behavioural stub.
+//! result checked against the integer reference or the behavioural stub; and the document's
+//! pixel rates (section 5) measured on the chip, which the testbench's conclusion holds
+//! against the document.
 
 use crate::texram::{ref_border, sample_tex, RefMipmap, TexDriver, TexReq, CYCLE_PS};
+use hdl::kernel::Sim;
 use units::texram::clut_814::Clut;
 use units::texram::texram_802::{Texram802, TexramParams};
-use units::texram::Drf;
+use units::texram::{Border, Drf};
 use verif::{run, Event, PinMonitor, RunSpec, Workload};
 
 /// What `texrtl texram` measured (its `--stats`).
@@ -163,4 +166,131 @@ impl TexramStats {
             },
         }
     }
+}
+// ---------------------------------------------------------------------------------------
+// The document's pixel rates, measured on the chip from its page-register state.
+
+/// One measured rate against the document's.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Figure {
+    pub what: &'static str,
+    pub pixels: u64,
+    pub slots: u64,
+    /// Clock cycles from the first result to one slot after the last (the pixels' time).
+    pub cycles: u64,
+    pub pixels_per_second: f64,
+    /// The document's figure (pixels per second), where it gives one.
+    pub document: Option<f64>,
+}
+
+/// Runs `reqs` (DRF, u, v, lambda) back to back through `chip`: cycles from the first result
+/// (a warm-up request's) to the last, and the slots the chip counted after the warm-up.
+fn time_stream(chip: Texram802, reqs: &[(u8, i32, i32, i32)]) -> (u64, u64) {
+    let mut sim = Sim::new(chip);
+    sim.reset(2);
+    let (mut next, mut first, mut last, mut seen) = (0, None, 0, 0);
+    while seen < reqs.len() {
+        let d = &mut sim.dut;
+        d.req_valid.set_bool(next < reqs.len());
+        if let Some(&(drf, u, v, l)) = reqs.get(next) {
+            d.req_drf.set_bits(u64::from(drf));
+            d.req_u.set_raw(i64::from(u));
+            d.req_v.set_raw(i64::from(v));
+            d.req_lambda.set_raw(i64::from(l));
+        }
+        sim.eval();
+        if sim.dut.req_valid.is_high() && sim.dut.req_ready.is_high() {
+            next += 1;
+        }
+        if sim.dut.output.out_valid.q().is_high() {
+            first.get_or_insert(sim.cycle());
+            last = sim.cycle();
+            seen += 1;
+        }
+        sim.tick();
+    }
+    (last - first.unwrap_or(last), sim.dut.slots.q().bits())
+}
+
+/// A chip with a map in DRF 0 (1024 x 1024, or 512 x 512 to leave room for a second) and a
+/// 256 x 256 map in DRF 1 stored after it in every bank.
+fn figure_chip(log2: u32) -> Texram802 {
+    let mut chip = Texram802::new(TexramParams::default()).expect("default parameters");
+    let big = Drf::new(log2, log2, Border::Wrap);
+    let mut env = Drf::new(8, 8, Border::Clamp);
+    env.base_even = units::texram::banks_810::group_words(&big, 0);
+    env.base_odd = units::texram::banks_810::group_words(&big, 1);
+    chip.set_drf(0, big).expect("fits");
+    chip.set_drf(1, env).expect("fits");
+    let level0: Vec<u8> = (0..1 << 20).map(|k: u32| (k % 251) as u8).collect();
+    chip.load(0, &level0[..1 << (2 * log2)]).expect("loads");
+    if log2 < 10 {
+        chip.load(1, &level0[..1 << 16]).expect("loads");
+    }
+    chip
+}
+
+/// The rates of section 5, from the slots the chip takes: one pixel per hit access (33.3 M),
+/// scanlines of 8 pixels with 2 page faults (about 27 M), two accesses per pixel (texture and
+/// environment, 16.7 M without faults) and four (all colours from one chip, 8.3 M). The last
+/// row is what the page registers make of two maps in different rows of the same banks.
+pub fn figures() -> Vec<Figure> {
+    let texel = |x: i32| (x << 8) + 128;
+    let pixel = |u: i32, v: i32| (0u8, texel(u), texel(v), 0);
+    let mut out = Vec::new();
+    // `per` accesses per pixel; `reqs` after a warm-up access that opens rows far away.
+    let mut measure = |what, per: u64, reqs: Vec<(u8, i32, i32, i32)>, document: Option<f64>| {
+        // The two-map figure needs room for the second map.
+        let log2 = if document.is_none() { 9 } else { 10 };
+        let mut all = vec![pixel(0, 400)];
+        all.extend(&reqs);
+        let (cycles, slots) = time_stream(figure_chip(log2), &all);
+        let ns = cycles as f64 * CYCLE_PS as f64 / 1000.0;
+        let pixels = reqs.len() as u64 / per;
+        out.push(Figure {
+            what,
+            pixels,
+            slots: slots - 2,
+            cycles,
+            pixels_per_second: pixels as f64 / ns * 1e9,
+            document,
+        });
+    };
+    // Peak: a span along a scanline, every access in the rows the first opened.
+    let span: Vec<_> = (0..1000).map(|k| pixel(k % 500, 7)).collect();
+    measure("one access per pixel, no page fault", 1, span, Some(33.3e6));
+    // Scanlines of 8 pixels; each opens new rows at its start and once more half way.
+    let mut lines = Vec::new();
+    for s in 0..200 {
+        let v = 8 * s;
+        lines.extend((0..4).map(|k| pixel(100 + k, v)));
+        lines.extend((4..8).map(|k| pixel(100 + k, v + 2)));
+    }
+    measure(
+        "8 pixels and 2 page faults per scanline",
+        1,
+        lines,
+        Some(26.7e6),
+    );
+    // Two and four accesses per pixel in the open rows.
+    let two: Vec<_> = (0..2000).map(|k| pixel(k / 2 % 500, 7)).collect();
+    measure(
+        "2 accesses per pixel (texture + environment), no fault",
+        2,
+        two,
+        Some(16.7e6),
+    );
+    let four: Vec<_> = (0..4000).map(|k| pixel(k / 4 % 500, 7)).collect();
+    measure(
+        "4 accesses per pixel (all colours on one chip)",
+        4,
+        four,
+        Some(8.33e6),
+    );
+    // Texture (DRF 0) and environment (DRF 1) alternating: each access reopens its rows.
+    let alt: Vec<_> = (0..2000)
+        .map(|k| (k as u8 % 2, texel(k / 2 % 200), texel(7), 0))
+        .collect();
+    measure("texture + environment maps in different rows", 2, alt, None);
+    out
 }

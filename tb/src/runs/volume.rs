@@ -1,10 +1,13 @@
 //! `texrtl volume` and the ray caster's regression vectors: rays through the cycle-accurate ray
-//! caster of Figure 15, each sample checked against the integer reference.
+//! caster of Figure 15, each sample checked against the integer reference; and the document's
+//! timings from the page-register model (section 13), which the testbench's conclusion holds
+//! against the document.
 
 use crate::volume::{
-    drive_ray, ray_points, ray_ready, ref_sample, sample_ray, Ray, VolSample, CYCLE_PS, NAME,
+    count_slots, drive_ray, ray_points, ray_ready, ref_sample, sample_ray, Ray, VolSample,
+    CYCLE_PS, NAME,
 };
-use units::volume::layout::{Mode, VolumeParams};
+use units::volume::layout::{Mode, Order, VolumeParams, POS_FRAC};
 use units::volume::ray_caster_fig15::RayCaster;
 use verif::{run, Event, PinDriver, PinMonitor, RunSpec, Workload};
 
@@ -95,4 +98,98 @@ pub fn run_volume(
     };
     work.finish(sim).map_err(crate::RunError::Waveform)?;
     Ok(VolumeRun { samples, stats })
+}
+// The document's timings from the page-register model (section 13, timing of section 5).
+
+/// A ray direction for the timing runs: rays along this axis, one resample per voxel.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Axis {
+    X,
+    Y,
+    Z,
+}
+
+/// One timing: what, samples, accesses, slots, milliseconds, the document's.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Timing {
+    pub what: &'static str,
+    pub samples: u64,
+    pub accesses: u64,
+    pub slots: u64,
+    pub ms: f64,
+    pub document_ms: f64,
+}
+
+/// One resample per voxel of `(x0..x1) x Y x Z` at the voxel centres shifted by half a voxel
+/// (so every point interpolates), rays along `axis`, the rays in order of the other two axes;
+/// each point with its index along its ray.
+fn voxel_walk(
+    (x0, x1): (u32, u32),
+    (ny, nz): (u32, u32),
+    axis: Axis,
+) -> impl Iterator<Item = ([i64; 3], u64)> {
+    let half = 1i64 << (POS_FRAC - 1);
+    let at = move |x: u32, y: u32, z: u32| [x, y, z].map(|c| (i64::from(c) << POS_FRAC) + half);
+    let (a, b, c) = match axis {
+        Axis::X => (x1 - x0, ny, nz),
+        Axis::Y => (ny, x1 - x0, nz),
+        Axis::Z => (nz, x1 - x0, ny),
+    };
+    (0..c).flat_map(move |k| {
+        (0..b).flat_map(move |j| {
+            (0..a).map(move |i| {
+                let p = match axis {
+                    Axis::X => at(x0 + i, j, k),
+                    Axis::Y => at(x0 + j, i, k),
+                    Axis::Z => at(x0 + j, k, i),
+                };
+                (p, u64::from(i))
+            })
+        })
+    })
+}
+
+/// Section 13's two timings with the voxel store in `order`, rows of `row_words`, rays along
+/// `axis`: RGBA 64x128x128 pre-classified on four chips in lock-step (each chip one
+/// component, the same addresses, so one chip's time), one resample per voxel in value mode
+/// (document: about 70 ms); the original 256x128x128 with gradients, four chips in parallel,
+/// each holding a slab of 64 + 2 overlap voxels along x (the central differences at the slab
+/// faces need the neighbour's voxels) and resampling its 64 (document: about 0.28 s).
+pub fn timings(order: Order, row_words: u32, axis: Axis) -> Result<[Timing; 2], String> {
+    let p = |x| VolumeParams {
+        order,
+        row_words,
+        ..VolumeParams::new(x, 128, 128)
+    };
+    let rgba = p(64);
+    rgba.validate()?;
+    let slab = p(66);
+    slab.validate()?;
+    let figure = |what, v: &VolumeParams, mode, walk: (u32, u32), document_ms| {
+        let (accesses, slots, _) = count_slots(v, mode, voxel_walk(walk, (128, 128), axis));
+        Timing {
+            what,
+            samples: u64::from(walk.1 - walk.0) * 128 * 128,
+            accesses,
+            slots,
+            ms: slots as f64 * 30e-6,
+            document_ms,
+        }
+    };
+    Ok([
+        figure(
+            "RGBA 64x128x128, 4 chips in lock-step, value mode",
+            &rgba,
+            Mode::Value,
+            (0, 64),
+            70.0,
+        ),
+        figure(
+            "256x128x128 with gradients, 4 chips in parallel (slabs of 64 + 2)",
+            &slab,
+            Mode::Gradient,
+            (1, 65),
+            280.0,
+        ),
+    ])
 }
