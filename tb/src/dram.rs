@@ -3,7 +3,7 @@
 
 use hdl::kernel::{Sim, Trace};
 use serde::Serialize;
-use std::path::{Path, PathBuf};
+use std::path::PathBuf;
 use units::texmem::control_607::DramCtrl;
 use units::texmem::dram_604::DramParams;
 use verif::{
@@ -31,35 +31,6 @@ pub struct DramStats {
     pub violations: u64,
     /// Reads whose data differed from the DRAM's contents.
     pub data_errors: u64,
-}
-
-/// Reads a CSV with header `addr` of decimal word addresses below `words`.
-pub fn read_trace(path: &Path, words: u64) -> Result<Vec<u64>, String> {
-    let text = std::fs::read_to_string(path).map_err(|e| format!("{}: {e}", path.display()))?;
-    let mut lines = text.lines().enumerate();
-    match lines.next() {
-        Some((_, h)) if h.trim() == "addr" => {}
-        _ => return Err(format!("{}:1: header is not 'addr'", path.display())),
-    }
-    let mut v = Vec::new();
-    for (i, l) in lines {
-        let l = l.trim();
-        if l.is_empty() {
-            continue;
-        }
-        let a: u64 = l
-            .parse()
-            .map_err(|_| format!("{}:{}: '{l}' is not a word address", path.display(), i + 1))?;
-        if a >= words {
-            return Err(format!(
-                "{}:{}: address {a} beyond the DRAM's {words} words",
-                path.display(),
-                i + 1
-            ));
-        }
-        v.push(a);
-    }
-    Ok(v)
 }
 
 /// One read request: a word address, and whether the requester leaves the bus idle for a

@@ -276,6 +276,87 @@ pub fn border_id(p: &BumpParams) -> i64 {
     }
 }
 
+/// The scoreboard of the accuracy criterion: every component within [`COMPONENT_TOL`] of the
+/// golden normal and the angle within [`ANGLE_TOL_DEG`]; outputs in format `nf`.
+fn scoreboard(nf: Format) -> Scoreboard<([f64; 3], f64), RawNormal> {
+    Scoreboard::new(move |(g, _): &([f64; 3], f64), a: &RawNormal| {
+        let d = a.n.map(|x| real(x, nf));
+        let err = (0..3).map(|k| (d[k] - g[k]).abs()).fold(0.0, f64::max);
+        let ang = g::angle_deg(*g, d);
+        if err <= COMPONENT_TOL && ang <= ANGLE_TOL_DEG {
+            Ok(())
+        } else {
+            Err(format!(
+                "normal {d:?} vs golden {g:?}: component error {err:.3e}, angle {ang:.2e} deg"
+            ))
+        }
+    })
+}
+
+/// A sample's bins in [`coverage_model`] on a `size` (width, height) map of heights `fine`.
+fn coverage_bins(p: &BumpParams, fine: &Heights, (w, h): (i64, i64), s: &RawSample) -> [i64; 6] {
+    let tf = p.texel_fmt();
+    let tmax = tf.max_raw() as f64 / f64::from(1u32 << tf.frac());
+    let fb = p.pos_frac - p.blend_bits;
+    let blend = |x: i64| {
+        let b = (x >> fb) & ((1 << p.blend_bits) - 1);
+        if b == 0 {
+            0
+        } else if b == (1 << p.blend_bits) - 1 {
+            2
+        } else {
+            1
+        }
+    };
+    let (iu, iv) = (s.u >> p.pos_frac, s.v >> p.pos_frac);
+    let edge = iu <= 0 || iv <= 0 || iu >= w - 1 || iv >= h - 1;
+    let gb = golden_border(p);
+    let mut ext = 0;
+    for dj in -1..=1 {
+        for di in -1..=1 {
+            let t = fine.texel(iu + di, iv + dj, gb);
+            ext |= i64::from(t == 0.0) | (i64::from(t == tmax) << 1);
+        }
+    }
+    [
+        border_id(p),
+        variant_id(p),
+        blend(s.u),
+        blend(s.v),
+        i64::from(edge),
+        ext,
+    ]
+}
+
+/// The run's time against the pipeline's: one sample a clock when `full_rate`, and every
+/// sample out exactly `latency` cycles after it went in.
+fn check_timing(
+    res: &mut TbResult,
+    r: Result<verif::RunStats, verif::Timeout>,
+    n: u64,
+    latency: u64,
+    full_rate: bool,
+) {
+    let st = match r {
+        Ok(st) => st,
+        Err(t) => return res.failures.push(t.to_string()),
+    };
+    res.cycles = st.cycles;
+    res.latency = st.max_latency;
+    if full_rate && n > 0 && st.cycles != n + latency {
+        res.failures.push(format!(
+            "{} cycles for {n} samples: not one per clock",
+            st.cycles
+        ));
+    }
+    if n > 0 && (st.min_latency != Some(latency) || st.max_latency != Some(latency)) {
+        res.failures.push(format!(
+            "latency {:?}..{:?}, expected {latency}",
+            st.min_latency, st.max_latency
+        ));
+    }
+}
+
 fn drive<T: Trace + ProbeSink>(
     sim: Sim<NormalPipeline, T>,
     cfg: &NormalsRun,
@@ -299,19 +380,7 @@ fn drive<T: Trace + ProbeSink>(
     let mut cov = coverage_model();
     let hf = p.height_out_fmt();
     let mut max_height = 0.0f64;
-    let mut sb: Scoreboard<([f64; 3], f64), RawNormal> =
-        Scoreboard::new(move |(g, _): &([f64; 3], f64), a: &RawNormal| {
-            let d = a.n.map(|x| real(x, nf));
-            let err = (0..3).map(|k| (d[k] - g[k]).abs()).fold(0.0, f64::max);
-            let ang = g::angle_deg(*g, d);
-            if err <= COMPONENT_TOL && ang <= ANGLE_TOL_DEG {
-                Ok(())
-            } else {
-                Err(format!(
-                    "normal {d:?} vs golden {g:?}: component error {err:.3e}, angle {ang:.2e} deg"
-                ))
-            }
-        });
+    let mut sb = scoreboard(nf);
     let n = raws.len() as u64;
     let (mut outputs, mut goldens) = (
         Vec::with_capacity(raws.len()),
@@ -323,11 +392,7 @@ fn drive<T: Trace + ProbeSink>(
     } else {
         Pacing::random(cfg.idle_per_mille, cfg.seed)
     };
-    let (w, h) = (cfg.map.width() as i64, cfg.map.height() as i64);
-    let pf = p.pos_frac;
-    let tf = p.texel_fmt();
-    let tmax = tf.max_raw() as f64 / f64::from(1u32 << tf.frac());
-    let fb = p.pos_frac - p.blend_bits;
+    let size = (cfg.map.width() as i64, cfg.map.height() as i64);
     let r = run_scored(
         &mut sim,
         &mut PinDriver::new(drive_sample),
@@ -337,34 +402,7 @@ fn drive<T: Trace + ProbeSink>(
         |sim, ev| match ev {
             Scored::Sent { txn, .. } => {
                 sb.expect(golden_normal(&p, fine, coarse, txn));
-                let blend = |x: i64| {
-                    let b = (x >> fb) & ((1 << p.blend_bits) - 1);
-                    if b == 0 {
-                        0
-                    } else if b == (1 << p.blend_bits) - 1 {
-                        2
-                    } else {
-                        1
-                    }
-                };
-                let (iu, iv) = (txn.u >> pf, txn.v >> pf);
-                let edge = iu <= 0 || iv <= 0 || iu >= w - 1 || iv >= h - 1;
-                let gb = golden_border(&p);
-                let mut ext = 0;
-                for dj in -1..=1 {
-                    for di in -1..=1 {
-                        let t = fine.texel(iu + di, iv + dj, gb);
-                        ext |= i64::from(t == 0.0) | (i64::from(t == tmax) << 1);
-                    }
-                }
-                cov.sample(&[
-                    border_id(&p),
-                    variant_id(&p),
-                    blend(txn.u),
-                    blend(txn.v),
-                    i64::from(edge),
-                    ext,
-                ]);
+                cov.sample(&coverage_bins(&p, fine, size, txn));
             }
             Scored::Received { cycle, txn } => {
                 let out = sb.observe(cycle, txn);
@@ -389,28 +427,7 @@ fn drive<T: Trace + ProbeSink>(
         },
     );
     res.transactions = n;
-    match r {
-        Ok(st) => {
-            res.cycles = st.cycles;
-            res.latency = st.max_latency;
-            if cfg.idle_per_mille == 0 && n > 0 && st.cycles != n + latency as u64 {
-                res.failures.push(format!(
-                    "{} cycles for {n} samples: not one per clock",
-                    st.cycles
-                ));
-            }
-            if n > 0
-                && (st.min_latency != Some(latency as u64)
-                    || st.max_latency != Some(latency as u64))
-            {
-                res.failures.push(format!(
-                    "latency {:?}..{:?}, expected {latency}",
-                    st.min_latency, st.max_latency
-                ));
-            }
-        }
-        Err(t) => res.failures.push(t.to_string()),
-    }
+    check_timing(&mut res, r, n, latency as u64, cfg.idle_per_mille == 0);
     if cfg.check_accuracy {
         res.mismatches = sb.mismatch_count();
         for m in sb.mismatches().iter().take(10) {
