@@ -328,8 +328,8 @@ fn coverage_bins(p: &BumpParams, fine: &Heights, (w, h): (i64, i64), s: &RawSamp
     ]
 }
 
-/// The run's time against the pipeline's: one sample a clock when `full_rate`, and every
-/// sample out exactly `latency` cycles after it went in.
+/// The run's outcome ([`TbResult::ran`]) and its time against the pipeline's: one sample a
+/// clock when `full_rate`, and every sample out exactly `latency` cycles after it went in.
 fn check_timing(
     res: &mut TbResult,
     r: Result<verif::RunStats, verif::Timeout>,
@@ -337,11 +337,10 @@ fn check_timing(
     latency: u64,
     full_rate: bool,
 ) {
-    let st = match r {
-        Ok(st) => st,
-        Err(t) => return res.failures.push(t.to_string()),
+    res.ran(&r);
+    let Ok(st) = r else {
+        return;
     };
-    res.cycles = st.cycles;
     res.latency = st.max_latency;
     if full_rate && n > 0 && st.cycles != n + latency {
         res.failures.push(format!(

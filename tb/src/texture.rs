@@ -7,8 +7,8 @@
 //! with the `f64` golden model of the decoded texture (bound [`golden::texture::ERROR_BOUND_LSB`]);
 //! the golden model of the original (uncompressed) texture measures the compression error,
 //! reported separately. Misses are split into cold, capacity and conflict misses by a
-//! fully-associative LRU shadow cache ([`crate::runs::texture::Shadow`]) of the same four blocks, fed the same block references
-//! (Hakura and Gupta's method).
+//! fully-associative LRU shadow cache ([`crate::runs::texture::Shadow`]) of the same four
+//! blocks, fed the same block references (Hakura and Gupta's method).
 
 use crate::runs::texture::{run_texread_checked, TexReadStats, TexRequest, TexRun};
 use formats::ccc::Ccc;
