@@ -55,8 +55,15 @@ pub fn locate(drf: &Drf, k: u32, x: u32, y: u32) -> (usize, u32) {
 }
 
 /// Writes level `k` of the map of `d` (row-major texels of the level's size) into `banks`,
-/// each texel where [`locate`] says; an error names the level that does not fit.
+/// each texel where [`locate`] says; an error names a level the map does not have or whose
+/// texels do not fit.
 pub fn store_level(banks: &mut [Vec<u8>], d: &Drf, k: u32, texels: &[u8]) -> Result<(), String> {
+    if k > d.max_level() {
+        return Err(format!(
+            "level {k}: the map has levels 0..={}",
+            d.max_level()
+        ));
+    }
     let (w, h) = d.level_size(k);
     if texels.len() != (w * h) as usize {
         return Err(format!("level {k}: {} texels for {w}x{h}", texels.len()));

@@ -273,12 +273,6 @@ impl Texram802 {
     /// Writes level `lv` of DRF `k`'s map (levels made by the host, e.g. an index map's).
     pub fn write_level(&mut self, k: usize, lv: u32, texels: &[u8]) -> Result<(), String> {
         let d = self.set(k)?;
-        if lv > d.max_level() {
-            return Err(format!(
-                "level {lv}: the map has levels 0..={}",
-                d.max_level()
-            ));
-        }
         store_level(&mut self.memory.banks, &d, lv, texels).map_err(|e| format!("drf {k}: {e}"))
     }
 
