@@ -220,6 +220,7 @@ impl FrameStore {
 }
 
 impl Regs for FrameStore {
+    #[inline]
     fn tick_regs(&mut self, reset: bool) {
         if !reset && self.own() {
             self.write_lines();
@@ -249,6 +250,7 @@ pub struct Completed {
 }
 
 impl Regs for Completed {
+    #[inline]
     fn tick_regs(&mut self, reset: bool) {
         self.cycle += 1;
         let next = self.next.take();

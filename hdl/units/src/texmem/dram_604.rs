@@ -162,6 +162,7 @@ impl ViolationLog {
 }
 
 impl Regs for ViolationLog {
+    #[inline]
     fn tick_regs(&mut self, reset: bool) {
         self.cycle += 1;
         if reset {
