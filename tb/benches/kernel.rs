@@ -1,9 +1,9 @@
 //! Speed of the RTL kernel and the fixed-point layer (criterion). Run with
-//! `cargo bench -p texrtl --bench kernel`; figures are recorded in the user guide (docs/guide/speed.md).
+//! `cargo bench -p texrtl-tb --bench kernel`; figures are recorded in the user guide (docs/guide/speed.md).
 
 use criterion::{criterion_group, criterion_main, BatchSize, Criterion, Throughput};
 use hdl::fx::{Format, Fx, Overflow, Quant};
-use hdl::kernel::{Sim, Trace};
+use hdl::kernel::{Reg, Sim, Trace};
 use std::hint::black_box;
 use tb::maps::builtin;
 use tb::mipmap::synthetic_video;
@@ -68,6 +68,32 @@ fn kernel(c: &mut Criterion) {
     });
     g.finish();
     let _ = std::fs::remove_dir_all(&dir);
+}
+
+/// The clock edge's cost per register: 70 registers (about unit 602's count) committed as the
+/// kernel commits them, a load and a store each wherever the registers lie; and, for scale, the
+/// same 70 words copied from one array into another in one block.
+fn edge(c: &mut Criterion) {
+    const N: usize = 70;
+    let mut g = c.benchmark_group("edge");
+    g.throughput(Throughput::Elements(N as u64));
+    g.bench_function("commit_70_registers", |b| {
+        let mut regs: Vec<Reg> = (0..N).map(|_| Reg::new("r", Format::uint(16))).collect();
+        b.iter(|| {
+            for r in regs.iter_mut() {
+                r.tick(false);
+            }
+            black_box(&mut regs);
+        })
+    });
+    g.bench_function("copy_70_words", |b| {
+        let (mut q, d) = ([0u64; N], [1u64; N]);
+        b.iter(|| {
+            q.copy_from_slice(black_box(&d));
+            black_box(&mut q);
+        })
+    });
+    g.finish();
 }
 
 fn fixed_point(c: &mut Criterion) {
@@ -304,6 +330,7 @@ fn tracer(c: &mut Criterion) {
 criterion_group!(
     benches,
     kernel,
+    edge,
     tracer,
     fixed_point,
     normal_pipeline,
