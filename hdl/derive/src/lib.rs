@@ -24,7 +24,8 @@
 //!                                    // error unless `#[skip]` says it is left out on purpose
 //! }
 //! // `#[module(kind = "...", enable = self.busy.is_high())]`: a clock enable, the edge of
-//! // every register and child skipped while it is low (reset still applies).
+//! // every register and child skipped while it is low (reset still applies); in debug
+//! // builds a skipped edge with a register's next value pending panics.
 //! impl Blend { fn eval(&mut self) { ... } }
 //! ```
 //!
@@ -519,7 +520,13 @@ fn expand(ast: &DeriveInput) -> syn::Result<Tokens> {
     };
     let name = &ast.ident;
     let (impl_g, ty_g, where_g) = ast.generics.split_for_impl();
-    let gate = enable.map(|e| quote!(if !reset && !(#e) { return; }));
+    let gate = enable.map(|e| {
+        quote!(if !reset && !(#e) {
+            #[cfg(debug_assertions)]
+            #hdl::kernel::check_gated_edge(self);
+            return;
+        })
+    });
     let mut instance = match &fixed_instance {
         Some(i) => quote!(#i),
         None => quote!(#kind),

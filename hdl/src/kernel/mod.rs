@@ -17,7 +17,7 @@ mod typed;
 
 pub use delay::Delay;
 pub use mem::Mem;
-pub use module::{BitsOf, Dir, Module, Visitor};
+pub use module::{check_gated_edge, BitsOf, Dir, Module, Visitor};
 pub use signal::{Reg, Signal};
 pub use sim::{instances, narrowings, signal_dirs, signal_paths, NoTrace, Sim, Trace};
 pub use stream::{Payload, Stream};

@@ -27,9 +27,15 @@ pub trait Visitor {
     fn leave(&mut self);
     /// A signal of the current instance.
     fn signal(&mut self, dir: Dir, s: &Signal);
-    /// A register of the current instance (its current value is traced).
+    /// A register of the current instance: its current value `q` (what is traced) and the
+    /// next value its edge will commit.
+    fn register(&mut self, q: &Signal, next: u64) {
+        let _ = next;
+        self.signal(Dir::Reg, q);
+    }
+    /// A [`Reg`] of the current instance, visited as [`Visitor::register`].
     fn reg(&mut self, r: &Reg) {
-        self.signal(Dir::Reg, r.q());
+        self.register(r.q(), r.next_bits());
     }
     /// A named narrowing of the current instance: for numeric coverage; by default its
     /// overflow flag is a wire of the instance (so tracing shows it).
@@ -100,4 +106,42 @@ macro_rules! signals {
     };
     (@one $v:expr, Reg, $s:expr) => { $v.reg(&$s) };
     (@one $v:expr, $dir:ident, $s:expr) => { $v.signal($crate::kernel::Dir::$dir, &$s) };
+}
+
+/// The check behind a clock enable (`#[module(enable = ...)]`), run by the derived edge in
+/// debug builds each time the enable skips it: no register below `m` may hold a next value
+/// other than its current one. `eval` writing a register while its module's enable is low
+/// would have that write commit at some later edge, silently; this panics instead, naming the
+/// register.
+pub fn check_gated_edge(m: &dyn Module) {
+    #[derive(Default)]
+    struct Pending {
+        scope: Vec<String>,
+        found: Option<(String, u64, u64)>,
+    }
+    impl Visitor for Pending {
+        fn enter(&mut self, instance: &str, _: &str) {
+            self.scope.push(instance.to_string());
+        }
+        fn leave(&mut self) {
+            self.scope.pop();
+        }
+        fn signal(&mut self, _: Dir, _: &Signal) {}
+        fn register(&mut self, q: &Signal, next: u64) {
+            if self.found.is_none() && next != q.bits() {
+                let path = format!("{}.{}", self.scope.join("."), q.name());
+                self.found = Some((path, q.bits(), next));
+            }
+        }
+    }
+    let mut p = Pending::default();
+    m.visit(&mut p);
+    if let Some((path, q, next)) = p.found {
+        panic!(
+            "clock enable of '{}': the edge was skipped while '{path}' holds {q:#x} with the \
+             next value {next:#x} pending (eval wrote it while the enable was low; it would \
+             commit at a later edge)",
+            m.instance()
+        );
+    }
 }

@@ -265,7 +265,7 @@ impl<F: Fmt> Regs for RegOf<F> {
     }
     /// Visited as a register: its current value, as [`Visitor::reg`] visits a [`Reg`].
     fn visit_regs(&self, v: &mut dyn Visitor) {
-        v.signal(Dir::Reg, &self.q.s);
+        v.register(&self.q.s, self.d);
     }
     #[inline]
     fn bits_regs<G: FnMut(u64)>(&self, f: &mut G) {

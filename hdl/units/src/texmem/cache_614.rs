@@ -129,9 +129,14 @@ impl Entry {
 /// order: `touch` (entries a request used: their `prefetched` bits clear), `invalidate` (every
 /// entry, for the cache-off mode), `write` with `write_bx`, `write_by`, `write_data`,
 /// `write_prefetched` (a filled line; it wins over the others for its entry). Lookups read
-/// the registered state ([`TextureCache::holds`], [`TextureCache::line`]).
+/// the registered state ([`TextureCache::holds`], [`TextureCache::line`]). The entries change
+/// only on a touch, an invalidation or a write, the cache's clock enable: in a cycle without
+/// one its edge is skipped.
 #[derive(Clone, Debug, Module)]
-#[module(kind = "cache_614")]
+#[module(
+    kind = "cache_614",
+    enable = self.touch.bits() != 0 || self.invalidate.is_high() || self.write.is_high()
+)]
 pub struct TextureCache {
     #[instance]
     name: String,
