@@ -109,34 +109,35 @@ macro_rules! signals {
 }
 
 /// The check behind a clock enable (`#[module(enable = ...)]`), run by the derived edge in
-/// debug builds each time the enable skips it: no register below `m` may hold a next value
+/// debug builds each time the enable skips it: no register below `m` (a [`Reg`] or a
+/// `RegOf`; a `Regs` type of your own commits as its `tick_regs` says) may hold a next value
 /// other than its current one. `eval` writing a register while its module's enable is low
 /// would have that write commit at some later edge, silently; this panics instead, naming the
 /// register.
 pub fn check_gated_edge(m: &dyn Module) {
+    /// Counts signals in visit order up to the first register with a pending next value.
     #[derive(Default)]
     struct Pending {
-        scope: Vec<String>,
-        found: Option<(String, u64, u64)>,
+        seen: usize,
+        found: Option<(usize, u64, u64)>,
     }
     impl Visitor for Pending {
-        fn enter(&mut self, instance: &str, _: &str) {
-            self.scope.push(instance.to_string());
+        fn enter(&mut self, _: &str, _: &str) {}
+        fn leave(&mut self) {}
+        fn signal(&mut self, _: Dir, _: &Signal) {
+            self.seen += 1;
         }
-        fn leave(&mut self) {
-            self.scope.pop();
-        }
-        fn signal(&mut self, _: Dir, _: &Signal) {}
         fn register(&mut self, q: &Signal, next: u64) {
             if self.found.is_none() && next != q.bits() {
-                let path = format!("{}.{}", self.scope.join("."), q.name());
-                self.found = Some((path, q.bits(), next));
+                self.found = Some((self.seen, q.bits(), next));
             }
+            self.seen += 1;
         }
     }
     let mut p = Pending::default();
     m.visit(&mut p);
-    if let Some((path, q, next)) = p.found {
+    if let Some((i, q, next)) = p.found {
+        let path = super::signal_paths(m).swap_remove(i);
         panic!(
             "clock enable of '{}': the edge was skipped while '{path}' holds {q:#x} with the \
              next value {next:#x} pending (eval wrote it while the enable was low; it would \
