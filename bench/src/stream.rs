@@ -83,6 +83,9 @@ fn stream(a: &Args) -> Result<(), String> {
             std::env::temp_dir()
         }
     });
+    if !dir.exists() {
+        return Err(format!("--out {}: no such folder", dir.display()));
+    }
     if !dir.is_dir() {
         return Err(format!("--out {}: not a folder", dir.display()));
     }
