@@ -263,7 +263,8 @@ impl<F: Fmt> Regs for RegOf<F> {
     fn tick_regs(&mut self, reset: bool) {
         self.tick(reset);
     }
-    /// Visited as a register: its current value, as [`Visitor::reg`] visits a [`Reg`].
+    /// Visited as a register, its current value and the next one, as [`Visitor::reg`] visits a
+    /// [`Reg`].
     fn visit_regs(&self, v: &mut dyn Visitor) {
         v.register(&self.q.s, self.d);
     }
