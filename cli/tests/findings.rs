@@ -376,3 +376,53 @@ fn an_endless_input_is_refused() {
         assert!(t0.elapsed().as_secs() < 10, "{cmd}: {:?}", t0.elapsed());
     }
 }
+
+/// A folder output below a file, or one the system will not make, is refused before any work
+/// (no seed line, no simulator started) in one line naming the option and the file in the
+/// way; nothing is made and the file stays.
+#[test]
+fn a_folder_output_that_cannot_be_made_is_one_line_naming_the_option() {
+    let d = dir("findings", "folder");
+    let f = d.join("notes");
+    std::fs::write(&f, "precious\n").unwrap();
+    let (under, merged) = (f.join("x"), d.join("m.json"));
+    let (u, m) = (s(&under), s(&merged));
+    let in_the_way = "notes is not a directory";
+    let runs: [(&[&str], &str, &str); 6] = [
+        (&["regress", "--no-cosim", "--out", u], "--out", in_the_way),
+        (
+            &["regress", "--out", "/proc/texrtl-none/x"],
+            "--out",
+            "cannot make the folder",
+        ),
+        (
+            &["cosim", "--unit", "blend_adjust_153", "--out", u],
+            "--out",
+            in_the_way,
+        ),
+        (
+            &["vectors", "--unit", "blend_adjust_153", "--out", u],
+            "--out",
+            in_the_way,
+        ),
+        (&["new", "my_unit", "--dir", u], "--dir", in_the_way),
+        (
+            &["merge", "--out", m, "--report", u, "s.json"],
+            "--report",
+            in_the_way,
+        ),
+    ];
+    for (args, opt, why) in runs {
+        let o = texrtl(args);
+        let err = String::from_utf8_lossy(&o.stderr);
+        assert_eq!(o.status.code(), Some(2), "{args:?}: {err}");
+        assert_eq!(err.trim_end().lines().count(), 1, "{args:?}: {err}");
+        assert!(
+            err.contains(&format!("{opt} ")) && err.contains(why),
+            "{args:?}: {err}"
+        );
+    }
+    assert_eq!(std::fs::read_to_string(&f).unwrap(), "precious\n");
+    let left: Vec<_> = std::fs::read_dir(&d).unwrap().collect();
+    assert_eq!(left.len(), 1, "{left:?}");
+}

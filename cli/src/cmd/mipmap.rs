@@ -55,12 +55,7 @@ const MAX_LEVELS: usize = 11;
 /// The output folder: not a file, not the VCD, and no file it may receive (levels, stats)
 /// one of the inputs.
 fn check_folder(a: &MipmapArgs, ins: &[(&str, &Path)]) -> Result<(), CmdError> {
-    if a.out.exists() && !a.out.is_dir() {
-        return Err(CmdError::Input(format!(
-            "--out {}: exists and is not a directory",
-            a.out.display()
-        )));
-    }
+    verif::cli::check_folder("--out", &a.out)?;
     let dirs: Vec<PathBuf> = match a.inputs.len() {
         1 => vec![a.out.clone()],
         n => (0..n).map(|f| a.out.join(format!("frame{f}"))).collect(),
@@ -139,8 +134,7 @@ fn mipmap(a: &MipmapArgs) -> Result<String, CmdError> {
             o.error
         )));
     }
-    std::fs::create_dir_all(&a.out)
-        .map_err(|e| CmdError::Input(format!("{}: {e}", a.out.display())))?;
+    verif::cli::make_folder("--out", &a.out)?;
     let dims = p.levels();
     for (f, levels) in o.frames.iter().enumerate() {
         let dir = if frames.len() == 1 {

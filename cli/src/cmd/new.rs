@@ -112,6 +112,7 @@ pub fn run(a: &NewArgs) -> Result<String, CmdError> {
             dir.display()
         )));
     }
+    verif::cli::check_folder("--dir", &dir)?;
     let built_from = Path::new(env!("CARGO_MANIFEST_DIR")).join("..");
     let texrtl = a.texrtl.clone().unwrap_or(built_from);
     let texrtl = texrtl
@@ -135,7 +136,7 @@ fn write_crate(name: &str, dir: &Path, texrtl: &Path) -> Result<String, CmdError
             text = text.replace("path = \"../..", &format!("path = \"{root}"));
         }
         let parent = path.parent().unwrap_or(dir);
-        std::fs::create_dir_all(parent).map_err(|e| input(format!("{}: {e}", parent.display())))?;
+        verif::cli::make_folder("--dir", parent)?;
         waves::output::write_output(&path, text.as_bytes())
             .map_err(|e| input(format!("{}: {e}", path.display())))?;
     }

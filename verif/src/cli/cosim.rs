@@ -93,9 +93,7 @@ pub fn run(project: &Project, a: &CosimArgs) -> Result<String, CmdError> {
     sim.check_installed()?;
     let mut made = super::Outputs::default();
     if let Some(o) = &a.out {
-        if o.exists() && !o.is_dir() {
-            return Err(format!("--out {}: exists and is not a directory", o.display()).into());
-        }
+        super::check_folder("--out", o)?;
         made.folder(o);
     }
     made.settle(simulate(project.name(), a, sim, unit, &runs))

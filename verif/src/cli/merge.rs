@@ -75,15 +75,8 @@ pub fn run(project: &Project, a: &MergeArgs) -> Result<String, CmdError> {
     let mut outs = vec![("--out", a.out.as_path())];
     outs.extend(a.junit.as_deref().map(|j| ("--junit", j)));
     super::check_outputs(&outs, &ins)?;
-    if let Some(d) = a
-        .report
-        .as_ref()
-        .filter(|d| d.symlink_metadata().is_ok() && !d.is_dir())
-    {
-        return Err(CmdError::Input(format!(
-            "--report {}: exists and is not a directory",
-            d.display()
-        )));
+    if let Some(d) = &a.report {
+        super::check_folder("--report", d)?;
     }
     let shards = crate::regress::read_summaries(&a.summaries).map_err(CmdError::Input)?;
     let mut m = crate::regress::merge_shards(project, &shards).map_err(CmdError::Input)?;
@@ -129,7 +122,6 @@ fn report(
     dir: &std::path::Path,
     m: &crate::regress::Summary,
 ) -> Result<(), CmdError> {
-    std::fs::create_dir_all(dir)
-        .map_err(|e| CmdError::Input(format!("--report {}: {e}", dir.display())))?;
+    super::make_folder("--report", dir)?;
     crate::report::write_report(project, dir, m).map_err(CmdError::Input)
 }

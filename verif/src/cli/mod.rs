@@ -261,6 +261,45 @@ mod tests {
             .try_get_matches_from(["chip", "--count", "5", "list"])
             .is_err());
     }
+
+    #[test]
+    fn a_folder_output_under_a_file_is_refused_naming_the_file() {
+        let d = tempfile::Builder::new()
+            .prefix("texrtl-cli-folder-")
+            .tempdir()
+            .unwrap();
+        let file = d.path().join("notes.txt");
+        std::fs::write(&file, "x").unwrap();
+        let msg = |r: Result<(), super::CmdError>| match r {
+            Err(super::CmdError::Input(m)) => m,
+            other => panic!("{other:?}"),
+        };
+        let m = msg(super::check_folder("--out", &file.join("a/b")));
+        assert_eq!(
+            m,
+            format!(
+                "--out {}/a/b: {} is not a directory",
+                file.display(),
+                file.display()
+            )
+        );
+        let m = msg(super::make_folder("--report", &file));
+        assert!(
+            m.ends_with("notes.txt: exists and is not a directory"),
+            "{m}"
+        );
+        super::make_folder("--out", &d.path().join("x/y")).unwrap();
+        assert!(d.path().join("x/y").is_dir());
+        super::check_folder("--out", std::path::Path::new("")).unwrap();
+    }
+
+    #[test]
+    fn an_io_reason_drops_the_os_error_number() {
+        let e = std::io::Error::from_raw_os_error(13);
+        assert_eq!(super::io_reason(&e), "Permission denied");
+        let e = std::io::Error::other("plain");
+        assert_eq!(super::io_reason(&e), "plain");
+    }
 }
 
 /// `list`: every unit with its testbenches, twin and vectors.
@@ -306,6 +345,14 @@ pub enum CmdError {
     Failed(String),
 }
 
+impl std::fmt::Display for CmdError {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        match self {
+            CmdError::Input(m) | CmdError::Failed(m) => f.write_str(m),
+        }
+    }
+}
+
 impl From<String> for CmdError {
     fn from(s: String) -> Self {
         CmdError::Input(s)
@@ -323,12 +370,64 @@ pub fn check_out(path: &Path) -> Result<(), CmdError> {
         return Err(input(format!("{}: is a directory", path.display())));
     }
     match path.parent() {
-        Some(d) if !d.as_os_str().is_empty() && !d.is_dir() => Err(input(format!(
-            "{}: directory {} does not exist",
-            path.display(),
-            d.display()
-        ))),
+        Some(d) if !d.as_os_str().is_empty() && !d.is_dir() => {
+            let what = if d.symlink_metadata().is_ok() {
+                "is not a directory"
+            } else {
+                "does not exist"
+            };
+            Err(input(format!(
+                "{}: directory {} {what}",
+                path.display(),
+                d.display()
+            )))
+        }
         _ => Ok(()),
+    }
+}
+
+/// A folder output of option `opt` (`--out DIR`), checked before any work: it is a folder or
+/// is not there, and the nearest of its parents that is there is a folder (the ones that are
+/// not there are made with it).
+pub fn check_folder(opt: &str, path: &Path) -> Result<(), CmdError> {
+    let there = |p: &Path| !p.as_os_str().is_empty() && p.symlink_metadata().is_ok();
+    let Some(found) = path.ancestors().find(|p| there(p)) else {
+        return Ok(());
+    };
+    match (found.is_dir(), found == path) {
+        (true, _) => Ok(()),
+        (false, true) => Err(input(format!(
+            "{opt} {}: exists and is not a directory",
+            path.display()
+        ))),
+        (false, false) => Err(input(format!(
+            "{opt} {}: {} is not a directory",
+            path.display(),
+            found.display()
+        ))),
+    }
+}
+
+/// Makes folder output `path` of option `opt`, and its missing parents; a failure (no
+/// permission, a read-only file system) is bad input naming both.
+pub fn make_folder(opt: &str, path: &Path) -> Result<(), CmdError> {
+    check_folder(opt, path)?;
+    std::fs::create_dir_all(path).map_err(|e| {
+        input(format!(
+            "{opt} {}: cannot make the folder: {}",
+            path.display(),
+            io_reason(&e)
+        ))
+    })
+}
+
+/// An I/O error's reason as a person reads it: "Permission denied", without the
+/// "(os error 13)" the standard library adds.
+pub fn io_reason(e: &std::io::Error) -> String {
+    let s = e.to_string();
+    match s.find(" (os error ") {
+        Some(i) => s[..i].to_string(),
+        None => s,
     }
 }
 

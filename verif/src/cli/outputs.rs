@@ -90,11 +90,13 @@ impl Outputs {
     }
 
     /// Watches a folder output: on failure, what the command made in it goes (and the folder,
-    /// when the command made it).
+    /// when the command made it, with the parents it made for it).
     pub fn folder(&mut self, path: &Path) {
+        let missing = |p: &&Path| !p.as_os_str().is_empty() && p.symlink_metadata().is_err();
+        let made = path.ancestors().take_while(missing).last();
         self.watched.push(Watch::Folder {
-            path: path.to_path_buf(),
-            existed: path.is_dir(),
+            path: made.unwrap_or(path).to_path_buf(),
+            existed: made.is_none(),
             before: entries(path, |_| true),
         });
     }
@@ -196,5 +198,18 @@ mod tests {
         std::fs::write(d.path().join("stats.json"), "x").unwrap();
         o.remove_new();
         assert!(names(d.path()).is_empty(), "{:?}", names(d.path()));
+    }
+
+    #[test]
+    fn the_parents_made_for_a_new_folder_go_with_it() {
+        let d = dir("parents");
+        std::fs::create_dir(d.path().join("old")).unwrap();
+        let mut o = Outputs::default();
+        o.folder(&d.path().join("old/a/b/c"));
+        std::fs::create_dir_all(d.path().join("old/a/b/c")).unwrap();
+        std::fs::write(d.path().join("old/a/b/c/report.md"), "x").unwrap();
+        o.remove_new();
+        assert_eq!(names(d.path()), ["old"]);
+        assert!(names(&d.path().join("old")).is_empty());
     }
 }

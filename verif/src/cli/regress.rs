@@ -115,11 +115,8 @@ pub fn run(project: &Project, a: RegressArgs) -> ExitCode {
         .out
         .clone()
         .unwrap_or_else(|| PathBuf::from("target").join(name));
-    if out.exists() && !out.is_dir() {
-        return fail(
-            name,
-            format!("--out {}: exists and is not a directory", out.display()),
-        );
+    if let Err(e) = super::check_folder("--out", &out) {
+        return fail(name, e);
     }
     let bless = a.bless;
     let cfg = RegressConfig {
@@ -168,6 +165,11 @@ pub fn run(project: &Project, a: RegressArgs) -> ExitCode {
     made.folder(&cfg.out);
     if let Some(j) = &cfg.junit {
         made.file(j);
+    }
+    // Made before the run starts: a folder that cannot be made is bad input, said alone.
+    if let Err(e) = super::make_folder("--out", &cfg.out) {
+        made.remove_new();
+        return fail(name, e);
     }
     eprintln!(
         "{name} regress: seed {} (replay with --seed {})",

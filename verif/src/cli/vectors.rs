@@ -49,12 +49,7 @@ pub fn run(project: &Project, a: &VectorsArgs) -> Result<String, CmdError> {
     match (&a.unit, &a.out) {
         (Some(unit), Some(out)) => {
             // Checked before anything is watched or written: what is there stays.
-            if out.symlink_metadata().is_ok() && !out.is_dir() {
-                return Err(CmdError::Input(format!(
-                    "--out {}: exists and is not a directory",
-                    out.display()
-                )));
-            }
+            super::check_folder("--out", out)?;
             let mut guard = super::Outputs::default();
             guard.folder(out);
             guard.settle(export(project, unit, out))
