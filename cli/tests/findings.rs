@@ -375,6 +375,42 @@ fn an_endless_input_is_refused() {
         common::assert_refused(&args, "/dev/zero: longer than", &d, &["o.out"]);
         assert!(t0.elapsed().as_secs() < 10, "{cmd}: {:?}", t0.elapsed());
     }
+    // Beside valid inputs (`texread --texture /dev/zero` was read until memory ran out).
+    let reqs = d.join("r.csv");
+    std::fs::write(&reqs, "u,v\n1,1\n").unwrap();
+    let mut pgm = b"P5\n16 16\n255\n".to_vec();
+    pgm.extend([7u8; 256]);
+    std::fs::write(d.join("t.pgm"), &pgm).unwrap();
+    let maps = d.join("m.json");
+    let drf = r#"{"drfs": [{"drf": 0, "kind": "texture", "maps": ["t.pgm"]}]}"#;
+    std::fs::write(&maps, drf).unwrap();
+    let o = d.join("o.out");
+    let (r, m, o) = (s(&reqs), s(&maps), s(&o));
+    let beside: [&[&str]; 2] = [
+        &[
+            "texread",
+            "--texture",
+            "/dev/zero",
+            "--requests",
+            r,
+            "--out",
+            o,
+        ],
+        &[
+            "mapchain",
+            "--maps",
+            m,
+            "--requests",
+            "/dev/zero",
+            "--out",
+            o,
+        ],
+    ];
+    for args in beside {
+        let t0 = std::time::Instant::now();
+        common::assert_refused(args, "/dev/zero: longer than", &d, &["o.out"]);
+        assert!(t0.elapsed().as_secs() < 10, "{args:?}: {:?}", t0.elapsed());
+    }
 }
 
 /// A folder output below a file, or one the system will not make, is refused before any work

@@ -111,7 +111,7 @@ fn quantise(x: f64, frac: i32, (lo, hi): (f64, f64), closed: bool) -> Option<i64
 
 /// The requests of `path`, every field range-checked.
 fn read_requests(path: &Path) -> Result<Vec<ChainRequest>, String> {
-    let text = std::fs::read_to_string(path).map_err(|e| format!("{}: {e}", path.display()))?;
+    let text = formats::read_text_bounded(path, formats::MAX_INPUT_BYTES)?;
     let head = header(path, &text)?;
     let t = formats::csv::parse(&path.display().to_string(), &text, &[&head])?;
     let fields = Pixel::fields();

@@ -44,7 +44,7 @@ pub const STATS_HELP: &str = "\
 
 /// A texture from a `.ccc` file (by its magic) or a PPM (encoded on the fly).
 pub fn read_texture(path: &Path) -> Result<Ccc, String> {
-    let b = std::fs::read(path).map_err(|e| format!("{}: {e}", path.display()))?;
+    let b = formats::read_bounded(path, formats::MAX_INPUT_BYTES)?;
     if b.starts_with(ccc::MAGIC) {
         Ccc::parse(&b).map_err(|e| format!("{}: {e}", path.display()))
     } else if b.starts_with(b"P6") || b.starts_with(b"P3") {
