@@ -462,3 +462,37 @@ fn a_folder_output_that_cannot_be_made_is_one_line_naming_the_option() {
     let left: Vec<_> = std::fs::read_dir(&d).unwrap().collect();
     assert_eq!(left.len(), 1, "{left:?}");
 }
+
+/// Verilog that does not build is bad input: one line naming the simulator, exit 2, and the
+/// co-simulation folder it had begun (given or the default one under `target/`) goes, with
+/// the parents made for it. `--rtl` naming a folder or a device says so.
+#[test]
+fn rtl_that_does_not_build_leaves_no_folder() {
+    if !common::simulator("iverilog", "-V") {
+        return;
+    }
+    let d = dir("findings", "rtl");
+    std::fs::write(d.join("bad.v"), "module blend_adjust_153(; endmodule\n").unwrap();
+    let base = ["cosim", "--unit", "blend_adjust_153", "--sim", "icarus"];
+    for extra in [
+        &["--rtl", "bad.v"][..],
+        &["--rtl", "bad.v", "--out", "runs/a"],
+    ] {
+        let o = std::process::Command::new(env!("CARGO_BIN_EXE_texrtl"))
+            .args(base)
+            .args(extra)
+            .current_dir(&d)
+            .output()
+            .unwrap();
+        let err = String::from_utf8_lossy(&o.stderr);
+        assert_eq!(o.status.code(), Some(2), "{extra:?}: {err}");
+        assert_eq!(err.trim_end().lines().count(), 1, "{err}");
+        assert!(err.contains("iverilog"), "{err}");
+        let left: Vec<_> = std::fs::read_dir(&d).unwrap().flatten().collect();
+        assert_eq!(left.len(), 1, "{extra:?}: {left:?}");
+    }
+    for (rtl, why) in [(s(&d), "not a regular file"), ("none.v", "no such file")] {
+        let args = [&base[..], &["--rtl", rtl]].concat();
+        common::assert_refused(&args, why, &d, &["target"]);
+    }
+}

@@ -7,7 +7,7 @@ use crate::cosim::{self, Simulator};
 use crate::project::Project;
 use crate::Seed;
 use clap::{value_parser, ArgMatches, Command};
-use std::path::PathBuf;
+use std::path::{Path, PathBuf};
 use waves::output::shorten;
 
 /// Co-simulate a unit's model and Verilog (its twin, or --rtl FILE.v of yours).
@@ -71,7 +71,12 @@ pub fn run(project: &Project, a: &CosimArgs) -> Result<String, CmdError> {
         return Err(format!("--count {}: 1..=10000000 cycles", a.count).into());
     }
     if let Some(f) = a.rtl.iter().find(|f| !f.is_file()) {
-        return Err(format!("--rtl {}: no such file", f.display()).into());
+        let why = if f.symlink_metadata().is_ok() {
+            "not a regular file"
+        } else {
+            "no such file"
+        };
+        return Err(format!("--rtl {}: {why}", f.display()).into());
     }
     let runs = match project.get(&a.unit).and_then(|u| u.directed_runs()) {
         Some(f) if vectors => f()?,
@@ -91,29 +96,29 @@ pub fn run(project: &Project, a: &CosimArgs) -> Result<String, CmdError> {
         _ => Vec::new(),
     };
     sim.check_installed()?;
-    let mut made = super::Outputs::default();
-    if let Some(o) = &a.out {
-        super::check_folder("--out", o)?;
-        made.folder(o);
-    }
-    made.settle(simulate(project.name(), a, sim, unit, &runs))
-}
-
-/// The co-simulation runs once the options are checked.
-fn simulate(
-    name: &str,
-    a: &CosimArgs,
-    sim: Simulator,
-    unit: &dyn cosim::CosimUnit,
-    runs: &[cosim::Directed],
-) -> Result<String, CmdError> {
-    let vectors = a.stimulus == "vectors";
+    let name = project.name();
     let dir = a
         .out
         .clone()
         .unwrap_or_else(|| PathBuf::from(format!("target/{name}-cosim/{}-{}", a.unit, sim.name())));
+    super::check_folder("--out", &dir)?;
+    // Watched given or not: RTL that does not build leaves nothing behind.
+    let mut made = super::Outputs::default();
+    made.folder(&dir);
+    made.settle(simulate(a, sim, unit, &runs, &dir))
+}
+
+/// The co-simulation runs once the options are checked.
+fn simulate(
+    a: &CosimArgs,
+    sim: Simulator,
+    unit: &dyn cosim::CosimUnit,
+    runs: &[cosim::Directed],
+    dir: &Path,
+) -> Result<String, CmdError> {
+    let vectors = a.stimulus == "vectors";
     if !vectors {
-        let r = cosim::run(unit, sim, &a.rtl, a.count, a.seed, &dir).map_err(CmdError::Input)?;
+        let r = cosim::run(unit, sim, &a.rtl, a.count, a.seed, dir).map_err(CmdError::Input)?;
         let what = format!("{} in {} (seed {})", a.unit, sim.name(), a.seed);
         return report(&what, &r);
     }
