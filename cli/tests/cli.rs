@@ -572,6 +572,7 @@ fn trace_filter_applies_to_every_waveform() {
         "*valid*",
     ]);
     assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stdout));
+    assert!(!String::from_utf8_lossy(&o.stderr).contains("warning"));
     let names = [
         "blend_adjust_153",
         "normal_pipeline_fig7",
@@ -595,6 +596,36 @@ fn trace_filter_applies_to_every_waveform() {
             );
         }
     }
+}
+
+/// A filter that matches no signal of any design (without the `tb.` every name starts with)
+/// still runs, and says so: a waveform of clock, reset and probes alone is not what was meant.
+#[test]
+fn a_trace_filter_matching_nothing_is_warned_of() {
+    let out = tmp("unmatched-filter");
+    let run = |filter: &str| {
+        let o = texrtl(&[
+            "regress",
+            "--no-cosim",
+            "--only",
+            "blend_adjust_153",
+            "--count",
+            "2",
+            "--out",
+            out.to_str().unwrap(),
+            "--trace-filter",
+            filter,
+        ]);
+        assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+        String::from_utf8_lossy(&o.stderr).into_owned()
+    };
+    let e = run("blend_adjust_153.u*");
+    assert!(
+        e.contains("warning: --trace-filter blend_adjust_153.u* matched no signal of any design")
+            && e.contains("e.g. tb.blend_adjust_153.*"),
+        "{e}"
+    );
+    assert!(!run("tb.blend_adjust_153.u*").contains("warning"));
 }
 
 /// `regress -j N` gives the same results byte for byte as `-j 1`: the summary, the report and

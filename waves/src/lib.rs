@@ -21,7 +21,7 @@ mod vcd_trace;
 mod vcd_writer;
 
 pub use fst_trace::FstTracer;
-pub use vcd_trace::{ProbeId, TraceConfig, VcdTracer, ROOT};
+pub use vcd_trace::{design_variables, ProbeId, TraceConfig, VcdTracer, ROOT};
 #[cfg(feature = "read")]
 pub mod check;
 pub mod compare;

@@ -16,6 +16,34 @@ use vcd::{IdCode, ReferenceIndex, TimescaleUnit, VarType};
 /// the testbench's probes.
 pub const ROOT: &str = "tb";
 
+/// The scope of the testbench's probes, inside [`ROOT`].
+const PROBES: &str = "golden";
+
+/// How many of the design's signals (and their `real` companions) a VCD written by
+/// [`VcdTracer`] declares: its variables below [`ROOT`] but for `clk`, `rst` and the
+/// testbench's probes. Zero when the trace filters matched nothing. Reads the header only.
+pub fn design_variables(path: &Path) -> io::Result<usize> {
+    use vcd::ScopeItem;
+    fn count(items: &[ScopeItem]) -> usize {
+        let one = |i: &ScopeItem| match i {
+            ScopeItem::Var(_) => 1,
+            ScopeItem::Scope(s) => count(&s.items),
+            _ => 0,
+        };
+        items.iter().map(one).sum()
+    }
+    let header = vcd::Parser::new(io::BufReader::new(File::open(path)?)).parse_header()?;
+    let below = |i: &ScopeItem| match i {
+        ScopeItem::Scope(s) if s.identifier != PROBES => count(&s.items),
+        _ => 0,
+    };
+    let root = |i: &ScopeItem| match i {
+        ScopeItem::Scope(s) if s.identifier == ROOT => s.items.iter().map(below).sum(),
+        _ => 0,
+    };
+    Ok(header.items.iter().map(root).sum())
+}
+
 /// What to trace and how.
 #[derive(Clone, Debug)]
 pub struct TraceConfig {
@@ -764,7 +792,7 @@ impl Trace for VcdTracer {
         });
         self.hot = hot.collect();
         if !self.probes.is_empty() {
-            self.writer().add_module("golden")?;
+            self.writer().add_module(PROBES)?;
             for i in 0..self.probes.len() {
                 let (name, width, real) = {
                     let p = &self.probes[i];
@@ -782,7 +810,7 @@ impl Trace for VcdTracer {
                 };
                 self.probes[i].id = id;
                 self.probes[i].code = code_of(id);
-                let full = format!("{ROOT}.golden.{name}");
+                let full = format!("{ROOT}.{PROBES}.{name}");
                 let trace = Item::Trace {
                     name: if !real && width > 1 {
                         format!("{full}[{}:0]", width - 1)

@@ -80,6 +80,12 @@ fn full_trace_reads_back() {
     let path = run("full", TraceConfig::default(), true);
     let rb = read_vcd(&path).unwrap();
     assert_eq!(rb.timescale_exp, Some(-12));
+    // The design's variables, as the header scan counts them: all but clk, rst and probes.
+    let design = rb
+        .vars
+        .keys()
+        .filter(|k| k.starts_with("tb.blend_adjust_153."));
+    assert_eq!(waves::design_variables(&path).unwrap(), design.count());
     assert!(
         rb.scopes.contains(&"tb.blend_adjust_153".to_string()),
         "{:?}",
@@ -156,6 +162,16 @@ fn depth_filter_window() {
     );
     assert!(rb.vars.contains_key("tb.clk"));
     check_gtkw(&d0, &rb).unwrap();
+    assert_eq!(waves::design_variables(&d0).unwrap(), 0);
+    // A filter without the `tb.` its names start with matches nothing of the design.
+    let none = TraceConfig {
+        filters: vec!["blend_adjust_153.*".into()],
+        ..Default::default()
+    };
+    assert_eq!(
+        waves::design_variables(&run("none", none, true)).unwrap(),
+        0
+    );
 
     let f = run(
         "filter",
@@ -174,6 +190,7 @@ fn depth_filter_window() {
         .cloned()
         .collect();
     assert_eq!(dut, ["tb.blend_adjust_153.u0", "tb.blend_adjust_153.u0_r"]);
+    assert_eq!(waves::design_variables(&f).unwrap(), 2);
     check_gtkw(&f, &rb).unwrap();
 
     let w = run(

@@ -212,6 +212,9 @@ fn run_checked(
             say(&crate::report::failing_lines(&summary, 10));
             let results = summary.testbenches;
             say(&crate::report::render(&results, cfg));
+            if let Some(w) = unmatched_filters(cfg, &results) {
+                eprintln!("{name}: warning: {w}");
+            }
             if let Some(dir) = project.kept_vectors().filter(|_| bless) {
                 match crate::vectors::bless(dir, project.vectors()) {
                     Ok(changed) if changed.is_empty() => say("vectors: unchanged\n"),
@@ -234,6 +237,39 @@ fn run_checked(
             fail(name, e)
         }
     }
+}
+
+/// A warning when `--trace-filter` matched no signal of any testbench's design (a pattern
+/// without the `tb.` every name starts with, say): its waveforms hold only the clock, reset
+/// and probes. The co-simulation rows' waveforms are not filtered.
+fn unmatched_filters(cfg: &RegressConfig, results: &[crate::TbResult]) -> Option<String> {
+    let filters = &cfg.trace.filters;
+    if filters.is_empty() {
+        return None;
+    }
+    let cosim = format!("{}/", crate::regress::COSIM);
+    let traced: Vec<&crate::TbResult> = results
+        .iter()
+        .filter(|r| r.vcd.is_some() && !r.name.starts_with(&cosim))
+        .collect();
+    // A waveform that cannot be read back is another matter (its row says so).
+    let holds_design = |r: &&crate::TbResult| {
+        r.vcd
+            .as_deref()
+            .is_some_and(|v| waves::design_variables(v).map_or(true, |n| n > 0))
+    };
+    if traced.is_empty() || traced.iter().any(holds_design) {
+        return None;
+    }
+    let example = &traced[0].name;
+    Some(format!(
+        "--trace-filter {} matched no signal of any design: the waveforms hold the clock, reset \
+         and probes only (names start with {}., e.g. {}.{}.*)",
+        filters.join(" "),
+        waves::ROOT,
+        waves::ROOT,
+        example
+    ))
 }
 
 /// `regress --list`.
