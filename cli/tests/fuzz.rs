@@ -342,6 +342,16 @@ fn case(
 
 /// Runs `a` in the case folder `d` and judges the exit, the message, the folder and the time.
 fn judge(f: &Front, d: &Path, a: Vec<String>) -> Result<(), TestCaseError> {
+    judge_naming(f, d, a, None)
+}
+
+/// [`judge`], and a refusal names `opt` (the option whose value the case set) when given.
+fn judge_naming(
+    f: &Front,
+    d: &Path,
+    a: Vec<String>,
+    opt: Option<&str>,
+) -> Result<(), TestCaseError> {
     let before = names(d);
     let (o, secs) = run_limited(&a, d);
     let err = String::from_utf8_lossy(&o.stderr);
@@ -363,6 +373,13 @@ fn judge(f: &Front, d: &Path, a: Vec<String>) -> Result<(), TestCaseError> {
             }
             if names(d) != before {
                 return fail(format!("left {:?}", names(d)));
+            }
+            // Naming the option, a file of the case (a valid value the file does not suit), or
+            // (a value clap reads as short options) how to give it.
+            let file = err.contains(d.to_str().unwrap_or("/"));
+            let told = |o: &str| err.contains(o) || file || err.contains("written --OPTION=VALUE");
+            if opt.is_some_and(|o| !told(o)) {
+                return fail(format!("does not name {}", opt.unwrap_or_default()));
             }
         }
         // A merged run that failed (a mutation can mark a shard failed), a vectors check
@@ -601,7 +618,12 @@ fn every_option_value_is_checked() {
                     std::fs::write(d.join(name), bytes).unwrap();
                 }
                 let a = with_value(&f, &d, &opts[k], &v);
-                judge(&f, &d, a)
+                // A file option's refusal may name the file instead.
+                let file = f
+                    .args
+                    .windows(2)
+                    .any(|w| w[0] == opts[k] && w[1].starts_with('{'));
+                judge_naming(&f, &d, a, (!file).then_some(opts[k].as_str()))
             })
             .unwrap();
     }

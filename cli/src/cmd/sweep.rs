@@ -46,7 +46,8 @@ pub fn run(c: &SweepCmd) -> Result<String, CmdError> {
 /// blend-factor bits x rsqrt table bits, on the built-in noise map at random positions with 16
 /// fraction bits (so the address unit's truncation to F bits is part of the error).
 pub fn sweep_normals(map_name: &str, samples: usize, seed: Seed) -> Result<String, CmdError> {
-    tb::maps::builtin(map_name, 16, 16, BumpParams::default().texel_fmt())?;
+    tb::maps::builtin(map_name, 16, 16, BumpParams::default().texel_fmt())
+        .map_err(|e| format!("--map {}: {e}", waves::output::shorten(map_name)))?;
     let blends = [4u32, 6, 8, 10, 12, 14, 16];
     let tables = [4u32, 6, 8, 10, 12];
     let mut stim = verif::Stimulus::new(seed);

@@ -61,7 +61,22 @@ impl Widths {
             out_frac: self.out_frac,
             ..BumpParams::default()
         };
-        p.validate()?;
+        // A refusal names the option, not the parameter it sets.
+        p.validate().map_err(|e| {
+            let named = OPTIONS
+                .iter()
+                .find(|(f, _)| e.starts_with(&format!("{f} ")));
+            named.map_or(e.clone(), |(f, o)| format!("{o}{}", &e[f.len()..]))
+        })?;
         Ok(p)
     }
 }
+
+/// The parameters these options set, as [`BumpParams::validate`] names them.
+const OPTIONS: [(&str, &str); 5] = [
+    ("blend_bits", "--blend-bits"),
+    ("rsqrt.table_bits", "--rsqrt-table-bits"),
+    ("rsqrt.iterations", "--rsqrt-iterations"),
+    ("out_frac", "--out-frac"),
+    ("tangent_frac", "--tangent-frac"),
+];

@@ -70,7 +70,7 @@ pub fn run(project: &Project, a: &MergeArgs) -> Result<String, CmdError> {
     let ins: Vec<_> = a
         .summaries
         .iter()
-        .map(|p| ("a summary", p.as_path()))
+        .map(|p| ("summary", p.as_path()))
         .collect();
     let mut outs = vec![("--out", a.out.as_path())];
     outs.extend(a.junit.as_deref().map(|j| ("--junit", j)));

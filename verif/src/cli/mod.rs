@@ -63,9 +63,25 @@ fn command<E: Subcommand>(project: &Project, about: &'static str) -> Command {
         cmd = cmd.subcommand(add(Command::new(sub).about(help)));
     }
     // After the program's subcommands, whose derive may set an about of its own.
-    E::augment_subcommands(RegressArgs::augment(cmd))
+    let cmd = E::augment_subcommands(RegressArgs::augment(cmd))
         .version(project.version())
-        .about(about)
+        .about(about);
+    negatives(cmd)
+}
+
+/// An option's value may be a negative number (`--lod -1.5`, `--seed -1`): it is read as the
+/// value, so the option's own check refuses it naming the option, rather than as an unknown
+/// option `-1`. (Any other value beginning with `-` is written `--dims=-inf`: taking every
+/// such word as a value would take a forgotten value's next option, `--out --vcd w.vcd`.)
+fn negatives(cmd: Command) -> Command {
+    cmd.mut_args(|a| {
+        if a.get_action().takes_values() {
+            a.allow_negative_numbers(true)
+        } else {
+            a
+        }
+    })
+    .mut_subcommands(negatives)
 }
 
 /// A program with no subcommands of its own.
@@ -140,7 +156,23 @@ fn clap_error(name: &str, e: clap::Error) -> ExitCode {
 
 /// A parse error as one line, naming the option.
 fn clap_message(name: &str, e: &clap::Error) -> String {
-    let text = e.to_string();
+    use clap::error::{ContextKind, ContextValue};
+    let mut text = e.to_string();
+    // The value or argument refused, with a newline or other control character in it, shown
+    // escaped (before the lines are split: the message is its first line).
+    let kinds = [
+        ContextKind::InvalidValue,
+        ContextKind::InvalidArg,
+        ContextKind::InvalidSubcommand,
+    ];
+    for kind in kinds {
+        if let Some(ContextValue::String(v)) = e.get(kind) {
+            let shown = waves::output::escape_controls(v);
+            if shown != *v {
+                text = text.replace(&format!("'{v}'"), &format!("'{shown}'"));
+            }
+        }
+    }
     let mut lines = text.lines();
     let first = lines.next().unwrap_or("bad arguments");
     let first = first.strip_prefix("error: ").unwrap_or(first);
@@ -156,7 +188,21 @@ fn clap_message(name: &str, e: &clap::Error) -> String {
     // clap quotes the argument it refuses: a long one is shortened, as every message's values.
     let first = waves::output::shorten_quoted(&first, '\'');
     let first = waves::output::shorten_message(&first, 200);
-    format!("{first} (see {name} --help)")
+    // `--dims -inf` is read as the short options -i -n -f, `--dims "-- x"` as an unknown
+    // option; `--dimz` is a misspelt option, with no hint.
+    let long_option = |a: &str| {
+        a.strip_prefix("--").is_some_and(|n| {
+            !n.is_empty() && n.chars().all(|c| c.is_ascii_alphanumeric() || c == '-')
+        })
+    };
+    let value_like = matches!(e.get(ContextKind::InvalidArg),
+        Some(ContextValue::String(a)) if a.starts_with('-') && !long_option(a));
+    let hint = if e.kind() == clap::error::ErrorKind::UnknownArgument && value_like {
+        "; a value beginning with '-' is written --OPTION=VALUE"
+    } else {
+        ""
+    };
+    format!("{first}{hint} (see {name} --help)")
 }
 
 /// A command's result as its exit status: its message on stdout (0), or one line on stderr
@@ -241,6 +287,26 @@ mod tests {
         assert!(m.contains("'--check'") && !m.contains('\n'), "{m}");
         let m = parse_error(&["chip", "--seed", &"9".repeat(500)]);
         assert!(m.starts_with("invalid value '") && m.len() < 200, "{m}");
+        // A control character in the value is shown escaped, and the line is not cut there.
+        let m = parse_error(&["chip", "--trace-window", "1\n..5"]);
+        assert!(
+            m.contains("'1\\n..5' for '--trace-window") && !m.contains('\n'),
+            "{m}"
+        );
+        // A negative number is the option's value, refused by the option's own check.
+        let m = parse_error(&["chip", "--count", "-5"]);
+        assert!(m.starts_with("invalid value '-5' for '--count"), "{m}");
+        let m = parse_error(&["chip", "--count", "-inf"]);
+        assert!(
+            m.contains("'-i'") && m.contains("written --OPTION=VALUE"),
+            "{m}"
+        );
+        let m = parse_error(&["chip", "--count", "-- x"]);
+        assert!(m.contains("written --OPTION=VALUE"), "{m}");
+        let m = parse_error(&["chip", "--cuont", "5"]);
+        assert!(!m.contains("written --OPTION=VALUE"), "{m}");
+        let m = parse_error(&["chip", "--count=-inf"]);
+        assert!(m.starts_with("invalid value '-inf' for '--count"), "{m}");
     }
 
     #[test]
