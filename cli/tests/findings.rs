@@ -496,3 +496,39 @@ fn rtl_that_does_not_build_leaves_no_folder() {
         common::assert_refused(&args, why, &d, &["target"]);
     }
 }
+
+/// A shard whose coverage model is not the testbench's (a coverpoint renamed) is named by
+/// its file: with a hundred shards, "coverpoint 'x' differs between the models" alone does
+/// not say which summary to look at.
+#[test]
+fn merge_names_the_summary_whose_model_differs() {
+    let d = dir("findings", "merge-model");
+    let shard = |k: u32| {
+        let out = d.join(format!("s{k}"));
+        let args = [
+            "--no-cosim",
+            "--no-vcd",
+            "--only",
+            "blend_adjust_153",
+            "--count",
+            "10",
+        ];
+        let shard = format!("{k}/2");
+        let o = texrtl(&[&args[..], &["--shard", &shard, "--out", s(&out)]].concat());
+        assert_eq!(o.status.code(), Some(0), "{o:?}");
+        out.join("summary.json")
+    };
+    let (a, b) = (shard(1), shard(2));
+    let mut j: serde_json::Value = serde_json::from_slice(&std::fs::read(&b).unwrap()).unwrap();
+    j["jobs"][0]["result"]["coverage"]["points"][0]["name"] = "renamed".into();
+    std::fs::write(&b, serde_json::to_vec(&j).unwrap()).unwrap();
+    let m = d.join("m.json");
+    let o = texrtl(&["merge", "--out", s(&m), s(&a), s(&b)]);
+    let err = String::from_utf8_lossy(&o.stderr);
+    assert_eq!(o.status.code(), Some(2), "{err}");
+    assert!(
+        err.contains(&format!("{}: blend_adjust_153", b.display())) && err.contains("differs"),
+        "{err}"
+    );
+    assert!(!m.exists());
+}

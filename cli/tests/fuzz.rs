@@ -337,21 +337,14 @@ fn case(
         };
         std::fs::write(d.join(name), b).unwrap();
     }
-    judge(f, &d, args(f, &d))
+    // A refusal names a file of the case (the mutated one, or one it names) or an option.
+    judge(f, &d, args(f, &d), Some("--"))
 }
 
-/// Runs `a` in the case folder `d` and judges the exit, the message, the folder and the time.
-fn judge(f: &Front, d: &Path, a: Vec<String>) -> Result<(), TestCaseError> {
-    judge_naming(f, d, a, None)
-}
-
-/// [`judge`], and a refusal names `opt` (the option whose value the case set) when given.
-fn judge_naming(
-    f: &Front,
-    d: &Path,
-    a: Vec<String>,
-    opt: Option<&str>,
-) -> Result<(), TestCaseError> {
+/// Runs `a` in the case folder `d` and judges the exit, the message, the folder and the time;
+/// a refusal names `opt` (the option whose value the case set, or `--` for any option), a file
+/// of the case, or how to give a value clap took for options.
+fn judge(f: &Front, d: &Path, a: Vec<String>, opt: Option<&str>) -> Result<(), TestCaseError> {
     let before = names(d);
     let (o, secs) = run_limited(&a, d);
     let err = String::from_utf8_lossy(&o.stderr);
@@ -623,7 +616,7 @@ fn every_option_value_is_checked() {
                     .args
                     .windows(2)
                     .any(|w| w[0] == opts[k] && w[1].starts_with('{'));
-                judge_naming(&f, &d, a, (!file).then_some(opts[k].as_str()))
+                judge(&f, &d, a, (!file).then_some(opts[k].as_str()))
             })
             .unwrap();
     }

@@ -136,9 +136,19 @@ fn binary(sim: Simulator, r: &RtlRun, kept: Option<(&Path, &str)>) -> Result<Pat
         return Ok(b);
     }
     let tb = r.dir.join("tb.sv");
+    // A tool's message names the file and line; one that does not (a crash) is told which
+    // sources it was building.
+    let named = |e: String| {
+        let shown: Vec<String> = r.sources.iter().map(|s| s.display().to_string()).collect();
+        if shown.iter().any(|s| e.contains(s.as_str())) {
+            e
+        } else {
+            format!("{e} (building {})", shown.join(", "))
+        }
+    };
     let built = match sim {
         Simulator::Verilator => {
-            verilator::build(&tb, r.sources, &r.dir.join("obj_dir"), &run_tool)?
+            verilator::build(&tb, r.sources, &r.dir.join("obj_dir"), &run_tool).map_err(named)?
         }
         Simulator::Icarus => {
             let vvp = r.dir.join(file);
@@ -147,7 +157,7 @@ fn binary(sim: Simulator, r: &RtlRun, kept: Option<(&Path, &str)>) -> Result<Pat
                 .arg(&vvp)
                 .arg(&tb)
                 .args(r.sources);
-            run_tool(&mut c, "iverilog")?;
+            run_tool(&mut c, "iverilog").map_err(named)?;
             vvp
         }
     };

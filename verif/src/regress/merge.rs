@@ -175,14 +175,24 @@ pub fn merge_shards(project: &Project, shards: &[(PathBuf, Summary)]) -> Result<
     let mut rows = Vec::new();
     let mut failing = Vec::new();
     for (p, tb) in reg.iter().enumerate().filter(|(_, t)| selected(t.name())) {
-        let done: Vec<JobResult> = jobs::testbench_jobs(tb, p, reg, first.seeds)
-            .iter()
-            .filter_map(|j| have.get(&j.index).map(|(_, r)| (*r).clone()))
-            .collect();
+        let (files, done): (Vec<&Path>, Vec<JobResult>) =
+            jobs::testbench_jobs(tb, p, reg, first.seeds)
+                .iter()
+                .filter_map(|j| have.get(&j.index).map(|(f, r)| (*f, (*r).clone())))
+                .unzip();
         if done.is_empty() {
             continue;
         }
-        rows.push(crate::aggregate(tb, seed, &done, true)?);
+        let row = crate::aggregate(tb, seed, &done, true).map_err(|e| {
+            // The summary that holds the job that does not merge (a coverage model of
+            // another shape, say), found again job by job.
+            let alone = |j: &JobResult| crate::aggregate(tb, seed, std::slice::from_ref(j), true);
+            match done.iter().position(|j| alone(j).is_err()) {
+                Some(k) => format!("{}: {e}", files[k].display()),
+                None => e,
+            }
+        })?;
+        rows.push(row);
         failing.extend(failing_jobs(
             project,
             (seed, first.seeds, first.count),
