@@ -480,6 +480,25 @@ mod tests {
         clean("junit-pass");
     }
 
+    /// The JUnit file may go into the output folder the run makes (`--out results --junit
+    /// results/junit.xml`), not into another folder that is not there.
+    #[test]
+    fn a_junit_file_may_go_into_the_output_folder_the_run_makes() {
+        let p = project(u64::MAX);
+        let out = folder("junit-new").join("results");
+        let mut cfg = config(out.clone(), 1, "1/1");
+        cfg.junit = Some(folder("junit-new").join("elsewhere/junit.xml"));
+        let Err(e) = regress(&p, &cfg, &mut |_, _| {}) else {
+            panic!("a JUnit file in a missing folder was taken");
+        };
+        assert!(e.contains("no folder") && e.contains("elsewhere"), "{e}");
+        assert!(!out.exists());
+        cfg.junit = Some(out.join("junit.xml"));
+        regress(&p, &cfg, &mut |_, _| {}).unwrap();
+        schema_valid(&std::fs::read_to_string(out.join("junit.xml")).unwrap()).unwrap();
+        clean("junit-new");
+    }
+
     #[test]
     fn the_junit_file_has_a_case_per_job_and_merges_as_the_summary_does() {
         let p = project(50);

@@ -233,9 +233,10 @@ impl RegressConfig {
             if j.is_dir() {
                 return Err(format!("--junit {}: is a folder", j.display()));
             }
-            // Where the file goes must be there before the run, not found missing after it.
+            // Where the file goes must be there before the run, not found missing after it
+            // (or be the output folder, which the run makes).
             let parent = j.parent().filter(|p| !p.as_os_str().is_empty());
-            if let Some(p) = parent.filter(|p| !p.is_dir()) {
+            if let Some(p) = parent.filter(|p| !p.is_dir() && *p != self.out) {
                 return Err(format!(
                     "--junit {}: no folder {}",
                     j.display(),
