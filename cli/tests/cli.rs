@@ -351,7 +351,7 @@ fn normals_bad_cases(d: &Path) -> Vec<(PathBuf, PathBuf, Vec<&'static str>, &'st
             good_h.clone(),
             good_c.clone(),
             vec!["--blend-bits", "3"],
-            "blend_bits 3",
+            "--blend-bits 3",
         ),
         (
             good_h.clone(),

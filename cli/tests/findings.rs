@@ -499,7 +499,7 @@ fn rtl_that_does_not_build_leaves_no_folder() {
 
 /// A shard whose coverage model is not the testbench's (a coverpoint renamed) is named by
 /// its file: with a hundred shards, "coverpoint 'x' differs between the models" alone does
-/// not say which summary to look at.
+/// not say which summary to look at. A merge that fails leaves none of its outputs.
 #[test]
 fn merge_names_the_summary_whose_model_differs() {
     let d = dir("findings", "merge-model");
@@ -519,10 +519,22 @@ fn merge_names_the_summary_whose_model_differs() {
         out.join("summary.json")
     };
     let (a, b) = (shard(1), shard(2));
+    // A report that cannot be written takes the merged summary written before it with it.
+    let m = d.join("m.json");
+    let o = texrtl(&[
+        "merge",
+        "--out",
+        s(&m),
+        "--report",
+        "/proc/texrtl-none/r",
+        s(&a),
+        s(&b),
+    ]);
+    assert_eq!(o.status.code(), Some(2), "{o:?}");
+    assert!(!m.exists(), "the summary was left behind");
     let mut j: serde_json::Value = serde_json::from_slice(&std::fs::read(&b).unwrap()).unwrap();
     j["jobs"][0]["result"]["coverage"]["points"][0]["name"] = "renamed".into();
     std::fs::write(&b, serde_json::to_vec(&j).unwrap()).unwrap();
-    let m = d.join("m.json");
     let o = texrtl(&["merge", "--out", s(&m), s(&a), s(&b)]);
     let err = String::from_utf8_lossy(&o.stderr);
     assert_eq!(o.status.code(), Some(2), "{err}");

@@ -74,10 +74,18 @@ pub fn run(project: &Project, a: &MergeArgs) -> Result<String, CmdError> {
         .collect();
     let mut outs = vec![("--out", a.out.as_path())];
     outs.extend(a.junit.as_deref().map(|j| ("--junit", j)));
-    super::check_outputs(&outs, &ins)?;
+    // Every output watched from here: bad input or an I/O error later (a report that cannot
+    // be written) leaves none of them behind.
+    let mut made = super::Outputs::check(&outs, &ins)?;
     if let Some(d) = &a.report {
         super::check_folder("--report", d)?;
+        made.folder(d);
     }
+    made.settle(merged(project, a))
+}
+
+/// The merge once its outputs are checked: the summary, the JUnit file, the report.
+fn merged(project: &Project, a: &MergeArgs) -> Result<String, CmdError> {
     let shards = crate::regress::read_summaries(&a.summaries).map_err(CmdError::Input)?;
     let mut m = crate::regress::merge_shards(project, &shards).map_err(CmdError::Input)?;
     if a.require_numeric {
@@ -97,9 +105,7 @@ pub fn run(project: &Project, a: &MergeArgs) -> Result<String, CmdError> {
         write_out(j, xml.as_bytes())?;
     }
     if let Some(dir) = &a.report {
-        let mut made = super::Outputs::default();
-        made.folder(dir);
-        made.settle(report(project, dir, &m))?;
+        report(project, dir, &m)?;
     }
     let mut s = crate::report::failing_lines(&m, 10);
     s.push_str(&crate::report::table(&m.testbenches));
