@@ -192,15 +192,25 @@ pub fn shorten_message(s: &str, max: usize) -> String {
     format!("{head} ... {end}")
 }
 
+/// An I/O error's reason as a person reads it: "Permission denied", without the
+/// "(os error 13)" the standard library adds.
+pub fn io_reason(e: &std::io::Error) -> String {
+    let s = e.to_string();
+    match s.find(" (os error ") {
+        Some(i) => s[..i].to_string(),
+        None => s,
+    }
+}
+
 /// The bytes of `path`, at most `max`: a longer file or an endless device is refused, naming it.
 pub fn read_bounded(path: &std::path::Path, max: u64) -> Result<Vec<u8>, String> {
     use std::io::Read;
     let name = || path.display();
-    let f = std::fs::File::open(path).map_err(|e| format!("{}: {e}", name()))?;
+    let f = std::fs::File::open(path).map_err(|e| format!("{}: {}", name(), io_reason(&e)))?;
     let mut b = Vec::new();
     f.take(max + 1)
         .read_to_end(&mut b)
-        .map_err(|e| format!("{}: {e}", name()))?;
+        .map_err(|e| format!("{}: {}", name(), io_reason(&e)))?;
     if b.len() as u64 > max {
         return Err(format!(
             "{}: longer than {max} bytes, more than any input of its kind",
@@ -213,6 +223,15 @@ pub fn read_bounded(path: &std::path::Path, max: u64) -> Result<Vec<u8>, String>
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn an_io_reason_drops_the_os_error_number() {
+        let e = std::io::Error::from_raw_os_error(13);
+        assert_eq!(io_reason(&e), "Permission denied");
+        assert_eq!(io_reason(&std::io::Error::other("plain")), "plain");
+        let e = read_bounded(std::path::Path::new("/no/such/input.pgm"), 10).unwrap_err();
+        assert_eq!(e, "/no/such/input.pgm: No such file or directory");
+    }
 
     #[test]
     fn quoted_parts_are_shortened_and_the_rest_kept() {

@@ -358,14 +358,6 @@ mod tests {
         assert!(d.path().join("x/y").is_dir());
         super::check_folder("--out", std::path::Path::new("")).unwrap();
     }
-
-    #[test]
-    fn an_io_reason_drops_the_os_error_number() {
-        let e = std::io::Error::from_raw_os_error(13);
-        assert_eq!(super::io_reason(&e), "Permission denied");
-        let e = std::io::Error::other("plain");
-        assert_eq!(super::io_reason(&e), "plain");
-    }
 }
 
 /// `list`: every unit with its testbenches, twin and vectors.
@@ -482,19 +474,9 @@ pub fn make_folder(opt: &str, path: &Path) -> Result<(), CmdError> {
         input(format!(
             "{opt} {}: cannot make the folder: {}",
             path.display(),
-            io_reason(&e)
+            waves::output::io_reason(&e)
         ))
     })
-}
-
-/// An I/O error's reason as a person reads it: "Permission denied", without the
-/// "(os error 13)" the standard library adds.
-pub fn io_reason(e: &std::io::Error) -> String {
-    let s = e.to_string();
-    match s.find(" (os error ") {
-        Some(i) => s[..i].to_string(),
-        None => s,
-    }
 }
 
 /// Whether two paths name one file: the same absolute path, or (when both exist) the same
