@@ -706,24 +706,9 @@ fn regress_refuses_an_unwritable_summary_before_running() {
 #[test]
 fn merge_refuses_huge_counts_and_mixed_versions_without_allocating() {
     let d = tmp("merge17");
-    let half = |shard: &str, out: &Path| {
-        let o = texrtl(&[
-            "--no-cosim",
-            "--no-vcd",
-            "--only",
-            "blend_adjust_153",
-            "--count",
-            "10",
-            "--shard",
-            shard,
-            "--out",
-            out.to_str().unwrap(),
-        ]);
-        assert!(o.status.code().is_some_and(|c| c <= 1), "{o:?}");
-    };
     let (s1, s2) = (d.join("s1"), d.join("s2"));
-    half("1/2", &s1);
-    half("2/2", &s2);
+    common::small_shard(1, &s1);
+    common::small_shard(2, &s2);
     let read = |p: &Path| -> serde_json::Value {
         serde_json::from_slice(&std::fs::read(p.join("summary.json")).unwrap()).unwrap()
     };

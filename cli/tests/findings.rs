@@ -3,7 +3,7 @@
 //! file, leaving no file behind and removing none.
 
 mod common;
-use common::{dir, ran, s, texrtl};
+use common::{dir, ran, s, small_shard, texrtl};
 use std::path::{Path, PathBuf};
 
 /// An 8x6x5 volume of `fill` and a CSV holding `ray` (three times over when `thrice`).
@@ -503,22 +503,7 @@ fn rtl_that_does_not_build_leaves_no_folder() {
 #[test]
 fn merge_names_the_summary_whose_model_differs() {
     let d = dir("findings", "merge-model");
-    let shard = |k: u32| {
-        let out = d.join(format!("s{k}"));
-        let args = [
-            "--no-cosim",
-            "--no-vcd",
-            "--only",
-            "blend_adjust_153",
-            "--count",
-            "10",
-        ];
-        let shard = format!("{k}/2");
-        let o = texrtl(&[&args[..], &["--shard", &shard, "--out", s(&out)]].concat());
-        assert_eq!(o.status.code(), Some(0), "{o:?}");
-        out.join("summary.json")
-    };
-    let (a, b) = (shard(1), shard(2));
+    let (a, b) = (small_shard(1, &d.join("s1")), small_shard(2, &d.join("s2")));
     // A report that cannot be written takes the merged summary written before it with it.
     let m = d.join("m.json");
     let o = texrtl(&[

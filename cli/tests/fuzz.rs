@@ -406,23 +406,7 @@ fn every_command_front_end_survives_mutated_inputs() {
 /// A shard summary of a small real run (`--shard K/2`).
 fn shard_summary(k: u32) -> Vec<u8> {
     let d = dir(&format!("summary{k}"));
-    let o = Command::new(env!("CARGO_BIN_EXE_texrtl"))
-        .args([
-            "--no-cosim",
-            "--no-vcd",
-            "--only",
-            "blend_adjust_153",
-            "--count",
-            "10",
-        ])
-        .arg("--shard")
-        .arg(format!("{k}/2"))
-        .arg("--out")
-        .arg(&*d)
-        .output()
-        .unwrap();
-    assert!(o.status.code().is_some_and(|c| c <= 1), "{o:?}");
-    std::fs::read(d.join("summary.json")).unwrap()
+    std::fs::read(common::small_shard(k, &d)).unwrap()
 }
 
 #[test]

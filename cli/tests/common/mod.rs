@@ -72,6 +72,26 @@ pub fn s(p: &Path) -> &str {
     p.to_str().unwrap()
 }
 
+/// The `summary.json` of shard `k` of 2 of a small run (blend adjust 153, 10 transactions a
+/// configuration, no waveforms) written into folder `out`.
+pub fn small_shard(k: u32, out: &Path) -> PathBuf {
+    let shard = format!("{k}/2");
+    let o = texrtl(&[
+        "--no-cosim",
+        "--no-vcd",
+        "--only",
+        "blend_adjust_153",
+        "--count",
+        "10",
+        "--shard",
+        &shard,
+        "--out",
+        s(out),
+    ]);
+    assert!(o.status.code().is_some_and(|c| c <= 1), "{o:?}");
+    out.join("summary.json")
+}
+
 /// `args` are refused: exit 2, one line containing `needle`, and no file in `d` whose name
 /// starts with one of `outputs`.
 pub fn assert_refused(args: &[&str], needle: &str, d: &Path, outputs: &[&str]) {
