@@ -115,9 +115,6 @@ pub fn run(project: &Project, a: RegressArgs) -> ExitCode {
         .out
         .clone()
         .unwrap_or_else(|| PathBuf::from("target").join(name));
-    if let Err(e) = super::check_folder("--out", &out) {
-        return fail(name, e);
-    }
     let bless = a.bless;
     let cfg = RegressConfig {
         out,
