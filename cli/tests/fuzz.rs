@@ -371,8 +371,8 @@ fn judge(f: &Front, d: &Path, a: Vec<String>, opt: Option<&str>) -> Result<(), T
             // (a value clap reads as short options) how to give it.
             let file = err.contains(d.to_str().unwrap_or("/"));
             let told = |o: &str| err.contains(o) || file || err.contains("written --OPTION=VALUE");
-            if opt.is_some_and(|o| !told(o)) {
-                return fail(format!("does not name {}", opt.unwrap_or_default()));
+            if let Some(o) = opt.filter(|o| !told(o)) {
+                return fail(format!("does not name {o}"));
             }
         }
         // A merged run that failed (a mutation can mark a shard failed), a vectors check

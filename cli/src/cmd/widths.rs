@@ -63,10 +63,13 @@ impl Widths {
         };
         // A refusal names the option, not the parameter it sets.
         p.validate().map_err(|e| {
-            let named = OPTIONS
+            match OPTIONS
                 .iter()
-                .find(|(f, _)| e.starts_with(&format!("{f} ")));
-            named.map_or(e.clone(), |(f, o)| format!("{o}{}", &e[f.len()..]))
+                .find(|(f, _)| e.starts_with(&format!("{f} ")))
+            {
+                Some((f, o)) => format!("{o}{}", &e[f.len()..]),
+                None => e,
+            }
         })?;
         Ok(p)
     }
