@@ -497,6 +497,41 @@ fn rtl_that_does_not_build_leaves_no_folder() {
     }
 }
 
+/// Verilog whose top is not the model's interface is refused by port before any value is
+/// compared: a port of another width (found as differing values, it hid its cause) and a
+/// port the model lacks (a floating input is x in Icarus and 0 in Verilator; it passed).
+#[test]
+fn rtl_whose_ports_are_not_the_models_is_refused_by_port() {
+    let rtl = include_str!("../../rtl/bump/blend_adjust_153.v");
+    let (bypass, u1) = ("wire                 bypass,", "wire [FRAC_BITS:0]   u1,");
+    let narrow = rtl.replace(u1, "wire [FRAC_BITS-1:0] u1,");
+    let extra = rtl.replace(bypass, &format!("{bypass} input wire scan_en,"));
+    assert!(narrow != rtl && extra != rtl, "the twin's ports moved");
+    for (sim, tool, arg) in [
+        ("icarus", "iverilog", "-V"),
+        ("verilator", "verilator", "-V"),
+    ] {
+        if !common::simulator(tool, arg) {
+            continue;
+        }
+        let d = dir("findings", &format!("ports-{sim}"));
+        for (file, text, needle) in [
+            (
+                "narrow.v",
+                &narrow,
+                "port u1 is 8 bits in the RTL, 9 in the model",
+            ),
+            ("extra.v", &extra, "scan_en"),
+        ] {
+            let (v, out) = (d.join(file), d.join("run"));
+            std::fs::write(&v, text).unwrap();
+            let unit = ["cosim", "--unit", "blend_adjust_153", "--count", "200"];
+            let args = [&unit[..], &["--sim", sim, "--rtl", s(&v), "--out", s(&out)]].concat();
+            common::assert_refused(&args, needle, &d, &["run"]);
+        }
+    }
+}
+
 /// A shard whose coverage model is not the testbench's (a coverpoint renamed) is named by
 /// its file: with a hundred shards, "coverpoint 'x' differs between the models" alone does
 /// not say which summary to look at. A merge that fails leaves none of its outputs.

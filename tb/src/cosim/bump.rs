@@ -6,7 +6,7 @@ use hdl::fx::Format;
 use std::path::PathBuf;
 use units::bump::height_map::HeightMap;
 use units::bump::params::{Border, BumpParams};
-use verif::cosim::{field, Clocking, CosimModel, CosimUnit, ModelSim};
+use verif::cosim::{field, Clocking, CosimModel, CosimUnit, ModelSim, Unmodelled};
 /// Blend-factor adjust unit 153 against `rtl/bump/blend_adjust_153.v`.
 pub struct BlendAdjustCosim(pub units::bump::blend_adjust_153::BlendAdjustParams);
 
@@ -276,6 +276,15 @@ impl CosimUnit for TangentCosim {
                 }
             },
         )))
+    }
+    /// One MIP level: the second level's inputs, which `TRILINEAR = 0` leaves unused, tied
+    /// to zero.
+    fn unmodelled(&self) -> Vec<Unmodelled> {
+        let second = ["r1", "g1", "b1", "a1", "tu1", "tv1", "lod"];
+        match self.0.trilinear {
+            true => Vec::new(),
+            false => second.map(|n| Unmodelled::Tied(n.into(), 0)).into(),
+        }
     }
     fn stimulus(&self, seed: verif::Seed, cycles: usize) -> Vec<Vec<u64>> {
         let mut st = verif::Stimulus::new(seed);

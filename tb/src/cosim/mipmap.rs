@@ -5,7 +5,7 @@
 use super::twin;
 use std::path::PathBuf;
 use units::mipmap::mipmap_gen_816::{MipmapGen, MipmapParams, Rounding, Scan};
-use verif::cosim::{CosimModel, CosimUnit, ModelSim, Port};
+use verif::cosim::{CosimModel, CosimUnit, ModelSim, Port, Unmodelled};
 
 /// Mipmap generator 816 against `rtl/mipmap/mipmap_gen_816.v` (with `level_fig14.v`,
 /// `fifo_fig14.v`) writing the behavioural `frame_store_826.v`. Compared besides its ports:
@@ -87,6 +87,13 @@ impl CosimUnit for MipmapCosim {
                 .flat_map(|l| [l.out_valid.bits(), l.out_texel.bits()])
                 .collect()
         })))
+    }
+    /// The levels the wrapper has (ten) beyond the frame's: open.
+    fn unmodelled(&self) -> Vec<Unmodelled> {
+        let levels = MipmapGen::new(self.name(), self.params).map_or(0, |d| d.dims().len());
+        (levels.max(1)..=10)
+            .flat_map(|k| ["valid", "texel"].map(|f| Unmodelled::Open(format!("l{k}_{f}"))))
+            .collect()
     }
     /// Frames of texels (0 and 255 an eighth of the time each, otherwise any), `rate` of
     /// eight cycles carrying one (blanking in between at random), `sof` with each frame's

@@ -73,6 +73,12 @@ pub fn main_cpp(unit: &dyn CosimUnit, ins: &[Port], outs: &[Port], mode: Mode) -
     } else {
         let _ = writeln!(s, "    V{top} top(&ctx);");
     }
+    // The inputs the model lacks, as the co-simulation's testbench ties them.
+    for u in unit.unmodelled() {
+        if let crate::cosim::Unmodelled::Tied(n, bits) = u {
+            let _ = writeln!(s, "    top.{n} = {bits}ULL;");
+        }
+    }
     let dump = |t: &str| {
         if traced {
             format!(" tfp.dump({t});")

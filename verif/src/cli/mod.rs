@@ -235,14 +235,16 @@ pub fn fail(name: &str, msg: impl std::fmt::Display) -> ExitCode {
 
 /// A message kept on one short line: a newline or other control character in it (a file name
 /// can hold one) is shown escaped, and a word (a value, a path) longer than 80 characters is
-/// cut to its first 40 and last 30 (a path keeps its file name).
+/// cut to its first 40 and last 30 (a path keeps its file name). A path that exists is kept
+/// whole, to be copied: the waveform a failed run names, the folder a refusal is about.
 pub fn one_line(s: &str) -> String {
     let escaped = waves::output::escape_controls(s);
+    let punctuation: &[char] = &['(', ')', ',', ';', ':', '\'', '`'];
     escaped
         .split(' ')
         .map(|w| {
             let n = w.chars().count();
-            if n <= 80 {
+            if n <= 80 || std::path::Path::new(w.trim_matches(punctuation)).exists() {
                 return w.to_string();
             }
             let head: String = w.chars().take(40).collect();
@@ -267,6 +269,13 @@ mod tests {
             "{m}"
         );
         assert_eq!(one_line("short words stay"), "short words stay");
+        // A path that exists is whole, however long: it is there to be opened.
+        let dir = std::env::temp_dir().join(format!("{}-{}", "d".repeat(90), std::process::id()));
+        std::fs::create_dir_all(&dir).unwrap();
+        let said = format!("waveform: gtkwave {}/, the first", dir.display());
+        let kept = one_line(&said);
+        std::fs::remove_dir_all(&dir).unwrap();
+        assert_eq!(kept, said);
     }
 
     fn parse_error(args: &[&str]) -> String {

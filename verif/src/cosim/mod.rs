@@ -314,6 +314,31 @@ pub trait CosimUnit: Send + Sync {
     fn memories(&self) -> Vec<(String, String)> {
         Vec::new()
     }
+    /// Ports of the Verilog top that the model lacks in this configuration (a second MIP
+    /// level's inputs a parameter leaves unused, levels beyond the frame's size): each input
+    /// tied to a constant, each output left open. The testbench connects the top's ports by
+    /// name, and a port neither the model's nor listed here refuses the build, naming it.
+    fn unmodelled(&self) -> Vec<Unmodelled> {
+        Vec::new()
+    }
+}
+
+/// A port of the Verilog top that the model lacks ([`CosimUnit::unmodelled`]).
+#[derive(Clone, Debug, PartialEq)]
+pub enum Unmodelled {
+    /// An input, driven with these bits on every cycle.
+    Tied(String, u64),
+    /// An output, left unconnected and not compared.
+    Open(String),
+}
+
+impl Unmodelled {
+    /// The port's name.
+    pub fn name(&self) -> &str {
+        match self {
+            Unmodelled::Tied(n, _) | Unmodelled::Open(n) => n,
+        }
+    }
 }
 
 /// The clock and reset of a clocked Verilog top. The model sees reset as the `rst` of
@@ -702,6 +727,10 @@ fn rtl_outputs(
     let run = rtl::RtlRun {
         dir,
         sources,
+        top: unit.top(),
+        clocking: unit.clocking(),
+        unmodelled: unit.unmodelled(),
+        ins,
         outs,
         cycles,
         inputs,

@@ -1,7 +1,7 @@
 //! The RTL side of a co-simulation: the stimulus file, the generated SystemVerilog testbench,
 //! the simulator run and the outputs read back.
 
-use super::{cache, verilator, CosimUnit, Port, Simulator};
+use super::{cache, verilator, CosimUnit, Port, Simulator, Unmodelled};
 use std::fmt::Write as _;
 use std::path::{Path, PathBuf};
 use std::process::Command;
@@ -79,6 +79,13 @@ pub(super) fn testbench(unit: &dyn CosimUnit, ins: &[Port], outs: &[Port]) -> St
             .chain(outs)
             .map(|p| format!(".{n}({n})", n = p.name)),
     );
+    conns.extend(unit.unmodelled().iter().map(|u| match u {
+        Unmodelled::Tied(n, bits) => format!(".{n}(64'h{bits:x})"),
+        Unmodelled::Open(n) => format!(".{n}()"),
+    }));
+    // Any other port of the RTL's top has no variable of its name here: both simulators
+    // refuse to build, where a floating input would be x in one and 0 in the other.
+    conns.push(".*".to_string());
     let _ = writeln!(
         s,
         "    {} #({}) dut ({});",
@@ -89,9 +96,18 @@ pub(super) fn testbench(unit: &dyn CosimUnit, ins: &[Port], outs: &[Port]) -> St
     let names: Vec<&str> = ins.iter().map(|p| p.name.as_str()).collect();
     let fmt: Vec<&str> = outs.iter().map(|_| "%h").collect();
     let onames: Vec<&str> = outs.iter().map(|p| p.name.as_str()).collect();
+    // The first line: the width of each of the RTL's ports, inputs then outputs, as the
+    // simulator elaborated them (`read_outputs` compares them with the model's).
+    let widths: Vec<String> = ins
+        .iter()
+        .chain(outs)
+        .map(|p| format!(", $bits(dut.{})", p.name))
+        .collect();
     let _ = write!(
         s,
-        "    integer texrtl_cycle, texrtl_cycles, texrtl_in, texrtl_fd, texrtl_got;\n    initial begin\n        if (!$value$plusargs(\"cycles=%d\", texrtl_cycles)) texrtl_cycles = 0;\n        texrtl_in = $fopen(\"stim.hex\", \"r\");\n        texrtl_fd = $fopen(\"rtl_out.hex\", \"w\");\n        for (texrtl_cycle = 0; texrtl_cycle < texrtl_cycles; texrtl_cycle = texrtl_cycle + 1) begin\n            texrtl_got = $fscanf(texrtl_in, \"%h\\n\", texrtl_line);\n            {{texrtl_rst, {}}} = texrtl_line;\n            #1;\n            $fwrite(texrtl_fd, \"{}\\n\", {});\n            texrtl_clk = 1'b1;\n            #1;\n            texrtl_clk = 1'b0;\n            #1;\n        end\n        $fclose(texrtl_fd);\n        $fclose(texrtl_in);\n        $finish;\n    end\nendmodule\n",
+        "    integer texrtl_cycle, texrtl_cycles, texrtl_in, texrtl_fd, texrtl_got;\n    initial begin\n        if (!$value$plusargs(\"cycles=%d\", texrtl_cycles)) texrtl_cycles = 0;\n        texrtl_in = $fopen(\"stim.hex\", \"r\");\n        texrtl_fd = $fopen(\"rtl_out.hex\", \"w\");\n        $fwrite(texrtl_fd, \"{WIDTHS}{}\\n\"{});\n        for (texrtl_cycle = 0; texrtl_cycle < texrtl_cycles; texrtl_cycle = texrtl_cycle + 1) begin\n            texrtl_got = $fscanf(texrtl_in, \"%h\\n\", texrtl_line);\n            {{texrtl_rst, {}}} = texrtl_line;\n            #1;\n            $fwrite(texrtl_fd, \"{}\\n\", {});\n            texrtl_clk = 1'b1;\n            #1;\n            texrtl_clk = 1'b0;\n            #1;\n        end\n        $fclose(texrtl_fd);\n        $fclose(texrtl_in);\n        $finish;\n    end\nendmodule\n",
+        vec![" %0d"; widths.len()].concat(),
+        widths.concat(),
         names.join(", "),
         fmt.join(" "),
         onames.join(", ")
@@ -99,12 +115,20 @@ pub(super) fn testbench(unit: &dyn CosimUnit, ins: &[Port], outs: &[Port]) -> St
     s
 }
 
+/// How the first line of `rtl_out.hex` begins: a comment, as `$readmemh` reads one.
+const WIDTHS: &str = "// port widths:";
+
 /// A run of the generated testbench: its folder (holding `tb.sv`, `stim.hex` and the memory
-/// images), the Verilog sources, the output ports, the cycles, and the files the RTL reads
+/// images), the Verilog sources, the top and its ports, the cycles, and the files the RTL reads
 /// at run time (the stimulus and the memory images).
 pub(super) struct RtlRun<'a> {
     pub dir: &'a Path,
     pub sources: &'a [PathBuf],
+    /// The RTL's top module, its clock and reset, and its ports the model lacks.
+    pub top: &'a str,
+    pub clocking: Option<super::Clocking>,
+    pub unmodelled: Vec<Unmodelled>,
+    pub ins: &'a [Port],
     pub outs: &'a [Port],
     pub cycles: usize,
     pub inputs: Vec<PathBuf>,
@@ -142,6 +166,8 @@ fn binary(sim: Simulator, r: &RtlRun, kept: Option<(&Path, &str)>) -> Result<Pat
         let shown: Vec<String> = r.sources.iter().map(|s| s.display().to_string()).collect();
         if shown.iter().any(|s| e.contains(s.as_str())) {
             e
+        } else if e.contains(&tb.display().to_string()) {
+            format!("{e} ({})", contract(r, &shown))
         } else {
             format!("{e} (building {})", shown.join(", "))
         }
@@ -165,6 +191,30 @@ fn binary(sim: Simulator, r: &RtlRun, kept: Option<(&Path, &str)>) -> Result<Pat
         cache::store(root, k, &built);
     }
     Ok(built)
+}
+
+/// What the generated testbench asks of the RTL, said when a build fails in it (a port the
+/// RTL lacks, or one the model lacks).
+fn contract(r: &RtlRun, sources: &[String]) -> String {
+    const SHOWN: usize = 12;
+    let clocking = r
+        .clocking
+        .iter()
+        .flat_map(|c| [Some(&c.clock), c.reset.as_ref()]);
+    let ports: Vec<&str> = (clocking.flatten().map(String::as_str))
+        .chain(r.ins.iter().chain(r.outs).map(|p| p.name.as_str()))
+        .chain(r.unmodelled.iter().map(Unmodelled::name))
+        .collect();
+    let more = match ports.len().saturating_sub(SHOWN) {
+        0 => String::new(),
+        n => format!(" and {n} more"),
+    };
+    format!(
+        "the testbench connects the top {} of {} by name, its ports exactly the model's and those it declares unmodelled: {}{more}",
+        r.top,
+        sources.join(", "),
+        ports[..ports.len().min(SHOWN)].join(", ")
+    )
 }
 
 /// Builds (or takes the kept build of) the testbench and runs it, unless a run of the same
@@ -213,13 +263,19 @@ pub(super) fn simulate(sim: Simulator, r: &RtlRun) -> Result<Vec<Vec<Option<u64>
             }
         }
     }
-    read_outputs(&out, r.outs)
+    read_outputs(&out, r)
 }
 
-/// The RTL's outputs, a line per cycle of hex fields, one per port.
-fn read_outputs(path: &Path, outs: &[Port]) -> Result<Vec<Vec<Option<u64>>>, String> {
+/// The RTL's outputs, a line per cycle of hex fields, one per port, after the line of its
+/// ports' widths (each must be the model's).
+fn read_outputs(path: &Path, r: &RtlRun) -> Result<Vec<Vec<Option<u64>>>, String> {
     let text = std::fs::read_to_string(path).map_err(|e| format!("{}: {e}", path.display()))?;
-    text.lines()
+    let mut lines = text.lines();
+    let widths = lines.next().and_then(|l| l.strip_prefix(WIDTHS));
+    let widths = widths.ok_or_else(|| format!("{}: no line of port widths", path.display()))?;
+    check_widths(widths, r)?;
+    let outs = r.outs;
+    lines
         .filter(|l| !l.trim().is_empty())
         .map(|l| {
             let f: Vec<&str> = l.split_whitespace().collect();
@@ -234,4 +290,47 @@ fn read_outputs(path: &Path, outs: &[Port]) -> Result<Vec<Vec<Option<u64>>>, Str
             Ok(f.iter().map(|x| u64::from_str_radix(x, 16).ok()).collect())
         })
         .collect()
+}
+
+/// The RTL's port widths (`$bits` of each, inputs then outputs, as `widths` lists them)
+/// against the model's: a port of another width is a different interface, refused by name
+/// rather than found as a difference of values.
+fn check_widths(widths: &str, r: &RtlRun) -> Result<(), String> {
+    let ports: Vec<&Port> = r.ins.iter().chain(r.outs).collect();
+    let got: Vec<u32> = widths
+        .split_whitespace()
+        .map(|w| w.parse().unwrap_or(0))
+        .collect();
+    if got.len() != ports.len() {
+        let path = r.dir.join("rtl_out.hex");
+        let line = format!("{WIDTHS}{widths}");
+        return Err(format!(
+            "{}: '{line}' has not {} ports",
+            path.display(),
+            ports.len()
+        ));
+    }
+    let wrong: Vec<String> = ports
+        .iter()
+        .zip(&got)
+        .filter(|(p, w)| p.fmt.width() != **w)
+        .map(|(p, w)| {
+            format!(
+                "port {} is {w} bits in the RTL, {} in the model ({})",
+                p.name,
+                p.fmt.width(),
+                p.fmt
+            )
+        })
+        .collect();
+    if wrong.is_empty() {
+        return Ok(());
+    }
+    let from: Vec<String> = r.sources.iter().map(|s| s.display().to_string()).collect();
+    Err(format!(
+        "the RTL's top {} ({}): {}",
+        r.top,
+        from.join(", "),
+        wrong.join("; ")
+    ))
 }

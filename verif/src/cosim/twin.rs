@@ -2,7 +2,9 @@
 //! unit's name is the module's kind, its ports are the module's top ports, and its stimulus
 //! is corner-weighted random on every input ([`super::field`]) unless given.
 
-use super::{field, top_ports, Clocking, Compare, CosimModel, CosimUnit, ModelSim, Port};
+use super::{
+    field, top_ports, Clocking, Compare, CosimModel, CosimUnit, ModelSim, Port, Unmodelled,
+};
 use crate::Seed;
 use hdl::kernel::Module;
 use std::path::PathBuf;
@@ -38,6 +40,7 @@ pub struct Twin<M, D = fn(&mut M, &[u64])> {
     stimulus: Option<Box<Stimulus>>,
     watch: Vec<Port>,
     watch_fn: fn(&M) -> Vec<u64>,
+    unmodelled: Vec<Unmodelled>,
 }
 
 impl<M: Module + Clone + Send + Sync + 'static> Twin<M> {
@@ -79,6 +82,7 @@ where
             stimulus: None,
             watch: Vec::new(),
             watch_fn: |_| Vec::new(),
+            unmodelled: Vec::new(),
         }
     }
 
@@ -124,6 +128,18 @@ where
     /// Cycles of inputs shown with the first difference.
     pub fn show_history(mut self, cycles: usize) -> Self {
         self.history = cycles;
+        self
+    }
+    /// An input of the Verilog top that the model lacks, driven with `bits` on every cycle
+    /// (a debug or test input; see [`CosimUnit::unmodelled`]).
+    pub fn tie(mut self, port: &str, bits: u64) -> Self {
+        self.unmodelled
+            .push(Unmodelled::Tied(port.to_string(), bits));
+        self
+    }
+    /// An output of the Verilog top that the model lacks, left open and not compared.
+    pub fn open(mut self, port: &str) -> Self {
+        self.unmodelled.push(Unmodelled::Open(port.to_string()));
         self
     }
     /// The stimulus of `cycles` cycles from a seed (raw bits in input-port order), in place of
@@ -187,5 +203,8 @@ where
     }
     fn history(&self) -> usize {
         self.history
+    }
+    fn unmodelled(&self) -> Vec<Unmodelled> {
+        self.unmodelled.clone()
     }
 }
