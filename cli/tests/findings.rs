@@ -498,15 +498,20 @@ fn rtl_that_does_not_build_leaves_no_folder() {
 }
 
 /// Verilog whose top is not the model's interface is refused by port before any value is
-/// compared: a port of another width (found as differing values, it hid its cause) and a
-/// port the model lacks (a floating input is x in Icarus and 0 in Verilator; it passed).
+/// compared: a port of another width (found as differing values, it hid its cause), a port
+/// the model lacks (a floating input is x in Icarus and 0 in Verilator; it passed), and a
+/// parameter it lacks (Icarus warned and built the default configuration; it passed).
 #[test]
 fn rtl_whose_ports_are_not_the_models_is_refused_by_port() {
     let rtl = include_str!("../../rtl/bump/blend_adjust_153.v");
     let (bypass, u1) = ("wire                 bypass,", "wire [FRAC_BITS:0]   u1,");
     let narrow = rtl.replace(u1, "wire [FRAC_BITS-1:0] u1,");
     let extra = rtl.replace(bypass, &format!("{bypass} input wire scan_en,"));
-    assert!(narrow != rtl && extra != rtl, "the twin's ports moved");
+    let renamed = rtl.replace("REGISTERED", "STAGES");
+    assert!(
+        narrow != rtl && extra != rtl && renamed != rtl,
+        "the twin moved"
+    );
     for (sim, tool, arg) in [
         ("icarus", "iverilog", "-V"),
         ("verilator", "verilator", "-V"),
@@ -522,6 +527,7 @@ fn rtl_whose_ports_are_not_the_models_is_refused_by_port() {
                 "port u1 is 8 bits in the RTL, 9 in the model",
             ),
             ("extra.v", &extra, "scan_en"),
+            ("renamed.v", &renamed, "REGISTERED"),
         ] {
             let (v, out) = (d.join(file), d.join("run"));
             std::fs::write(&v, text).unwrap();

@@ -1,8 +1,8 @@
 //! The co-simulation cache, as a user meets it: a second run of an unchanged unit builds and
 //! simulates nothing and says the same, byte for byte; another seed simulates again on the
 //! kept build; changed Verilog misses the cache and its difference is found; `off` builds
-//! every time. Icarus only (the cheaper build); without it the test says so and passes, unless
-//! `TEXRTL_REQUIRE_COSIM=1`.
+//! every time; an edited `include file misses it too. Icarus only (the cheaper build); without
+//! it the test says so and passes, unless `TEXRTL_REQUIRE_COSIM=1`.
 
 mod common;
 use common::dir;
@@ -84,5 +84,90 @@ fn an_unchanged_cosimulation_is_reused_and_a_changed_one_is_not() {
     assert_eq!(off.status.code(), Some(0));
     assert!(d.join("e/sim.vvp").exists());
     assert_eq!(entries(&root).len(), 5);
+    std::fs::remove_dir_all(&d).unwrap();
+}
+
+/// Verilog that includes a header: found beside the source, or in an `--incdir` folder; a
+/// `--define` chooses it; editing the header (not the source) builds anew and finds the bug.
+#[test]
+fn an_included_header_is_found_and_its_edit_is_not_a_stale_build() {
+    if !common::simulator("iverilog", "-V") {
+        return;
+    }
+    let d = dir("sim-cache", "include");
+    let c = d.join("cache");
+    let c = c.to_str().unwrap();
+    let twin = Path::new(env!("CARGO_MANIFEST_DIR")).join("../rtl/bump/blend_adjust_153.v");
+    let good = std::fs::read_to_string(twin).unwrap();
+    let uses = good.replace("{1'b1, u_in};", "{`TOP_BIT, u_in};");
+    assert_ne!(uses, good);
+    let header = |dir: &Path, bit: &str| {
+        std::fs::create_dir_all(dir).unwrap();
+        std::fs::write(
+            dir.join("top_bit.vh"),
+            format!("`define TOP_BIT 1'b{bit}\n"),
+        )
+        .unwrap();
+    };
+    // Beside the source.
+    let beside = d.join("beside.v");
+    std::fs::write(&beside, format!("`include \"top_bit.vh\"\n{uses}")).unwrap();
+    header(&d, "1");
+    let rtl = ["--rtl", beside.to_str().unwrap()];
+    assert_eq!(cosim(c, &d.join("a"), &rtl).status.code(), Some(0));
+    header(&d, "0");
+    assert_eq!(
+        cosim(c, &d.join("b"), &rtl).status.code(),
+        Some(1),
+        "the edit is seen"
+    );
+    // In a folder of its own, included only under a define.
+    let inc = d.join("include");
+    header(&inc, "1");
+    std::fs::create_dir_all(d.join("src")).unwrap();
+    let chosen = d.join("src/chosen.v");
+    let text = format!(
+        "`ifdef SHARED\n`include \"top_bit.vh\"\n`else\n`define TOP_BIT 1'b0\n`endif\n{uses}"
+    );
+    std::fs::write(&chosen, text).unwrap();
+    let rtl = ["--rtl", chosen.to_str().unwrap()];
+    assert_eq!(
+        cosim(c, &d.join("c"), &rtl).status.code(),
+        Some(1),
+        "without SHARED"
+    );
+    let defined = [&rtl[..], &["--define", "SHARED"]].concat();
+    let o = cosim(c, &d.join("e"), &defined);
+    let err = String::from_utf8_lossy(&o.stderr);
+    assert!(
+        o.status.code() == Some(2) && err.contains("top_bit.vh"),
+        "{err}"
+    );
+    let found = [&defined[..], &["--incdir", inc.to_str().unwrap()]].concat();
+    assert_eq!(cosim(c, &d.join("f"), &found).status.code(), Some(0));
+    std::fs::remove_dir_all(&d).unwrap();
+}
+
+/// Verilog whose module is named otherwise than the unit's top: refused naming the top the
+/// testbench looked for, then instantiated by `--top`.
+#[test]
+fn a_module_of_another_name_is_the_top_given() {
+    if !common::simulator("iverilog", "-V") {
+        return;
+    }
+    let d = dir("sim-cache", "top");
+    let c = d.join("cache");
+    let twin = Path::new(env!("CARGO_MANIFEST_DIR")).join("../rtl/bump/blend_adjust_153.v");
+    let good = std::fs::read_to_string(twin).unwrap();
+    let renamed = good.replace("module blend_adjust_153", "module adjust_v2");
+    assert_ne!(renamed, good);
+    let mine = d.join("adjust_v2.v");
+    std::fs::write(&mine, renamed).unwrap();
+    let rtl = ["--rtl", mine.to_str().unwrap()];
+    let o = cosim(c.to_str().unwrap(), &d.join("a"), &rtl);
+    let err = String::from_utf8_lossy(&o.stderr);
+    assert!(o.status.code() == Some(2) && err.contains("top blend_adjust_153"), "{err}");
+    let top = [&rtl[..], &["--top", "adjust_v2"]].concat();
+    assert_eq!(cosim(c.to_str().unwrap(), &d.join("b"), &top).status.code(), Some(0));
     std::fs::remove_dir_all(&d).unwrap();
 }

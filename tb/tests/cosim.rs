@@ -33,8 +33,12 @@ fn available(sim: Simulator) -> bool {
     }
 }
 
+/// A fresh folder of its own for each call: the quick check and the full sweep run the same
+/// configurations, at once under `--include-ignored`.
 fn dir(name: &str) -> PathBuf {
-    let d = std::env::temp_dir().join(format!("texrtl-cosim-{}-{name}", std::process::id()));
+    static N: std::sync::atomic::AtomicUsize = std::sync::atomic::AtomicUsize::new(0);
+    let n = N.fetch_add(1, std::sync::atomic::Ordering::Relaxed);
+    let d = std::env::temp_dir().join(format!("texrtl-cosim-{}-{n}-{name}", std::process::id()));
     let _ = std::fs::remove_dir_all(&d);
     d
 }

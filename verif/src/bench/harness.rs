@@ -189,9 +189,11 @@ pub fn build(unit: &dyn CosimUnit, cpp: &str, mode: Mode, dir: &Path) -> Result<
         c.arg(format!("-G{k}={v}"));
     }
     c.arg(&main);
-    for f in unit.rtl().into_iter().chain(unit.bench_rtl()) {
-        c.arg(std::path::absolute(&f).unwrap_or(f));
-    }
+    let sources: Vec<PathBuf> = (unit.rtl().into_iter().chain(unit.bench_rtl()))
+        .map(|f| std::path::absolute(&f).unwrap_or(f))
+        .collect();
+    c.args(crate::cosim::preprocessor_flags(unit, &sources)?)
+        .args(&sources);
     run(&mut c, "verilator")?;
     Ok(mdir.join("bench"))
 }

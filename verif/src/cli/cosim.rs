@@ -27,6 +27,12 @@ pub struct CosimArgs {
     pub stimulus: String,
     /// Folder for the testbench, stimulus, RTL outputs and the waveform.
     pub out: Option<PathBuf>,
+    /// Folders searched for `include files, besides the unit's.
+    pub incdir: Vec<PathBuf>,
+    /// Preprocessor macros, besides the unit's.
+    pub define: Vec<String>,
+    /// The Verilog module to instantiate instead of the unit's top.
+    pub top: Option<String>,
 }
 
 clap_args!(CosimArgs);
@@ -41,6 +47,9 @@ impl CosimArgs {
             value("seed", "SEED", Seed::parse, "Stimulus seed").default_value("0xc051"),
             value("stimulus", "STIMULUS", value_parser!(String), "random (seeded, --count cycles) or vectors: the unit's directed runs (the transactions of its regression vectors, in their configuration; one run per configuration, in folders under --out)").default_value("random"),
             path("out", "OUT", "Folder for the testbench, stimulus, RTL outputs and the waveform (default target/NAME-cosim/UNIT-SIM, NAME the program's)"),
+            values("incdir", "DIR", value_parser!(PathBuf), "A folder searched for `include files, after each source's own folder and the unit's (repeatable)"),
+            values("define", "MACRO", value_parser!(String), "A preprocessor macro for the build, NAME or NAME=VALUE (repeatable; after the unit's)"),
+            value("top", "MODULE", value_parser!(String), "The Verilog module the testbench instantiates, when yours is not named as the unit's top (its ports and parameters the same)"),
         ])
     }
 
@@ -53,6 +62,9 @@ impl CosimArgs {
             seed: given(m, "seed"),
             stimulus: given(m, "stimulus"),
             out: one(m, "out"),
+            incdir: all(m, "incdir"),
+            define: all(m, "define"),
+            top: one(m, "top"),
         }
     }
 }
@@ -69,6 +81,20 @@ pub fn run(project: &Project, a: &CosimArgs) -> Result<String, CmdError> {
         .ok_or_else(|| format!("--sim {}: verilator or icarus", shorten(&a.sim)))?;
     if !(1..=10_000_000).contains(&a.count) {
         return Err(format!("--count {}: 1..=10000000 cycles", a.count).into());
+    }
+    if let Some(m) = a.define.iter().find(|m| !cosim::is_define(m)) {
+        return Err(format!("--define {}: not NAME or NAME=VALUE", shorten(m)).into());
+    }
+    let identifier = |t: &str| {
+        t.starts_with(|c: char| c.is_ascii_alphabetic() || c == '_')
+            && t.chars()
+                .all(|c| c.is_ascii_alphanumeric() || c == '_' || c == '$')
+    };
+    if let Some(t) = a.top.as_deref().filter(|t| !identifier(t)) {
+        return Err(format!("--top {}: not a Verilog module name", shorten(t)).into());
+    }
+    if let Some(d) = a.incdir.iter().find(|d| !d.is_dir()) {
+        return Err(format!("--incdir {}: no such folder", d.display()).into());
     }
     if let Some(f) = a.rtl.iter().find(|f| !f.is_file()) {
         let why = if f.symlink_metadata().is_ok() {
@@ -117,7 +143,9 @@ fn simulate(
     dir: &Path,
 ) -> Result<String, CmdError> {
     let vectors = a.stimulus == "vectors";
+    let with = |unit| Preprocessed { unit, a };
     if !vectors {
+        let unit = &with(unit);
         let r = cosim::run(unit, sim, &a.rtl, a.count, a.seed, dir).map_err(CmdError::Input)?;
         let what = format!("{} in {} (seed {})", a.unit, sim.name(), a.seed);
         return report(&what, &r);
@@ -125,7 +153,7 @@ fn simulate(
     let mut lines = Vec::new();
     for d in runs {
         let r = cosim::run_with(
-            d.unit.as_ref(),
+            &with(d.unit.as_ref()),
             sim,
             &a.rtl,
             &d.stimulus,
@@ -158,5 +186,56 @@ fn report(what: &str, r: &cosim::CosimResult) -> Result<String, CmdError> {
                 view.display()
             )))
         }
+    }
+}
+
+/// A unit with the command line's `--incdir` and `--define` after its own, and its `--top`.
+struct Preprocessed<'a> {
+    unit: &'a dyn cosim::CosimUnit,
+    a: &'a CosimArgs,
+}
+
+impl cosim::CosimUnit for Preprocessed<'_> {
+    fn name(&self) -> &str {
+        self.unit.name()
+    }
+    fn top(&self) -> &str {
+        self.a.top.as_deref().unwrap_or(self.unit.top())
+    }
+    fn rtl(&self) -> Vec<PathBuf> {
+        self.unit.rtl()
+    }
+    fn bench_rtl(&self) -> Vec<PathBuf> {
+        self.unit.bench_rtl()
+    }
+    fn parameters(&self) -> Vec<(&'static str, i64)> {
+        self.unit.parameters()
+    }
+    fn model(&self) -> Result<Box<dyn cosim::CosimModel>, String> {
+        self.unit.model()
+    }
+    fn stimulus(&self, seed: Seed, cycles: usize) -> Vec<Vec<u64>> {
+        self.unit.stimulus(seed, cycles)
+    }
+    fn clocking(&self) -> Option<cosim::Clocking> {
+        self.unit.clocking()
+    }
+    fn compare(&self) -> Vec<cosim::Compare> {
+        self.unit.compare()
+    }
+    fn history(&self) -> usize {
+        self.unit.history()
+    }
+    fn memories(&self) -> Vec<(String, String)> {
+        self.unit.memories()
+    }
+    fn unmodelled(&self) -> Vec<cosim::Unmodelled> {
+        self.unit.unmodelled()
+    }
+    fn include_dirs(&self) -> Vec<PathBuf> {
+        [self.unit.include_dirs(), self.a.incdir.clone()].concat()
+    }
+    fn defines(&self) -> Vec<String> {
+        [self.unit.defines(), self.a.define.clone()].concat()
     }
 }

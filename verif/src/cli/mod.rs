@@ -62,7 +62,12 @@ fn command<E: Subcommand>(project: &Project, about: &'static str) -> Command {
     for ((sub, help), add) in COMMANDS.into_iter().zip(augment) {
         cmd = cmd.subcommand(add(Command::new(sub).about(help)));
     }
-    // After the program's subcommands, whose derive may set an about of its own.
+    // After the program's subcommands, whose derive may set an about of its own; a program
+    // that gives none is described by what it runs.
+    let about = match about {
+        "" => format!("{name}'s units: their testbenches, bit-accuracy vectors and co-simulations"),
+        about => about.to_string(),
+    };
     let cmd = E::augment_subcommands(RegressArgs::augment(cmd))
         .version(project.version())
         .about(about);

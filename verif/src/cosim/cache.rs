@@ -3,8 +3,10 @@
 //! instead of building again.
 //!
 //! The key is a hash of the simulator and its version line (and the C++ compiler's, for
-//! Verilator), the build options, the generated testbench (ports, parameters, reset) and
-//! every Verilog source's name and contents. The stimulus, the cycle count and the memory
+//! Verilator), the build options (include folders and defines among them), the generated
+//! testbench (ports, parameters, reset), every Verilog source's name and contents, and those
+//! of every file the sources `` `include `` (found beside the including file and in the include
+//! folders; a name given by a macro is not followed). The stimulus, the cycle count and the memory
 //! images are read at run time from the run's folder, so they are not part of it: the
 //! testbench names them by relative path and takes the cycle count as a plusarg.
 //!

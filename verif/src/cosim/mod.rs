@@ -321,6 +321,58 @@ pub trait CosimUnit: Send + Sync {
     fn unmodelled(&self) -> Vec<Unmodelled> {
         Vec::new()
     }
+    /// Folders searched for `` `include `` files, after the folder of each source (which is
+    /// always searched).
+    fn include_dirs(&self) -> Vec<PathBuf> {
+        Vec::new()
+    }
+    /// Preprocessor macros defined for the build: `NAME` or `NAME=VALUE`.
+    fn defines(&self) -> Vec<String> {
+        Vec::new()
+    }
+}
+
+/// Whether `m` is a preprocessor macro as a build takes it: a Verilog identifier, then
+/// optionally `=` and its value (on one line).
+pub fn is_define(m: &str) -> bool {
+    let name = m.split('=').next().unwrap_or("");
+    !m.contains(char::is_control)
+        && name.starts_with(|c: char| c.is_ascii_alphabetic() || c == '_')
+        && name
+            .chars()
+            .all(|c| c.is_ascii_alphanumeric() || c == '_' || c == '$')
+}
+
+/// The preprocessor options of a build of `sources` for `unit`, as both simulators take them:
+/// `-I` for the folder of each source and then [`CosimUnit::include_dirs`] (absolute; each
+/// must be a folder), `-D` for each of [`CosimUnit::defines`] (each a Verilog identifier,
+/// with an optional `=VALUE`).
+pub fn preprocessor_flags(
+    unit: &dyn CosimUnit,
+    sources: &[PathBuf],
+) -> Result<Vec<String>, String> {
+    let mut dirs: Vec<PathBuf> = Vec::new();
+    let own = sources
+        .iter()
+        .filter_map(|s| s.parent().map(Path::to_path_buf));
+    for d in own.chain(unit.include_dirs()) {
+        let d = std::path::absolute(&d).unwrap_or(d);
+        if !d.is_dir() {
+            return Err(format!("include folder {}: no such folder", d.display()));
+        }
+        if !dirs.contains(&d) {
+            dirs.push(d);
+        }
+    }
+    let mut flags: Vec<String> = dirs.iter().map(|d| format!("-I{}", d.display())).collect();
+    for m in unit.defines() {
+        if !is_define(&m) {
+            let shown = waves::output::shorten(&m);
+            return Err(format!("define '{shown}': not NAME or NAME=VALUE"));
+        }
+        flags.push(format!("-D{m}"));
+    }
+    Ok(flags)
 }
 
 /// A port of the Verilog top that the model lacks ([`CosimUnit::unmodelled`]).
@@ -730,6 +782,8 @@ fn rtl_outputs(
         top: unit.top(),
         clocking: unit.clocking(),
         unmodelled: unit.unmodelled(),
+        parameters: unit.parameters().iter().map(|p| p.0).collect(),
+        flags: preprocessor_flags(unit, sources)?,
         ins,
         outs,
         cycles,

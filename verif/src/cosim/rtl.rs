@@ -96,12 +96,15 @@ pub(super) fn testbench(unit: &dyn CosimUnit, ins: &[Port], outs: &[Port]) -> St
     let names: Vec<&str> = ins.iter().map(|p| p.name.as_str()).collect();
     let fmt: Vec<&str> = outs.iter().map(|_| "%h").collect();
     let onames: Vec<&str> = outs.iter().map(|p| p.name.as_str()).collect();
-    // The first line: the width of each of the RTL's ports, inputs then outputs, as the
-    // simulator elaborated them (`read_outputs` compares them with the model's).
-    let widths: Vec<String> = ins
-        .iter()
-        .chain(outs)
-        .map(|p| format!(", $bits(dut.{})", p.name))
+    // The first line: the width of each of the RTL's ports, inputs, outputs and tied inputs,
+    // as the simulator elaborated them (`read_outputs` compares them with the model's).
+    let tied = unit.unmodelled().into_iter().filter_map(|u| match u {
+        Unmodelled::Tied(n, _) => Some(n),
+        Unmodelled::Open(_) => None,
+    });
+    let widths: Vec<String> = (ins.iter().chain(outs).map(|p| p.name.clone()))
+        .chain(tied)
+        .map(|n| format!(", $bits(dut.{n})"))
         .collect();
     let _ = write!(
         s,
@@ -128,6 +131,10 @@ pub(super) struct RtlRun<'a> {
     pub top: &'a str,
     pub clocking: Option<super::Clocking>,
     pub unmodelled: Vec<Unmodelled>,
+    /// The names of the parameters it is given.
+    pub parameters: Vec<&'static str>,
+    /// The preprocessor's include folders and defines ([`super::preprocessor_flags`]).
+    pub flags: Vec<String>,
     pub ins: &'a [Port],
     pub outs: &'a [Port],
     pub cycles: usize,
@@ -141,13 +148,22 @@ fn run_tool(cmd: &mut Command, what: &str) -> Result<(), String> {
     if o.status.success() {
         return Ok(());
     }
-    let err = String::from_utf8_lossy(&o.stderr);
-    let first = err
-        .lines()
-        .find(|l| !l.trim().is_empty())
-        .unwrap_or("failed");
-    let first: String = first.chars().take(200).collect();
-    Err(format!("{what}: {first}"))
+    Err(format!(
+        "{what}: {}",
+        first_message(&String::from_utf8_lossy(&o.stderr))
+    ))
+}
+
+/// A tool's first message line, cut at 200 characters.
+fn first_message(err: &str) -> String {
+    let first = err.lines().find(|l| !l.trim().is_empty());
+    first.unwrap_or("failed").chars().take(200).collect()
+}
+
+/// The parameter named in Icarus' "warning: parameter NAME not found in tb.dut.".
+fn missing_parameter(line: &str) -> Option<&str> {
+    let rest = line.split("warning: parameter ").nth(1)?;
+    rest.strip_suffix(" not found in tb.dut.")
 }
 
 /// The simulator's build of the testbench: the kept one of `key`, or a new one (then kept).
@@ -174,16 +190,12 @@ fn binary(sim: Simulator, r: &RtlRun, kept: Option<(&Path, &str)>) -> Result<Pat
     };
     let built = match sim {
         Simulator::Verilator => {
-            verilator::build(&tb, r.sources, &r.dir.join("obj_dir"), &run_tool).map_err(named)?
+            let files = [&r.flags[..], &strings(r.sources)].concat();
+            verilator::build(&tb, &files, &r.dir.join("obj_dir"), &run_tool).map_err(named)?
         }
         Simulator::Icarus => {
             let vvp = r.dir.join(file);
-            let mut c = Command::new("iverilog");
-            c.args(["-g2012", "-s", "tb", "-o"])
-                .arg(&vvp)
-                .arg(&tb)
-                .args(r.sources);
-            run_tool(&mut c, "iverilog").map_err(named)?;
+            icarus(r, &tb, &vvp, named)?;
             vvp
         }
     };
@@ -191,6 +203,35 @@ fn binary(sim: Simulator, r: &RtlRun, kept: Option<(&Path, &str)>) -> Result<Pat
         cache::store(root, k, &built);
     }
     Ok(built)
+}
+
+/// Icarus' build of the testbench `tb` into `vvp`; a failure's message is made by `named`.
+fn icarus(
+    r: &RtlRun,
+    tb: &Path,
+    vvp: &Path,
+    named: impl Fn(String) -> String,
+) -> Result<(), String> {
+    let mut c = Command::new("iverilog");
+    c.args(["-g2012", "-s", "tb", "-o"])
+        .arg(vvp)
+        .args(&r.flags)
+        .arg(tb)
+        .args(r.sources);
+    let o = c.output().map_err(|e| format!("iverilog: {e}"))?;
+    let said = String::from_utf8_lossy(&o.stderr);
+    if !o.status.success() {
+        return Err(named(format!("iverilog: {}", first_message(&said))));
+    }
+    // Where Verilator refuses a parameter the top lacks, Icarus warns and builds the top with
+    // its default: another configuration than the model's.
+    match said.lines().find_map(missing_parameter) {
+        Some(p) => Err(named(format!(
+            "iverilog: the RTL's top {} has no parameter {p}",
+            r.top
+        ))),
+        None => Ok(()),
+    }
 }
 
 /// What the generated testbench asks of the RTL, said when a build fails in it (a port the
@@ -209,8 +250,12 @@ fn contract(r: &RtlRun, sources: &[String]) -> String {
         0 => String::new(),
         n => format!(" and {n} more"),
     };
+    let parameters = match r.parameters.as_slice() {
+        [] => String::new(),
+        names => format!(" with the parameters {}", names.join(", ")),
+    };
     format!(
-        "the testbench connects the top {} of {} by name, its ports exactly the model's and those it declares unmodelled: {}{more}",
+        "the testbench instantiates the top {} of {}{parameters} and connects its ports by name, exactly the model's and those it declares unmodelled: {}{more}",
         r.top,
         sources.join(", "),
         ports[..ports.len().min(SHOWN)].join(", ")
@@ -228,8 +273,14 @@ pub(super) fn simulate(sim: Simulator, r: &RtlRun) -> Result<Vec<Vec<Option<u64>
         Simulator::Verilator => format!("verilator {}", verilator::OPTIONS.join(" ")),
         Simulator::Icarus => "iverilog -g2012".to_string(),
     };
+    let what = format!("{what} {}", r.flags.join(" "));
     let root = cache::root();
-    let build_key = cache::key(&what, &text, r.sources);
+    // The files the sources include are part of what a build is made of.
+    let dirs: Vec<PathBuf> = (r.flags.iter())
+        .filter_map(|f| f.strip_prefix("-I").map(PathBuf::from))
+        .collect();
+    let made_of = [r.sources, &included(r.sources, &dirs)].concat();
+    let build_key = cache::key(&what, &text, &made_of);
     let run_key = build_key
         .as_deref()
         .and_then(|k| cache::key(&format!("{k} +cycles={}", r.cycles), "run", &r.inputs));
@@ -297,20 +348,26 @@ fn read_outputs(path: &Path, r: &RtlRun) -> Result<Vec<Vec<Option<u64>>>, String
 /// rather than found as a difference of values.
 fn check_widths(widths: &str, r: &RtlRun) -> Result<(), String> {
     let ports: Vec<&Port> = r.ins.iter().chain(r.outs).collect();
+    let tied: Vec<(&String, u64)> = (r.unmodelled.iter())
+        .filter_map(|u| match u {
+            Unmodelled::Tied(n, bits) => Some((n, *bits)),
+            Unmodelled::Open(_) => None,
+        })
+        .collect();
     let got: Vec<u32> = widths
         .split_whitespace()
         .map(|w| w.parse().unwrap_or(0))
         .collect();
-    if got.len() != ports.len() {
+    if got.len() != ports.len() + tied.len() {
         let path = r.dir.join("rtl_out.hex");
         let line = format!("{WIDTHS}{widths}");
         return Err(format!(
             "{}: '{line}' has not {} ports",
             path.display(),
-            ports.len()
+            ports.len() + tied.len()
         ));
     }
-    let wrong: Vec<String> = ports
+    let mut wrong: Vec<String> = ports
         .iter()
         .zip(&got)
         .filter(|(p, w)| p.fmt.width() != **w)
@@ -323,6 +380,12 @@ fn check_widths(widths: &str, r: &RtlRun) -> Result<(), String> {
             )
         })
         .collect();
+    let fits = |bits: u64, w: u32| w >= 64 || bits >> w == 0;
+    wrong.extend(
+        (tied.iter().zip(&got[ports.len()..]))
+            .filter(|((_, bits), w)| !fits(*bits, **w))
+            .map(|((n, bits), w)| format!("port {n} is {w} bits, too few for its tie {bits:#x}")),
+    );
     if wrong.is_empty() {
         return Ok(());
     }
@@ -333,4 +396,48 @@ fn check_widths(widths: &str, r: &RtlRun) -> Result<(), String> {
         from.join(", "),
         wrong.join("; ")
     ))
+}
+
+/// Paths as the strings a command line takes.
+fn strings(paths: &[PathBuf]) -> Vec<String> {
+    paths.iter().map(|p| p.display().to_string()).collect()
+}
+
+/// Every file that may be `` `include``d by `sources`, and by those files in turn: each name
+/// an `` `include "name" `` gives, wherever it exists beside the file that includes it or in
+/// one of `dirs` (all of them, whichever one the simulator takes). Read for the cache's key
+/// only, so that an edited header builds anew; a name given by a macro is not followed.
+fn included(sources: &[PathBuf], dirs: &[PathBuf]) -> Vec<PathBuf> {
+    const MAX_FILES: usize = 1000;
+    let mut seen: Vec<PathBuf> = Vec::new();
+    let mut todo: Vec<PathBuf> = sources.to_vec();
+    while let Some(f) = todo.pop() {
+        let Ok(text) = std::fs::read_to_string(&f) else {
+            continue;
+        };
+        for name in include_names(&text) {
+            let beside = f.parent().map(|p| p.join(name));
+            for p in beside.into_iter().chain(dirs.iter().map(|d| d.join(name))) {
+                if p.is_file() && !seen.contains(&p) && seen.len() < MAX_FILES {
+                    seen.push(p.clone());
+                    todo.push(p);
+                }
+            }
+        }
+    }
+    seen
+}
+
+/// The file names of a Verilog text's `` `include "name" `` (or `<name>`) directives.
+fn include_names(text: &str) -> impl Iterator<Item = &str> {
+    text.split("`include").skip(1).filter_map(|rest| {
+        let rest = rest.trim_start();
+        let close = match rest.chars().next()? {
+            '"' => '"',
+            '<' => '>',
+            _ => return None,
+        };
+        let rest = &rest[1..];
+        rest.find(close).map(|end| &rest[..end])
+    })
 }

@@ -41,6 +41,8 @@ pub struct Twin<M, D = fn(&mut M, &[u64])> {
     watch: Vec<Port>,
     watch_fn: fn(&M) -> Vec<u64>,
     unmodelled: Vec<Unmodelled>,
+    include_dirs: Vec<PathBuf>,
+    defines: Vec<String>,
 }
 
 impl<M: Module + Clone + Send + Sync + 'static> Twin<M> {
@@ -83,6 +85,8 @@ where
             watch: Vec::new(),
             watch_fn: |_| Vec::new(),
             unmodelled: Vec::new(),
+            include_dirs: Vec::new(),
+            defines: Vec::new(),
         }
     }
 
@@ -140,6 +144,16 @@ where
     /// An output of the Verilog top that the model lacks, left open and not compared.
     pub fn open(mut self, port: &str) -> Self {
         self.unmodelled.push(Unmodelled::Open(port.to_string()));
+        self
+    }
+    /// A folder searched for `` `include `` files (each source's own folder always is).
+    pub fn include_dir(mut self, dir: PathBuf) -> Self {
+        self.include_dirs.push(dir);
+        self
+    }
+    /// A preprocessor macro defined for the build: `NAME` or `NAME=VALUE`.
+    pub fn define(mut self, macro_: &str) -> Self {
+        self.defines.push(macro_.to_string());
         self
     }
     /// The stimulus of `cycles` cycles from a seed (raw bits in input-port order), in place of
@@ -206,5 +220,11 @@ where
     }
     fn unmodelled(&self) -> Vec<Unmodelled> {
         self.unmodelled.clone()
+    }
+    fn include_dirs(&self) -> Vec<PathBuf> {
+        self.include_dirs.clone()
+    }
+    fn defines(&self) -> Vec<String> {
+        self.defines.clone()
     }
 }

@@ -71,11 +71,12 @@ fn copy_whole(from: &Path, to: &Path) -> std::io::Result<()> {
     std::fs::rename(&tmp, to)
 }
 
-/// Builds `tb` (top module `tb`) with `sources` into `mdir`; returns the executable. `run`
+/// Builds `tb` (top module `tb`) with `sources` (the preprocessor's options first) into
+/// `mdir`; returns the executable. `run`
 /// runs a command, turning a failure into the tool's first message.
 pub fn build(
     tb: &Path,
-    sources: &[PathBuf],
+    sources: &[String],
     mdir: &Path,
     run: &dyn Fn(&mut Command, &str) -> Result<(), String>,
 ) -> Result<PathBuf, String> {
