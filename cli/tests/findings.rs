@@ -538,6 +538,41 @@ fn rtl_whose_ports_are_not_the_models_is_refused_by_port() {
     }
 }
 
+/// Verilog that leaves a register out of its reset differs from the model, which resets it,
+/// in both simulators: Icarus starts the register at x, and Verilator (whose default is zero,
+/// the reset value here, so that it passed) now starts it at random.
+#[test]
+fn a_register_left_out_of_reset_is_a_difference_in_both_simulators() {
+    let rtl = include_str!("../../rtl/bump/blend_adjust_153.v");
+    let unreset = rtl.replace("u0_r    <= {(FRAC_BITS + 1){1'b0}};", "");
+    assert_ne!(unreset, rtl, "the twin's reset moved");
+    for (sim, tool, arg) in [
+        ("icarus", "iverilog", "-V"),
+        ("verilator", "verilator", "-V"),
+    ] {
+        if !common::simulator(tool, arg) {
+            continue;
+        }
+        let d = dir("findings", &format!("unreset-{sim}"));
+        let v = d.join("unreset.v");
+        std::fs::write(&v, &unreset).unwrap();
+        let unit = ["cosim", "--unit", "blend_adjust_153", "--count", "200"];
+        let o = texrtl(
+            &[
+                &unit[..],
+                &["--sim", sim, "--rtl", s(&v), "--out", s(&d.join("run"))],
+            ]
+            .concat(),
+        );
+        let err = String::from_utf8_lossy(&o.stderr);
+        assert_eq!(o.status.code(), Some(1), "{sim}: {err}");
+        assert!(
+            err.contains("the first at cycle 1 on port u0"),
+            "{sim}: {err}"
+        );
+    }
+}
+
 /// A shard whose coverage model is not the testbench's (a coverpoint renamed) is named by
 /// its file: with a hundred shards, "coverpoint 'x' differs between the models" alone does
 /// not say which summary to look at. A merge that fails leaves none of its outputs.

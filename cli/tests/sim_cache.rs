@@ -166,8 +166,14 @@ fn a_module_of_another_name_is_the_top_given() {
     let rtl = ["--rtl", mine.to_str().unwrap()];
     let o = cosim(c.to_str().unwrap(), &d.join("a"), &rtl);
     let err = String::from_utf8_lossy(&o.stderr);
-    assert!(o.status.code() == Some(2) && err.contains("top blend_adjust_153"), "{err}");
+    assert!(
+        o.status.code() == Some(2) && err.contains("top blend_adjust_153"),
+        "{err}"
+    );
     let top = [&rtl[..], &["--top", "adjust_v2"]].concat();
-    assert_eq!(cosim(c.to_str().unwrap(), &d.join("b"), &top).status.code(), Some(0));
+    assert_eq!(
+        cosim(c.to_str().unwrap(), &d.join("b"), &top).status.code(),
+        Some(0)
+    );
     std::fs::remove_dir_all(&d).unwrap();
 }

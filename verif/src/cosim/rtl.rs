@@ -281,9 +281,24 @@ pub(super) fn simulate(sim: Simulator, r: &RtlRun) -> Result<Vec<Vec<Option<u64>
         .collect();
     let made_of = [r.sources, &included(r.sources, &dirs)].concat();
     let build_key = cache::key(&what, &text, &made_of);
-    let run_key = build_key
-        .as_deref()
-        .and_then(|k| cache::key(&format!("{k} +cycles={}", r.cycles), "run", &r.inputs));
+    // Verilator starts what the Verilog does not reset at random values, as Icarus starts it
+    // at x: a missing reset is a difference in both simulators (Verilator's default, zeros,
+    // would match the model's reset values and hide it). The seed follows from the run.
+    let random_init = if sim == Simulator::Verilator {
+        " +verilator+rand+reset+2"
+    } else {
+        ""
+    };
+    let run_key = build_key.as_deref().and_then(|k| {
+        let what = format!("{k} +cycles={}{random_init}", r.cycles);
+        cache::key(&what, "run", &r.inputs)
+    });
+    let init_seed = run_key.as_deref().map_or(1, |k| {
+        let h = k.bytes().fold(0xcbf2_9ce4_8422_2325u64, |h, b| {
+            (h ^ u64::from(b)).wrapping_mul(0x100_0000_01b3)
+        });
+        h % 0x7fff_ffff + 1
+    });
     let out = r.dir.join("rtl_out.hex");
     let kept_run = root.as_deref().zip(run_key.as_deref());
     match kept_run.and_then(|(root, k)| cache::lookup(root, k, "rtl_out.hex")) {
@@ -293,7 +308,12 @@ pub(super) fn simulate(sim: Simulator, r: &RtlRun) -> Result<Vec<Vec<Option<u64>
         None => {
             let b = binary(sim, r, root.as_deref().zip(build_key.as_deref()))?;
             let mut c = match sim {
-                Simulator::Verilator => Command::new(&b),
+                Simulator::Verilator => {
+                    let mut c = Command::new(&b);
+                    c.arg(random_init.trim())
+                        .arg(format!("+verilator+seed+{init_seed}"));
+                    c
+                }
                 Simulator::Icarus => {
                     let mut c = Command::new("vvp");
                     c.arg("-n").arg(&b);
