@@ -8,7 +8,7 @@ use crate::project::Project;
 use crate::TbResult;
 use crate::{Registry, RunOptions, Seed};
 use serde::{Deserialize, Serialize};
-use std::path::PathBuf;
+use std::path::{Path, PathBuf};
 #[cfg(feature = "read")]
 use waves::check::{check_gtkw, read_vcd};
 use waves::output::write_output;
@@ -376,9 +376,11 @@ pub fn regress(
     };
     progress("", "vectors and waveforms");
     // Bit-accuracy vectors of the project's source tree, when it is there (not for an
-    // installed binary); checked by the first shard.
+    // installed binary away from it); checked by the first shard. A tree without its vectors
+    // folder fails the check, each unit's file missing, rather than skipping it.
     let first = cfg.shard.index == 1 && cfg.job.is_none();
-    let dir = project.kept_vectors().filter(|d| d.is_dir());
+    let tree = |d: &&Path| d.is_dir() || d.parent().is_some_and(Path::is_dir);
+    let dir = project.kept_vectors().filter(tree);
     if let Some(dir) = dir.filter(|_| first && cfg.selected(VECTORS)) {
         results.push(vectors_row(project, dir));
     }
