@@ -167,7 +167,7 @@ fn a_module_of_another_name_is_the_top_given() {
     let o = cosim(c.to_str().unwrap(), &d.join("a"), &rtl);
     let err = String::from_utf8_lossy(&o.stderr);
     assert!(
-        o.status.code() == Some(2) && err.contains("top blend_adjust_153"),
+        o.status.code() == Some(2) && err.contains("instantiates blend_adjust_153"),
         "{err}"
     );
     let top = [&rtl[..], &["--top", "adjust_v2"]].concat();

@@ -183,7 +183,7 @@ fn binary(sim: Simulator, r: &RtlRun, kept: Option<(&Path, &str)>) -> Result<Pat
         if shown.iter().any(|s| e.contains(s.as_str())) {
             e
         } else if e.contains(&tb.display().to_string()) {
-            format!("{e} ({})", contract(r, &shown))
+            format!("{e} ({})", contract(r))
         } else {
             format!("{e} (building {})", shown.join(", "))
         }
@@ -236,7 +236,7 @@ fn icarus(
 
 /// What the generated testbench asks of the RTL, said when a build fails in it (a port the
 /// RTL lacks, or one the model lacks).
-fn contract(r: &RtlRun, sources: &[String]) -> String {
+fn contract(r: &RtlRun) -> String {
     const SHOWN: usize = 12;
     let clocking = r
         .clocking
@@ -252,12 +252,11 @@ fn contract(r: &RtlRun, sources: &[String]) -> String {
     };
     let parameters = match r.parameters.as_slice() {
         [] => String::new(),
-        names => format!(" with the parameters {}", names.join(", ")),
+        names => format!(" #({})", names.join(", ")),
     };
     format!(
-        "the testbench instantiates the top {} of {}{parameters} and connects its ports by name, exactly the model's and those it declares unmodelled: {}{more}",
+        "the testbench instantiates {}{parameters} with the ports {}{more}, and no others",
         r.top,
-        sources.join(", "),
         ports[..ports.len().min(SHOWN)].join(", ")
     )
 }
@@ -409,11 +408,14 @@ fn check_widths(widths: &str, r: &RtlRun) -> Result<(), String> {
     if wrong.is_empty() {
         return Ok(());
     }
-    let from: Vec<String> = r.sources.iter().map(|s| s.display().to_string()).collect();
+    let more = match wrong.len() {
+        0..=2 => String::new(),
+        n => format!("; and {} more", n - 2),
+    };
+    wrong.truncate(2);
     Err(format!(
-        "the RTL's top {} ({}): {}",
+        "the RTL's top {}: {}{more}",
         r.top,
-        from.join(", "),
         wrong.join("; ")
     ))
 }
