@@ -14,8 +14,10 @@
 //! temporary folder; `TEXRTL_SIM_CACHE=off` builds every time). An entry is built in its run's
 //! folder, copied into a temporary folder of the cache and renamed into place whole, so a
 //! concurrent run sees an entry complete or not at all, and two runs that build the same key
-//! keep one. At most [`MAX_ENTRIES`] entries and [`MAX_BYTES`] are kept, the least recently
-//! used removed first. Deleting the folder clears it.
+//! keep one. A run reuses an entry through its own hard link or copy ([`take`]), so another
+//! run pruning it cannot take it away mid-use. At most [`MAX_ENTRIES`] entries and
+//! [`MAX_BYTES`] are kept, the least recently used removed first. Deleting the folder clears
+//! it.
 //!
 //! A run is kept the same way: its outputs under a key of the build's key, the cycle count
 //! and the run-time inputs' names and contents. A simulator is deterministic, so the same
@@ -102,6 +104,19 @@ pub fn lookup(root: &Path, key: &str, file: &str) -> Option<PathBuf> {
     let _ = std::fs::write(&done, key);
     let f = entry.join(file);
     f.is_file().then_some(f)
+}
+
+/// The kept artifact of `key` (`file` in its entry) made the run's own at `dest`, so that
+/// another run pruning the entry afterwards cannot take it away mid-use: a hard link when
+/// `link` (a build, which nothing writes again; a copy across file systems), else a copy (an
+/// output the run's folder may be rewritten with). `false` on a miss, or when the entry went
+/// between the lookup and the link.
+pub fn take(root: &Path, key: &str, file: &str, dest: &Path, link: bool) -> bool {
+    let Some(kept) = lookup(root, key, file) else {
+        return false;
+    };
+    let _ = std::fs::remove_file(dest);
+    (link && std::fs::hard_link(&kept, dest).is_ok()) || std::fs::copy(&kept, dest).is_ok()
 }
 
 /// Keeps `artifact` as `key`'s entry: copied into a fresh temporary folder of the cache, then
@@ -202,6 +217,26 @@ mod tests {
         std::fs::copy(&a, &c).unwrap();
         assert_ne!(base, k("verilator -O3", "tb", &c), "another file name");
         assert_eq!(key("x", "tb", &[d.join("missing.v")]), None);
+        std::fs::remove_dir_all(&d).unwrap();
+    }
+
+    /// A taken artifact is the run's own: pruning its entry afterwards (another run keeping
+    /// its own) leaves it whole; an entry that is gone is a miss.
+    #[test]
+    fn a_taken_artifact_outlives_its_entry() {
+        let d = folder("take");
+        let root = d.join("cache");
+        let art = d.join("simv");
+        std::fs::write(&art, b"binary").unwrap();
+        store(&root, "k1", &art);
+        for link in [true, false] {
+            let mine = d.join(format!("mine-{link}"));
+            assert!(take(&root, "k1", "simv", &mine, link));
+            assert_eq!(std::fs::read(&mine).unwrap(), b"binary");
+        }
+        prune(&root, 0, MAX_BYTES);
+        assert_eq!(std::fs::read(d.join("mine-true")).unwrap(), b"binary");
+        assert!(!take(&root, "k1", "simv", &d.join("again"), true));
         std::fs::remove_dir_all(&d).unwrap();
     }
 

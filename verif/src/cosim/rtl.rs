@@ -172,8 +172,9 @@ fn binary(sim: Simulator, r: &RtlRun, kept: Option<(&Path, &str)>) -> Result<Pat
         Simulator::Verilator => "simv",
         Simulator::Icarus => "sim.vvp",
     };
-    if let Some(b) = kept.and_then(|(root, k)| cache::lookup(root, k, file)) {
-        return Ok(b);
+    let own = r.dir.join(format!("kept-{file}"));
+    if kept.is_some_and(|(root, k)| cache::take(root, k, file, &own, true)) {
+        return Ok(own);
     }
     let tb = r.dir.join("tb.sv");
     // A tool's message names the file and line; one that does not (a crash) is told which
@@ -300,11 +301,9 @@ pub(super) fn simulate(sim: Simulator, r: &RtlRun) -> Result<Vec<Vec<Option<u64>
     });
     let out = r.dir.join("rtl_out.hex");
     let kept_run = root.as_deref().zip(run_key.as_deref());
-    match kept_run.and_then(|(root, k)| cache::lookup(root, k, "rtl_out.hex")) {
-        Some(kept) => {
-            std::fs::copy(&kept, &out).map_err(|e| format!("{}: {e}", out.display()))?;
-        }
-        None => {
+    match kept_run.is_some_and(|(root, k)| cache::take(root, k, "rtl_out.hex", &out, false)) {
+        true => {}
+        false => {
             let b = binary(sim, r, root.as_deref().zip(build_key.as_deref()))?;
             let mut c = match sim {
                 Simulator::Verilator => {
