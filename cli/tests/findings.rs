@@ -512,13 +512,7 @@ fn rtl_whose_ports_are_not_the_models_is_refused_by_port() {
         narrow != rtl && extra != rtl && renamed != rtl,
         "the twin moved"
     );
-    for (sim, tool, arg) in [
-        ("icarus", "iverilog", "-V"),
-        ("verilator", "verilator", "-V"),
-    ] {
-        if !common::simulator(tool, arg) {
-            continue;
-        }
+    for sim in common::simulators() {
         let d = dir("findings", &format!("ports-{sim}"));
         for (file, text, needle) in [
             (
@@ -546,13 +540,7 @@ fn a_register_left_out_of_reset_is_a_difference_in_both_simulators() {
     let rtl = include_str!("../../rtl/bump/blend_adjust_153.v");
     let unreset = rtl.replace("u0_r    <= {(FRAC_BITS + 1){1'b0}};", "");
     assert_ne!(unreset, rtl, "the twin's reset moved");
-    for (sim, tool, arg) in [
-        ("icarus", "iverilog", "-V"),
-        ("verilator", "verilator", "-V"),
-    ] {
-        if !common::simulator(tool, arg) {
-            continue;
-        }
+    for sim in common::simulators() {
         let d = dir("findings", &format!("unreset-{sim}"));
         let v = d.join("unreset.v");
         std::fs::write(&v, &unreset).unwrap();

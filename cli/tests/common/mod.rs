@@ -61,6 +61,16 @@ pub fn simulator(tool: &str, arg: &str) -> bool {
     false
 }
 
+/// The co-simulators installed, by their `--sim` names (each missing one said as
+/// [`simulator`] says it).
+pub fn simulators() -> Vec<&'static str> {
+    [("icarus", "iverilog"), ("verilator", "verilator")]
+        .into_iter()
+        .filter(|(_, tool)| simulator(tool, "-V"))
+        .map(|(sim, _)| sim)
+        .collect()
+}
+
 pub fn texrtl(args: &[&str]) -> Output {
     Command::new(env!("CARGO_BIN_EXE_texrtl"))
         .args(args)

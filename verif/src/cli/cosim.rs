@@ -85,12 +85,7 @@ pub fn run(project: &Project, a: &CosimArgs) -> Result<String, CmdError> {
     if let Some(m) = a.define.iter().find(|m| !cosim::is_define(m)) {
         return Err(format!("--define {}: not NAME or NAME=VALUE", shorten(m)).into());
     }
-    let identifier = |t: &str| {
-        t.starts_with(|c: char| c.is_ascii_alphabetic() || c == '_')
-            && t.chars()
-                .all(|c| c.is_ascii_alphanumeric() || c == '_' || c == '$')
-    };
-    if let Some(t) = a.top.as_deref().filter(|t| !identifier(t)) {
+    if let Some(t) = a.top.as_deref().filter(|t| !cosim::is_identifier(t)) {
         return Err(format!("--top {}: not a Verilog module name", shorten(t)).into());
     }
     if let Some(d) = a.incdir.iter().find(|d| !d.is_dir()) {

@@ -335,9 +335,12 @@ pub trait CosimUnit: Send + Sync {
 /// Whether `m` is a preprocessor macro as a build takes it: a Verilog identifier, then
 /// optionally `=` and its value (on one line).
 pub fn is_define(m: &str) -> bool {
-    let name = m.split('=').next().unwrap_or("");
-    !m.contains(char::is_control)
-        && name.starts_with(|c: char| c.is_ascii_alphabetic() || c == '_')
+    !m.contains(char::is_control) && is_identifier(m.split('=').next().unwrap_or(""))
+}
+
+/// Whether `name` is a simple Verilog identifier (a module's, a macro's).
+pub fn is_identifier(name: &str) -> bool {
+    name.starts_with(|c: char| c.is_ascii_alphabetic() || c == '_')
         && name
             .chars()
             .all(|c| c.is_ascii_alphanumeric() || c == '_' || c == '$')
