@@ -74,10 +74,8 @@ pub fn main_cpp(unit: &dyn CosimUnit, ins: &[Port], outs: &[Port], mode: Mode) -
         let _ = writeln!(s, "    V{top} top(&ctx);");
     }
     // The inputs the model lacks, as the co-simulation's testbench ties them.
-    for u in unit.unmodelled() {
-        if let crate::cosim::Unmodelled::Tied(n, bits) = u {
-            let _ = writeln!(s, "    top.{n} = {bits}ULL;");
-        }
+    for (n, bits) in unit.unmodelled().iter().filter_map(|u| u.tied()) {
+        let _ = writeln!(s, "    top.{n} = {bits}ULL;");
     }
     let dump = |t: &str| {
         if traced {
@@ -192,7 +190,7 @@ pub fn build(unit: &dyn CosimUnit, cpp: &str, mode: Mode, dir: &Path) -> Result<
     let sources: Vec<PathBuf> = (unit.rtl().into_iter().chain(unit.bench_rtl()))
         .map(|f| std::path::absolute(&f).unwrap_or(f))
         .collect();
-    c.args(crate::cosim::preprocessor_flags(unit, &sources)?)
+    c.args(crate::cosim::Preprocessor::of(unit, &sources)?.flags())
         .args(&sources);
     run(&mut c, "verilator")?;
     Ok(mdir.join("bench"))

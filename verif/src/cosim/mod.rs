@@ -346,36 +346,53 @@ pub fn is_identifier(name: &str) -> bool {
             .all(|c| c.is_ascii_alphanumeric() || c == '_' || c == '$')
 }
 
-/// The preprocessor options of a build of `sources` for `unit`, as both simulators take them:
-/// `-I` for the folder of each source and then [`CosimUnit::include_dirs`] (absolute; each
-/// must be a folder), `-D` for each of [`CosimUnit::defines`] (each a Verilog identifier,
-/// with an optional `=VALUE`).
-pub fn preprocessor_flags(
-    unit: &dyn CosimUnit,
-    sources: &[PathBuf],
-) -> Result<Vec<String>, String> {
-    let mut dirs: Vec<PathBuf> = Vec::new();
-    let own = sources
-        .iter()
-        .filter_map(|s| s.parent().map(Path::to_path_buf));
-    for d in own.chain(unit.include_dirs()) {
-        let d = std::path::absolute(&d).unwrap_or(d);
-        if !d.is_dir() {
-            return Err(format!("include folder {}: no such folder", d.display()));
+/// What the preprocessor of a build is given, in both simulators alike.
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct Preprocessor {
+    /// Folders searched for `` `include `` files, absolute: each source's, then the unit's.
+    pub include_dirs: Vec<PathBuf>,
+    /// Macros defined: `NAME` or `NAME=VALUE`.
+    pub defines: Vec<String>,
+}
+
+impl Preprocessor {
+    /// The preprocessor of a build of `sources` for `unit`: the folder of each source and
+    /// then [`CosimUnit::include_dirs`] (each must be a folder), and [`CosimUnit::defines`]
+    /// (each a Verilog identifier with an optional `=VALUE`).
+    pub fn of(unit: &dyn CosimUnit, sources: &[PathBuf]) -> Result<Preprocessor, String> {
+        let mut include_dirs: Vec<PathBuf> = Vec::new();
+        let own = sources
+            .iter()
+            .filter_map(|s| s.parent().map(Path::to_path_buf));
+        for d in own.chain(unit.include_dirs()) {
+            let d = std::path::absolute(&d).unwrap_or(d);
+            if !d.is_dir() {
+                return Err(format!("include folder {}: no such folder", d.display()));
+            }
+            if !include_dirs.contains(&d) {
+                include_dirs.push(d);
+            }
         }
-        if !dirs.contains(&d) {
-            dirs.push(d);
-        }
-    }
-    let mut flags: Vec<String> = dirs.iter().map(|d| format!("-I{}", d.display())).collect();
-    for m in unit.defines() {
-        if !is_define(&m) {
-            let shown = waves::output::shorten(&m);
+        let defines = unit.defines();
+        if let Some(m) = defines.iter().find(|m| !is_define(m)) {
+            let shown = waves::output::shorten(m);
             return Err(format!("define '{shown}': not NAME or NAME=VALUE"));
         }
-        flags.push(format!("-D{m}"));
+        Ok(Preprocessor {
+            include_dirs,
+            defines,
+        })
     }
-    Ok(flags)
+
+    /// As the simulators' command lines take it: `-IDIR` and `-DNAME[=VALUE]`.
+    pub fn flags(&self) -> Vec<String> {
+        let dirs = self
+            .include_dirs
+            .iter()
+            .map(|d| format!("-I{}", d.display()));
+        dirs.chain(self.defines.iter().map(|m| format!("-D{m}")))
+            .collect()
+    }
 }
 
 /// A port of the Verilog top that the model lacks ([`CosimUnit::unmodelled`]).
@@ -392,6 +409,14 @@ impl Unmodelled {
     pub fn name(&self) -> &str {
         match self {
             Unmodelled::Tied(n, _) | Unmodelled::Open(n) => n,
+        }
+    }
+
+    /// A tied input's name and bits.
+    pub fn tied(&self) -> Option<(&str, u64)> {
+        match self {
+            Unmodelled::Tied(n, bits) => Some((n, *bits)),
+            Unmodelled::Open(_) => None,
         }
     }
 }
@@ -786,7 +811,7 @@ fn rtl_outputs(
         clocking: unit.clocking(),
         unmodelled: unit.unmodelled(),
         parameters: unit.parameters().iter().map(|p| p.0).collect(),
-        flags: preprocessor_flags(unit, sources)?,
+        pre: Preprocessor::of(unit, sources)?,
         ins,
         outs,
         cycles,

@@ -79,7 +79,8 @@ pub(super) fn testbench(unit: &dyn CosimUnit, ins: &[Port], outs: &[Port]) -> St
             .chain(outs)
             .map(|p| format!(".{n}({n})", n = p.name)),
     );
-    conns.extend(unit.unmodelled().iter().map(|u| match u {
+    let unmodelled = unit.unmodelled();
+    conns.extend(unmodelled.iter().map(|u| match u {
         Unmodelled::Tied(n, bits) => format!(".{n}(64'h{bits:x})"),
         Unmodelled::Open(n) => format!(".{n}()"),
     }));
@@ -98,11 +99,8 @@ pub(super) fn testbench(unit: &dyn CosimUnit, ins: &[Port], outs: &[Port]) -> St
     let onames: Vec<&str> = outs.iter().map(|p| p.name.as_str()).collect();
     // The first line: the width of each of the RTL's ports, inputs, outputs and tied inputs,
     // as the simulator elaborated them (`read_outputs` compares them with the model's).
-    let tied = unit.unmodelled().into_iter().filter_map(|u| match u {
-        Unmodelled::Tied(n, _) => Some(n),
-        Unmodelled::Open(_) => None,
-    });
-    let widths: Vec<String> = (ins.iter().chain(outs).map(|p| p.name.clone()))
+    let tied = unmodelled.iter().filter_map(|u| u.tied().map(|t| t.0));
+    let widths: Vec<String> = (ins.iter().chain(outs).map(|p| p.name.as_str()))
         .chain(tied)
         .map(|n| format!(", $bits(dut.{n})"))
         .collect();
@@ -133,8 +131,8 @@ pub(super) struct RtlRun<'a> {
     pub unmodelled: Vec<Unmodelled>,
     /// The names of the parameters it is given.
     pub parameters: Vec<&'static str>,
-    /// The preprocessor's include folders and defines ([`super::preprocessor_flags`]).
-    pub flags: Vec<String>,
+    /// The preprocessor's include folders and defines.
+    pub pre: super::Preprocessor,
     pub ins: &'a [Port],
     pub outs: &'a [Port],
     pub cycles: usize,
@@ -191,7 +189,7 @@ fn binary(sim: Simulator, r: &RtlRun, kept: Option<(&Path, &str)>) -> Result<Pat
     };
     let built = match sim {
         Simulator::Verilator => {
-            let files = [&r.flags[..], &strings(r.sources)].concat();
+            let files = [r.pre.flags(), strings(r.sources)].concat();
             verilator::build(&tb, &files, &r.dir.join("obj_dir"), &run_tool).map_err(named)?
         }
         Simulator::Icarus => {
@@ -216,7 +214,7 @@ fn icarus(
     let mut c = Command::new("iverilog");
     c.args(["-g2012", "-s", "tb", "-o"])
         .arg(vvp)
-        .args(&r.flags)
+        .args(r.pre.flags())
         .arg(tb)
         .args(r.sources);
     let o = c.output().map_err(|e| format!("iverilog: {e}"))?;
@@ -273,13 +271,10 @@ pub(super) fn simulate(sim: Simulator, r: &RtlRun) -> Result<Vec<Vec<Option<u64>
         Simulator::Verilator => format!("verilator {}", verilator::OPTIONS.join(" ")),
         Simulator::Icarus => "iverilog -g2012".to_string(),
     };
-    let what = format!("{what} {}", r.flags.join(" "));
+    let what = format!("{what} {}", r.pre.flags().join(" "));
     let root = cache::root();
     // The files the sources include are part of what a build is made of.
-    let dirs: Vec<PathBuf> = (r.flags.iter())
-        .filter_map(|f| f.strip_prefix("-I").map(PathBuf::from))
-        .collect();
-    let made_of = [r.sources, &included(r.sources, &dirs)].concat();
+    let made_of = [r.sources, &included(r.sources, &r.pre.include_dirs)].concat();
     let build_key = cache::key(&what, &text, &made_of);
     // Verilator starts what the Verilog does not reset at random values, as Icarus starts it
     // at x: a missing reset is a difference in both simulators (Verilator's default, zeros,
@@ -366,12 +361,7 @@ fn read_outputs(path: &Path, r: &RtlRun) -> Result<Vec<Vec<Option<u64>>>, String
 /// rather than found as a difference of values.
 fn check_widths(widths: &str, r: &RtlRun) -> Result<(), String> {
     let ports: Vec<&Port> = r.ins.iter().chain(r.outs).collect();
-    let tied: Vec<(&String, u64)> = (r.unmodelled.iter())
-        .filter_map(|u| match u {
-            Unmodelled::Tied(n, bits) => Some((n, *bits)),
-            Unmodelled::Open(_) => None,
-        })
-        .collect();
+    let tied: Vec<(&str, u64)> = r.unmodelled.iter().filter_map(Unmodelled::tied).collect();
     let got: Vec<u32> = widths
         .split_whitespace()
         .map(|w| w.parse().unwrap_or(0))
