@@ -28,6 +28,12 @@ fn cosim(cache: &str, out: &Path, extra: &[&str]) -> Output {
         .unwrap()
 }
 
+/// The text of blend-factor adjust unit 153's twin, for a test to change.
+fn twin_text() -> String {
+    let twin = Path::new(env!("CARGO_MANIFEST_DIR")).join("../rtl/bump/blend_adjust_153.v");
+    std::fs::read_to_string(twin).unwrap()
+}
+
 fn entries(root: &Path) -> Vec<String> {
     let mut v: Vec<String> = std::fs::read_dir(root)
         .map(|rd| {
@@ -71,8 +77,7 @@ fn an_unchanged_cosimulation_is_reused_and_a_changed_one_is_not() {
     assert_eq!(entries(&root).len(), 3);
     assert!(!d.join("c/sim.vvp").exists(), "the build is reused");
     // Changed Verilog: a miss, built and simulated, and its bug found.
-    let twin = Path::new(env!("CARGO_MANIFEST_DIR")).join("../rtl/bump/blend_adjust_153.v");
-    let good = std::fs::read_to_string(twin).unwrap();
+    let good = twin_text();
     let mine = d.join("mine.v");
     std::fs::write(&mine, good.replace("{1'b1, u_in};", "{1'b0, u_in};")).unwrap();
     let bad = cosim(c, &d.join("d"), &["--rtl", mine.to_str().unwrap()]);
@@ -97,8 +102,7 @@ fn an_included_header_is_found_and_its_edit_is_not_a_stale_build() {
     let d = dir("sim-cache", "include");
     let c = d.join("cache");
     let c = c.to_str().unwrap();
-    let twin = Path::new(env!("CARGO_MANIFEST_DIR")).join("../rtl/bump/blend_adjust_153.v");
-    let good = std::fs::read_to_string(twin).unwrap();
+    let good = twin_text();
     let uses = good.replace("{1'b1, u_in};", "{`TOP_BIT, u_in};");
     assert_ne!(uses, good);
     let header = |dir: &Path, bit: &str| {
@@ -157,8 +161,7 @@ fn a_module_of_another_name_is_the_top_given() {
     }
     let d = dir("sim-cache", "top");
     let c = d.join("cache");
-    let twin = Path::new(env!("CARGO_MANIFEST_DIR")).join("../rtl/bump/blend_adjust_153.v");
-    let good = std::fs::read_to_string(twin).unwrap();
+    let good = twin_text();
     let renamed = good.replace("module blend_adjust_153", "module adjust_v2");
     assert_ne!(renamed, good);
     let mine = d.join("adjust_v2.v");

@@ -90,8 +90,7 @@ impl CosimUnit for MipmapCosim {
     }
     /// The levels the wrapper has (ten) beyond the frame's: open.
     fn unmodelled(&self) -> Vec<Unmodelled> {
-        let levels = MipmapGen::new(self.name(), self.params).map_or(0, |d| d.dims().len());
-        (levels.max(1)..=10)
+        (self.params.levels().len()..=10)
             .flat_map(|k| ["valid", "texel"].map(|f| Unmodelled::Open(format!("l{k}_{f}"))))
             .collect()
     }
