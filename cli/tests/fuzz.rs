@@ -377,7 +377,7 @@ fn judge(f: &Front, d: &Path, a: Vec<String>, opt: Option<&str>) -> Result<(), T
         }
         // A merged run that failed (a mutation can mark a shard failed), a vectors check
         // or a co-simulation that found a difference.
-        1 if ["merge", "vectors", "cosim"].contains(&f.name) => {}
+        1 if ["merge", "vectors", "cosim", "cosim -F"].contains(&f.name) => {}
         c => return fail(format!("exit {c}")),
     }
     let _ = std::fs::remove_dir_all(d);
@@ -427,7 +427,8 @@ fn merge_survives_mutated_summaries() {
 }
 
 /// Fronts without an input file of their own: vectors, sweep, and co-simulation against the
-/// user's Verilog (`--rtl`, the twin's source mutated; Icarus, when installed).
+/// user's Verilog (`--rtl`, the twin's source mutated; `-F`, a file list naming it, the list
+/// or the source mutated; Icarus, when installed).
 fn tool_fronts() -> Vec<Front> {
     let mut v = vec![
         Front {
@@ -458,7 +459,30 @@ fn tool_fronts() -> Vec<Front> {
                 "--out",
                 "{out}",
             ],
-            files: vec![("u.v", std::fs::read(rtl).unwrap())],
+            files: vec![("u.v", std::fs::read(&rtl).unwrap())],
+        });
+        // A file list naming the source (relative to the list) with a folder and a macro.
+        let list = b"// the unit\n+incdir+.\n+define+CHECKED=1\n-F empty.f\nu.v\n";
+        v.push(Front {
+            name: "cosim -F",
+            args: &[
+                "cosim",
+                "--unit",
+                "blend_adjust_153",
+                "--sim",
+                "icarus",
+                "--count",
+                "40",
+                "-F",
+                "{l.f}",
+                "--out",
+                "{out}",
+            ],
+            files: vec![
+                ("l.f", list.to_vec()),
+                ("empty.f", b"# nothing\n".to_vec()),
+                ("u.v", std::fs::read(rtl).unwrap()),
+            ],
         });
     }
     v

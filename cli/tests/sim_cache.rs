@@ -180,3 +180,60 @@ fn a_module_of_another_name_is_the_top_given() {
     );
     std::fs::remove_dir_all(&d).unwrap();
 }
+
+/// A file list as an RTL team keeps one: its sources, `+incdir+` and `+define+` (here in a
+/// nested list) reach the build, `-F` reading paths from the list's folder and `-f` from
+/// the current one; a macro edited in the nested list alone builds anew and finds the bug; an
+/// entry texrtl does not read is refused, naming the list and the line, before anything is
+/// written.
+#[test]
+fn a_file_list_gives_the_sources_folders_and_macros() {
+    if !common::simulator("iverilog", "-V") {
+        return;
+    }
+    let d = dir("sim-cache", "filelist");
+    let c = d.join("cache");
+    let c = c.to_str().unwrap();
+    let uses = twin_text().replace("{1'b1, u_in};", "{`TOP_BIT, u_in};");
+    let text = format!(
+        "`ifdef SHARED\n`include \"top_bit.vh\"\n`else\n`define TOP_BIT 1'b0\n`endif\n{uses}"
+    );
+    let (rtl, inc) = (d.join("proj/rtl"), d.join("proj/include"));
+    std::fs::create_dir_all(&rtl).unwrap();
+    std::fs::create_dir_all(&inc).unwrap();
+    std::fs::write(rtl.join("adjust.v"), text).unwrap();
+    std::fs::write(inc.join("top_bit.vh"), "`define TOP_BIT 1'b1\n").unwrap();
+    let files = rtl.join("files.f");
+    std::fs::write(
+        &files,
+        "// blend adjust, our RTL\n+incdir+../include\n-F defines.f\nadjust.v\n",
+    )
+    .unwrap();
+    let defines = |m: &str| std::fs::write(rtl.join("defines.f"), format!("# macros\n{m}\n"));
+    defines("+define+SHARED+UNUSED=3").unwrap();
+    let list = ["-F", files.to_str().unwrap()];
+    let o = cosim(c, &d.join("a"), &list);
+    let err = String::from_utf8_lossy(&o.stderr);
+    assert_eq!(o.status.code(), Some(0), "{err}");
+    defines("+define+UNUSED=3").unwrap();
+    assert_eq!(
+        cosim(c, &d.join("b"), &list).status.code(),
+        Some(1),
+        "without SHARED, the bug"
+    );
+    // As -f, `../include` is taken from the current folder, where there is none.
+    let o = cosim(c, &d.join("c"), &["-f", files.to_str().unwrap()]);
+    let err = String::from_utf8_lossy(&o.stderr);
+    assert!(
+        o.status.code() == Some(2) && err.contains("files.f:2: include folder"),
+        "{err}"
+    );
+    assert!(!d.join("c").exists(), "refused before anything is written");
+    defines("+define+SHARED\n+libext+.v").unwrap();
+    let o = cosim(c, &d.join("e"), &list);
+    let err = String::from_utf8_lossy(&o.stderr);
+    assert_eq!(o.status.code(), Some(2), "{err}");
+    assert_eq!(err.trim_end().lines().count(), 1, "{err}");
+    assert!(err.contains("defines.f:3: +libext+.v: library"), "{err}");
+    assert!(!d.join("e").exists());
+}

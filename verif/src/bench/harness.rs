@@ -187,11 +187,8 @@ pub fn build(unit: &dyn CosimUnit, cpp: &str, mode: Mode, dir: &Path) -> Result<
         c.arg(format!("-G{k}={v}"));
     }
     c.arg(&main);
-    let sources: Vec<PathBuf> = (unit.rtl().into_iter().chain(unit.bench_rtl()))
-        .map(|f| std::path::absolute(&f).unwrap_or(f))
-        .collect();
-    c.args(crate::cosim::Preprocessor::of(unit, &sources)?.flags())
-        .args(&sources);
+    let build = crate::cosim::Build::of(unit, &[])?;
+    c.args(build.pre.flags()).args(&build.sources);
     run(&mut c, "verilator")?;
     Ok(mdir.join("bench"))
 }

@@ -3,7 +3,7 @@
 
 use super::args::{all, clap_args, given, one, path, value, values};
 use super::CmdError;
-use crate::cosim::{self, Simulator};
+use crate::cosim::{self, FileList, PathsFrom, Simulator};
 use crate::project::Project;
 use crate::Seed;
 use clap::{value_parser, ArgMatches, Command};
@@ -33,6 +33,9 @@ pub struct CosimArgs {
     pub define: Vec<String>,
     /// The Verilog module to instantiate instead of the unit's top.
     pub top: Option<String>,
+    /// File lists of the sources to check instead of the twin's, in command-line order:
+    /// `-f` (relative paths from the current folder) and `-F` (from the list's folder).
+    pub filelist: Vec<(PathBuf, PathsFrom)>,
 }
 
 clap_args!(CosimArgs);
@@ -50,6 +53,8 @@ impl CosimArgs {
             values("incdir", "DIR", value_parser!(PathBuf), "A folder searched for `include files, after each source's own folder and the unit's (repeatable)"),
             values("define", "MACRO", value_parser!(String), "A preprocessor macro for the build, NAME or NAME=VALUE (repeatable; after the unit's)"),
             value("top", "MODULE", value_parser!(String), "The Verilog module the testbench instantiates, when yours is not named as the unit's top (its ports and parameters the same)"),
+            values("filelist", "LIST", value_parser!(PathBuf), "A file list of Verilog sources to check instead of the twin's, with +incdir+, +define+, -I, -D and nested -f/-F; relative paths from the current folder (repeatable; its sources after --rtl's)").short('f'),
+            values("filelist-relative", "LIST", value_parser!(PathBuf), "As -f, relative paths taken from the list's own folder").short('F'),
         ])
     }
 
@@ -65,8 +70,24 @@ impl CosimArgs {
             incdir: all(m, "incdir"),
             define: all(m, "define"),
             top: one(m, "top"),
+            filelist: file_lists(m),
         }
     }
+}
+
+/// `-f` and `-F` lists in command-line order.
+fn file_lists(m: &ArgMatches) -> Vec<(PathBuf, PathsFrom)> {
+    let mut lists: Vec<(usize, PathBuf, PathsFrom)> = Vec::new();
+    for (id, from) in [
+        ("filelist", PathsFrom::Cwd),
+        ("filelist-relative", PathsFrom::List),
+    ] {
+        let at = m.indices_of(id).into_iter().flatten();
+        let paths = all::<PathBuf>(m, id);
+        lists.extend(at.zip(paths).map(|(k, p)| (k, p, from)));
+    }
+    lists.sort_by_key(|l| l.0);
+    lists.into_iter().map(|(_, p, from)| (p, from)).collect()
 }
 
 /// Runs it: exit 0 when every port agrees on every cycle, 1 at a difference, 2 bad input.
@@ -98,6 +119,10 @@ pub fn run(project: &Project, a: &CosimArgs) -> Result<String, CmdError> {
             "no such file"
         };
         return Err(format!("--rtl {}: {why}", f.display()).into());
+    }
+    for (list, from) in &a.filelist {
+        let option = if *from == PathsFrom::Cwd { "-f" } else { "-F" };
+        FileList::read(list, *from).map_err(|e| format!("{option} {e}"))?;
     }
     let runs = match project.get(&a.unit).and_then(|u| u.directed_runs()) {
         Some(f) if vectors => f()?,
@@ -141,7 +166,7 @@ fn simulate(
     let with = |unit| Preprocessed { unit, a };
     if !vectors {
         let unit = &with(unit);
-        let r = cosim::run(unit, sim, &a.rtl, a.count, a.seed, dir).map_err(CmdError::Input)?;
+        let r = cosim::run(unit, sim, &[], a.count, a.seed, dir).map_err(CmdError::Input)?;
         let what = format!("{} in {} (seed {})", a.unit, sim.name(), a.seed);
         return report(&what, &r);
     }
@@ -150,7 +175,7 @@ fn simulate(
         let r = cosim::run_with(
             &with(d.unit.as_ref()),
             sim,
-            &a.rtl,
+            &[],
             &d.stimulus,
             &dir.join(&d.label),
         )
@@ -184,10 +209,18 @@ fn report(what: &str, r: &cosim::CosimResult) -> Result<String, CmdError> {
     }
 }
 
-/// A unit with the command line's `--incdir` and `--define` after its own, and its `--top`.
+/// A unit with the command line's `--incdir` and `--define` after its own, its `--top`, and
+/// its `--rtl` and file lists in place of the unit's own sources.
 struct Preprocessed<'a> {
     unit: &'a dyn cosim::CosimUnit,
     a: &'a CosimArgs,
+}
+
+impl Preprocessed<'_> {
+    /// Whether the command line gives the sources.
+    fn replaced(&self) -> bool {
+        !self.a.rtl.is_empty() || !self.a.filelist.is_empty()
+    }
 }
 
 impl cosim::CosimUnit for Preprocessed<'_> {
@@ -198,7 +231,18 @@ impl cosim::CosimUnit for Preprocessed<'_> {
         self.a.top.as_deref().unwrap_or(self.unit.top())
     }
     fn rtl(&self) -> Vec<PathBuf> {
-        self.unit.rtl()
+        if self.replaced() {
+            self.a.rtl.clone()
+        } else {
+            self.unit.rtl()
+        }
+    }
+    fn file_lists(&self) -> Vec<(PathBuf, PathsFrom)> {
+        if self.replaced() {
+            self.a.filelist.clone()
+        } else {
+            self.unit.file_lists()
+        }
     }
     fn bench_rtl(&self) -> Vec<PathBuf> {
         self.unit.bench_rtl()

@@ -384,9 +384,14 @@ pub fn list(project: &Project) -> String {
             has.push(format!("testbench {}", tbs.join(", ")));
         }
         if let Some(t) = u.twin_unit() {
-            let n = t.rtl().len();
-            let files = if n == 1 { "source" } else { "sources" };
-            has.push(format!("twin {} ({n} Verilog {files})", t.top()));
+            let count =
+                |n: usize, what: &str| format!("{n} {what}{}", if n == 1 { "" } else { "s" });
+            let mut files = count(t.rtl().len(), "Verilog source");
+            let lists = t.file_lists().len();
+            if lists > 0 {
+                files += &format!(", {}", count(lists, "file list"));
+            }
+            has.push(format!("twin {} ({files})", t.top()));
         }
         match (u.vectors_fn(), u.no_vectors_reason()) {
             (Some(_), _) => has.push("vectors".to_string()),

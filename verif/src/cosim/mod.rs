@@ -21,10 +21,12 @@ use std::path::{Path, PathBuf};
 use std::process::Command;
 
 pub mod cache;
+mod filelist;
 mod rtl;
 mod twin;
 mod verilator;
 
+pub use filelist::{FileList, PathsFrom};
 pub use rtl::verilog_range;
 pub use twin::{random_inputs, Twin};
 
@@ -330,6 +332,12 @@ pub trait CosimUnit: Send + Sync {
     fn defines(&self) -> Vec<String> {
         Vec::new()
     }
+    /// File lists of the unit's own Verilog ([`FileList`]), read at each run: their sources
+    /// compiled after [`CosimUnit::rtl`]'s, their folders and macros before the unit's own.
+    /// Like `rtl`, what `cosim --rtl` and `cosim -f` replace.
+    fn file_lists(&self) -> Vec<(PathBuf, PathsFrom)> {
+        Vec::new()
+    }
 }
 
 /// Whether `m` is a preprocessor macro as a build takes it: a Verilog identifier, then
@@ -349,41 +357,14 @@ pub fn is_identifier(name: &str) -> bool {
 /// What the preprocessor of a build is given, in both simulators alike.
 #[derive(Clone, Debug, Default, PartialEq)]
 pub struct Preprocessor {
-    /// Folders searched for `` `include `` files, absolute: each source's, then the unit's.
+    /// Folders searched for `` `include `` files, absolute: each source's, then those of the
+    /// unit's file lists, then the unit's own.
     pub include_dirs: Vec<PathBuf>,
-    /// Macros defined: `NAME` or `NAME=VALUE`.
+    /// Macros defined: the file lists', then the unit's (`NAME` or `NAME=VALUE`).
     pub defines: Vec<String>,
 }
 
 impl Preprocessor {
-    /// The preprocessor of a build of `sources` for `unit`: the folder of each source and
-    /// then [`CosimUnit::include_dirs`] (each must be a folder), and [`CosimUnit::defines`]
-    /// (each a Verilog identifier with an optional `=VALUE`).
-    pub fn of(unit: &dyn CosimUnit, sources: &[PathBuf]) -> Result<Preprocessor, String> {
-        let mut include_dirs: Vec<PathBuf> = Vec::new();
-        let own = sources
-            .iter()
-            .filter_map(|s| s.parent().map(Path::to_path_buf));
-        for d in own.chain(unit.include_dirs()) {
-            let d = std::path::absolute(&d).unwrap_or(d);
-            if !d.is_dir() {
-                return Err(format!("include folder {}: no such folder", d.display()));
-            }
-            if !include_dirs.contains(&d) {
-                include_dirs.push(d);
-            }
-        }
-        let defines = unit.defines();
-        if let Some(m) = defines.iter().find(|m| !is_define(m)) {
-            let shown = waves::output::shorten(m);
-            return Err(format!("define '{shown}': not NAME or NAME=VALUE"));
-        }
-        Ok(Preprocessor {
-            include_dirs,
-            defines,
-        })
-    }
-
     /// As the simulators' command lines take it: `-IDIR` and `-DNAME[=VALUE]`.
     pub fn flags(&self) -> Vec<String> {
         let dirs = self
@@ -392,6 +373,68 @@ impl Preprocessor {
             .map(|d| format!("-I{}", d.display()));
         dirs.chain(self.defines.iter().map(|m| format!("-D{m}")))
             .collect()
+    }
+}
+
+/// What a build of a unit compiles, resolved: its sources and its preprocessor.
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct Build {
+    /// Every source, absolute and an existing file: the unit's own ([`CosimUnit::rtl`], then
+    /// its file lists' sources) or the user's in their place, then
+    /// [`CosimUnit::bench_rtl`].
+    pub sources: Vec<PathBuf>,
+    /// Its include folders and macros.
+    pub pre: Preprocessor,
+}
+
+impl Build {
+    /// The build of `unit` against `rtl` (the unit's own sources and file lists when empty).
+    /// Each include folder must be a folder and each macro a Verilog identifier with an
+    /// optional `=VALUE`.
+    pub fn of(unit: &dyn CosimUnit, rtl: &[PathBuf]) -> Result<Build, String> {
+        let mut listed = FileList::default();
+        let own = if rtl.is_empty() {
+            for (list, from) in unit.file_lists() {
+                let l = FileList::read(&list, from)?;
+                listed.sources.extend(l.sources);
+                listed.include_dirs.extend(l.include_dirs);
+                listed.defines.extend(l.defines);
+            }
+            [unit.rtl(), std::mem::take(&mut listed.sources)].concat()
+        } else {
+            rtl.to_vec()
+        };
+        let sources: Vec<PathBuf> = own
+            .into_iter()
+            .chain(unit.bench_rtl())
+            .map(|s| std::path::absolute(&s).unwrap_or(s))
+            .collect();
+        if let Some(s) = sources.iter().find(|s| !s.is_file()) {
+            return Err(format!("{}: no such Verilog file", s.display()));
+        }
+        let mut include_dirs: Vec<PathBuf> = Vec::new();
+        let own = sources
+            .iter()
+            .filter_map(|s| s.parent().map(Path::to_path_buf));
+        for d in own.chain(listed.include_dirs).chain(unit.include_dirs()) {
+            let d = std::path::absolute(&d).unwrap_or(d);
+            if !d.is_dir() {
+                return Err(format!("include folder {}: no such folder", d.display()));
+            }
+            if !include_dirs.contains(&d) {
+                include_dirs.push(d);
+            }
+        }
+        let defines = [listed.defines, unit.defines()].concat();
+        if let Some(m) = defines.iter().find(|m| !is_define(m)) {
+            let shown = waves::output::shorten(m);
+            return Err(format!("define '{shown}': not NAME or NAME=VALUE"));
+        }
+        let pre = Preprocessor {
+            include_dirs,
+            defines,
+        };
+        Ok(Build { sources, pre })
     }
 }
 
@@ -715,7 +758,7 @@ pub fn run_with(
     let mut model = unit.model()?;
     let (ins, outs) = model.ports();
     let rules = Rules::new(unit, &outs)?;
-    let sources = sources(unit, rtl)?;
+    let build = Build::of(unit, rtl)?;
     std::fs::create_dir_all(dir).map_err(|e| format!("{}: {e}", dir.display()))?;
     // The simulator runs inside `dir`: every path it is given is absolute.
     let dir = &std::path::absolute(dir).map_err(|e| format!("{}: {e}", dir.display()))?;
@@ -730,7 +773,7 @@ pub fn run_with(
     let (expected, watched): (Vec<Vec<u64>>, Vec<Vec<u64>>) = (0..cycles)
         .map(|c| model.cycle_watched(c < resets, &stim[c]))
         .unzip();
-    let got = rtl_outputs(unit, sim, dir, &sources, (&ins, &outs), stim)?;
+    let got = rtl_outputs(unit, sim, dir, &build, (&ins, &outs), stim)?;
     let history = unit.history().max(1);
     let found = compare(
         &ins,
@@ -790,7 +833,7 @@ fn rtl_outputs(
     unit: &dyn CosimUnit,
     sim: Simulator,
     dir: &Path,
-    sources: &[PathBuf],
+    build: &Build,
     (ins, outs): (&[Port], &[Port]),
     stim: &[Vec<u64>],
 ) -> Result<Vec<Vec<Option<u64>>>, String> {
@@ -806,12 +849,12 @@ fn rtl_outputs(
     std::fs::write(dir.join("tb.sv"), tb).map_err(|e| format!("{}: {e}", dir.display()))?;
     let run = rtl::RtlRun {
         dir,
-        sources,
+        sources: &build.sources,
         top: unit.top(),
         clocking: unit.clocking(),
         unmodelled: unit.unmodelled(),
         parameters: unit.parameters().iter().map(|p| p.0).collect(),
-        pre: Preprocessor::of(unit, sources)?,
+        pre: build.pre.clone(),
         ins,
         outs,
         cycles,
@@ -838,25 +881,6 @@ fn shown_ports(ports: &[Port], with_reset: bool) -> Vec<(&str, u32, bool)> {
                 .map(|p| (p.name.as_str(), p.fmt.width(), p.fmt.is_signed())),
         )
         .collect()
-}
-
-/// The Verilog sources of a run, absolute: the user's `rtl` (the unit's own when empty) and
-/// the unit's testbench-side sources; each must be a file.
-fn sources(unit: &dyn CosimUnit, rtl: &[PathBuf]) -> Result<Vec<PathBuf>, String> {
-    let own = if rtl.is_empty() {
-        unit.rtl()
-    } else {
-        rtl.to_vec()
-    };
-    let all: Vec<PathBuf> = own
-        .into_iter()
-        .chain(unit.bench_rtl())
-        .map(|s| std::path::absolute(&s).unwrap_or(s))
-        .collect();
-    match all.iter().find(|s| !s.is_file()) {
-        Some(s) => Err(format!("{}: no such Verilog file", s.display())),
-        None => Ok(all),
-    }
 }
 
 /// Every output port on every cycle from [`FIRST_COMPARED`], under its rule; the first

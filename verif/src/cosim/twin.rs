@@ -3,7 +3,8 @@
 //! is corner-weighted random on every input ([`super::field`]) unless given.
 
 use super::{
-    field, top_ports, Clocking, Compare, CosimModel, CosimUnit, ModelSim, Port, Unmodelled,
+    field, top_ports, Clocking, Compare, CosimModel, CosimUnit, ModelSim, PathsFrom, Port,
+    Unmodelled,
 };
 use crate::Seed;
 use hdl::kernel::Module;
@@ -43,6 +44,7 @@ pub struct Twin<M, D = fn(&mut M, &[u64])> {
     unmodelled: Vec<Unmodelled>,
     include_dirs: Vec<PathBuf>,
     defines: Vec<String>,
+    file_lists: Vec<(PathBuf, PathsFrom)>,
 }
 
 impl<M: Module + Clone + Send + Sync + 'static> Twin<M> {
@@ -87,6 +89,7 @@ where
             unmodelled: Vec::new(),
             include_dirs: Vec::new(),
             defines: Vec::new(),
+            file_lists: Vec::new(),
         }
     }
 
@@ -154,6 +157,12 @@ where
     /// A preprocessor macro defined for the build: `NAME` or `NAME=VALUE`.
     pub fn define(mut self, macro_: &str) -> Self {
         self.defines.push(macro_.to_string());
+        self
+    }
+    /// A file list of the twin's Verilog ([`super::FileList`]), read at each run, relative
+    /// paths taken as `from` says: its sources after [`Twin::sources`]'.
+    pub fn file_list(mut self, list: PathBuf, from: PathsFrom) -> Self {
+        self.file_lists.push((list, from));
         self
     }
     /// The stimulus of `cycles` cycles from a seed (raw bits in input-port order), in place of
@@ -226,5 +235,8 @@ where
     }
     fn defines(&self) -> Vec<String> {
         self.defines.clone()
+    }
+    fn file_lists(&self) -> Vec<(PathBuf, PathsFrom)> {
+        self.file_lists.clone()
     }
 }
