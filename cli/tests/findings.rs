@@ -534,7 +534,10 @@ fn rtl_whose_ports_are_not_the_models_is_refused_by_port() {
 
 /// Verilog that leaves a register out of its reset differs from the model, which resets it,
 /// in both simulators: Icarus starts the register at x, and Verilator (whose default is zero,
-/// the reset value here, so that it passed) now starts it at random.
+/// the reset value here, so that it passed) now starts it at random. The waveform then shows
+/// the RTL's internals around the difference, the register among them, sampled as the ports
+/// are: the top's own copies of its ports equal the compared RTL outputs and the inputs in
+/// every cycle dumped.
 #[test]
 fn a_register_left_out_of_reset_is_a_difference_in_both_simulators() {
     let rtl = include_str!("../../rtl/bump/blend_adjust_153.v");
@@ -558,6 +561,34 @@ fn a_register_left_out_of_reset_is_a_difference_in_both_simulators() {
             err.contains("the first at cycle 1 on port u0"),
             "{sim}: {err}"
         );
+        let said = String::from_utf8_lossy(&o.stdout);
+        assert!(
+            said.contains("under tb.rtl_internals, cycles 0..22"),
+            "{sim}: {said}"
+        );
+        let vcd = d.join("run/blend_adjust_153_cosim.vcd");
+        let rb = waves::check::read_vcd(&vcd).unwrap();
+        waves::check::check_gtkw(&vcd, &rb).unwrap();
+        let at = |n: &str, c: u64| match rb.value_at(n, c * 10_000) {
+            Some(waves::check::Value::Bits(b)) => b.clone(),
+            v => panic!("{sim}: {n}: {v:?}"),
+        };
+        let num = |b: String| u64::from_str_radix(b.trim_start_matches('0'), 2).unwrap_or(0);
+        for c in 0..22 {
+            for p in ["u0", "u1", "v0", "v1", "valid"] {
+                let (inner, outer) = (format!("tb.rtl_internals.{p}"), format!("tb.rtl.{p}"));
+                assert_eq!(at(&inner, c), at(&outer, c), "{sim}: {p} in cycle {c}");
+            }
+            for p in ["u_in", "v_in", "bypass", "valid_in"] {
+                let (inner, input) = (format!("tb.rtl_internals.{p}"), format!("tb.inputs.{p}"));
+                assert_eq!(num(at(&inner, c)), num(at(&input, c)), "{sim}: {p} in {c}");
+            }
+        }
+        let reg = at("tb.rtl_internals.g_reg.u0_r", 1);
+        if sim == "icarus" {
+            assert!(reg.contains('x'), "never reset: {reg}");
+        }
+        assert_eq!(reg, at("tb.rtl.u0", 1), "{sim}: the register is the port");
     }
 }
 

@@ -225,7 +225,9 @@ fn a_file_list_gives_the_sources_folders_and_macros() {
     let o = cosim(c, &d.join("c"), &["-f", files.to_str().unwrap()]);
     let err = String::from_utf8_lossy(&o.stderr);
     assert!(
-        o.status.code() == Some(2) && err.contains("files.f:2: include folder"),
+        o.status.code() == Some(2)
+            && err.contains("-f/--filelist ")
+            && err.contains("files.f:2: include folder"),
         "{err}"
     );
     assert!(!d.join("c").exists(), "refused before anything is written");

@@ -257,10 +257,12 @@ pub fn check_gtkw(vcd: &Path, rb: &Readback) -> Result<usize, String> {
             continue;
         }
         if line.starts_with('-') {
-            match last_flags {
-                "800200" => depth += 1,
-                "1000200" => depth -= 1,
-                _ => {}
+            // GTKWave's flags: a group's begin 0x800000, its end 0x1000000 (0x400000 closed).
+            let flags = u32::from_str_radix(last_flags, 16).unwrap_or(0);
+            if flags & 0x80_0000 != 0 {
+                depth += 1;
+            } else if flags & 0x100_0000 != 0 {
+                depth -= 1;
             }
             if depth < 0 {
                 return Err(err("group closed twice".into()));

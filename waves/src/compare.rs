@@ -1,6 +1,8 @@
 //! A waveform of two implementations side by side (the Rust model and the RTL of a
 //! co-simulation): scopes `tb.model` and `tb.rtl` with the same ports, `tb.mismatch` with a
 //! flag per port, and a `.gtkw` that puts each RTL port and its flag right under the model's.
+//! Beside them, [`Shown`] scopes: the inputs, signals inside the model, and the RTL's
+//! internals around a difference ([`crate::sample`]), each a scope under `tb`.
 
 use crate::gtkw::{self, Gtkw, Item, Style};
 use std::io::{BufWriter, Write};
@@ -10,15 +12,40 @@ use vcd::{IdCode, TimescaleUnit};
 /// A port: name, width and whether its format is signed (shown as signed decimal).
 pub type PortDef<'a> = (&'a str, u32, bool);
 
-/// Values shown beside the comparison, not compared: the inputs of every cycle, or signals
-/// inside the model. `values[c][k]` is signal `k`'s value in cycle `c`.
+/// Values shown beside the comparison, not compared: the inputs of every cycle, signals
+/// inside the model, the RTL's internals around a difference.
 pub struct Shown<'a> {
     /// The scope under `tb` (`inputs`, `probes`).
     pub scope: &'a str,
-    /// The signals' names and widths.
+    /// The signals' names and widths. A name with dots (`u_stage.acc`) is in scopes of
+    /// its own below this one, in the waveform's tree but not in the save file's view.
     pub signals: &'a [PortDef<'a>],
-    /// Their values, cycle by cycle.
-    pub values: &'a [Vec<u64>],
+    /// Their values.
+    pub values: Values<'a>,
+}
+
+/// The values of a [`Shown`] scope's signals.
+#[derive(Clone, Copy, Debug)]
+pub enum Values<'a> {
+    /// `v[c][k]`: signal `k` in cycle `c`.
+    Every(&'a [Vec<u64>]),
+    /// `v[i][k]`: signal `k` in cycle `first + i` (`None`: unknown, written as `x`); in
+    /// every other cycle the signal was not recorded, written as `z`.
+    From(usize, &'a [Vec<Option<u64>>]),
+}
+
+impl Values<'_> {
+    /// The text of signal `k` (`width` bits) in cycle `c`.
+    fn text(&self, c: usize, k: usize, width: u32) -> String {
+        match *self {
+            Values::Every(v) => value(v.get(c).and_then(|v| v.get(k)).copied(), width),
+            Values::From(first, v) => match c.checked_sub(first).and_then(|i| v.get(i)) {
+                Some(row) => value(row.get(k).copied().flatten(), width),
+                None if width == 1 => "z".into(),
+                None => "bz ".into(),
+            },
+        }
+    }
 }
 
 /// Writes `path` (and its `.gtkw`): `model[c][k]` and `rtl[c][k]` are port `k`'s values in
@@ -41,6 +68,7 @@ pub fn write(
     let (ids, shown_ids) = header(&mut w, title, ports, shown).map_err(err)?;
     let mut last: Vec<Option<String>> = vec![None; ids.len()];
     let mut first = None;
+    let mut differed = vec![false; ports.len()];
     let mut last_shown: Vec<Vec<Option<String>>> =
         shown.iter().map(|s| vec![None; s.signals.len()]).collect();
     for (c, (m, r)) in model.iter().zip(rtl).enumerate() {
@@ -51,6 +79,7 @@ pub fn write(
         for (k, &(_, width, _)) in ports.iter().enumerate() {
             let flag = differs(c, k);
             first = first.or(flag.then_some(c as u64));
+            differed[k] |= flag;
             let vals = [Some(m[k]), r[k], Some(u64::from(flag))];
             for (j, v) in vals.into_iter().enumerate() {
                 let wd = if j == 2 { 1 } else { width };
@@ -64,7 +93,7 @@ pub fn write(
         }
         for (i, sh) in shown.iter().enumerate() {
             for (k, &(_, width, _)) in sh.signals.iter().enumerate() {
-                let text = value(sh.values.get(c).and_then(|v| v.get(k)).copied(), width);
+                let text = sh.values.text(c, k, width);
                 if last_shown[i][k].as_deref() != Some(text.as_str()) {
                     writeln!(w.writer(), "{text}{}", shown_ids[i][k]).map_err(err)?;
                     last_shown[i][k] = Some(text);
@@ -84,16 +113,28 @@ pub fn write(
         return Ok(());
     }
     let end = model.len() as u64 * PERIOD;
-    let active = shown
-        .first()
-        .filter(|s| s.signals.first().map(|p| p.0) == Some("rst"))
-        .map_or(0, |s| out_of_reset(s.values));
+    let active = match shown.first() {
+        Some(s) if s.signals.first().map(|p| p.0) == Some("rst") => match s.values {
+            Values::Every(v) => out_of_reset(v),
+            Values::From(..) => 0,
+        },
+        _ => 0,
+    };
     let view = gtkw::View::whole(0, end, PERIOD).opening(active * PERIOD);
     let view = match first {
         Some(c) => view.around(c * PERIOD, "first mismatch"),
         None => view,
     };
-    gtkw(path, title, ports, shown, view)
+    // At a difference, the ports that never differ are closed: the view opens on those that
+    // do, and what is below them.
+    let closed: Vec<&str> = match first {
+        Some(_) => (ports.iter().zip(&differed))
+            .filter(|(_, d)| !**d)
+            .map(|(p, _)| p.0)
+            .collect(),
+        None => Vec::new(),
+    };
+    gtkw(path, title, (ports, &closed), shown, view)
 }
 
 /// The clock period of a comparison's waveform (10 ns).
@@ -145,12 +186,7 @@ fn header<W: Write>(
     let mut shown_ids = Vec::new();
     for sh in shown {
         w.add_module(sh.scope)?;
-        let v: std::io::Result<Vec<IdCode>> = sh
-            .signals
-            .iter()
-            .map(|&(name, width, _)| var(w, name, width))
-            .collect();
-        shown_ids.push(v?);
+        shown_ids.push(nested_vars(w, sh.signals)?);
         w.upscope()?;
     }
     w.upscope()?;
@@ -173,26 +209,66 @@ fn trace(alias: &str, path: &str, (width, signed): (u32, bool)) -> Item {
     }
 }
 
+/// The variables of `signals` in the current scope, each dotted name (`u_stage.acc`) in
+/// scopes of its own (`u_stage`); a scope's signals are together, as a simulator lists them.
+fn nested_vars<W: Write>(
+    w: &mut vcd::Writer<W>,
+    signals: &[PortDef],
+) -> std::io::Result<Vec<IdCode>> {
+    let mut open: Vec<&str> = Vec::new();
+    let mut ids = Vec::with_capacity(signals.len());
+    for &(name, width, _) in signals {
+        let mut path: Vec<&str> = name.split('.').collect();
+        let leaf = path.pop().unwrap_or(name);
+        let same = open.iter().zip(&path).take_while(|(a, b)| a == b).count();
+        for _ in same..open.len() {
+            w.upscope()?;
+        }
+        open.truncate(same);
+        for s in &path[same..] {
+            w.add_module(s)?;
+            open.push(s);
+        }
+        ids.push(var(w, leaf, width)?);
+    }
+    for _ in &open {
+        w.upscope()?;
+    }
+    Ok(ids)
+}
+
+/// A shown scope's group in the view: its own signals (those of its nested scopes are in
+/// the tree).
+fn shown_group(g: &mut Gtkw, sh: &Shown) {
+    g.begin_group(sh.scope, "tb");
+    for &(name, width, signed) in sh.signals.iter().filter(|s| !s.0.contains('.')) {
+        let path = format!("tb.{}.{name}", sh.scope);
+        g.push(trace("", &path, (width, signed)));
+    }
+    g.end_group();
+}
+
 fn gtkw(
     vcd: &Path,
     title: &str,
-    ports: &[PortDef],
+    (ports, closed): (&[PortDef], &[&str]),
     shown: &[Shown],
     view: gtkw::View,
 ) -> Result<(), String> {
     let mut g = Gtkw::new(vcd);
     g.set_view(view);
     g.treeopen("tb");
-    for sh in shown {
-        g.begin_group(sh.scope, "tb");
-        for &(name, width, signed) in sh.signals {
-            let path = format!("tb.{}.{name}", sh.scope);
-            g.push(trace("", &path, (width, signed)));
-        }
-        g.end_group();
+    // Scopes of every cycle (inputs, probes) above the ports; a window (around a
+    // difference) below them.
+    let window = |sh: &&Shown| matches!(sh.values, Values::From(..));
+    for sh in shown.iter().filter(|sh| !window(sh)) {
+        shown_group(&mut g, sh);
     }
     for &(name, width, signed) in ports {
         g.begin_group(name, "tb");
+        if closed.contains(&name) {
+            g.close_group(name);
+        }
         // Each trace under an alias (`+{u0 model}`): GTKWave shows leaf names, the same in
         // both scopes.
         for (scope, label) in [("model", "model"), ("rtl", "RTL")] {
@@ -209,6 +285,9 @@ fn gtkw(
             filter: None,
         });
         g.end_group();
+    }
+    for sh in shown.iter().filter(window) {
+        shown_group(&mut g, sh);
     }
     g.write(&format!("cosim {title}"))
         .map_err(|e| format!("{}: {e}", g.path().display()))

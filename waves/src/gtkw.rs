@@ -223,6 +223,8 @@ pub struct Gtkw {
     dumpfile: String,
     items: Vec<Item>,
     open: Vec<String>,
+    /// Groups shown closed (their label once begun).
+    closed: Vec<String>,
     tree: Vec<String>,
     view: View,
 }
@@ -245,6 +247,7 @@ impl Gtkw {
             dumpfile: abs.to_string_lossy().into_owned(),
             items: Vec::new(),
             open: Vec::new(),
+            closed: Vec::new(),
             tree: Vec::new(),
             view: View::whole(0, 0, 1),
         }
@@ -277,7 +280,13 @@ impl Gtkw {
         self.treeopen(scope);
     }
 
-    /// Closes the innermost group.
+    /// Shows the group `label` closed, its traces a click away (a group of matching ports
+    /// beside one that differs).
+    pub fn close_group(&mut self, label: &str) {
+        self.closed.push(label.to_string());
+    }
+
+    /// Ends the innermost group.
     pub fn end_group(&mut self) {
         let label = self.open.pop().expect("no open group");
         self.items.push(Item::GroupEnd(label));
@@ -355,12 +364,24 @@ impl Gtkw {
                     s.push_str(name);
                     s.push('\n');
                 }
+                // GTKWave's flags: a group's begin, its end, blank; 0x400000 closed (and
+                // 0x1000 collapsed on the end, as GTKWave itself writes a closed group).
                 Item::GroupBegin(l) => {
-                    s.push_str(&format!("@800200\n-{l}\n"));
+                    let closed = if self.closed.contains(l) {
+                        0x40_0000
+                    } else {
+                        0
+                    };
+                    s.push_str(&format!("@{:x}\n-{l}\n", 0x80_0200 | closed));
                     flags = None;
                 }
                 Item::GroupEnd(l) => {
-                    s.push_str(&format!("@1000200\n-{l}\n"));
+                    let closed = if self.closed.contains(l) {
+                        0x40_1000
+                    } else {
+                        0
+                    };
+                    s.push_str(&format!("@{:x}\n-{l}\n", 0x100_0200 | closed));
                     flags = None;
                 }
             }

@@ -29,3 +29,4 @@ pub mod compare;
 pub mod fst;
 /// Writing output files so that no partial file is left behind, and naming values in messages.
 pub mod output;
+pub mod sample;

@@ -734,7 +734,7 @@ fn a_comparison_waveform_shows_model_rtl_and_mismatch() {
     let shown = [waves::compare::Shown {
         scope: "inputs",
         signals: &inputs,
-        values: &stim,
+        values: waves::compare::Values::Every(&stim),
     }];
     waves::compare::write(&path, "unit", &ports, &model, &rtl, &differs, &shown).unwrap();
     let rb = read_vcd(&path).unwrap();

@@ -1,7 +1,7 @@
 //! `cosim`: a unit's model against its Verilog twin, or against your own Verilog with the same
 //! ports, on every output port of every cycle (under the unit's compare rules).
 
-use super::args::{all, clap_args, given, one, path, value, values};
+use super::args::{all, clap_args, flag, given, one, path, value, values};
 use super::CmdError;
 use crate::cosim::{self, FileList, PathsFrom, Simulator};
 use crate::project::Project;
@@ -36,6 +36,8 @@ pub struct CosimArgs {
     /// File lists of the sources to check instead of the twin's, in command-line order:
     /// `-f` (relative paths from the current folder) and `-F` (from the list's folder).
     pub filelist: Vec<(PathBuf, PathsFrom)>,
+    /// At a difference, do not simulate the RTL again to show its internals.
+    pub no_internals: bool,
 }
 
 clap_args!(CosimArgs);
@@ -55,6 +57,7 @@ impl CosimArgs {
             value("top", "MODULE", value_parser!(String), "The Verilog module the testbench instantiates, when yours is not named as the unit's top (its ports and parameters the same)"),
             values("filelist", "LIST", value_parser!(PathBuf), "A file list of Verilog sources to check instead of the twin's, with +incdir+, +define+, -I, -D and nested -f/-F; relative paths from the current folder (repeatable; its sources after --rtl's)").short('f'),
             values("filelist-relative", "LIST", value_parser!(PathBuf), "As -f, relative paths taken from the list's own folder").short('F'),
+            flag("no-internals", "At a difference, do not simulate the RTL again to put its internal signals around the difference in the waveform (a build of its own)"),
         ])
     }
 
@@ -71,6 +74,7 @@ impl CosimArgs {
             define: all(m, "define"),
             top: one(m, "top"),
             filelist: file_lists(m),
+            no_internals: m.get_flag("no-internals"),
         }
     }
 }
@@ -121,7 +125,10 @@ pub fn run(project: &Project, a: &CosimArgs) -> Result<String, CmdError> {
         return Err(format!("--rtl {}: {why}", f.display()).into());
     }
     for (list, from) in &a.filelist {
-        let option = if *from == PathsFrom::Cwd { "-f" } else { "-F" };
+        let option = match from {
+            PathsFrom::Cwd => "-f/--filelist",
+            PathsFrom::List => "-F/--filelist-relative",
+        };
         FileList::read(list, *from).map_err(|e| format!("{option} {e}"))?;
     }
     let runs = match project.get(&a.unit).and_then(|u| u.directed_runs()) {
@@ -164,15 +171,21 @@ fn simulate(
 ) -> Result<String, CmdError> {
     let vectors = a.stimulus == "vectors";
     let with = |unit| Preprocessed { unit, a };
+    let go = if a.no_internals {
+        cosim::run_with
+    } else {
+        cosim::run_explained
+    };
     if !vectors {
         let unit = &with(unit);
-        let r = cosim::run(unit, sim, &[], a.count, a.seed, dir).map_err(CmdError::Input)?;
+        let stim = cosim::CosimUnit::stimulus(unit, a.seed, a.count);
+        let r = go(unit, sim, &[], &stim, dir).map_err(CmdError::Input)?;
         let what = format!("{} in {} (seed {})", a.unit, sim.name(), a.seed);
         return report(&what, &r);
     }
     let mut lines = Vec::new();
     for d in runs {
-        let r = cosim::run_with(
+        let r = go(
             &with(d.unit.as_ref()),
             sim,
             &[],
@@ -197,6 +210,9 @@ fn report(what: &str, r: &cosim::CosimResult) -> Result<String, CmdError> {
         )),
         Some(d) => {
             super::say(&format!("{d}\n"));
+            if let Some(note) = &r.internals {
+                super::say(&format!("{note}\n"));
+            }
             Err(CmdError::Failed(format!(
                 "{what}: {} differences in {} cycles, the first at cycle {} on port {}; waveform: gtkwave {}",
                 r.differences,

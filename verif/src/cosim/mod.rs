@@ -646,6 +646,9 @@ pub struct CosimResult {
     pub differences: u64,
     /// The waveform holding the model, the RTL, a mismatch flag per port and the inputs.
     pub vcd: PathBuf,
+    /// After a difference in [`run_explained`]: which of the RTL's internals the waveform
+    /// shows, or why it shows none.
+    pub internals: Option<String>,
 }
 
 /// The first cycle and port where the RTL and the model part.
@@ -747,6 +750,39 @@ pub fn run_with(
     stim: &[Vec<u64>],
     dir: &Path,
 ) -> Result<CosimResult, String> {
+    run_checked(unit, sim, rtl, stim, dir, false)
+}
+
+/// Cycles of the RTL's internals dumped before the first difference ([`run_explained`]).
+pub const INTERNALS_BEFORE: usize = 100;
+/// Cycles of the RTL's internals dumped after the first difference.
+pub const INTERNALS_AFTER: usize = 20;
+
+/// As [`run_with`], and at a difference the RTL is simulated again, dumping every signal
+/// under its top from [`INTERNALS_BEFORE`] cycles before the first difference to
+/// [`INTERNALS_AFTER`] after it: the waveform shows them, sampled as the ports are, under
+/// `tb.rtl_internals` (its top's own signals in the view, below the ports; its sub-modules
+/// in the tree). The run is built with the dump compiled in (Verilator's with `--trace`, a
+/// build slower by about a half), so that the second run repeats the first exactly; it is
+/// what `cosim` runs. [`CosimResult::internals`] says what was shown, or why not.
+pub fn run_explained(
+    unit: &dyn CosimUnit,
+    sim: Simulator,
+    rtl: &[PathBuf],
+    stim: &[Vec<u64>],
+    dir: &Path,
+) -> Result<CosimResult, String> {
+    run_checked(unit, sim, rtl, stim, dir, true)
+}
+
+fn run_checked(
+    unit: &dyn CosimUnit,
+    sim: Simulator,
+    rtl: &[PathBuf],
+    stim: &[Vec<u64>],
+    dir: &Path,
+    explain: bool,
+) -> Result<CosimResult, String> {
     let cycles = stim.len();
     if cycles == 0 {
         return Err(format!("{}: no cycles to simulate", unit.name()));
@@ -773,7 +809,15 @@ pub fn run_with(
     let (expected, watched): (Vec<Vec<u64>>, Vec<Vec<u64>>) = (0..cycles)
         .map(|c| model.cycle_watched(c < resets, &stim[c]))
         .unzip();
-    let got = rtl_outputs(unit, sim, dir, &build, (&ins, &outs), stim)?;
+    let run = rtl_run(unit, dir, &build, (&ins, &outs), stim, explain)?;
+    let got = rtl::simulate(sim, &run)?;
+    if got.len() != cycles {
+        return Err(format!(
+            "{}: the RTL wrote {} cycles of outputs, {cycles} expected",
+            sim.name(),
+            got.len()
+        ));
+    }
     let history = unit.history().max(1);
     let found = compare(
         &ins,
@@ -784,60 +828,151 @@ pub fn run_with(
         &got,
         (resets, history),
     );
-    let vcd = dir.join(format!("{}_cosim.vcd", unit.name()));
-    let defs: Vec<(&str, u32, bool)> = outs
-        .iter()
-        .map(|p| (p.name.as_str(), p.fmt.width(), p.fmt.is_signed()))
-        .collect();
-    // Flagged where the comparison counts a difference: not before its first compared cycle.
-    let differs =
-        |c: usize, k: usize| c >= FIRST_COMPARED && rules.differs(k, &expected[c], &got[c]);
-    let watched_ports = model.watched();
-    let (inputs, watch) = (shown_ports(&ins, true), shown_ports(&watched_ports, false));
-    let stim_rst: Vec<Vec<u64>> = (0..cycles)
-        .map(|c| {
-            std::iter::once(u64::from(c < resets))
-                .chain(stim[c].iter().copied())
-                .collect()
-        })
-        .collect();
-    let shown = [
-        waves::compare::Shown {
-            scope: "inputs",
-            signals: &inputs,
-            values: &stim_rst,
-        },
-        waves::compare::Shown {
-            scope: "watched",
-            signals: &watch,
-            values: &watched,
-        },
-    ];
-    let shown = if watch.is_empty() {
-        &shown[..1]
-    } else {
-        &shown[..]
+    let internals = match (&found.0, explain) {
+        (Some(d), true) => Some(internals(sim, &run, &got, d.cycle)),
+        _ => None,
     };
-    waves::compare::write(&vcd, unit.name(), &defs, &expected, &got, &differs, shown)?;
+    let shown = Compared {
+        unit,
+        rules: &rules,
+        expected: &expected,
+        got: &got,
+        watched: (&model.watched(), &watched),
+        stim,
+        internals: internals.as_ref().and_then(|r| r.as_ref().ok()),
+    };
+    let vcd = shown.write(dir, &ins, &outs)?;
     Ok(CosimResult {
         cycles,
         mismatch: found.0,
         differences: found.1,
         vcd,
+        internals: internals.map(|r| r.map_or_else(|e| e, |s| s.said())),
     })
 }
 
-/// Writes a run's files into `dir` (the stimulus, the memory images, the testbench) and has
-/// the RTL simulate them (or takes a kept run of the same), checking it wrote every cycle.
-fn rtl_outputs(
-    unit: &dyn CosimUnit,
+/// The RTL's internals around cycle `first`, sampled as the ports are.
+fn internals(
     sim: Simulator,
-    dir: &Path,
-    build: &Build,
-    (ins, outs): (&[Port], &[Port]),
+    run: &rtl::RtlRun,
+    got: &[Vec<Option<u64>>],
+    first: usize,
+) -> Result<Internals, String> {
+    let from = first.saturating_sub(INTERNALS_BEFORE);
+    let to = (first + INTERNALS_AFTER + 1).min(run.cycles);
+    let vcd = rtl::internals(sim, run, got, (from, to))
+        .map_err(|e| format!("the RTL's internals are not in the waveform: {e}"))?;
+    let mut sampled = waves::sample::sample(&vcd, &["tb", "dut"], from..to, rtl::sampled_before_ps)
+        .map_err(|e| format!("the RTL's internals are not in the waveform: {e}"))?;
+    // The clock is sampled before its edge: always low, nothing to see.
+    if let Some(k) =
+        (run.clocking.as_ref()).and_then(|c| sampled.signals.iter().position(|s| s.0 == c.clock))
+    {
+        sampled.signals.remove(k);
+        sampled.values.iter_mut().for_each(|v| _ = v.remove(k));
+    }
+    Ok(Internals { sampled })
+}
+
+/// The RTL's internals read back.
+struct Internals {
+    sampled: waves::sample::Sampled,
+}
+
+impl Internals {
+    fn said(&self) -> String {
+        let s = &self.sampled;
+        let skipped = match s.skipped {
+            0 => String::new(),
+            n => format!(
+                " ({n} more left out: wider than 64 bits, real, or beyond the first {})",
+                waves::sample::MAX_SIGNALS
+            ),
+        };
+        format!(
+            "the RTL's internals, {} signals{skipped}, are in the waveform under tb.rtl_internals, cycles {}..{}",
+            s.signals.len(),
+            s.cycles.start,
+            s.cycles.end
+        )
+    }
+}
+
+/// What a run's waveform shows: the comparison, the inputs, the model's watched signals and
+/// the RTL's internals when dumped.
+struct Compared<'a> {
+    unit: &'a dyn CosimUnit,
+    rules: &'a Rules,
+    expected: &'a [Vec<u64>],
+    got: &'a [Vec<Option<u64>>],
+    watched: (&'a [Port], &'a [Vec<u64>]),
+    stim: &'a [Vec<u64>],
+    internals: Option<&'a Internals>,
+}
+
+impl Compared<'_> {
+    /// Writes the waveform (and its `.gtkw`) into `dir`; returns its path.
+    fn write(&self, dir: &Path, ins: &[Port], outs: &[Port]) -> Result<PathBuf, String> {
+        use waves::compare::{Shown, Values};
+        let resets = reset_cycles(self.unit);
+        let vcd = dir.join(format!("{}_cosim.vcd", self.unit.name()));
+        let defs: Vec<(&str, u32, bool)> = outs
+            .iter()
+            .map(|p| (p.name.as_str(), p.fmt.width(), p.fmt.is_signed()))
+            .collect();
+        // Flagged where the comparison counts a difference: not before its first compared cycle.
+        let (expected, got) = (self.expected, self.got);
+        let differs = |c: usize, k: usize| {
+            c >= FIRST_COMPARED && self.rules.differs(k, &expected[c], &got[c])
+        };
+        let (inputs, watch) = (shown_ports(ins, true), shown_ports(self.watched.0, false));
+        let stim_rst: Vec<Vec<u64>> = (self.stim.iter().enumerate())
+            .map(|(c, v)| {
+                std::iter::once(u64::from(c < resets))
+                    .chain(v.iter().copied())
+                    .collect()
+            })
+            .collect();
+        let mut shown = vec![Shown {
+            scope: "inputs",
+            signals: &inputs,
+            values: Values::Every(&stim_rst),
+        }];
+        if !watch.is_empty() {
+            shown.push(Shown {
+                scope: "watched",
+                signals: &watch,
+                values: Values::Every(self.watched.1),
+            });
+        }
+        let inner: Vec<(&str, u32, bool)> = self.internals.map_or(Vec::new(), |i| {
+            let s = &i.sampled.signals;
+            s.iter().map(|(n, w)| (n.as_str(), *w, false)).collect()
+        });
+        if let Some(i) = self.internals {
+            let s = &i.sampled;
+            shown.push(Shown {
+                scope: "rtl_internals",
+                signals: &inner,
+                values: Values::From(s.cycles.start, &s.values),
+            });
+        }
+        let title = self.unit.name();
+        waves::compare::write(&vcd, title, &defs, expected, got, &differs, &shown)?;
+        Ok(vcd)
+    }
+}
+
+/// Writes a run's files into `dir` (the stimulus, the memory images, the testbench): the run
+/// of the RTL, to simulate (or take a kept run of).
+fn rtl_run<'a>(
+    unit: &'a dyn CosimUnit,
+    dir: &'a Path,
+    build: &'a Build,
+    (ins, outs): (&'a [Port], &'a [Port]),
     stim: &[Vec<u64>],
-) -> Result<Vec<Vec<Option<u64>>>, String> {
-    let cycles = stim.len();
+    dumps: bool,
+) -> Result<rtl::RtlRun<'a>, String> {
     rtl::write_stimulus(&dir.join("stim.hex"), ins, stim, reset_cycles(unit))?;
     let mut inputs = vec![dir.join("stim.hex")];
     for (file, text) in unit.memories() {
@@ -847,28 +982,26 @@ fn rtl_outputs(
     }
     let tb = rtl::testbench(unit, ins, outs);
     std::fs::write(dir.join("tb.sv"), tb).map_err(|e| format!("{}: {e}", dir.display()))?;
-    let run = rtl::RtlRun {
+    let mut pre = build.pre.clone();
+    if dumps {
+        pre.defines.push(rtl::DUMP_MACRO.to_string());
+    }
+    Ok(rtl::RtlRun {
         dir,
         sources: &build.sources,
         top: unit.top(),
         clocking: unit.clocking(),
         unmodelled: unit.unmodelled(),
         parameters: unit.parameters().iter().map(|p| p.0).collect(),
-        pre: build.pre.clone(),
+        pre,
         ins,
         outs,
-        cycles,
+        cycles: stim.len(),
         inputs,
-    };
-    let got = rtl::simulate(sim, &run)?;
-    if got.len() != cycles {
-        return Err(format!(
-            "{}: the RTL wrote {} cycles of outputs, {cycles} expected",
-            sim.name(),
-            got.len()
-        ));
-    }
-    Ok(got)
+        dumps,
+        dump_from: None,
+        init_seed: None,
+    })
 }
 
 /// Names and widths of `ports` for the waveform, after a 1-bit `rst` when `with_reset`.

@@ -46,6 +46,11 @@ pub fn verilog_range(p: &Port) -> String {
 /// The generated SystemVerilog testbench: replays the stimulus, writes every output port every
 /// cycle (after the inputs settle, before the clock edge, as the model is sampled).
 ///
+/// Cycle `c` takes 4 ns: its stimulus line is read at `4c`, its inputs set at `4c + 1` (a
+/// step of their own: Verilator's dump shows a change made in the step of a `$fscanf` only
+/// at the next step), its outputs written at `4c + 2` with the clock rising after, the clock
+/// falling at `4c + 3` ([`sampled_before_ps`]).
+///
 /// It depends on the unit's ports, parameters and clocking only: it reads `stim.hex` and
 /// writes `rtl_out.hex` in the folder it runs in and takes the cycle count as `+cycles=N`,
 /// so one build serves every run of the unit ([`super::cache`]).
@@ -106,7 +111,7 @@ pub(super) fn testbench(unit: &dyn CosimUnit, ins: &[Port], outs: &[Port]) -> St
         .collect();
     let _ = write!(
         s,
-        "    integer texrtl_cycle, texrtl_cycles, texrtl_in, texrtl_fd, texrtl_got;\n    initial begin\n        if (!$value$plusargs(\"cycles=%d\", texrtl_cycles)) texrtl_cycles = 0;\n        texrtl_in = $fopen(\"stim.hex\", \"r\");\n        texrtl_fd = $fopen(\"rtl_out.hex\", \"w\");\n        $fwrite(texrtl_fd, \"{WIDTHS}{}\\n\"{});\n        for (texrtl_cycle = 0; texrtl_cycle < texrtl_cycles; texrtl_cycle = texrtl_cycle + 1) begin\n            texrtl_got = $fscanf(texrtl_in, \"%h\\n\", texrtl_line);\n            {{texrtl_rst, {}}} = texrtl_line;\n            #1;\n            $fwrite(texrtl_fd, \"{}\\n\", {});\n            texrtl_clk = 1'b1;\n            #1;\n            texrtl_clk = 1'b0;\n            #1;\n        end\n        $fclose(texrtl_fd);\n        $fclose(texrtl_in);\n        $finish;\n    end\nendmodule\n",
+        "    integer texrtl_cycle, texrtl_cycles, texrtl_in, texrtl_fd, texrtl_got;\n{DUMP_DECL}    initial begin\n        if (!$value$plusargs(\"cycles=%d\", texrtl_cycles)) texrtl_cycles = 0;\n{DUMP_FROM}        texrtl_in = $fopen(\"stim.hex\", \"r\");\n        texrtl_fd = $fopen(\"rtl_out.hex\", \"w\");\n        $fwrite(texrtl_fd, \"{WIDTHS}{}\\n\"{});\n        for (texrtl_cycle = 0; texrtl_cycle < texrtl_cycles; texrtl_cycle = texrtl_cycle + 1) begin\n            texrtl_got = $fscanf(texrtl_in, \"%h\\n\", texrtl_line);\n            #1;\n            {{texrtl_rst, {}}} = texrtl_line;\n{DUMP_START}            #1;\n            $fwrite(texrtl_fd, \"{}\\n\", {});\n            texrtl_clk = 1'b1;\n            #1;\n            texrtl_clk = 1'b0;\n            #1;\n        end\n        $fclose(texrtl_fd);\n        $fclose(texrtl_in);\n        $finish;\n    end\nendmodule\n",
         vec![" %0d"; widths.len()].concat(),
         widths.concat(),
         names.join(", "),
@@ -118,6 +123,25 @@ pub(super) fn testbench(unit: &dyn CosimUnit, ins: &[Port], outs: &[Port]) -> St
 
 /// How the first line of `rtl_out.hex` begins: a comment, as `$readmemh` reads one.
 const WIDTHS: &str = "// port widths:";
+
+/// The testbench's dump of the RTL's internals, compiled in only with `TEXRTL_DUMP`
+/// defined ([`RtlRun::dumps`]) and made only in a run given `+dump_from=N`: from cycle `N`,
+/// every signal under `dut` into `rtl_internals.vcd`. The dump starts there rather than
+/// being switched on there, as Verilator ignores `$dumpoff`.
+const DUMP_DECL: &str = "`ifdef TEXRTL_DUMP\n    integer texrtl_dump_from;\n`endif\n";
+const DUMP_FROM: &str = "`ifdef TEXRTL_DUMP\n        if (!$value$plusargs(\"dump_from=%d\", texrtl_dump_from)) texrtl_dump_from = -1;\n`endif\n";
+const DUMP_START: &str = "`ifdef TEXRTL_DUMP\n            if (texrtl_cycle == texrtl_dump_from) begin\n                $dumpfile(\"rtl_internals.vcd\");\n                $dumpvars(0, dut);\n            end\n`endif\n";
+
+/// A dumped cycle `c`'s values are those before this time of it, in picoseconds: its
+/// inputs settled, its clock edge not yet taken.
+pub(super) fn sampled_before_ps(c: usize) -> u64 {
+    (4 * c as u64 + 2) * 1000
+}
+
+/// The macro that compiles the dump in.
+pub(super) const DUMP_MACRO: &str = "TEXRTL_DUMP";
+/// The file the dump writes.
+pub(super) const INTERNALS_VCD: &str = "rtl_internals.vcd";
 
 /// A run of the generated testbench: its folder (holding `tb.sv`, `stim.hex` and the memory
 /// images), the Verilog sources, the top and its ports, the cycles, and the files the RTL reads
@@ -137,6 +161,16 @@ pub(super) struct RtlRun<'a> {
     pub outs: &'a [Port],
     pub cycles: usize,
     pub inputs: Vec<PathBuf>,
+    /// Whether the build can dump the RTL's internals (its preprocessor defines
+    /// [`DUMP_MACRO`]; Verilator's builds `--trace`): the build a run is explained with, so
+    /// that the dump repeats the compared run exactly, Verilator's random start values of
+    /// what is not reset included (another build draws them otherwise).
+    pub dumps: bool,
+    /// Dump the RTL's internals from this cycle on ([`INTERNALS_VCD`]; the run not kept).
+    pub dump_from: Option<usize>,
+    /// Verilator's seed for the values of what is not reset, when not the run's own (a dump
+    /// repeats the run it explains).
+    pub init_seed: Option<u64>,
 }
 
 /// Runs `cmd`, turning a failure into the tool's first message (cut at 200 characters; it
@@ -190,7 +224,9 @@ fn binary(sim: Simulator, r: &RtlRun, kept: Option<(&Path, &str)>) -> Result<Pat
     let built = match sim {
         Simulator::Verilator => {
             let files = [r.pre.flags(), strings(r.sources)].concat();
-            verilator::build(&tb, &files, &r.dir.join("obj_dir"), &run_tool).map_err(named)?
+            let trace = r.dumps;
+            let mdir = r.dir.join("obj_dir");
+            verilator::build(&tb, &files, &mdir, trace, &run_tool).map_err(named)?
         }
         Simulator::Icarus => {
             let vvp = r.dir.join(file);
@@ -260,11 +296,13 @@ fn contract(r: &RtlRun) -> String {
     )
 }
 
-/// Builds (or takes the kept build of) the testbench and runs it, unless a run of the same
-/// build on the same inputs and cycles is kept: then its outputs are copied in (a simulator
-/// is deterministic: the same binary on the same inputs writes the same outputs). Reads the
-/// outputs back (`None` where the RTL drove x/z).
-pub(super) fn simulate(sim: Simulator, r: &RtlRun) -> Result<Vec<Vec<Option<u64>>>, String> {
+/// Verilator starts what the Verilog does not reset at random values, as Icarus starts it at
+/// x: a missing reset is a difference in both simulators (Verilator's default, zeros, would
+/// match the model's reset values and hide it). The seed follows from the run.
+const RANDOM_INIT: &str = "+verilator+rand+reset+2";
+
+/// The cache keys of `r`'s build and of its run (`None`: a source unreadable, nothing kept).
+fn keys(sim: Simulator, r: &RtlRun) -> Result<(Option<String>, Option<String>), String> {
     let tb = r.dir.join("tb.sv");
     let text = std::fs::read_to_string(&tb).map_err(|e| format!("{}: {e}", tb.display()))?;
     let what = match sim {
@@ -272,30 +310,42 @@ pub(super) fn simulate(sim: Simulator, r: &RtlRun) -> Result<Vec<Vec<Option<u64>
         Simulator::Icarus => "iverilog -g2012".to_string(),
     };
     let what = format!("{what} {}", r.pre.flags().join(" "));
-    let root = cache::root();
     // The files the sources include are part of what a build is made of.
     let made_of = [r.sources, &included(r.sources, &r.pre.include_dirs)].concat();
     let build_key = cache::key(&what, &text, &made_of);
-    // Verilator starts what the Verilog does not reset at random values, as Icarus starts it
-    // at x: a missing reset is a difference in both simulators (Verilator's default, zeros,
-    // would match the model's reset values and hide it). The seed follows from the run.
-    let random_init = if sim == Simulator::Verilator {
-        " +verilator+rand+reset+2"
-    } else {
-        ""
+    let random_init = match sim {
+        Simulator::Verilator => format!(" {RANDOM_INIT}"),
+        Simulator::Icarus => String::new(),
     };
     let run_key = build_key.as_deref().and_then(|k| {
         let what = format!("{k} +cycles={}{random_init}", r.cycles);
         cache::key(&what, "run", &r.inputs)
     });
-    let init_seed = run_key.as_deref().map_or(1, |k| {
+    Ok((build_key, run_key))
+}
+
+/// Verilator's seed for the random values of what is not reset: from the run's key, so a run
+/// repeats exactly and another stimulus or count tries other values.
+fn init_seed(run_key: Option<&str>) -> u64 {
+    run_key.map_or(1, |k| {
         let h = k.bytes().fold(0xcbf2_9ce4_8422_2325u64, |h, b| {
             (h ^ u64::from(b)).wrapping_mul(0x100_0000_01b3)
         });
         h % 0x7fff_ffff + 1
-    });
+    })
+}
+
+/// Builds (or takes the kept build of) the testbench and runs it, unless a run of the same
+/// build on the same inputs and cycles is kept: then its outputs are copied in (a simulator
+/// is deterministic: the same binary on the same inputs writes the same outputs). Reads the
+/// outputs back (`None` where the RTL drove x/z).
+pub(super) fn simulate(sim: Simulator, r: &RtlRun) -> Result<Vec<Vec<Option<u64>>>, String> {
+    let (build_key, run_key) = keys(sim, r)?;
+    let root = cache::root();
+    let init_seed = r.init_seed.unwrap_or_else(|| init_seed(run_key.as_deref()));
     let out = r.dir.join("rtl_out.hex");
-    let kept_run = root.as_deref().zip(run_key.as_deref());
+    // A dump's run is not kept: it is made to be looked at.
+    let kept_run = (root.as_deref().zip(run_key.as_deref())).filter(|_| r.dump_from.is_none());
     match kept_run.is_some_and(|(root, k)| cache::take(root, k, "rtl_out.hex", &out, false)) {
         true => {}
         false => {
@@ -303,7 +353,7 @@ pub(super) fn simulate(sim: Simulator, r: &RtlRun) -> Result<Vec<Vec<Option<u64>
             let mut c = match sim {
                 Simulator::Verilator => {
                     let mut c = Command::new(&b);
-                    c.arg(random_init.trim())
+                    c.arg(RANDOM_INIT)
                         .arg(format!("+verilator+seed+{init_seed}"));
                     c
                 }
@@ -318,16 +368,68 @@ pub(super) fn simulate(sim: Simulator, r: &RtlRun) -> Result<Vec<Vec<Option<u64>
             } else {
                 "vvp"
             };
-            run_tool(
-                c.arg(format!("+cycles={}", r.cycles)).current_dir(r.dir),
-                tool,
-            )?;
+            c.arg(format!("+cycles={}", r.cycles))
+                .args(r.dump_from.map(|f| format!("+dump_from={f}")));
+            run_tool(c.current_dir(r.dir), tool)?;
             if let Some((root, k)) = kept_run {
                 cache::store(root, k, &out);
             }
         }
     }
     read_outputs(&out, r)
+}
+
+/// Simulates `r` (built with the dump compiled in) again in its folder's `internals`, on
+/// the same build and inputs, over cycles `..to`, dumping from cycle `from`; returns the
+/// dump. Its outputs must be `got`, the first run's: else the dump would explain another run.
+pub(super) fn internals(
+    sim: Simulator,
+    r: &RtlRun,
+    got: &[Vec<Option<u64>>],
+    (from, to): (usize, usize),
+) -> Result<PathBuf, String> {
+    if !r.dumps {
+        return Err("the run's build has no dump compiled in".into());
+    }
+    let dir = r.dir.join("internals");
+    std::fs::create_dir_all(&dir).map_err(|e| format!("{}: {e}", dir.display()))?;
+    let mut inputs = Vec::new();
+    for f in r.inputs.iter().chain([&r.dir.join("tb.sv")]) {
+        let to = dir.join(f.file_name().unwrap_or_default());
+        std::fs::copy(f, &to).map_err(|e| format!("{}: {e}", to.display()))?;
+        inputs.push(to);
+    }
+    inputs.pop(); // tb.sv: the build's, not a run-time input
+    let vcd = dir.join(INTERNALS_VCD);
+    // Not an earlier run's dump, if this one writes none.
+    let _ = std::fs::remove_file(&vcd);
+    let seed = init_seed(keys(sim, r)?.1.as_deref());
+    let run = RtlRun {
+        dir: &dir,
+        sources: r.sources,
+        top: r.top,
+        clocking: r.clocking.clone(),
+        unmodelled: r.unmodelled.clone(),
+        parameters: r.parameters.clone(),
+        pre: r.pre.clone(),
+        ins: r.ins,
+        outs: r.outs,
+        cycles: to,
+        inputs,
+        dumps: true,
+        dump_from: Some(from),
+        init_seed: Some(seed),
+    };
+    let again = simulate(sim, &run)?;
+    if let Some(c) = (0..to).find(|&c| again.get(c) != got.get(c)) {
+        return Err(format!(
+            "the second run's outputs differ from the first's in cycle {c}"
+        ));
+    }
+    match vcd.is_file() {
+        true => Ok(vcd),
+        false => Err(format!("{}: the simulator wrote no dump", vcd.display())),
+    }
 }
 
 /// The RTL's outputs, a line per cycle of hex fields, one per port, after the line of its

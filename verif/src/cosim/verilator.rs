@@ -23,20 +23,22 @@ pub(super) const OPTIONS: [&str; 7] = [
     "-Wno-style",
 ];
 
-/// The runtime cache's folder: one per Verilator and C++ compiler version.
-fn cache_dir() -> &'static Option<PathBuf> {
-    static DIR: OnceLock<Option<PathBuf>> = OnceLock::new();
-    DIR.get_or_init(|| {
+/// The runtime cache's folder: one per Verilator and C++ compiler version, and for builds
+/// with and without `--trace` (whose runtime differs).
+fn cache_dir(trace: bool) -> &'static Option<PathBuf> {
+    static DIRS: [OnceLock<Option<PathBuf>>; 2] = [OnceLock::new(), OnceLock::new()];
+    DIRS[usize::from(trace)].get_or_init(|| {
         let first_line = |exe: &str, arg: &str| -> Option<String> {
             let o = Command::new(exe).arg(arg).output().ok()?;
             let text = String::from_utf8_lossy(&o.stdout).into_owned();
             Some(text.lines().next()?.to_string())
         };
         let key = format!(
-            "{}\n{}\n{}",
+            "{}\n{}\n{}{}",
             first_line("verilator", "--version")?,
             first_line("c++", "--version").unwrap_or_default(),
-            OPTIONS.join(" ")
+            OPTIONS.join(" "),
+            if trace { " --trace" } else { "" }
         );
         // FNV-1a: a stable name for the key.
         let h = key.bytes().fold(0xcbf2_9ce4_8422_2325u64, |h, b| {
@@ -72,22 +74,24 @@ fn copy_whole(from: &Path, to: &Path) -> std::io::Result<()> {
 }
 
 /// Builds `tb` (top module `tb`) with `sources` (the preprocessor's options first) into
-/// `mdir`; returns the executable. `run`
-/// runs a command, turning a failure into the tool's first message.
+/// `mdir`, with VCD tracing (`--trace`) when `trace`; returns the executable. `run` runs a
+/// command, turning a failure into the tool's first message.
 pub fn build(
     tb: &Path,
     sources: &[String],
     mdir: &Path,
+    trace: bool,
     run: &dyn Fn(&mut Command, &str) -> Result<(), String>,
 ) -> Result<PathBuf, String> {
     let mut c = Command::new("verilator");
     c.args(OPTIONS)
+        .args(trace.then_some("--trace"))
         .args(["--top-module", "tb", "-o", "simv", "--Mdir"])
         .arg(mdir)
         .arg(tb)
         .args(sources);
     run(&mut c, "verilator")?;
-    let cache = cache_dir();
+    let cache = cache_dir(trace);
     let cached = cache.as_deref().map(runtime_objects).unwrap_or_default();
     for obj in &cached {
         if let Some(name) = obj.file_name() {
