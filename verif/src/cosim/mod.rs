@@ -871,7 +871,26 @@ fn internals(
         sampled.signals.remove(k);
         sampled.values.iter_mut().for_each(|v| _ = v.remove(k));
     }
+    parameters_last(&mut sampled);
     Ok(Internals { sampled })
+}
+
+/// Moves the top's parameters after its other signals, so the view opens on signals: a
+/// constant named in capitals (Verilator dumps parameters as wires; Icarus leaves them out).
+fn parameters_last(s: &mut waves::sample::Sampled) {
+    let parameter = |k: usize| {
+        let name = &s.signals[k].0;
+        let capitals = |c: char| c.is_ascii_uppercase() || c.is_ascii_digit() || c == '_';
+        let constant = s.values.windows(2).all(|w| w[0][k] == w[1][k]);
+        !name.contains('.') && name.chars().all(capitals) && constant
+    };
+    let (params, others): (Vec<usize>, Vec<usize>) =
+        (0..s.signals.len()).partition(|&k| parameter(k));
+    let order: Vec<usize> = others.into_iter().chain(params).collect();
+    s.signals = order.iter().map(|&k| s.signals[k].clone()).collect();
+    for row in &mut s.values {
+        *row = order.iter().map(|&k| row[k]).collect();
+    }
 }
 
 /// The RTL's internals read back.
