@@ -386,11 +386,12 @@ pub fn list(project: &Project) -> String {
         if let Some(t) = u.twin_unit() {
             let count =
                 |n: usize, what: &str| format!("{n} {what}{}", if n == 1 { "" } else { "s" });
-            let mut files = count(t.rtl().len(), "Verilog source");
-            let lists = t.file_lists().len();
-            if lists > 0 {
-                files += &format!(", {}", count(lists, "file list"));
-            }
+            let (sources, lists) = (t.rtl().len(), t.file_lists().len());
+            let files = match (sources, lists) {
+                (n, 0) => count(n, "Verilog source"),
+                (0, l) => count(l, "file list"),
+                (n, l) => format!("{}, {}", count(n, "Verilog source"), count(l, "file list")),
+            };
             has.push(format!("twin {} ({files})", t.top()));
         }
         match (u.vectors_fn(), u.no_vectors_reason()) {
