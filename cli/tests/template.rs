@@ -118,5 +118,27 @@ fn a_new_crate_builds_tests_and_regresses_outside_the_workspace() {
     );
     let (ok, text) = cargo(&dir, &target, &["run", "--", "vectors", "--check"]);
     assert!(ok && text.contains("every row equal"), "{text}");
+    broken_twin_is_explained(&dir, &target);
     let _ = std::fs::remove_dir_all(&base);
+}
+
+/// The twin broken (the upper rail one LSB low): the regression's co-simulation row fails
+/// and names the command that runs it again alone; that command shows the RTL's internals.
+fn broken_twin_is_explained(dir: &Path, target: &Path) {
+    if Command::new("iverilog").arg("-V").output().is_err() {
+        return;
+    }
+    let v = dir.join("rtl/rop_blend.v");
+    let good = std::fs::read_to_string(&v).unwrap();
+    let bad = good.replace("? 10'sd511 :", "? 10'sd510 :");
+    assert_ne!(bad, good, "the template's rail moved");
+    std::fs::write(&v, bad).unwrap();
+    let (ok, text) = cargo(dir, target, &["run", "--", "--no-vcd", "--out", "out/bug"]);
+    assert!(!ok, "{text}");
+    let said = "cosim/rop_blend/icarus: again alone, the RTL's internals around the difference in its waveform: rop_blend ";
+    let again = text.lines().find_map(|l| l.trim().strip_prefix(said));
+    let again: Vec<&str> = again.expect(&text).split(' ').collect();
+    let (ok, text) = cargo(dir, target, &[&["run", "--"], &again[..]].concat());
+    assert!(!ok && text.contains("under tb.rtl_internals"), "{text}");
+    std::fs::write(&v, good).unwrap();
 }

@@ -37,7 +37,7 @@ pub fn case_output(job: u64, seed: Seed, reproduce: &str) -> String {
 
 /// The command that runs a check again alone: a co-simulation row `cosim/UNIT/SIM` as
 /// `cosim` with its cycles and the run's seed, the vectors as `regress --only vectors`.
-fn check_command(program: &str, seed: Seed, row: &TbResult) -> String {
+pub(crate) fn check_command(program: &str, seed: Seed, row: &TbResult) -> String {
     let mut parts = row.name.split('/');
     match (parts.next(), parts.next(), parts.next()) {
         (Some(crate::regress::COSIM), Some(unit), Some(sim)) => format!(

@@ -452,7 +452,7 @@ fn cosim_rows(
                 let Some(&(sim, unit)) = rows.get(i) else {
                     break;
                 };
-                let r = cosim_row(unit, sim, cfg);
+                let r = cosim_row(project.name(), unit, sim, cfg);
                 *done[i].lock().unwrap_or_else(|e| e.into_inner()) = Some(r);
             });
         }
@@ -465,8 +465,10 @@ fn cosim_rows(
         .collect()
 }
 
-/// A twin against its model as a row of the table: `cosim/<unit>/<simulator>`.
+/// A twin against its model as a row of the table: `cosim/<unit>/<simulator>`; a difference
+/// with the command that runs it again alone (`program cosim ...`), explained.
 fn cosim_row(
+    program: &str,
     u: &dyn crate::cosim::CosimUnit,
     sim: Simulator,
     cfg: &RegressConfig,
@@ -486,6 +488,10 @@ fn cosim_row(
     r.coverage_percent = 100.0;
     if let Some(d) = c.mismatch {
         r.mismatch_log.push(d.to_string());
+        let again = crate::junit::check_command(program, cfg.seed, &r);
+        r.mismatch_log.push(format!(
+            "again alone, the RTL's internals around the difference in its waveform: {again}"
+        ));
     }
     // The simulator's own VCD: with `--fst`, its FST is converted from it (the models' FSTs
     // are written while simulating).
