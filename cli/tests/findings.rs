@@ -624,3 +624,44 @@ fn merge_names_the_summary_whose_model_differs() {
     );
     assert!(!m.exists());
 }
+
+/// Shards run one after another into one `--out` (a loop in a job script) kept only the last
+/// shard's summary: the merge then found the others missing, their results gone. A shard now
+/// refuses a folder holding another shard's summary of the same run, naming a folder of its
+/// own, and leaves that summary whole; the same shard again (a task run anew) may overwrite its
+/// own, and another run's summary is simply replaced.
+#[test]
+fn a_shard_does_not_overwrite_another_shards_summary() {
+    let d = dir("findings", "shard-folder");
+    let out = d.join("out");
+    let first = small_shard(1, &out);
+    let kept = std::fs::read(&first).unwrap();
+    let args = [
+        "--no-cosim",
+        "--no-vcd",
+        "--only",
+        "blend_adjust_153",
+        "--count",
+        "10",
+        "--shard",
+        "2/2",
+        "--out",
+        s(&out),
+    ];
+    let o = texrtl(&args);
+    let err = String::from_utf8_lossy(&o.stderr);
+    assert_eq!(o.status.code(), Some(2), "{err}");
+    assert_eq!(err.trim_end().lines().count(), 1, "{err}");
+    assert!(
+        err.contains("--out") && err.contains("shard 1/2 of this run") && err.contains("/out/2)"),
+        "{err}"
+    );
+    assert_eq!(
+        std::fs::read(&first).unwrap(),
+        kept,
+        "shard 1's summary is whole"
+    );
+    small_shard(1, &out); // the same shard again
+    let other_seed = [&args[..], &["--seed", "7"]].concat();
+    assert!(texrtl(&other_seed).status.code().is_some_and(|c| c <= 1));
+}

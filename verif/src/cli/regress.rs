@@ -104,6 +104,33 @@ fn parse_window(s: &str) -> Result<(u64, u64), String> {
     Ok((a, b))
 }
 
+/// A shard's `--out` must not hold another shard's summary of the same run (seed and shard
+/// count): the run would overwrite it, and a loop of shards into one folder would keep only
+/// the last. The same shard again (a task run anew) overwrites its own.
+fn check_shard_folder(cfg: &RegressConfig) -> Result<(), String> {
+    let path = cfg.out.join("summary.json");
+    if cfg.shard.is_all() || !path.is_file() {
+        return Ok(());
+    }
+    let b = waves::output::read_bounded(&path, 256 << 20)?;
+    let Ok(theirs) = crate::regress::parse_summary(&path, &b) else {
+        return Ok(());
+    };
+    let mine = cfg.shard.to_string();
+    let Some(shard) = theirs.shard.filter(|s| *s != mine) else {
+        return Ok(());
+    };
+    let of = |s: &str| s.split('/').nth(1).map(str::to_string);
+    if theirs.seed != cfg.seed.to_string() || of(&shard) != of(&mine) {
+        return Ok(());
+    }
+    let out = cfg.out.display();
+    Err(format!(
+        "--out {out}: holds the summary of shard {shard} of this run; give each shard a folder of its own (--out {out}/{})",
+        cfg.shard.index
+    ))
+}
+
 /// Runs the regression; exit 0 all passed, 1 a testbench failed, 2 bad input.
 pub fn run(project: &Project, a: RegressArgs) -> ExitCode {
     let name = project.name();
@@ -148,6 +175,9 @@ pub fn run(project: &Project, a: RegressArgs) -> ExitCode {
         return fail(name, format!("--period-ps/--trace-window: {e}"));
     }
     if let Err(e) = cfg.validate(project.registry()) {
+        return fail(name, e);
+    }
+    if let Err(e) = check_shard_folder(&cfg) {
         return fail(name, e);
     }
     if bless && project.kept_vectors().is_none() {
