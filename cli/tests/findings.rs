@@ -636,18 +636,7 @@ fn a_shard_does_not_overwrite_another_shards_summary() {
     let out = d.join("out");
     let first = small_shard(1, &out);
     let kept = std::fs::read(&first).unwrap();
-    let args = [
-        "--no-cosim",
-        "--no-vcd",
-        "--only",
-        "blend_adjust_153",
-        "--count",
-        "10",
-        "--shard",
-        "2/2",
-        "--out",
-        s(&out),
-    ];
+    let args = common::small_shard_args("2/2", &out);
     let o = texrtl(&args);
     let err = String::from_utf8_lossy(&o.stderr);
     assert_eq!(o.status.code(), Some(2), "{err}");

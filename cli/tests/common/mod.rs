@@ -86,7 +86,14 @@ pub fn s(p: &Path) -> &str {
 /// configuration, no waveforms) written into folder `out`.
 pub fn small_shard(k: u32, out: &Path) -> PathBuf {
     let shard = format!("{k}/2");
-    let o = texrtl(&[
+    let o = texrtl(&small_shard_args(&shard, out));
+    assert!(o.status.code().is_some_and(|c| c <= 1), "{o:?}");
+    out.join("summary.json")
+}
+
+/// The arguments of [`small_shard`]'s run as shard `shard` (`I/N`).
+pub fn small_shard_args<'a>(shard: &'a str, out: &'a Path) -> Vec<&'a str> {
+    vec![
         "--no-cosim",
         "--no-vcd",
         "--only",
@@ -94,12 +101,10 @@ pub fn small_shard(k: u32, out: &Path) -> PathBuf {
         "--count",
         "10",
         "--shard",
-        &shard,
+        shard,
         "--out",
         s(out),
-    ]);
-    assert!(o.status.code().is_some_and(|c| c <= 1), "{o:?}");
-    out.join("summary.json")
+    ]
 }
 
 /// `args` are refused: exit 2, one line containing `needle`, and no file in `d` whose name
