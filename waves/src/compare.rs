@@ -35,6 +35,16 @@ pub enum Values<'a> {
 }
 
 impl Values<'_> {
+    /// Whether a value may change in cycle `c`: a window's only at its start and up to the
+    /// cycle after it (and cycle 0, where everything starts), so a long run does not look
+    /// at thousands of unrecorded signals every cycle.
+    fn may_change(&self, c: usize) -> bool {
+        match *self {
+            Values::Every(_) => true,
+            Values::From(first, v) => c == 0 || (first..=first + v.len()).contains(&c),
+        }
+    }
+
     /// The text of signal `k` (`width` bits) in cycle `c`.
     fn text(&self, c: usize, k: usize, width: u32) -> String {
         match *self {
@@ -91,7 +101,11 @@ pub fn write(
                 }
             }
         }
-        for (i, sh) in shown.iter().enumerate() {
+        for (i, sh) in shown
+            .iter()
+            .enumerate()
+            .filter(|(_, sh)| sh.values.may_change(c))
+        {
             for (k, &(_, width, _)) in sh.signals.iter().enumerate() {
                 let text = sh.values.text(c, k, width);
                 if last_shown[i][k].as_deref() != Some(text.as_str()) {

@@ -803,6 +803,58 @@ fn a_comparison_waveform_shows_model_rtl_and_mismatch() {
     );
 }
 
+/// A window of an RTL's internals (cycles 1..3 of 5) beside a comparison: its values there,
+/// x where unknown, z where not recorded; a dotted name in a scope of its own, in the tree and
+/// not in the view; the window's group below the ports; the ports that never differ closed.
+#[test]
+fn a_window_of_internals_is_recorded_where_it_was_dumped() {
+    use waves::compare::{Shown, Values};
+    let path = Scratch::new("compare", "w.vcd");
+    let ports = [("ok", 1, false), ("u", 8, false)];
+    let model = vec![vec![1, 5]; 5];
+    let mut rtl = vec![vec![Some(1), Some(5)]; 5];
+    rtl[2][1] = Some(6);
+    let differs = |c: usize, k: usize| rtl[c][k] != Some(model[c][k]);
+    let inner = [("acc", 4, false), ("u_sat.hit", 1, false)];
+    let window = vec![vec![Some(3), Some(0)], vec![None, Some(1)]];
+    let shown = [Shown {
+        scope: "rtl_internals",
+        signals: &inner,
+        values: Values::From(1, &window),
+    }];
+    waves::compare::write(&path, "unit", &ports, &model, &rtl, &differs, &shown).unwrap();
+    let rb = read_vcd(&path).unwrap();
+    let at = |n: &str, c: u64| match rb.value_at(n, c * 10_000) {
+        Some(Value::Bits(b)) => b.clone(),
+        v => panic!("{n}: {v:?}"),
+    };
+    let column = |n: &str| (0..5).map(|c| at(n, c)).collect::<Vec<_>>();
+    assert_eq!(
+        column("tb.rtl_internals.acc"),
+        ["zzzz", "0011", "xxxx", "zzzz", "zzzz"]
+    );
+    assert_eq!(
+        column("tb.rtl_internals.u_sat.hit"),
+        ["z", "0", "1", "z", "z"]
+    );
+    assert!(rb.scopes.iter().any(|s| s == "tb.rtl_internals.u_sat"));
+    assert_eq!(check_gtkw(&path, &rb), Ok(7));
+    let g = std::fs::read_to_string(path.with_extension("gtkw")).unwrap();
+    assert!(
+        g.find("tb.rtl.u[7:0]") < g.find("tb.rtl_internals.acc"),
+        "{g}"
+    );
+    assert!(!g.contains("u_sat"), "nested signals are in the tree:\n{g}");
+    assert!(
+        g.contains("@c00200\n-ok\n") && g.contains("@1401200\n-ok\n"),
+        "{g}"
+    );
+    assert!(
+        g.contains("@800200\n-u\n"),
+        "the port that differs is open:\n{g}"
+    );
+}
+
 /// A state machine of kind `kind`: one enumerated output.
 struct Fsm {
     name: &'static str,
