@@ -518,7 +518,7 @@ fn rtl_whose_ports_are_not_the_models_is_refused_by_port() {
             (
                 "narrow.v",
                 &narrow,
-                "port u1 is 8 bits in the RTL, 9 in the model",
+                "narrow.v): port u1 is 8 bits in the RTL, 9 in the model",
             ),
             ("extra.v", &extra, "scan_en"),
             ("renamed.v", &renamed, "REGISTERED"),

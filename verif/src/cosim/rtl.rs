@@ -263,7 +263,7 @@ fn icarus(
     match said.lines().find_map(missing_parameter) {
         Some(p) => Err(named(format!(
             "iverilog: the RTL's top {} has no parameter {p}",
-            r.top
+            top_in(r)
         ))),
         None => Ok(()),
     }
@@ -506,9 +506,29 @@ fn check_widths(widths: &str, r: &RtlRun) -> Result<(), String> {
     wrong.truncate(2);
     Err(format!(
         "the RTL's top {}: {}{more}",
-        r.top,
+        top_in(r),
         wrong.join("; ")
     ))
+}
+
+/// The RTL's top with the source that declares it (`blend (in /src/blend.v)`), for a message
+/// about its ports or parameters: the file to look at.
+fn top_in(r: &RtlRun) -> String {
+    let declares = |text: &str| {
+        text.match_indices("module").any(|(k, _)| {
+            let rest = text[k + "module".len()..].trim_start();
+            let after = rest.strip_prefix(r.top).and_then(|a| a.chars().next());
+            rest.starts_with(r.top) && !after.is_some_and(|c| c.is_alphanumeric() || c == '_')
+        })
+    };
+    let file = r
+        .sources
+        .iter()
+        .find(|s| std::fs::read_to_string(s).is_ok_and(|t| declares(&t)));
+    match file {
+        Some(f) => format!("{} (in {})", r.top, f.display()),
+        None => r.top.to_string(),
+    }
 }
 
 /// Paths as the strings a command line takes.
