@@ -36,7 +36,7 @@ pub struct CosimArgs {
     /// File lists of the sources to check instead of the twin's, in command-line order:
     /// `-f` (relative paths from the current folder) and `-F` (from the list's folder).
     pub filelist: Vec<(PathBuf, PathsFrom)>,
-    /// At a difference, do not simulate the RTL again to show its internals.
+    /// Leave the RTL's internals out: no dump compiled in, no second run at a difference.
     pub no_internals: bool,
 }
 
@@ -57,7 +57,7 @@ impl CosimArgs {
             value("top", "MODULE", value_parser!(String), "The Verilog module the testbench instantiates, when yours is not named as the unit's top (its ports and parameters the same)"),
             values("filelist", "LIST", value_parser!(PathBuf), "A file list of Verilog sources to check instead of the twin's, with +incdir+, +define+, -I, -D and nested -f/-F; relative paths from the current folder (repeatable; its sources after --rtl's)").short('f'),
             values("filelist-relative", "LIST", value_parser!(PathBuf), "As -f, relative paths taken from the list's own folder").short('F'),
-            flag("no-internals", "At a difference, do not simulate the RTL again to put its internal signals around the difference in the waveform (a build of its own)"),
+            flag("no-internals", "Leave the RTL's internal signals out of the waveform: by default a difference is run again, dumping them around it, on a build with the dump compiled in (Verilator's with --trace, slower to build)"),
         ])
     }
 
