@@ -146,6 +146,7 @@ pub(super) const INTERNALS_VCD: &str = "rtl_internals.vcd";
 /// A run of the generated testbench: its folder (holding `tb.sv`, `stim.hex` and the memory
 /// images), the Verilog sources, the top and its ports, the cycles, and the files the RTL reads
 /// at run time (the stimulus and the memory images).
+#[derive(Clone)]
 pub(super) struct RtlRun<'a> {
     pub dir: &'a Path,
     pub sources: &'a [PathBuf],
@@ -393,32 +394,24 @@ pub(super) fn internals(
     }
     let dir = r.dir.join("internals");
     std::fs::create_dir_all(&dir).map_err(|e| format!("{}: {e}", dir.display()))?;
-    let mut inputs = Vec::new();
-    for f in r.inputs.iter().chain([&r.dir.join("tb.sv")]) {
+    let copy = |f: &PathBuf| {
         let to = dir.join(f.file_name().unwrap_or_default());
         std::fs::copy(f, &to).map_err(|e| format!("{}: {e}", to.display()))?;
-        inputs.push(to);
-    }
-    inputs.pop(); // tb.sv: the build's, not a run-time input
+        Ok::<_, String>(to)
+    };
+    copy(&r.dir.join("tb.sv"))?;
+    let inputs = r.inputs.iter().map(copy).collect::<Result<Vec<_>, _>>()?;
     let vcd = dir.join(INTERNALS_VCD);
     // Not an earlier run's dump, if this one writes none.
     let _ = std::fs::remove_file(&vcd);
     let seed = init_seed(keys(sim, r)?.1.as_deref());
     let run = RtlRun {
         dir: &dir,
-        sources: r.sources,
-        top: r.top,
-        clocking: r.clocking.clone(),
-        unmodelled: r.unmodelled.clone(),
-        parameters: r.parameters.clone(),
-        pre: r.pre.clone(),
-        ins: r.ins,
-        outs: r.outs,
         cycles: to,
         inputs,
-        dumps: true,
         dump_from: Some(from),
         init_seed: Some(seed),
+        ..r.clone()
     };
     let again = simulate(sim, &run)?;
     if let Some(c) = (0..to).find(|&c| again.get(c) != got.get(c)) {
@@ -517,8 +510,9 @@ fn top_in(r: &RtlRun) -> String {
     let declares = |text: &str| {
         text.match_indices("module").any(|(k, _)| {
             let rest = text[k + "module".len()..].trim_start();
-            let after = rest.strip_prefix(r.top).and_then(|a| a.chars().next());
-            rest.starts_with(r.top) && !after.is_some_and(|c| c.is_alphanumeric() || c == '_')
+            let word = |c: char| c.is_alphanumeric() || c == '_';
+            rest.strip_prefix(r.top)
+                .is_some_and(|a| !a.starts_with(word))
         })
     };
     let file = r
