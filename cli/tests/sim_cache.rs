@@ -10,16 +10,13 @@ use std::path::Path;
 use std::process::{Command, Output};
 
 fn cosim(cache: &str, out: &Path, extra: &[&str]) -> Output {
+    cosim_on("icarus", cache, out, extra)
+}
+
+fn cosim_on(sim: &str, cache: &str, out: &Path, extra: &[&str]) -> Output {
     Command::new(env!("CARGO_BIN_EXE_texrtl"))
-        .args([
-            "cosim",
-            "--unit",
-            "blend_adjust_153",
-            "--sim",
-            "icarus",
-            "--count",
-            "3000",
-        ])
+        .args(["cosim", "--unit", "blend_adjust_153", "--sim", sim])
+        .args(["--count", "3000"])
         .args(extra)
         .arg("--out")
         .arg(out)
@@ -231,11 +228,105 @@ fn a_file_list_gives_the_sources_folders_and_macros() {
         "{err}"
     );
     assert!(!d.join("c").exists(), "refused before anything is written");
-    defines("+define+SHARED\n+libext+.v").unwrap();
+    defines("+define+SHARED\n-Wall").unwrap();
     let o = cosim(c, &d.join("e"), &list);
     let err = String::from_utf8_lossy(&o.stderr);
     assert_eq!(o.status.code(), Some(2), "{err}");
     assert_eq!(err.trim_end().lines().count(), 1, "{err}");
-    assert!(err.contains("defines.f:3: +libext+.v: library"), "{err}");
+    assert!(err.contains("defines.f:3: -Wall: not read"), "{err}");
     assert!(!d.join("e").exists());
+}
+
+/// A file list's module library, as an RTL team keeps one: a module found by its name in a
+/// library folder (`-y`, `.sv` among the default extensions), another in a library file
+/// (`-v`) beside a module that would not build and is never instantiated; both simulators
+/// agree throughout; an edit of the library module alone builds anew and finds the bug; a
+/// module under an extension the list does not name is not found, and is under `+libext+`;
+/// beside the source it is found with no library at all; a missing folder is refused, naming
+/// the list and the line, before anything is written.
+#[test]
+fn a_file_lists_library_gives_the_modules_the_sources_do_not_define() {
+    let sims = common::simulators();
+    let d = dir("sim-cache", "library");
+    let c = d.join("cache");
+    let c = c.to_str().unwrap();
+    let good = twin_text();
+    let uses = good
+        .replace(
+            "wire [FRAC_BITS:0] u0_c = bypass ? {u_in, 1'b0} : {1'b1, u_in};",
+            "wire [FRAC_BITS:0] u0_c;\n    half_up #(.F(FRAC_BITS)) hu (.bypass(bypass), .x(u_in), .y(u0_c));",
+        )
+        .replace(
+            "wire [FRAC_BITS:0] u1_c = bypass ? {u_in, 1'b0} : {1'b0, u_in};",
+            "wire [FRAC_BITS:0] u1_c;\n    half_down #(.F(FRAC_BITS)) hd (.bypass(bypass), .x(u_in), .y(u1_c));",
+        );
+    assert_eq!(uses.matches("half_").count(), 2);
+    let half = |name: &str, top: &str| {
+        format!(
+            "module {name} #(parameter integer F = 8) (input wire bypass, input wire [F-1:0] x, \
+             output wire [F:0] y);\n    assign y = bypass ? {{x, 1'b0}} : {{{top}, x}};\nendmodule\n"
+        )
+    };
+    let p = d.join("proj");
+    std::fs::create_dir_all(p.join("lib")).unwrap();
+    std::fs::write(p.join("adjust.v"), uses).unwrap();
+    std::fs::write(p.join("lib/half_up.sv"), half("half_up", "1'b1")).unwrap();
+    let cells = format!(
+        "{}module never_used;\n    nowhere n ();\nendmodule\n",
+        half("half_down", "1'b0")
+    );
+    std::fs::write(p.join("cells.v"), cells).unwrap();
+    let files = p.join("files.f");
+    let list = |extra: &str| {
+        std::fs::write(&files, format!("adjust.v\n-y lib\n-v cells.v\n{extra}")).unwrap();
+    };
+    list("");
+    let args = ["-F", files.to_str().unwrap()];
+    for (k, sim) in sims.iter().enumerate() {
+        let o = cosim_on(sim, c, &d.join(format!("a{k}")), &args);
+        let err = String::from_utf8_lossy(&o.stderr);
+        assert_eq!(o.status.code(), Some(0), "{sim}: {err}");
+    }
+    std::fs::write(p.join("lib/half_up.sv"), half("half_up", "1'b0")).unwrap();
+    for (k, sim) in sims.iter().enumerate() {
+        let o = cosim_on(sim, c, &d.join(format!("b{k}")), &args);
+        assert_eq!(
+            o.status.code(),
+            Some(1),
+            "{sim}: the library's bug is found"
+        );
+    }
+    // Under an extension the list must name; then beside the source, found without a list.
+    std::fs::remove_file(p.join("lib/half_up.sv")).unwrap();
+    std::fs::write(p.join("lib/half_up.vlib"), half("half_up", "1'b1")).unwrap();
+    for (k, sim) in sims.iter().enumerate() {
+        let o = cosim_on(sim, c, &d.join(format!("c{k}")), &args);
+        let err = String::from_utf8_lossy(&o.stderr);
+        assert!(
+            o.status.code() == Some(2) && err.contains("half_up"),
+            "{sim}: {err}"
+        );
+    }
+    list("+libext+.vlib\n");
+    for (k, sim) in sims.iter().enumerate() {
+        let o = cosim_on(sim, c, &d.join(format!("e{k}")), &args);
+        let err = String::from_utf8_lossy(&o.stderr);
+        assert_eq!(o.status.code(), Some(0), "{sim}: {err}");
+    }
+    std::fs::rename(p.join("lib/half_up.vlib"), p.join("half_up.v")).unwrap();
+    list("");
+    for (k, sim) in sims.iter().enumerate() {
+        let o = cosim_on(sim, c, &d.join(format!("f{k}")), &args);
+        let err = String::from_utf8_lossy(&o.stderr);
+        assert_eq!(o.status.code(), Some(0), "{sim}: {err}");
+    }
+    list("-y gone\n");
+    let o = cosim(c, &d.join("g"), &args);
+    let err = String::from_utf8_lossy(&o.stderr);
+    assert!(
+        o.status.code() == Some(2) && err.contains("files.f:4: library folder"),
+        "{err}"
+    );
+    assert!(!d.join("g").exists(), "refused before anything is written");
+    std::fs::remove_dir_all(&d).unwrap();
 }

@@ -3,7 +3,7 @@
 //! with `verilator -O3 --x-assign fast --x-initial fast --noassert` and its C++ at `-O3`
 //! (`OPT_FAST`, `OPT_GLOBAL`), untraced, `--trace` or `--trace-fst`.
 
-use crate::cosim::{CosimUnit, Port};
+use crate::cosim::{CosimUnit, Port, Simulator::Verilator};
 use std::fmt::Write as _;
 use std::path::{Path, PathBuf};
 use std::process::Command;
@@ -148,30 +148,34 @@ fn run(cmd: &mut Command, what: &str) -> Result<String, String> {
 
 /// Builds the twin of `unit` with the harness for `mode` in `dir`; returns the executable.
 pub fn build(unit: &dyn CosimUnit, cpp: &str, mode: Mode, dir: &Path) -> Result<PathBuf, String> {
+    // Run in `dir`, as a co-simulation's build runs in its run's folder (Verilator looks for
+    // modules in its current folder too).
+    let dir = &std::path::absolute(dir).map_err(|e| format!("{}: {e}", dir.display()))?;
     let main = dir.join(format!("main_{}.cpp", mode.name()));
     std::fs::write(&main, cpp).map_err(|e| format!("{}: {e}", main.display()))?;
     let mdir = dir.join(format!("obj_{}", mode.name()));
     let mut c = Command::new("verilator");
-    c.args([
-        "--cc",
-        "--exe",
-        "--build",
-        "-j",
-        "2",
-        "-O3",
-        "--x-assign",
-        "fast",
-    ])
-    .args([
-        "--x-initial",
-        "fast",
-        "--noassert",
-        "-Wno-fatal",
-        "-Wno-lint",
-        "-Wno-style",
-    ])
-    // The C++ at -O3 too (Verilator's makefile defaults to -Os, half the speed here).
-    .args(["-MAKEFLAGS", "OPT_FAST=-O3", "-MAKEFLAGS", "OPT_GLOBAL=-O3"]);
+    c.current_dir(dir)
+        .args([
+            "--cc",
+            "--exe",
+            "--build",
+            "-j",
+            "2",
+            "-O3",
+            "--x-assign",
+            "fast",
+        ])
+        .args([
+            "--x-initial",
+            "fast",
+            "--noassert",
+            "-Wno-fatal",
+            "-Wno-lint",
+            "-Wno-style",
+        ])
+        // The C++ at -O3 too (Verilator's makefile defaults to -Os, half the speed here).
+        .args(["-MAKEFLAGS", "OPT_FAST=-O3", "-MAKEFLAGS", "OPT_GLOBAL=-O3"]);
     match mode {
         Mode::Untraced => {}
         Mode::Vcd => {
@@ -188,7 +192,9 @@ pub fn build(unit: &dyn CosimUnit, cpp: &str, mode: Mode, dir: &Path) -> Result<
     }
     c.arg(&main);
     let build = crate::cosim::Build::of(unit, &[])?;
-    c.args(build.pre.flags()).args(&build.sources);
+    c.args(build.pre.flags())
+        .args(build.library.flags(Verilator, &build.pre.include_dirs))
+        .args(&build.sources);
     run(&mut c, "verilator")?;
     Ok(mdir.join("bench"))
 }

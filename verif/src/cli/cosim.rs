@@ -55,7 +55,7 @@ impl CosimArgs {
             values("incdir", "DIR", value_parser!(PathBuf), "A folder searched for `include files, after each source's own folder and the unit's (repeatable)"),
             values("define", "MACRO", value_parser!(String), "A preprocessor macro for the build, NAME or NAME=VALUE (repeatable; after the unit's)"),
             value("top", "MODULE", value_parser!(String), "The Verilog module the testbench instantiates, when yours is not named as the unit's top (its ports and parameters the same)"),
-            values("filelist", "LIST", value_parser!(PathBuf), "A file list of Verilog sources to check instead of the twin's, with +incdir+, +define+, -I, -D and nested -f/-F; relative paths from the current folder (repeatable; its sources after --rtl's)").short('f'),
+            values("filelist", "LIST", value_parser!(PathBuf), "A file list of Verilog sources to check instead of the twin's, with +incdir+, +define+, -I, -D, libraries (-y, -v, +libext+) and nested -f/-F; relative paths from the current folder (repeatable; its sources after --rtl's)").short('f'),
             values("filelist-relative", "LIST", value_parser!(PathBuf), "As -f, relative paths taken from the list's own folder").short('F'),
             flag("no-internals", "Leave the RTL's internal signals out of the waveform: by default a difference is run again, dumping them around it, on a build with the dump compiled in (Verilator's with --trace, slower to build)"),
         ])

@@ -1,5 +1,6 @@
 //! File lists: [`FileList`], read by texrtl for both simulators alike.
 
+use super::Library;
 use std::path::{Path, PathBuf};
 use waves::output::shorten;
 
@@ -14,7 +15,8 @@ pub enum PathsFrom {
 
 /// A file list (a `.f` file), as an RTL team keeps one for every tool: the sources of a build,
 /// one or more to a line, with `+incdir+DIR`, `+define+NAME[=VALUE]` (several joined by `+`),
-/// `-I DIR`, `-D NAME[=VALUE]` and nested lists (`-f LIST`, `-F LIST`). Comments are `//` to
+/// `-I DIR`, `-D NAME[=VALUE]`, module libraries ([`Library`]: `-y DIR`, `+libdir+DIR`,
+/// `-v FILE`, `+libext+EXT[+EXT]`) and nested lists (`-f LIST`, `-F LIST`). Comments are `//` to
 /// the end of the line, `/* ... */` and lines starting with `#`; `$VAR`, `${VAR}` and
 /// `$(VAR)` are taken from the environment.
 ///
@@ -22,11 +24,10 @@ pub enum PathsFrom {
 /// macros, so a run's cache key and its `` `include `` scan see every file. A relative path
 /// is taken from the current folder in a list read as `-f` (Verilator's and Icarus' rule),
 /// from the list's own folder in one read as `-F`. Anything else a list may hold for one tool
-/// (library folders `-y`, `-v`, `+libext+`, tool options) is refused by name: list the
-/// library's files instead.
+/// (a tool's options) is refused by name.
 ///
-/// What a list gives a build, its nested lists included: paths absolute, each source an
-/// existing file and each include folder an existing folder.
+/// What a list gives a build, its nested lists included: paths absolute, each source and
+/// library file an existing file and each include and library folder an existing folder.
 #[derive(Clone, Debug, Default, PartialEq)]
 pub struct FileList {
     /// The Verilog sources, in the list's order, each file once.
@@ -35,6 +36,8 @@ pub struct FileList {
     pub include_dirs: Vec<PathBuf>,
     /// Macros: `NAME` or `NAME=VALUE`.
     pub defines: Vec<String>,
+    /// Where modules the sources do not define are looked for.
+    pub library: Library,
 }
 
 /// The largest list read (a list of sources, not a source).
@@ -128,6 +131,8 @@ impl Reader {
                     self.read(&nested, from).map_err(at)?;
                 }
                 "-I" => self.include_dir(base, &operand()?).map_err(at)?,
+                "-y" => self.library_dir(base, &operand()?).map_err(at)?,
+                "-v" => self.library_file(base, &operand()?).map_err(at)?,
                 "-D" => self.define(&operand()?).map_err(at)?,
                 _ => self.entry(base, &word).map_err(at)?,
             }
@@ -136,7 +141,8 @@ impl Reader {
         Ok(())
     }
 
-    /// One entry that is a word alone: `+incdir+`, `+define+`, `-IDIR`, `-DNAME` or a source.
+    /// One entry that is a word alone: `+incdir+`, `+define+`, `+libdir+`, `+libext+`,
+    /// `-IDIR`, `-DNAME` or a source.
     fn entry(&mut self, base: Option<&Path>, word: &str) -> Result<(), String> {
         if let Some(dirs) = word.strip_prefix("+incdir+") {
             for d in dirs.split('+').filter(|d| !d.is_empty()) {
@@ -150,14 +156,17 @@ impl Reader {
             self.include_dir(base, d)?;
         } else if let Some(m) = word.strip_prefix("-D") {
             self.define(m)?;
-        } else if ["-y", "-v"].contains(&word) || word.starts_with("+libext+") {
-            return Err(format!(
-                "{}: library folders and files are not read; list the library's sources instead",
-                shorten(word)
-            ));
+        } else if let Some(dirs) = word.strip_prefix("+libdir+") {
+            for d in dirs.split('+').filter(|d| !d.is_empty()) {
+                self.library_dir(base, d)?;
+            }
+        } else if let Some(exts) = word.strip_prefix("+libext+") {
+            for e in exts.split('+').filter(|e| !e.is_empty()) {
+                self.library_ext(e)?;
+            }
         } else if word.starts_with(['-', '+']) {
             return Err(format!(
-                "{}: not read (a file list here holds sources, +incdir+, +define+, -I, -D, -f and -F)",
+                "{}: not read (a file list here holds sources, +incdir+, +define+, -I, -D, -y, -v, +libdir+, +libext+, -f and -F)",
                 shorten(word)
             ));
         } else {
@@ -185,6 +194,45 @@ impl Reader {
         if !self.list.include_dirs.contains(&d) {
             self.list.include_dirs.push(d);
         }
+        Ok(())
+    }
+
+    fn library_dir(&mut self, base: Option<&Path>, word: &str) -> Result<(), String> {
+        let d = resolve(base, word);
+        if !d.is_dir() {
+            let d = shown(&d, word);
+            return Err(format!("library folder {d}: no such folder"));
+        }
+        self.list.library.extend(Library {
+            dirs: vec![d],
+            ..Library::default()
+        });
+        Ok(())
+    }
+
+    fn library_file(&mut self, base: Option<&Path>, word: &str) -> Result<(), String> {
+        let f = resolve(base, word);
+        if !f.is_file() {
+            let f = shown(&f, word);
+            return Err(format!("library file {f}: no such Verilog file"));
+        }
+        self.list.library.extend(Library {
+            files: vec![f],
+            ..Library::default()
+        });
+        Ok(())
+    }
+
+    /// An extension as Verilator appends it to a module's name: `.v`, `.sv`, `_cell.v`.
+    fn library_ext(&mut self, e: &str) -> Result<(), String> {
+        let ok = |c: char| c.is_ascii_alphanumeric() || "._-".contains(c);
+        if !e.chars().all(ok) {
+            return Err(format!("+libext+{}: not a file name ending", shorten(e)));
+        }
+        self.list.library.extend(Library {
+            exts: vec![e.to_string()],
+            ..Library::default()
+        });
         Ok(())
     }
 
@@ -342,7 +390,7 @@ mod tests {
         for f in ["rtl/a.v", "rtl/b.sv", "rtl/sub/c.v"] {
             write(&r.join(f), "");
         }
-        for d in ["inc", "rtl/sub/inc"] {
+        for d in ["inc", "rtl/sub/inc", "lib", "rtl/sub/lib"] {
             fs::create_dir_all(r.join(d)).unwrap();
         }
         let top = r.join("rtl/top.f");
@@ -352,7 +400,10 @@ mod tests {
              +define+A=1+B -D C=\"x y\" -DD\n-F sub/sub.f\n-I ${CARGO_MANIFEST_DIR}/src\n\
              $(CARGO_MANIFEST_DIR)/Cargo.toml $CARGO_MANIFEST_DIR/Cargo.toml\n",
         );
-        write(&r.join("rtl/sub/sub.f"), "c.v -Iinc ../a.v\n");
+        write(
+            &r.join("rtl/sub/sub.f"),
+            "c.v -Iinc ../a.v\n-y lib +libdir+../../lib -v c.v +libext+.v+_cell.sv\n-y lib\n",
+        );
         let l = FileList::read(&top, PathsFrom::List).unwrap();
         let p = |s: &str| r.join(s);
         let crate_dir = Path::new(env!("CARGO_MANIFEST_DIR"));
@@ -362,6 +413,12 @@ mod tests {
         let dirs = [p("rtl/../inc"), p("rtl/sub/inc"), crate_dir.join("src")];
         assert_eq!(l.include_dirs, dirs);
         assert_eq!(l.defines, ["A=1", "B", "C=\"x y\"", "D"]);
+        let library = Library {
+            dirs: vec![p("rtl/sub/lib"), p("rtl/sub/../../lib")],
+            files: vec![p("rtl/sub/c.v")],
+            exts: vec![".v".into(), "_cell.sv".into()],
+        };
+        assert_eq!(l.library, library, "each folder once");
     }
 
     /// Read as `-f`, a relative path is the current folder's (the crate's, under `cargo test`).
@@ -393,8 +450,15 @@ mod tests {
             let at = format!("bad.f:{line}: ");
             assert!(e.contains(&at) && e.contains(why), "{text:?}: {e}");
         };
-        refused("a.v\n+libext+.v\n", "+libext+.v: library", 2);
-        refused("-y lib\n", "-y: library", 1);
+        refused(
+            "a.v\n+libext+.v/x\n",
+            "+libext+.v/x: not a file name ending",
+            2,
+        );
+        refused("-y lib\n", "library folder", 1);
+        refused("+libdir+a.v\n", "library folder", 1);
+        refused("-v cells.v\n", "library file", 1);
+        refused("-y\n", "-y needs its operand", 1);
         refused("a.v --timing\n", "--timing: not read", 1);
         refused("\n\nmissing.v\n", "missing.v: no such Verilog file", 3);
         refused("+incdir+nowhere\n", "include folder", 1);

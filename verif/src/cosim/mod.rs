@@ -22,11 +22,13 @@ use std::process::Command;
 
 pub mod cache;
 mod filelist;
+mod library;
 mod rtl;
 mod twin;
 mod verilator;
 
 pub use filelist::{FileList, PathsFrom};
+pub use library::Library;
 pub use rtl::verilog_range;
 pub use twin::{random_inputs, Twin};
 
@@ -333,7 +335,8 @@ pub trait CosimUnit: Send + Sync {
         Vec::new()
     }
     /// File lists of the unit's own Verilog ([`FileList`]), read at each run: their sources
-    /// compiled after [`CosimUnit::rtl`]'s, their folders and macros before the unit's own.
+    /// compiled after [`CosimUnit::rtl`]'s, their folders and macros before the unit's own,
+    /// their module libraries ([`Library`]) searched after the include folders.
     /// Like `rtl`, what `cosim --rtl` and `cosim -f` replace.
     fn file_lists(&self) -> Vec<(PathBuf, PathsFrom)> {
         Vec::new()
@@ -376,7 +379,8 @@ impl Preprocessor {
     }
 }
 
-/// What a build of a unit compiles, resolved: its sources and its preprocessor.
+/// What a build of a unit compiles, resolved: its sources, its preprocessor and its module
+/// library.
 #[derive(Clone, Debug, Default, PartialEq)]
 pub struct Build {
     /// Every source, absolute and an existing file: the unit's own ([`CosimUnit::rtl`], then
@@ -385,12 +389,15 @@ pub struct Build {
     pub sources: Vec<PathBuf>,
     /// Its include folders and macros.
     pub pre: Preprocessor,
+    /// Where the modules the sources do not define are found: its file lists' libraries.
+    pub library: Library,
 }
 
 impl Build {
     /// The build of `unit` against `rtl` (the unit's own sources and file lists when empty).
-    /// Each include folder must be a folder and each macro a Verilog identifier with an
-    /// optional `=VALUE`.
+    /// Each include folder must be a folder, each macro a Verilog identifier with an optional
+    /// `=VALUE`, and the folders searched for modules may hold no more module files than
+    /// [`Library::listing`] lists.
     pub fn of(unit: &dyn CosimUnit, rtl: &[PathBuf]) -> Result<Build, String> {
         let mut listed = FileList::default();
         let own = if rtl.is_empty() {
@@ -399,6 +406,7 @@ impl Build {
                 listed.sources.extend(l.sources);
                 listed.include_dirs.extend(l.include_dirs);
                 listed.defines.extend(l.defines);
+                listed.library.extend(l.library);
             }
             [unit.rtl(), std::mem::take(&mut listed.sources)].concat()
         } else {
@@ -434,7 +442,12 @@ impl Build {
             include_dirs,
             defines,
         };
-        Ok(Build { sources, pre })
+        listed.library.listing(&pre.include_dirs)?;
+        Ok(Build {
+            sources,
+            pre,
+            library: listed.library,
+        })
     }
 }
 
@@ -1008,6 +1021,7 @@ fn rtl_run<'a>(
     Ok(rtl::RtlRun {
         dir,
         sources: &build.sources,
+        library: &build.library,
         top: unit.top(),
         clocking: unit.clocking(),
         unmodelled: unit.unmodelled(),

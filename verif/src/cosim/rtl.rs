@@ -150,6 +150,8 @@ pub(super) const INTERNALS_VCD: &str = "rtl_internals.vcd";
 pub(super) struct RtlRun<'a> {
     pub dir: &'a Path,
     pub sources: &'a [PathBuf],
+    /// Where the modules the sources do not define are found.
+    pub library: &'a super::Library,
     /// The RTL's top module, its clock and reset, and its ports the model lacks.
     pub top: &'a str,
     pub clocking: Option<super::Clocking>,
@@ -224,7 +226,8 @@ fn binary(sim: Simulator, r: &RtlRun, kept: Option<(&Path, &str)>) -> Result<Pat
     };
     let built = match sim {
         Simulator::Verilator => {
-            let files = [r.pre.flags(), strings(r.sources)].concat();
+            let library = r.library.flags(sim, &r.pre.include_dirs);
+            let files = [r.pre.flags(), library, strings(r.sources)].concat();
             let trace = r.dumps;
             let mdir = r.dir.join("obj_dir");
             verilator::build(&tb, &files, &mdir, trace, &run_tool).map_err(named)?
@@ -252,6 +255,7 @@ fn icarus(
     c.args(["-g2012", "-s", "tb", "-o"])
         .arg(vvp)
         .args(r.pre.flags())
+        .args(r.library.flags(Simulator::Icarus, &r.pre.include_dirs))
         .arg(tb)
         .args(r.sources);
     let o = c.output().map_err(|e| format!("iverilog: {e}"))?;
@@ -310,9 +314,13 @@ fn keys(sim: Simulator, r: &RtlRun) -> Result<(Option<String>, Option<String>), 
         Simulator::Verilator => format!("verilator {}", verilator::OPTIONS.join(" ")),
         Simulator::Icarus => "iverilog -g2012".to_string(),
     };
-    let what = format!("{what} {}", r.pre.flags().join(" "));
-    // The files the sources include are part of what a build is made of.
-    let made_of = [r.sources, &included(r.sources, &r.pre.include_dirs)].concat();
+    let flags = [r.pre.flags(), r.library.flags(sim, &r.pre.include_dirs)].concat();
+    // The module files the simulator may take from a folder: where, how long, when changed.
+    let listing = r.library.listing(&r.pre.include_dirs)?;
+    let what = format!("{what} {}\n{listing}", flags.join(" "));
+    // The library files and the files all these include are part of what a build is made of.
+    let read = [r.sources, &r.library.files].concat();
+    let made_of = [&read[..], &included(&read, &r.pre.include_dirs)].concat();
     let build_key = cache::key(&what, &text, &made_of);
     let random_init = match sim {
         Simulator::Verilator => format!(" {RANDOM_INIT}"),

@@ -83,8 +83,13 @@ pub fn build(
     trace: bool,
     run: &dyn Fn(&mut Command, &str) -> Result<(), String>,
 ) -> Result<PathBuf, String> {
+    // In the run's folder: Verilator also looks for modules in its current folder, which is
+    // then the run's (no user's file is taken from wherever texrtl was started).
+    let absolute = |p: &Path| std::path::absolute(p).map_err(|e| format!("{}: {e}", p.display()));
+    let (tb, mdir) = (&absolute(tb)?, &absolute(mdir)?);
     let mut c = Command::new("verilator");
-    c.args(OPTIONS)
+    c.current_dir(tb.parent().unwrap_or(Path::new("/")))
+        .args(OPTIONS)
         .args(trace.then_some("--trace"))
         .args(["--top-module", "tb", "-o", "simv", "--Mdir"])
         .arg(mdir)
