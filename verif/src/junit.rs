@@ -16,13 +16,17 @@ use quick_junit::{NonSuccessKind, Property, Report, TestCase, TestCaseStatus, Te
 use std::time::Duration;
 
 /// A result's status: success, or a failure with its first message and the others below,
-/// then the command that reproduces it (when there is one).
+/// then the command that reproduces it (when there is one; a line of the result's that
+/// already ends with it is left out, as a co-simulation row's is).
 fn status(failed: bool, r: &TbResult, reproduce: Option<&str>) -> TestCaseStatus {
     if !failed {
         return TestCaseStatus::success();
     }
     let mut s = TestCaseStatus::non_success(NonSuccessKind::Failure);
-    let lines: Vec<&String> = r.mismatch_log.iter().chain(&r.failures).collect();
+    let said = |l: &&String| reproduce.is_none_or(|c| !l.ends_with(c));
+    let lines: Vec<&String> = (r.mismatch_log.iter().chain(&r.failures))
+        .filter(said)
+        .collect();
     s.set_message(lines.first().map_or("failed", |l| l.as_str()));
     let mut text: Vec<String> = lines.iter().map(|l| l.to_string()).collect();
     text.extend(reproduce.map(|c| format!("reproduce: {c}")));
@@ -129,4 +133,34 @@ pub fn junit(project: &Project, s: &Summary, jobs: &[JobResult]) -> Result<Strin
     }
     let xml = report.to_string().map_err(|e| e.to_string())?;
     Ok(without_total_skipped(xml))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// A co-simulation row names its command in its own log; the failure says it once, as its
+    /// `reproduce:` line, after the difference.
+    #[test]
+    fn a_failure_names_its_command_once() {
+        let mut r = TbResult::new("cosim/u/icarus", "");
+        let again = "p cosim --unit u --sim icarus --count 9 --seed 0x7";
+        r.mismatch_log.push("cycle 4: port y differs".into());
+        r.mismatch_log
+            .push(format!("again alone, the RTL's internals: {again}"));
+        let TestCaseStatus::NonSuccess {
+            message,
+            description,
+            ..
+        } = status(true, &r, Some(again))
+        else {
+            panic!("a failure");
+        };
+        let text = description.map(|d| d.to_string()).unwrap_or_default();
+        assert_eq!(
+            message.map(|m| m.to_string()).as_deref(),
+            Some("cycle 4: port y differs")
+        );
+        assert_eq!(text, format!("cycle 4: port y differs\nreproduce: {again}"));
+    }
 }
