@@ -306,8 +306,16 @@ fn contract(r: &RtlRun) -> String {
 /// match the model's reset values and hide it). The seed follows from the run.
 const RANDOM_INIT: &str = "+verilator+rand+reset+2";
 
-/// The cache keys of `r`'s build and of its run (`None`: a source unreadable, nothing kept).
-fn keys(sim: Simulator, r: &RtlRun) -> Result<(Option<String>, Option<String>), String> {
+/// The cache keys of a run's build and of the run itself (`None`: a source unreadable,
+/// nothing kept), and Verilator's seed for the values of what the Verilog does not reset.
+struct Keys {
+    build: Option<String>,
+    run: Option<String>,
+    init_seed: u64,
+}
+
+/// The keys of `r`.
+fn keys(sim: Simulator, r: &RtlRun) -> Result<Keys, String> {
     let tb = r.dir.join("tb.sv");
     let text = std::fs::read_to_string(&tb).map_err(|e| format!("{}: {e}", tb.display()))?;
     let what = match sim {
@@ -321,22 +329,30 @@ fn keys(sim: Simulator, r: &RtlRun) -> Result<(Option<String>, Option<String>), 
     // The library files and the files all these include are part of what a build is made of.
     let read = [r.sources, &r.library.files].concat();
     let made_of = [&read[..], &included(&read, &r.pre.include_dirs)].concat();
-    let build_key = cache::key(&what, &text, &made_of);
+    let build = cache::key(&what, &text, &made_of);
     let random_init = match sim {
         Simulator::Verilator => format!(" {RANDOM_INIT}"),
         Simulator::Icarus => String::new(),
     };
-    let run_key = build_key.as_deref().and_then(|k| {
+    let run = build.as_deref().and_then(|k| {
         let what = format!("{k} +cycles={}{random_init}", r.cycles);
         cache::key(&what, "run", &r.inputs)
     });
-    Ok((build_key, run_key))
+    // From what the run is made of, by name and content only: not from where the files are or
+    // when they changed, so that the same run repeats in another checkout.
+    let contents = [&made_of[..], &r.inputs].concat();
+    let seeded = cache::key(&format!("seed +cycles={}", r.cycles), &text, &contents);
+    Ok(Keys {
+        build,
+        run,
+        init_seed: init_seed(seeded.as_deref()),
+    })
 }
 
-/// Verilator's seed for the random values of what is not reset: from the run's key, so a run
-/// repeats exactly and another stimulus or count tries other values.
-fn init_seed(run_key: Option<&str>) -> u64 {
-    run_key.map_or(1, |k| {
+/// Verilator's seed for the random values of what is not reset, from `key`: a run repeats
+/// exactly and another stimulus or count tries other values.
+fn init_seed(key: Option<&str>) -> u64 {
+    key.map_or(1, |k| {
         let h = k.bytes().fold(0xcbf2_9ce4_8422_2325u64, |h, b| {
             (h ^ u64::from(b)).wrapping_mul(0x100_0000_01b3)
         });
@@ -349,9 +365,10 @@ fn init_seed(run_key: Option<&str>) -> u64 {
 /// is deterministic: the same binary on the same inputs writes the same outputs). Reads the
 /// outputs back (`None` where the RTL drove x/z).
 pub(super) fn simulate(sim: Simulator, r: &RtlRun) -> Result<Vec<Vec<Option<u64>>>, String> {
-    let (build_key, run_key) = keys(sim, r)?;
+    let keys = keys(sim, r)?;
+    let (build_key, run_key) = (keys.build, keys.run);
     let root = cache::root();
-    let init_seed = r.init_seed.unwrap_or_else(|| init_seed(run_key.as_deref()));
+    let init_seed = r.init_seed.unwrap_or(keys.init_seed);
     let out = r.dir.join("rtl_out.hex");
     // A dump's run is not kept: it is made to be looked at.
     let kept_run = (root.as_deref().zip(run_key.as_deref())).filter(|_| r.dump_from.is_none());
@@ -412,7 +429,7 @@ pub(super) fn internals(
     let vcd = dir.join(INTERNALS_VCD);
     // Not an earlier run's dump, if this one writes none.
     let _ = std::fs::remove_file(&vcd);
-    let seed = init_seed(keys(sim, r)?.1.as_deref());
+    let seed = keys(sim, r)?.init_seed;
     let run = RtlRun {
         dir: &dir,
         cycles: to,
@@ -575,4 +592,63 @@ fn include_names(text: &str) -> impl Iterator<Item = &str> {
         let rest = &rest[1..];
         rest.find(close).map(|end| &rest[..end])
     })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// A run in `dir` of `tb.sv`, `u.v` (`u`) and `stim.hex`, `u.v`'s folder searched for
+    /// modules.
+    fn run_in(dir: &Path, u: &str) -> (Vec<PathBuf>, Vec<PathBuf>, super::super::Preprocessor) {
+        std::fs::create_dir_all(dir).unwrap();
+        for (f, text) in [("tb.sv", "module tb; endmodule\n"), ("u.v", u)] {
+            std::fs::write(dir.join(f), text).unwrap();
+        }
+        std::fs::write(dir.join("stim.hex"), "0\n1\n").unwrap();
+        let pre = super::super::Preprocessor {
+            include_dirs: vec![dir.to_path_buf()],
+            defines: Vec::new(),
+        };
+        (vec![dir.join("u.v")], vec![dir.join("stim.hex")], pre)
+    }
+
+    /// The same run in another folder builds anew (the folders searched for modules are
+    /// listed by path, with their times) but draws Verilator's values of what is not reset
+    /// from the same seed: the run repeats in another checkout. Other Verilog, another seed.
+    #[test]
+    fn the_seed_of_unreset_values_follows_the_run_not_where_it_is() {
+        let t = tempfile::tempdir().unwrap();
+        let lib = super::super::Library::default();
+        let keys_in = |dir: &Path, u: &str| {
+            let (sources, inputs, pre) = run_in(dir, u);
+            let r = RtlRun {
+                dir,
+                sources: &sources,
+                library: &lib,
+                top: "u",
+                clocking: None,
+                unmodelled: Vec::new(),
+                parameters: Vec::new(),
+                pre,
+                ins: &[],
+                outs: &[],
+                cycles: 2,
+                inputs,
+                dumps: false,
+                dump_from: None,
+                init_seed: None,
+            };
+            keys(Simulator::Verilator, &r).unwrap()
+        };
+        let u = "module u; endmodule\n";
+        let (a, b) = (
+            keys_in(&t.path().join("a"), u),
+            keys_in(&t.path().join("b/c"), u),
+        );
+        assert_ne!(a.build, b.build);
+        assert_eq!(a.init_seed, b.init_seed);
+        let other = keys_in(&t.path().join("d"), "module u; reg r; endmodule\n");
+        assert_ne!(other.init_seed, a.init_seed);
+    }
 }
