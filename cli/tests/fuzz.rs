@@ -570,7 +570,10 @@ fn with_value(f: &Front, d: &Path, opt: &str, v: &str) -> Vec<String> {
 /// Options whose largest valid values are long runs by design (10 M co-simulated cycles, a
 /// million sweep samples): their limits are tested in `limits.rs`, not under the time bound.
 fn long_by_design(f: &Front, opt: &str) -> bool {
-    matches!((f.name, opt), ("cosim", "--count") | ("sweep", "--samples"))
+    matches!(
+        (f.name, opt),
+        ("cosim" | "cosim -F", "--count") | ("sweep", "--samples")
+    )
 }
 
 #[test]
