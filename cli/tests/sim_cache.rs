@@ -330,3 +330,55 @@ fn a_file_lists_library_gives_the_modules_the_sources_do_not_define() {
     assert!(!d.join("g").exists(), "refused before anything is written");
     std::fs::remove_dir_all(&d).unwrap();
 }
+
+/// The RTL's coverage: Verilator's line and toggle coverage of the user's Verilog under the
+/// model's stimulus, summed up in a line naming the blocks never reached (here a branch the
+/// random stimulus cannot take), with Verilator's data, an lcov file and the sources
+/// annotated; refused with Icarus before anything is written.
+#[test]
+fn the_rtls_coverage_names_what_the_stimulus_never_reached() {
+    if !common::simulator("verilator", "-V") {
+        return;
+    }
+    let d = dir("sim-cache", "coverage");
+    let c = d.join("cache");
+    let c = c.to_str().unwrap();
+    let dead = "    reg dead_r;\n    always @(posedge clk)\n        if (u_in == 8'hA5 && v_in == 8'h5A && bypass && rst)\n            dead_r <= 1'b1;\n";
+    let text = twin_text().replace("    generate\n", &format!("{dead}    generate\n"));
+    let line = text
+        .lines()
+        .position(|l| l.contains("dead_r <= 1'b1"))
+        .unwrap()
+        + 1;
+    let mine = d.join("mine.v");
+    std::fs::write(&mine, text).unwrap();
+    let rtl = ["--rtl", mine.to_str().unwrap(), "--rtl-coverage"];
+    let o = cosim_on("verilator", c, &d.join("a"), &rtl);
+    let (out, err) = (
+        String::from_utf8_lossy(&o.stdout),
+        String::from_utf8_lossy(&o.stderr),
+    );
+    assert_eq!(o.status.code(), Some(0), "{err}");
+    let said = format!("{out}{err}");
+    let summary = said
+        .lines()
+        .find(|l| l.starts_with("the RTL's coverage (Verilator): blocks "));
+    let summary = summary.expect(&said);
+    let named = [line - 1, line].map(|l| format!("never reached: mine.v:{l}"));
+    assert!(
+        named.iter().any(|n| summary.contains(n.as_str())),
+        "{summary}"
+    );
+    let info = std::fs::read_to_string(d.join("a/coverage.info")).unwrap();
+    assert!(info.contains("SF:") && info.contains("mine.v"), "{info}");
+    let annotated = std::fs::read_to_string(d.join("a/coverage_annotated/mine.v")).unwrap();
+    assert!(annotated.contains("%000000"), "{annotated}");
+    let o = cosim_on("icarus", c, &d.join("b"), &rtl);
+    let err = String::from_utf8_lossy(&o.stderr);
+    assert!(
+        o.status.code() == Some(2) && err.contains("--rtl-coverage: "),
+        "{err}"
+    );
+    assert!(!d.join("b").exists());
+    std::fs::remove_dir_all(&d).unwrap();
+}

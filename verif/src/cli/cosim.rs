@@ -38,6 +38,8 @@ pub struct CosimArgs {
     pub filelist: Vec<(PathBuf, PathsFrom)>,
     /// Leave the RTL's internals out: no dump compiled in, no second run at a difference.
     pub no_internals: bool,
+    /// Measure the RTL's line and toggle coverage (Verilator's).
+    pub rtl_coverage: bool,
 }
 
 clap_args!(CosimArgs);
@@ -58,6 +60,7 @@ impl CosimArgs {
             values("filelist", "LIST", value_parser!(PathBuf), "A file list of Verilog sources to check instead of the twin's, with +incdir+, +define+, -I, -D, libraries (-y, -v, +libext+) and nested -f/-F; relative paths from the current folder (repeatable; its sources after --rtl's)").short('f'),
             values("filelist-relative", "LIST", value_parser!(PathBuf), "As -f, relative paths taken from the list's own folder").short('F'),
             flag("no-internals", "Leave the RTL's internal signals out of the waveform: by default a difference is run again, dumping them around it, on a build with the dump compiled in (Verilator's with --trace, slower to build)"),
+            flag("rtl-coverage", "Measure which of the RTL's blocks the stimulus reached and which of its signal bits toggled (Verilator's line and toggle coverage; a build of its own, never taken from the cache): a summary line, OUT/coverage.dat, an lcov file (coverage.info) and annotated sources"),
         ])
     }
 
@@ -75,6 +78,7 @@ impl CosimArgs {
             top: one(m, "top"),
             filelist: file_lists(m),
             no_internals: m.get_flag("no-internals"),
+            rtl_coverage: m.get_flag("rtl-coverage"),
         }
     }
 }
@@ -104,6 +108,12 @@ pub fn run(project: &Project, a: &CosimArgs) -> Result<String, CmdError> {
     let unit = project.twin(&a.unit, "--unit")?;
     let sim = Simulator::parse(&a.sim)
         .ok_or_else(|| format!("--sim {}: verilator or icarus", shorten(&a.sim)))?;
+    if a.rtl_coverage && sim != Simulator::Verilator {
+        return Err(String::from(
+            "--rtl-coverage: the coverage is Verilator's; not with --sim icarus",
+        )
+        .into());
+    }
     if !(1..=10_000_000).contains(&a.count) {
         return Err(format!("--count {}: 1..=10000000 cycles", a.count).into());
     }
@@ -171,28 +181,23 @@ fn simulate(
 ) -> Result<String, CmdError> {
     let vectors = a.stimulus == "vectors";
     let with = |unit| Preprocessed { unit, a };
-    let go = if a.no_internals {
-        cosim::run_with
-    } else {
-        cosim::run_explained
+    let options = cosim::RunOptions {
+        internals: !a.no_internals,
+        rtl_coverage: a.rtl_coverage,
+    };
+    let go = |unit: &dyn cosim::CosimUnit, stim: &[Vec<u64>], dir: &Path| {
+        cosim::run_with_options(unit, sim, &[], stim, dir, options).map_err(CmdError::Input)
     };
     if !vectors {
         let unit = &with(unit);
         let stim = cosim::CosimUnit::stimulus(unit, a.seed, a.count);
-        let r = go(unit, sim, &[], &stim, dir).map_err(CmdError::Input)?;
+        let r = go(unit, &stim, dir)?;
         let what = format!("{} in {} (seed {})", a.unit, sim.name(), a.seed);
         return report(&what, &r);
     }
     let mut lines = Vec::new();
     for d in runs {
-        let r = go(
-            &with(d.unit.as_ref()),
-            sim,
-            &[],
-            &d.stimulus,
-            &dir.join(&d.label),
-        )
-        .map_err(CmdError::Input)?;
+        let r = go(&with(d.unit.as_ref()), &d.stimulus, &dir.join(&d.label))?;
         let what = format!("{} in {} ({})", a.unit, sim.name(), d.label);
         lines.push(report(&what, &r)?);
     }
@@ -202,6 +207,9 @@ fn simulate(
 /// The run's one line: agreement, or the first difference (printed in full) as a failure.
 fn report(what: &str, r: &cosim::CosimResult) -> Result<String, CmdError> {
     let view = r.vcd.with_extension("gtkw");
+    if let Some(c) = &r.rtl_coverage {
+        super::say(&format!("{c}\n"));
+    }
     match &r.mismatch {
         None => Ok(format!(
             "{what}: {} cycles, every output port equal on every cycle; waveform: gtkwave {}",

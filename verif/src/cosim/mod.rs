@@ -21,12 +21,14 @@ use std::path::{Path, PathBuf};
 use std::process::Command;
 
 pub mod cache;
+mod coverage;
 mod filelist;
 mod library;
 mod rtl;
 mod twin;
 mod verilator;
 
+pub use coverage::RtlCoverage;
 pub use filelist::{FileList, PathsFrom};
 pub use library::Library;
 pub use rtl::verilog_range;
@@ -662,6 +664,19 @@ pub struct CosimResult {
     /// After a difference in [`run_explained`]: which of the RTL's internals the waveform
     /// shows, or why it shows none.
     pub internals: Option<String>,
+    /// The RTL's coverage, when [`RunOptions::rtl_coverage`] asked for it.
+    pub rtl_coverage: Option<RtlCoverage>,
+}
+
+/// What a run does besides comparing ([`run_with_options`]).
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub struct RunOptions {
+    /// At a difference, show the RTL's internals around it ([`run_explained`]).
+    pub internals: bool,
+    /// Measure the RTL's line and toggle coverage ([`RtlCoverage`]; Verilator only): the
+    /// build is another (`--coverage-line --coverage-toggle`, its runtime compiled anew), and
+    /// the run is always simulated, never taken from the cache.
+    pub rtl_coverage: bool,
 }
 
 /// The first cycle and port where the RTL and the model part.
@@ -763,7 +778,7 @@ pub fn run_with(
     stim: &[Vec<u64>],
     dir: &Path,
 ) -> Result<CosimResult, String> {
-    run_checked(unit, sim, rtl, stim, dir, false)
+    run_with_options(unit, sim, rtl, stim, dir, RunOptions::default())
 }
 
 /// Cycles of the RTL's internals dumped before the first difference ([`run_explained`]).
@@ -785,20 +800,28 @@ pub fn run_explained(
     stim: &[Vec<u64>],
     dir: &Path,
 ) -> Result<CosimResult, String> {
-    run_checked(unit, sim, rtl, stim, dir, true)
+    let internals = RunOptions {
+        internals: true,
+        ..RunOptions::default()
+    };
+    run_with_options(unit, sim, rtl, stim, dir, internals)
 }
 
-fn run_checked(
+/// Runs `unit` as [`run_with`] does, doing what `options` asks besides.
+pub fn run_with_options(
     unit: &dyn CosimUnit,
     sim: Simulator,
     rtl: &[PathBuf],
     stim: &[Vec<u64>],
     dir: &Path,
-    explain: bool,
+    options: RunOptions,
 ) -> Result<CosimResult, String> {
-    let cycles = stim.len();
+    let (cycles, explain) = (stim.len(), options.internals);
     if cycles == 0 {
         return Err(format!("{}: no cycles to simulate", unit.name()));
+    }
+    if options.rtl_coverage && sim != Simulator::Verilator {
+        return Err(format!("{}: the RTL's coverage is Verilator's", sim.name()));
     }
     if unit.clocking().is_some_and(|c| c.reset_cycles == 0) {
         return Err(format!("{}: reset_cycles must be at least 1", unit.name()));
@@ -822,8 +845,13 @@ fn run_checked(
     let (expected, watched): (Vec<Vec<u64>>, Vec<Vec<u64>>) = (0..cycles)
         .map(|c| model.cycle_watched(c < resets, &stim[c]))
         .unzip();
-    let run = rtl_run(unit, dir, &build, (&ins, &outs), stim, explain)?;
+    let mut run = rtl_run(unit, dir, &build, (&ins, &outs), stim, explain)?;
+    run.coverage = options.rtl_coverage;
     let got = rtl::simulate(sim, &run)?;
+    let rtl_coverage = options
+        .rtl_coverage
+        .then(|| RtlCoverage::read(&dir.join("coverage.dat"), dir))
+        .transpose()?;
     if got.len() != cycles {
         return Err(format!(
             "{}: the RTL wrote {} cycles of outputs, {cycles} expected",
@@ -861,6 +889,7 @@ fn run_checked(
         differences: found.1,
         vcd,
         internals: internals.map(|r| r.map_or_else(|e| e, |s| s.said())),
+        rtl_coverage,
     })
 }
 
@@ -1032,6 +1061,7 @@ fn rtl_run<'a>(
         cycles: stim.len(),
         inputs,
         dumps,
+        coverage: false,
         dump_from: None,
         init_seed: None,
     })

@@ -169,6 +169,9 @@ pub(super) struct RtlRun<'a> {
     /// that the dump repeats the compared run exactly, Verilator's random start values of
     /// what is not reset included (another build draws them otherwise).
     pub dumps: bool,
+    /// Whether the build measures the RTL's line and toggle coverage (Verilator's; the run
+    /// writes `coverage.dat` in its folder, and is never taken from the cache).
+    pub coverage: bool,
     /// Dump the RTL's internals from this cycle on ([`INTERNALS_VCD`]; the run not kept).
     pub dump_from: Option<usize>,
     /// Verilator's seed for the values of what is not reset, when not the run's own (a dump
@@ -228,9 +231,12 @@ fn binary(sim: Simulator, r: &RtlRun, kept: Option<(&Path, &str)>) -> Result<Pat
         Simulator::Verilator => {
             let library = r.library.flags(sim, &r.pre.include_dirs);
             let files = [r.pre.flags(), library, strings(r.sources)].concat();
-            let trace = r.dumps;
+            let flavour = verilator::Flavour {
+                trace: r.dumps,
+                coverage: r.coverage,
+            };
             let mdir = r.dir.join("obj_dir");
-            verilator::build(&tb, &files, &mdir, trace, &run_tool).map_err(named)?
+            verilator::build(&tb, &files, &mdir, flavour, &run_tool).map_err(named)?
         }
         Simulator::Icarus => {
             let vvp = r.dir.join(file);
@@ -319,7 +325,17 @@ fn keys(sim: Simulator, r: &RtlRun) -> Result<Keys, String> {
     let tb = r.dir.join("tb.sv");
     let text = std::fs::read_to_string(&tb).map_err(|e| format!("{}: {e}", tb.display()))?;
     let what = match sim {
-        Simulator::Verilator => format!("verilator {}", verilator::OPTIONS.join(" ")),
+        Simulator::Verilator => {
+            let flavour = verilator::Flavour {
+                trace: r.dumps,
+                coverage: r.coverage,
+            };
+            format!(
+                "verilator {}{}",
+                verilator::OPTIONS.join(" "),
+                flavour.options()
+            )
+        }
         Simulator::Icarus => "iverilog -g2012".to_string(),
     };
     let flags = [r.pre.flags(), r.library.flags(sim, &r.pre.include_dirs)].concat();
@@ -371,7 +387,9 @@ pub(super) fn simulate(sim: Simulator, r: &RtlRun) -> Result<Vec<Vec<Option<u64>
     let init_seed = r.init_seed.unwrap_or(keys.init_seed);
     let out = r.dir.join("rtl_out.hex");
     // A dump's run is not kept: it is made to be looked at.
-    let kept_run = (root.as_deref().zip(run_key.as_deref())).filter(|_| r.dump_from.is_none());
+    // Nor is a run that measures coverage: its coverage is written by running it.
+    let kept_run =
+        (root.as_deref().zip(run_key.as_deref())).filter(|_| r.dump_from.is_none() && !r.coverage);
     match kept_run.is_some_and(|(root, k)| cache::take(root, k, "rtl_out.hex", &out, false)) {
         true => {}
         false => {
@@ -636,6 +654,7 @@ mod tests {
                 cycles: 2,
                 inputs,
                 dumps: false,
+                coverage: false,
                 dump_from: None,
                 init_seed: None,
             };

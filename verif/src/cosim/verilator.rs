@@ -73,30 +73,68 @@ fn copy_whole(from: &Path, to: &Path) -> std::io::Result<()> {
     std::fs::rename(&tmp, to)
 }
 
+/// What a build adds to [`OPTIONS`]: VCD tracing (`--trace`), and line and toggle coverage
+/// (`--coverage-line --coverage-toggle`, with a main of texrtl's that writes `coverage.dat`
+/// where the run is, in place of `--main`'s, which writes none).
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub(super) struct Flavour {
+    pub trace: bool,
+    pub coverage: bool,
+}
+
+impl Flavour {
+    /// The options it adds (for a cache key).
+    pub fn options(self) -> &'static str {
+        match (self.trace, self.coverage) {
+            (false, false) => "",
+            (true, false) => " --trace",
+            (false, true) => " --coverage-line --coverage-toggle",
+            (true, true) => " --trace --coverage-line --coverage-toggle",
+        }
+    }
+}
+
+/// The main of a coverage build: `--main`'s loop, then the coverage written.
+const COVERAGE_MAIN: &str = "#include \"verilated.h\"\n#include \"verilated_cov.h\"\n#include \"Vtb.h\"\n\nint main(int argc, char** argv, char**) {\n    const std::unique_ptr<VerilatedContext> contextp{new VerilatedContext};\n    contextp->commandArgs(argc, argv);\n    const std::unique_ptr<Vtb> topp{new Vtb{contextp.get()}};\n    while (!contextp->gotFinish()) {\n        topp->eval();\n        if (!topp->eventsPending()) break;\n        contextp->time(topp->nextTimeSlot());\n    }\n    topp->final();\n    contextp->coveragep()->write(\"coverage.dat\");\n    return 0;\n}\n";
+
 /// Builds `tb` (top module `tb`) with `sources` (the preprocessor's options first) into
-/// `mdir`, with VCD tracing (`--trace`) when `trace`; returns the executable. `run` runs a
-/// command, turning a failure into the tool's first message.
+/// `mdir`, as `flavour` says; returns the executable. `run` runs a command, turning a failure
+/// into the tool's first message. A coverage build compiles Verilator's runtime anew (its
+/// objects differ), others reuse the cached one.
 pub fn build(
     tb: &Path,
     sources: &[String],
     mdir: &Path,
-    trace: bool,
+    flavour: Flavour,
     run: &dyn Fn(&mut Command, &str) -> Result<(), String>,
 ) -> Result<PathBuf, String> {
     // In the run's folder: Verilator also looks for modules in its current folder, which is
     // then the run's (no user's file is taken from wherever texrtl was started).
     let absolute = |p: &Path| std::path::absolute(p).map_err(|e| format!("{}: {e}", p.display()));
     let (tb, mdir) = (&absolute(tb)?, &absolute(mdir)?);
+    let here = tb.parent().unwrap_or(Path::new("/"));
     let mut c = Command::new("verilator");
-    c.current_dir(tb.parent().unwrap_or(Path::new("/")))
-        .args(OPTIONS)
-        .args(trace.then_some("--trace"))
+    c.current_dir(here)
+        .args(
+            OPTIONS
+                .iter()
+                .filter(|o| !(flavour.coverage && **o == "--main")),
+        )
+        .args(flavour.options().split_whitespace())
         .args(["--top-module", "tb", "-o", "simv", "--Mdir"])
         .arg(mdir)
         .arg(tb)
         .args(sources);
+    if flavour.coverage {
+        let main = here.join("texrtl_main.cpp");
+        std::fs::write(&main, COVERAGE_MAIN).map_err(|e| format!("{}: {e}", main.display()))?;
+        c.arg(main);
+    }
     run(&mut c, "verilator")?;
-    let cache = cache_dir(trace);
+    if flavour.coverage {
+        return make(mdir, run);
+    }
+    let cache = cache_dir(flavour.trace);
     let cached = cache.as_deref().map(runtime_objects).unwrap_or_default();
     for obj in &cached {
         if let Some(name) = obj.file_name() {
@@ -104,13 +142,7 @@ pub fn build(
             let _ = copy_whole(obj, &mdir.join(name));
         }
     }
-    run(
-        Command::new("make")
-            .args(["-s", "-C"])
-            .arg(mdir)
-            .args(["-f", "Vtb.mk"]),
-        "make (Verilator's C++ build)",
-    )?;
+    make(mdir, run)?;
     if let (Some(cache), true) = (cache, cached.is_empty()) {
         if std::fs::create_dir_all(cache).is_ok() {
             for obj in runtime_objects(mdir) {
@@ -120,5 +152,20 @@ pub fn build(
             }
         }
     }
+    Ok(mdir.join("simv"))
+}
+
+/// Verilator's C++ build in `mdir`; returns the executable.
+fn make(
+    mdir: &Path,
+    run: &dyn Fn(&mut Command, &str) -> Result<(), String>,
+) -> Result<PathBuf, String> {
+    run(
+        Command::new("make")
+            .args(["-s", "-C"])
+            .arg(mdir)
+            .args(["-f", "Vtb.mk"]),
+        "make (Verilator's C++ build)",
+    )?;
     Ok(mdir.join("simv"))
 }

@@ -1,0 +1,212 @@
+//! The RTL's own coverage in a co-simulation: [`RtlCoverage`], read from Verilator's
+//! `coverage.dat`.
+
+use std::path::{Path, PathBuf};
+use std::process::Command;
+
+/// How much of the RTL a co-simulation's stimulus reached, as Verilator measures it in a
+/// build with `--coverage-line --coverage-toggle`: its blocks of statements (lines and
+/// branches) and the bits of its signals that toggled, counted over every instance under the
+/// testbench's `dut` (the testbench's own are left out). What it says of the model's
+/// stimulus: an RTL line it never reached is a line the comparison never checked.
+#[derive(Clone, Debug, PartialEq)]
+pub struct RtlCoverage {
+    /// Blocks reached, of all.
+    pub lines: (usize, usize),
+    /// Signal bits that toggled, of all.
+    pub toggles: (usize, usize),
+    /// The first blocks never reached, by file and line (`file:line`), at most
+    /// [`RtlCoverage::SHOWN`].
+    pub unreached: Vec<String>,
+    /// Verilator's coverage data of the run (`coverage.dat`: `verilator_coverage` reads it,
+    /// and merges several).
+    pub data: PathBuf,
+    /// The same as an lcov tracefile (`genhtml coverage.info` draws it as HTML).
+    pub info: PathBuf,
+    /// The RTL's sources annotated by `verilator_coverage`: each counted line marked with its
+    /// count, `%000000` where it was never reached.
+    pub annotated: PathBuf,
+}
+
+/// One coverage point: its file, line, page (`v_line/MODULE`, `v_toggle/MODULE`, ...),
+/// hierarchy and count.
+#[derive(Debug, PartialEq)]
+struct Point {
+    file: String,
+    line: u32,
+    page: String,
+    hier: String,
+    count: u64,
+}
+
+impl RtlCoverage {
+    /// Blocks never reached shown by name.
+    pub const SHOWN: usize = 8;
+
+    /// Reads `dat` (written by the run in `dir`) and has `verilator_coverage` write its lcov
+    /// file and annotated sources beside it.
+    pub fn read(dat: &Path, dir: &Path) -> Result<RtlCoverage, String> {
+        let text = std::fs::read_to_string(dat).map_err(|e| format!("{}: {e}", dat.display()))?;
+        let points: Vec<Point> = text
+            .lines()
+            .filter(|l| l.starts_with("C '"))
+            .map(point)
+            .collect::<Result<_, _>>()
+            .map_err(|e| format!("{}: {e}", dat.display()))?;
+        let mut c = summary(&points);
+        c.data = dat.to_path_buf();
+        (c.info, c.annotated) = (dir.join("coverage.info"), dir.join("coverage_annotated"));
+        let mut tool = Command::new("verilator_coverage");
+        tool.arg("--write-info")
+            .arg(&c.info)
+            .arg("--annotate")
+            .arg(&c.annotated)
+            .arg("--annotate-all")
+            .arg("--annotate-min")
+            .arg("1")
+            .arg(dat);
+        let o = tool
+            .output()
+            .map_err(|e| format!("verilator_coverage: {e}"))?;
+        if !o.status.success() {
+            let err = String::from_utf8_lossy(&o.stderr);
+            let first = err.lines().next().unwrap_or("failed");
+            return Err(format!("verilator_coverage: {first}"));
+        }
+        Ok(c)
+    }
+
+    /// `(reached, all)` as a percentage (100 when there is nothing to reach).
+    pub fn percent((reached, all): (usize, usize)) -> f64 {
+        if all == 0 {
+            100.0
+        } else {
+            100.0 * reached as f64 / all as f64
+        }
+    }
+}
+
+impl std::fmt::Display for RtlCoverage {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        let (l, t) = (self.lines, self.toggles);
+        write!(
+            f,
+            "the RTL's coverage (Verilator): blocks {} of {} ({:.1} %), toggles {} of {} ({:.1} %)",
+            l.0,
+            l.1,
+            Self::percent(l),
+            t.0,
+            t.1,
+            Self::percent(t)
+        )?;
+        if !self.unreached.is_empty() {
+            let more = l.1 - l.0 - self.unreached.len();
+            let more = if more > 0 {
+                format!(" and {more} more")
+            } else {
+                String::new()
+            };
+            write!(f, "; never reached: {}{more}", self.unreached.join(", "))?;
+        }
+        write!(f, "; annotated sources in {}", self.annotated.display())
+    }
+}
+
+/// The counts of `points` under the testbench's `dut`.
+fn summary(points: &[Point]) -> RtlCoverage {
+    let dut: Vec<&Point> = points
+        .iter()
+        .filter(|p| p.hier == "TOP.tb.dut" || p.hier.starts_with("TOP.tb.dut."))
+        .collect();
+    let count = |toggle: bool| {
+        let of: Vec<&&Point> = dut
+            .iter()
+            .filter(|p| p.page.starts_with("v_toggle/") == toggle)
+            .collect();
+        (of.iter().filter(|p| p.count > 0).count(), of.len())
+    };
+    let mut unreached: Vec<(&str, u32)> = dut
+        .iter()
+        .filter(|p| p.count == 0 && !p.page.starts_with("v_toggle/"))
+        .map(|p| (p.file.as_str(), p.line))
+        .collect();
+    unreached.sort();
+    RtlCoverage {
+        lines: count(false),
+        toggles: count(true),
+        unreached: unreached
+            .iter()
+            .take(RtlCoverage::SHOWN)
+            .map(|(f, l)| {
+                let name = Path::new(f)
+                    .file_name()
+                    .map_or(*f, |n| n.to_str().unwrap_or(f));
+                format!("{name}:{l}")
+            })
+            .collect(),
+        data: PathBuf::new(),
+        info: PathBuf::new(),
+        annotated: PathBuf::new(),
+    }
+}
+
+/// A line `C '<keys>' COUNT` of `coverage.dat`: keys `\x01NAME\x02VALUE` (`f` file, `l` line,
+/// `page`, `h` hierarchy, and others).
+fn point(line: &str) -> Result<Point, String> {
+    let bad = || format!("not a coverage point: {}", waves::output::shorten(line));
+    let rest = line.strip_prefix("C '").ok_or_else(bad)?;
+    let end = rest.rfind('\'').ok_or_else(bad)?;
+    let count = rest[end + 1..].trim().parse().map_err(|_| bad())?;
+    let mut p = Point {
+        file: String::new(),
+        line: 0,
+        page: String::new(),
+        hier: String::new(),
+        count,
+    };
+    for kv in rest[..end].split('\x01').filter(|kv| !kv.is_empty()) {
+        let (k, v) = kv.split_once('\x02').ok_or_else(bad)?;
+        match k {
+            "f" => p.file = v.to_string(),
+            "l" => p.line = v.parse().map_err(|_| bad())?,
+            "page" => p.page = v.to_string(),
+            "h" => p.hier = v.to_string(),
+            _ => {}
+        }
+    }
+    Ok(p)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn line(file: &str, l: u32, page: &str, hier: &str, count: u64) -> String {
+        format!("C '\x01f\x02{file}\x01l\x02{l}\x01n\x025\x01page\x02{page}\x01o\x02block\x01h\x02{hier}' {count}")
+    }
+
+    /// Points under the dut counted by kind, the testbench's own left out, the blocks never
+    /// reached named by file and line in order.
+    #[test]
+    fn the_dut_s_points_are_counted_by_kind() {
+        let text = [
+            line("/a/tb.sv", 3, "v_line/tb", "TOP.tb", 0),
+            line("/r/u.v", 9, "v_line/u", "TOP.tb.dut", 4),
+            line("/r/u.v", 12, "v_line/u", "TOP.tb.dut", 0),
+            line("/r/sub.v", 5, "v_line/sub", "TOP.tb.dut.s0", 0),
+            line("/r/u.v", 2, "v_toggle/u", "TOP.tb.dut", 7),
+            line("/r/u.v", 2, "v_toggle/u", "TOP.tb.dut", 0),
+            line("/r/u.v", 2, "v_toggle/u", "TOP.tb.dutx", 0),
+        ];
+        let points: Vec<Point> = text.iter().map(|l| point(l).unwrap()).collect();
+        assert_eq!(points[1].line, 9);
+        let c = summary(&points);
+        assert_eq!(c.lines, (1, 3));
+        assert_eq!(c.toggles, (1, 2));
+        assert_eq!(c.unreached, ["sub.v:5", "u.v:12"]);
+        assert!(point("C 'x").is_err());
+        assert!(
+            point(&line("/r/u.v", 1, "v_line/u", "TOP.tb.dut", 1).replace("' 1", "' x")).is_err()
+        );
+    }
+}
