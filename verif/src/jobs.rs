@@ -251,6 +251,7 @@ mod tests {
             job: None,
             junit: None,
             require_numeric: false,
+            rtl_coverage: false,
         }
     }
 

@@ -36,6 +36,7 @@ pub struct RegressArgs {
     job: Option<u64>,
     junit: Option<PathBuf>,
     require_numeric: bool,
+    rtl_coverage: bool,
 }
 
 clap_args!(RegressArgs);
@@ -64,6 +65,7 @@ impl RegressArgs {
             value("job", "JOB", value_parser!(u64), "Run only this job, with its waveform: what a failing job's line in the report runs (no vectors, no co-simulation)"),
             path("junit", "FILE", "Also write the run's JUnit XML (one test case per job, with its seed and the command that reproduces it) for a CI server"),
             flag("require-numeric-coverage", "Fail a testbench whose named narrowings left a saturation, wrap or rounding tie never reached (unless the unit declares it unreachable); a sharded run decides at `merge`"),
+            flag("rtl-coverage", "Measure the RTL's line and toggle coverage in the Verilator co-simulation rows (as `cosim --rtl-coverage`): a note per row, and its files in the row's folder"),
         ])
     }
 
@@ -90,6 +92,7 @@ impl RegressArgs {
             job: one(m, "job"),
             junit: one(m, "junit"),
             require_numeric: m.get_flag("require-numeric-coverage"),
+            rtl_coverage: m.get_flag("rtl-coverage"),
         }
     }
 }
@@ -170,6 +173,7 @@ pub fn run(project: &Project, a: RegressArgs) -> ExitCode {
         job: a.job,
         junit: a.junit,
         require_numeric: a.require_numeric,
+        rtl_coverage: a.rtl_coverage,
     };
     if let Err(e) = cfg.trace.validate() {
         return fail(name, format!("--period-ps/--trace-window: {e}"));

@@ -15,8 +15,8 @@ pub struct RtlCoverage {
     pub lines: (usize, usize),
     /// Signal bits that toggled, of all.
     pub toggles: (usize, usize),
-    /// The first blocks never reached, by file and line (`file:line`), at most
-    /// [`RtlCoverage::SHOWN`].
+    /// The blocks never reached, by file name and line (`file:line`), in order, each once
+    /// (a line of a module instantiated twice may be counted in the blocks twice).
     pub unreached: Vec<String>,
     /// Verilator's coverage data of the run (`coverage.dat`: `verilator_coverage` reads it,
     /// and merges several).
@@ -40,7 +40,7 @@ struct Point {
 }
 
 impl RtlCoverage {
-    /// Blocks never reached shown by name.
+    /// Blocks never reached named in the summary line.
     pub const SHOWN: usize = 8;
 
     /// Reads `dat` (written by the run in `dir`) and has `verilator_coverage` write its lcov
@@ -100,13 +100,12 @@ impl std::fmt::Display for RtlCoverage {
             Self::percent(t)
         )?;
         if !self.unreached.is_empty() {
-            let more = l.1 - l.0 - self.unreached.len();
-            let more = if more > 0 {
-                format!(" and {more} more")
-            } else {
-                String::new()
+            let shown = &self.unreached[..self.unreached.len().min(Self::SHOWN)];
+            let more = match self.unreached.len() - shown.len() {
+                0 => String::new(),
+                n => format!(" and {n} more"),
             };
-            write!(f, "; never reached: {}{more}", self.unreached.join(", "))?;
+            write!(f, "; never reached: {}{more}", shown.join(", "))?;
         }
         write!(f, "; annotated sources in {}", self.annotated.display())
     }
@@ -128,22 +127,18 @@ fn summary(points: &[Point]) -> RtlCoverage {
     let mut unreached: Vec<(&str, u32)> = dut
         .iter()
         .filter(|p| p.count == 0 && !p.page.starts_with("v_toggle/"))
-        .map(|p| (p.file.as_str(), p.line))
+        .map(|p| {
+            let f = p.file.as_str();
+            let name = Path::new(f).file_name().and_then(|n| n.to_str());
+            (name.unwrap_or(f), p.line)
+        })
         .collect();
     unreached.sort();
+    unreached.dedup();
     RtlCoverage {
         lines: count(false),
         toggles: count(true),
-        unreached: unreached
-            .iter()
-            .take(RtlCoverage::SHOWN)
-            .map(|(f, l)| {
-                let name = Path::new(f)
-                    .file_name()
-                    .map_or(*f, |n| n.to_str().unwrap_or(f));
-                format!("{name}:{l}")
-            })
-            .collect(),
+        unreached: unreached.iter().map(|(f, l)| format!("{f}:{l}")).collect(),
         data: PathBuf::new(),
         info: PathBuf::new(),
         annotated: PathBuf::new(),
@@ -194,6 +189,7 @@ mod tests {
             line("/r/u.v", 9, "v_line/u", "TOP.tb.dut", 4),
             line("/r/u.v", 12, "v_line/u", "TOP.tb.dut", 0),
             line("/r/sub.v", 5, "v_line/sub", "TOP.tb.dut.s0", 0),
+            line("/r/sub.v", 5, "v_line/sub", "TOP.tb.dut.s1", 0),
             line("/r/u.v", 2, "v_toggle/u", "TOP.tb.dut", 7),
             line("/r/u.v", 2, "v_toggle/u", "TOP.tb.dut", 0),
             line("/r/u.v", 2, "v_toggle/u", "TOP.tb.dutx", 0),
@@ -201,9 +197,17 @@ mod tests {
         let points: Vec<Point> = text.iter().map(|l| point(l).unwrap()).collect();
         assert_eq!(points[1].line, 9);
         let c = summary(&points);
-        assert_eq!(c.lines, (1, 3));
+        assert_eq!(c.lines, (1, 4), "each instance's blocks");
         assert_eq!(c.toggles, (1, 2));
-        assert_eq!(c.unreached, ["sub.v:5", "u.v:12"]);
+        assert_eq!(c.unreached, ["sub.v:5", "u.v:12"], "each line once");
+        let many = RtlCoverage {
+            unreached: (1..=10).map(|l| format!("u.v:{l}")).collect(),
+            ..c
+        };
+        assert!(
+            many.to_string().contains("u.v:8 and 2 more; annotated"),
+            "{many}"
+        );
         assert!(point("C 'x").is_err());
         assert!(
             point(&line("/r/u.v", 1, "v_line/u", "TOP.tb.dut", 1).replace("' 1", "' x")).is_err()

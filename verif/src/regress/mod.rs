@@ -183,6 +183,9 @@ pub struct RegressConfig {
     /// Fail a testbench whose narrowings left an overflow or tie path untaken (numeric
     /// coverage holes; decided for a whole run, or by `merge` for a sharded one).
     pub require_numeric: bool,
+    /// Measure the RTL's coverage in the Verilator co-simulation rows
+    /// ([`crate::cosim::RtlCoverage`]), said in each row's notes.
+    pub rtl_coverage: bool,
 }
 
 impl RegressConfig {
@@ -206,6 +209,7 @@ impl RegressConfig {
             job: None,
             junit: None,
             require_numeric: false,
+            rtl_coverage: false,
         }
     }
 
@@ -481,7 +485,14 @@ fn cosim_row(
     );
     let n = COSIM_CYCLES[usize::from(sim == Simulator::Icarus)];
     let dir = cfg.out.join(COSIM).join(format!("{unit}-{}", sim.name()));
-    let c = crate::cosim::run(u, sim, &[], n, cfg.seed, &dir)?;
+    let options = crate::cosim::RunOptions {
+        internals: false,
+        rtl_coverage: cfg.rtl_coverage && sim == Simulator::Verilator,
+    };
+    let stim = u.stimulus(cfg.seed, n);
+    let c = crate::cosim::run_with_options(u, sim, &[], &stim, &dir, options)?;
+    r.notes
+        .extend(c.rtl_coverage.as_ref().map(|c| c.to_string()));
     r.transactions = c.cycles as u64;
     r.cycles = c.cycles as u64;
     r.mismatches = c.differences;
