@@ -847,6 +847,10 @@ pub fn run_with_options(
         .unzip();
     let mut run = rtl_run(unit, dir, &build, (&ins, &outs), stim, explain)?;
     run.coverage = options.rtl_coverage;
+    if run.coverage {
+        // Not an earlier run's, if this one writes none.
+        let _ = std::fs::remove_file(dir.join("coverage.dat"));
+    }
     let got = rtl::simulate(sim, &run)?;
     let rtl_coverage = options
         .rtl_coverage
