@@ -195,11 +195,17 @@ fn simulate(
         let what = format!("{} in {} (seed {})", a.unit, sim.name(), a.seed);
         return report(&what, &r);
     }
-    let mut lines = Vec::new();
+    let (mut lines, mut covered) = (Vec::new(), Vec::new());
     for d in runs {
         let r = go(&with(d.unit.as_ref()), &d.stimulus, &dir.join(&d.label))?;
         let what = format!("{} in {} ({})", a.unit, sim.name(), d.label);
         lines.push(report(&what, &r)?);
+        covered.extend(r.rtl_coverage);
+    }
+    if covered.len() > 1 {
+        let all: Vec<&cosim::RtlCoverage> = covered.iter().collect();
+        let merged = cosim::RtlCoverage::merge(&all, dir).map_err(CmdError::Input)?;
+        super::say(&format!("the {} runs together: {merged}\n", all.len()));
     }
     Ok(lines.join("\n"))
 }

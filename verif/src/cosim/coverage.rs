@@ -15,8 +15,8 @@ pub struct RtlCoverage {
     pub lines: (usize, usize),
     /// Signal bits that toggled, of all.
     pub toggles: (usize, usize),
-    /// The blocks never reached, by file name and line (`file:line`), in order, each once
-    /// (a line of a module instantiated twice may be counted in the blocks twice).
+    /// The lines no block on which was reached, in any instance, by file name and line
+    /// (`file:line`), in order (the blocks count each instance's).
     pub unreached: Vec<String>,
     /// Verilator's coverage data of the run (`coverage.dat`: `verilator_coverage` reads it,
     /// and merges several).
@@ -76,6 +76,27 @@ impl RtlCoverage {
         Ok(c)
     }
 
+    /// The coverage of several runs together: their data merged by `verilator_coverage` into
+    /// `dir/coverage.dat` (a point reached in any run is reached), then read as [`read`]
+    /// reads one.
+    ///
+    /// [`read`]: RtlCoverage::read
+    pub fn merge(runs: &[&RtlCoverage], dir: &Path) -> Result<RtlCoverage, String> {
+        let dat = dir.join("coverage.dat");
+        let o = Command::new("verilator_coverage")
+            .arg("--write")
+            .arg(&dat)
+            .args(runs.iter().map(|r| &r.data))
+            .output()
+            .map_err(|e| format!("verilator_coverage: {e}"))?;
+        if !o.status.success() {
+            let err = String::from_utf8_lossy(&o.stderr);
+            let first = err.lines().next().unwrap_or("failed");
+            return Err(format!("verilator_coverage: {first}"));
+        }
+        RtlCoverage::read(&dat, dir)
+    }
+
     /// `(reached, all)` as a percentage (100 when there is nothing to reach).
     pub fn percent((reached, all): (usize, usize)) -> f64 {
         if all == 0 {
@@ -124,17 +145,23 @@ fn summary(points: &[Point]) -> RtlCoverage {
             .collect();
         (of.iter().filter(|p| p.count > 0).count(), of.len())
     };
-    let mut unreached: Vec<(&str, u32)> = dut
+    // A line is never reached when no block on it was, in any instance.
+    let mut blocks: Vec<(&str, u32, bool)> = dut
         .iter()
-        .filter(|p| p.count == 0 && !p.page.starts_with("v_toggle/"))
+        .filter(|p| !p.page.starts_with("v_toggle/"))
         .map(|p| {
             let f = p.file.as_str();
             let name = Path::new(f).file_name().and_then(|n| n.to_str());
-            (name.unwrap_or(f), p.line)
+            (name.unwrap_or(f), p.line, p.count > 0)
         })
         .collect();
-    unreached.sort();
-    unreached.dedup();
+    blocks.sort();
+    let mut unreached: Vec<(&str, u32)> = Vec::new();
+    for same in blocks.chunk_by(|a, b| (a.0, a.1) == (b.0, b.1)) {
+        if same.iter().all(|b| !b.2) {
+            unreached.push((same[0].0, same[0].1));
+        }
+    }
     RtlCoverage {
         lines: count(false),
         toggles: count(true),
@@ -190,6 +217,8 @@ mod tests {
             line("/r/u.v", 12, "v_line/u", "TOP.tb.dut", 0),
             line("/r/sub.v", 5, "v_line/sub", "TOP.tb.dut.s0", 0),
             line("/r/sub.v", 5, "v_line/sub", "TOP.tb.dut.s1", 0),
+            line("/r/sub.v", 6, "v_line/sub", "TOP.tb.dut.s0", 0),
+            line("/r/sub.v", 6, "v_line/sub", "TOP.tb.dut.s1", 2),
             line("/r/u.v", 2, "v_toggle/u", "TOP.tb.dut", 7),
             line("/r/u.v", 2, "v_toggle/u", "TOP.tb.dut", 0),
             line("/r/u.v", 2, "v_toggle/u", "TOP.tb.dutx", 0),
@@ -197,9 +226,13 @@ mod tests {
         let points: Vec<Point> = text.iter().map(|l| point(l).unwrap()).collect();
         assert_eq!(points[1].line, 9);
         let c = summary(&points);
-        assert_eq!(c.lines, (1, 4), "each instance's blocks");
+        assert_eq!(c.lines, (2, 6), "each instance's blocks");
         assert_eq!(c.toggles, (1, 2));
-        assert_eq!(c.unreached, ["sub.v:5", "u.v:12"], "each line once");
+        assert_eq!(
+            c.unreached,
+            ["sub.v:5", "u.v:12"],
+            "each line once, and not one reached in another instance"
+        );
         let many = RtlCoverage {
             unreached: (1..=10).map(|l| format!("u.v:{l}")).collect(),
             ..c
@@ -212,5 +245,43 @@ mod tests {
         assert!(
             point(&line("/r/u.v", 1, "v_line/u", "TOP.tb.dut", 1).replace("' 1", "' x")).is_err()
         );
+    }
+
+    /// Two runs' data merged by `verilator_coverage`: a point reached in either is reached
+    /// (skipped without Verilator).
+    #[test]
+    fn runs_merged_reach_what_either_reached() {
+        if Command::new("verilator_coverage")
+            .arg("--version")
+            .output()
+            .is_err()
+        {
+            return;
+        }
+        let t = tempfile::tempdir().unwrap();
+        let u = t.path().join("u.v");
+        std::fs::write(
+            &u,
+            "module u;\n  reg r;\n  always @* r = 0;\n  always @* r = 1;\nendmodule\n",
+        )
+        .unwrap();
+        let u = u.to_str().unwrap();
+        let run = |name: &str, counts: [u64; 2]| {
+            let dir = t.path().join(name);
+            std::fs::create_dir_all(&dir).unwrap();
+            let text = format!(
+                "# SystemC::Coverage-3\n{}\n{}\n",
+                line(u, 3, "v_line/u", "TOP.tb.dut", counts[0]),
+                line(u, 4, "v_line/u", "TOP.tb.dut", counts[1])
+            );
+            std::fs::write(dir.join("coverage.dat"), text).unwrap();
+            RtlCoverage::read(&dir.join("coverage.dat"), &dir).unwrap()
+        };
+        let (a, b) = (run("a", [1, 0]), run("b", [0, 0]));
+        assert_eq!((a.lines, b.lines), ((1, 2), (0, 2)));
+        let both = RtlCoverage::merge(&[&a, &b], t.path()).unwrap();
+        assert_eq!(both.lines, (1, 2));
+        assert_eq!(both.unreached, ["u.v:4"]);
+        assert!(t.path().join("coverage.info").is_file());
     }
 }
