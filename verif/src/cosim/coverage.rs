@@ -15,8 +15,8 @@ pub struct RtlCoverage {
     pub lines: (usize, usize),
     /// Signal bits that toggled, of all.
     pub toggles: (usize, usize),
-    /// The lines no block on which was reached, in any instance, by file name and line
-    /// (`file:line`), in order (the blocks count each instance's).
+    /// The lines of the blocks never reached in any instance, by file name and line
+    /// (`file:line`), in order, each once (the blocks count each instance's).
     pub unreached: Vec<String>,
     /// Verilator's coverage data of the run (`coverage.dat`: `verilator_coverage` reads it,
     /// and merges several).
@@ -28,12 +28,14 @@ pub struct RtlCoverage {
     pub annotated: PathBuf,
 }
 
-/// One coverage point: its file, line, page (`v_line/MODULE`, `v_toggle/MODULE`, ...),
-/// hierarchy and count.
+/// One coverage point: its file, line, column, what it is (`block`, `if`, `else`, a signal's
+/// bit), page (`v_line/MODULE`, `v_branch/MODULE`, `v_toggle/MODULE`), hierarchy and count.
 #[derive(Debug, PartialEq)]
 struct Point {
     file: String,
     line: u32,
+    column: String,
+    what: String,
     page: String,
     hier: String,
     count: u64,
@@ -145,20 +147,27 @@ fn summary(points: &[Point]) -> RtlCoverage {
             .collect();
         (of.iter().filter(|p| p.count > 0).count(), of.len())
     };
-    // A line is never reached when no block on it was, in any instance.
-    let mut blocks: Vec<(&str, u32, bool)> = dut
+    // A block is never reached when it was in no instance; its line is named once.
+    let mut blocks: Vec<(&str, u32, &str, &str, bool)> = dut
         .iter()
         .filter(|p| !p.page.starts_with("v_toggle/"))
         .map(|p| {
             let f = p.file.as_str();
             let name = Path::new(f).file_name().and_then(|n| n.to_str());
-            (name.unwrap_or(f), p.line, p.count > 0)
+            let name = name.unwrap_or(f);
+            (
+                name,
+                p.line,
+                p.column.as_str(),
+                p.what.as_str(),
+                p.count > 0,
+            )
         })
         .collect();
     blocks.sort();
     let mut unreached: Vec<(&str, u32)> = Vec::new();
-    for same in blocks.chunk_by(|a, b| (a.0, a.1) == (b.0, b.1)) {
-        if same.iter().all(|b| !b.2) {
+    for same in blocks.chunk_by(|a, b| (a.0, a.1, a.2, a.3) == (b.0, b.1, b.2, b.3)) {
+        if same.iter().all(|b| !b.4) && unreached.last() != Some(&(same[0].0, same[0].1)) {
             unreached.push((same[0].0, same[0].1));
         }
     }
@@ -182,6 +191,8 @@ fn point(line: &str) -> Result<Point, String> {
     let mut p = Point {
         file: String::new(),
         line: 0,
+        column: String::new(),
+        what: String::new(),
         page: String::new(),
         hier: String::new(),
         count,
@@ -191,6 +202,8 @@ fn point(line: &str) -> Result<Point, String> {
         match k {
             "f" => p.file = v.to_string(),
             "l" => p.line = v.parse().map_err(|_| bad())?,
+            "n" => p.column = v.to_string(),
+            "o" => p.what = v.to_string(),
             "page" => p.page = v.to_string(),
             "h" => p.hier = v.to_string(),
             _ => {}
@@ -219,6 +232,10 @@ mod tests {
             line("/r/sub.v", 5, "v_line/sub", "TOP.tb.dut.s1", 0),
             line("/r/sub.v", 6, "v_line/sub", "TOP.tb.dut.s0", 0),
             line("/r/sub.v", 6, "v_line/sub", "TOP.tb.dut.s1", 2),
+            line("/r/sub.v", 7, "v_branch/sub", "TOP.tb.dut.s0", 4)
+                .replace("\x01o\x02block", "\x01o\x02else"),
+            line("/r/sub.v", 7, "v_branch/sub", "TOP.tb.dut.s0", 0)
+                .replace("\x01o\x02block", "\x01o\x02if"),
             line("/r/u.v", 2, "v_toggle/u", "TOP.tb.dut", 7),
             line("/r/u.v", 2, "v_toggle/u", "TOP.tb.dut", 0),
             line("/r/u.v", 2, "v_toggle/u", "TOP.tb.dutx", 0),
@@ -226,12 +243,12 @@ mod tests {
         let points: Vec<Point> = text.iter().map(|l| point(l).unwrap()).collect();
         assert_eq!(points[1].line, 9);
         let c = summary(&points);
-        assert_eq!(c.lines, (2, 6), "each instance's blocks");
+        assert_eq!(c.lines, (3, 8), "each instance's blocks");
         assert_eq!(c.toggles, (1, 2));
         assert_eq!(
             c.unreached,
-            ["sub.v:5", "u.v:12"],
-            "each line once, and not one reached in another instance"
+            ["sub.v:5", "sub.v:7", "u.v:12"],
+            "each line once; a block reached in another instance is reached; an if beside its else"
         );
         let many = RtlCoverage {
             unreached: (1..=10).map(|l| format!("u.v:{l}")).collect(),
