@@ -58,23 +58,15 @@ impl RtlCoverage {
         let mut c = summary(&points);
         c.data = dat.to_path_buf();
         (c.info, c.annotated) = (dir.join("coverage.info"), dir.join("coverage_annotated"));
-        let mut tool = Command::new("verilator_coverage");
-        tool.arg("--write-info")
-            .arg(&c.info)
-            .arg("--annotate")
-            .arg(&c.annotated)
-            .arg("--annotate-all")
-            .arg("--annotate-min")
-            .arg("1")
-            .arg(dat);
-        let o = tool
-            .output()
-            .map_err(|e| format!("verilator_coverage: {e}"))?;
-        if !o.status.success() {
-            let err = String::from_utf8_lossy(&o.stderr);
-            let first = err.lines().next().unwrap_or("failed");
-            return Err(format!("verilator_coverage: {first}"));
-        }
+        tool(
+            Command::new("verilator_coverage")
+                .arg("--write-info")
+                .arg(&c.info)
+                .arg("--annotate")
+                .arg(&c.annotated)
+                .args(["--annotate-all", "--annotate-min", "1"])
+                .arg(dat),
+        )?;
         Ok(c)
     }
 
@@ -85,17 +77,12 @@ impl RtlCoverage {
     /// [`read`]: RtlCoverage::read
     pub fn merge(runs: &[&RtlCoverage], dir: &Path) -> Result<RtlCoverage, String> {
         let dat = dir.join("coverage.dat");
-        let o = Command::new("verilator_coverage")
-            .arg("--write")
-            .arg(&dat)
-            .args(runs.iter().map(|r| &r.data))
-            .output()
-            .map_err(|e| format!("verilator_coverage: {e}"))?;
-        if !o.status.success() {
-            let err = String::from_utf8_lossy(&o.stderr);
-            let first = err.lines().next().unwrap_or("failed");
-            return Err(format!("verilator_coverage: {first}"));
-        }
+        tool(
+            Command::new("verilator_coverage")
+                .arg("--write")
+                .arg(&dat)
+                .args(runs.iter().map(|r| &r.data)),
+        )?;
         RtlCoverage::read(&dat, dir)
     }
 
@@ -132,6 +119,17 @@ impl std::fmt::Display for RtlCoverage {
         }
         write!(f, "; annotated sources in {}", self.annotated.display())
     }
+}
+
+/// Runs `verilator_coverage` as `c`; a failure is its first message.
+fn tool(c: &mut Command) -> Result<(), String> {
+    let o = c.output().map_err(|e| format!("verilator_coverage: {e}"))?;
+    if o.status.success() {
+        return Ok(());
+    }
+    let err = String::from_utf8_lossy(&o.stderr);
+    let first = err.lines().next().unwrap_or("failed");
+    Err(format!("verilator_coverage: {first}"))
 }
 
 /// The counts of `points` under the testbench's `dut`.
