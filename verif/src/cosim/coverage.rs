@@ -11,12 +11,13 @@ use std::process::Command;
 /// stimulus: an RTL line it never reached is a line the comparison never checked.
 #[derive(Clone, Debug, PartialEq)]
 pub struct RtlCoverage {
-    /// Blocks reached, of all.
-    pub lines: (usize, usize),
+    /// Blocks of statements (a process, an `if`'s branch, ...) reached, of all.
+    pub blocks: (usize, usize),
     /// Signal bits that toggled, of all.
     pub toggles: (usize, usize),
     /// The lines of the blocks never reached in any instance, by file name and line
-    /// (`file:line`), in order, each once (the blocks count each instance's).
+    /// (`file:line`), in the order of the files' paths, each once (the blocks count each
+    /// instance's).
     pub unreached: Vec<String>,
     /// Verilator's coverage data of the run (`coverage.dat`: `verilator_coverage` reads it,
     /// and merges several).
@@ -98,7 +99,7 @@ impl RtlCoverage {
 
 impl std::fmt::Display for RtlCoverage {
     fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
-        let (l, t) = (self.lines, self.toggles);
+        let (l, t) = (self.blocks, self.toggles);
         write!(
             f,
             "the RTL's coverage (Verilator): blocks {} of {} ({:.1} %), toggles {} of {} ({:.1} %)",
@@ -149,18 +150,7 @@ fn summary(points: &[Point]) -> RtlCoverage {
     let mut blocks: Vec<(&str, u32, &str, &str, bool)> = dut
         .iter()
         .filter(|p| !p.page.starts_with("v_toggle/"))
-        .map(|p| {
-            let f = p.file.as_str();
-            let name = Path::new(f).file_name().and_then(|n| n.to_str());
-            let name = name.unwrap_or(f);
-            (
-                name,
-                p.line,
-                p.column.as_str(),
-                p.what.as_str(),
-                p.count > 0,
-            )
-        })
+        .map(|p| (&*p.file, p.line, &*p.column, &*p.what, p.count > 0))
         .collect();
     blocks.sort();
     let mut unreached: Vec<(&str, u32)> = Vec::new();
@@ -169,10 +159,14 @@ fn summary(points: &[Point]) -> RtlCoverage {
             unreached.push((same[0].0, same[0].1));
         }
     }
+    let named = |(f, l): &(&str, u32)| {
+        let name = Path::new(f).file_name().and_then(|n| n.to_str());
+        format!("{}:{l}", name.unwrap_or(f))
+    };
     RtlCoverage {
-        lines: count(false),
+        blocks: count(false),
         toggles: count(true),
-        unreached: unreached.iter().map(|(f, l)| format!("{f}:{l}")).collect(),
+        unreached: unreached.iter().map(named).collect(),
         data: PathBuf::new(),
         info: PathBuf::new(),
         annotated: PathBuf::new(),
@@ -241,7 +235,7 @@ mod tests {
         let points: Vec<Point> = text.iter().map(|l| point(l).unwrap()).collect();
         assert_eq!(points[1].line, 9);
         let c = summary(&points);
-        assert_eq!(c.lines, (3, 8), "each instance's blocks");
+        assert_eq!(c.blocks, (3, 8), "each instance's blocks");
         assert_eq!(c.toggles, (1, 2));
         assert_eq!(
             c.unreached,
@@ -293,9 +287,9 @@ mod tests {
             RtlCoverage::read(&dir.join("coverage.dat"), &dir).unwrap()
         };
         let (a, b) = (run("a", [1, 0]), run("b", [0, 0]));
-        assert_eq!((a.lines, b.lines), ((1, 2), (0, 2)));
+        assert_eq!((a.blocks, b.blocks), ((1, 2), (0, 2)));
         let both = RtlCoverage::merge(&[&a, &b], t.path()).unwrap();
-        assert_eq!(both.lines, (1, 2));
+        assert_eq!(both.blocks, (1, 2));
         assert_eq!(both.unreached, ["u.v:4"]);
         assert!(t.path().join("coverage.info").is_file());
     }
