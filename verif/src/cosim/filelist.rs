@@ -1,5 +1,6 @@
 //! File lists: [`FileList`], read by texrtl for both simulators alike.
 
+use super::library::push_once;
 use super::Library;
 use std::path::{Path, PathBuf};
 use waves::output::shorten;
@@ -186,40 +187,20 @@ impl Reader {
     }
 
     fn include_dir(&mut self, base: Option<&Path>, word: &str) -> Result<(), String> {
-        let d = resolve(base, word);
-        if !d.is_dir() {
-            let d = shown(&d, word);
-            return Err(format!("include folder {d}: no such folder"));
-        }
-        if !self.list.include_dirs.contains(&d) {
-            self.list.include_dirs.push(d);
-        }
+        let d = existing(base, word, Path::is_dir, "include folder", "folder")?;
+        push_once(&mut self.list.include_dirs, d);
         Ok(())
     }
 
     fn library_dir(&mut self, base: Option<&Path>, word: &str) -> Result<(), String> {
-        let d = resolve(base, word);
-        if !d.is_dir() {
-            let d = shown(&d, word);
-            return Err(format!("library folder {d}: no such folder"));
-        }
-        self.list.library.extend(Library {
-            dirs: vec![d],
-            ..Library::default()
-        });
+        let d = existing(base, word, Path::is_dir, "library folder", "folder")?;
+        push_once(&mut self.list.library.dirs, d);
         Ok(())
     }
 
     fn library_file(&mut self, base: Option<&Path>, word: &str) -> Result<(), String> {
-        let f = resolve(base, word);
-        if !f.is_file() {
-            let f = shown(&f, word);
-            return Err(format!("library file {f}: no such Verilog file"));
-        }
-        self.list.library.extend(Library {
-            files: vec![f],
-            ..Library::default()
-        });
+        let f = existing(base, word, Path::is_file, "library file", "Verilog file")?;
+        push_once(&mut self.list.library.files, f);
         Ok(())
     }
 
@@ -229,10 +210,7 @@ impl Reader {
         if !e.chars().all(ok) {
             return Err(format!("+libext+{}: not a file name ending", shorten(e)));
         }
-        self.list.library.extend(Library {
-            exts: vec![e.to_string()],
-            ..Library::default()
-        });
+        push_once(&mut self.list.library.exts, e.to_string());
         Ok(())
     }
 
@@ -244,6 +222,22 @@ impl Reader {
         self.list.defines.push(m.to_string());
         Ok(())
     }
+}
+
+/// Where `word` leads from `base`, when it is what `is` asks (else "`what` PATH: no such
+/// `kind`").
+fn existing(
+    base: Option<&Path>,
+    word: &str,
+    is: fn(&Path) -> bool,
+    what: &str,
+    kind: &str,
+) -> Result<PathBuf, String> {
+    let p = resolve(base, word);
+    if is(&p) {
+        return Ok(p);
+    }
+    Err(format!("{what} {}: no such {kind}", shown(&p, word)))
 }
 
 /// A path for a message: where `word` led, or the word itself shortened when it is long or

@@ -49,16 +49,18 @@ impl Library {
 
     /// Adds `other`'s folders, files and extensions after this library's, each once.
     pub fn extend(&mut self, other: Library) {
-        fn add<T: PartialEq>(to: &mut Vec<T>, from: Vec<T>) {
-            for x in from {
-                if !to.contains(&x) {
-                    to.push(x);
-                }
-            }
-        }
-        add(&mut self.dirs, other.dirs);
-        add(&mut self.files, other.files);
-        add(&mut self.exts, other.exts);
+        other
+            .dirs
+            .into_iter()
+            .for_each(|d| push_once(&mut self.dirs, d));
+        other
+            .files
+            .into_iter()
+            .for_each(|f| push_once(&mut self.files, f));
+        other
+            .exts
+            .into_iter()
+            .for_each(|e| push_once(&mut self.exts, e));
     }
 
     /// The flags that give the library to `sim`, after the preprocessor's flags and a build
@@ -66,7 +68,7 @@ impl Library {
     /// folders itself); Icarus' `-y` for each include folder and library folder, `-l` and
     /// `-Y`.
     pub fn flags(&self, sim: Simulator, include_dirs: &[PathBuf]) -> Vec<String> {
-        let y = |d: &PathBuf| ["-y".to_string(), d.display().to_string()];
+        let y = |d: &PathBuf| ["-y".to_string(), shown(d)];
         match sim {
             Simulator::Verilator => {
                 let files = self.files.iter().flat_map(|f| ["-v".into(), shown(f)]);
@@ -117,6 +119,13 @@ impl Library {
             }
         }
         Ok(out)
+    }
+}
+
+/// Adds `x` to `v` unless it is there.
+pub(super) fn push_once<T: PartialEq>(v: &mut Vec<T>, x: T) {
+    if !v.contains(&x) {
+        v.push(x);
     }
 }
 

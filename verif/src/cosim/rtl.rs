@@ -179,6 +179,16 @@ pub(super) struct RtlRun<'a> {
     pub init_seed: Option<u64>,
 }
 
+impl RtlRun<'_> {
+    /// What Verilator's build adds for this run: the trace of a dump, coverage.
+    fn flavour(&self) -> verilator::Flavour {
+        verilator::Flavour {
+            trace: self.dumps,
+            coverage: self.coverage,
+        }
+    }
+}
+
 /// Runs `cmd`, turning a failure into the tool's first message (cut at 200 characters; it
 /// names the file and line).
 fn run_tool(cmd: &mut Command, what: &str) -> Result<(), String> {
@@ -231,12 +241,8 @@ fn binary(sim: Simulator, r: &RtlRun, kept: Option<(&Path, &str)>) -> Result<Pat
         Simulator::Verilator => {
             let library = r.library.flags(sim, &r.pre.include_dirs);
             let files = [r.pre.flags(), library, strings(r.sources)].concat();
-            let flavour = verilator::Flavour {
-                trace: r.dumps,
-                coverage: r.coverage,
-            };
             let mdir = r.dir.join("obj_dir");
-            verilator::build(&tb, &files, &mdir, flavour, &run_tool).map_err(named)?
+            verilator::build(&tb, &files, &mdir, r.flavour(), &run_tool).map_err(named)?
         }
         Simulator::Icarus => {
             let vvp = r.dir.join(file);
@@ -326,15 +332,8 @@ fn keys(sim: Simulator, r: &RtlRun) -> Result<Keys, String> {
     let text = std::fs::read_to_string(&tb).map_err(|e| format!("{}: {e}", tb.display()))?;
     let what = match sim {
         Simulator::Verilator => {
-            let flavour = verilator::Flavour {
-                trace: r.dumps,
-                coverage: r.coverage,
-            };
-            format!(
-                "verilator {}{}",
-                verilator::OPTIONS.join(" "),
-                flavour.options()
-            )
+            let options = verilator::OPTIONS.join(" ");
+            format!("verilator {options}{}", r.flavour().options())
         }
         Simulator::Icarus => "iverilog -g2012".to_string(),
     };
