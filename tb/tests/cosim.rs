@@ -636,8 +636,9 @@ fn check_twin(label: &str, u: &dyn CosimUnit, sim: Simulator, n: usize) -> Resul
     if let Some(m) = r.mismatch {
         return Err(format!("{label} in {}: {m}", sim.name()));
     }
-    let rb = waves::check::read_vcd(&r.vcd)?;
-    waves::check::check_gtkw(&r.vcd, &rb)?;
+    let vcd = r.vcd.as_ref().ok_or("no waveform")?;
+    let rb = waves::check::read_vcd(vcd)?;
+    waves::check::check_gtkw(vcd, &rb)?;
     let _ = std::fs::remove_dir_all(&d);
     Ok(())
 }

@@ -246,6 +246,7 @@ mod tests {
             only: Vec::new(),
             check_schedule: false,
             cosim: false,
+            simulators: Vec::new(),
             jobs: 2,
             seeds,
             job: None,

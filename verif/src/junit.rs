@@ -8,6 +8,7 @@
 //! (`verif/schema/junit.xsd`, checked in the tests): a case has no properties, so its job,
 //! seed and command are the lines of its `system-out`.
 
+use crate::cosim::Simulator;
 use crate::jobs::{job_label, job_seed, JobResult};
 use crate::project::Project;
 use crate::regress::{reproduce, Summary};
@@ -40,14 +41,22 @@ pub fn case_output(job: u64, seed: Seed, reproduce: &str) -> String {
 }
 
 /// The command that runs a check again alone: a co-simulation row `cosim/UNIT/SIM` as
-/// `cosim` with its cycles and the run's seed, the vectors as `regress --only vectors`.
+/// `cosim` with its cycles and seed (its first failing seed's, as its line says, else the
+/// run's), the vectors as `regress --only vectors`.
 pub(crate) fn check_command(program: &str, seed: Seed, row: &TbResult) -> String {
     let mut parts = row.name.split('/');
     match (parts.next(), parts.next(), parts.next()) {
-        (Some(crate::regress::COSIM), Some(unit), Some(sim)) => format!(
-            "{program} cosim --unit {unit} --sim {sim} --count {} --seed {seed}",
-            row.cycles
-        ),
+        (Some(crate::regress::COSIM), Some(unit), Some(sim)) => {
+            let said = row.mismatch_log.iter().find_map(|l| {
+                let (_, c) = l.split_once(crate::regress::AGAIN)?;
+                Some(c.to_string())
+            });
+            said.unwrap_or_else(|| {
+                let icarus = crate::cosim::Simulator::parse(sim) == Some(Simulator::Icarus);
+                let n = crate::regress::COSIM_CYCLES[usize::from(icarus)];
+                format!("{program} cosim --unit {unit} --sim {sim} --count {n} --seed {seed}")
+            })
+        }
         _ => format!("{program} regress --only {} --seed {seed}", row.name),
     }
 }
@@ -162,5 +171,21 @@ mod tests {
             Some("cycle 4: port y differs")
         );
         assert_eq!(text, format!("cycle 4: port y differs\nreproduce: {again}"));
+    }
+
+    /// A row of several seeds that fails at a later one reproduces with that seed's command,
+    /// not the run's; a row that passes names the run's, with one seed's cycles.
+    #[test]
+    fn a_co_simulation_row_reproduces_with_its_failing_seed() {
+        let mut r = TbResult::new("cosim/u/icarus", "");
+        r.cycles = 60_000;
+        let run = "p cosim --unit u --sim icarus --count 20000 --seed 0x0000000000000007";
+        assert_eq!(check_command("p", Seed(7), &r), run);
+        let again = "p cosim --unit u --sim icarus --count 20000 --seed 0x1234";
+        r.mismatch_log
+            .push("[seed #2] cycle 4: port y differs".into());
+        let said = format!("[seed #2] {}{again}", crate::regress::AGAIN);
+        r.mismatch_log.push(said);
+        assert_eq!(check_command("p", Seed(7), &r), again);
     }
 }

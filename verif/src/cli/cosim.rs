@@ -184,6 +184,7 @@ fn simulate(
     let options = cosim::RunOptions {
         internals: !a.no_internals,
         rtl_coverage: a.rtl_coverage,
+        waveform_on_difference_only: false,
     };
     let go = |unit: &dyn cosim::CosimUnit, stim: &[Vec<u64>], dir: &Path| {
         cosim::run_with_options(unit, sim, &[], stim, dir, options).map_err(CmdError::Input)
@@ -212,7 +213,12 @@ fn simulate(
 
 /// The run's one line: agreement, or the first difference (printed in full) as a failure.
 fn report(what: &str, r: &cosim::CosimResult) -> Result<String, CmdError> {
-    let view = r.vcd.with_extension("gtkw");
+    // `cosim` always writes the waveform (its options never leave it out).
+    let view = r
+        .vcd
+        .as_deref()
+        .unwrap_or(Path::new(""))
+        .with_extension("gtkw");
     if let Some(c) = &r.rtl_coverage {
         super::say(&format!("{c}\n"));
     }

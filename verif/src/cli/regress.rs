@@ -31,6 +31,7 @@ pub struct RegressArgs {
     list: bool,
     check_schedule: bool,
     no_cosim: bool,
+    sim: Vec<crate::cosim::Simulator>,
     pub(super) jobs: Option<usize>,
     seeds: u32,
     job: Option<u64>,
@@ -60,8 +61,9 @@ impl RegressArgs {
             flag("list", "List the testbenches with their configurations and what --count counts, and exit"),
             flag("check-schedule", "Run the kernel's schedule check (every cycle evaluated twice) in every testbench"),
             flag("no-cosim", "Skip the co-simulation of the Verilog twins (run by default when Verilator or Icarus is installed, as rows cosim/UNIT/SIMULATOR)"),
+            values("sim", "SIM", parse_simulator, "Co-simulate in this simulator only, verilator or icarus (repeatable; default: every one installed, and both in a shard, whose jobs must not depend on its machine)"),
             value("jobs", "JOBS", value_parser!(usize), "Configurations run at once, 1..=256 threads (default: the machine's cores); the results are the same for any number").short('j'),
-            value("seeds", "SEEDS", value_parser!(u32), "Run every configuration under this many seeds (the first is --seed's): seeds x configurations are the run's jobs, which --shard deals out").default_value("1"),
+            value("seeds", "SEEDS", value_parser!(u32), "Run every configuration, and every twin's co-simulation, under this many seeds (the first is --seed's): seeds x configurations, and seeds x twins x simulators, are the run's jobs, which --shard deals out").default_value("1"),
             value("job", "JOB", value_parser!(u64), "Run only this job, with its waveform: what a failing job's line in the report runs (no vectors, no co-simulation)"),
             path("junit", "FILE", "Also write the run's JUnit XML (one test case per job, with its seed and the command that reproduces it) for a CI server"),
             flag("require-numeric-coverage", "Fail a testbench whose named narrowings left a saturation, wrap or rounding tie never reached (unless the unit declares it unreachable); a sharded run decides at `merge`"),
@@ -87,6 +89,7 @@ impl RegressArgs {
             list: m.get_flag("list"),
             check_schedule: m.get_flag("check-schedule"),
             no_cosim: m.get_flag("no-cosim"),
+            sim: all(m, "sim"),
             jobs: one(m, "jobs"),
             seeds: given(m, "seeds"),
             job: one(m, "job"),
@@ -95,6 +98,10 @@ impl RegressArgs {
             rtl_coverage: m.get_flag("rtl-coverage"),
         }
     }
+}
+
+fn parse_simulator(s: &str) -> Result<crate::cosim::Simulator, String> {
+    crate::cosim::Simulator::parse(s).ok_or_else(|| "verilator or icarus".to_string())
 }
 
 fn parse_window(s: &str) -> Result<(u64, u64), String> {
@@ -166,6 +173,7 @@ pub fn run(project: &Project, a: RegressArgs) -> ExitCode {
         only: a.only,
         check_schedule: a.check_schedule,
         cosim: !a.no_cosim,
+        simulators: a.sim,
         jobs: a.jobs.unwrap_or_else(|| {
             std::thread::available_parallelism().map_or(1, std::num::NonZeroUsize::get)
         }),

@@ -659,8 +659,9 @@ pub struct CosimResult {
     pub mismatch: Option<Difference>,
     /// Differences counted over all cycles and ports.
     pub differences: u64,
-    /// The waveform holding the model, the RTL, a mismatch flag per port and the inputs.
-    pub vcd: PathBuf,
+    /// The waveform holding the model, the RTL, a mismatch flag per port and the inputs
+    /// (`None` when [`RunOptions::waveform_on_difference_only`] left it out).
+    pub vcd: Option<PathBuf>,
     /// After a difference in [`run_explained`]: which of the RTL's internals the waveform
     /// shows, or why it shows none.
     pub internals: Option<String>,
@@ -677,6 +678,9 @@ pub struct RunOptions {
     /// build is another (`--coverage-line --coverage-toggle`, its runtime compiled anew), and
     /// the run is always simulated, never taken from the cache.
     pub rtl_coverage: bool,
+    /// Write the waveform only when the RTL and the model differ: a regression's further
+    /// seeds, whose agreeing runs leave nothing to look at (their stimulus is the seed's).
+    pub waveform_on_difference_only: bool,
 }
 
 /// The first cycle and port where the RTL and the model part.
@@ -886,7 +890,8 @@ pub fn run_with_options(
         stim,
         internals: internals.as_ref().and_then(|r| r.as_ref().ok()),
     };
-    let vcd = shown.write(dir, &ins, &outs)?;
+    let wanted = found.0.is_some() || !options.waveform_on_difference_only;
+    let vcd = wanted.then(|| shown.write(dir, &ins, &outs)).transpose()?;
     Ok(CosimResult {
         cycles,
         mismatch: found.0,

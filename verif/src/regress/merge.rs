@@ -76,11 +76,12 @@ fn check_same_run(shards: &[(PathBuf, Summary)]) -> Result<(), String> {
         let same = s.seed == first.seed
             && s.seeds == first.seeds
             && s.count == first.count
-            && s.only == first.only;
+            && s.only == first.only
+            && s.simulators == first.simulators;
         if !same {
             return Err(format!(
-                "{}: shard {sh} of another run than {} (its seed, --seeds, --count or --only \
-                 differ)",
+                "{}: shard {sh} of another run than {} (its seed, --seeds, --count, --only or \
+                 --sim differ)",
                 p.display(),
                 first_path.display()
             ));
@@ -201,6 +202,8 @@ pub fn merge_shards(project: &Project, shards: &[(PathBuf, Summary)]) -> Result<
         ));
     }
     rows.extend(other_rows(reg, shards)?);
+    let after = jobs::count(reg, first.seeds, &selected);
+    rows.extend(super::cosim::merged_rows(project, shards, after)?);
     Ok(Summary {
         texrtl: first.texrtl.clone(),
         seed: first.seed.clone(),
@@ -212,15 +215,20 @@ pub fn merge_shards(project: &Project, shards: &[(PathBuf, Summary)]) -> Result<
         testbenches: rows,
         failing,
         jobs: Vec::new(),
+        simulators: Vec::new(),
+        cosim_jobs: Vec::new(),
     })
 }
 
-/// The rows that are not a testbench's (the vectors check, the co-simulations), in the order
-/// the shards have them, each concluded as a whole run's.
+/// The rows that are neither a testbench's nor a co-simulation's (the vectors check), in the
+/// order the shards have them, each concluded as a whole run's.
 fn other_rows(reg: &Registry, shards: &[(PathBuf, Summary)]) -> Result<Vec<TbResult>, String> {
     let mut rows: Vec<TbResult> = Vec::new();
     for (p, s) in shards {
-        for r in s.testbenches.iter().filter(|r| reg.get(&r.name).is_none()) {
+        // The co-simulation rows are made again from the jobs.
+        let cosim = |r: &&TbResult| r.name.starts_with(&format!("{}/", super::COSIM));
+        let others = s.testbenches.iter().filter(|r| reg.get(&r.name).is_none());
+        for r in others.filter(|r| !cosim(r)) {
             let mut r = r.clone();
             r.strip_conclusions();
             match rows.iter_mut().find(|m| m.name == r.name) {

@@ -20,7 +20,10 @@ pub const VECTORS: &str = "vectors";
 /// The prefix of the co-simulation rows (`cosim/<unit>/<simulator>`; `--only cosim`).
 pub const COSIM: &str = "cosim";
 
+mod cosim;
 mod merge;
+pub(crate) use cosim::AGAIN;
+pub use cosim::{cosim_seed, CosimJob, COSIM_CYCLES};
 pub use merge::{merge, merge_shards, parse_summary, read_summaries};
 
 /// `summary.json`: every result, the seed, the shard and the project's version.
@@ -51,6 +54,13 @@ pub struct Summary {
     /// A shard's jobs one by one, for the merge (not in a whole run's summary).
     #[serde(default, skip_serializing_if = "Vec::is_empty")]
     pub jobs: Vec<JobResult>,
+    /// A shard's simulators, whose co-simulation jobs the run has (not in a whole run's
+    /// summary).
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub simulators: Vec<String>,
+    /// A shard's co-simulation jobs one by one, for the merge (not in a whole run's summary).
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub cosim_jobs: Vec<CosimJob>,
 }
 
 fn one() -> u32 {
@@ -169,8 +179,12 @@ pub struct RegressConfig {
     pub only: Vec<String>,
     /// Run the kernel's schedule check on every cycle.
     pub check_schedule: bool,
-    /// Co-simulate every Verilog twin in every simulator that is installed.
+    /// Co-simulate every Verilog twin (each under each of the run's seeds, as jobs dealt to
+    /// shards with the testbenches').
     pub cosim: bool,
+    /// The simulators to co-simulate in (`--sim`); empty: every one installed for a whole
+    /// run, both for a shard (a shard's jobs must not depend on its machine).
+    pub simulators: Vec<Simulator>,
     /// Configurations run at once (threads); the results do not depend on it.
     pub jobs: usize,
     /// Seeds each configuration runs under: the run's jobs ([`crate::jobs`]).
@@ -204,6 +218,7 @@ impl RegressConfig {
             only: Vec::new(),
             check_schedule: false,
             cosim: true,
+            simulators: Vec::new(),
             jobs: std::thread::available_parallelism().map_or(1, std::num::NonZeroUsize::get),
             seeds: 1,
             job: None,
@@ -248,6 +263,7 @@ impl RegressConfig {
                 ));
             }
         }
+        self.validate_simulators()?;
         for o in &self.only {
             if reg.get(o).is_none() && o != VECTORS && o != COSIM {
                 return Err(format!(
@@ -257,6 +273,24 @@ impl RegressConfig {
             }
         }
         self.validate_jobs(reg)
+    }
+
+    /// `--sim`: each once, installed, and not with `--no-cosim`.
+    fn validate_simulators(&self) -> Result<(), String> {
+        let Some(first) = self.simulators.first() else {
+            return Ok(());
+        };
+        if !self.cosim {
+            return Err(format!("--sim {}: not with --no-cosim", first.name()));
+        }
+        for (k, s) in self.simulators.iter().enumerate() {
+            if self.simulators[..k].contains(s) {
+                return Err(format!("--sim {}: given twice", s.name()));
+            }
+            s.check_installed()
+                .map_err(|e| format!("--sim {}: {e}", s.name()))?;
+        }
+        Ok(())
     }
 
     /// `--seeds` and `--job`: in range, and a job is run alone.
@@ -292,7 +326,7 @@ impl RegressConfig {
         Ok(())
     }
 
-    fn selected(&self, name: &str) -> bool {
+    pub(crate) fn selected(&self, name: &str) -> bool {
         self.only.is_empty() || self.only.iter().any(|o| o == name)
     }
 }
@@ -388,9 +422,10 @@ pub fn regress(
     if let Some(dir) = dir.filter(|_| first && cfg.selected(VECTORS)) {
         results.push(vectors_row(project, dir));
     }
-    if cfg.cosim && first && cfg.selected(COSIM) {
-        results.extend(cosim_rows(project, cfg, progress)?);
-    }
+    let sims = cosim::simulators(cfg);
+    let after = jobs::count(reg, cfg.seeds, &|t| cfg.selected(t));
+    let cosim_jobs = cosim::run_owned(project, cfg, &sims, after, progress)?;
+    results.extend(cosim::rows(&cosim_jobs.iter().collect::<Vec<_>>())?);
     for r in &mut results {
         focus_on_mismatch(r);
         check_waveform(r, cfg.fst);
@@ -407,6 +442,12 @@ pub fn regress(
         testbenches: results,
         failing,
         jobs: kept,
+        simulators: if keep {
+            sims.iter().map(|s| s.name().to_string()).collect()
+        } else {
+            Vec::new()
+        },
+        cosim_jobs: if keep { cosim_jobs } else { Vec::new() },
     };
     let path = cfg.out.join("summary.json");
     let json = serde_json::to_vec_pretty(&summary).map_err(|e| e.to_string())?;
@@ -417,105 +458,6 @@ pub fn regress(
         write_output(j, xml.as_bytes()).map_err(|e| format!("--junit {}: {e}", j.display()))?;
     }
     Ok(summary)
-}
-
-/// Cycles each twin is co-simulated for in a regression: Verilator / Icarus.
-const COSIM_CYCLES: [usize; 2] = [100_000, 20_000];
-
-/// Every twin in every simulator installed, `cfg.jobs` at a time (builds and runs in
-/// parallel), in the table's order: Verilator's rows, then Icarus's, each in the project's.
-fn cosim_rows(
-    project: &Project,
-    cfg: &RegressConfig,
-    progress: &mut dyn FnMut(&str, &str),
-) -> Result<Vec<TbResult>, String> {
-    let sims = [Simulator::Verilator, Simulator::Icarus];
-    let rows: Vec<(Simulator, &dyn crate::cosim::CosimUnit)> = sims
-        .into_iter()
-        .filter(|s| s.check_installed().is_ok())
-        .flat_map(|s| project.twins().map(move |u| (s, u)))
-        .collect();
-    if rows.is_empty() {
-        return Ok(Vec::new());
-    }
-    progress(
-        COSIM,
-        &format!(
-            "{} twins and simulators, {} at a time",
-            rows.len(),
-            cfg.jobs
-        ),
-    );
-    let next = std::sync::atomic::AtomicUsize::new(0);
-    let done: Vec<std::sync::Mutex<Option<Result<TbResult, String>>>> =
-        rows.iter().map(|_| std::sync::Mutex::new(None)).collect();
-    std::thread::scope(|scope| {
-        for _ in 0..cfg.jobs.clamp(1, rows.len()) {
-            scope.spawn(|| loop {
-                let i = next.fetch_add(1, std::sync::atomic::Ordering::Relaxed);
-                let Some(&(sim, unit)) = rows.get(i) else {
-                    break;
-                };
-                let r = cosim_row(project.name(), unit, sim, cfg);
-                *done[i].lock().unwrap_or_else(|e| e.into_inner()) = Some(r);
-            });
-        }
-    });
-    done.into_iter()
-        .map(|m| {
-            let r = m.into_inner().unwrap_or_else(|e| e.into_inner());
-            r.unwrap_or_else(|| Err("a co-simulation row did not run".into()))
-        })
-        .collect()
-}
-
-/// A twin against its model as a row of the table: `cosim/<unit>/<simulator>`; a difference
-/// with the command that runs it again alone (`program cosim ...`), explained.
-fn cosim_row(
-    program: &str,
-    u: &dyn crate::cosim::CosimUnit,
-    sim: Simulator,
-    cfg: &RegressConfig,
-) -> Result<TbResult, String> {
-    let unit = u.name();
-    let name = format!("{COSIM}/{unit}/{}", sim.name());
-    let mut r = TbResult::new(
-        &name,
-        "the model against its Verilog twin, every output port on every cycle",
-    );
-    let n = COSIM_CYCLES[usize::from(sim == Simulator::Icarus)];
-    let dir = cfg.out.join(COSIM).join(format!("{unit}-{}", sim.name()));
-    let options = crate::cosim::RunOptions {
-        internals: false,
-        rtl_coverage: cfg.rtl_coverage && sim == Simulator::Verilator,
-    };
-    let stim = u.stimulus(cfg.seed, n);
-    let c = crate::cosim::run_with_options(u, sim, &[], &stim, &dir, options)?;
-    r.notes
-        .extend(c.rtl_coverage.as_ref().map(|c| c.to_string()));
-    r.transactions = c.cycles as u64;
-    r.cycles = c.cycles as u64;
-    r.mismatches = c.differences;
-    r.coverage_percent = 100.0;
-    if let Some(d) = c.mismatch {
-        r.mismatch_log.push(d.to_string());
-        let again = crate::junit::check_command(program, cfg.seed, &r);
-        r.mismatch_log.push(format!(
-            "again alone, the RTL's internals around the difference in its waveform: {again}"
-        ));
-    }
-    // The simulator's own VCD: with `--fst`, its FST is converted from it (the models' FSTs
-    // are written while simulating).
-    #[cfg(feature = "read")]
-    if cfg.fst {
-        let f = c.vcd.with_extension("fst");
-        if let Err(e) = waves::fst::vcd_to_fst(&c.vcd, &f) {
-            r.failures.push(format!("waveform: {e}"));
-        }
-    }
-    r.vcd = Some(c.vcd);
-    r.finish_with(false);
-    Ok(r)
 }
 
 /// The vectors check as a row of the table.

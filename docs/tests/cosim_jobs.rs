@@ -1,0 +1,157 @@
+//! A regression's co-simulations as jobs, on the guide's blend with a rare bug planted in its
+//! Verilog: each seed co-simulates its own stimulus, the row fails exactly for the seeds whose
+//! stimulus reaches the bug (predicted from the stimulus, not from the run), each failing
+//! seed's line names the command that reproduces it, and the run dealt to shards merges to
+//! the one machine's rows; a shard left out is named.
+
+use guide::blend::Blend;
+use std::path::{Path, PathBuf};
+use verif::cosim::{CosimUnit, Simulator, Twin};
+use verif::project::{Project, Unit};
+use verif::regress::{cosim_seed, merge_shards, regress, RegressConfig, Summary, COSIM_CYCLES};
+use verif::{Seed, Shard};
+
+/// The blend's Verilog with one product wrong: a = alpha = 200 (a valid input) gives an
+/// output one LSB high, two cycles later.
+fn broken_rtl(dir: &Path) -> PathBuf {
+    let good =
+        std::fs::read_to_string(Path::new(env!("CARGO_MANIFEST_DIR")).join("rtl/blend.v")).unwrap();
+    let wrong = "wire signed [17:0] product = (a == 8'd200 && alpha == 8'd200) ? full[17:0] + 18'sd256 : full[17:0];";
+    let bad = good.replace("wire signed [17:0] product = full[17:0];", wrong);
+    assert_ne!(bad, good, "the blend's product line moved");
+    let path = dir.join("blend_rare_bug.v");
+    std::fs::write(&path, bad).unwrap();
+    path
+}
+
+fn twin(rtl: PathBuf) -> impl CosimUnit {
+    let drive = |d: &mut Blend, v: &[u64]| {
+        d.valid_in.set_bits(v[0]);
+        d.a.set_bits(v[1]);
+        d.b.set_bits(v[2]);
+        d.alpha.set_bits(v[3]);
+    };
+    Twin::with_drive(Blend::default, drive).sources([rtl])
+}
+
+fn broken_project(rtl: PathBuf) -> Project {
+    let unit = Unit::new("blend", "a two-stage alpha blend, a rare bug planted").twin(twin(rtl));
+    Project::new("blend", env!("CARGO_PKG_VERSION")).unit(unit)
+}
+
+/// Whether a stimulus reaches the bug where the comparison sees it: a valid input with
+/// a = alpha = 200 after reset, at least two cycles before the end.
+fn reaches_the_bug(unit: &dyn CosimUnit, seed: Seed) -> bool {
+    let n = COSIM_CYCLES[0];
+    let stim = unit.stimulus(seed, n);
+    let resets = verif::cosim::reset_cycles(unit);
+    (resets..n - 2).any(|c| stim[c][0] == 1 && stim[c][1] == 200 && stim[c][3] == 200)
+}
+
+fn config(out: PathBuf, seed: Seed, seeds: u32) -> RegressConfig {
+    let mut cfg = RegressConfig::new(out);
+    cfg.seed = seed;
+    cfg.seeds = seeds;
+    cfg.vcd = false;
+    cfg.only = vec!["cosim".into()];
+    cfg.simulators = vec![Simulator::Verilator];
+    cfg.jobs = 2;
+    cfg
+}
+
+fn run(p: &Project, cfg: &RegressConfig) -> Summary {
+    std::fs::create_dir_all(&cfg.out).unwrap();
+    regress(p, cfg, &mut |_, _| {}).unwrap()
+}
+
+/// The rows as JSON, without their waveforms' paths (each run writes into its own folder).
+fn rows(s: &Summary) -> String {
+    let mut rows = s.testbenches.clone();
+    rows.iter_mut().for_each(|r| r.vcd = None);
+    serde_json::to_string(&rows).unwrap()
+}
+
+const SEEDS: u32 = 6;
+
+#[test]
+fn each_seed_co_simulates_its_own_stimulus_and_a_farm_merges_to_the_one_machine() {
+    if Simulator::Verilator.check_installed().is_err() {
+        eprintln!("note: Verilator is not installed; the co-simulation jobs were not run");
+        return;
+    }
+    let out = std::env::temp_dir().join(format!("guide-cosim-jobs-{}", std::process::id()));
+    let _ = std::fs::remove_dir_all(&out);
+    std::fs::create_dir_all(&out).unwrap();
+    let p = broken_project(broken_rtl(&out));
+    let unit = p.twins().next().unwrap();
+    // A run seed whose seeds split: some reach the bug, some do not.
+    let hits = |seed: Seed| -> Vec<u32> {
+        (0..SEEDS)
+            .filter(|&r| reaches_the_bug(unit, cosim_seed(seed, r)))
+            .collect()
+    };
+    let seed = (1..200u64)
+        .map(Seed)
+        .find(|&s| !hits(s).is_empty() && hits(s).len() < SEEDS as usize && !hits(s).contains(&0))
+        .expect("a run seed whose later seeds alone reach the bug");
+    let expected = hits(seed);
+
+    let whole = run(&p, &config(out.join("whole"), seed, SEEDS));
+    let row = &whole.testbenches[0];
+    assert_eq!(row.name, "cosim/blend/verilator");
+    assert_eq!(row.cycles, u64::from(SEEDS) * COSIM_CYCLES[0] as u64);
+    assert!(!row.passed, "seeds {expected:?} reach the bug");
+    for r in 1..SEEDS {
+        let tag = format!("[seed #{r}] ");
+        let said = row.mismatch_log.iter().any(|l| l.starts_with(&tag));
+        assert_eq!(
+            said,
+            expected.contains(&r),
+            "seed #{r}: {:#?}",
+            row.mismatch_log
+        );
+    }
+    // The first failing seed's command reproduces it: its seed is that seed's stimulus.
+    let first = expected[0];
+    let again = format!(
+        "blend cosim --unit blend --sim verilator --count {} --seed {}",
+        COSIM_CYCLES[0],
+        cosim_seed(seed, first)
+    );
+    assert!(
+        row.mismatch_log.iter().any(|l| l.ends_with(&again)),
+        "{:#?}",
+        row.mismatch_log
+    );
+    let folder = |r: u32| out.join(format!("whole/cosim/blend-verilator-seed{r}"));
+    assert!(
+        folder(first).join("blend_cosim.vcd").is_file(),
+        "a failing seed keeps its waveform"
+    );
+    let passing = (1..SEEDS).find(|r| !expected.contains(r)).unwrap();
+    assert!(
+        !folder(passing).exists(),
+        "a later seed that agrees leaves no folder"
+    );
+
+    // Dealt to three shards, as a farm runs it: the same rows; a shard left out is named.
+    let mut shards = Vec::new();
+    for i in 1..=3 {
+        let mut c = config(out.join(format!("shard{i}")), seed, SEEDS);
+        c.shard = Shard::parse(&format!("{i}/3")).unwrap();
+        let s = run(&p, &c);
+        assert_eq!(
+            s.cosim_jobs.len(),
+            2,
+            "shard {i}: six jobs dealt over three shards"
+        );
+        shards.push((c.out.join("summary.json"), s));
+    }
+    let merged = merge_shards(&p, &shards).unwrap();
+    assert_eq!(rows(&merged), rows(&whole));
+    assert_eq!(merged.passed, whole.passed);
+    shards.remove(1);
+    let e = merge_shards(&p, &shards).err().unwrap();
+    assert!(e.contains("shard 2/3 is missing"), "{e}");
+    std::fs::remove_dir_all(&out).unwrap();
+}

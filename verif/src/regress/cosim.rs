@@ -1,0 +1,298 @@
+//! A regression's co-simulations as jobs. Each twin is co-simulated in each of the run's
+//! simulators under each of its `--seeds` seeds: one job each, listed after the testbenches'
+//! jobs (seed by seed, simulator by simulator, twin by twin) and dealt to shards with them,
+//! so a farm co-simulates as one machine does and its merge is that machine's summary.
+//!
+//! A job's stimulus is the twin's own ([`crate::cosim::CosimUnit::stimulus`]) from the run's
+//! seed for the first seed and from [`cosim_seed`] for the others; its row,
+//! `cosim/<unit>/<simulator>`, adds up its jobs, the later seeds' lines tagged `[seed #r]`.
+//! The first seed's job writes its waveform as a testbench's traced configuration does
+//! (unless `--no-vcd`); a later seed's only when it differs, and a later seed that agrees
+//! leaves no folder: its seed makes it again.
+
+use super::{RegressConfig, Summary, COSIM};
+use crate::cosim::{CosimUnit, RunOptions, Simulator};
+use crate::project::Project;
+use crate::{Seed, TbResult};
+use serde::{Deserialize, Serialize};
+use std::collections::BTreeMap;
+use std::path::{Path, PathBuf};
+use std::sync::atomic::{AtomicUsize, Ordering};
+use std::sync::Mutex;
+use waves::output::shorten;
+
+/// Cycles each twin is co-simulated for in a regression: Verilator / Icarus.
+pub const COSIM_CYCLES: [usize; 2] = [100_000, 20_000];
+
+/// What a failing co-simulation row says before the command that runs it again alone.
+pub(crate) const AGAIN: &str =
+    "again alone, the RTL's internals around the difference in its waveform: ";
+
+/// One co-simulation job's result, as a shard keeps it for the merge.
+#[derive(Clone, Debug, Serialize, Deserialize)]
+pub struct CosimJob {
+    /// Its row, `cosim/<unit>/<simulator>`.
+    pub row: String,
+    /// Which of the run's seeds, from 0.
+    pub repeat: u32,
+    /// What it found (its lines not yet tagged with its seed).
+    pub result: TbResult,
+    /// Seconds it ran (not part of any result).
+    #[serde(default)]
+    pub seconds: f64,
+}
+
+/// One job of the run's co-simulation plan.
+#[derive(Clone, Copy)]
+pub(super) struct Planned<'p> {
+    pub(super) sim: Simulator,
+    pub(super) unit: &'p dyn CosimUnit,
+    pub(super) repeat: u32,
+}
+
+impl Planned<'_> {
+    pub(super) fn row(&self) -> String {
+        row_name(self.unit.name(), self.sim)
+    }
+}
+
+fn row_name(unit: &str, sim: Simulator) -> String {
+    format!("{COSIM}/{unit}/{}", sim.name())
+}
+
+/// The stimulus seed of seed #`repeat` of every twin in a run seeded `seed`: the run's own
+/// for the first, derived from it for the others.
+pub fn cosim_seed(seed: Seed, repeat: u32) -> Seed {
+    if repeat == 0 {
+        seed
+    } else {
+        seed.derive(u64::from(repeat))
+    }
+}
+
+/// The simulators the run co-simulates in (none without co-simulation): those `--sim` names,
+/// else every one installed for a whole run and both for a shard, whose jobs must be every
+/// shard's alike (a machine without one fails those jobs, saying so).
+pub(super) fn simulators(cfg: &RegressConfig) -> Vec<Simulator> {
+    if !cfg.cosim || cfg.job.is_some() || !cfg.selected(COSIM) {
+        return Vec::new();
+    }
+    if !cfg.simulators.is_empty() {
+        return cfg.simulators.clone();
+    }
+    let both = [Simulator::Verilator, Simulator::Icarus];
+    let whole = cfg.shard.is_all();
+    both.into_iter()
+        .filter(|s| !whole || s.check_installed().is_ok())
+        .collect()
+}
+
+/// The plan: seed by seed, simulator by simulator, twin by twin in the project's order.
+pub(super) fn plan<'p>(project: &'p Project, sims: &[Simulator], seeds: u32) -> Vec<Planned<'p>> {
+    let mut out = Vec::new();
+    for repeat in 0..seeds {
+        for &sim in sims {
+            out.extend(project.twins().map(|unit| Planned { sim, unit, repeat }));
+        }
+    }
+    out
+}
+
+/// Runs the jobs of the plan that the run's shard owns, `cfg.jobs` at a time; `first` is the
+/// first job's place in the run's job list (after the testbenches' jobs). In plan order.
+pub(super) fn run_owned(
+    project: &Project,
+    cfg: &RegressConfig,
+    sims: &[Simulator],
+    first: u64,
+    progress: &mut dyn FnMut(&str, &str),
+) -> Result<Vec<CosimJob>, String> {
+    let mine: Vec<Planned> = plan(project, sims, cfg.seeds)
+        .into_iter()
+        .enumerate()
+        .filter(|(k, _)| cfg.shard.owns(first + *k as u64))
+        .map(|(_, p)| p)
+        .collect();
+    if mine.is_empty() {
+        return Ok(Vec::new());
+    }
+    progress(
+        COSIM,
+        &format!("{} co-simulations, {} at a time", mine.len(), cfg.jobs),
+    );
+    let next = AtomicUsize::new(0);
+    let done: Vec<Mutex<Option<Result<CosimJob, String>>>> =
+        mine.iter().map(|_| Mutex::new(None)).collect();
+    std::thread::scope(|scope| {
+        for _ in 0..cfg.jobs.clamp(1, mine.len()) {
+            scope.spawn(|| loop {
+                let i = next.fetch_add(1, Ordering::Relaxed);
+                let Some(p) = mine.get(i) else { break };
+                let t = std::time::Instant::now();
+                let r = job(project.name(), p, cfg).map(|result| CosimJob {
+                    row: p.row(),
+                    repeat: p.repeat,
+                    result,
+                    seconds: t.elapsed().as_secs_f64(),
+                });
+                *done[i].lock().unwrap_or_else(|e| e.into_inner()) = Some(r);
+            });
+        }
+    });
+    done.into_iter()
+        .map(|m| {
+            let r = m.into_inner().unwrap_or_else(|e| e.into_inner());
+            r.unwrap_or_else(|| Err("a co-simulation job did not run".into()))
+        })
+        .collect()
+}
+
+/// One job: its twin against its model, every output port on every cycle; a difference with
+/// the command that runs it again alone (`program cosim ...`), explained.
+fn job(program: &str, p: &Planned, cfg: &RegressConfig) -> Result<TbResult, String> {
+    let (unit, sim) = (p.unit.name(), p.sim);
+    let mut r = TbResult::new(
+        &p.row(),
+        "the model against its Verilog twin, every output port on every cycle",
+    );
+    if let Err(e) = sim.check_installed() {
+        r.failures
+            .push(format!("{e}; or leave it out with --sim or --no-cosim"));
+        r.finish_with(false);
+        return Ok(r);
+    }
+    let n = COSIM_CYCLES[usize::from(sim == Simulator::Icarus)];
+    let mut folder = format!("{unit}-{}", sim.name());
+    if p.repeat > 0 {
+        folder.push_str(&format!("-seed{}", p.repeat));
+    }
+    let dir = cfg.out.join(COSIM).join(folder);
+    let options = RunOptions {
+        internals: false,
+        rtl_coverage: cfg.rtl_coverage && sim == Simulator::Verilator,
+        waveform_on_difference_only: p.repeat > 0 || !cfg.vcd,
+    };
+    let seed = cosim_seed(cfg.seed, p.repeat);
+    let stim = p.unit.stimulus(seed, n);
+    let c = crate::cosim::run_with_options(p.unit, sim, &[], &stim, &dir, options)?;
+    r.notes
+        .extend(c.rtl_coverage.as_ref().map(|c| c.to_string()));
+    r.transactions = c.cycles as u64;
+    r.cycles = c.cycles as u64;
+    r.mismatches = c.differences;
+    r.coverage_percent = 100.0;
+    if let Some(d) = c.mismatch {
+        r.mismatch_log.push(d.to_string());
+        let again = format!(
+            "{program} cosim --unit {unit} --sim {} --count {n} --seed {seed}",
+            sim.name()
+        );
+        r.mismatch_log.push(format!("{AGAIN}{again}"));
+    }
+    // The simulator's own VCD: with `--fst`, its FST is converted from it (the models' FSTs
+    // are written while simulating).
+    #[cfg(feature = "read")]
+    if let Some(vcd) = c.vcd.as_ref().filter(|_| cfg.fst) {
+        if let Err(e) = waves::fst::vcd_to_fst(vcd, &vcd.with_extension("fst")) {
+            r.failures.push(format!("waveform: {e}"));
+        }
+    }
+    r.vcd = c.vcd;
+    r.finish_with(false);
+    if p.repeat > 0 && r.passed {
+        // Nothing in it to look at: its seed makes it again.
+        let _ = std::fs::remove_dir_all(&dir);
+    }
+    Ok(r)
+}
+
+/// The rows of `jobs` (in plan order): one per twin and simulator, in the order of their
+/// first jobs, adding up its seeds' jobs, a later seed's lines tagged with it. A failing
+/// row's waveform is its first failing job's.
+pub(super) fn rows(jobs: &[&CosimJob]) -> Result<Vec<TbResult>, String> {
+    let mut rows: Vec<TbResult> = Vec::new();
+    for j in jobs {
+        let mut r = j.result.clone();
+        if j.repeat > 0 {
+            let tag = |l: &mut String| *l = format!("[seed #{}] {l}", j.repeat);
+            r.mismatch_log.iter_mut().for_each(tag);
+            r.failures.iter_mut().for_each(tag);
+            r.notes.iter_mut().for_each(tag);
+        }
+        match rows.iter_mut().find(|m| m.name == r.name) {
+            Some(m) => {
+                if m.passed && !r.passed && r.vcd.is_some() {
+                    m.vcd = r.vcd.take();
+                }
+                m.absorb(&r, None).map_err(|e| format!("{}: {e}", r.name))?;
+                m.finish_with(false);
+            }
+            None => rows.push(r),
+        }
+    }
+    Ok(rows)
+}
+
+/// The co-simulation rows of a merge of `shards` (the run's shards, checked alike): every job
+/// of the plan once, the first missing named by its shard, then [`rows`].
+pub(super) fn merged_rows(
+    project: &Project,
+    shards: &[(PathBuf, Summary)],
+    after: u64,
+) -> Result<Vec<TbResult>, String> {
+    let (first_path, first) = &shards[0];
+    let sims: Vec<Simulator> = (first.simulators.iter())
+        .map(|n| {
+            Simulator::parse(n)
+                .ok_or_else(|| format!("{}: simulator '{}'", first_path.display(), shorten(n)))
+        })
+        .collect::<Result<_, _>>()?;
+    let plan = plan(project, &sims, first.seeds);
+    let mut have: BTreeMap<(String, u32), (&Path, &CosimJob)> = BTreeMap::new();
+    for (p, s) in shards {
+        for j in &s.cosim_jobs {
+            let key = (j.row.clone(), j.repeat);
+            if !plan.iter().any(|q| (q.row(), q.repeat) == key) {
+                return Err(format!(
+                    "{}: co-simulation {} seed #{} is not one of this run's jobs",
+                    p.display(),
+                    shorten(&j.row),
+                    j.repeat
+                ));
+            }
+            if let Some((q, _)) = have.insert(key, (p, j)) {
+                return Err(format!(
+                    "{}: co-simulation {} seed #{} is in {} too",
+                    p.display(),
+                    j.row,
+                    j.repeat,
+                    q.display()
+                ));
+            }
+        }
+    }
+    let mut ordered = Vec::new();
+    for (k, q) in plan.iter().enumerate() {
+        match have.get(&(q.row(), q.repeat)) {
+            Some((_, j)) => ordered.push(*j),
+            None => return Err(missing(shards, after + k as u64, q)),
+        }
+    }
+    rows(&ordered)
+}
+
+/// A merge's message for plan job `q`, at `position` in the run's job list, in no summary.
+fn missing(shards: &[(PathBuf, Summary)], position: u64, q: &Planned) -> String {
+    let what = format!("{} seed #{}", q.row(), q.repeat);
+    let counts: Vec<u32> = (shards.iter())
+        .filter_map(|(_, s)| s.shard.as_deref().and_then(|x| crate::Shard::parse(x).ok()))
+        .map(|s| s.count)
+        .collect();
+    match counts.first() {
+        Some(&n) if counts.iter().all(|&c| c == n) => format!(
+            "merge: shard {}/{n} is missing (its co-simulation {what})",
+            position % u64::from(n) + 1
+        ),
+        _ => format!("merge: co-simulation {what} is in no summary"),
+    }
+}
