@@ -137,7 +137,7 @@ fn a_task_to_cancel(c: &Cluster, array: &str) -> String {
     panic!("no task of {array} was queued or ran within a minute");
 }
 
-const OPTIONS: [&str; 4] = ["--seeds", "2", "--count", "20"];
+const OPTIONS: [&str; 5] = ["--seeds", "2", "--count", "20", "--no-cosim"];
 
 #[test]
 #[ignore = "slow (a Slurm cluster started and stopped): cargo test -- --ignored, as .ci/run does"]
@@ -149,7 +149,7 @@ fn a_slurm_array_merges_to_the_single_machine_run_and_names_a_cancelled_task() {
     let texrtl = env!("CARGO_BIN_EXE_texrtl");
     let whole = d.join("whole");
     let o = Command::new(texrtl)
-        .args(["regress", "--no-vcd", "--no-cosim", "-j", "1"])
+        .args(["regress", "--no-vcd", "-j", "1"])
         .args(OPTIONS)
         .arg("--out")
         .arg(&whole)
@@ -236,10 +236,10 @@ fn a_failing_seed_of_a_2000_job_farm_is_reproduced_by_its_line_in_the_report() {
     let program = crate_with_a_rare_bug(&d);
     // 1,000 seeds x 2 configurations = 2,000 jobs, over TEXRTL_FARM_TASKS array tasks.
     let tasks = std::env::var("TEXRTL_FARM_TASKS").unwrap_or_else(|_| "40".into());
-    let options = ["--seeds", "1000", "--count", "50"];
+    let options = ["--seeds", "1000", "--count", "50", "--no-cosim"];
     let t = Instant::now();
     let o = Command::new(&program)
-        .args(["regress", "--no-vcd", "--no-cosim", "-j", "1"])
+        .args(["regress", "--no-vcd", "-j", "1"])
         .args(options)
         .arg("--out")
         .arg(d.join("one"))
@@ -295,8 +295,57 @@ fn a_failing_seed_of_a_2000_job_farm_is_reproduced_by_its_line_in_the_report() {
     );
     assert!(junit.contains(&head), "{head}: {}", &junit[..300]);
     reproduce(&program, &d, line, failing[0]["first"].as_str().unwrap());
+    co_simulations_in_a_farm(&c, &program, &d);
     drop(c);
     let _ = std::fs::remove_dir_all(&d);
+}
+
+/// The twin co-simulated under three seeds in each simulator installed, as one process and
+/// as a three-task array: the same rows (but for the folders of their waveforms).
+fn co_simulations_in_a_farm(c: &Cluster, program: &Path, d: &Path) {
+    let sims: Vec<&str> = [("verilator", "verilator"), ("icarus", "iverilog")]
+        .into_iter()
+        .filter(|(_, exe)| Command::new(exe).arg("-V").output().is_ok())
+        .map(|(s, _)| s)
+        .collect();
+    if sims.is_empty() {
+        return;
+    }
+    let mut options = vec!["--only", "cosim", "--seeds", "3"];
+    options.extend(sims.iter().flat_map(|s| ["--sim", s]));
+    let o = Command::new(program)
+        .args(["regress", "--no-vcd", "-j", "1"])
+        .args(&options)
+        .arg("--out")
+        .arg(d.join("cosim-one"))
+        .current_dir(d)
+        .output()
+        .unwrap();
+    let one = o.status.code();
+    let farm_dir = d.join("cosim-farm");
+    let o = c
+        .cmd(script("farm"))
+        .arg("--wait")
+        .arg(program)
+        .arg(&farm_dir)
+        .arg("3")
+        .args(&options)
+        .output()
+        .unwrap();
+    assert_eq!(o.status.code(), one, "farm: {}", text(&o));
+    let rows = |p: PathBuf| {
+        let s: serde_json::Value = serde_json::from_slice(&std::fs::read(p).unwrap()).unwrap();
+        let mut rows = s["testbenches"].as_array().unwrap().clone();
+        for r in &mut rows {
+            let r = r.as_object_mut().unwrap();
+            r.remove("vcd");
+            r.remove("seconds");
+        }
+        rows
+    };
+    let merged = rows(farm_dir.join("merged/summary.json"));
+    assert_eq!(merged.len(), sims.len(), "a row per simulator");
+    assert_eq!(merged, rows(d.join("cosim-one/summary.json")));
 }
 
 /// Runs the report's command (its first word is the program) and checks that it fails the

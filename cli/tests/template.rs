@@ -1,7 +1,8 @@
 //! `texrtl new`: the crate it writes builds outside texrtl's workspace and runs as a user runs
 //! it: its own `cargo test` (the testbench, the kept vectors, the twin in Verilator and Icarus
 //! and an injected one-bit bug found at the predicted cycle and port) and its main job (the
-//! regression with report and co-simulation rows), sharded and merged equal to one run.
+//! regression with report and co-simulation rows), sharded (co-simulations too) and merged
+//! equal to one run.
 
 use std::path::{Path, PathBuf};
 use std::process::Command;
@@ -62,45 +63,38 @@ fn a_new_crate_builds_tests_and_regresses_outside_the_workspace() {
         text.contains("rop_blend ") && text.contains("PASS"),
         "{text}"
     );
+    let mut installed = Vec::new();
     for sim in ["verilator", "icarus"] {
-        let installed = Command::new(if sim == "icarus" { "iverilog" } else { sim })
+        let here = Command::new(if sim == "icarus" { "iverilog" } else { sim })
             .arg("-V")
             .output()
             .is_ok();
         assert_eq!(
             text.contains(&format!("cosim/rop_blend/{sim}")),
-            installed,
+            here,
             "{text}"
         );
+        installed.extend(here.then_some(["--sim", sim]));
     }
     assert!(dir.join("out/whole/report.md").is_file());
     assert!(dir
         .join("out/whole/rop_blend_error_histogram.svg")
         .is_file());
+    // Two shards, each with its share of the co-simulation jobs, merge to the whole run.
+    let no_cosim = ["--no-cosim"];
+    let sims: Vec<&str> = match installed.is_empty() {
+        true => no_cosim.to_vec(),
+        false => installed.concat(),
+    };
     for (i, out) in [(1, "out/s1"), (2, "out/s2")] {
         let shard = format!("{i}/2");
-        let (ok, text) = cargo(
-            &dir,
-            &target,
-            &[
-                "run",
-                "--",
-                "regress",
-                "--no-cosim",
-                "--shard",
-                &shard,
-                "--out",
-                out,
-            ],
-        );
+        let args = [
+            &["run", "--", "regress", "--shard", &shard, "--out", out],
+            &sims[..],
+        ];
+        let (ok, text) = cargo(&dir, &target, &args.concat());
         assert!(ok, "{text}");
     }
-    let (ok, text) = cargo(
-        &dir,
-        &target,
-        &["run", "--", "regress", "--no-cosim", "--out", "out/one"],
-    );
-    assert!(ok, "{text}");
     let merge = [
         "run",
         "--",
@@ -112,10 +106,10 @@ fn a_new_crate_builds_tests_and_regresses_outside_the_workspace() {
     ];
     let (ok, text) = cargo(&dir, &target, &merge);
     assert!(ok, "{text}");
-    assert_eq!(
-        summary_without_times(&dir.join("out/merged.json")),
-        summary_without_times(&dir.join("out/one/summary.json"))
-    );
+    let whole = summary_without_times(&dir.join("out/whole/summary.json"));
+    let merged = summary_without_times(&dir.join("out/merged.json"));
+    let rows = |s: &serde_json::Value| s["testbenches"].clone();
+    assert_eq!(rows(&merged), rows(&whole));
     let (ok, text) = cargo(&dir, &target, &["run", "--", "vectors", "--check"]);
     assert!(ok && text.contains("every row equal"), "{text}");
     broken_twin_is_explained(&dir, &target);
