@@ -248,11 +248,13 @@ pub(super) fn merged_rows(
         })
         .collect::<Result<_, _>>()?;
     let plan = plan(project, &sims, first.seeds);
+    let keys: Vec<(String, u32)> = plan.iter().map(|q| (q.row(), q.repeat)).collect();
+    let ours: std::collections::BTreeSet<&(String, u32)> = keys.iter().collect();
     let mut have: BTreeMap<(String, u32), (&Path, &CosimJob)> = BTreeMap::new();
     for (p, s) in shards {
         for j in &s.cosim_jobs {
             let key = (j.row.clone(), j.repeat);
-            if !plan.iter().any(|q| (q.row(), q.repeat) == key) {
+            if !ours.contains(&key) {
                 return Err(format!(
                     "{}: co-simulation {} seed #{} is not one of this run's jobs",
                     p.display(),
@@ -272,8 +274,8 @@ pub(super) fn merged_rows(
         }
     }
     let mut ordered = Vec::new();
-    for (k, q) in plan.iter().enumerate() {
-        match have.get(&(q.row(), q.repeat)) {
+    for (k, (q, key)) in plan.iter().zip(&keys).enumerate() {
+        match have.get(key) {
             Some((_, j)) => ordered.push(*j),
             None => return Err(missing(shards, after + k as u64, q)),
         }
