@@ -46,17 +46,30 @@ impl RtlCoverage {
     /// Blocks never reached named in the summary line.
     pub const SHOWN: usize = 8;
 
-    /// Reads `dat` (written by the run in `dir`) and has `verilator_coverage` write its lcov
-    /// file and annotated sources beside it.
+    /// Reads `dat` (written by the run in `dir`), leaves in it only the points under the
+    /// testbench's `dut`, and has `verilator_coverage` write its lcov file and annotated
+    /// sources into `dir` (made when it is not there). (The testbench's points name the
+    /// testbench generated in the folder the build was made in, which a cached build's run
+    /// need not have.)
     pub fn read(dat: &Path, dir: &Path) -> Result<RtlCoverage, String> {
         let text = std::fs::read_to_string(dat).map_err(|e| format!("{}: {e}", dat.display()))?;
-        let points: Vec<Point> = text
-            .lines()
-            .filter(|l| l.starts_with("C '"))
-            .map(point)
-            .collect::<Result<_, _>>()
-            .map_err(|e| format!("{}: {e}", dat.display()))?;
+        let (mut kept, mut points) = (String::with_capacity(text.len()), Vec::new());
+        for l in text.lines() {
+            if l.starts_with("C '") {
+                let p = point(l).map_err(|e| format!("{}: {e}", dat.display()))?;
+                if !p.in_dut() {
+                    continue;
+                }
+                points.push(p);
+            }
+            kept.push_str(l);
+            kept.push('\n');
+        }
+        if kept != text {
+            std::fs::write(dat, kept).map_err(|e| format!("{}: {e}", dat.display()))?;
+        }
         let mut c = summary(&points);
+        std::fs::create_dir_all(dir).map_err(|e| format!("{}: {e}", dir.display()))?;
         c.data = dat.to_path_buf();
         (c.info, c.annotated) = (dir.join("coverage.info"), dir.join("coverage_annotated"));
         tool(
@@ -77,12 +90,21 @@ impl RtlCoverage {
     ///
     /// [`read`]: RtlCoverage::read
     pub fn merge(runs: &[&RtlCoverage], dir: &Path) -> Result<RtlCoverage, String> {
+        let data: Vec<PathBuf> = runs.iter().map(|r| r.data.clone()).collect();
+        RtlCoverage::merge_files(&data, dir)
+    }
+
+    /// [`merge`] of runs' `coverage.dat` files, into `dir` (made when it is not there).
+    ///
+    /// [`merge`]: RtlCoverage::merge
+    pub fn merge_files(data: &[PathBuf], dir: &Path) -> Result<RtlCoverage, String> {
+        std::fs::create_dir_all(dir).map_err(|e| format!("{}: {e}", dir.display()))?;
         let dat = dir.join("coverage.dat");
         tool(
             Command::new("verilator_coverage")
                 .arg("--write")
                 .arg(&dat)
-                .args(runs.iter().map(|r| &r.data)),
+                .args(data),
         )?;
         RtlCoverage::read(&dat, dir)
     }
@@ -97,11 +119,12 @@ impl RtlCoverage {
     }
 }
 
-impl std::fmt::Display for RtlCoverage {
-    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+impl RtlCoverage {
+    /// The figures of the line it prints, without where its files are: blocks, toggles, the
+    /// first lines never reached.
+    pub fn figures(&self) -> String {
         let (l, t) = (self.blocks, self.toggles);
-        write!(
-            f,
+        let mut s = format!(
             "the RTL's coverage (Verilator): blocks {} of {} ({:.1} %), toggles {} of {} ({:.1} %)",
             l.0,
             l.1,
@@ -109,16 +132,27 @@ impl std::fmt::Display for RtlCoverage {
             t.0,
             t.1,
             Self::percent(t)
-        )?;
+        );
         if !self.unreached.is_empty() {
             let shown = &self.unreached[..self.unreached.len().min(Self::SHOWN)];
             let more = match self.unreached.len() - shown.len() {
                 0 => String::new(),
                 n => format!(" and {n} more"),
             };
-            write!(f, "; never reached: {}{more}", shown.join(", "))?;
+            s.push_str(&format!("; never reached: {}{more}", shown.join(", ")));
         }
-        write!(f, "; annotated sources in {}", self.annotated.display())
+        s
+    }
+}
+
+impl std::fmt::Display for RtlCoverage {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        write!(
+            f,
+            "{}; annotated sources in {}",
+            self.figures(),
+            self.annotated.display()
+        )
     }
 }
 
@@ -135,10 +169,7 @@ fn tool(c: &mut Command) -> Result<(), String> {
 
 /// The counts of `points` under the testbench's `dut`.
 fn summary(points: &[Point]) -> RtlCoverage {
-    let dut: Vec<&Point> = points
-        .iter()
-        .filter(|p| p.hier == "TOP.tb.dut" || p.hier.starts_with("TOP.tb.dut."))
-        .collect();
+    let dut: Vec<&Point> = points.iter().filter(|p| p.in_dut()).collect();
     let count = |toggle: bool| {
         let of: Vec<&&Point> = dut
             .iter()
@@ -170,6 +201,13 @@ fn summary(points: &[Point]) -> RtlCoverage {
         data: PathBuf::new(),
         info: PathBuf::new(),
         annotated: PathBuf::new(),
+    }
+}
+
+impl Point {
+    /// Whether it is the RTL's: under the testbench's `dut`.
+    fn in_dut(&self) -> bool {
+        self.hier == "TOP.tb.dut" || self.hier.starts_with("TOP.tb.dut.")
     }
 }
 
