@@ -155,3 +155,57 @@ fn each_seed_co_simulates_its_own_stimulus_and_a_farm_merges_to_the_one_machine(
     assert!(e.contains("shard 2/3 is missing"), "{e}");
     std::fs::remove_dir_all(&out).unwrap();
 }
+
+/// `--rtl-coverage` under several seeds: one note a row, the seeds' coverage merged (at least
+/// each seed's own), each later seed's data kept and nothing else of it; a farm's merge says
+/// the same, its shards' runs built where the whole run's folder was, since removed.
+#[test]
+fn the_rtl_coverage_of_every_seed_is_merged_into_the_row() {
+    if Simulator::Verilator.check_installed().is_err() {
+        return;
+    }
+    let out = std::env::temp_dir().join(format!("guide-cosim-coverage-{}", std::process::id()));
+    let _ = std::fs::remove_dir_all(&out);
+    let p = guide::project::project();
+    let covered = |out: PathBuf| {
+        let mut c = config(out, Seed(0x7e47), 3);
+        c.rtl_coverage = true;
+        c
+    };
+    let whole = run(&p, &covered(out.join("whole")));
+    let notes = &whole.testbenches[0].notes;
+    assert_eq!(notes.len(), 1, "{notes:#?}");
+    assert!(notes[0].starts_with("3 seeds together: the RTL's coverage (Verilator): blocks "));
+    let all = verif::cosim::RtlCoverage::read(
+        &out.join("whole/cosim/blend-verilator-all-seeds/coverage.dat"),
+        &out.join("read"),
+    )
+    .unwrap();
+    assert_eq!(notes[0], format!("3 seeds together: {}", all.figures()));
+    for r in 0..3 {
+        let folder = match r {
+            0 => out.join("whole/cosim/blend-verilator"),
+            _ => out.join(format!("whole/cosim/blend-verilator-seed{r}")),
+        };
+        let dat = folder.join("coverage.dat");
+        let one = verif::cosim::RtlCoverage::read(&dat, &out.join("read")).unwrap();
+        assert!(all.blocks.0 >= one.blocks.0 && all.toggles.0 >= one.toggles.0);
+        assert_eq!((all.blocks.1, all.toggles.1), (one.blocks.1, one.toggles.1));
+        if r > 0 {
+            let kept: Vec<_> = std::fs::read_dir(&folder).unwrap().flatten().collect();
+            assert_eq!(kept.len(), 1, "seed #{r} keeps its coverage data only");
+        }
+    }
+    // The shards' runs take the covered build from the cache, made in a folder now gone.
+    std::fs::remove_dir_all(out.join("whole")).unwrap();
+    let mut shards = Vec::new();
+    for i in 1..=2 {
+        let mut c = covered(out.join(format!("shard{i}")));
+        c.shard = Shard::parse(&format!("{i}/2")).unwrap();
+        let s = run(&p, &c);
+        shards.push((c.out.join("summary.json"), s));
+    }
+    let merged = merge_shards(&p, &shards).unwrap();
+    assert_eq!(merged.testbenches[0].notes, *notes);
+    std::fs::remove_dir_all(&out).unwrap();
+}

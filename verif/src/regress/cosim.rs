@@ -40,6 +40,18 @@ pub struct CosimJob {
     /// Seconds it ran (not part of any result).
     #[serde(default)]
     pub seconds: f64,
+    /// The RTL's coverage it measured (`--rtl-coverage`, Verilator).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub rtl_coverage: Option<JobCoverage>,
+}
+
+/// A job's RTL coverage: its figures as said, and its data for a merge of seeds.
+#[derive(Clone, Debug, Serialize, Deserialize)]
+pub struct JobCoverage {
+    /// The figures ([`crate::cosim::RtlCoverage`]'s line).
+    pub said: String,
+    /// Its `coverage.dat` (an absolute path).
+    pub data: PathBuf,
 }
 
 /// One job of the run's co-simulation plan.
@@ -129,11 +141,12 @@ pub(super) fn run_owned(
                 let i = next.fetch_add(1, Ordering::Relaxed);
                 let Some(p) = mine.get(i) else { break };
                 let t = std::time::Instant::now();
-                let r = job(project.name(), p, cfg).map(|result| CosimJob {
+                let r = job(project.name(), p, cfg).map(|(result, rtl_coverage)| CosimJob {
                     row: p.row(),
                     repeat: p.repeat,
                     result,
                     seconds: t.elapsed().as_secs_f64(),
+                    rtl_coverage,
                 });
                 *done[i].lock().unwrap_or_else(|e| e.into_inner()) = Some(r);
             });
@@ -149,7 +162,11 @@ pub(super) fn run_owned(
 
 /// One job: its twin against its model, every output port on every cycle; a difference with
 /// the command that runs it again alone (`program cosim ...`), explained.
-fn job(program: &str, p: &Planned, cfg: &RegressConfig) -> Result<TbResult, String> {
+fn job(
+    program: &str,
+    p: &Planned,
+    cfg: &RegressConfig,
+) -> Result<(TbResult, Option<JobCoverage>), String> {
     let (unit, sim) = (p.unit.name(), p.sim);
     let mut r = TbResult::new(
         &p.row(),
@@ -159,7 +176,7 @@ fn job(program: &str, p: &Planned, cfg: &RegressConfig) -> Result<TbResult, Stri
         r.failures
             .push(format!("{e}; or leave it out with --sim or --no-cosim"));
         r.finish_with(false);
-        return Ok(r);
+        return Ok((r, None));
     }
     let n = COSIM_CYCLES[usize::from(sim == Simulator::Icarus)];
     let mut folder = format!("{unit}-{}", sim.name());
@@ -175,8 +192,10 @@ fn job(program: &str, p: &Planned, cfg: &RegressConfig) -> Result<TbResult, Stri
     let seed = cosim_seed(cfg.seed, p.repeat);
     let stim = p.unit.stimulus(seed, n);
     let c = crate::cosim::run_with_options(p.unit, sim, &[], &stim, &dir, options)?;
-    r.notes
-        .extend(c.rtl_coverage.as_ref().map(|c| c.to_string()));
+    let covered = c.rtl_coverage.as_ref().map(|c| JobCoverage {
+        said: c.to_string(),
+        data: c.data.clone(),
+    });
     r.transactions = c.cycles as u64;
     r.cycles = c.cycles as u64;
     r.mismatches = c.differences;
@@ -200,17 +219,36 @@ fn job(program: &str, p: &Planned, cfg: &RegressConfig) -> Result<TbResult, Stri
     r.vcd = c.vcd;
     r.finish_with(false);
     if p.repeat > 0 && r.passed {
-        // Nothing in it to look at: its seed makes it again.
-        let _ = std::fs::remove_dir_all(&dir);
+        // Nothing in it to look at (its seed makes it again) but its coverage data.
+        clear(&dir, covered.as_ref().map(|c| c.data.as_path()));
     }
-    Ok(r)
+    Ok((r, covered))
+}
+
+/// Removes `dir`, or everything in it but `keep`.
+fn clear(dir: &Path, keep: Option<&Path>) {
+    let Some(keep) = keep else {
+        let _ = std::fs::remove_dir_all(dir);
+        return;
+    };
+    for e in std::fs::read_dir(dir).into_iter().flatten().flatten() {
+        let p = e.path();
+        if p != keep {
+            let _ = match e.file_type().map(|t| t.is_dir()) {
+                Ok(true) => std::fs::remove_dir_all(&p),
+                _ => std::fs::remove_file(&p),
+            };
+        }
+    }
 }
 
 /// The rows of `jobs` (in plan order): one per twin and simulator, in the order of their
 /// first jobs, adding up its seeds' jobs, a later seed's lines tagged with it. A failing
-/// row's waveform is its first failing job's.
-pub(super) fn rows(jobs: &[&CosimJob]) -> Result<Vec<TbResult>, String> {
+/// row's waveform is its first failing job's. A row's RTL coverage is its one job's, or its
+/// seeds' merged into `merged/<unit>-<simulator>-all-seeds` (its figures in the note).
+pub(super) fn rows(jobs: &[&CosimJob], merged: &Path) -> Result<Vec<TbResult>, String> {
     let mut rows: Vec<TbResult> = Vec::new();
+    let mut covered: Vec<Vec<&JobCoverage>> = Vec::new();
     for j in jobs {
         let mut r = j.result.clone();
         if j.repeat > 0 {
@@ -219,18 +257,50 @@ pub(super) fn rows(jobs: &[&CosimJob]) -> Result<Vec<TbResult>, String> {
             r.failures.iter_mut().for_each(tag);
             r.notes.iter_mut().for_each(tag);
         }
-        match rows.iter_mut().find(|m| m.name == r.name) {
-            Some(m) => {
+        match rows.iter().position(|m| m.name == r.name) {
+            Some(k) => {
+                let m = &mut rows[k];
                 if m.passed && !r.passed && r.vcd.is_some() {
                     m.vcd = r.vcd.take();
                 }
                 m.absorb(&r, None).map_err(|e| format!("{}: {e}", r.name))?;
                 m.finish_with(false);
+                covered[k].extend(&j.rtl_coverage);
             }
-            None => rows.push(r),
+            None => {
+                rows.push(r);
+                covered.push(j.rtl_coverage.iter().collect());
+            }
         }
     }
+    for (r, c) in rows.iter_mut().zip(&covered) {
+        r.notes.extend(coverage_note(&r.name, c, merged));
+    }
     Ok(rows)
+}
+
+/// A row's coverage note: its one job's figures, or its seeds' merged.
+fn coverage_note(row: &str, jobs: &[&JobCoverage], merged: &Path) -> Option<String> {
+    match jobs {
+        [] => None,
+        [one] => Some(one.said.clone()),
+        _ => {
+            let folder = format!(
+                "{}-all-seeds",
+                row.trim_start_matches("cosim/").replace('/', "-")
+            );
+            let data: Vec<PathBuf> = jobs.iter().map(|j| j.data.clone()).collect();
+            let all = match data.iter().find(|d| !d.is_file()) {
+                Some(d) => Err(format!("{}: not found here", d.display())),
+                None => crate::cosim::RtlCoverage::merge_files(&data, &merged.join(folder)),
+            };
+            Some(match all {
+                // Figures only: a merge of shards says the same as the whole run.
+                Ok(c) => format!("{} seeds together: {}", jobs.len(), c.figures()),
+                Err(e) => format!("{} seeds: the RTL's coverage not merged: {e}", jobs.len()),
+            })
+        }
+    }
 }
 
 /// The co-simulation rows of a merge of `shards` (the run's shards, checked alike): every job
@@ -280,7 +350,13 @@ pub(super) fn merged_rows(
             None => return Err(missing(shards, after + k as u64, q)),
         }
     }
-    rows(&ordered)
+    // The merged coverage's files are the whole run's to keep; a merge keeps its figures.
+    static MERGES: AtomicUsize = AtomicUsize::new(0);
+    let k = MERGES.fetch_add(1, Ordering::Relaxed);
+    let scratch = std::env::temp_dir().join(format!("texrtl-merge-{}-{k}", std::process::id()));
+    let r = rows(&ordered, &scratch);
+    let _ = std::fs::remove_dir_all(&scratch);
+    r
 }
 
 /// A merge's message for plan job `q`, at `position` in the run's job list, in no summary.

@@ -23,7 +23,7 @@ pub const COSIM: &str = "cosim";
 mod cosim;
 mod merge;
 pub(crate) use cosim::AGAIN;
-pub use cosim::{cosim_seed, CosimJob, COSIM_CYCLES};
+pub use cosim::{cosim_seed, CosimJob, JobCoverage, COSIM_CYCLES};
 pub use merge::{merge, merge_shards, parse_summary, read_summaries};
 
 /// `summary.json`: every result, the seed, the shard and the project's version.
@@ -425,7 +425,8 @@ pub fn regress(
     let sims = cosim::simulators(cfg);
     let after = jobs::count(reg, cfg.seeds, &|t| cfg.selected(t));
     let cosim_jobs = cosim::run_owned(project, cfg, &sims, after, progress)?;
-    results.extend(cosim::rows(&cosim_jobs.iter().collect::<Vec<_>>())?);
+    let cosim_rows = cosim::rows(&cosim_jobs.iter().collect::<Vec<_>>(), &cfg.out.join(COSIM));
+    results.extend(cosim_rows?);
     for r in &mut results {
         focus_on_mismatch(r);
         check_waveform(r, cfg.fst);
