@@ -164,7 +164,8 @@ fn the_rtl_coverage_of_every_seed_is_merged_into_the_row() {
     if Simulator::Verilator.check_installed().is_err() {
         return;
     }
-    let out = std::env::temp_dir().join(format!("guide-cosim-coverage-{}", std::process::id()));
+    // A relative folder, as a user gives `--out` (the test runs in the crate's folder).
+    let out = PathBuf::from("target").join(format!("guide-cosim-coverage-{}", std::process::id()));
     let _ = std::fs::remove_dir_all(&out);
     let p = guide::project::project();
     let covered = |out: PathBuf| {
@@ -208,4 +209,5 @@ fn the_rtl_coverage_of_every_seed_is_merged_into_the_row() {
     let merged = merge_shards(&p, &shards).unwrap();
     assert_eq!(merged.testbenches[0].notes, *notes);
     std::fs::remove_dir_all(&out).unwrap();
+    let _ = std::fs::remove_dir("target");
 }

@@ -225,15 +225,16 @@ fn job(
     Ok((r, covered))
 }
 
-/// Removes `dir`, or everything in it but `keep`.
+/// Removes `dir`, or everything in it but `keep` (a file in it).
 fn clear(dir: &Path, keep: Option<&Path>) {
     let Some(keep) = keep else {
         let _ = std::fs::remove_dir_all(dir);
         return;
     };
+    // By name: `dir` may be relative where `keep` is absolute.
     for e in std::fs::read_dir(dir).into_iter().flatten().flatten() {
         let p = e.path();
-        if p != keep {
+        if Some(e.file_name().as_os_str()) != keep.file_name() {
             let _ = match e.file_type().map(|t| t.is_dir()) {
                 Ok(true) => std::fs::remove_dir_all(&p),
                 _ => std::fs::remove_file(&p),
