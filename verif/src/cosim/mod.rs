@@ -635,14 +635,25 @@ impl Simulator {
             Simulator::Icarus => "icarus",
         }
     }
-    /// `Err` names what to install when the simulator is not on the PATH.
+    /// `Err` names what to install when the simulator is not on the PATH. Once found, it is
+    /// not looked for again in the process (`verilator -V` takes about 40 ms, a regression
+    /// asks before every run).
     pub fn check_installed(self) -> Result<(), String> {
+        use std::sync::atomic::{AtomicBool, Ordering};
+        static FOUND: [AtomicBool; 2] = [AtomicBool::new(false), AtomicBool::new(false)];
         let (exe, pkg) = match self {
             Simulator::Verilator => ("verilator", "verilator"),
             Simulator::Icarus => ("iverilog", "iverilog"),
         };
+        let found = &FOUND[self as usize];
+        if found.load(Ordering::Relaxed) {
+            return Ok(());
+        }
         match Command::new(exe).arg("-V").output() {
-            Ok(_) => Ok(()),
+            Ok(_) => {
+                found.store(true, Ordering::Relaxed);
+                Ok(())
+            }
             Err(_) => Err(format!(
                 "{exe} not found: install it (Debian: apt-get install {pkg})"
             )),
