@@ -1,6 +1,6 @@
 //! A regression's co-simulations as jobs. Each twin is co-simulated in each of the run's
 //! simulators under each of its `--seeds` seeds: one job each, listed after the testbenches'
-//! jobs (seed by seed, simulator by simulator, twin by twin) and dealt to shards with them,
+//! jobs (simulator by simulator, twin by twin, seed by seed) and dealt to shards with them,
 //! so a farm co-simulates as one machine does and its merge is that machine's summary.
 //!
 //! A job's stimulus is the twin's own ([`crate::cosim::CosimUnit::stimulus`]) from the run's
@@ -99,12 +99,13 @@ pub(super) fn simulators(cfg: &RegressConfig) -> Vec<Simulator> {
         .collect()
 }
 
-/// The plan: seed by seed, simulator by simulator, twin by twin in the project's order.
+/// The plan: simulator by simulator, twin by twin in the project's order, seed by seed (so
+/// that shards dealt it round-robin share each twin's seeds evenly).
 pub(super) fn plan<'p>(project: &'p Project, sims: &[Simulator], seeds: u32) -> Vec<Planned<'p>> {
     let mut out = Vec::new();
-    for repeat in 0..seeds {
-        for &sim in sims {
-            out.extend(project.twins().map(|unit| Planned { sim, unit, repeat }));
+    for &sim in sims {
+        for unit in project.twins() {
+            out.extend((0..seeds).map(|repeat| Planned { sim, unit, repeat }));
         }
     }
     out
