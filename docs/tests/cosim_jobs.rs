@@ -1,8 +1,8 @@
 //! A regression's co-simulations as jobs, on the guide's blend with a rare bug planted in its
 //! Verilog: each seed co-simulates its own stimulus, the row fails exactly for the seeds whose
 //! stimulus reaches the bug (predicted from the stimulus, not from the run), each failing
-//! seed's line names the command that reproduces it, and the run dealt to shards merges to
-//! the one machine's rows; a shard left out is named.
+//! seed is a failing job with the command that reproduces it, and the run dealt to shards
+//! merges to the one machine's rows and failing jobs; a shard left out is named.
 
 use guide::blend::Blend;
 use std::path::{Path, PathBuf};
@@ -123,6 +123,10 @@ fn each_seed_co_simulates_its_own_stimulus_and_a_farm_merges_to_the_one_machine(
         "{:#?}",
         row.mismatch_log
     );
+    // The failing seeds are the run's failing jobs, each with its command.
+    let failing: Vec<u32> = whole.failing.iter().map(|f| f.repeat).collect();
+    assert_eq!(failing, expected);
+    assert_eq!(whole.failing[0].reproduce, again);
     let folder = |r: u32| out.join(format!("whole/cosim/blend-verilator-seed{r}"));
     assert!(
         folder(first).join("blend_cosim.vcd").is_file(),
@@ -150,6 +154,8 @@ fn each_seed_co_simulates_its_own_stimulus_and_a_farm_merges_to_the_one_machine(
     let merged = merge_shards(&p, &shards).unwrap();
     assert_eq!(rows(&merged), rows(&whole));
     assert_eq!(merged.passed, whole.passed);
+    let json = |s: &Summary| serde_json::to_string(&s.failing).unwrap();
+    assert_eq!(json(&merged), json(&whole));
     shards.remove(1);
     let e = merge_shards(&p, &shards).err().unwrap();
     assert!(e.contains("shard 2/3 is missing"), "{e}");

@@ -10,7 +10,7 @@
 //! (unless `--no-vcd`); a later seed's only when it differs, and a later seed that agrees
 //! leaves no folder: its seed makes it again.
 
-use super::{RegressConfig, Summary, COSIM};
+use super::{FailingJob, RegressConfig, Summary, COSIM};
 use crate::cosim::{CosimUnit, RunOptions, Simulator};
 use crate::project::Project;
 use crate::{Seed, TbResult};
@@ -31,6 +31,8 @@ pub(crate) const AGAIN: &str =
 /// One co-simulation job's result, as a shard keeps it for the merge.
 #[derive(Clone, Debug, Serialize, Deserialize)]
 pub struct CosimJob {
+    /// Its place in the run's job list (after the testbenches' jobs).
+    pub job: u64,
     /// Its row, `cosim/<unit>/<simulator>`.
     pub row: String,
     /// Which of the run's seeds, from 0.
@@ -120,11 +122,10 @@ pub(super) fn run_owned(
     first: u64,
     progress: &mut dyn FnMut(&str, &str),
 ) -> Result<Vec<CosimJob>, String> {
-    let mine: Vec<Planned> = plan(project, sims, cfg.seeds)
-        .into_iter()
+    let mine: Vec<(u64, Planned)> = (plan(project, sims, cfg.seeds).into_iter())
         .enumerate()
-        .filter(|(k, _)| cfg.shard.owns(first + *k as u64))
-        .map(|(_, p)| p)
+        .map(|(k, p)| (first + k as u64, p))
+        .filter(|(k, _)| cfg.shard.owns(*k))
         .collect();
     if mine.is_empty() {
         return Ok(Vec::new());
@@ -140,9 +141,10 @@ pub(super) fn run_owned(
         for _ in 0..cfg.jobs.clamp(1, mine.len()) {
             scope.spawn(|| loop {
                 let i = next.fetch_add(1, Ordering::Relaxed);
-                let Some(p) = mine.get(i) else { break };
+                let Some((index, p)) = mine.get(i) else { break };
                 let t = std::time::Instant::now();
                 let r = job(project.name(), p, cfg).map(|(result, rtl_coverage)| CosimJob {
+                    job: *index,
                     row: p.row(),
                     repeat: p.repeat,
                     result,
@@ -305,13 +307,36 @@ fn coverage_note(row: &str, jobs: &[&JobCoverage], merged: &Path) -> Option<Stri
     }
 }
 
-/// The co-simulation rows of a merge of `shards` (the run's shards, checked alike): every job
-/// of the plan once, the first missing named by its shard, then [`rows`].
+/// The failing jobs among `jobs` of `program`'s run seeded `seed`, each with its `cosim`
+/// command.
+pub(super) fn failing(program: &str, jobs: &[&CosimJob], seed: Seed) -> Vec<FailingJob> {
+    let failed = jobs.iter().filter(|j| !j.result.passed);
+    failed
+        .map(|j| {
+            let r = &j.result;
+            FailingJob {
+                job: j.job,
+                testbench: j.row.clone(),
+                configuration: format!("{} cycles of random stimulus", r.cycles),
+                repeat: j.repeat,
+                seed: cosim_seed(seed, j.repeat).to_string(),
+                first_mismatch_cycle: None,
+                first: (r.mismatch_log.first().or(r.failures.first()))
+                    .cloned()
+                    .unwrap_or_default(),
+                reproduce: crate::junit::check_command(program, cosim_seed(seed, j.repeat), r),
+            }
+        })
+        .collect()
+}
+
+/// The co-simulation rows and failing jobs of a merge of `shards` (the run's shards, checked
+/// alike): every job of the plan once, the first missing named by its shard, then [`rows`].
 pub(super) fn merged_rows(
     project: &Project,
     shards: &[(PathBuf, Summary)],
     after: u64,
-) -> Result<Vec<TbResult>, String> {
+) -> Result<(Vec<TbResult>, Vec<FailingJob>), String> {
     let (first_path, first) = &shards[0];
     let sims: Vec<Simulator> = (first.simulators.iter())
         .map(|n| {
@@ -358,7 +383,8 @@ pub(super) fn merged_rows(
     let scratch = std::env::temp_dir().join(format!("texrtl-merge-{}-{k}", std::process::id()));
     let r = rows(&ordered, &scratch);
     let _ = std::fs::remove_dir_all(&scratch);
-    r
+    let seed = Seed::parse(&first.seed)?;
+    Ok((r?, failing(project.name(), &ordered, seed)))
 }
 
 /// A merge's message for plan job `q`, at `position` in the run's job list, in no summary.

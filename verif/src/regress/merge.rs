@@ -203,7 +203,9 @@ pub fn merge_shards(project: &Project, shards: &[(PathBuf, Summary)]) -> Result<
     }
     rows.extend(other_rows(reg, shards)?);
     let after = jobs::count(reg, first.seeds, &selected);
-    rows.extend(super::cosim::merged_rows(project, shards, after)?);
+    let (cosim_rows, cosim_failing) = super::cosim::merged_rows(project, shards, after)?;
+    rows.extend(cosim_rows);
+    failing.extend(cosim_failing);
     Ok(Summary {
         texrtl: first.texrtl.clone(),
         seed: first.seed.clone(),

@@ -75,7 +75,8 @@ fn is_one(n: &u32) -> bool {
 /// with its waveform (windowed around its first mismatch when the scoreboard saw its cycle).
 #[derive(Clone, Debug, Serialize, Deserialize)]
 pub struct FailingJob {
-    /// The job's index (`--job`).
+    /// The job's index (`--job` runs a testbench's; a co-simulation's runs again with its
+    /// `cosim` command).
     pub job: u64,
     /// Its testbench.
     pub testbench: String,
@@ -404,7 +405,7 @@ pub fn regress(
         );
     }
     std::fs::create_dir_all(&cfg.out).map_err(|e| format!("{}: {e}", cfg.out.display()))?;
-    let (mut results, failing, ran) = run_jobs_of(project, cfg, progress)?;
+    let (mut results, mut failing, ran) = run_jobs_of(project, cfg, progress)?;
     // A shard keeps its jobs in its summary; a whole run only for its JUnit file.
     let keep = !cfg.shard.is_all();
     let (kept, ran) = if keep {
@@ -425,8 +426,9 @@ pub fn regress(
     let sims = cosim::simulators(cfg);
     let after = jobs::count(reg, cfg.seeds, &|t| cfg.selected(t));
     let cosim_jobs = cosim::run_owned(project, cfg, &sims, after, progress)?;
-    let cosim_rows = cosim::rows(&cosim_jobs.iter().collect::<Vec<_>>(), &cfg.out.join(COSIM));
-    results.extend(cosim_rows?);
+    let done: Vec<&CosimJob> = cosim_jobs.iter().collect();
+    results.extend(cosim::rows(&done, &cfg.out.join(COSIM))?);
+    failing.extend(cosim::failing(project.name(), &done, cfg.seed));
     for r in &mut results {
         focus_on_mismatch(r);
         check_waveform(r, cfg.fst);
