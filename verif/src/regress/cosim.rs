@@ -31,7 +31,7 @@ pub(crate) const AGAIN: &str =
 /// One co-simulation job's result, as a shard keeps it for the merge.
 #[derive(Clone, Debug, Serialize, Deserialize)]
 pub struct CosimJob {
-    /// Its place in the run's job list (after the testbenches' jobs).
+    /// Its index in the run's job list, after every testbench's jobs.
     pub job: u64,
     /// Its row, `cosim/<unit>/<simulator>`.
     pub row: String,
@@ -122,10 +122,13 @@ pub(super) fn run_owned(
     first: u64,
     progress: &mut dyn FnMut(&str, &str),
 ) -> Result<Vec<CosimJob>, String> {
+    // A job's index counts every testbench's jobs, whatever the run selects, as theirs do;
+    // its place in the list the shards are dealt counts the selected ones'.
+    let base = crate::jobs::count(project.registry(), cfg.seeds, &|_| true);
     let mine: Vec<(u64, Planned)> = (plan(project, sims, cfg.seeds).into_iter())
         .enumerate()
-        .map(|(k, p)| (first + k as u64, p))
-        .filter(|(k, _)| cfg.shard.owns(*k))
+        .filter(|(k, _)| cfg.shard.owns(first + *k as u64))
+        .map(|(k, p)| (base + k as u64, p))
         .collect();
     if mine.is_empty() {
         return Ok(Vec::new());
