@@ -444,3 +444,44 @@ fn regress_options_at_their_limits() {
     sweep(&base, "--only", &[("vectors", 0), ("bogus", 2)], true);
     let _ = std::fs::remove_dir_all(&d);
 }
+
+#[test]
+fn regress_sim_option_at_its_limits() {
+    let d = dir("regress-sim");
+    let out = d.join("r").to_string_lossy().into_owned();
+    let base = s(&[
+        "regress",
+        "--only",
+        "blend_adjust_153",
+        "--count",
+        "1",
+        "--no-vcd",
+        "--out",
+        &out,
+    ]);
+    let installed = |exe: &str| Command::new(exe).arg("-V").output().is_ok();
+    let (v, i) = (installed("verilator"), installed("iverilog"));
+    let code = |found: bool| if found { 0 } else { 2 };
+    sweep(
+        &base,
+        "--sim",
+        &[
+            ("verilator", code(v)),
+            ("icarus", code(i)),
+            ("iverilog", 2),
+            ("", 2),
+        ],
+        true,
+    );
+    // Refused before anything is written.
+    let refused = d.join("refused").to_string_lossy().into_owned();
+    let base = s(&["regress", "--only", "blend_adjust_153", "--out", &refused]);
+    for bad in [
+        &["--sim", "icarus", "--sim", "icarus"][..],
+        &["--no-cosim", "--sim", "verilator"],
+    ] {
+        let a = [base.clone(), s(bad)].concat();
+        assert_eq!(check(&a, false), 2, "{a:?}");
+    }
+    assert!(!Path::new(&refused).exists());
+}
