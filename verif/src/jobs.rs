@@ -350,7 +350,7 @@ mod tests {
         let halves = shards(&p, 2, &["1/2", "2/2"], "gaps");
         let e = merge_shards(&p, &halves[..1]).err().unwrap();
         assert!(
-            e.starts_with("merge: shard 2/2 is missing (its first job: 1 a [c1])"),
+            e.starts_with("merge: shard 2/2 is missing (its first job: job 1 (a [c1]))"),
             "{e}"
         );
         let (q, quarter) = run(&p, 2, "2/4", "gaps");

@@ -377,7 +377,10 @@ pub(super) fn merged_rows(
     for (k, (q, key)) in plan.iter().zip(&keys).enumerate() {
         match have.get(key) {
             Some((_, j)) => ordered.push(*j),
-            None => return Err(missing(shards, after + k as u64, q)),
+            None => {
+                let what = format!("co-simulation {} seed #{}", q.row(), q.repeat);
+                return Err(super::merge::missing(shards, after + k as u64, &what));
+            }
         }
     }
     // The merged coverage's files are the whole run's to keep; a merge keeps its figures.
@@ -388,20 +391,4 @@ pub(super) fn merged_rows(
     let _ = std::fs::remove_dir_all(&scratch);
     let seed = Seed::parse(&first.seed)?;
     Ok((r?, failing(project.name(), &ordered, seed)))
-}
-
-/// A merge's message for plan job `q`, at `position` in the run's job list, in no summary.
-fn missing(shards: &[(PathBuf, Summary)], position: u64, q: &Planned) -> String {
-    let what = format!("{} seed #{}", q.row(), q.repeat);
-    let counts: Vec<u32> = (shards.iter())
-        .filter_map(|(_, s)| s.shard.as_deref().and_then(|x| crate::Shard::parse(x).ok()))
-        .map(|s| s.count)
-        .collect();
-    match counts.first() {
-        Some(&n) if counts.iter().all(|&c| c == n) => format!(
-            "merge: shard {}/{n} is missing (its co-simulation {what})",
-            position % u64::from(n) + 1
-        ),
-        _ => format!("merge: co-simulation {what} is in no summary"),
-    }
 }

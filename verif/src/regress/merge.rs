@@ -139,29 +139,34 @@ fn first_missing(
     selected: &dyn Fn(&str) -> bool,
 ) -> Result<(), String> {
     let seeds = shards[0].1.seeds;
-    let counts: Vec<u32> = shards
-        .iter()
-        .filter_map(|(p, s)| shard_of(p, s).ok())
-        .map(|s| s.count)
-        .collect();
     let mut position = 0u64;
     for (p, tb) in reg.iter().enumerate().filter(|(_, t)| selected(t.name())) {
         for j in jobs::testbench_jobs(tb, p, reg, seeds) {
             if !have.contains_key(&j.index) {
-                let what = jobs::describe(tb, &j);
-                return Err(match counts.first() {
-                    Some(&n) if counts.iter().all(|&c| c == n) => format!(
-                        "merge: shard {}/{n} is missing (its first job: {} {what})",
-                        position % u64::from(n) + 1,
-                        j.index
-                    ),
-                    _ => format!("merge: job {} ({what}) is in no summary", j.index),
-                });
+                let what = format!("job {} ({})", j.index, jobs::describe(tb, &j));
+                return Err(missing(shards, position, &what));
             }
             position += 1;
         }
     }
     Ok(())
+}
+
+/// A merge's message for the job `what`, at `position` in the list the shards were dealt,
+/// in no summary: named by its shard when every summary is a shard of the same N.
+pub(super) fn missing(shards: &[(PathBuf, Summary)], position: u64, what: &str) -> String {
+    let counts: Vec<u32> = shards
+        .iter()
+        .filter_map(|(p, s)| shard_of(p, s).ok())
+        .map(|s| s.count)
+        .collect();
+    match counts.first() {
+        Some(&n) if counts.iter().all(|&c| c == n) => format!(
+            "merge: shard {}/{n} is missing (its first job: {what})",
+            position % u64::from(n) + 1
+        ),
+        _ => format!("merge: {what} is in no summary"),
+    }
 }
 
 /// [`merge`] of summaries already read, each with the path its messages name.
