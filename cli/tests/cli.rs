@@ -538,6 +538,7 @@ fn count_only_and_list_apply_to_every_testbench() {
         "control_607",
         "texture_unit_602",
         "--count",
+        "cosim: 17 twins (",
     ] {
         assert!(list.contains(name), "{list}");
     }

@@ -342,5 +342,17 @@ fn list_testbenches(project: &Project) -> String {
             dir.display()
         ));
     }
+    let twins: Vec<&str> = project.twins().map(|t| t.name()).collect();
+    if !twins.is_empty() {
+        let [v, i] = crate::regress::COSIM_CYCLES;
+        s.push_str(&format!(
+            "{}: {} twins ({}), each co-simulated in Verilator ({v} cycles) and Icarus ({i} \
+             cycles) under every seed: --seeds S adds S x {} x simulators jobs\n",
+            crate::regress::COSIM,
+            twins.len(),
+            twins.join(", "),
+            twins.len()
+        ));
+    }
     s
 }
