@@ -189,6 +189,13 @@ fn the_rtl_coverage_of_every_seed_is_merged_into_the_row() {
     )
     .unwrap();
     assert_eq!(notes[0], format!("3 seeds together: {}", all.figures()));
+    // By source file: the blend's one file, one instance, so the same figures.
+    let files = &whole.rtl_coverage;
+    assert_eq!(files.len(), 1, "{files:#?}");
+    assert!(files[0].file.ends_with("rtl/blend.v"), "{}", files[0].file);
+    assert_eq!((files[0].blocks, files[0].toggles), (all.blocks, all.toggles));
+    let report = verif::report::markdown(&p, &whole, &[]);
+    assert!(report.contains("## The RTL's coverage by source file"), "{report}");
     for r in 0..3 {
         let folder = match r {
             0 => out.join("whole/cosim/blend-verilator"),
@@ -214,6 +221,7 @@ fn the_rtl_coverage_of_every_seed_is_merged_into_the_row() {
     }
     let merged = merge_shards(&p, &shards).unwrap();
     assert_eq!(merged.testbenches[0].notes, *notes);
+    assert_eq!(merged.rtl_coverage, whole.rtl_coverage);
     std::fs::remove_dir_all(&out).unwrap();
     let _ = std::fs::remove_dir("target");
 }

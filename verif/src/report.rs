@@ -95,6 +95,7 @@ pub fn markdown(project: &Project, s: &Summary, pictures: &[Picture]) -> String 
          `gtkwave <name>.gtkw`.\n"
     );
     failing_section(&mut m, s);
+    rtl_coverage_section(&mut m, s);
     if !pictures.is_empty() {
         let _ = writeln!(m, "## Pictures\n");
         for Picture { file, caption } in pictures {
@@ -221,6 +222,44 @@ fn failing_section(m: &mut String, s: &Summary) {
             m,
             "| {} | {} | {} | `{seed}` | {first} | `{}` |",
             f.job, f.testbench, f.configuration, f.reproduce
+        );
+    }
+    let _ = writeln!(m);
+}
+
+/// What the run's co-simulations reached of each RTL source file (`--rtl-coverage`), over
+/// every row, instance and seed.
+fn rtl_coverage_section(m: &mut String, s: &Summary) {
+    if s.rtl_coverage.is_empty() {
+        return;
+    }
+    let _ = writeln!(m, "## The RTL's coverage by source file\n");
+    let _ = writeln!(
+        m,
+        "What every co-simulation of the run reached of each file (Verilator's line and toggle \
+         coverage): a block or a signal bit counts once however often the file is instantiated, \
+         and is reached when any row, instance or seed reached it.\n"
+    );
+    let _ = writeln!(m, "| file | blocks | toggles | lines never reached |");
+    let _ = writeln!(m, "|---|---:|---:|---|");
+    let pc = crate::cosim::RtlCoverage::percent;
+    for f in &s.rtl_coverage {
+        let lines: Vec<String> = f.unreached.iter().map(u32::to_string).collect();
+        let _ = writeln!(
+            m,
+            "| `{}` | {} of {} ({:.1} %) | {} of {} ({:.1} %) | {} |",
+            f.file,
+            f.blocks.0,
+            f.blocks.1,
+            pc(f.blocks),
+            f.toggles.0,
+            f.toggles.1,
+            pc(f.toggles),
+            if lines.is_empty() {
+                "-".into()
+            } else {
+                lines.join(", ")
+            }
         );
     }
     let _ = writeln!(m);

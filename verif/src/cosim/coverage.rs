@@ -242,12 +242,113 @@ fn point(line: &str) -> Result<Point, String> {
     Ok(p)
 }
 
+/// What runs reached of one RTL source file, over every instance of every run.
+#[derive(Clone, Debug, PartialEq, serde::Serialize, serde::Deserialize)]
+pub struct FileCoverage {
+    /// The file, as the runs' builds named it.
+    pub file: String,
+    /// Its blocks of statements reached in some instance of some run, of all.
+    pub blocks: (usize, usize),
+    /// Its signal bits toggled in some instance of some run, of all.
+    pub toggles: (usize, usize),
+    /// The lines of its blocks no run reached, in order, each once.
+    pub unreached: Vec<u32>,
+}
+
+/// Point keys of one file: a block or a signal bit (line, column, what), reached or not.
+type Keys = std::collections::BTreeMap<(u32, String, String), bool>;
+
+/// The coverage of every RTL file under the testbenches' `dut` in the runs' `coverage.dat`
+/// files, by source file: a block or a signal bit is counted once, wherever it is
+/// instantiated, and is reached when any instance of any run reached it (runs of different
+/// units that share a file add up). In the order of the files' paths.
+pub fn by_file(data: &[PathBuf]) -> Result<Vec<FileCoverage>, String> {
+    let mut files: std::collections::BTreeMap<String, (Keys, Keys)> = Default::default();
+    for dat in data {
+        let text = std::fs::read_to_string(dat).map_err(|e| format!("{}: {e}", dat.display()))?;
+        for l in text.lines().filter(|l| l.starts_with("C '")) {
+            let p = point(l).map_err(|e| format!("{}: {e}", dat.display()))?;
+            if !p.in_dut() {
+                continue;
+            }
+            let (blocks, toggles) = files.entry(p.file).or_default();
+            let keys = if p.page.starts_with("v_toggle/") {
+                toggles
+            } else {
+                blocks
+            };
+            *keys.entry((p.line, p.column, p.what)).or_default() |= p.count > 0;
+        }
+    }
+    let count = |k: &Keys| (k.values().filter(|r| **r).count(), k.len());
+    Ok(files
+        .into_iter()
+        .map(|(file, (blocks, toggles))| {
+            let mut unreached: Vec<u32> = (blocks.iter())
+                .filter(|(_, r)| !**r)
+                .map(|((line, ..), _)| *line)
+                .collect();
+            unreached.dedup();
+            FileCoverage {
+                file,
+                blocks: count(&blocks),
+                toggles: count(&toggles),
+                unreached,
+            }
+        })
+        .collect())
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
 
     fn line(file: &str, l: u32, page: &str, hier: &str, count: u64) -> String {
         format!("C '\x01f\x02{file}\x01l\x02{l}\x01n\x025\x01page\x02{page}\x01o\x02block\x01h\x02{hier}' {count}")
+    }
+
+    /// Two runs of different units that share a file: a block of it is reached when either
+    /// run reached it in any instance; each file counted once, the testbench left out.
+    #[test]
+    fn by_file_adds_up_the_runs_that_share_a_file() {
+        let dir = std::env::temp_dir().join(format!("texrtl-by-file-{}", std::process::id()));
+        std::fs::create_dir_all(&dir).unwrap();
+        let a = [
+            line("/a/tb.sv", 3, "v_line/tb", "TOP.tb", 0),
+            line("/r/u.v", 9, "v_line/u", "TOP.tb.dut", 4),
+            line("/r/u.v", 12, "v_line/u", "TOP.tb.dut", 0),
+            line("/r/sub.v", 5, "v_line/sub", "TOP.tb.dut.s0", 1),
+            line("/r/sub.v", 6, "v_line/sub", "TOP.tb.dut.s0", 0),
+            line("/r/sub.v", 7, "v_line/sub", "TOP.tb.dut.s0", 0),
+            line("/r/sub.v", 2, "v_toggle/sub", "TOP.tb.dut.s0", 0),
+        ];
+        let b = [
+            line("/r/sub.v", 5, "v_line/sub", "TOP.tb.dut", 0),
+            line("/r/sub.v", 6, "v_line/sub", "TOP.tb.dut", 3),
+            line("/r/sub.v", 7, "v_line/sub", "TOP.tb.dut", 0),
+            line("/r/sub.v", 2, "v_toggle/sub", "TOP.tb.dut", 1),
+        ];
+        let write = |name: &str, lines: &[String]| {
+            let p = dir.join(name);
+            std::fs::write(&p, format!("# SystemC::Coverage-3\n{}\n", lines.join("\n"))).unwrap();
+            p
+        };
+        let files = by_file(&[write("a.dat", &a), write("b.dat", &b)]).unwrap();
+        let sub = FileCoverage {
+            file: "/r/sub.v".into(),
+            blocks: (2, 3),
+            toggles: (1, 1),
+            unreached: vec![7],
+        };
+        let u = FileCoverage {
+            file: "/r/u.v".into(),
+            blocks: (1, 2),
+            toggles: (0, 0),
+            unreached: vec![12],
+        };
+        assert_eq!(files, [sub, u]);
+        assert!(by_file(&[dir.join("none.dat")]).is_err());
+        std::fs::remove_dir_all(&dir).unwrap();
     }
 
     /// Points under the dut counted by kind, the testbench's own left out, the blocks never

@@ -28,7 +28,7 @@ mod rtl;
 mod twin;
 mod verilator;
 
-pub use coverage::RtlCoverage;
+pub use coverage::{by_file, FileCoverage, RtlCoverage};
 pub use filelist::{FileList, PathsFrom};
 pub use library::Library;
 pub use rtl::verilog_range;

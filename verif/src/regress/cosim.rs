@@ -310,6 +310,18 @@ fn coverage_note(row: &str, jobs: &[&JobCoverage], merged: &Path) -> Option<Stri
     }
 }
 
+/// What the covered jobs among `jobs` reached of each RTL file (none when none was covered,
+/// or a job's data is not here: each row's note says so).
+pub(super) fn by_file(jobs: &[&CosimJob]) -> Vec<crate::cosim::FileCoverage> {
+    let data: Vec<PathBuf> = (jobs.iter())
+        .filter_map(|j| j.rtl_coverage.as_ref().map(|c| c.data.clone()))
+        .collect();
+    if data.is_empty() {
+        return Vec::new();
+    }
+    crate::cosim::by_file(&data).unwrap_or_default()
+}
+
 /// The failing jobs among `jobs` of `program`'s run seeded `seed`, each with its `cosim`
 /// command.
 pub(super) fn failing(program: &str, jobs: &[&CosimJob], seed: Seed) -> Vec<FailingJob> {
@@ -333,13 +345,14 @@ pub(super) fn failing(program: &str, jobs: &[&CosimJob], seed: Seed) -> Vec<Fail
         .collect()
 }
 
-/// The co-simulation rows and failing jobs of a merge of `shards` (the run's shards, checked
-/// alike): every job of the plan once, the first missing named by its shard, then [`rows`].
+/// The co-simulation rows, failing jobs and RTL coverage by file of a merge of `shards` (the
+/// run's shards, checked alike): every job of the plan once, the first missing named by its
+/// shard, then [`rows`].
 pub(super) fn merged_rows(
     project: &Project,
     shards: &[(PathBuf, Summary)],
     after: u64,
-) -> Result<(Vec<TbResult>, Vec<FailingJob>), String> {
+) -> Result<Merged, String> {
     let (first_path, first) = &shards[0];
     let sims: Vec<Simulator> = (first.simulators.iter())
         .map(|n| {
@@ -390,5 +403,16 @@ pub(super) fn merged_rows(
     let r = rows(&ordered, &scratch);
     let _ = std::fs::remove_dir_all(&scratch);
     let seed = Seed::parse(&first.seed)?;
-    Ok((r?, failing(project.name(), &ordered, seed)))
+    Ok(Merged {
+        rows: r?,
+        failing: failing(project.name(), &ordered, seed),
+        rtl_coverage: by_file(&ordered),
+    })
+}
+
+/// What a merge makes again from the shards' co-simulation jobs.
+pub(super) struct Merged {
+    pub(super) rows: Vec<TbResult>,
+    pub(super) failing: Vec<FailingJob>,
+    pub(super) rtl_coverage: Vec<crate::cosim::FileCoverage>,
 }

@@ -208,9 +208,9 @@ pub fn merge_shards(project: &Project, shards: &[(PathBuf, Summary)]) -> Result<
     }
     rows.extend(other_rows(reg, shards)?);
     let after = jobs::count(reg, first.seeds, &selected);
-    let (cosim_rows, cosim_failing) = super::cosim::merged_rows(project, shards, after)?;
-    rows.extend(cosim_rows);
-    failing.extend(cosim_failing);
+    let cosim = super::cosim::merged_rows(project, shards, after)?;
+    rows.extend(cosim.rows);
+    failing.extend(cosim.failing);
     Ok(Summary {
         texrtl: first.texrtl.clone(),
         seed: first.seed.clone(),
@@ -224,6 +224,7 @@ pub fn merge_shards(project: &Project, shards: &[(PathBuf, Summary)]) -> Result<
         jobs: Vec::new(),
         simulators: Vec::new(),
         cosim_jobs: Vec::new(),
+        rtl_coverage: cosim.rtl_coverage,
     })
 }
 

@@ -61,6 +61,10 @@ pub struct Summary {
     /// A shard's co-simulation jobs one by one, for the merge (not in a whole run's summary).
     #[serde(default, skip_serializing_if = "Vec::is_empty")]
     pub cosim_jobs: Vec<CosimJob>,
+    /// With `--rtl-coverage`: what every co-simulation of the run reached of each RTL source
+    /// file, whichever rows, instances and seeds it was reached in.
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub rtl_coverage: Vec<crate::cosim::FileCoverage>,
 }
 
 fn one() -> u32 {
@@ -429,6 +433,7 @@ pub fn regress(
     let done: Vec<&CosimJob> = cosim_jobs.iter().collect();
     results.extend(cosim::rows(&done, &cfg.out.join(COSIM))?);
     failing.extend(cosim::failing(project.name(), &done, cfg.seed));
+    let rtl_coverage = cosim::by_file(&done);
     for r in &mut results {
         focus_on_mismatch(r);
         check_waveform(r, cfg.fst);
@@ -451,6 +456,7 @@ pub fn regress(
             Vec::new()
         },
         cosim_jobs: if keep { cosim_jobs } else { Vec::new() },
+        rtl_coverage,
     };
     let path = cfg.out.join("summary.json");
     let json = serde_json::to_vec_pretty(&summary).map_err(|e| e.to_string())?;
