@@ -310,8 +310,9 @@ fn coverage_note(row: &str, jobs: &[&JobCoverage], merged: &Path) -> Option<Stri
     }
 }
 
-/// What the covered jobs among `jobs` reached of each RTL file (none when none was covered,
-/// or a job's data is not here: each row's note says so).
+/// What the covered jobs among `jobs` reached of each RTL file: none when no job was covered,
+/// or when a job's data cannot be read here (a merge on a machine that does not see the
+/// shards' folders; a row of several seeds says so in its note).
 pub(super) fn by_file(jobs: &[&CosimJob]) -> Vec<crate::cosim::FileCoverage> {
     let data: Vec<PathBuf> = (jobs.iter())
         .filter_map(|j| j.rtl_coverage.as_ref().map(|c| c.data.clone()))
