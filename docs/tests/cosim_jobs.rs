@@ -193,9 +193,15 @@ fn the_rtl_coverage_of_every_seed_is_merged_into_the_row() {
     let files = &whole.rtl_coverage;
     assert_eq!(files.len(), 1, "{files:#?}");
     assert!(files[0].file.ends_with("rtl/blend.v"), "{}", files[0].file);
-    assert_eq!((files[0].blocks, files[0].toggles), (all.blocks, all.toggles));
+    assert_eq!(
+        (files[0].blocks, files[0].toggles),
+        (all.blocks, all.toggles)
+    );
     let report = verif::report::markdown(&p, &whole, &[]);
-    assert!(report.contains("## The RTL's coverage by source file"), "{report}");
+    assert!(
+        report.contains("## The RTL's coverage by source file"),
+        "{report}"
+    );
     for r in 0..3 {
         let folder = match r {
             0 => out.join("whole/cosim/blend-verilator"),
