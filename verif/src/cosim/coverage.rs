@@ -52,19 +52,7 @@ impl RtlCoverage {
     /// testbench generated in the folder the build was made in, which a cached build's run
     /// need not have.)
     pub fn read(dat: &Path, dir: &Path) -> Result<RtlCoverage, String> {
-        let text = std::fs::read_to_string(dat).map_err(|e| format!("{}: {e}", dat.display()))?;
-        let (mut kept, mut points) = (String::with_capacity(text.len()), Vec::new());
-        for l in text.lines() {
-            if l.starts_with("C '") {
-                let p = point(l).map_err(|e| format!("{}: {e}", dat.display()))?;
-                if !p.in_dut() {
-                    continue;
-                }
-                points.push(p);
-            }
-            kept.push_str(l);
-            kept.push('\n');
-        }
+        let (text, kept, points) = dut_points(dat)?;
         if kept != text {
             std::fs::write(dat, kept).map_err(|e| format!("{}: {e}", dat.display()))?;
         }
@@ -255,6 +243,25 @@ pub struct FileCoverage {
     pub unreached: Vec<u32>,
 }
 
+/// A `coverage.dat`'s text, the same without the points outside the testbench's `dut`, and
+/// the points under it.
+fn dut_points(dat: &Path) -> Result<(String, String, Vec<Point>), String> {
+    let text = std::fs::read_to_string(dat).map_err(|e| format!("{}: {e}", dat.display()))?;
+    let (mut kept, mut points) = (String::with_capacity(text.len()), Vec::new());
+    for l in text.lines() {
+        if l.starts_with("C '") {
+            let p = point(l).map_err(|e| format!("{}: {e}", dat.display()))?;
+            if !p.in_dut() {
+                continue;
+            }
+            points.push(p);
+        }
+        kept.push_str(l);
+        kept.push('\n');
+    }
+    Ok((text, kept, points))
+}
+
 /// Point keys of one file: a block or a signal bit (line, column, what), reached or not.
 type Keys = std::collections::BTreeMap<(u32, String, String), bool>;
 
@@ -265,12 +272,7 @@ type Keys = std::collections::BTreeMap<(u32, String, String), bool>;
 pub fn by_file(data: &[PathBuf]) -> Result<Vec<FileCoverage>, String> {
     let mut files: std::collections::BTreeMap<String, (Keys, Keys)> = Default::default();
     for dat in data {
-        let text = std::fs::read_to_string(dat).map_err(|e| format!("{}: {e}", dat.display()))?;
-        for l in text.lines().filter(|l| l.starts_with("C '")) {
-            let p = point(l).map_err(|e| format!("{}: {e}", dat.display()))?;
-            if !p.in_dut() {
-                continue;
-            }
+        for p in dut_points(dat)?.2 {
             let (blocks, toggles) = files.entry(p.file).or_default();
             let keys = if p.page.starts_with("v_toggle/") {
                 toggles
