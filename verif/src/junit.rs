@@ -45,20 +45,20 @@ pub fn case_output(job: u64, seed: Seed, reproduce: &str) -> String {
 /// run's), the vectors as `regress --only vectors`.
 pub(crate) fn check_command(program: &str, seed: Seed, row: &TbResult) -> String {
     let mut parts = row.name.split('/');
-    match (parts.next(), parts.next(), parts.next()) {
+    let cosim = match (parts.next(), parts.next(), parts.next()) {
         (Some(crate::regress::COSIM), Some(unit), Some(sim)) => {
-            let said = row.mismatch_log.iter().find_map(|l| {
-                let (_, c) = l.split_once(crate::regress::AGAIN)?;
-                Some(c.to_string())
-            });
-            said.unwrap_or_else(|| {
-                let icarus = crate::cosim::Simulator::parse(sim) == Some(Simulator::Icarus);
-                let n = crate::regress::COSIM_CYCLES[usize::from(icarus)];
-                format!("{program} cosim --unit {unit} --sim {sim} --count {n} --seed {seed}")
-            })
+            Simulator::parse(sim).map(|sim| (unit, sim))
         }
-        _ => format!("{program} regress --only {} --seed {seed}", row.name),
-    }
+        _ => None,
+    };
+    let Some((unit, sim)) = cosim else {
+        return format!("{program} regress --only {} --seed {seed}", row.name);
+    };
+    let said = row.mismatch_log.iter().find_map(|l| {
+        let (_, c) = l.split_once(crate::regress::AGAIN)?;
+        Some(c.to_string())
+    });
+    said.unwrap_or_else(|| crate::regress::cosim_command(program, unit, sim, seed))
 }
 
 /// quick-junit writes a `skipped` count on `testsuites`, which the xUnit plugin's schema does

@@ -208,11 +208,8 @@ fn job(
     r.coverage_percent = 100.0;
     if let Some(d) = c.mismatch {
         r.mismatch_log.push(d.to_string());
-        let again = format!(
-            "{program} cosim --unit {unit} --sim {} --count {n} --seed {seed}",
-            sim.name()
-        );
-        r.mismatch_log.push(format!("{AGAIN}{again}"));
+        r.mismatch_log
+            .push(format!("{AGAIN}{}", command(program, unit, sim, seed)));
     }
     // The simulator's own VCD: with `--fst`, its FST is converted from it (the models' FSTs
     // are written while simulating).
@@ -229,6 +226,16 @@ fn job(
         clear(&dir, covered.as_ref().map(|c| c.data.as_path()));
     }
     Ok((r, covered))
+}
+
+/// The command that runs `program`'s co-simulation of `unit` in `sim` under `seed` again
+/// alone, as a regression ran it (its cycles), the RTL's internals in its waveform.
+pub(crate) fn command(program: &str, unit: &str, sim: Simulator, seed: Seed) -> String {
+    let n = COSIM_CYCLES[usize::from(sim == Simulator::Icarus)];
+    format!(
+        "{program} cosim --unit {unit} --sim {} --count {n} --seed {seed}",
+        sim.name()
+    )
 }
 
 /// Removes `dir`, or everything in it but `keep` (a file in it).

@@ -22,7 +22,7 @@ pub const COSIM: &str = "cosim";
 
 mod cosim;
 mod merge;
-pub(crate) use cosim::AGAIN;
+pub(crate) use cosim::{command as cosim_command, AGAIN};
 pub use cosim::{cosim_seed, CosimJob, JobCoverage, COSIM_CYCLES};
 pub use merge::{merge, merge_shards, parse_summary, read_summaries};
 
