@@ -202,6 +202,26 @@ fn the_rtl_coverage_of_every_seed_is_merged_into_the_row() {
         report.contains("## The RTL's coverage by source file"),
         "{report}"
     );
+    // Printed under the table, and a property of the JUnit checks suite.
+    let f = &files[0];
+    let complete = f.blocks.0 == f.blocks.1 && f.toggles.0 == f.toggles.1;
+    let printed = verif::report::rtl_coverage_lines(&whole, 10);
+    let head = format!(
+        "the RTL's coverage by source file: {} of 1 files complete",
+        usize::from(complete)
+    );
+    assert!(printed.starts_with(&head), "{printed}");
+    assert_eq!(
+        printed.contains("  blend.v: blocks "),
+        !complete,
+        "{printed}"
+    );
+    let xml = verif::junit::junit(&p, &whole, &whole.jobs).unwrap();
+    let property = format!(
+        "<property name=\"rtl_coverage {}\" value=\"blocks {} of {}, toggles {} of {}, ",
+        f.file, f.blocks.0, f.blocks.1, f.toggles.0, f.toggles.1
+    );
+    assert!(xml.contains(&property), "{xml}");
     for r in 0..3 {
         let folder = match r {
             0 => out.join("whole/cosim/blend-verilator"),

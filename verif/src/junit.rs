@@ -137,7 +137,27 @@ pub fn junit(project: &Project, s: &Summary, jobs: &[JobResult]) -> Result<Strin
         mine.sort_by_key(|j| j.index);
         report.add_test_suite(suite(project, run, row, &mine));
     }
-    if !checks.test_cases.is_empty() {
+    // The RTL's coverage by source file (`--rtl-coverage`), one property a file: facts
+    // about the run, not tests that pass or fail.
+    for f in &s.rtl_coverage {
+        let unreached: Vec<String> = f.unreached.iter().map(u32::to_string).collect();
+        checks.add_property(Property::new(
+            format!("rtl_coverage {}", f.file),
+            format!(
+                "blocks {} of {}, toggles {} of {}, lines never reached: {}",
+                f.blocks.0,
+                f.blocks.1,
+                f.toggles.0,
+                f.toggles.1,
+                if unreached.is_empty() {
+                    "none".into()
+                } else {
+                    unreached.join(", ")
+                }
+            ),
+        ));
+    }
+    if !checks.test_cases.is_empty() || !checks.properties.is_empty() {
         report.add_test_suite(checks);
     }
     let xml = report.to_string().map_err(|e| e.to_string())?;

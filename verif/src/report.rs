@@ -1,6 +1,7 @@
 //! A regression's report: the table `regress` prints, and `report.md` with each testbench's
 //! figures, error histogram, coverage holes, waveform links and the units' pictures.
 
+use crate::cosim::FileCoverage;
 use crate::project::{Picture, Project};
 use crate::regress::{RegressConfig, Summary};
 use crate::TbResult;
@@ -263,6 +264,58 @@ fn rtl_coverage_section(m: &mut String, s: &Summary) {
         );
     }
     let _ = writeln!(m);
+}
+
+/// The RTL's coverage by source file in a few lines, as `regress` and `merge` print it under
+/// their table (`--rtl-coverage`): how many files every run reached in full, then each file
+/// short of full, at most `max` of them, fewest blocks reached first. `report.md` has every
+/// file with the lines never reached.
+pub fn rtl_coverage_lines(s: &Summary, max: usize) -> String {
+    let files = &s.rtl_coverage;
+    if files.is_empty() {
+        return String::new();
+    }
+    let full = |f: &&FileCoverage| f.blocks.0 == f.blocks.1 && f.toggles.0 == f.toggles.1;
+    let mut short: Vec<&FileCoverage> = files.iter().filter(|f| !full(f)).collect();
+    short.sort_by(|a, b| {
+        let pc = crate::cosim::RtlCoverage::percent;
+        pc(a.blocks)
+            .total_cmp(&pc(b.blocks))
+            .then(a.file.cmp(&b.file))
+    });
+    let mut out = format!(
+        "the RTL's coverage by source file: {} of {} files complete",
+        files.len() - short.len(),
+        files.len()
+    );
+    out.push_str(if short.is_empty() { "\n" } else { "; short:\n" });
+    for f in short.iter().take(max) {
+        let name = std::path::Path::new(&f.file)
+            .file_name()
+            .map_or(f.file.clone(), |n| n.to_string_lossy().into_owned());
+        let _ = writeln!(
+            out,
+            "  {name}: blocks {} of {}, toggles {} of {}, {} never reached",
+            f.blocks.0,
+            f.blocks.1,
+            f.toggles.0,
+            f.toggles.1,
+            match f.unreached.len() {
+                1 => "1 line".to_string(),
+                n => format!("{n} lines"),
+            }
+        );
+    }
+    if short.len() > max {
+        let _ = writeln!(out, "  ... and {} more", short.len() - max);
+    }
+    if !short.is_empty() {
+        let _ = writeln!(
+            out,
+            "  (the lines never reached: summary.json's rtl_coverage, report.md)"
+        );
+    }
+    out
 }
 
 /// The failing jobs' commands, at most `max` of them, as `regress` and `merge` print them.

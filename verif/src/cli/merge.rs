@@ -109,6 +109,7 @@ fn merged(project: &Project, a: &MergeArgs) -> Result<String, CmdError> {
     }
     let mut s = crate::report::failing_lines(&m, 10);
     s.push_str(&crate::report::table(&m.testbenches));
+    s.push_str(&crate::report::rtl_coverage_lines(&m, 10));
     s.push_str(&format!(
         "merged {} shards into {}",
         a.summaries.len(),

@@ -249,8 +249,9 @@ fn run_checked(
     match done {
         Ok(summary) => {
             say(&crate::report::failing_lines(&summary, 10));
+            say(&crate::report::render(&summary.testbenches, cfg));
+            say(&crate::report::rtl_coverage_lines(&summary, 10));
             let results = summary.testbenches;
-            say(&crate::report::render(&results, cfg));
             if let Some(w) = unmatched_filters(cfg, &results) {
                 eprintln!("{name}: warning: {w}");
             }

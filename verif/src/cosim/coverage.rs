@@ -273,7 +273,7 @@ pub fn by_file(data: &[PathBuf]) -> Result<Vec<FileCoverage>, String> {
     let mut files: std::collections::BTreeMap<String, (Keys, Keys)> = Default::default();
     for dat in data {
         for p in dut_points(dat)?.2 {
-            let (blocks, toggles) = files.entry(p.file).or_default();
+            let (blocks, toggles) = files.entry(lexically_clean(&p.file)).or_default();
             let keys = if p.page.starts_with("v_toggle/") {
                 toggles
             } else {
@@ -301,6 +301,27 @@ pub fn by_file(data: &[PathBuf]) -> Result<Vec<FileCoverage>, String> {
         .collect())
 }
 
+/// `path` without its `.` and with each `dir/..` taken out, as written (no link followed): a
+/// file a library search found as `hw/../cells/x.sv` is the `cells/x.sv` another build
+/// named.
+fn lexically_clean(path: &str) -> String {
+    use std::path::Component;
+    let mut kept: Vec<Component> = Vec::new();
+    for c in Path::new(path).components() {
+        match c {
+            Component::CurDir => {}
+            Component::ParentDir if matches!(kept.last(), Some(Component::Normal(_))) => {
+                kept.pop();
+            }
+            // Above the root is the root.
+            Component::ParentDir if matches!(kept.last(), Some(Component::RootDir)) => {}
+            _ => kept.push(c),
+        }
+    }
+    let clean: PathBuf = kept.iter().collect();
+    clean.to_string_lossy().into_owned()
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -324,11 +345,12 @@ mod tests {
             line("/r/sub.v", 7, "v_line/sub", "TOP.tb.dut.s0", 0),
             line("/r/sub.v", 2, "v_toggle/sub", "TOP.tb.dut.s0", 0),
         ];
+        // The other build found the file through a library folder: the same file.
         let b = [
-            line("/r/sub.v", 5, "v_line/sub", "TOP.tb.dut", 0),
-            line("/r/sub.v", 6, "v_line/sub", "TOP.tb.dut", 3),
-            line("/r/sub.v", 7, "v_line/sub", "TOP.tb.dut", 0),
-            line("/r/sub.v", 2, "v_toggle/sub", "TOP.tb.dut", 1),
+            line("/r/lib/../sub.v", 5, "v_line/sub", "TOP.tb.dut", 0),
+            line("/r/./lib/../sub.v", 6, "v_line/sub", "TOP.tb.dut", 3),
+            line("/r/lib/../sub.v", 7, "v_line/sub", "TOP.tb.dut", 0),
+            line("/r/lib/../sub.v", 2, "v_toggle/sub", "TOP.tb.dut", 1),
         ];
         let write = |name: &str, lines: &[String]| {
             let p = dir.join(name);
@@ -351,6 +373,15 @@ mod tests {
         assert_eq!(files, [sub, u]);
         assert!(by_file(&[dir.join("none.dat")]).is_err());
         std::fs::remove_dir_all(&dir).unwrap();
+    }
+
+    #[test]
+    fn a_path_is_cleaned_as_written() {
+        assert_eq!(lexically_clean("/p/hw/../cells/x.sv"), "/p/cells/x.sv");
+        assert_eq!(lexically_clean("./a/./b.v"), "a/b.v");
+        assert_eq!(lexically_clean("../up/x.v"), "../up/x.v");
+        assert_eq!(lexically_clean("a/../../x.v"), "../x.v");
+        assert_eq!(lexically_clean("/../x.v"), "/x.v");
     }
 
     /// Points under the dut counted by kind, the testbench's own left out, the blocks never
