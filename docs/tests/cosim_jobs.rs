@@ -96,7 +96,9 @@ fn each_seed_co_simulates_its_own_stimulus_and_a_farm_merges_to_the_one_machine(
         .expect("a run seed whose later seeds alone reach the bug");
     let expected = hits(seed);
 
-    let whole = run(&p, &config(out.join("whole"), seed, SEEDS));
+    let mut cfg = config(out.join("whole"), seed, SEEDS);
+    cfg.junit = Some(out.join("whole.xml"));
+    let whole = run(&p, &cfg);
     let row = &whole.testbenches[0];
     assert_eq!(row.name, "cosim/blend/verilator");
     assert_eq!(row.cycles, u64::from(SEEDS) * COSIM_CYCLES[0] as u64);
@@ -156,10 +158,58 @@ fn each_seed_co_simulates_its_own_stimulus_and_a_farm_merges_to_the_one_machine(
     assert_eq!(merged.passed, whole.passed);
     let json = |s: &Summary| serde_json::to_string(&s.failing).unwrap();
     assert_eq!(json(&merged), json(&whole));
+    // JUnit: the row a suite, a case per seed's job, failed exactly where the seed reaches
+    // the bug, with its own command; the merge's file is the whole run's but for the times.
+    let xml = std::fs::read_to_string(out.join("whole.xml")).unwrap();
+    junit_cases_per_seed(&xml, seed, &expected);
+    let cosim_jobs: Vec<_> = shards
+        .iter()
+        .flat_map(|(_, s)| s.cosim_jobs.clone())
+        .collect();
+    let from_merge = verif::junit::junit(&p, &merged, &[], &cosim_jobs).unwrap();
+    assert_eq!(timeless(&from_merge), timeless(&xml));
     shards.remove(1);
     let e = merge_shards(&p, &shards).err().unwrap();
     assert!(e.contains("shard 2/3 is missing"), "{e}");
     std::fs::remove_dir_all(&out).unwrap();
+}
+
+/// The co-simulation row's JUnit suite in `xml`: one case per seed, each naming its job,
+/// seed and command, failed exactly for the seeds in `failing`, then the row's verdict.
+fn junit_cases_per_seed(xml: &str, seed: Seed, failing: &[u32]) {
+    let suite = r#"<testsuite name="cosim/blend/verilator" tests="7" "#;
+    assert!(xml.contains(suite), "{xml}");
+    for r in 0..SEEDS {
+        let name = match r {
+            0 => format!("{} cycles", COSIM_CYCLES[0]),
+            _ => format!("{} cycles, seed #{r}", COSIM_CYCLES[0]),
+        };
+        let start = xml
+            .find(&format!(r#"<testcase name="{name}""#))
+            .expect(&name);
+        let case = &xml[start..start + xml[start..].find("</testcase>").unwrap()];
+        let command = format!(
+            "blend cosim --unit blend --sim verilator --count {} --seed {}",
+            COSIM_CYCLES[0],
+            cosim_seed(seed, r)
+        );
+        assert!(case.contains(&format!("job {}\n", r)), "{case}");
+        assert!(case.contains(&format!("reproduce: {command}")), "{case}");
+        assert_eq!(case.contains("<failure"), failing.contains(&r), "{case}");
+    }
+}
+
+/// `xml` without its `time="..."` attributes.
+fn timeless(xml: &str) -> String {
+    let mut out = String::new();
+    let mut rest = xml;
+    while let Some(k) = rest.find(" time=\"") {
+        out.push_str(&rest[..k]);
+        let after = &rest[k + 7..];
+        rest = &after[after.find('"').map_or(after.len(), |e| e + 1)..];
+    }
+    out.push_str(rest);
+    out
 }
 
 /// `--rtl-coverage` under several seeds: one note a row, the seeds' coverage merged (at least
@@ -216,7 +266,7 @@ fn the_rtl_coverage_of_every_seed_is_merged_into_the_row() {
         !complete,
         "{printed}"
     );
-    let xml = verif::junit::junit(&p, &whole, &whole.jobs).unwrap();
+    let xml = verif::junit::junit(&p, &whole, &[], &[]).unwrap();
     let property = format!(
         "<property name=\"rtl_coverage {}\" value=\"blocks {} of {}, toggles {} of {}, ",
         f.file, f.blocks.0, f.blocks.1, f.toggles.0, f.toggles.1

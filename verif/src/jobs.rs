@@ -545,7 +545,7 @@ mod tests {
         let thirds = shards(&p, 2, &["1/3", "2/3", "3/3"], "junit");
         let merged = merge_shards(&p, &thirds).unwrap();
         let jobs: Vec<JobResult> = thirds.iter().flat_map(|(_, s)| s.jobs.clone()).collect();
-        let again = crate::junit::junit(&p, &merged, &jobs).unwrap();
+        let again = crate::junit::junit(&p, &merged, &jobs, &[]).unwrap();
         assert_eq!(timeless(&again), timeless(&xml));
         clean("junit");
     }

@@ -1,9 +1,10 @@
 //! JUnit XML of a regression (`regress --junit FILE`, `merge --junit FILE`), the results file
-//! Jenkins, GitLab and GitHub read: one test suite per testbench, one test case per job (a
-//! configuration under one seed) with its time, its seed and the command that runs it again
-//! alone, and a failure carrying its first mismatch; a case per testbench for the verdict on
-//! the merged result (coverage holes and the testbench's own conclusions); and a suite of the
-//! checks that are not jobs (the vectors, each co-simulation). Written through `quick-junit`,
+//! Jenkins, GitLab and GitHub read: one test suite per testbench and per co-simulation row,
+//! one test case per job (a configuration, or a twin's co-simulation, under one seed) with
+//! its time, its seed and the command that runs it again alone, and a failure carrying its
+//! first mismatch; a case per suite for the verdict on the merged result (coverage holes and
+//! the testbench's own conclusions); and a suite of the checks that are not jobs (the
+//! vectors), whose properties give the RTL's coverage by source file. Written through `quick-junit`,
 //! within the element and attribute set of Jenkins' xUnit plugin, the strictest reader
 //! (`verif/schema/junit.xsd`, checked in the tests): a case has no properties, so its job,
 //! seed and command are the lines of its `system-out`.
@@ -11,7 +12,7 @@
 use crate::cosim::Simulator;
 use crate::jobs::{job_label, job_seed, JobResult};
 use crate::project::Project;
-use crate::regress::{reproduce, Summary};
+use crate::regress::{cosim_seed, reproduce, CosimJob, Summary};
 use crate::{Seed, TbResult};
 use quick_junit::{NonSuccessKind, Property, Report, TestCase, TestCaseStatus, TestSuite};
 use std::time::Duration;
@@ -106,15 +107,51 @@ fn suite(
     suite
 }
 
-/// The JUnit XML of summary `s`, whose testbenches ran `jobs` (any order; each testbench's
-/// are taken in job order).
-pub fn junit(project: &Project, s: &Summary, jobs: &[JobResult]) -> Result<String, String> {
+/// The suite of one co-simulation row: a case per seed's job, then the row's verdict.
+fn cosim_suite(program: &str, seed: Seed, row: &TbResult, jobs: &[&CosimJob]) -> TestSuite {
+    let mut suite = TestSuite::new(row.name.as_str());
+    suite.add_property(Property::new("unit", row.unit.as_str()));
+    for j in jobs {
+        let seed = cosim_seed(seed, j.repeat);
+        let command = check_command(program, seed, &j.result);
+        let label = format!("{} cycles", j.result.cycles);
+        let mut case = TestCase::new(
+            job_label(&label, j.repeat),
+            status(!j.result.passed, &j.result, Some(&command)),
+        );
+        case.set_classname(row.name.as_str())
+            .set_time(Duration::from_secs_f64(j.seconds.max(0.0)))
+            .set_system_out(case_output(j.job, seed, &command));
+        suite.add_test_case(case);
+    }
+    let mut verdict = TestCase::new("merged result", status(!row.passed, row, None));
+    verdict.set_classname(row.name.as_str());
+    suite.add_test_case(verdict);
+    suite
+}
+
+/// The JUnit XML of summary `s`, whose testbenches ran `jobs` and whose co-simulation rows
+/// ran `cosim_jobs` (any order; each row's are taken in job order). A row none of whose jobs
+/// is given (the vectors, a co-simulation row of a summary without its jobs) is one case of
+/// the `checks` suite.
+pub fn junit(
+    project: &Project,
+    s: &Summary,
+    jobs: &[JobResult],
+    cosim_jobs: &[CosimJob],
+) -> Result<String, String> {
     let seed = Seed::parse(&s.seed)?;
     let run = (seed, s.seeds, s.count);
     let reg = project.registry();
     let mut report = Report::new(project.name());
     let mut checks = TestSuite::new("checks");
     for row in &s.testbenches {
+        let mut its: Vec<&CosimJob> = cosim_jobs.iter().filter(|j| j.row == row.name).collect();
+        if !its.is_empty() {
+            its.sort_by_key(|j| j.job);
+            report.add_test_suite(cosim_suite(project.name(), seed, row, &its));
+            continue;
+        }
         let Some(tb) = reg.get(&row.name) else {
             let command = check_command(project.name(), seed, row);
             let mut case =

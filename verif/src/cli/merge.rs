@@ -101,7 +101,11 @@ fn merged(project: &Project, a: &MergeArgs) -> Result<String, CmdError> {
             .iter()
             .flat_map(|(_, s)| s.jobs.iter().cloned())
             .collect();
-        let xml = crate::junit::junit(project, &m, &jobs).map_err(CmdError::Failed)?;
+        let cosim_jobs: Vec<_> = shards
+            .iter()
+            .flat_map(|(_, s)| s.cosim_jobs.iter().cloned())
+            .collect();
+        let xml = crate::junit::junit(project, &m, &jobs, &cosim_jobs).map_err(CmdError::Failed)?;
         write_out(j, xml.as_bytes())?;
     }
     if let Some(dir) = &a.report {

@@ -434,6 +434,11 @@ pub fn regress(
     results.extend(cosim::rows(&done, &cfg.out.join(COSIM))?);
     failing.extend(cosim::failing(project.name(), &done, cfg.seed));
     let rtl_coverage = cosim::by_file(&done);
+    let (kept_cosim, cosim_ran) = if keep {
+        (cosim_jobs, Vec::new())
+    } else {
+        (Vec::new(), cosim_jobs)
+    };
     for r in &mut results {
         focus_on_mismatch(r);
         check_waveform(r, cfg.fst);
@@ -455,15 +460,18 @@ pub fn regress(
         } else {
             Vec::new()
         },
-        cosim_jobs: if keep { cosim_jobs } else { Vec::new() },
+        cosim_jobs: kept_cosim,
         rtl_coverage,
     };
     let path = cfg.out.join("summary.json");
     let json = serde_json::to_vec_pretty(&summary).map_err(|e| e.to_string())?;
     write_output(&path, &json).map_err(|e| e.to_string())?;
     if let Some(j) = &cfg.junit {
-        let jobs = if keep { &summary.jobs } else { &ran };
-        let xml = crate::junit::junit(project, &summary, jobs)?;
+        let (jobs, cosim_jobs) = match keep {
+            true => (&summary.jobs, &summary.cosim_jobs),
+            false => (&ran, &cosim_ran),
+        };
+        let xml = crate::junit::junit(project, &summary, jobs, cosim_jobs)?;
         write_output(j, xml.as_bytes()).map_err(|e| format!("--junit {}: {e}", j.display()))?;
     }
     Ok(summary)
