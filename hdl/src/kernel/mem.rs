@@ -5,7 +5,9 @@
 //! ([`Mem::write`]) after clearing the port with [`Mem::eval`]; the clock edge commits the
 //! write (none under reset; the contents survive reset, as a RAM's do). The write port is
 //! traced in the memory's own scope (`we`, `waddr`, `wdata`), so a write shows in the
-//! waveform and the schedule check compares it between two evaluations.
+//! waveform and the schedule check compares it between two evaluations. A small memory can
+//! show its words too ([`Mem::show_words`]: a FIFO's or a register file's contents in the
+//! waveform, each word a signal `word<k>` of the memory's scope).
 
 use super::module::{Dir, Module, Visitor};
 use super::signal::Signal;
@@ -19,6 +21,21 @@ pub struct Mem {
     we: Signal,
     waddr: Signal,
     wdata: Signal,
+    /// Every word as a signal, when shown ([`Mem::show_words`]); else empty.
+    shown: Vec<Signal>,
+}
+
+/// The most words [`Mem::show_words`] shows.
+pub const MAX_SHOWN_WORDS: usize = 1024;
+
+/// The name of shown word `k` (`word<k>`), made once for the process.
+fn word_name(k: usize) -> &'static str {
+    static NAMES: std::sync::OnceLock<Vec<&'static str>> = std::sync::OnceLock::new();
+    NAMES.get_or_init(|| {
+        (0..MAX_SHOWN_WORDS)
+            .map(|k| &*Box::leak(format!("word{k}").into_boxed_str()))
+            .collect()
+    })[k]
 }
 
 impl Mem {
@@ -32,7 +49,31 @@ impl Mem {
             we: Signal::bit("we"),
             waddr: Signal::new("waddr", Format::uint(abits)),
             wdata: Signal::new("wdata", fmt),
+            shown: Vec::new(),
         }
+    }
+
+    /// The same memory with every word a signal of its scope (`word0`, `word1`, ...), traced
+    /// and compared by the schedule check like a register: its contents in the waveform. For
+    /// memories of at most [`MAX_SHOWN_WORDS`] words; each costs a store per write and a
+    /// value per traced cycle.
+    #[track_caller]
+    pub fn show_words(mut self) -> Mem {
+        assert!(
+            self.words.len() <= MAX_SHOWN_WORDS,
+            "{}: {} words; show_words shows at most {MAX_SHOWN_WORDS}",
+            self.name,
+            self.words.len()
+        );
+        let fmt = self.wdata.fmt();
+        self.shown = (0..self.words.len())
+            .map(|k| {
+                let mut s = Signal::new(word_name(k), fmt);
+                s.bits = self.words[k];
+                s
+            })
+            .collect();
+        self
     }
 
     /// Words held.
@@ -84,7 +125,11 @@ impl Module for Mem {
     #[inline]
     fn tick(&mut self, reset: bool) {
         if !reset && self.we.is_high() {
-            self.words[self.waddr.bits() as usize] = self.wdata.bits();
+            let k = self.waddr.bits() as usize;
+            self.words[k] = self.wdata.bits();
+            if let Some(w) = self.shown.get_mut(k) {
+                w.bits = self.wdata.bits();
+            }
         }
     }
     fn visit(&self, v: &mut dyn Visitor) {
@@ -92,6 +137,9 @@ impl Module for Mem {
         v.signal(Dir::Wire, &self.we);
         v.signal(Dir::Wire, &self.waddr);
         v.signal(Dir::Wire, &self.wdata);
+        for w in &self.shown {
+            v.signal(Dir::Reg, w);
+        }
         v.leave();
     }
     #[inline]
@@ -99,6 +147,9 @@ impl Module for Mem {
         f(self.we.bits());
         f(self.waddr.bits());
         f(self.wdata.bits());
+        for w in &self.shown {
+            f(w.bits);
+        }
     }
 }
 
@@ -123,6 +174,38 @@ mod tests {
         sim.dut.write(0, 7);
         sim.dut.tick(true);
         assert_eq!((sim.dut.read(0), sim.dut.read(4)), (0, 200));
+    }
+
+    /// Shown words follow the contents, visited after the write port in the memory's scope.
+    #[test]
+    fn shown_words_are_the_contents() {
+        use crate::kernel::signal_paths;
+        let mut sim = Sim::new(Mem::new("ram", 3, Format::uint(8)).show_words());
+        let paths = signal_paths(&sim.dut);
+        assert_eq!(
+            paths,
+            [
+                "ram.we",
+                "ram.waddr",
+                "ram.wdata",
+                "ram.word0",
+                "ram.word1",
+                "ram.word2"
+            ]
+        );
+        sim.dut.eval();
+        sim.dut.write(2, 99);
+        sim.tick();
+        let mut bits = Vec::new();
+        sim.dut.visit_bits(&mut |b| bits.push(b));
+        assert_eq!(bits[3..], [0, 0, 99]);
+        assert_eq!(word_name(1023), "word1023");
+    }
+
+    #[test]
+    #[should_panic(expected = "ram: 1025 words; show_words shows at most 1024")]
+    fn a_memory_too_big_to_show_is_refused() {
+        let _ = Mem::new("ram", 1025, Format::uint(8)).show_words();
     }
 
     #[test]

@@ -16,7 +16,7 @@ mod stream;
 mod typed;
 
 pub use delay::Delay;
-pub use mem::Mem;
+pub use mem::{Mem, MAX_SHOWN_WORDS};
 pub use module::{check_gated_edge, BitsOf, Dir, Module, Visitor};
 pub use signal::{Reg, Signal};
 pub use sim::{instances, narrowings, signal_dirs, signal_paths, NoTrace, Sim, Trace};
