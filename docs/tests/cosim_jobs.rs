@@ -167,7 +167,10 @@ fn each_seed_co_simulates_its_own_stimulus_and_a_farm_merges_to_the_one_machine(
         .flat_map(|(_, s)| s.cosim_jobs.clone())
         .collect();
     let from_merge = verif::junit::junit(&p, &merged, &[], &cosim_jobs).unwrap();
-    assert_eq!(timeless(&from_merge), timeless(&xml));
+    assert_eq!(
+        verif::junit::timeless(&from_merge),
+        verif::junit::timeless(&xml)
+    );
     shards.remove(1);
     let e = merge_shards(&p, &shards).err().unwrap();
     assert!(e.contains("shard 2/3 is missing"), "{e}");
@@ -197,19 +200,6 @@ fn junit_cases_per_seed(xml: &str, seed: Seed, failing: &[u32]) {
         assert!(case.contains(&format!("reproduce: {command}")), "{case}");
         assert_eq!(case.contains("<failure"), failing.contains(&r), "{case}");
     }
-}
-
-/// `xml` without its `time="..."` attributes.
-fn timeless(xml: &str) -> String {
-    let mut out = String::new();
-    let mut rest = xml;
-    while let Some(k) = rest.find(" time=\"") {
-        out.push_str(&rest[..k]);
-        let after = &rest[k + 7..];
-        rest = &after[after.find('"').map_or(after.len(), |e| e + 1)..];
-    }
-    out.push_str(rest);
-    out
 }
 
 /// `--rtl-coverage` under several seeds: one note a row, the seeds' coverage merged (at least

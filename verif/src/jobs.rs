@@ -385,19 +385,6 @@ mod tests {
         clean("repro");
     }
 
-    /// The XML without its `time="..."` attributes.
-    fn timeless(xml: &str) -> String {
-        let mut out = String::new();
-        let mut rest = xml;
-        while let Some(k) = rest.find(" time=\"") {
-            out.push_str(&rest[..k]);
-            let after = &rest[k + 7..];
-            rest = &after[after.find('"').map_or(after.len(), |e| e + 1)..];
-        }
-        out.push_str(rest);
-        out
-    }
-
     /// Validates `xml` against the JUnit schema the strictest reader accepts, with libxml2's
     /// `xmllint` (Debian's libxml2-utils, which `.ci/run` installs). Without it the check is
     /// skipped with a note, unless `CI` is set.
@@ -546,7 +533,7 @@ mod tests {
         let merged = merge_shards(&p, &thirds).unwrap();
         let jobs: Vec<JobResult> = thirds.iter().flat_map(|(_, s)| s.jobs.clone()).collect();
         let again = crate::junit::junit(&p, &merged, &jobs, &[]).unwrap();
-        assert_eq!(timeless(&again), timeless(&xml));
+        assert_eq!(crate::junit::timeless(&again), crate::junit::timeless(&xml));
         clean("junit");
     }
 }

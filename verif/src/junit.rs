@@ -73,6 +73,49 @@ fn without_total_skipped(mut xml: String) -> String {
     xml
 }
 
+/// `xml` without its `time="..."` attributes: what two runs of the same jobs agree on (a
+/// merge's file and the unsharded run's, a run and its rerun).
+pub fn timeless(xml: &str) -> String {
+    let mut out = String::with_capacity(xml.len());
+    let mut rest = xml;
+    while let Some(k) = rest.find(" time=\"") {
+        out.push_str(&rest[..k]);
+        let after = &rest[k + " time=\"".len()..];
+        rest = &after[after.find('"').map_or(after.len(), |e| e + 1)..];
+    }
+    out.push_str(rest);
+    out
+}
+
+/// A row's suite: its `cases` (one per job), then its verdict on the merged result.
+fn row_suite(row: &TbResult, cases: Vec<TestCase>) -> TestSuite {
+    let mut suite = TestSuite::new(row.name.as_str());
+    suite.add_property(Property::new("unit", row.unit.as_str()));
+    suite.add_test_cases(cases);
+    let mut verdict = TestCase::new("merged result", status(!row.passed, row, None));
+    verdict.set_classname(row.name.as_str());
+    suite.add_test_case(verdict);
+    suite
+}
+
+/// The case of one job of `row`: its name, its result (failed or not), the command that runs
+/// it again, its index, seed and time.
+fn job_case(
+    row: &str,
+    name: String,
+    failed: bool,
+    r: &TbResult,
+    job: (u64, Seed, f64),
+    command: &str,
+) -> TestCase {
+    let (index, seed, seconds) = job;
+    let mut case = TestCase::new(name, status(failed, r, Some(command)));
+    case.set_classname(row)
+        .set_time(Duration::from_secs_f64(seconds.max(0.0)))
+        .set_system_out(case_output(index, seed, command));
+    case
+}
+
 /// The suite of one testbench: its jobs, then its merged verdict.
 fn suite(
     project: &Project,
@@ -80,54 +123,46 @@ fn suite(
     row: &TbResult,
     jobs: &[&JobResult],
 ) -> TestSuite {
-    let mut suite = TestSuite::new(row.name.as_str());
-    suite.add_property(Property::new("unit", row.unit.as_str()));
     let labels = project
         .registry()
         .get(&row.name)
         .map(|t| t.configurations())
         .unwrap_or_default();
-    for j in jobs {
+    let cases = jobs.iter().map(|j| {
         let label = labels.get(j.configuration).map_or("?", String::as_str);
         let seed = job_seed(run.0, &row.name, j.configuration, j.repeat);
         let command = reproduce(project, run, j);
+        let name = job_label(label, j.repeat);
         let failed = j.result.failed_itself();
-        let mut case = TestCase::new(
-            job_label(label, j.repeat),
-            status(failed, &j.result, Some(&command)),
-        );
-        case.set_classname(row.name.as_str())
-            .set_time(Duration::from_secs_f64(j.seconds.max(0.0)))
-            .set_system_out(case_output(j.index, seed, &command));
-        suite.add_test_case(case);
-    }
-    let mut verdict = TestCase::new("merged result", status(!row.passed, row, None));
-    verdict.set_classname(row.name.as_str());
-    suite.add_test_case(verdict);
-    suite
+        job_case(
+            &row.name,
+            name,
+            failed,
+            &j.result,
+            (j.index, seed, j.seconds),
+            &command,
+        )
+    });
+    row_suite(row, cases.collect())
 }
 
 /// The suite of one co-simulation row: a case per seed's job, then the row's verdict.
 fn cosim_suite(program: &str, seed: Seed, row: &TbResult, jobs: &[&CosimJob]) -> TestSuite {
-    let mut suite = TestSuite::new(row.name.as_str());
-    suite.add_property(Property::new("unit", row.unit.as_str()));
-    for j in jobs {
+    let cases = jobs.iter().map(|j| {
         let seed = cosim_seed(seed, j.repeat);
         let command = check_command(program, seed, &j.result);
-        let label = format!("{} cycles", j.result.cycles);
-        let mut case = TestCase::new(
-            job_label(&label, j.repeat),
-            status(!j.result.passed, &j.result, Some(&command)),
-        );
-        case.set_classname(row.name.as_str())
-            .set_time(Duration::from_secs_f64(j.seconds.max(0.0)))
-            .set_system_out(case_output(j.job, seed, &command));
-        suite.add_test_case(case);
-    }
-    let mut verdict = TestCase::new("merged result", status(!row.passed, row, None));
-    verdict.set_classname(row.name.as_str());
-    suite.add_test_case(verdict);
-    suite
+        let name = job_label(&format!("{} cycles", j.result.cycles), j.repeat);
+        let failed = !j.result.passed;
+        job_case(
+            &row.name,
+            name,
+            failed,
+            &j.result,
+            (j.job, seed, j.seconds),
+            &command,
+        )
+    });
+    row_suite(row, cases.collect())
 }
 
 /// The JUnit XML of summary `s`, whose testbenches ran `jobs` and whose co-simulation rows
