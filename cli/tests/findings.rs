@@ -563,7 +563,7 @@ fn a_register_left_out_of_reset_is_a_difference_in_both_simulators() {
         );
         let said = String::from_utf8_lossy(&o.stdout);
         assert!(
-            said.contains("under tb.rtl_internals, cycles 0..22"),
+            said.contains("under tb.rtl_internals, cycles 0..22; the model's, 14 signals, under tb.model_internals"),
             "{sim}: {said}"
         );
         let vcd = d.join("run/blend_adjust_153_cosim.vcd");
@@ -584,6 +584,23 @@ fn a_register_left_out_of_reset_is_a_difference_in_both_simulators() {
                 assert_eq!(num(at(&inner, c)), num(at(&input, c)), "{sim}: {p} in {c}");
             }
         }
+        // The model's internals over the same cycles: its ports as compared, and the
+        // register the RTL left out of reset, reset.
+        for c in 0..22 {
+            for p in ["u0", "u1", "v0", "v1", "valid"] {
+                let (inner, outer) = (format!("tb.model_internals.{p}"), format!("tb.model.{p}"));
+                assert_eq!(
+                    at(&inner, c),
+                    at(&outer, c),
+                    "{sim}: model {p} in cycle {c}"
+                );
+            }
+        }
+        assert_eq!(
+            num(at("tb.model_internals.u0_r", 1)),
+            0,
+            "{sim}: reset in the model"
+        );
         let reg = at("tb.rtl_internals.g_reg.u0_r", 1);
         if sim == "icarus" {
             assert!(reg.contains('x'), "never reset: {reg}");

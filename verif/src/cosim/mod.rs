@@ -23,6 +23,7 @@ use std::process::Command;
 pub mod cache;
 mod coverage;
 mod filelist;
+mod internals;
 mod library;
 mod rtl;
 mod twin;
@@ -30,6 +31,8 @@ mod verilator;
 
 pub use coverage::{by_file, FileCoverage, RtlCoverage};
 pub use filelist::{FileList, PathsFrom};
+pub use internals::ModelInternals;
+use internals::{internals, Internals};
 pub use library::Library;
 pub use rtl::verilog_range;
 pub use twin::{random_inputs, Twin};
@@ -69,6 +72,17 @@ pub trait CosimModel {
     /// when the outputs are.
     fn cycle_watched(&mut self, rst: bool, inputs: &[u64]) -> (Vec<u64>, Vec<u64>) {
         (self.cycle(rst, inputs), Vec::new())
+    }
+    /// Every signal of the model's hierarchy in `cycles` of a run of the design as built on
+    /// `stim` (the first `resets` in reset): what an explained run shows beside the RTL's
+    /// internals around a difference (nothing by default).
+    fn internals(
+        &self,
+        _stim: &[Vec<u64>],
+        _resets: usize,
+        _cycles: std::ops::Range<usize>,
+    ) -> Option<ModelInternals> {
+        None
     }
     /// A benchmark run of the design as built (not as [`CosimModel::cycle`] left it): `stim`
     /// driven cycle by cycle (the first `resets` in reset), no schedule check, no output read;
@@ -246,6 +260,15 @@ impl<M: Module + Clone, D: Fn(&mut M, &[u64])> CosimModel for ModelSim<M, D> {
         let watched = (self.watch_fn)(&self.sim.dut);
         self.sim.tick();
         (out, watched)
+    }
+    fn internals(
+        &self,
+        stim: &[Vec<u64>],
+        resets: usize,
+        cycles: std::ops::Range<usize>,
+    ) -> Option<ModelInternals> {
+        let dut = self.pristine.clone();
+        Some(ModelInternals::of(dut, &self.drive, stim, resets, cycles))
     }
     fn bench(
         &self,
@@ -832,16 +855,7 @@ pub fn run_with_options(
     options: RunOptions,
 ) -> Result<CosimResult, String> {
     let (cycles, explain) = (stim.len(), options.internals);
-    if cycles == 0 {
-        return Err(format!("{}: no cycles to simulate", unit.name()));
-    }
-    if options.rtl_coverage && sim != Simulator::Verilator {
-        return Err(format!("{}: the RTL's coverage is Verilator's", sim.name()));
-    }
-    if unit.clocking().is_some_and(|c| c.reset_cycles == 0) {
-        return Err(format!("{}: reset_cycles must be at least 1", unit.name()));
-    }
-    sim.check_installed()?;
+    refused(unit, sim, &options, cycles)?;
     let mut model = unit.model()?;
     let (ins, outs) = model.ports();
     let rules = Rules::new(unit, &outs)?;
@@ -888,10 +902,10 @@ pub fn run_with_options(
         &got,
         (resets, history),
     );
-    let internals = match (&found.0, explain) {
-        (Some(d), true) => Some(internals(sim, &run, &got, d.cycle)),
-        _ => None,
-    };
+    let first = found.0.as_ref().filter(|_| explain).map(|d| d.cycle);
+    let internals = first.map(|c| internals(sim, &run, &got, c));
+    let model_internals =
+        first.and_then(|c| model.internals(stim, resets, internals::window(c, cycles)));
     let shown = Compared {
         unit,
         rules: &rules,
@@ -900,6 +914,7 @@ pub fn run_with_options(
         watched: (&model.watched(), &watched),
         stim,
         internals: internals.as_ref().and_then(|r| r.as_ref().ok()),
+        model_internals: model_internals.as_ref(),
     };
     let wanted = found.0.is_some() || !options.waveform_on_difference_only;
     let vcd = wanted.then(|| shown.write(dir, &ins, &outs)).transpose()?;
@@ -908,79 +923,39 @@ pub fn run_with_options(
         mismatch: found.0,
         differences: found.1,
         vcd,
-        internals: internals.map(|r| r.map_or_else(|e| e, |s| s.said())),
+        internals: internals.map(|r| {
+            let rtl = r.map_or_else(|e| e, |s| s.said());
+            match &model_internals {
+                Some(m) => format!("{rtl}; {}", m.said()),
+                None => rtl,
+            }
+        }),
         rtl_coverage,
     })
 }
 
-/// The RTL's internals around cycle `first`, sampled as the ports are.
-fn internals(
+/// Why a run cannot be made, before anything is written: no cycles, the RTL's coverage asked
+/// of a simulator that has none, no reset cycle, the simulator not installed.
+fn refused(
+    unit: &dyn CosimUnit,
     sim: Simulator,
-    run: &rtl::RtlRun,
-    got: &[Vec<Option<u64>>],
-    first: usize,
-) -> Result<Internals, String> {
-    let from = first.saturating_sub(INTERNALS_BEFORE);
-    let to = (first + INTERNALS_AFTER + 1).min(run.cycles);
-    let vcd = rtl::internals(sim, run, got, (from, to))
-        .map_err(|e| format!("the RTL's internals are not in the waveform: {e}"))?;
-    let mut sampled = waves::sample::sample(&vcd, &["tb", "dut"], from..to, rtl::sampled_before_ps)
-        .map_err(|e| format!("the RTL's internals are not in the waveform: {e}"))?;
-    // The clock is sampled before its edge: always low, nothing to see.
-    if let Some(k) =
-        (run.clocking.as_ref()).and_then(|c| sampled.signals.iter().position(|s| s.0 == c.clock))
-    {
-        sampled.signals.remove(k);
-        sampled.values.iter_mut().for_each(|v| _ = v.remove(k));
+    options: &RunOptions,
+    cycles: usize,
+) -> Result<(), String> {
+    if cycles == 0 {
+        return Err(format!("{}: no cycles to simulate", unit.name()));
     }
-    parameters_last(&mut sampled);
-    Ok(Internals { sampled })
-}
-
-/// Moves the top's parameters after its other signals, so the view opens on signals: a
-/// constant named in capitals (Verilator dumps parameters as wires; Icarus leaves them out).
-fn parameters_last(s: &mut waves::sample::Sampled) {
-    let parameter = |k: usize| {
-        let name = &s.signals[k].0;
-        let capitals = |c: char| c.is_ascii_uppercase() || c.is_ascii_digit() || c == '_';
-        let constant = s.values.windows(2).all(|w| w[0][k] == w[1][k]);
-        !name.contains('.') && name.chars().all(capitals) && constant
-    };
-    let (params, others): (Vec<usize>, Vec<usize>) =
-        (0..s.signals.len()).partition(|&k| parameter(k));
-    let order: Vec<usize> = others.into_iter().chain(params).collect();
-    s.signals = order.iter().map(|&k| s.signals[k].clone()).collect();
-    for row in &mut s.values {
-        *row = order.iter().map(|&k| row[k]).collect();
+    if options.rtl_coverage && sim != Simulator::Verilator {
+        return Err(format!("{}: the RTL's coverage is Verilator's", sim.name()));
     }
-}
-
-/// The RTL's internals read back.
-struct Internals {
-    sampled: waves::sample::Sampled,
-}
-
-impl Internals {
-    fn said(&self) -> String {
-        let s = &self.sampled;
-        let skipped = match s.skipped {
-            0 => String::new(),
-            n => format!(
-                " ({n} more left out: wider than 64 bits, real, or beyond the first {})",
-                waves::sample::MAX_SIGNALS
-            ),
-        };
-        format!(
-            "the RTL's internals, {} signals{skipped}, are in the waveform under tb.rtl_internals, cycles {}..{}",
-            s.signals.len(),
-            s.cycles.start,
-            s.cycles.end
-        )
+    if unit.clocking().is_some_and(|c| c.reset_cycles == 0) {
+        return Err(format!("{}: reset_cycles must be at least 1", unit.name()));
     }
+    sim.check_installed()
 }
 
 /// What a run's waveform shows: the comparison, the inputs, the model's watched signals and
-/// the RTL's internals when dumped.
+/// the RTL's and the model's internals when dumped.
 struct Compared<'a> {
     unit: &'a dyn CosimUnit,
     rules: &'a Rules,
@@ -989,6 +964,7 @@ struct Compared<'a> {
     watched: (&'a [Port], &'a [Vec<u64>]),
     stim: &'a [Vec<u64>],
     internals: Option<&'a Internals>,
+    model_internals: Option<&'a ModelInternals>,
 }
 
 impl Compared<'_> {
@@ -1036,6 +1012,24 @@ impl Compared<'_> {
                 scope: "rtl_internals",
                 signals: &inner,
                 values: Values::From(s.cycles.start, &s.values),
+            });
+        }
+        let (mine, mine_values) = match self.model_internals {
+            Some(m) => (
+                (m.signals.iter())
+                    .map(|(n, w, sg)| (n.as_str(), *w, *sg))
+                    .collect(),
+                (m.values.iter())
+                    .map(|row| row.iter().copied().map(Some).collect())
+                    .collect(),
+            ),
+            None => (Vec::new(), Vec::new()),
+        };
+        if let Some(m) = self.model_internals {
+            shown.push(Shown {
+                scope: "model_internals",
+                signals: &mine,
+                values: Values::From(m.cycles.start, &mine_values),
             });
         }
         let title = self.unit.name();
