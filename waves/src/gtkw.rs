@@ -270,7 +270,10 @@ impl Gtkw {
 
     /// Expands scope `path` in the signal tree.
     pub fn treeopen(&mut self, path: &str) {
-        self.tree.push(path.to_string());
+        // Once each: every group of a scope opens it.
+        if !self.tree.iter().any(|t| t == path) {
+            self.tree.push(path.to_string());
+        }
     }
 
     /// Opens a group (and expands its scope in the tree).
