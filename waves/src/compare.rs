@@ -22,6 +22,10 @@ pub struct Shown<'a> {
     pub signals: &'a [PortDef<'a>],
     /// Their values.
     pub values: Values<'a>,
+    /// The signals with named values (an FSM's states): each one's index in `signals` and
+    /// its names, value by value. Shown by name where the view shows it (a translate
+    /// filter file beside the dump).
+    pub states: &'a [(usize, &'a [&'a str])],
 }
 
 /// The values of a [`Shown`] scope's signals.
@@ -252,14 +256,35 @@ fn nested_vars<W: Write>(
 }
 
 /// A shown scope's group in the view: its own signals (those of its nested scopes are in
-/// the tree).
-fn shown_group(g: &mut Gtkw, sh: &Shown) {
+/// the tree), each with named values by name through a filter file written beside `vcd`.
+fn shown_group(g: &mut Gtkw, vcd: &Path, sh: &Shown) -> Result<(), String> {
     g.begin_group(sh.scope, "tb");
-    for &(name, width, signed) in sh.signals.iter().filter(|s| !s.0.contains('.')) {
+    for (k, &(name, width, signed)) in sh.signals.iter().enumerate() {
+        if name.contains('.') {
+            continue;
+        }
         let path = format!("tb.{}.{name}", sh.scope);
-        g.push(trace("", &path, (width, signed)));
+        let Some((_, names)) = sh.states.iter().find(|(i, _)| *i == k) else {
+            g.push(trace("", &path, (width, signed)));
+            continue;
+        };
+        let stem = vcd.file_stem().unwrap_or_default().to_string_lossy();
+        let filter = vcd.with_file_name(format!("{stem}.{}.{name}.txt", sh.scope));
+        crate::vcd_trace::write_filter(&filter, names)
+            .map_err(|e| format!("{}: {e}", filter.display()))?;
+        let range = if width > 1 {
+            format!("[{}:0]", width - 1)
+        } else {
+            String::new()
+        };
+        g.push(Item::Trace {
+            name: format!("{path}{range}"),
+            style: Style::Named,
+            filter: Some(filter),
+        });
     }
     g.end_group();
+    Ok(())
 }
 
 fn gtkw(
@@ -276,7 +301,7 @@ fn gtkw(
     // difference) below them.
     let window = |sh: &&Shown| matches!(sh.values, Values::From(..));
     for sh in shown.iter().filter(|sh| !window(sh)) {
-        shown_group(&mut g, sh);
+        shown_group(&mut g, vcd, sh)?;
     }
     for &(name, width, signed) in ports {
         g.begin_group(name, "tb");
@@ -301,7 +326,7 @@ fn gtkw(
         g.end_group();
     }
     for sh in shown.iter().filter(window) {
-        shown_group(&mut g, sh);
+        shown_group(&mut g, vcd, sh)?;
     }
     g.write(&format!("cosim {title}"))
         .map_err(|e| format!("{}: {e}", g.path().display()))

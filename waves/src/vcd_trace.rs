@@ -740,7 +740,7 @@ impl VcdTracer {
 
 /// A GTKWave translate filter file: one `value name` line per state, values in decimal (the
 /// traces that use it are shown in decimal).
-fn write_filter(path: &Path, names: &[&str]) -> io::Result<()> {
+pub(crate) fn write_filter(path: &Path, names: &[&str]) -> io::Result<()> {
     let mut text = String::from("# texrtl: state names, value in decimal\n");
     for (v, n) in names.iter().enumerate() {
         text.push_str(&format!("{v} {n}\n"));

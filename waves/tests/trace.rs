@@ -735,6 +735,7 @@ fn a_comparison_waveform_shows_model_rtl_and_mismatch() {
         scope: "inputs",
         signals: &inputs,
         values: waves::compare::Values::Every(&stim),
+        states: &[],
     }];
     waves::compare::write(&path, "unit", &ports, &model, &rtl, &differs, &shown).unwrap();
     let rb = read_vcd(&path).unwrap();
@@ -817,11 +818,23 @@ fn a_window_of_internals_is_recorded_where_it_was_dumped() {
     let differs = |c: usize, k: usize| rtl[c][k] != Some(model[c][k]);
     let inner = [("acc", 4, false), ("u_sat.hit", 1, false)];
     let window = vec![vec![Some(3), Some(0)], vec![None, Some(1)]];
-    let shown = [Shown {
-        scope: "rtl_internals",
-        signals: &inner,
-        values: Values::From(1, &window),
-    }];
+    let fsm = [("state", 2, false)];
+    let states = vec![vec![Some(1)], vec![Some(2)]];
+    let names: &[&str] = &["IDLE", "RUN", "DONE"];
+    let shown = [
+        Shown {
+            scope: "rtl_internals",
+            signals: &inner,
+            values: Values::From(1, &window),
+            states: &[],
+        },
+        Shown {
+            scope: "model_internals",
+            signals: &fsm,
+            values: Values::From(1, &states),
+            states: &[(0, names)],
+        },
+    ];
     waves::compare::write(&path, "unit", &ports, &model, &rtl, &differs, &shown).unwrap();
     let rb = read_vcd(&path).unwrap();
     let at = |n: &str, c: u64| match rb.value_at(n, c * 10_000) {
@@ -838,13 +851,21 @@ fn a_window_of_internals_is_recorded_where_it_was_dumped() {
         ["z", "0", "1", "z", "z"]
     );
     assert!(rb.scopes.iter().any(|s| s == "tb.rtl_internals.u_sat"));
-    assert_eq!(check_gtkw(&path, &rb), Ok(7));
+    assert_eq!(check_gtkw(&path, &rb), Ok(8));
+    // A signal with named values: by name, through a filter file beside the dump.
+    let filter = path.with_file_name("w.model_internals.state.txt");
+    let text = std::fs::read_to_string(&filter).unwrap();
+    assert!(text.contains("\n1 RUN\n2 DONE\n"), "{text}");
     let g = std::fs::read_to_string(path.with_extension("gtkw")).unwrap();
     assert!(
         g.find("tb.rtl.u[7:0]") < g.find("tb.rtl_internals.acc"),
         "{g}"
     );
     assert!(!g.contains("u_sat"), "nested signals are in the tree:\n{g}");
+    assert!(
+        g.contains("^1 w.model_internals.state.txt\ntb.model_internals.state[1:0]"),
+        "{g}"
+    );
     assert!(
         g.contains("@c00200\n-ok\n") && g.contains("@1401200\n-ok\n"),
         "{g}"

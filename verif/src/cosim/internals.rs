@@ -121,6 +121,9 @@ pub struct ModelInternals {
     /// Each signal's path below the top (`wptr`, `ram.word0`), width and signedness, in the
     /// order the model visits them: its ports, registers and wires, then its children's.
     pub signals: Vec<(String, u32, bool)>,
+    /// The signals with named values (FSM states): each one's index in `signals` and its
+    /// names, shown by name in the waveform's view.
+    pub states: Vec<(usize, &'static [&'static str])>,
     /// The cycles shown.
     pub cycles: Range<usize>,
     /// `values[i][k]`: signal `k` in cycle `cycles.start + i`, read when the outputs are
@@ -156,6 +159,7 @@ impl ModelInternals {
         let cycles = cycles.start..cycles.start + values.len();
         ModelInternals {
             signals: paths.signals,
+            states: paths.states,
             cycles,
             values,
         }
@@ -175,6 +179,7 @@ impl ModelInternals {
 struct Paths {
     scopes: Vec<String>,
     signals: Vec<(String, u32, bool)>,
+    states: Vec<(usize, &'static [&'static str])>,
 }
 
 impl Visitor for Paths {
@@ -189,6 +194,9 @@ impl Visitor for Paths {
         let below: Vec<&str> = (self.scopes.iter().skip(1).map(String::as_str))
             .chain([s.name()])
             .collect();
+        if let Some(names) = s.states() {
+            self.states.push((self.signals.len(), names));
+        }
         let f = s.fmt();
         self.signals
             .push((below.join("."), f.width(), f.is_signed()));
@@ -254,6 +262,11 @@ mod tests {
         ];
         assert_eq!(names, want);
         assert_eq!(m.signals[1], ("count".to_string(), 3, false));
+        assert_eq!(
+            m.states,
+            [(0, &["OFF", "ON"][..])],
+            "named values, by index"
+        );
         assert_eq!(m.cycles, 3..6);
         // Reset in cycle 0; counts 1 and 2 in cycles 1 and 2 (word 1, then word 0); cycle 3
         // holds, its port idle; cycles 4 and 5 count on.
@@ -268,7 +281,7 @@ mod tests {
 
     fn counter() -> Counter {
         Counter {
-            en: Signal::bit("en"),
+            en: Signal::bit("en").with_states(&["OFF", "ON"]),
             count: Reg::new("count", Format::uint(3)),
             ram: Mem::new("ram", 2, Format::uint(3)).show_words(),
         }

@@ -994,12 +994,14 @@ impl Compared<'_> {
             scope: "inputs",
             signals: &inputs,
             values: Values::Every(&stim_rst),
+            states: &[],
         }];
         if !watch.is_empty() {
             shown.push(Shown {
                 scope: "watched",
                 signals: &watch,
                 values: Values::Every(self.watched.1),
+                states: &[],
             });
         }
         let inner: Vec<(&str, u32, bool)> = self.internals.map_or(Vec::new(), |i| {
@@ -1012,6 +1014,7 @@ impl Compared<'_> {
                 scope: "rtl_internals",
                 signals: &inner,
                 values: Values::From(s.cycles.start, &s.values),
+                states: &[],
             });
         }
         let (mine, mine_values) = match self.model_internals {
@@ -1030,6 +1033,7 @@ impl Compared<'_> {
                 scope: "model_internals",
                 signals: &mine,
                 values: Values::From(m.cycles.start, &mine_values),
+                states: &m.states,
             });
         }
         let title = self.unit.name();
