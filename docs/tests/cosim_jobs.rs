@@ -2,7 +2,8 @@
 //! Verilog: each seed co-simulates its own stimulus, the row fails exactly for the seeds whose
 //! stimulus reaches the bug (predicted from the stimulus, not from the run), each failing
 //! seed is a failing job with the command that reproduces it, and the run dealt to shards
-//! merges to the one machine's rows and failing jobs; a shard left out is named.
+//! merges to the one machine's rows and failing jobs; a shard left out is named. A twin whose
+//! Verilog does not build fails its row, and the run goes on.
 
 use guide::blend::Blend;
 use std::path::{Path, PathBuf};
@@ -140,12 +141,22 @@ fn each_seed_co_simulates_its_own_stimulus_and_a_farm_merges_to_the_one_machine(
         "a later seed that agrees leaves no folder"
     );
 
-    // Dealt to three shards, as a farm runs it: the same rows; a shard left out is named.
+    // JUnit: the row a suite, a case per seed's job, failed exactly where the seed reaches
+    // the bug, with its own command.
+    let xml = std::fs::read_to_string(out.join("whole.xml")).unwrap();
+    junit_cases_per_seed(&xml, seed, &expected);
+    farm_merges_to_the_whole(&p, &out, seed, &whole, &xml);
+    std::fs::remove_dir_all(&out).unwrap();
+}
+
+/// The run of `whole` dealt to three shards, as a farm runs it: the same rows, failing jobs
+/// and JUnit file (but for the times); a shard left out is named.
+fn farm_merges_to_the_whole(p: &Project, out: &Path, seed: Seed, whole: &Summary, xml: &str) {
     let mut shards = Vec::new();
     for i in 1..=3 {
         let mut c = config(out.join(format!("shard{i}")), seed, SEEDS);
         c.shard = Shard::parse(&format!("{i}/3")).unwrap();
-        let s = run(&p, &c);
+        let s = run(p, &c);
         assert_eq!(
             s.cosim_jobs.len(),
             2,
@@ -153,28 +164,23 @@ fn each_seed_co_simulates_its_own_stimulus_and_a_farm_merges_to_the_one_machine(
         );
         shards.push((c.out.join("summary.json"), s));
     }
-    let merged = merge_shards(&p, &shards).unwrap();
-    assert_eq!(rows(&merged), rows(&whole));
+    let merged = merge_shards(p, &shards).unwrap();
+    assert_eq!(rows(&merged), rows(whole));
     assert_eq!(merged.passed, whole.passed);
     let json = |s: &Summary| serde_json::to_string(&s.failing).unwrap();
-    assert_eq!(json(&merged), json(&whole));
-    // JUnit: the row a suite, a case per seed's job, failed exactly where the seed reaches
-    // the bug, with its own command; the merge's file is the whole run's but for the times.
-    let xml = std::fs::read_to_string(out.join("whole.xml")).unwrap();
-    junit_cases_per_seed(&xml, seed, &expected);
+    assert_eq!(json(&merged), json(whole));
     let cosim_jobs: Vec<_> = shards
         .iter()
         .flat_map(|(_, s)| s.cosim_jobs.clone())
         .collect();
-    let from_merge = verif::junit::junit(&p, &merged, &[], &cosim_jobs).unwrap();
+    let from_merge = verif::junit::junit(p, &merged, &[], &cosim_jobs).unwrap();
     assert_eq!(
         verif::junit::timeless(&from_merge),
-        verif::junit::timeless(&xml)
+        verif::junit::timeless(xml)
     );
     shards.remove(1);
-    let e = merge_shards(&p, &shards).err().unwrap();
+    let e = merge_shards(p, &shards).err().unwrap();
     assert!(e.contains("shard 2/3 is missing"), "{e}");
-    std::fs::remove_dir_all(&out).unwrap();
 }
 
 /// The co-simulation row's JUnit suite in `xml`: one case per seed, each naming its job,
@@ -290,4 +296,53 @@ fn the_rtl_coverage_of_every_seed_is_merged_into_the_row() {
     assert_eq!(merged.rtl_coverage, whole.rtl_coverage);
     std::fs::remove_dir_all(&out).unwrap();
     let _ = std::fs::remove_dir("target");
+}
+
+/// A twin whose Verilog does not build fails its row with the simulator's message, as a job
+/// of the run with the command that runs it again; the regression goes on (exit 1, not 2), so
+/// one broken file does not take a night's results with it.
+#[test]
+fn rtl_that_does_not_build_fails_its_row_and_the_run_goes_on() {
+    if Simulator::Verilator.check_installed().is_err() {
+        return;
+    }
+    let out = std::env::temp_dir().join(format!("guide-cosim-unbuilt-{}", std::process::id()));
+    let _ = std::fs::remove_dir_all(&out);
+    std::fs::create_dir_all(&out).unwrap();
+    let good =
+        std::fs::read_to_string(Path::new(env!("CARGO_MANIFEST_DIR")).join("rtl/blend.v")).unwrap();
+    let rtl = out.join("blend_typo.v");
+    std::fs::write(&rtl, good.replace("endmodule", "endmodul")).unwrap();
+    let p = broken_project(rtl.clone());
+    let s = run(&p, &config(out.join("run"), Seed(5), 2));
+    let row = &s.testbenches[0];
+    assert!(!row.passed);
+    assert_eq!(
+        row.failures.len(),
+        2,
+        "each seed's job: {:#?}",
+        row.failures
+    );
+    let said = format!("{}:", rtl.display());
+    assert!(
+        row.failures.iter().all(|f| f.contains(&said)),
+        "{:#?}",
+        row.failures
+    );
+    let seeds: Vec<u32> = s.failing.iter().map(|f| f.repeat).collect();
+    assert_eq!(seeds, [0, 1]);
+    let f = &s.failing[0];
+    assert_eq!(
+        f.configuration,
+        format!("{} cycles of random stimulus", COSIM_CYCLES[0])
+    );
+    assert_eq!(
+        f.reproduce,
+        format!(
+            "blend cosim --unit blend --sim verilator --count {} --seed {}",
+            COSIM_CYCLES[0],
+            Seed(5)
+        )
+    );
+    std::fs::remove_dir_all(&out).unwrap();
 }

@@ -151,7 +151,7 @@ fn cosim_suite(program: &str, seed: Seed, row: &TbResult, jobs: &[&CosimJob]) ->
     let cases = jobs.iter().map(|j| {
         let seed = cosim_seed(seed, j.repeat);
         let command = check_command(program, seed, &j.result);
-        let name = job_label(&format!("{} cycles", j.result.cycles), j.repeat);
+        let name = job_label(&format!("{} cycles", j.cycles()), j.repeat);
         let failed = !j.result.passed;
         job_case(
             &row.name,

@@ -154,7 +154,9 @@ pub trait Testbench: Sync {
     /// A fresh coverage model (no hits); every configuration's result carries one like it.
     fn coverage(&self) -> Coverage;
     /// Runs one configuration. `Err` is for what stops the run (bad parameters, I/O); what the
-    /// DUT got wrong goes into the result.
+    /// DUT got wrong goes into the result (a hang too: [`TbResult::ran`]). A panic in it (a
+    /// value that does not fit its signal's format) fails this job with the panic's message
+    /// and the run goes on.
     fn run(&self, ctx: &Ctx) -> Result<TbResult, String>;
     /// After every configuration (or every shard, in `texrtl merge`): notes and tables from the
     /// merged records and extra checks across configurations.
@@ -353,9 +355,35 @@ fn run_job(
     // Tracking is per thread: on for this job's run, as it was after.
     let was = hdl::fx::tracking();
     hdl::fx::set_tracking(opts.numeric);
-    let r = tb.run(&ctx);
+    let r = unpanicked(|| tb.run(&ctx));
     hdl::fx::set_tracking(was);
+    let r = r.unwrap_or_else(|p| Ok(panicked(tb, &ctx, &p)));
     r.map_err(|e| format!("{} [{}]: {e}", tb.name(), job_label(label, job.repeat)))
+}
+
+/// `f`'s value, or the message of a panic in it (`panicked: ...`): a model's value that does
+/// not fit its signal's format, say, which is a finding about the design, not the end of a
+/// regression. (The panic is also printed where it happened, by the panic hook.)
+pub(crate) fn unpanicked<T>(f: impl FnOnce() -> T) -> Result<T, String> {
+    std::panic::catch_unwind(std::panic::AssertUnwindSafe(f)).map_err(|p| {
+        let said = (p.downcast_ref::<&str>().copied())
+            .or(p.downcast_ref::<String>().map(String::as_str))
+            .unwrap_or("(no message)");
+        format!("panicked: {said}")
+    })
+}
+
+/// The result of a job whose run panicked: failed, with the panic's message and, when it was
+/// traced, its waveform as far as it got (no view: the run did not finish).
+fn panicked(tb: &dyn Testbench, ctx: &Ctx, said: &str) -> TbResult {
+    let mut r = TbResult::new(tb.name(), tb.unit());
+    let wave = ctx.waves.as_ref().map(|w| &w.vcd).filter(|v| v.is_file());
+    r.failures.push(match wave {
+        Some(v) => format!("{said} (the waveform up to it: {})", v.display()),
+        None => said.to_string(),
+    });
+    r.finish_with(false);
+    r
 }
 
 /// The `jobs` on `opts.jobs` threads, each result in its job's place; `progress` is told of
@@ -572,6 +600,96 @@ mod tests {
         assert_eq!(Plain.default_count(), 1000);
         assert_eq!(Plain.count_unit(), "random transactions");
         assert_eq!(Plain.traced(), 0);
+    }
+
+    /// A counter into a 3-bit port: counts past 7 do not fit.
+    #[derive(Clone)]
+    struct Narrow {
+        count: hdl::kernel::Reg,
+        out: hdl::kernel::Signal,
+    }
+
+    impl hdl::kernel::Module for Narrow {
+        fn kind(&self) -> &'static str {
+            "narrow"
+        }
+        fn eval(&mut self) {
+            let c = self.count.q().bits();
+            self.out.set_bits(c);
+            self.count.set_next_bits(c + 1);
+        }
+        fn tick(&mut self, reset: bool) {
+            self.count.tick(reset);
+        }
+        fn visit(&self, v: &mut dyn hdl::kernel::Visitor) {
+            v.enter("narrow", "narrow");
+            v.reg(&self.count);
+            v.signal(hdl::kernel::Dir::Output, &self.out);
+            v.leave();
+        }
+    }
+
+    /// Configuration `cycles N` runs the counter N cycles (traced when it is the first).
+    struct Overflowing;
+    impl Testbench for Overflowing {
+        fn about(&self) -> About {
+            About::new("overflowing", "narrow")
+        }
+        fn configurations(&self) -> Vec<String> {
+            vec!["cycles 12".into(), "cycles 6".into()]
+        }
+        fn coverage(&self) -> Coverage {
+            Coverage::new()
+        }
+        fn run(&self, ctx: &Ctx) -> Result<TbResult, String> {
+            let dut = Narrow {
+                count: hdl::kernel::Reg::new("count", hdl::fx::Format::uint(8)),
+                out: hdl::kernel::Signal::new("out", hdl::fx::Format::uint(3)),
+            };
+            let (mut sim, _) = ctx.sim(dut, "narrow", 10_000, |_| ())?;
+            sim.reset(1);
+            let n = if ctx.index == 0 { 12 } else { 6 };
+            for _ in 0..n {
+                sim.step();
+            }
+            let mut r = TbResult::new(self.name(), self.unit());
+            r.cycles = n;
+            ctx.finish(sim, &mut r)?;
+            Ok(r)
+        }
+    }
+
+    /// A job whose model panics (a value its signal cannot hold) fails with the panic's
+    /// message and its waveform up to the panic, opened on its last cycle; the other jobs run.
+    #[test]
+    fn a_job_that_panics_fails_and_the_others_run() {
+        let dir = std::env::temp_dir().join(format!("texrtl-panics-{}", std::process::id()));
+        let opts = RunOptions {
+            jobs: 2,
+            seeds: 2,
+            ..RunOptions::with_waves(&dir)
+        };
+        let jobs = crate::jobs::testbench_jobs(&Overflowing, 0, &Registry::new(), 2);
+        let done = run_jobs(&Overflowing, &opts, &jobs, &mut |_| {}).unwrap();
+        let failed: Vec<(usize, u32)> = (done.iter())
+            .filter(|j| j.result.failed_itself())
+            .map(|j| (j.configuration, j.repeat))
+            .collect();
+        assert_eq!(failed, [(0, 0), (0, 1)], "12 cycles overflow, 6 do not");
+        let said = &done[0].result.failures[0];
+        let vcd = dir.join("overflowing.vcd");
+        let want = format!(
+            "panicked: signal 'out' (u3, 3 bits): bits 0x8 does not fit (the waveform up to it: {})",
+            vcd.display()
+        );
+        assert_eq!(*said, want);
+        // Reset, then counts 0..7 sampled: the panic came in the next cycle's eval.
+        let g = std::fs::read_to_string(vcd.with_extension("gtkw")).unwrap();
+        assert!(
+            g.contains("[*] dump 0 90000 ps") && g.contains("Abefore the panic"),
+            "{g}"
+        );
+        let _ = std::fs::remove_dir_all(&dir);
     }
 
     /// One after the other: each configuration announced before it runs, with its index,

@@ -132,7 +132,12 @@ impl View {
         let (a, b) = self.window;
         // At zoom 0 GTKWave 3.3 shows about 5 time units across the wave pane and each unit of
         // zoom halves or doubles that (measured under Xvfb): fit the window, with a margin.
-        let zoom = -(((b - a).max(10) as f64) * 1.05 / 5.0).log2();
+        let shown = ((b - a).max(10) as f64) * 1.05;
+        let zoom = -(shown / 5.0).log2();
+        // GTKWave opens at time 0 instead when what it shows from `[timestart]` would pass the
+        // dump's end (measured): a window at the end starts early enough to fit (1 % spare).
+        let last_start = self.dump.1.saturating_sub((shown * 1.01).ceil() as u64);
+        let a = a.min(last_start).max(self.dump.0);
         let mut s = format!(
             "[*] dump {} {} ps, clock period {} ps\n[timestart] {a}\n[size] 1600 900\n[pos] -1 -1\n",
             self.dump.0, self.dump.1, self.period
@@ -550,6 +555,25 @@ mod tests {
             (50_000 - CYCLES_BEFORE * p, 50_000 + CYCLES_AFTER * p)
         );
         assert_eq!(at.marker, Some((50_050, "first mismatch".to_string())));
+        // Rendered, a window at the dump's end starts where what GTKWave shows of it fits
+        // before the end: GTKWave opens at 0 when it would not.
+        let end = whole.clone().around(99_900, "panic").render();
+        let start = |r: &str| -> u64 {
+            let l = r
+                .lines()
+                .find_map(|l| l.strip_prefix("[timestart] "))
+                .unwrap();
+            l.parse().unwrap()
+        };
+        // The window: 40 cycles before the marker's, to the end.
+        let span = (100_000 - (99_900 - CYCLES_BEFORE * p)) as f64 * 1.05 * 1.01;
+        assert_eq!(start(&end), 100_000 - span.ceil() as u64);
+        assert!(end.contains("*-9.749869 99950 99950\n"), "{end}");
+        assert_eq!(
+            start(&at.render()),
+            50_000 - CYCLES_BEFORE * p,
+            "inside: as asked"
+        );
         assert_eq!(
             whole.clone().around(1_000, "m").window.0,
             0,

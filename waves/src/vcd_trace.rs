@@ -506,6 +506,14 @@ impl VcdTracer {
         let (lo, hi) = (self.first_time, self.last_time.unwrap_or(0));
         let active = self.active.map_or(lo, |c| c * self.cfg.period_ps);
         let view = View::whole(lo, hi, self.cfg.period_ps).opening(active);
+        // A run that panicked opens on its last cycle: the panic came in the next.
+        let view = match std::thread::panicking() {
+            true => view.around(
+                end.saturating_sub(1) * self.cfg.period_ps,
+                "before the panic",
+            ),
+            false => view,
+        };
         self.gtkw.set_view(view);
         for (path, names) in &self.filters {
             write_filter(path, names)?;
@@ -909,7 +917,16 @@ fn fst_sample<M: Module>(
 }
 
 impl Drop for VcdTracer {
+    /// An unfinished trace leaves no file, but for a run that panics (a value that does not
+    /// fit its signal, a failed assertion): it keeps its waveform as far as it got, with its
+    /// view, since the cycles before the panic are what explain it.
     fn drop(&mut self) {
+        if !self.finished && std::thread::panicking() && self.out.is_some() {
+            let cycles = self.last_time.map_or(0, |t| t / self.cfg.period_ps + 1);
+            if self.finish_file(cycles).is_ok() {
+                return;
+            }
+        }
         if let Some(t) = self.thread.take() {
             drop(t.join());
         }

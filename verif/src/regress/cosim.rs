@@ -47,6 +47,14 @@ pub struct CosimJob {
     pub rtl_coverage: Option<JobCoverage>,
 }
 
+impl CosimJob {
+    /// The cycles it simulates (however many it got through).
+    pub fn cycles(&self) -> usize {
+        let sim = self.row.rsplit('/').next().and_then(Simulator::parse);
+        COSIM_CYCLES[usize::from(sim == Some(Simulator::Icarus))]
+    }
+}
+
 /// A job's RTL coverage: its figures as said, and its data for a merge of seeds.
 #[derive(Clone, Debug, Serialize, Deserialize)]
 pub struct JobCoverage {
@@ -197,7 +205,17 @@ fn job(
     };
     let seed = cosim_seed(cfg.seed, p.repeat);
     let stim = p.unit.stimulus(seed, n);
-    let c = crate::cosim::run_with_options(p.unit, sim, &[], &stim, &dir, options)?;
+    // The RTL not building, the simulator failing, the model panicking: this job's failure,
+    // not the end of the regression.
+    let run = || crate::cosim::run_with_options(p.unit, sim, &[], &stim, &dir, options);
+    let c = match crate::testbench::unpanicked(run).and_then(|r| r) {
+        Ok(c) => c,
+        Err(e) => {
+            r.failures.push(e);
+            r.finish_with(false);
+            return Ok((r, None));
+        }
+    };
     let covered = c.rtl_coverage.as_ref().map(|c| JobCoverage {
         said: c.to_string(),
         data: c.data.clone(),
@@ -340,7 +358,7 @@ pub(super) fn failing(program: &str, jobs: &[&CosimJob], seed: Seed) -> Vec<Fail
             FailingJob {
                 job: j.job,
                 testbench: j.row.clone(),
-                configuration: format!("{} cycles of random stimulus", r.cycles),
+                configuration: format!("{} cycles of random stimulus", j.cycles()),
                 repeat: j.repeat,
                 seed: cosim_seed(seed, j.repeat).to_string(),
                 first_mismatch_cycle: None,
