@@ -187,7 +187,13 @@ fn simulate(
         waveform_on_difference_only: false,
     };
     let go = |unit: &dyn cosim::CosimUnit, stim: &[Vec<u64>], dir: &Path| {
-        cosim::run_with_options(unit, sim, &[], stim, dir, options).map_err(CmdError::Input)
+        cosim::run_with_options(unit, sim, &[], stim, dir, options).map_err(|e| {
+            // The model panicking is a finding (exit 1); the rest, the RTL and the options.
+            match e.contains(cosim::MODEL_PANICKED) {
+                true => CmdError::Failed(e),
+                false => CmdError::Input(e),
+            }
+        })
     };
     if !vectors {
         let unit = &with(unit);

@@ -860,6 +860,9 @@ pub fn run_with_options(
     let (ins, outs) = model.ports();
     let rules = Rules::new(unit, &outs)?;
     let build = Build::of(unit, rtl)?;
+    // The model first: a model that panics leaves no folder.
+    let resets = reset_cycles(unit);
+    let (expected, watched) = expect(unit, model.as_mut(), stim, resets)?;
     std::fs::create_dir_all(dir).map_err(|e| format!("{}: {e}", dir.display()))?;
     // The simulator runs inside `dir`: every path it is given is absolute.
     let dir = &std::path::absolute(dir).map_err(|e| format!("{}: {e}", dir.display()))?;
@@ -870,10 +873,6 @@ pub fn run_with_options(
             dir.display()
         ));
     }
-    let resets = reset_cycles(unit);
-    let (expected, watched): (Vec<Vec<u64>>, Vec<Vec<u64>>) = (0..cycles)
-        .map(|c| model.cycle_watched(c < resets, &stim[c]))
-        .unzip();
     let mut run = rtl_run(unit, dir, &build, (&ins, &outs), stim, explain)?;
     run.coverage = options.rtl_coverage;
     if run.coverage {
@@ -932,6 +931,35 @@ pub fn run_with_options(
         }),
         rtl_coverage,
     })
+}
+
+/// What an error of [`run_with_options`] says when the model panicked (a value that does not
+/// fit its signal's format): `UNIT: the model panicked in cycle C: MESSAGE`. A finding about
+/// the model, not bad input.
+pub const MODEL_PANICKED: &str = "the model panicked in cycle ";
+
+/// Each cycle's outputs and watched signals of a model.
+type Expected = (Vec<Vec<u64>>, Vec<Vec<u64>>);
+
+/// The model's outputs and watched signals on every cycle of `stim`, or the cycle it panicked
+/// in and why.
+fn expect(
+    unit: &dyn CosimUnit,
+    model: &mut dyn CosimModel,
+    stim: &[Vec<u64>],
+    resets: usize,
+) -> Result<Expected, String> {
+    let (mut expected, mut watched) = (Vec::with_capacity(stim.len()), Vec::new());
+    for (c, inputs) in stim.iter().enumerate() {
+        let (e, w) = crate::testbench::unpanicked(|| model.cycle_watched(c < resets, inputs))
+            .map_err(|e| {
+                let said = e.trim_start_matches("panicked: ");
+                format!("{}: {MODEL_PANICKED}{c}: {said}", unit.name())
+            })?;
+        expected.push(e);
+        watched.push(w);
+    }
+    Ok((expected, watched))
 }
 
 /// Why a run cannot be made, before anything is written: no cycles, the RTL's coverage asked
@@ -1146,6 +1174,49 @@ fn describe_inputs(ins: &[Port], v: &[u64], rst: bool) -> String {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// Its output is its input: an input of 8 does not fit the 3-bit output.
+    #[derive(Clone)]
+    struct Echo {
+        x: Signal,
+        y: Signal,
+    }
+
+    impl Module for Echo {
+        fn kind(&self) -> &'static str {
+            "echo"
+        }
+        fn eval(&mut self) {
+            self.y.set_bits(self.x.bits());
+        }
+        fn tick(&mut self, _: bool) {}
+        fn visit(&self, v: &mut dyn Visitor) {
+            v.enter("echo", "echo");
+            v.signal(Dir::Input, &self.x);
+            v.signal(Dir::Output, &self.y);
+            v.leave();
+        }
+    }
+
+    /// A model that panics is named with the cycle it panicked in and why; the cycles before
+    /// it ran.
+    #[test]
+    fn a_model_that_panics_says_in_which_cycle() {
+        let make = || Echo {
+            x: Signal::new("x", Format::uint(4)),
+            y: Signal::new("y", Format::uint(3)),
+        };
+        let twin = Twin::new(make, |d, v| d.x.set_bits(v[0]));
+        let mut model = twin.model().unwrap();
+        let stim: Vec<Vec<u64>> = [1, 2, 7, 8, 3].iter().map(|&x| vec![x]).collect();
+        let e = expect(&twin, model.as_mut(), &stim, 1).unwrap_err();
+        let want =
+            "echo: the model panicked in cycle 3: signal 'y' (u3, 3 bits): bits 0x8 does not fit";
+        assert_eq!(e, want);
+        assert!(e.contains(MODEL_PANICKED));
+        let (expected, _) = expect(&twin, twin.model().unwrap().as_mut(), &stim[..3], 1).unwrap();
+        assert_eq!(expected, [[1], [2], [7]]);
+    }
 
     /// A stimulus line wider than any machine integer keeps every field in place: reset
     /// first, then each port MSB first, left-padded to whole hex digits.
