@@ -44,8 +44,14 @@ impl VectorsArgs {
     }
 }
 
-/// Runs it.
+/// Runs it. A model that panics on its vectors (a value that does not fit its signal's
+/// format) is a failure (exit 1), said in one line.
 pub fn run(project: &Project, a: &VectorsArgs) -> Result<String, CmdError> {
+    crate::testbench::unpanicked(|| vectors(project, a))
+        .unwrap_or_else(|e| Err(CmdError::Failed(format!("vectors: a model {e}"))))
+}
+
+fn vectors(project: &Project, a: &VectorsArgs) -> Result<String, CmdError> {
     match (&a.unit, &a.out) {
         (Some(unit), Some(out)) => {
             // Checked before anything is watched or written: what is there stays.
