@@ -357,19 +357,19 @@ fn run_job(
     hdl::fx::set_tracking(opts.numeric);
     let r = unpanicked(|| tb.run(&ctx));
     hdl::fx::set_tracking(was);
-    let r = r.unwrap_or_else(|p| Ok(panicked(tb, &ctx, &p)));
+    let r = r.unwrap_or_else(|p| Ok(panicked(tb, &ctx, &format!("panicked: {p}"))));
     r.map_err(|e| format!("{} [{}]: {e}", tb.name(), job_label(label, job.repeat)))
 }
 
-/// `f`'s value, or the message of a panic in it (`panicked: ...`): a model's value that does
-/// not fit its signal's format, say, which is a finding about the design, not the end of a
-/// regression. (The panic is also printed where it happened, by the panic hook.)
+/// `f`'s value, or the message of a panic in it: a model's value that does not fit its
+/// signal's format, say, which is a finding about the design, not the end of a regression.
+/// (The panic is also printed where it happened, by the panic hook.)
 pub(crate) fn unpanicked<T>(f: impl FnOnce() -> T) -> Result<T, String> {
     std::panic::catch_unwind(std::panic::AssertUnwindSafe(f)).map_err(|p| {
-        let said = (p.downcast_ref::<&str>().copied())
+        (p.downcast_ref::<&str>().copied())
             .or(p.downcast_ref::<String>().map(String::as_str))
-            .unwrap_or("(no message)");
-        format!("panicked: {said}")
+            .unwrap_or("(no message)")
+            .to_string()
     })
 }
 

@@ -48,7 +48,7 @@ impl VectorsArgs {
 /// format) is a failure (exit 1), said in one line.
 pub fn run(project: &Project, a: &VectorsArgs) -> Result<String, CmdError> {
     crate::testbench::unpanicked(|| vectors(project, a))
-        .unwrap_or_else(|e| Err(CmdError::Failed(format!("vectors: a model {e}"))))
+        .unwrap_or_else(|e| Err(CmdError::Failed(format!("vectors: a model panicked: {e}"))))
 }
 
 fn vectors(project: &Project, a: &VectorsArgs) -> Result<String, CmdError> {

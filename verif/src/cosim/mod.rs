@@ -952,10 +952,7 @@ fn expect(
     let (mut expected, mut watched) = (Vec::with_capacity(stim.len()), Vec::new());
     for (c, inputs) in stim.iter().enumerate() {
         let (e, w) = crate::testbench::unpanicked(|| model.cycle_watched(c < resets, inputs))
-            .map_err(|e| {
-                let said = e.trim_start_matches("panicked: ");
-                format!("{}: {MODEL_PANICKED}{c}: {said}", unit.name())
-            })?;
+            .map_err(|said| format!("{}: {MODEL_PANICKED}{c}: {said}", unit.name()))?;
         expected.push(e);
         watched.push(w);
     }

@@ -208,7 +208,8 @@ fn job(
     // The RTL not building, the simulator failing, the model panicking: this job's failure,
     // not the end of the regression.
     let run = || crate::cosim::run_with_options(p.unit, sim, &[], &stim, &dir, options);
-    let c = match crate::testbench::unpanicked(run).and_then(|r| r) {
+    let ran = crate::testbench::unpanicked(run).map_err(|m| format!("panicked: {m}"));
+    let c = match ran.and_then(|r| r) {
         Ok(c) => c,
         Err(e) => {
             r.failures.push(e);

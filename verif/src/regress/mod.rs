@@ -483,7 +483,10 @@ fn vectors_row(project: &Project, dir: &std::path::Path) -> TbResult {
     r.coverage_percent = 100.0;
     // A model that panics on its vectors fails the row, as a job's panic fails the job.
     let checked = crate::testbench::unpanicked(|| crate::vectors::check(dir, project.vectors()));
-    match checked.and_then(|c| c) {
+    match checked
+        .map_err(|m| format!("panicked: {m}"))
+        .and_then(|c| c)
+    {
         Ok(d) => {
             r.transactions = project.vectors().count() as u64;
             r.mismatches = d.len() as u64;
