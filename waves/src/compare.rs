@@ -263,25 +263,17 @@ fn shown_group(g: &mut Gtkw, vcd: &Path, sh: &Shown) -> Result<(), String> {
         if name.contains('.') {
             continue;
         }
-        let path = format!("tb.{}.{name}", sh.scope);
-        let Some((_, names)) = sh.states.iter().find(|(i, _)| *i == k) else {
-            g.push(trace("", &path, (width, signed)));
-            continue;
-        };
-        let stem = vcd.file_stem().unwrap_or_default().to_string_lossy();
-        let filter = vcd.with_file_name(format!("{stem}.{}.{name}.txt", sh.scope));
-        crate::vcd_trace::write_filter(&filter, names)
-            .map_err(|e| format!("{}: {e}", filter.display()))?;
-        let range = if width > 1 {
-            format!("[{}:0]", width - 1)
-        } else {
-            String::new()
-        };
-        g.push(Item::Trace {
-            name: format!("{path}{range}"),
-            style: Style::Named,
-            filter: Some(filter),
-        });
+        let mut item = trace("", &format!("tb.{}.{name}", sh.scope), (width, signed));
+        if let (Some((_, names)), Item::Trace { style, filter, .. }) =
+            (sh.states.iter().find(|(i, _)| *i == k), &mut item)
+        {
+            let stem = vcd.file_stem().unwrap_or_default().to_string_lossy();
+            let file = vcd.with_file_name(format!("{stem}.{}.{name}.txt", sh.scope));
+            crate::vcd_trace::write_filter(&file, names)
+                .map_err(|e| format!("{}: {e}", file.display()))?;
+            (*style, *filter) = (Style::Named, Some(file));
+        }
+        g.push(item);
     }
     g.end_group();
     Ok(())
