@@ -47,11 +47,16 @@ pub struct CosimJob {
     pub rtl_coverage: Option<JobCoverage>,
 }
 
+/// The cycles a regression co-simulates in `sim` ([`COSIM_CYCLES`]).
+fn cycles_in(sim: Simulator) -> usize {
+    COSIM_CYCLES[usize::from(sim == Simulator::Icarus)]
+}
+
 impl CosimJob {
     /// The cycles it simulates (however many it got through).
     pub fn cycles(&self) -> usize {
         let sim = self.row.rsplit('/').next().and_then(Simulator::parse);
-        COSIM_CYCLES[usize::from(sim == Some(Simulator::Icarus))]
+        cycles_in(sim.unwrap_or(Simulator::Verilator))
     }
 }
 
@@ -192,7 +197,7 @@ fn job(
         r.finish_with(false);
         return Ok((r, None));
     }
-    let n = COSIM_CYCLES[usize::from(sim == Simulator::Icarus)];
+    let n = cycles_in(sim);
     let mut folder = format!("{unit}-{}", sim.name());
     if p.repeat > 0 {
         folder.push_str(&format!("-seed{}", p.repeat));
@@ -250,7 +255,7 @@ fn job(
 /// The command that runs `program`'s co-simulation of `unit` in `sim` under `seed` again
 /// alone, as a regression ran it (its cycles), the RTL's internals in its waveform.
 pub(crate) fn command(program: &str, unit: &str, sim: Simulator, seed: Seed) -> String {
-    let n = COSIM_CYCLES[usize::from(sim == Simulator::Icarus)];
+    let n = cycles_in(sim);
     format!(
         "{program} cosim --unit {unit} --sim {} --count {n} --seed {seed}",
         sim.name()
