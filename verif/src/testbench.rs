@@ -374,7 +374,7 @@ pub(crate) fn unpanicked<T>(f: impl FnOnce() -> T) -> Result<T, String> {
 }
 
 /// The result of a job whose run panicked: failed, with the panic's message and, when it was
-/// traced, its waveform as far as it got (no view: the run did not finish).
+/// traced, its waveform as far as it got (its view opens on the last cycle before the panic).
 fn panicked(tb: &dyn Testbench, ctx: &Ctx, said: &str) -> TbResult {
     let mut r = TbResult::new(tb.name(), tb.unit());
     let wave = ctx.waves.as_ref().map(|w| &w.vcd).filter(|v| v.is_file());
