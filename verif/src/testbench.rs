@@ -355,9 +355,16 @@ fn run_job(
     // Tracking is per thread: on for this job's run, as it was after.
     let was = hdl::fx::tracking();
     hdl::fx::set_tracking(opts.numeric);
+    let _ = hdl::kernel::panicked_in_cycle(); // not an earlier panic's
     let r = unpanicked(|| tb.run(&ctx));
     hdl::fx::set_tracking(was);
-    let r = r.unwrap_or_else(|p| Ok(panicked(tb, &ctx, &format!("panicked: {p}"))));
+    let r = r.unwrap_or_else(|p| {
+        let said = match hdl::kernel::panicked_in_cycle() {
+            Some(c) => format!("panicked in cycle {c}: {p}"),
+            None => format!("panicked: {p}"),
+        };
+        Ok(panicked(tb, &ctx, &said))
+    });
     r.map_err(|e| format!("{} [{}]: {e}", tb.name(), job_label(label, job.repeat)))
 }
 
@@ -679,7 +686,7 @@ mod tests {
         let said = &done[0].result.failures[0];
         let vcd = dir.join("overflowing.vcd");
         let want = format!(
-            "panicked: signal 'out' (u3, 3 bits): bits 0x8 does not fit (the waveform up to it: {})",
+            "panicked in cycle 9: signal 'out' (u3, 3 bits): bits 0x8 does not fit (the waveform up to it: {})",
             vcd.display()
         );
         assert_eq!(*said, want);

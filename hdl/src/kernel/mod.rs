@@ -19,7 +19,9 @@ pub use delay::Delay;
 pub use mem::{Mem, MAX_SHOWN_WORDS};
 pub use module::{check_gated_edge, BitsOf, Dir, Module, Visitor};
 pub use signal::{Reg, Signal};
-pub use sim::{instances, narrowings, signal_dirs, signal_paths, NoTrace, Sim, Trace};
+pub use sim::{
+    instances, narrowings, panicked_in_cycle, signal_dirs, signal_paths, NoTrace, Sim, Trace,
+};
 pub use stream::{Payload, Stream};
 /// Derives [`declared::Children`] for a group of sub-modules without a scope of its own.
 pub use texrtl_hdl_derive::Group;

@@ -43,13 +43,39 @@ pub struct Sim<M: Module, T: Trace = NoTrace> {
     /// The design under test: set its inputs between cycles, read its outputs after `eval`.
     pub dut: M,
     trace: Option<T>,
-    cycle: u64,
+    /// After `dut` and `trace`: on a panic it is dropped last, so the outermost simulation's
+    /// cycle is the one [`panicked_in_cycle`] gives.
+    cycle: Cycle,
     reset: bool,
     check: bool,
     snap: (Vec<u64>, Vec<u64>),
     /// Whether each signal (in visit order) is a register's value, for the edge check.
     is_reg: Vec<bool>,
     trace_error: Option<std::io::Error>,
+}
+
+/// A [`Sim`]'s count of clock edges. A simulation that a panic unwinds (a value that does not
+/// fit its signal's format, in some cycle's `eval`) leaves its cycle for
+/// [`panicked_in_cycle`].
+struct Cycle(u64);
+
+impl Drop for Cycle {
+    fn drop(&mut self) {
+        if std::thread::panicking() {
+            PANICKED_IN.with(|c| c.set(Some(self.0)));
+        }
+    }
+}
+
+thread_local! {
+    static PANICKED_IN: std::cell::Cell<Option<u64>> = const { std::cell::Cell::new(None) };
+}
+
+/// The cycle ([`Sim::cycle`]: the edges before it) in which the last simulation that a panic
+/// unwound on this thread was, taken: a regression says it of a job whose model panicked.
+/// `None` when none has been since the last call.
+pub fn panicked_in_cycle() -> Option<u64> {
+    PANICKED_IN.with(std::cell::Cell::take)
 }
 
 impl<M: Module> Sim<M, NoTrace> {
@@ -64,7 +90,7 @@ impl<M: Module, T: Trace> Sim<M, T> {
         Sim {
             dut,
             trace,
-            cycle: 0,
+            cycle: Cycle(0),
             reset: false,
             check: false,
             snap: (Vec::new(), Vec::new()),
@@ -99,7 +125,7 @@ impl<M: Module, T: Trace> Sim<M, T> {
     /// Cycles completed (clock edges so far).
     #[inline]
     pub fn cycle(&self) -> u64 {
-        self.cycle
+        self.cycle.0
     }
 
     /// Asserts or releases the synchronous reset (sampled at the next edge).
@@ -130,7 +156,7 @@ impl<M: Module, T: Trace> Sim<M, T> {
     #[inline]
     pub fn tick(&mut self) {
         if let Some(t) = self.trace.as_mut() {
-            if let Err(e) = t.sample(self.cycle, self.reset, &self.dut) {
+            if let Err(e) = t.sample(self.cycle.0, self.reset, &self.dut) {
                 self.trace_error.get_or_insert(e);
             }
         }
@@ -139,7 +165,7 @@ impl<M: Module, T: Trace> Sim<M, T> {
         } else {
             self.dut.tick(self.reset);
         }
-        self.cycle += 1;
+        self.cycle.0 += 1;
     }
 
     /// The clock edge, with the check that it changes registers only.
@@ -170,7 +196,7 @@ impl<M: Module, T: Trace> Sim<M, T> {
             panic!(
                 "two-process error at cycle {}: '{path}' ({dir:?}) changed from {:#x} to {:#x} at \
                  the clock edge (only registers change in tick; drive signals in eval)",
-                self.cycle, a[i], b[i]
+                self.cycle.0, a[i], b[i]
             );
         }
         self.snap = (a, b);
@@ -194,7 +220,7 @@ impl<M: Module, T: Trace> Sim<M, T> {
             return Err(e);
         }
         if let Some(t) = self.trace.as_mut() {
-            t.finish(self.cycle)?;
+            t.finish(self.cycle.0)?;
         }
         Ok(self.dut)
     }
@@ -209,7 +235,7 @@ impl<M: Module, T: Trace> Sim<M, T> {
             panic!(
                 "schedule error at cycle {}: '{path}' changed from {:#x} to {:#x} on a second \
                  evaluation (a value was read before it was computed, or eval changed state)",
-                self.cycle, a[i], b[i]
+                self.cycle.0, a[i], b[i]
             );
         }
         self.snap = (a, b);

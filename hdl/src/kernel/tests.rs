@@ -89,6 +89,32 @@ impl Module for Top {
     }
 }
 
+/// A simulation a panic unwinds leaves the cycle it was in, once; one that finishes, none.
+#[test]
+fn a_simulation_that_panics_says_in_which_cycle() {
+    let _ = panicked_in_cycle();
+    let run = |cycles: u64| {
+        std::panic::catch_unwind(move || {
+            let mut sim = Sim::new(Top::new(true));
+            sim.reset(2);
+            for c in 0..cycles {
+                // x is 4 bits: 16 does not fit, in the cycle after 16 edges of x = c.
+                sim.dut.x.set_bits(c);
+                sim.step();
+            }
+        })
+    };
+    assert!(run(16).is_ok());
+    assert_eq!(panicked_in_cycle(), None);
+    assert!(run(40).is_err());
+    assert_eq!(
+        panicked_in_cycle(),
+        Some(2 + 16),
+        "two cycles of reset, then x = 0..15"
+    );
+    assert_eq!(panicked_in_cycle(), None, "taken");
+}
+
 #[test]
 fn nested_design_accumulates_and_resets() {
     let mut sim = Sim::new(Top::new(true)).check_schedule(true);
