@@ -12,6 +12,8 @@ const HOLES: &str = "coverage holes";
 const NUMERIC_HOLES: &str = "numeric coverage holes";
 /// The failure of a narrowing path taken that its unit declares unreachable.
 const TAKEN: &str = "unreachable narrowing path taken";
+/// The failure of a whole run's testbench that compared no transaction ([`TbResult::vacuous`]).
+const NOTHING: &str = "compared nothing";
 
 /// What one testbench (or one of its configurations) found.
 #[derive(Clone, Debug, Serialize, Deserialize)]
@@ -123,7 +125,7 @@ impl TbResult {
     /// know whether another shard hits its holes: `texrtl merge` decides for the whole run).
     pub fn finish_with(&mut self, require_coverage: bool) {
         self.failures.retain(|f| {
-            ![HOLES, NUMERIC_HOLES, TAKEN]
+            ![HOLES, NUMERIC_HOLES, TAKEN, NOTHING]
                 .iter()
                 .any(|p| f.starts_with(p))
         });
@@ -137,6 +139,18 @@ impl TbResult {
             ));
         }
         self.passed = self.mismatches == 0 && self.failures.is_empty();
+    }
+
+    /// Fails a whole run's testbench that compared no transaction in any job: a pass that
+    /// checked nothing (a driver that never sends, a monitor that never samples, a scoreboard
+    /// never scored) is not a pass.
+    pub fn vacuous(&mut self) {
+        if self.transactions == 0 {
+            self.failures.push(format!(
+                "{NOTHING}: no transaction was scored in any configuration"
+            ));
+            self.passed = false;
+        }
     }
 
     /// Numeric coverage from the narrowings: the percentage and the holes; a path taken that

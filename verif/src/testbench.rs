@@ -443,7 +443,8 @@ fn run_parallel(
 }
 
 /// The framework's verdict on a merged result: coverage figures, the testbench's own
-/// conclusions, then pass/fail (holes fail only a whole run).
+/// conclusions, then pass/fail (holes, and a testbench that compared nothing, fail only a
+/// whole run).
 pub fn conclude(tb: &dyn Testbench, merged: &mut TbResult, whole_run: bool) {
     if let Some(c) = merged.coverage.take() {
         merged.set_coverage(c);
@@ -452,6 +453,9 @@ pub fn conclude(tb: &dyn Testbench, merged: &mut TbResult, whole_run: bool) {
     merged.own = Some((merged.notes.len(), merged.tables.len()));
     tb.conclude(merged);
     merged.finish_with(whole_run);
+    if whole_run {
+        merged.vacuous();
+    }
 }
 
 /// The testbenches of a project, in run order.
@@ -565,6 +569,7 @@ mod tests {
         fn run(&self, ctx: &Ctx) -> Result<TbResult, String> {
             self.log.lock().unwrap().push(format!("run {}", ctx.label));
             let mut r = TbResult::new(self.name, "none");
+            r.transactions = 1;
             let mut c = self.coverage();
             c.sample(&[ctx.index as i64]);
             r.coverage = Some(c);
@@ -587,6 +592,38 @@ mod tests {
         })
         .unwrap();
         (r, std::mem::take(&mut *tb.log.lock().unwrap()))
+    }
+
+    /// A testbench whose jobs score no transaction fails a whole run, and only a whole run:
+    /// a shard's jobs may be the ones that happen to compare nothing.
+    #[test]
+    fn a_run_that_compared_nothing_fails() {
+        struct Idle;
+        impl Testbench for Idle {
+            fn about(&self) -> About {
+                About::new("idle", "none")
+            }
+            fn coverage(&self) -> Coverage {
+                Coverage::new()
+            }
+            fn run(&self, _: &Ctx) -> Result<TbResult, String> {
+                let mut r = TbResult::new("idle", "none");
+                r.cycles = 100;
+                Ok(r)
+            }
+        }
+        let whole = run_testbench(&Idle, &RunOptions::default(), &mut |_| {}).unwrap();
+        assert!(!whole.passed);
+        assert_eq!(
+            whole.failures,
+            ["compared nothing: no transaction was scored in any configuration"]
+        );
+        let shard = RunOptions {
+            shard: Shard { index: 1, count: 2 },
+            ..RunOptions::default()
+        };
+        let part = run_testbench(&Idle, &shard, &mut |_| {}).unwrap();
+        assert!(part.passed, "{:?}", part.failures);
     }
 
     #[test]
