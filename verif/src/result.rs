@@ -143,9 +143,10 @@ impl TbResult {
 
     /// Fails a whole run's testbench that compared no transaction in any job: a pass that
     /// checked nothing (a driver that never sends, a monitor that never samples, a scoreboard
-    /// never scored) is not a pass.
+    /// never scored) is not a pass. A result that fails already (a job that panicked before
+    /// it scored) is left to say why.
     pub fn vacuous(&mut self) {
-        if self.transactions == 0 {
+        if self.passed && self.transactions == 0 {
             self.failures.push(format!(
                 "{NOTHING}: no transaction was scored in any configuration"
             ));

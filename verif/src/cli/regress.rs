@@ -55,7 +55,7 @@ impl RegressArgs {
             value("period-ps", "PERIOD_PS", value_parser!(u64), "Clock period in picoseconds shown in every waveform (even, >= 2; default: each testbench's own clock)"),
             flag("bless", "Rewrite the kept bit-accuracy vectors after a deliberate change, and print what changed"),
             value("shard", "SHARD", Shard::parse, "Run only shard I of N (the run's jobs dealt round-robin; merge the summaries with `merge`)").default_value("1/1"),
-            value("count", "COUNT", value_parser!(usize), "Random transactions per configuration (default: each testbench's own)"),
+            value("count", "COUNT", value_parser!(usize), "Random transactions per configuration, 1..=1000000 (default: each testbench's own)"),
             flag("fst", "Also write every waveform as FST, directly while simulating (compact; open with `gtkwave X.fst X.gtkw`)"),
             values("only", "ONLY", value_parser!(String), "Run only this testbench (repeatable; `vectors` is the bit-accuracy check)"),
             flag("list", "List the testbenches with their configurations and what --count counts, and exit"),

@@ -238,9 +238,10 @@ impl RegressConfig {
 
     /// Checks the options: the names in `only` against the registry, `--count` in range.
     pub fn validate(&self, reg: &Registry) -> Result<(), String> {
-        if let Some(n) = self.count.filter(|&n| n > Self::MAX_COUNT) {
+        // A count of 0 leaves random testbenches nothing to compare: refused, not run.
+        if let Some(n) = self.count.filter(|&n| n == 0 || n > Self::MAX_COUNT) {
             return Err(format!(
-                "--count {n}: 0..={} random transactions per configuration",
+                "--count {n}: 1..={} random transactions per configuration",
                 Self::MAX_COUNT
             ));
         }
