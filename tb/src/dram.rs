@@ -31,6 +31,10 @@ pub struct DramStats {
     pub violations: u64,
     /// Reads whose data differed from the DRAM's contents.
     pub data_errors: u64,
+    /// How the run hung, if it did (the reads stopped, or 607 never became ready again):
+    /// the figures above are then up to where it stopped.
+    #[serde(skip)]
+    pub hung: Option<String>,
 }
 
 /// One read request: a word address, and whether the requester leaves the bus idle for a
@@ -110,7 +114,11 @@ pub fn run_trace(p: DramParams, addrs: &[u64], vcd: Option<PathBuf>) -> Result<D
         wave: vcd.map(|path| (path, trace)),
         ..DramRun::default()
     };
-    run_paced(p, addrs, setup).map(|(s, _)| s)
+    let (st, _) = run_paced(p, addrs, setup)?;
+    match &st.hung {
+        Some(h) => Err(h.clone()),
+        None => Ok(st),
+    }
 }
 
 /// How a trace is run.
@@ -216,19 +224,13 @@ fn drive<T: Trace>(
             }
         },
     )
-    .map_err(|t| t.to_string())?;
-    while done_at.is_none() {
-        sim.eval();
-        if sim.dut.ready.is_high() {
-            done_at = Some(sim.cycle());
-        } else if sim.cycle() > start + r.cycles + worst {
-            return Err("watchdog: control unit 607 did not become ready".into());
-        } else {
-            sim.tick();
-        }
-    }
+    .map_err(|t| t.to_string());
+    let hung = match r {
+        Ok(r) => settle(&mut sim, &mut done_at, start + r.cycles + worst).err(),
+        Err(t) => Some(t),
+    };
     let c = &sim.dut;
-    let cycles = done_at.expect("set above") - start;
+    let cycles = done_at.unwrap_or(sim.cycle()) - start;
     let ns = cycles * u64::from(p.cycle_ns);
     let st = DramStats {
         reads: c.reads.q().bits(),
@@ -245,8 +247,31 @@ fn drive<T: Trace>(
         },
         violations: c.dram.violations(),
         data_errors,
+        hung,
     };
     Ok((sim, st, cov))
+}
+
+/// Runs on until control unit 607 is ready again (the last access's precharge done), by cycle
+/// `limit` at the latest.
+fn settle<T: Trace>(
+    sim: &mut Sim<DramCtrl, T>,
+    done_at: &mut Option<u64>,
+    limit: u64,
+) -> Result<(), String> {
+    while done_at.is_none() {
+        sim.eval();
+        if sim.dut.ready.is_high() {
+            *done_at = Some(sim.cycle());
+        } else if sim.cycle() > limit {
+            return Err(format!(
+                "watchdog: control unit 607 not ready again by cycle {limit}"
+            ));
+        } else {
+            sim.tick();
+        }
+    }
+    Ok(())
 }
 
 /// The configurations of the dram testbench: directed traces for the document's figures and
@@ -349,6 +374,11 @@ impl Testbench for DramTb {
         res.mismatches = st.data_errors;
         res.coverage = cov;
         res.vcd = ctx.waves.as_ref().map(|w| w.vcd.clone());
+        if let Some(h) = st.hung {
+            // Its counts stop where it hung: that is the finding.
+            res.failures.push(h);
+            return Ok(res);
+        }
         if st.violations != 0 {
             res.failures
                 .push(format!("{} DRAM timing violations", st.violations));
@@ -396,5 +426,33 @@ fn check_counts(res: &mut TbResult, p: &DramParams, addrs: &[u64], st: &DramStat
             "{} cycles for {} reads and {} faults: faster than the DRAM's timing allows",
             st.cycles, st.reads, st.page_faults
         ));
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// A read in flight holds `ready` low for a page fault's cycles: the watchdog says so
+    /// when its limit comes first, and leaves the run to finish otherwise.
+    #[test]
+    fn the_watchdog_fires_only_past_its_limit() {
+        let p = DramParams::default();
+        let mut sim = Sim::new(DramCtrl::new("control_607", p).unwrap());
+        sim.reset(1);
+        drive_dram(&mut sim.dut, Some(&700));
+        sim.step();
+        drive_dram(&mut sim.dut, None);
+        let (mut done_at, now) = (None, sim.cycle());
+        let said = settle(&mut sim, &mut done_at, now).unwrap_err();
+        assert_eq!(
+            said,
+            format!("watchdog: control unit 607 not ready again by cycle {now}")
+        );
+        assert_eq!(done_at, None);
+        settle(&mut sim, &mut done_at, now + 100).unwrap();
+        let worst = u64::from(p.t_rp + p.t_rcd + p.t_cas + p.t_cp);
+        let done = done_at.expect("ready again");
+        assert!(now < done && done <= now + worst, "{now} {done}");
     }
 }

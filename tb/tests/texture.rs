@@ -86,6 +86,7 @@ fn every_mode_is_bit_identical_and_equals_the_reference() {
                     .map_err(TestCaseError::fail)?;
                 let sim = Sim::new(unit).check_schedule(true);
                 let (_, run) = drive(sim, &reqs, interval, None).map_err(TestCaseError::fail)?;
+                prop_assert!(run.findings.is_empty(), "{:?}", run.findings);
                 prop_assert_eq!(
                     &run.rgb,
                     &want,

@@ -78,6 +78,10 @@ pub struct TexRun {
     /// Per request: blocks of its footprint and how many hit at its first lookup.
     pub lookups: Vec<(u8, u8)>,
     pub stats: TexReadStats,
+    /// What the run found wrong in the unit's behaviour: it hung (results stopped, or it never
+    /// went idle), or a handshake was broken. The figures above are then up to where it went
+    /// wrong.
+    pub findings: Vec<String>,
 }
 
 /// A fully-associative LRU cache of block tags (the shadow cache).
@@ -136,10 +140,15 @@ pub fn run_texread(
     interval: u32,
     vcd: Option<(PathBuf, TraceConfig)>,
 ) -> Result<TexRun, String> {
-    run_texread_checked(tex, p, reqs, interval, vcd, false)
+    let run = run_texread_checked(tex, p, reqs, interval, vcd, false)?;
+    match run.findings.first() {
+        Some(f) => Err(f.clone()),
+        None => Ok(run),
+    }
 }
 
-/// [`run_texread`], with the kernel's schedule and edge checks on every cycle when `check`.
+/// [`run_texread`], with the kernel's schedule and edge checks on every cycle when `check`;
+/// what the run finds wrong with the unit is in [`TexRun::findings`], not an error.
 pub fn run_texread_checked(
     tex: &Ccc,
     p: TexParams,
@@ -272,7 +281,8 @@ impl Handshakes {
 
 /// Drives `reqs` into a unit already in `sim` (see [`run_texread`]); for testbenches that set
 /// the simulator up themselves (e.g. with the schedule check on). With `probes`, each result's
-/// integer reference and a mismatch flag are set on the tracer.
+/// integer reference and a mismatch flag are set on the tracer. What the run finds wrong with
+/// the unit (a hang, a broken handshake) is in [`TexRun::findings`].
 pub fn drive<T: Trace + ProbeSink>(
     mut sim: Sim<TextureUnit, T>,
     reqs: &[TexRequest],
@@ -294,7 +304,7 @@ pub fn drive<T: Trace + ProbeSink>(
     let per_req = 4 * (2 * u64::from(p.dram.t_rp + p.dram.t_rcd + p.dram.t_cas + p.dram.t_cp) + 8);
     let limit = 100 + (per_req + u64::from(interval)) * (reqs.len() as u64 + 4);
     let mut spec = RunSpec::new(reqs.len() as u64, limit).pacing(Pacing::every(interval));
-    run(
+    let r = run(
         &mut sim,
         &mut PinDriver::new(drive_raster).ready(raster_ready),
         &mut PinMonitor::new(sample_color),
@@ -321,20 +331,16 @@ pub fn drive<T: Trace + ProbeSink>(
             }
         },
     )
-    .map_err(|t| t.to_string())?;
+    .map_err(|t| t.to_string());
     let cycles = sim.cycle() - start;
-    // Let prefetches still in flight or queued finish, so the counts add up (the time above
-    // ends with the last result).
-    while !sim.dut.idle() {
-        sim.dut.in_valid.set_bool(false);
-        sim.eval();
-        pins.sample(sim.cycle(), &sim.dut);
-        sim.tick();
-        if sim.cycle() > start + limit {
-            return Err("watchdog: the unit did not go idle".into());
-        }
-    }
-    pins.check()?;
+    let mut findings: Vec<String> = match r {
+        Ok(_) => drain(&mut sim, &mut pins, start + limit)
+            .err()
+            .into_iter()
+            .collect(),
+        Err(t) => vec![t],
+    };
+    findings.extend(pins.check().err());
     let stats = read_stats(&sim.dut, interval, cycles, scanlines, log.split);
     Ok((
         sim,
@@ -343,8 +349,28 @@ pub fn drive<T: Trace + ProbeSink>(
             out_cycles,
             lookups: log.lookups,
             stats,
+            findings,
         },
     ))
+}
+
+/// Lets prefetches still in flight or queued finish, so the counts add up (a run's time ends
+/// with its last result), by cycle `limit` at the latest.
+fn drain<T: Trace>(
+    sim: &mut Sim<TextureUnit, T>,
+    pins: &mut Handshakes,
+    limit: u64,
+) -> Result<(), String> {
+    while !sim.dut.idle() {
+        sim.dut.in_valid.set_bool(false);
+        sim.eval();
+        pins.sample(sim.cycle(), &sim.dut);
+        sim.tick();
+        if sim.cycle() > limit {
+            return Err(format!("watchdog: the unit not idle by cycle {limit}"));
+        }
+    }
+    Ok(())
 }
 
 /// The statistics of a finished run from the unit's counters.
@@ -388,5 +414,34 @@ fn read_stats(
         scanlines,
         page_faults_per_scanline: d.mem.page_faults.q().bits() as f64 / scanlines.max(1) as f64,
         violations: d.mem.dram.violations(),
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// A first request misses the cold cache: the unit is busy for its fill, and the
+    /// watchdog says so when its limit comes first, and lets it finish otherwise.
+    #[test]
+    fn the_watchdog_fires_only_past_its_limit() {
+        let (_, tex) = crate::texture::fixture().unwrap();
+        let p = TexParams::new(tex.width, tex.height);
+        let words = tex.dram_words(&p.block_map());
+        let mut sim = Sim::new(TextureUnit::new("t", p, &tex.clut, &words).unwrap());
+        sim.reset(1);
+        let first = TexRequest {
+            u: 0,
+            v: 0,
+            newline: true,
+        };
+        drive_raster(&mut sim.dut, Some(&first));
+        sim.step();
+        let (mut pins, now) = (Handshakes::new(), sim.cycle());
+        let said = drain(&mut sim, &mut pins, now).unwrap_err();
+        assert_eq!(said, format!("watchdog: the unit not idle by cycle {now}"));
+        drain(&mut sim, &mut pins, now + 1000).unwrap();
+        assert!(sim.dut.idle());
+        pins.check().unwrap();
     }
 }
