@@ -144,12 +144,21 @@ fn model_secs(
     resets: usize,
     trace: BenchTrace,
 ) -> Result<f64, String> {
+    let secs = || -> Result<f64, String> {
+        let _ = hdl::kernel::panicked_in_cycle(); // not an earlier panic's
+        let timed = crate::testbench::unpanicked(|| model.bench(stim, resets, trace));
+        let timed = timed.map_err(|said| match hdl::kernel::panicked_in_cycle() {
+            Some(c) => format!("{}{c}: {said}", crate::cosim::MODEL_PANICKED),
+            None => format!("the model panicked: {said}"),
+        })?;
+        Ok(timed?.as_secs_f64())
+    };
     if !matches!(trace, BenchTrace::None) {
-        return Ok(model.bench(stim, resets, trace)?.as_secs_f64());
+        return secs();
     }
     let (mut t, mut total, mut passes) = (f64::MAX, 0.0, 0);
     while !harness::enough(passes, total) {
-        let s = model.bench(stim, resets, trace)?.as_secs_f64();
+        let s = secs()?;
         (t, total, passes) = (t.min(s), total + s, passes + 1);
     }
     Ok(t)
@@ -192,7 +201,11 @@ fn measure(a: &BenchConfig, unit: &dyn CosimUnit) -> Result<Row, String> {
     if tdir != dir {
         let _ = std::fs::remove_dir_all(&tdir);
     }
-    Ok(Row::from_rounds(name, counts, &rounds?))
+    Ok(Row::from_rounds(
+        name,
+        counts,
+        &rounds.map_err(|e| format!("{name}: {e}"))?,
+    ))
 }
 
 /// What one unit's rounds run: its model and stimulus, the twin's three builds, and where the
@@ -291,6 +304,34 @@ fn table(a: &BenchConfig, rows: &[Row]) -> String {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// A model that panics while it is timed is named with the cycle it panicked in, traced
+    /// or not: the benchmark stops with that line, not with the panic.
+    #[test]
+    fn a_model_that_panics_while_timed_says_in_which_cycle() {
+        use crate::cosim::tests::Echo;
+        use hdl::fx::Format;
+        use hdl::kernel::Signal;
+        let make = || Echo {
+            x: Signal::new("x", Format::uint(4)),
+            y: Signal::new("y", Format::uint(3)),
+        };
+        let model = crate::cosim::Twin::new(make, |d, v| d.x.set_bits(v[0]))
+            .model()
+            .unwrap();
+        let stim: Vec<Vec<u64>> = [1, 2, 7, 8, 3].iter().map(|&x| vec![x]).collect();
+        let dir = std::env::temp_dir().join(format!("texrtl-bench-panics-{}", std::process::id()));
+        std::fs::create_dir_all(&dir).unwrap();
+        let vcd = dir.join("model.vcd");
+        for trace in [BenchTrace::None, BenchTrace::Vcd(&vcd)] {
+            let e = model_secs(model.as_ref(), &stim, 1, trace).unwrap_err();
+            let want =
+                "the model panicked in cycle 3: signal 'y' (u3, 3 bits): bits 0x8 does not fit";
+            assert_eq!(e, want);
+        }
+        assert!(model_secs(model.as_ref(), &stim[..3], 1, BenchTrace::None).is_ok());
+        std::fs::remove_dir_all(&dir).unwrap();
+    }
 
     /// A row is the round with the median ratio, both sides' rates from that round; the
     /// range is the lowest and highest ratio; an even count takes the lower middle.

@@ -1169,14 +1169,14 @@ fn describe_inputs(ins: &[Port], v: &[u64], rst: bool) -> String {
 }
 
 #[cfg(test)]
-mod tests {
+pub(crate) mod tests {
     use super::*;
 
     /// Its output is its input: an input of 8 does not fit the 3-bit output.
     #[derive(Clone)]
-    struct Echo {
-        x: Signal,
-        y: Signal,
+    pub(crate) struct Echo {
+        pub(crate) x: Signal,
+        pub(crate) y: Signal,
     }
 
     impl Module for Echo {
