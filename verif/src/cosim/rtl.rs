@@ -237,23 +237,56 @@ fn binary(sim: Simulator, r: &RtlRun, kept: Option<(&Path, &str)>) -> Result<Pat
             format!("{e} (building {})", shown.join(", "))
         }
     };
-    let built = match sim {
+    if let Some(e) = kept.and_then(|(_, k)| failed_before(k, r.dir)) {
+        return Err(e);
+    }
+    let build = || match sim {
         Simulator::Verilator => {
             let library = r.library.flags(sim, &r.pre.include_dirs);
             let files = [r.pre.flags(), library, strings(r.sources)].concat();
             let mdir = r.dir.join("obj_dir");
-            verilator::build(&tb, &files, &mdir, r.flavour(), &run_tool).map_err(named)?
+            verilator::build(&tb, &files, &mdir, r.flavour(), &run_tool).map_err(named)
         }
         Simulator::Icarus => {
             let vvp = r.dir.join(file);
-            icarus(r, &tb, &vvp, named)?;
-            vvp
+            icarus(r, &tb, &vvp, named).map(|()| vvp)
         }
     };
+    let built = build().inspect_err(|e| {
+        if let Some((_, k)) = kept {
+            remember_failure(k, r.dir, e);
+        }
+    })?;
     if let Some((root, k)) = kept {
         cache::store(root, k, &built);
     }
     Ok(built)
+}
+
+/// The builds that failed in this process, by key, with the folder each was built in and the
+/// simulator's message: the same sources fail the same way, so a run's other seeds of the same
+/// twin are told at once instead of building again (a broken file in a run of a thousand
+/// seeds is one failed build, not a thousand).
+fn failed_builds() -> &'static std::sync::Mutex<std::collections::HashMap<String, (String, String)>>
+{
+    static FAILED: std::sync::OnceLock<
+        std::sync::Mutex<std::collections::HashMap<String, (String, String)>>,
+    > = std::sync::OnceLock::new();
+    FAILED.get_or_init(Default::default)
+}
+
+/// Keeps the failure `e` of the build of `key` in `dir`.
+fn remember_failure(key: &str, dir: &Path, e: &str) {
+    let mut f = failed_builds().lock().unwrap_or_else(|p| p.into_inner());
+    f.insert(key.to_string(), (dir.display().to_string(), e.to_string()));
+}
+
+/// The failure of an earlier build of `key`, as it would read built in `dir` (the message
+/// names the generated testbench in the folder it was built in).
+fn failed_before(key: &str, dir: &Path) -> Option<String> {
+    let f = failed_builds().lock().unwrap_or_else(|p| p.into_inner());
+    let (was, e) = f.get(key)?;
+    Some(e.replace(was.as_str(), &dir.display().to_string()))
 }
 
 /// Icarus' build of the testbench `tb` into `vvp`; a failure's message is made by `named`.
@@ -614,6 +647,18 @@ fn include_names(text: &str) -> impl Iterator<Item = &str> {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// A failed build is told again for the same key, naming the folder of the build that
+    /// asks; another key builds.
+    #[test]
+    fn a_failed_build_is_not_built_again() {
+        let (a, b) = (Path::new("/runs/job-1"), Path::new("/runs/job-2"));
+        let e = "%Error: /runs/job-1/tb.sv:12:5: Cannot find: dut";
+        remember_failure("rtl-test-key", a, e);
+        let again = failed_before("rtl-test-key", b).unwrap();
+        assert_eq!(again, "%Error: /runs/job-2/tb.sv:12:5: Cannot find: dut");
+        assert_eq!(failed_before("rtl-test-other-key", b), None);
+    }
 
     /// A run in `dir` of `tb.sv`, `u.v` (`u`) and `stim.hex`, `u.v`'s folder searched for
     /// modules.
