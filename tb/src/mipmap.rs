@@ -95,6 +95,9 @@ pub struct MipmapOutcome {
     pub stats: MipmapStats,
     /// Error code of the generator (0: none).
     pub error: u64,
+    /// What the run found wrong with the generator: it hung (a frame never completed), or
+    /// it reported a frame twice and another never. `frames` is then empty.
+    pub findings: Vec<String>,
 }
 
 /// Drives `frames` through the generator; `Err` for bad parameters or a hang.
@@ -103,7 +106,11 @@ pub fn run_mipmap(
     frames: &[Vec<u8>],
     vcd: Option<(PathBuf, TraceConfig)>,
 ) -> Result<MipmapOutcome, String> {
-    run_mipmap_checked(p, frames, vcd, false)
+    let o = run_mipmap_checked(p, frames, vcd, false)?;
+    match o.findings.first() {
+        Some(f) => Err(f.clone()),
+        None => Ok(o),
+    }
 }
 
 /// The frames through a generator in whatever state `sim` left it (reset first, as every
@@ -112,7 +119,8 @@ pub fn run_mipmap_on(sim: Sim<MipmapGen>, frames: &[Vec<u8>]) -> Result<MipmapOu
     drive(sim, frames).map(|(_, o)| o)
 }
 
-/// [`run_mipmap`], with the kernel's schedule and edge checks on every cycle when `check`.
+/// [`run_mipmap`], with the kernel's schedule and edge checks on every cycle when `check`;
+/// what the run finds wrong with the generator is in [`MipmapOutcome::findings`], not an error.
 pub fn run_mipmap_checked(
     p: MipmapParams,
     frames: &[Vec<u8>],
@@ -199,7 +207,7 @@ fn drive<T: Trace>(
     let mut last_texel = start;
     let limit = texels + 64 + 4 * u64::from(p.width) + 8;
     let mut spec = RunSpec::new(frames.len() as u64, limit);
-    run_scored(
+    let ran = run_scored(
         &mut sim,
         &mut PinDriver::new(drive_video),
         &mut FrameMonitor { seen: 0 },
@@ -214,7 +222,7 @@ fn drive<T: Trace>(
             }
         },
     )
-    .map_err(|t| format!("mipmap incomplete: {t}"))?;
+    .map_err(|t| format!("mipmap incomplete: {t}"));
     sim.eval();
     let error = sim.dut.err_code.bits();
     let done_cycle = sim
@@ -237,16 +245,24 @@ fn drive<T: Trace>(
         texels_per_clock: texels as f64 / (last_texel - start) as f64,
         page_activations: sim.dut.activations(),
     };
-    let frames = out
-        .into_iter()
-        .collect::<Option<Vec<_>>>()
-        .ok_or("a frame was reported twice and another never")?;
+    let mut findings: Vec<String> = ran.err().into_iter().collect();
+    let frames = match out.into_iter().collect::<Option<Vec<_>>>() {
+        Some(f) if findings.is_empty() => f,
+        Some(_) => Vec::new(),
+        None => {
+            if findings.is_empty() {
+                findings.push("a frame was reported twice and another never".into());
+            }
+            Vec::new()
+        }
+    };
     Ok((
         sim,
         MipmapOutcome {
             frames,
             stats,
             error,
+            findings,
         },
     ))
 }
@@ -268,6 +284,12 @@ fn check_one(
     let o = run_mipmap_checked(p, frames, vcd, ctx.check_schedule)?;
     res.vcd = traced;
     let tag = format!("{}x{} {:?} {:?}", p.width, p.height, p.scan, p.rounding);
+    if !o.findings.is_empty() {
+        // A hang, or frames out of order: no levels to score; that is the finding.
+        (res.failures).extend(o.findings.iter().map(|f| format!("{tag}: {f}")));
+        res.cycles += o.stats.cycles;
+        return Ok(());
+    }
     score_levels(res, p, frames, &o, &tag);
     res.transactions += frames.len() as u64;
     res.cycles += o.stats.cycles;
