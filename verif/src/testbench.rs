@@ -355,11 +355,10 @@ fn run_job(
     // Tracking is per thread: on for this job's run, as it was after.
     let was = hdl::fx::tracking();
     hdl::fx::set_tracking(opts.numeric);
-    let _ = hdl::kernel::panicked_in_cycle(); // not an earlier panic's
-    let r = unpanicked(|| tb.run(&ctx));
+    let r = unpanicked_sim(|| tb.run(&ctx));
     hdl::fx::set_tracking(was);
-    let r = r.unwrap_or_else(|p| {
-        let said = match hdl::kernel::panicked_in_cycle() {
+    let r = r.unwrap_or_else(|(cycle, p)| {
+        let said = match cycle {
             Some(c) => format!("panicked in cycle {c}: {p}"),
             None => format!("panicked: {p}"),
         };
@@ -378,6 +377,13 @@ pub(crate) fn unpanicked<T>(f: impl FnOnce() -> T) -> Result<T, String> {
             .unwrap_or("(no message)")
             .to_string()
     })
+}
+
+/// `f`'s value, or, when a panic ended it, the cycle of the simulation it unwound (when it
+/// unwound one: [`hdl::kernel::panicked_in_cycle`]) and the panic's message.
+pub(crate) fn unpanicked_sim<T>(f: impl FnOnce() -> T) -> Result<T, (Option<u64>, String)> {
+    let _ = hdl::kernel::panicked_in_cycle(); // not an earlier panic's
+    unpanicked(f).map_err(|said| (hdl::kernel::panicked_in_cycle(), said))
 }
 
 /// The result of a job whose run panicked: failed, with the panic's message and, when it was

@@ -145,9 +145,8 @@ fn model_secs(
     trace: BenchTrace,
 ) -> Result<f64, String> {
     let secs = || -> Result<f64, String> {
-        let _ = hdl::kernel::panicked_in_cycle(); // not an earlier panic's
-        let timed = crate::testbench::unpanicked(|| model.bench(stim, resets, trace));
-        let timed = timed.map_err(|said| match hdl::kernel::panicked_in_cycle() {
+        let timed = crate::testbench::unpanicked_sim(|| model.bench(stim, resets, trace));
+        let timed = timed.map_err(|(cycle, said)| match cycle {
             Some(c) => format!("{}{c}: {said}", crate::cosim::MODEL_PANICKED),
             None => format!("the model panicked: {said}"),
         })?;

@@ -263,15 +263,14 @@ fn binary(sim: Simulator, r: &RtlRun, kept: Option<(&Path, &str)>) -> Result<Pat
     Ok(built)
 }
 
-/// The builds that failed in this process, by key, with the folder each was built in and the
-/// simulator's message: the same sources fail the same way, so a run's other seeds of the same
-/// twin are told at once instead of building again (a broken file in a run of a thousand
-/// seeds is one failed build, not a thousand).
-fn failed_builds() -> &'static std::sync::Mutex<std::collections::HashMap<String, (String, String)>>
-{
-    static FAILED: std::sync::OnceLock<
-        std::sync::Mutex<std::collections::HashMap<String, (String, String)>>,
-    > = std::sync::OnceLock::new();
+/// Failed builds by key: the folder each was built in and the simulator's message.
+type FailedBuilds = std::sync::Mutex<std::collections::HashMap<String, (String, String)>>;
+
+/// The builds that failed in this process: the same sources fail the same way, so a run's
+/// other seeds of the same twin are told at once instead of building again (a broken file in
+/// a run of a thousand seeds is one failed build, not a thousand).
+fn failed_builds() -> &'static FailedBuilds {
+    static FAILED: std::sync::OnceLock<FailedBuilds> = std::sync::OnceLock::new();
     FAILED.get_or_init(Default::default)
 }
 
