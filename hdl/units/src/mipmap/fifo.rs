@@ -132,7 +132,7 @@ impl Fifo {
     /// The outputs from the stored state and this cycle's inputs; the edge's clear, then pop,
     /// then push. A pop from empty (underflow) or a push into full (overflow) does nothing
     /// but report itself on `error`.
-    #[inline]
+    #[inline(always)]
     pub fn eval(&mut self) {
         self.occupancy.set_bits(self.len.q().bits());
         self.buf.eval();

@@ -223,7 +223,9 @@ impl Regs for FrameStore {
     #[inline]
     fn tick_regs(&mut self, reset: bool) {
         if !reset && self.own() {
-            self.write_lines();
+            if self.staged != 0 {
+                self.write_lines();
+            }
             let w = self.width as usize;
             if let Some((frame, x, y, t)) = self.texel {
                 self.buffers[(frame % 2) as usize][0][y as usize * w + x as usize] = t;
@@ -503,10 +505,16 @@ impl MipmapGen {
 
     /// Level `k + 1`'s FIFO 1412 line, if it goes to the frame store at the coming edge, staged
     /// there; returns the frame it completes (the last level's line).
-    #[inline]
+    #[inline(always)]
     fn stage_line(&mut self, k: usize) -> Option<u64> {
+        let at = self.levels[k].line_write()?;
+        self.stage_line_at(k, at)
+    }
+
+    /// [`MipmapGen::stage_line`] for a line that goes out (one cycle in a line's width).
+    #[inline(never)]
+    fn stage_line_at(&mut self, k: usize, at: (u64, u32)) -> Option<u64> {
         let l = &self.levels[k];
-        let at = l.line_write()?;
         self.store.stage_line(k, at, l.fifo_1412.iter());
         (k + 2 == self.dims.len()).then_some(at.0)
     }
