@@ -415,9 +415,10 @@ impl LookaheadQueue {
         // The footprint's blocks (clamped at the edge, as stage 0 reads them).
         let (x1, y1) = ((x0 + 1).min(4 * bw - 1), (y0 + 1).min(4 * bh - 1));
         let foot = [(x0, y0), (x1, y0), (x0, y1), (x1, y1)].map(|(x, y)| (x >> 2, y >> 2));
+        let foot_entries = foot.map(|(bx, by)| entry_of(bx, by));
         let evicts = |b: (u32, u32)| {
             let e = entry_of(b.0, b.1);
-            foot.iter().any(|&f| f != b && entry_of(f.0, f.1) == e)
+            (0..4).any(|i| foot_entries[i] == e && foot[i] != b)
         };
         let mut put = |k: usize, blk: (u32, u32)| {
             if !evicts(blk) {
