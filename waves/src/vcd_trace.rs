@@ -3,7 +3,7 @@
 use crate::glob::glob_match;
 use crate::gtkw::{Gtkw, Item, Style, View};
 use crate::output::Staged;
-use crate::vcd_writer::{Code, Rec, WriterThread, BATCH};
+use crate::vcd_writer::{Batch, Code, Rec, WriterThread, BATCH};
 use hdl::fx::Format;
 use hdl::kernel::{Dir, Module, Signal, Trace, Visitor};
 use std::fs::File;
@@ -263,7 +263,7 @@ pub struct VcdTracer {
     /// The records not yet handed to the writer thread (which formats them; see
     /// [`crate::vcd_writer`]), and the thread, from the end of the declarations until
     /// `finish`; `w` is with the thread meanwhile.
-    recs: Vec<Rec>,
+    recs: Batch,
     thread: Option<WriterThread>,
     /// The FST written beside, when the configuration asks for it.
     fst: Option<crate::FstTracer>,
@@ -324,7 +324,7 @@ impl VcdTracer {
             last_time: None,
             first_time: 0,
             active: None,
-            recs: Vec::with_capacity(BATCH),
+            recs: Batch::new(0),
             thread: None,
             fst,
             clk_code: Box::default(),
@@ -439,7 +439,7 @@ impl VcdTracer {
             self.recs.clear();
             return Ok(());
         };
-        match t.send(std::mem::take(&mut self.recs)) {
+        match t.send(std::mem::replace(&mut self.recs, Batch::new(0))) {
             Ok((t, next)) => {
                 self.thread = Some(t);
                 self.recs = next;
@@ -698,17 +698,22 @@ impl Visitor for Declare<'_> {
 /// Collects the changes of one cycle (every value when `all`) as records for the writer
 /// thread; the count of value changes the dump gets (a real companion's too).
 #[inline]
-fn sample_changes<M: Module>(top: &M, hot: &mut [Hot], recs: &mut Vec<Rec>, all: bool) -> u64 {
+fn sample_changes<M: Module>(top: &M, hot: &mut [Hot], recs: &mut Batch, all: bool) -> u64 {
     let (mut i, mut changes) = (0usize, 0u64);
+    // The cursor in a local, written back once.
+    let (buf, at) = recs.parts();
+    let mut n = *at;
     top.visit_bits(&mut |bits| {
         let h = &mut hot[i];
         i += 1;
         if h.traced && (all || bits != h.last) {
             h.last = bits;
-            recs.push(Rec::bits(i as u32 - 1, bits));
+            buf[n] = Rec::bits(i as u32 - 1, bits);
+            n += 1;
             changes += 1 + u64::from(h.real);
         }
     });
+    *at = n;
     changes
 }
 
@@ -799,6 +804,10 @@ impl Trace for VcdTracer {
             real: e.real.is_some(),
         });
         self.hot = hot.collect();
+        // A cycle adds its signals' and probes' changes and at most seven more records (two
+        // times, two clock edges, reset, `$dumpvars` and its `$end`).
+        let probes = self.probes.len();
+        self.recs = Batch::new(BATCH + self.hot.len() + probes + 7);
         if !self.probes.is_empty() {
             self.writer().add_module(PROBES)?;
             for i in 0..self.probes.len() {
@@ -857,7 +866,7 @@ impl Trace for VcdTracer {
         self.check_time(half)?;
         let all = !self.dumped;
         let (clk, rst, probes) = self.fixed_codes();
-        let mut recs = std::mem::take(&mut self.recs);
+        let recs = &mut self.recs;
         recs.push(Rec::time(t));
         if all {
             recs.push(Rec::text(false));
@@ -873,7 +882,7 @@ impl Trace for VcdTracer {
             }
             n += 1;
         }
-        n += sample_changes(top, &mut self.hot, &mut recs, all);
+        n += sample_changes(top, &mut self.hot, recs, all);
         for (k, p) in self.probes.iter_mut().enumerate() {
             if all || p.last != Some(p.value) {
                 let i = probes + k as u32;
@@ -892,8 +901,7 @@ impl Trace for VcdTracer {
         self.changes += n;
         recs.push(Rec::time(half));
         recs.push(Rec::bits(clk, 0));
-        self.recs = recs;
-        if self.recs.len() >= BATCH {
+        if recs.len() >= BATCH {
             self.hand_over()?;
         }
         Ok(())

@@ -84,6 +84,54 @@ pub(crate) struct Rec {
     value: u64,
 }
 
+/// The records of a batch being collected: a buffer of fixed length and a cursor. A
+/// `Vec::push` per record stored the length and checked the capacity each time (a third of
+/// the simulation's side of a traced cycle); here the cursor stays in a register. The
+/// buffer keeps its length across the threads (a formatter reads the first `n` records and
+/// gives the buffer back as it is), so it is filled once.
+pub(crate) struct Batch {
+    recs: Vec<Rec>,
+    n: usize,
+}
+
+impl Batch {
+    /// An empty batch that holds `len` records.
+    pub fn new(len: usize) -> Batch {
+        Batch {
+            recs: vec![Rec::time(0); len],
+            n: 0,
+        }
+    }
+
+    /// Appends `r`; panics past the length (the tracer hands a batch over once it holds
+    /// [`BATCH`] records, and makes it longer by what one cycle can add).
+    #[inline(always)]
+    pub fn push(&mut self, r: Rec) {
+        self.recs[self.n] = r;
+        self.n += 1;
+    }
+
+    /// The buffer and the cursor, for a loop that keeps the cursor in a local and writes it
+    /// back at its end.
+    pub fn parts(&mut self) -> (&mut [Rec], &mut usize) {
+        (&mut self.recs, &mut self.n)
+    }
+
+    /// The records collected.
+    pub fn len(&self) -> usize {
+        self.n
+    }
+
+    /// Forgets the records (the buffer stays).
+    pub fn clear(&mut self) {
+        self.n = 0;
+    }
+
+    fn recs(&self) -> &[Rec] {
+        &self.recs[..self.n]
+    }
+}
+
 /// The texts a [`Rec::text`] can name.
 const TEXTS: [&[u8]; 2] = [b"$dumpvars\n", b"$end\n"];
 
@@ -158,38 +206,40 @@ impl Text {
         self.pos = end;
     }
 
+    /// The [`LINE`] bytes of room at the cursor (the text grows when they would pass its
+    /// end). The test and the slice's own bounds check are one compare.
+    #[inline(always)]
+    fn room(&mut self) -> &mut [u8; LINE] {
+        if self.pos + LINE > self.buf.len() {
+            self.grow();
+        }
+        let p = self.pos;
+        (&mut self.buf[p..p + LINE]).try_into().expect("LINE")
+    }
+
     /// A value change, as [`push_change`] writes it. The line is formatted within the
-    /// [`LINE`] bytes of room at the cursor, in whole 8-byte moves: the digits of the bits
-    /// above a whole number of bytes as the tail of a byte's eight (the bytes after them are
-    /// overwritten by the next digits, or the space), then a byte's eight at a time.
+    /// [`LINE`] bytes of room at the cursor, in whole 8-byte moves: the bits shifted to the
+    /// top of a word, a byte's eight digits at a time from the top; the digits past the width
+    /// (of the last byte's eight) are overwritten by the space and the tail.
     #[inline(always)]
     fn change(&mut self, tail: &Tail, width: u32, bits: u64) {
-        let p = self.pos;
-        let line: &mut [u8; LINE] = (&mut self.buf[p..p + LINE]).try_into().expect("LINE");
-        let w = (width as usize).min(64);
+        let line = self.room();
+        let w = (width as usize).clamp(1, 64);
         let end = if w == 1 {
             line[0] = b'0' + (bits & 1) as u8;
             1
         } else {
             line[0] = b'b';
-            let top = w % 8;
-            let mut q = 1;
-            if top != 0 {
-                let byte = ((bits >> (w - top)) & 0xff) as usize;
-                let digits = u64::from_le_bytes(BINARY[byte]) >> (8 * (8 - top));
-                line[1..9].copy_from_slice(&digits.to_le_bytes());
-                q += top;
+            let top = bits << (64 - w);
+            for g in 0..w.div_ceil(8) {
+                let byte = (top >> (56 - 8 * g)) & 0xff;
+                line[1 + 8 * g..][..8].copy_from_slice(&BINARY[byte as usize]);
             }
-            for k in (0..w / 8).rev() {
-                let byte = ((bits >> (8 * k)) & 0xff) as usize;
-                line[q..q + 8].copy_from_slice(&BINARY[byte]);
-                q += 8;
-            }
-            line[q] = b' ';
-            q + 1
+            line[1 + w] = b' ';
+            w + 2
         };
         line[end..end + 16].copy_from_slice(&tail.bytes);
-        self.pos = p + end + tail.len;
+        self.pos += end + tail.len;
     }
 
     /// A timestamp, as [`push_time`] writes it: `#`, the digits and a newline, within the
@@ -198,9 +248,7 @@ impl Text {
     fn time(&mut self, t: u64) {
         let mut digits = itoa::Buffer::new();
         let d = digits.format(t).as_bytes();
-        let line: &mut [u8; LINE] = (&mut self.buf[self.pos..self.pos + LINE])
-            .try_into()
-            .expect("LINE");
+        let line = self.room();
         line[0] = b'#';
         line[1..1 + d.len()].copy_from_slice(d);
         line[1 + d.len()] = b'\n';
@@ -225,9 +273,6 @@ impl Text {
 /// Formats `recs` onto the end of `text` (which grows to hold them all).
 fn format(text: &mut Text, scratch: &mut Vec<u8>, codes: &[Code], lines: &[Line], recs: &[Rec]) {
     for r in recs {
-        if text.pos >= text.buf.len() - LINE {
-            text.grow();
-        }
         let i = (r.tag & !(3 << 30)) as usize;
         match r.tag & (3 << 30) {
             Rec::TIME => text.time(r.value),
@@ -287,7 +332,7 @@ impl InOrder {
 
 /// What the formatter threads share: the queue of numbered batches and the file's end.
 struct Shared {
-    batches: Mutex<Receiver<(u64, Vec<Rec>)>>,
+    batches: Mutex<Receiver<(u64, Batch)>>,
     file: Mutex<InOrder>,
     codes: Arc<[Code]>,
     lines: Vec<Line>,
@@ -297,7 +342,7 @@ struct Shared {
 /// every lock, so the formatters work side by side), hands the text to the file's end in
 /// its turn and the emptied batch back for reuse; until the simulation hangs up or a write
 /// fails.
-fn run(shared: Arc<Shared>, recycle: Sender<Vec<Rec>>) {
+fn run(shared: Arc<Shared>, recycle: Sender<Batch>) {
     let mut scratch = Vec::with_capacity(64);
     loop {
         let next = shared.batches.lock().map(|q| q.recv());
@@ -317,7 +362,7 @@ fn run(shared: Arc<Shared>, recycle: Sender<Vec<Rec>>) {
             &mut scratch,
             &shared.codes,
             &shared.lines,
-            &batch,
+            batch.recs(),
         );
         batch.clear();
         let _ = recycle.send(batch);
@@ -330,9 +375,9 @@ fn run(shared: Arc<Shared>, recycle: Sender<Vec<Rec>>) {
 
 /// The simulation's end of the formatter threads.
 pub(crate) struct WriterThread {
-    batches: SyncSender<(u64, Vec<Rec>)>,
+    batches: SyncSender<(u64, Batch)>,
     seq: u64,
-    recycle: Receiver<Vec<Rec>>,
+    recycle: Receiver<Batch>,
     shared: Arc<Shared>,
     handles: Vec<JoinHandle<()>>,
 }
@@ -383,7 +428,8 @@ impl WriterThread {
 
     /// Hands over `batch` and returns an empty one, or the writer's error (the formatters
     /// have then ended: the writer comes back too).
-    pub fn send(mut self, batch: Vec<Rec>) -> Result<(WriterThread, Vec<Rec>), (Out, io::Error)> {
+    pub fn send(mut self, batch: Batch) -> Result<(WriterThread, Batch), (Out, io::Error)> {
+        let len = batch.recs.len();
         let failed = self.shared.file.lock().map_or(true, |f| f.error.is_some());
         if failed || self.batches.send((self.seq, batch)).is_err() {
             let (w, r) = self.join();
@@ -393,10 +439,7 @@ impl WriterThread {
             return Err((w, e));
         }
         self.seq += 1;
-        let next = self
-            .recycle
-            .try_recv()
-            .unwrap_or_else(|_| Vec::with_capacity(BATCH));
+        let next = self.recycle.try_recv().unwrap_or_else(|_| Batch::new(len));
         Ok((self, next))
     }
 
