@@ -177,3 +177,25 @@ fn bad_input_is_one_line_exit_2_and_no_file() {
     ];
     assert_refused(&a, "the same file as the map", &d, &[]);
 }
+
+/// A waveform that cannot be written is bad output naming `--vcd` (exit 2, one line), and
+/// leaves no result behind.
+#[cfg(target_os = "linux")]
+#[test]
+fn a_waveform_that_cannot_be_written_is_refused() {
+    let d = dir("vcd_full");
+    let (m, r) = inputs(&d);
+    let o = d.join("o.csv");
+    let a = [
+        "mapchain",
+        "--maps",
+        s(&m),
+        "--requests",
+        s(&r),
+        "--out",
+        s(&o),
+        "--vcd",
+        "/dev/full",
+    ];
+    assert_refused(&a, "--vcd /dev/full", &d, &["o."]);
+}

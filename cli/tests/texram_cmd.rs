@@ -235,3 +235,25 @@ fn index_textures_through_the_clut() {
     assert!(String::from_utf8_lossy(&out.stderr).contains("more than 256 colours"));
     assert!(!o2.exists());
 }
+
+/// A waveform that cannot be written is bad output naming `--vcd` (exit 2, one line), and
+/// leaves no result behind.
+#[cfg(target_os = "linux")]
+#[test]
+fn a_waveform_that_cannot_be_written_is_refused() {
+    let d = dir("vcd_full");
+    let (t, r) = inputs(&d);
+    let o = d.join("o.csv");
+    let a = [
+        "texram",
+        "--texture",
+        s(&t),
+        "--requests",
+        s(&r),
+        "--out",
+        s(&o),
+        "--vcd",
+        "/dev/full",
+    ];
+    assert_refused(&a, "--vcd /dev/full", &d, &["o."]);
+}

@@ -28,10 +28,13 @@ pub mod texture;
 pub mod vectors;
 pub mod volume;
 
-/// What stops a run of a unit on a command's input: its waveform could not be written (the
-/// command names its option: bad output, exit 2) or the run itself failed (a check inside).
+/// What stops a run of a unit on a command's input: the input does not fit the unit, or its
+/// waveform could not be written (bad input or output: the command exits 2), or the run
+/// itself failed (a wrong result, a hang, a protocol broken: exit 1).
 #[derive(Clone, Debug, PartialEq, Eq)]
 pub enum RunError {
+    /// The input cannot be loaded into the unit (a texture or a map its memory refuses).
+    Input(String),
     /// The waveform's file could not be created or written; the message names the file.
     Waveform(String),
     /// Anything else.
@@ -47,7 +50,7 @@ impl From<String> for RunError {
 impl From<RunError> for String {
     fn from(e: RunError) -> Self {
         match e {
-            RunError::Waveform(m) | RunError::Failed(m) => m,
+            RunError::Input(m) | RunError::Waveform(m) | RunError::Failed(m) => m,
         }
     }
 }

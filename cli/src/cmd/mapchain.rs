@@ -163,7 +163,7 @@ fn mapchain(a: &MapchainArgs, outs: &[(&str, &Path)]) -> Result<String, CmdError
     let scene =
         Scene::from_specs(specs).map_err(|e| input(format!("{}: {e}", a.maps.display())))?;
     let reqs = read_requests(&a.requests).map_err(input)?;
-    let (res, st) = run_mapchain(&scene, &reqs, a.vcd.as_deref()).map_err(input)?;
+    let (res, st) = run_mapchain(&scene, &reqs, a.vcd.as_deref()).map_err(super::run_error)?;
     let mut csv = String::from("drf,u,v,lambda,colour,accesses,faults,error\n");
     for (q, r) in reqs.iter().zip(&res) {
         let f = |x: i32| f64::from(x) / 256.0;

@@ -33,10 +33,11 @@ pub fn texture_border(s: &str) -> Result<units::texram::Border, CmdError> {
     }
 }
 
-/// A unit's run on a command's input: a waveform that cannot be written is bad output naming
-/// `--vcd` (exit 2), anything else a failed run (exit 1).
+/// A unit's run on a command's input: input the unit refuses is bad input, a waveform that
+/// cannot be written bad output naming `--vcd` (exit 2), anything else a failed run (exit 1).
 pub fn run_error(e: tb::RunError) -> CmdError {
     match e {
+        tb::RunError::Input(m) => input(m),
         tb::RunError::Waveform(m) => input(format!("--vcd {m}")),
         tb::RunError::Failed(m) => CmdError::Failed(m),
     }

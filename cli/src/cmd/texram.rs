@@ -235,7 +235,7 @@ fn texram(a: &TexramArgs) -> Result<String, CmdError> {
     let border = super::texture_border(&a.border)?;
     let tex = read_texture(&a.texture, config, border).map_err(input)?;
     let reqs = read_requests(&a.requests).map_err(input)?;
-    let run = run_texram(&tex, &reqs, a.vcd.as_deref()).map_err(input)?;
+    let run = run_texram(&tex, &reqs, a.vcd.as_deref()).map_err(super::run_error)?;
     let mut csv = String::from("u,v,lambda,r,g,b,a\n");
     for (q, [r, g, b, al]) in reqs.iter().zip(&run.values) {
         let f = |r: i32| f64::from(r) / 256.0;

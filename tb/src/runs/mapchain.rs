@@ -3,6 +3,7 @@
 //! walker, which the testbench's conclusion holds against the document.
 
 use crate::mapchain::{scene, Maps, Scene, Shape, CYCLE_PS, NAME, SLOT_CYCLES};
+use crate::RunError;
 use hdl::kernel::{Sim, Trace};
 use units::mapchain::program::ChainRequest;
 use units::mapchain::walker_812::{ChainResult, MapChain812};
@@ -29,15 +30,18 @@ pub fn run_mapchain(
     sc: &Scene,
     px: &[ChainRequest],
     vcd: Option<&std::path::Path>,
-) -> Result<(Vec<ChainResult>, ChainStats), String> {
+) -> Result<(Vec<ChainResult>, ChainStats), RunError> {
     let work = Workload::vcd(vcd);
-    let dut = MapChain812::new(sc.file.clone(), sc.stub()?, SLOT_CYCLES)?;
-    let (sim, _) = work.sim(dut, NAME, CYCLE_PS, |_| ())?;
+    let stub = sc.stub().map_err(RunError::Input)?;
+    let dut = MapChain812::new(sc.file.clone(), stub, SLOT_CYCLES).map_err(RunError::Input)?;
+    let (sim, _) = work
+        .sim(dut, NAME, CYCLE_PS, |_| ())
+        .map_err(RunError::Waveform)?;
     let (cycles, out, mut sim) = clocked_sim(sim, px)?;
     if let Some(e) = sim.dut.banks.error.take() {
-        return Err(format!("the banks refused an access: {e}"));
+        return Err(format!("the banks refused an access: {e}").into());
     }
-    work.finish(sim)?;
+    work.finish(sim).map_err(RunError::Waveform)?;
     let sum = |f: fn(&ChainResult) -> u32| out.iter().map(|r| u64::from(f(r))).sum::<u64>();
     let ns = cycles as f64 * CYCLE_PS as f64 / 1000.0;
     let st = ChainStats {

@@ -4,6 +4,7 @@
 //! against the document.
 
 use crate::texram::{ref_border, sample_tex, RefMipmap, TexDriver, TexReq, CYCLE_PS};
+use crate::RunError;
 use hdl::kernel::Sim;
 use units::texram::clut_814::Clut;
 use units::texram::texram_802::{Texram802, TexramParams};
@@ -80,21 +81,23 @@ impl TexramTexture {
 }
 
 /// Runs `reqs` back to back through the chip holding `tex`, every result checked (a
-/// difference is an error: the command must not print a wrong texel): luminance against the
+/// difference fails the run: the command must not print a wrong texel): luminance against the
 /// integer reference, the other configurations against the behavioural stub. Traced to `vcd`
 /// when given.
 pub fn run_texram(
     tex: &TexramTexture,
     reqs: &[TexReq],
     vcd: Option<&std::path::Path>,
-) -> Result<TexramRun, String> {
+) -> Result<TexramRun, RunError> {
     use units::texram::{Config, TexramAccess, TexramRequest};
     let drf = tex.drf;
-    let (chip, mut stub) = tex.load()?;
+    let (chip, mut stub) = tex.load().map_err(RunError::Input)?;
     let level0 = &tex.levels[0];
     let (wl, hl, border) = (drf.width_log2, drf.height_log2, drf.border);
     let work = Workload::vcd(vcd);
-    let (mut sim, _) = work.sim(chip, "texram_802", CYCLE_PS, |_| ())?;
+    let (mut sim, _) = work
+        .sim(chip, "texram_802", CYCLE_PS, |_| ())
+        .map_err(RunError::Waveform)?;
     sim.reset(2);
     let reference = RefMipmap::build(1 << wl, 1 << hl, level0);
     let n = reqs.len() as u64;
@@ -138,10 +141,10 @@ pub fn run_texram(
     )
     .map_err(|e| e.to_string())?;
     if let Some(w) = wrong {
-        return Err(w);
+        return Err(RunError::Failed(w));
     }
     let stats = TexramStats::of(&sim.dut, n, st.cycles);
-    work.finish(sim)?;
+    work.finish(sim).map_err(RunError::Waveform)?;
     Ok(TexramRun { values, stats })
 }
 
