@@ -326,9 +326,13 @@ impl FillEngine {
 /// looked up) empties it; otherwise, when the engine is free and stage 0 misses nothing, the
 /// first live candidate is taken (`take`, `take_bx`, `take_by`: the unit drops it without a
 /// fill when the cache already holds it). A request's candidates can be taken the cycle it
-/// completes.
+/// completes. The queue changes only then, on a flush or a take: its clock enable, so in any
+/// other cycle its edge is skipped.
 #[derive(Clone, Debug, Module)]
-#[module(kind = "lookahead_queue_607")]
+#[module(
+    kind = "lookahead_queue_607",
+    enable = self.complete.is_high() || self.flush.is_high() || self.take.is_high()
+)]
 pub struct LookaheadQueue {
     mode: Lookahead,
     /// Texture size in blocks, and fraction bits of `u`, `v`.
