@@ -860,6 +860,9 @@ impl Trace for VcdTracer {
         if !self.in_window(cycle) {
             return Ok(());
         }
+        if self.recs.capacity() == 0 {
+            return Err(self.named(io_err("a cycle sampled before the trace started".into())));
+        }
         let t = cycle * self.cfg.period_ps;
         let half = t + self.cfg.period_ps / 2;
         self.check_time(t)?;

@@ -117,6 +117,11 @@ impl Batch {
         (&mut self.recs, &mut self.n)
     }
 
+    /// How many records it holds (none before the tracer knows its signals).
+    pub fn capacity(&self) -> usize {
+        self.recs.len()
+    }
+
     /// The records collected.
     pub fn len(&self) -> usize {
         self.n

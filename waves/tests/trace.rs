@@ -223,6 +223,21 @@ fn abandoned_trace_leaves_no_file() {
     assert!(!p.with_extension("gtkw").exists());
 }
 
+/// A cycle sampled before `start` (the tracer has not seen the design) is an error naming the
+/// file, not a panic.
+#[test]
+fn a_cycle_before_the_start_is_refused() {
+    use hdl::kernel::Trace;
+    let path = Scratch::new("early", "e.vcd");
+    let mut t = VcdTracer::create(&path, "early", TraceConfig::default()).unwrap();
+    let dut = BlendAdjust::new("blend_adjust_153", BlendAdjustParams::default()).unwrap();
+    let e = t.sample(0, true, &dut).unwrap_err().to_string();
+    assert!(
+        e.contains("e.vcd") && e.contains("before the trace started"),
+        "{e}"
+    );
+}
+
 #[test]
 fn bad_configs_are_refused() {
     let dir = tmpdir("bad");
