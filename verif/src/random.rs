@@ -176,9 +176,17 @@ pub struct Stimulus {
 impl Stimulus {
     /// A stimulus source replaying `seed`.
     pub fn new(seed: Seed) -> Stimulus {
+        // No failure persistence: a stimulus source records nothing, and a union strategy
+        // (`prop_oneof!`) copies the runner's configuration for each option at every draw,
+        // the default's file persistence with it (9 % of replicate 152's stimulus). The
+        // values drawn do not depend on it.
+        let cfg = Config {
+            failure_persistence: None,
+            ..Config::default()
+        };
         Stimulus {
             seed,
-            runner: TestRunner::new_with_rng(Config::default(), seed.rng()),
+            runner: TestRunner::new_with_rng(cfg, seed.rng()),
         }
     }
 
