@@ -361,3 +361,22 @@ fn every_stats_field_is_documented() {
         "texrtl: --frac-bits 0: 1..=8"
     );
 }
+
+/// A waveform that cannot be written is bad output naming `--vcd` (exit 2, one line), and
+/// leaves no result behind.
+#[cfg(target_os = "linux")]
+#[test]
+fn texread_refuses_a_waveform_that_cannot_be_written() {
+    let (d, _, c) = encoded("vcd_full");
+    let r = d.join("r.csv");
+    std::fs::write(&r, "u,v\n1,1\n2,2\n").unwrap();
+    let out = d.join("o.csv");
+    let o = texread(&c, &r, &out, &["--vcd", "/dev/full"]);
+    let err = String::from_utf8_lossy(&o.stderr);
+    assert_eq!(o.status.code(), Some(2), "{err}");
+    assert!(
+        err.contains("--vcd /dev/full") && err.trim_end().lines().count() == 1,
+        "{err}"
+    );
+    assert!(!out.exists(), "left {}", out.display());
+}

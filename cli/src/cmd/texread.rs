@@ -195,7 +195,7 @@ fn texread(a: &TexreadArgs) -> Result<String, CmdError> {
     }
     let reqs = read_requests(&a.requests, &p).map_err(input)?;
     let vcd = a.vcd.clone().map(|v| (v, waves::TraceConfig::default()));
-    let run = run_texread(&tex, p, &reqs, a.interval, vcd).map_err(input)?;
+    let run = run_texread(&tex, p, &reqs, a.interval, vcd).map_err(super::run_error)?;
     if run.stats.violations != 0 {
         return Err(CmdError::Failed(format!(
             "{} DRAM timing violations",

@@ -4,6 +4,7 @@
 //! the misses and the unit's two handshakes checked at the pins.
 
 use crate::texture::reference_filter;
+use crate::RunError;
 use formats::ccc::Ccc;
 use hdl::kernel::{Sim, Trace};
 use serde::{Deserialize, Serialize};
@@ -132,17 +133,17 @@ impl Shadow {
 
 /// Runs `reqs` through a texture unit holding `tex`, the rasterizer presenting the next
 /// request `interval` cycles after the previous one was taken (1: every cycle). `vcd`: trace
-/// the run.
+/// the run. What the run finds wrong with the unit (a hang, a broken handshake) fails it.
 pub fn run_texread(
     tex: &Ccc,
     p: TexParams,
     reqs: &[TexRequest],
     interval: u32,
     vcd: Option<(PathBuf, TraceConfig)>,
-) -> Result<TexRun, String> {
+) -> Result<TexRun, RunError> {
     let run = run_texread_checked(tex, p, reqs, interval, vcd, false)?;
     match run.findings.first() {
-        Some(f) => Err(f.clone()),
+        Some(f) => Err(RunError::Failed(f.clone())),
         None => Ok(run),
     }
 }
@@ -156,7 +157,39 @@ pub fn run_texread_checked(
     interval: u32,
     vcd: Option<(PathBuf, TraceConfig)>,
     check: bool,
-) -> Result<TexRun, String> {
+) -> Result<TexRun, RunError> {
+    let unit = texread_unit(tex, p, reqs, interval).map_err(RunError::Input)?;
+    // Traced at the unit's own clock, whatever the configuration's period.
+    let work = Workload {
+        wave: vcd.map(|(vcd, trace)| WaveOut {
+            vcd,
+            trace,
+            period_ps: None,
+        }),
+    };
+    let own_period_ps = u64::from(p.dram.cycle_ns) * 1000;
+    // The integer reference beside the unit's output, and a flag where they differ.
+    let (sim, probes) = work
+        .sim(unit, "texread", own_period_ps, |t| {
+            (
+                t.probe_bits("rgb_reference", 24, Some("tb.texture_unit_602.out_rgb")),
+                t.probe_bits("mismatch", 1, Some("tb.texture_unit_602.out_valid")),
+            )
+        })
+        .map_err(RunError::Waveform)?;
+    let probes = probes.map(|p| (tex, p));
+    let (sim, run) = drive(sim.check_schedule(check), reqs, interval, probes)?;
+    work.finish(sim).map_err(RunError::Waveform)?;
+    Ok(run)
+}
+
+/// The unit holding `tex`, once the run's parameters and requests are found to fit it.
+fn texread_unit(
+    tex: &Ccc,
+    p: TexParams,
+    reqs: &[TexRequest],
+    interval: u32,
+) -> Result<TextureUnit, String> {
     if !(1..=1000).contains(&interval) {
         return Err(format!("rasterizer interval {interval}: 1..=1000 cycles"));
     }
@@ -174,27 +207,7 @@ pub fn run_texread_checked(
         ));
     }
     let words = tex.dram_words(&p.block_map());
-    let unit = TextureUnit::new("texture_unit_602", p, &tex.clut, &words)?;
-    // Traced at the unit's own clock, whatever the configuration's period.
-    let work = Workload {
-        wave: vcd.map(|(vcd, trace)| WaveOut {
-            vcd,
-            trace,
-            period_ps: None,
-        }),
-    };
-    let own_period_ps = u64::from(p.dram.cycle_ns) * 1000;
-    // The integer reference beside the unit's output, and a flag where they differ.
-    let (sim, probes) = work.sim(unit, "texread", own_period_ps, |t| {
-        (
-            t.probe_bits("rgb_reference", 24, Some("tb.texture_unit_602.out_rgb")),
-            t.probe_bits("mismatch", 1, Some("tb.texture_unit_602.out_valid")),
-        )
-    })?;
-    let probes = probes.map(|p| (tex, p));
-    let (sim, run) = drive(sim.check_schedule(check), reqs, interval, probes)?;
-    work.finish(sim)?;
-    Ok(run)
+    TextureUnit::new("texture_unit_602", p, &tex.clut, &words)
 }
 
 /// Reference probes of a traced run: the texture, the reference colour's and the mismatch
