@@ -1,6 +1,7 @@
 //! The DRAM 604 and control unit 607 on an address trace (`texrtl dram`), every word read
 //! checked against the DRAM's power-up contents.
 
+use crate::RunError;
 use hdl::kernel::{Sim, Trace};
 use serde::Serialize;
 use std::path::PathBuf;
@@ -103,8 +104,13 @@ fn region(x: u64, n: u64) -> i64 {
     }
 }
 
-/// Runs `addrs` through the controller, one request as soon as it is ready.
-pub fn run_trace(p: DramParams, addrs: &[u64], vcd: Option<PathBuf>) -> Result<DramStats, String> {
+/// Runs `addrs` through the controller, one request as soon as it is ready; a hang fails the
+/// run.
+pub fn run_trace(
+    p: DramParams,
+    addrs: &[u64],
+    vcd: Option<PathBuf>,
+) -> Result<DramStats, RunError> {
     let period_ps = u64::from(p.cycle_ns) * 1000;
     let trace = TraceConfig {
         period_ps,
@@ -116,7 +122,7 @@ pub fn run_trace(p: DramParams, addrs: &[u64], vcd: Option<PathBuf>) -> Result<D
     };
     let (st, _) = run_paced(p, addrs, setup)?;
     match &st.hung {
-        Some(h) => Err(h.clone()),
+        Some(h) => Err(RunError::Failed(h.clone())),
         None => Ok(st),
     }
 }
@@ -148,14 +154,16 @@ pub fn run_paced(
     p: DramParams,
     addrs: &[u64],
     setup: DramRun,
-) -> Result<(DramStats, Option<Coverage>), String> {
-    let ctrl = DramCtrl::new("control_607", p)?;
+) -> Result<(DramStats, Option<Coverage>), RunError> {
+    let ctrl = DramCtrl::new("control_607", p).map_err(RunError::Input)?;
     let cov = setup.coverage.then(coverage_model);
     let check = setup.check_schedule;
     let work = Workload::traced(setup.wave);
-    let (sim, _) = work.sim(ctrl, NAME, 0, |_| ())?;
+    let (sim, _) = work
+        .sim(ctrl, NAME, 0, |_| ())
+        .map_err(RunError::Waveform)?;
     let (sim, st, cov) = drive(sim.check_schedule(check), addrs, setup.pacing, cov)?;
-    work.finish(sim)?;
+    work.finish(sim).map_err(RunError::Waveform)?;
     Ok((st, cov))
 }
 

@@ -7,6 +7,7 @@
 //! loop over the whole frame that shares nothing with the hardware's structure, and with the
 //! real-valued block averages of `golden::mipmap` against the analytic bound.
 
+use crate::RunError;
 use hdl::kernel::{Sim, Trace};
 use serde::{Deserialize, Serialize};
 use std::path::PathBuf;
@@ -100,15 +101,16 @@ pub struct MipmapOutcome {
     pub findings: Vec<String>,
 }
 
-/// Drives `frames` through the generator; `Err` for bad parameters or a hang.
+/// Drives `frames` through the generator; what the run finds wrong with it (a hang, a frame
+/// reported twice) fails the run.
 pub fn run_mipmap(
     p: MipmapParams,
     frames: &[Vec<u8>],
     vcd: Option<(PathBuf, TraceConfig)>,
-) -> Result<MipmapOutcome, String> {
+) -> Result<MipmapOutcome, RunError> {
     let o = run_mipmap_checked(p, frames, vcd, false)?;
     match o.findings.first() {
-        Some(f) => Err(f.clone()),
+        Some(f) => Err(RunError::Failed(f.clone())),
         None => Ok(o),
     }
 }
@@ -126,21 +128,21 @@ pub fn run_mipmap_checked(
     frames: &[Vec<u8>],
     vcd: Option<(PathBuf, TraceConfig)>,
     check: bool,
-) -> Result<MipmapOutcome, String> {
-    let dut = MipmapGen::new("mipmap_gen_816", p)?;
+) -> Result<MipmapOutcome, RunError> {
+    let dut = MipmapGen::new("mipmap_gen_816", p).map_err(RunError::Input)?;
     let n = (p.width * p.height) as usize;
     if let Some(k) = frames.iter().position(|f| f.len() != n) {
-        return Err(format!(
+        return Err(RunError::Input(format!(
             "frame {k} has {} texels, {}x{} needs {n}",
             frames[k].len(),
             p.width,
             p.height
-        ));
+        )));
     }
     let work = Workload::traced(vcd);
-    let (sim, _) = work.sim(dut, NAME, 0, |_| ())?;
+    let (sim, _) = work.sim(dut, NAME, 0, |_| ()).map_err(RunError::Waveform)?;
     let (sim, o) = drive(sim.check_schedule(check), frames)?;
-    work.finish(sim)?;
+    work.finish(sim).map_err(RunError::Waveform)?;
     Ok(o)
 }
 

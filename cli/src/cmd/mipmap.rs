@@ -127,7 +127,7 @@ fn mipmap(a: &MipmapArgs) -> Result<String, CmdError> {
         &frames,
         a.vcd.clone().map(|v| (v, TraceConfig::default())),
     )
-    .map_err(CmdError::Input)?;
+    .map_err(super::run_error)?;
     if o.error != 0 {
         return Err(CmdError::Failed(format!(
             "mipmap generator reported error code {}",

@@ -42,3 +42,21 @@ pub fn run_error(e: tb::RunError) -> CmdError {
         tb::RunError::Failed(m) => CmdError::Failed(m),
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::{run_error, CmdError};
+    use tb::RunError;
+
+    /// A unit's run that fails is exit 1 with its message; input the unit refuses is exit 2
+    /// as it is, a waveform that cannot be written exit 2 naming `--vcd`.
+    #[test]
+    fn a_failed_run_is_exit_1_and_refused_input_exit_2() {
+        let failed = run_error(RunError::Failed("watchdog: not idle by cycle 90".into()));
+        assert!(matches!(failed, CmdError::Failed(m) if m == "watchdog: not idle by cycle 90"));
+        let input = run_error(RunError::Input("frame 0 has 3 texels".into()));
+        assert!(matches!(input, CmdError::Input(m) if m == "frame 0 has 3 texels"));
+        let wave = run_error(RunError::Waveform("w.vcd: No space left on device".into()));
+        assert!(matches!(wave, CmdError::Input(m) if m == "--vcd w.vcd: No space left on device"));
+    }
+}
