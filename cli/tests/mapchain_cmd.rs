@@ -186,16 +186,6 @@ fn a_waveform_that_cannot_be_written_is_refused() {
     let d = dir("vcd_full");
     let (m, r) = inputs(&d);
     let o = d.join("o.csv");
-    let a = [
-        "mapchain",
-        "--maps",
-        s(&m),
-        "--requests",
-        s(&r),
-        "--out",
-        s(&o),
-        "--vcd",
-        "/dev/full",
-    ];
-    assert_refused(&a, "--vcd /dev/full", &d, &["o."]);
+    let io = ["--maps", s(&m), "--requests", s(&r), "--out", s(&o)];
+    common::assert_vcd_full_refused("mapchain", &io, &d);
 }

@@ -244,16 +244,6 @@ fn a_waveform_that_cannot_be_written_is_refused() {
     let d = dir("vcd_full");
     let (t, r) = inputs(&d);
     let o = d.join("o.csv");
-    let a = [
-        "texram",
-        "--texture",
-        s(&t),
-        "--requests",
-        s(&r),
-        "--out",
-        s(&o),
-        "--vcd",
-        "/dev/full",
-    ];
-    assert_refused(&a, "--vcd /dev/full", &d, &["o."]);
+    let io = ["--texture", s(&t), "--requests", s(&r), "--out", s(&o)];
+    common::assert_vcd_full_refused("texram", &io, &d);
 }

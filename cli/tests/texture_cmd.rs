@@ -370,13 +370,7 @@ fn texread_refuses_a_waveform_that_cannot_be_written() {
     let (d, _, c) = encoded("vcd_full");
     let r = d.join("r.csv");
     std::fs::write(&r, "u,v\n1,1\n2,2\n").unwrap();
-    let out = d.join("o.csv");
-    let o = texread(&c, &r, &out, &["--vcd", "/dev/full"]);
-    let err = String::from_utf8_lossy(&o.stderr);
-    assert_eq!(o.status.code(), Some(2), "{err}");
-    assert!(
-        err.contains("--vcd /dev/full") && err.trim_end().lines().count() == 1,
-        "{err}"
-    );
-    assert!(!out.exists(), "left {}", out.display());
+    let (c, r, o) = (s(&c), s(&r), s(&d.join("o.csv")));
+    let io = ["--texture", &c, "--requests", &r, "--out", &o];
+    common::assert_vcd_full_refused("texread", &io, &d);
 }

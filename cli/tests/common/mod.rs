@@ -107,6 +107,15 @@ pub fn small_shard_args<'a>(shard: &'a str, out: &'a Path) -> Vec<&'a str> {
     ]
 }
 
+/// `texrtl CMD ARGS --vcd /dev/full` is refused (a waveform that cannot be written is bad
+/// output): exit 2, one line naming `--vcd /dev/full`, no `o.*` output left in `d`.
+pub fn assert_vcd_full_refused(cmd: &str, args: &[&str], d: &Path) {
+    let mut a = vec![cmd];
+    a.extend_from_slice(args);
+    a.extend(["--vcd", "/dev/full"]);
+    assert_refused(&a, "--vcd /dev/full", d, &["o."]);
+}
+
 /// `args` are refused: exit 2, one line containing `needle`, and no file in `d` whose name
 /// starts with one of `outputs`.
 pub fn assert_refused(args: &[&str], needle: &str, d: &Path, outputs: &[&str]) {
