@@ -33,7 +33,8 @@ pub mod volume;
 /// itself failed (a wrong result, a hang, a protocol broken: exit 1).
 #[derive(Clone, Debug, PartialEq, Eq)]
 pub enum RunError {
-    /// The input cannot be loaded into the unit (a texture or a map its memory refuses).
+    /// The input or the parameters do not fit the unit (a texture or a map its memory
+    /// refuses, a request outside the texture, a parameter out of range).
     Input(String),
     /// The waveform's file could not be created or written; the message names the file.
     Waveform(String),
