@@ -85,3 +85,89 @@ fn bench_measures_a_twin_in_alternating_rounds() {
         assert!(!unit.join(f).exists(), "{f} left behind");
     }
 }
+
+/// `bench --instructions` as a user runs it on a shared machine: both sides' instructions a
+/// cycle under callgrind, the ratio their quotient, the table also in `instructions.md`, and
+/// the same figures on a second run (a count, not a timing: the model's exactly, the twin's
+/// within its clock reads).
+#[test]
+fn bench_counts_instructions_the_same_on_every_run() {
+    if !common::simulator("verilator", "--version") || !common::simulator("valgrind", "--version") {
+        return;
+    }
+    let d = dir("bench", "instructions");
+    let run = || {
+        let o = Command::new(env!("CARGO_BIN_EXE_texrtl"))
+            .args(["bench", "--unit", "address_150", "--instructions", "5000"])
+            .arg("--out")
+            .arg(d.as_os_str())
+            .output()
+            .unwrap();
+        let err = String::from_utf8_lossy(&o.stderr);
+        assert_eq!(o.status.code(), Some(0), "{err}");
+        String::from_utf8(o.stdout).unwrap()
+    };
+    let figures = |table: &str| -> [f64; 3] {
+        assert!(table.contains("cycles 1000..6000 of seed"), "{table}");
+        let row = table
+            .lines()
+            .find(|l| l.starts_with("| address_150 |"))
+            .unwrap_or_else(|| panic!("{table}"));
+        let cells: Vec<f64> = row
+            .split('|')
+            .map(str::trim)
+            .skip(2)
+            .filter(|c| !c.is_empty())
+            .map(|c| c.parse().unwrap())
+            .collect();
+        cells.try_into().unwrap_or_else(|_| panic!("{row}"))
+    };
+    let table = run();
+    let [model, twin, ratio] = figures(&table);
+    assert!(model > 0.0 && twin > 0.0, "{table}");
+    assert!(
+        (ratio - twin / model).abs() <= 0.005 + 0.001 * ratio,
+        "{table}"
+    );
+    let md = std::fs::read_to_string(d.join("instructions.md")).unwrap();
+    assert_eq!(md.trim_end(), table.trim_end());
+    let [again, twin_again, _] = figures(&run());
+    assert_eq!(again, model, "the model's count differs on a second run");
+    assert!(
+        (twin_again - twin).abs() <= 0.2,
+        "the twin's: {twin} then {twin_again}"
+    );
+}
+
+/// A count with no cycles, or without valgrind, is bad input naming `--instructions`, before
+/// anything is built.
+#[test]
+fn bench_instructions_refuses_bad_input() {
+    if !common::simulator("verilator", "--version") {
+        return;
+    }
+    let d = common::fresh("bench", "no-valgrind");
+    let o = common::texrtl(&["bench", "--instructions", "0", "--out", common::s(&d)]);
+    let err = String::from_utf8_lossy(&o.stderr);
+    assert_eq!(o.status.code(), Some(2), "{err}");
+    assert_eq!(err, "texrtl: --instructions 0: 1..=10000000\n");
+    // A PATH with Verilator on it and no valgrind.
+    let bin = dir("bench", "path");
+    let verilator = std::env::split_paths(&std::env::var_os("PATH").unwrap())
+        .map(|p| p.join("verilator"))
+        .find(|p| p.is_file())
+        .unwrap();
+    std::os::unix::fs::symlink(&verilator, bin.join("verilator")).unwrap();
+    let o = Command::new(env!("CARGO_BIN_EXE_texrtl"))
+        .args(["bench", "--instructions", "--out", common::s(&d)])
+        .env("PATH", bin.as_os_str())
+        .output()
+        .unwrap();
+    let err = String::from_utf8_lossy(&o.stderr);
+    assert_eq!(o.status.code(), Some(2), "{err}");
+    assert_eq!(
+        err,
+        "texrtl: --instructions: valgrind not found (Debian: apt-get install valgrind)\n"
+    );
+    assert!(!d.exists(), "the output folder was made for bad input");
+}

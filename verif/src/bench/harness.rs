@@ -25,6 +25,10 @@ pub fn enough(passes: usize, total: f64) -> bool {
     passes >= MAX_PASSES || (passes >= PASSES && total >= MIN_SECONDS)
 }
 
+/// With this variable set, an untraced harness makes one pass (as `bench --instructions`
+/// counts it).
+pub const ONE_PASS: &str = "TEXRTL_BENCH_ONE_PASS";
+
 /// What a run records.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum Mode {
@@ -86,11 +90,16 @@ pub fn main_cpp(unit: &dyn CosimUnit, ins: &[Port], outs: &[Port], mode: Mode) -
     };
     let _ = write!(
         s,
-        "    uint64_t sum = 0;\n    double best = 1e300, total = 0;\n    // Untraced: the best of {PASSES} passes or more, until they take {MIN_SECONDS} s (at most {MAX_PASSES}; each from reset); traced: one.\n    for (int pass = 0; {}; ++pass) {{\n    const auto t0 = std::chrono::steady_clock::now();\n    for (size_t c = 0; c < cycles; ++c) {{\n        const uint64_t* s = &stim[c * n];\n",
+        "    uint64_t sum = 0;\n    double best = 1e300, total = 0;\n{}    // Untraced: the best of {PASSES} passes or more, until they take {MIN_SECONDS} s (at most {MAX_PASSES}; each from reset); traced: one.\n    for (int pass = 0; {}; ++pass) {{\n    const auto t0 = std::chrono::steady_clock::now();\n    for (size_t c = 0; c < cycles; ++c) {{\n        const uint64_t* s = &stim[c * n];\n",
+        if traced {
+            ""
+        } else {
+            "    // One pass when counted (`bench --instructions`).\n    const bool one = std::getenv(\"TEXRTL_BENCH_ONE_PASS\") != nullptr;\n"
+        },
         if traced {
             "pass < 1".to_string()
         } else {
-            format!("pass < {MAX_PASSES} && (pass < {PASSES} || total < {MIN_SECONDS})")
+            format!("pass < (one ? 1 : {MAX_PASSES}) && (one || pass < {PASSES} || total < {MIN_SECONDS})")
         }
     );
     if let Some(r) = clocking

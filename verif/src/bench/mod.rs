@@ -6,6 +6,7 @@
 //! rounds, and a unit's row is its median round, with the range of the ratios over all rounds:
 //! the machine's speed drifts over minutes, and a ratio of two runs minutes apart drifts with it.
 
+pub(crate) mod count;
 mod harness;
 
 use crate::cosim::{BenchTrace, CosimUnit};
@@ -32,6 +33,9 @@ pub struct BenchConfig {
     /// Rounds (1..=20). A round measures each mode on both sides, the model and then the twin;
     /// a unit's figures are those of the round with the median ratio.
     pub rounds: usize,
+    /// Count instructions a cycle over this many cycles (1..=10000000) instead of timing:
+    /// both sides untraced under callgrind (needs valgrind), after the first 1000 cycles.
+    pub instructions: Option<usize>,
 }
 
 /// Checks the options and the tool; the twins to measure.
@@ -48,6 +52,11 @@ pub fn check<'p>(project: &'p Project, a: &BenchConfig) -> Result<Vec<&'p dyn Co
             a.traced_cycles
         ));
     }
+    if let Some(n) = a.instructions {
+        if !(1..=10_000_000).contains(&n) {
+            return Err(format!("--instructions {n}: 1..=10000000"));
+        }
+    }
     let units: Vec<&dyn CosimUnit> = if a.units.is_empty() {
         project.twins().collect()
     } else {
@@ -57,6 +66,9 @@ pub fn check<'p>(project: &'p Project, a: &BenchConfig) -> Result<Vec<&'p dyn Co
             .collect::<Result<_, _>>()?
     };
     crate::cosim::Simulator::Verilator.check_installed()?;
+    if a.instructions.is_some() {
+        count::check_valgrind()?;
+    }
     Ok(units)
 }
 
@@ -64,6 +76,9 @@ pub fn check<'p>(project: &'p Project, a: &BenchConfig) -> Result<Vec<&'p dyn Co
 /// written to `table.md` in the output folder).
 pub fn measure_all(a: &BenchConfig, units: &[&dyn CosimUnit]) -> Result<String, String> {
     std::fs::create_dir_all(&a.out).map_err(|e| format!("{}: {e}", a.out.display()))?;
+    if let Some(n) = a.instructions {
+        return count_all(a, n, units);
+    }
     let mut rows = Vec::new();
     for u in units {
         let r = measure(a, *u)?;
@@ -74,6 +89,31 @@ pub fn measure_all(a: &BenchConfig, units: &[&dyn CosimUnit]) -> Result<String, 
     let path = a.out.join("table.md");
     std::fs::write(&path, &t).map_err(|e| format!("{}: {e}", path.display()))?;
     Ok(t)
+}
+
+/// `measure_all` counting instructions: the table also in `instructions.md`.
+fn count_all(a: &BenchConfig, n: usize, units: &[&dyn CosimUnit]) -> Result<String, String> {
+    let mut rows = Vec::new();
+    for u in units {
+        let dir = unit_dir(a, *u)?;
+        let r = count::count(*u, a.seed, n, &dir).map_err(|e| format!("{}: {e}", u.name()))?;
+        eprintln!("{}", count::line(&r));
+        rows.push(r);
+    }
+    let t = count::table(a.seed, n, &rows);
+    let path = a.out.join("instructions.md");
+    std::fs::write(&path, &t).map_err(|e| format!("{}: {e}", path.display()))?;
+    Ok(t)
+}
+
+/// A unit's folder in the output folder, with its memory images.
+fn unit_dir(a: &BenchConfig, unit: &dyn CosimUnit) -> Result<PathBuf, String> {
+    let dir = std::path::absolute(a.out.join(unit.name())).map_err(|e| e.to_string())?;
+    std::fs::create_dir_all(&dir).map_err(|e| format!("{}: {e}", dir.display()))?;
+    for (file, text) in unit.memories() {
+        std::fs::write(dir.join(&file), text).map_err(|e| format!("{file}: {e}"))?;
+    }
+    Ok(dir)
 }
 
 /// One unit's figures in each mode: the round with the median ratio (both sides' cycles per
@@ -166,11 +206,7 @@ fn model_secs(
 fn measure(a: &BenchConfig, unit: &dyn CosimUnit) -> Result<Row, String> {
     let name = unit.name();
     let resets = crate::cosim::reset_cycles(unit);
-    let dir = std::path::absolute(a.out.join(name)).map_err(|e| e.to_string())?;
-    std::fs::create_dir_all(&dir).map_err(|e| format!("{}: {e}", dir.display()))?;
-    for (file, text) in unit.memories() {
-        std::fs::write(dir.join(&file), text).map_err(|e| format!("{file}: {e}"))?;
-    }
+    let dir = unit_dir(a, unit)?;
     let model = unit.model()?;
     let (ins, outs) = model.ports();
     let stim = unit.stimulus(a.seed, a.cycles);

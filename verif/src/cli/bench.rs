@@ -23,6 +23,8 @@ pub struct BenchArgs {
     pub seed: Seed,
     /// Rounds, alternating between the two sides.
     pub rounds: usize,
+    /// Count instructions a cycle over this many cycles instead of timing.
+    pub instructions: Option<usize>,
 }
 
 clap_args!(BenchArgs);
@@ -36,6 +38,7 @@ impl BenchArgs {
             values("unit", "UNIT", value_parser!(String), "Units to measure (repeatable; default every twin)"),
             path("out", "OUT", "Folder for the harnesses, builds, stimulus and table.md (default target/NAME-bench; traces go to /dev/shm when there is one, and are deleted)"),
             value("seed", "SEED", Seed::parse, "Stimulus seed").default_value("0xbe7c"),
+            value("instructions", "CYCLES", value_parser!(usize), "Count instead of timing: instructions a cycle of each side, untraced, over CYCLES cycles after the first 1000 (1..=10000000; default 10000), under callgrind (needs valgrind; a count, which a busy machine does not move; the model's side runs this program again). The table also in instructions.md").num_args(0..=1).default_missing_value("10000"),
         ])
     }
 
@@ -47,12 +50,17 @@ impl BenchArgs {
             out: one(m, "out"),
             seed: given(m, "seed"),
             rounds: given(m, "rounds"),
+            instructions: one(m, "instructions"),
         }
     }
 }
 
 /// Measures and prints the table.
 pub fn run(project: &Project, a: &BenchArgs) -> Result<String, CmdError> {
+    // Run again by `--instructions` as the model's side of a count: that alone.
+    if let Some(r) = crate::bench::count::child(project, a.seed) {
+        return r.map(|()| String::new()).map_err(CmdError::Failed);
+    }
     let cfg = BenchConfig {
         cycles: a.cycles,
         traced_cycles: a.traced_cycles,
@@ -63,6 +71,7 @@ pub fn run(project: &Project, a: &BenchArgs) -> Result<String, CmdError> {
             .unwrap_or_else(|| PathBuf::from(format!("target/{}-bench", project.name()))),
         seed: a.seed,
         rounds: a.rounds,
+        instructions: a.instructions,
     };
     let units = check(project, &cfg).map_err(CmdError::Input)?;
     measure_all(&cfg, &units)
