@@ -5,7 +5,7 @@
 //! Both sides run the same stimulus, untraced, in one pass, twice: over its first
 //! [`WARM`] cycles and over `WARM + n`; a side's figure is the difference over `n`, so building
 //! the design, reading the stimulus and leaving reset cancel out. The twin's harness is the
-//! timed one ([`super::harness::ONE_PASS`] makes it one pass), counted in its `main` (its
+//! timed one (one pass a run), counted in its `main` (its
 //! clock reads and the start of Verilator's threads vary by a few hundred instructions a run:
 //! a few hundredths a cycle over 10000 cycles);
 //! on the model's side the program runs itself again under valgrind with its own arguments and
@@ -119,9 +119,7 @@ pub fn count(unit: &dyn CosimUnit, seed: Seed, n: usize, dir: &Path) -> Result<C
         c.arg(&exe).arg(&bin).arg(cycles.to_string());
         // Symbols bound at load, before `main`: bound lazily, the binding's instructions fell
         // inside or outside `main` as the harness's threads happened to run.
-        c.current_dir(dir)
-            .env(harness::ONE_PASS, "1")
-            .env("LD_BIND_NOW", "1");
+        c.current_dir(dir).env("LD_BIND_NOW", "1");
         collected(c, "the twin")
     };
     let model = |cycles: usize| -> Result<u64, String> {
@@ -206,24 +204,5 @@ mod tests {
         }
         let e = run_child(&p, Seed(1), "u:10:5").unwrap_err();
         assert!(e.contains("no Verilog twin"), "{e}");
-    }
-
-    /// The harness makes one pass when counted, and says so in its source.
-    #[test]
-    fn the_untraced_harness_reads_the_one_pass_variable() {
-        use crate::cosim::tests::Echo;
-        use hdl::fx::Format;
-        use hdl::kernel::Signal;
-        let make = || Echo {
-            x: Signal::new("x", Format::uint(4)),
-            y: Signal::new("y", Format::uint(4)),
-        };
-        let twin = crate::cosim::Twin::new(make, |d, v| d.x.set_bits(v[0]));
-        let model = twin.model().unwrap();
-        let (ins, outs) = model.ports();
-        let cpp = harness::main_cpp(&twin, &ins, &outs, Mode::Untraced);
-        assert!(cpp.contains(&format!("std::getenv(\"{}\")", harness::ONE_PASS)));
-        let cpp = harness::main_cpp(&twin, &ins, &outs, Mode::Vcd);
-        assert!(!cpp.contains(harness::ONE_PASS));
     }
 }

@@ -8,26 +8,22 @@ use std::fmt::Write as _;
 use std::path::{Path, PathBuf};
 use std::process::Command;
 
-/// Untraced passes over the stimulus in one round, at the least; the fastest counts, on both
-/// sides (a traced run is one pass).
+/// Untraced passes over the stimulus in one round, at the least, on each side; the fastest
+/// counts (a traced run is one pass).
 pub const PASSES: usize = 3;
 
-/// Untraced, both sides go on past [`PASSES`] until their passes add up to this many seconds
-/// (at most [`MAX_PASSES`]): a pass of a small unit over a million cycles takes a few
+/// Untraced, both sides go on past [`PASSES`] until each side's passes add up to this many
+/// seconds (at most [`MAX_PASSES`]): a pass of a small unit over a million cycles takes a few
 /// milliseconds, and three of them were often all caught by one slow stretch of the machine.
 pub const MIN_SECONDS: f64 = 0.25;
 
-/// The most untraced passes a side makes.
+/// The most untraced passes a side makes in a round.
 pub const MAX_PASSES: usize = 200;
 
 /// Whether an untraced side has made enough passes: `passes` of them, `total` seconds in all.
 pub fn enough(passes: usize, total: f64) -> bool {
     passes >= MAX_PASSES || (passes >= PASSES && total >= MIN_SECONDS)
 }
-
-/// With this variable set, an untraced harness makes one pass (as `bench --instructions`
-/// counts it).
-pub const ONE_PASS: &str = "TEXRTL_BENCH_ONE_PASS";
 
 /// What a run records.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -90,17 +86,7 @@ pub fn main_cpp(unit: &dyn CosimUnit, ins: &[Port], outs: &[Port], mode: Mode) -
     };
     let _ = write!(
         s,
-        "    uint64_t sum = 0;\n    double best = 1e300, total = 0;\n{}    // Untraced: the best of {PASSES} passes or more, until they take {MIN_SECONDS} s (at most {MAX_PASSES}; each from reset); traced: one.\n    for (int pass = 0; {}; ++pass) {{\n    const auto t0 = std::chrono::steady_clock::now();\n    for (size_t c = 0; c < cycles; ++c) {{\n        const uint64_t* s = &stim[c * n];\n",
-        if traced {
-            ""
-        } else {
-            "    // One pass when counted (`bench --instructions`).\n    const bool one = std::getenv(\"TEXRTL_BENCH_ONE_PASS\") != nullptr;\n"
-        },
-        if traced {
-            "pass < 1".to_string()
-        } else {
-            format!("pass < (one ? 1 : {MAX_PASSES}) && (one || pass < {PASSES} || total < {MIN_SECONDS})")
-        }
+        "    uint64_t sum = 0;\n    // One pass from reset: the benchmark alternates passes of the two sides.\n    const auto t0 = std::chrono::steady_clock::now();\n    for (size_t c = 0; c < cycles; ++c) {{\n        const uint64_t* s = &stim[c * n];\n"
     );
     if let Some(r) = clocking
         .as_ref()
@@ -133,7 +119,7 @@ pub fn main_cpp(unit: &dyn CosimUnit, ins: &[Port], outs: &[Port], mode: Mode) -
     let close = if traced { "    tfp.close();\n" } else { "" };
     let _ = write!(
         s,
-        "    }}\n{close}    const auto t1 = std::chrono::steady_clock::now();\n    const double secs = std::chrono::duration<double>(t1 - t0).count();\n    if (secs < best) best = secs;\n    total += secs;\n    }}\n    top.final();\n    std::printf(\"seconds %.9f checksum %llu\\n\", best, (unsigned long long)sum);\n    return 0;\n}}\n"
+        "    }}\n{close}    const auto t1 = std::chrono::steady_clock::now();\n    const double secs = std::chrono::duration<double>(t1 - t0).count();\n    top.final();\n    std::printf(\"seconds %.9f checksum %llu\\n\", secs, (unsigned long long)sum);\n    return 0;\n}}\n"
     );
     s
 }
@@ -208,8 +194,8 @@ pub fn build(unit: &dyn CosimUnit, cpp: &str, mode: Mode, dir: &Path) -> Result<
     Ok(mdir.join("bench"))
 }
 
-/// Runs a built harness on `cycles` cycles of `stim` (in `dir`, where memory images are);
-/// returns the seconds of its cycle loop.
+/// Runs a built harness on `cycles` cycles of `stim` (in `dir`, where memory images are), one
+/// pass; returns the seconds of its cycle loop.
 pub fn time(
     exe: &Path,
     stim: &Path,

@@ -32,7 +32,7 @@ clap_args!(BenchArgs);
 impl BenchArgs {
     pub(super) fn augment(c: Command) -> Command {
         c.args([
-            value("cycles", "CYCLES", value_parser!(usize), "Cycles of the untraced runs (1..=100000000; in each round the fastest of three passes counts, or of more while they take under a quarter second)").default_value("1000000"),
+            value("cycles", "CYCLES", value_parser!(usize), "Cycles of the untraced runs (1..=100000000; in each round the two sides' passes take turns, at least three each, more until each side's take a quarter second, and each side's fastest counts)").default_value("1000000"),
             value("traced-cycles", "TRACED_CYCLES", value_parser!(usize), "Cycles of the traced runs, VCD and FST (1..=10000000; one run a round)").default_value("1000000"),
             value("rounds", "ROUNDS", value_parser!(usize), "Rounds (1..=20), each measuring every mode on both sides in turn; a unit's row is its round with the median ratio, the range of the ratios beside it").default_value("3"),
             values("unit", "UNIT", value_parser!(String), "Units to measure (repeatable; default every twin)"),
