@@ -39,15 +39,25 @@ pub fn check_valgrind() -> Result<(), String> {
     }
 }
 
-/// When this process is the model's side of a count ([`CHILD`] set): runs it. `None`
-/// otherwise.
-pub fn child(project: &Project, seed: Seed) -> Option<Result<(), String>> {
-    let spec = std::env::var(CHILD).ok()?;
-    Some(run_child(project, seed, &spec))
+/// What the model's side of a count runs ([`CHILD`]'s value, checked).
+pub struct Child<'p> {
+    unit: &'p dyn CosimUnit,
+    total: usize,
+    cycles: usize,
 }
 
-fn run_child(project: &Project, seed: Seed, spec: &str) -> Result<(), String> {
-    let bad = || format!("{CHILD}={spec}: UNIT:TOTAL:CYCLES");
+/// When this process is the model's side of a count ([`CHILD`] set): what it is to run, or
+/// the variable's problem (bad input). `None` otherwise.
+pub fn child(project: &Project) -> Option<Result<Child<'_>, String>> {
+    let spec = std::env::var_os(CHILD)?;
+    Some(parse_child(project, &spec.to_string_lossy()))
+}
+
+fn parse_child<'p>(project: &'p Project, spec: &str) -> Result<Child<'p>, String> {
+    let bad = || {
+        let shown = waves::output::shorten(spec);
+        format!("{CHILD}={shown}: UNIT:TOTAL:CYCLES, CYCLES at most TOTAL, TOTAL at most 100000000")
+    };
     let mut parts = spec.rsplitn(3, ':');
     let (Some(cycles), Some(total), Some(unit)) = (parts.next(), parts.next(), parts.next()) else {
         return Err(bad());
@@ -57,12 +67,24 @@ fn run_child(project: &Project, seed: Seed, spec: &str) -> Result<(), String> {
     if cycles > total || total > 100_000_000 {
         return Err(bad());
     }
-    let u = project.twin(unit, CHILD)?;
-    let stim = u.stimulus(seed, total);
-    let resets = crate::cosim::reset_cycles(u);
-    u.model()?
-        .bench(&stim[..cycles], resets, BenchTrace::None)
-        .map(|_| ())
+    let unit = project.twin(unit, CHILD)?;
+    Ok(Child {
+        unit,
+        total,
+        cycles,
+    })
+}
+
+impl Child<'_> {
+    /// Runs the model untraced over the first `cycles` cycles of the `total`-cycle stimulus.
+    pub fn run(&self, seed: Seed) -> Result<(), String> {
+        let stim = self.unit.stimulus(seed, self.total);
+        let resets = crate::cosim::reset_cycles(self.unit);
+        self.unit
+            .model()?
+            .bench(&stim[..self.cycles], resets, BenchTrace::None)
+            .map(|_| ())
+    }
 }
 
 /// The instructions callgrind collected running `cmd` (its "Collected" line).
@@ -198,11 +220,15 @@ mod tests {
     #[test]
     fn a_bad_child_specification_is_refused() {
         let p = Project::new("p", "0");
-        for spec in ["u", "u:10", "u:x:1", "u:10:11", "u:10:y"] {
-            let e = run_child(&p, Seed(1), spec).unwrap_err();
+        for spec in ["u", "u:10", "u:x:1", "u:10:11", "u:10:y", "u:200000000:1"] {
+            let Err(e) = parse_child(&p, spec) else {
+                panic!("{spec} accepted")
+            };
             assert!(e.contains("UNIT:TOTAL:CYCLES"), "{spec}: {e}");
         }
-        let e = run_child(&p, Seed(1), "u:10:5").unwrap_err();
+        let Err(e) = parse_child(&p, "u:10:5") else {
+            panic!("a unit with no twin accepted")
+        };
         assert!(e.contains("no Verilog twin"), "{e}");
     }
 }

@@ -58,8 +58,12 @@ impl BenchArgs {
 /// Measures and prints the table.
 pub fn run(project: &Project, a: &BenchArgs) -> Result<String, CmdError> {
     // Run again by `--instructions` as the model's side of a count: that alone.
-    if let Some(r) = crate::bench::count::child(project, a.seed) {
-        return r.map(|()| String::new()).map_err(CmdError::Failed);
+    if let Some(child) = crate::bench::count::child(project) {
+        let child = child.map_err(CmdError::Input)?;
+        return child
+            .run(a.seed)
+            .map(|()| String::new())
+            .map_err(CmdError::Failed);
     }
     let cfg = BenchConfig {
         cycles: a.cycles,
