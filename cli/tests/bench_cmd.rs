@@ -140,13 +140,30 @@ fn bench_counts_instructions_the_same_on_every_run() {
 }
 
 /// A count with no cycles, or without valgrind, is bad input naming `--instructions`, before
-/// anything is built.
+/// anything is built; so is a model's side of a count asked for wrongly (its variable named).
 #[test]
 fn bench_instructions_refuses_bad_input() {
+    let d = common::fresh("bench", "no-valgrind");
+    for (spec, said) in [
+        (
+            "address_150:10:11",
+            "TEXRTL_BENCH_COUNT=address_150:10:11: UNIT:TOTAL:CYCLES",
+        ),
+        ("nope:10:5", "TEXRTL_BENCH_COUNT nope: no Verilog twin"),
+    ] {
+        let o = Command::new(env!("CARGO_BIN_EXE_texrtl"))
+            .args(["bench", "--out", common::s(&d)])
+            .env("TEXRTL_BENCH_COUNT", spec)
+            .output()
+            .unwrap();
+        let err = String::from_utf8_lossy(&o.stderr);
+        assert_eq!(o.status.code(), Some(2), "{err}");
+        assert!(err.starts_with(&format!("texrtl: {said}")), "{err}");
+        assert_eq!(err.lines().count(), 1, "{err}");
+    }
     if !common::simulator("verilator", "--version") {
         return;
     }
-    let d = common::fresh("bench", "no-valgrind");
     let o = common::texrtl(&["bench", "--instructions", "0", "--out", common::s(&d)]);
     let err = String::from_utf8_lossy(&o.stderr);
     assert_eq!(o.status.code(), Some(2), "{err}");

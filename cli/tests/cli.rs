@@ -203,6 +203,11 @@ fn bad_input_is_one_line_exit_2_and_no_output() {
             "--traced-cycles 0",
         ),
         (vec!["bench", "--out", o_s, "--unit", "nope"], "nope"),
+        (
+            vec!["bench", "--out", o_s, "--instructions", "10000001"],
+            "--instructions 10000001",
+        ),
+        (vec!["bench", "--out", o_s, "--instructions", "x"], "'x'"),
     ];
     for (args, needle) in cases {
         let o = texrtl(&args);
