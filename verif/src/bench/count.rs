@@ -2,15 +2,14 @@
 //! same on every run of the same builds, whatever else the machine runs, the figure to compare
 //! on a shared machine, where a time ratio moves with the neighbours.
 //!
-//! Both sides run the same stimulus, untraced, in one pass, twice: over its first
-//! [`WARM`] cycles and over `WARM + n`; a side's figure is the difference over `n`, so building
-//! the design, reading the stimulus and leaving reset cancel out. The twin's harness is the
-//! timed one (one pass a run), counted in its `main` (its
-//! clock reads and the start of Verilator's threads vary by a few hundred instructions a run:
-//! a few hundredths a cycle over 10000 cycles);
-//! on the model's side the program runs itself again under valgrind with its own arguments and
-//! [`CHILD`] set, and callgrind counts the cycle loop alone (`--toggle-collect`), not the
-//! stimulus that the child draws: exact.
+//! Both sides run the same stimulus, untraced, in one pass, twice: over its first [`WARM`]
+//! cycles and over `WARM + n`; a side's figure is the difference over `n`, so building the
+//! design, reading the stimulus and leaving reset cancel out. The twin's harness is the timed
+//! one, counted in its `main` (its clock reads and the start of Verilator's threads vary by a
+//! few hundred instructions a run: a few hundredths a cycle over 10000 cycles). On the model's
+//! side the program runs itself again under valgrind with its own arguments and [`CHILD`]
+//! set, and callgrind counts the cycle loop alone (`--toggle-collect`), not the stimulus that
+//! the child draws: exact.
 
 use super::harness::{self, Mode};
 use crate::cosim::{BenchTrace, CosimUnit};
