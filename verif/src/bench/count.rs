@@ -11,7 +11,7 @@
 //! set, and callgrind counts the cycle loop alone (`--toggle-collect`), not the stimulus that
 //! the child draws: exact.
 
-use super::harness::{self, Mode};
+use super::harness::Mode;
 use crate::cosim::{BenchTrace, CosimUnit};
 use crate::project::Project;
 use crate::Seed;
@@ -127,17 +127,12 @@ pub struct Counted {
 /// `dir`.
 pub fn count(unit: &dyn CosimUnit, seed: Seed, n: usize, dir: &Path) -> Result<Counted, String> {
     let total = WARM + n;
-    let model = unit.model()?;
-    let (ins, outs) = model.ports();
-    let stim = unit.stimulus(seed, total);
-    let bin = dir.join("stim.bin");
-    super::write_bin(&bin, &stim)?;
-    let cpp = harness::main_cpp(unit, &ins, &outs, Mode::Untraced);
-    let exe = harness::build(unit, &cpp, Mode::Untraced, dir)?;
+    let built = super::prepare(unit, seed, total, &[Mode::Untraced], dir)?;
+    let (exe, bin) = (&built.exes[0], &built.bin);
     let me = std::env::current_exe().map_err(|e| format!("this program: {e}"))?;
     let twin = |cycles: usize| -> Result<u64, String> {
         let mut c = callgrind(&["--toggle-collect=main"]);
-        c.arg(&exe).arg(&bin).arg(cycles.to_string());
+        c.arg(exe).arg(bin).arg(cycles.to_string());
         // Symbols bound at load, before `main`: bound lazily, the binding's instructions fell
         // inside or outside `main` as the harness's threads happened to run.
         c.current_dir(dir).env("LD_BIND_NOW", "1");

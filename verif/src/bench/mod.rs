@@ -118,6 +118,42 @@ fn unit_dir(a: &BenchConfig, unit: &dyn CosimUnit) -> Result<PathBuf, String> {
     Ok(dir)
 }
 
+/// What both sides of a unit's measurement run: its model, `cycles` cycles of its seeded
+/// stimulus (also in the harness's file), and its twin's harness built for each mode asked.
+struct Prepared {
+    model: Box<dyn crate::cosim::CosimModel>,
+    stim: Vec<Vec<u64>>,
+    bin: PathBuf,
+    exes: Vec<PathBuf>,
+}
+
+fn prepare(
+    unit: &dyn CosimUnit,
+    seed: Seed,
+    cycles: usize,
+    modes: &[Mode],
+    dir: &Path,
+) -> Result<Prepared, String> {
+    let model = unit.model()?;
+    let (ins, outs) = model.ports();
+    let stim = unit.stimulus(seed, cycles);
+    let bin = dir.join("stim.bin");
+    write_bin(&bin, &stim)?;
+    let exes = modes
+        .iter()
+        .map(|&mode| {
+            let cpp = harness::main_cpp(unit, &ins, &outs, mode);
+            harness::build(unit, &cpp, mode, dir)
+        })
+        .collect::<Result<_, _>>()?;
+    Ok(Prepared {
+        model,
+        stim,
+        bin,
+        exes,
+    })
+}
+
 /// One unit's figures in each mode: the round with the median ratio (both sides' cycles per
 /// second in it) and the lowest and highest ratio of all rounds.
 struct Row {
@@ -197,16 +233,12 @@ fn measure(a: &BenchConfig, unit: &dyn CosimUnit) -> Result<Row, String> {
     let name = unit.name();
     let resets = crate::cosim::reset_cycles(unit);
     let dir = unit_dir(a, unit)?;
-    let model = unit.model()?;
-    let (ins, outs) = model.ports();
-    let stim = unit.stimulus(a.seed, a.cycles);
-    let bin = dir.join("stim.bin");
-    write_bin(&bin, &stim)?;
-    let mut exes = Vec::with_capacity(Mode::ALL.len());
-    for mode in Mode::ALL {
-        let cpp = harness::main_cpp(unit, &ins, &outs, mode);
-        exes.push(harness::build(unit, &cpp, mode, &dir)?);
-    }
+    let Prepared {
+        model,
+        stim,
+        bin,
+        exes,
+    } = prepare(unit, a.seed, a.cycles, &Mode::ALL, &dir)?;
     let tdir = trace_dir(name, &dir)?;
     let counts = [a.cycles, a.traced_cycles, a.traced_cycles];
     let run = Run {
