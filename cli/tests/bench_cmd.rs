@@ -54,6 +54,9 @@ fn bench_measures_a_twin_in_alternating_rounds() {
     let o = child.wait_with_output().unwrap();
     let err = String::from_utf8_lossy(&o.stderr);
     assert_eq!(o.status.code(), Some(0), "{err}");
+    // This test's program is built as the test is: a debug build says so.
+    let warned = err.contains("texrtl: warning: a debug build (debug assertions on)");
+    assert_eq!(warned, cfg!(debug_assertions), "{err}");
     let table = String::from_utf8(o.stdout).unwrap();
     assert!(
         table.contains("over 5000 cycles, traced over 2000"),

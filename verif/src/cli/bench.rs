@@ -78,7 +78,33 @@ pub fn run(project: &Project, a: &BenchArgs) -> Result<String, CmdError> {
         instructions: a.instructions,
     };
     let units = check(project, &cfg).map_err(CmdError::Input)?;
+    if let Some(w) = build_warning(cfg!(debug_assertions)) {
+        eprintln!("{}: warning: {w}", project.name());
+    }
     measure_all(&cfg, &units)
         .map(|t| t.trim_end().to_string())
         .map_err(CmdError::Failed)
+}
+
+/// What a benchmark of a debug build says before it starts: its model's figures are the
+/// unoptimised code's (unit 602: 15 times slower), not the model's. A warning, not a refusal:
+/// the build's profile is known only by what this library was compiled with, which a build
+/// setting of the program's own (a release profile with debug assertions on) can belie.
+fn build_warning(debug_assertions: bool) -> Option<&'static str> {
+    debug_assertions.then_some(
+        "a debug build (debug assertions on): the model's figures are its unoptimised code's; \
+         measure a release build (cargo run --release -- bench)",
+    )
+}
+
+#[cfg(test)]
+mod tests {
+    use super::build_warning;
+
+    #[test]
+    fn a_debug_build_is_named_as_one_a_release_build_is_not() {
+        let w = build_warning(true).unwrap();
+        assert!(w.contains("debug build") && w.contains("--release"), "{w}");
+        assert_eq!(build_warning(false), None);
+    }
 }
