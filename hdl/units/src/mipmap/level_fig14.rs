@@ -3,9 +3,28 @@
 //! [`super::mipmap_gen_816`] for how the levels are chained and what each does.
 
 use super::fifo::Fifo;
-use super::mipmap_gen_816::Rounding;
 use crate::fx::Format;
 use crate::kernel::{Module, Reg, Signal};
+
+/// Division of the box sums.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub enum Rounding {
+    /// Round half up: `(sum + n/2) / n`.
+    Round,
+    /// Truncate: `sum / n`.
+    Truncate,
+}
+
+impl std::str::FromStr for Rounding {
+    type Err = String;
+    fn from_str(s: &str) -> Result<Rounding, String> {
+        match s {
+            "round" => Ok(Rounding::Round),
+            "truncate" => Ok(Rounding::Truncate),
+            _ => Err(format!("unknown rounding '{s}' (round, truncate)")),
+        }
+    }
+}
 
 /// `sum / n` with the chosen rounding (n = 2 or 4).
 #[inline]

@@ -36,6 +36,7 @@ use crate::fx::Format;
 use crate::kernel::declared::Regs;
 use crate::kernel::{Module, Reg, Signal, Visitor};
 use crate::mipmap::level_fig14::Level;
+pub use crate::mipmap::level_fig14::Rounding;
 use crate::pages::page_registers_824::PageRegisters824;
 
 /// Arrival order of a frame's lines.
@@ -48,15 +49,6 @@ pub enum Scan {
     InterlacedBottom,
 }
 
-/// Division of the box sums.
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
-pub enum Rounding {
-    /// Round half up: `(sum + n/2) / n`.
-    Round,
-    /// Truncate: `sum / n`.
-    Truncate,
-}
-
 impl std::str::FromStr for Scan {
     type Err = String;
     fn from_str(s: &str) -> Result<Scan, String> {
@@ -67,17 +59,6 @@ impl std::str::FromStr for Scan {
             _ => Err(format!(
                 "unknown scan '{s}' (progressive, interlaced-top, interlaced-bottom)"
             )),
-        }
-    }
-}
-
-impl std::str::FromStr for Rounding {
-    type Err = String;
-    fn from_str(s: &str) -> Result<Rounding, String> {
-        match s {
-            "round" => Ok(Rounding::Round),
-            "truncate" => Ok(Rounding::Truncate),
-            _ => Err(format!("unknown rounding '{s}' (round, truncate)")),
         }
     }
 }

@@ -8,12 +8,11 @@
 //! `u_k = u * 2^-k - 1/2`: `i = floor(u_k)`, `a = frac(u_k)` truncated to 8 bits (v alike).
 //! All of it is exact integer arithmetic on the raw sQ12.8 / sQ5.8 values.
 
-use super::banks_810::{locate, BANKS};
+use super::banks_810::{locate, AccessRegs, ROUNDS};
 use super::output_820::Modulate;
 use super::{Config, Drf, FRAC, UV_BITS};
 use crate::fx::Format;
-use crate::kernel::declared::Regs;
-use crate::kernel::{Module, Reg, Regs, Visitor};
+use crate::kernel::{Module, Reg, Regs};
 
 /// What a texel index outside `0 .. size` becomes.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Default)]
@@ -149,172 +148,6 @@ impl Footprint {
             (fp.a[n], fp.b[n]) = (a, b);
         }
         fp
-    }
-}
-
-/// Words one bank may be asked for in one access: one, but four in the literal colour layout
-/// (a component's 2x2 all in one bank), read in successive rounds.
-pub const ROUNDS: usize = 4;
-/// Bank words need 19 bits (280,064 words in banks 0-3).
-const WORD_BITS: u32 = 19;
-const WORD_NAMES: [[&str; ROUNDS]; BANKS] = [
-    ["word0_0", "word0_1", "word0_2", "word0_3"],
-    ["word1_0", "word1_1", "word1_2", "word1_3"],
-    ["word2_0", "word2_1", "word2_2", "word2_3"],
-    ["word3_0", "word3_1", "word3_2", "word3_3"],
-    ["word4_0", "word4_1", "word4_2", "word4_3"],
-    ["word5_0", "word5_1", "word5_2", "word5_3"],
-    ["word6_0", "word6_1", "word6_2", "word6_3"],
-    ["word7_0", "word7_1", "word7_2", "word7_3"],
-];
-
-/// The bank words an access reads: per bank and round a word (`word[bank][round]`), and in
-/// `read` (bit `4 bank + round`) which of them it reads. In the bank stage they are the
-/// address decoders 822's, in their own scope.
-#[derive(Clone, Debug)]
-pub struct BankWords {
-    scope: Option<&'static str>,
-    pub read: Reg,
-    pub word: [[Reg; ROUNDS]; BANKS],
-}
-
-impl BankWords {
-    fn new(scope: Option<&'static str>) -> BankWords {
-        BankWords {
-            scope,
-            read: Reg::new("read", Format::uint((BANKS * ROUNDS) as u32)),
-            word: WORD_NAMES.map(|b| b.map(|n| Reg::new(n, Format::uint(WORD_BITS)))),
-        }
-    }
-
-    /// Whether the access reads bank `bank` in round `round`, and the word.
-    pub fn reads(&self, bank: usize, round: usize) -> Option<u64> {
-        let on = self.read.q().bits() >> (bank * ROUNDS + round) & 1 == 1;
-        on.then(|| self.word[bank][round].q().bits())
-    }
-
-    /// The round in which `bank` reads `word` (the next values being set): the round that
-    /// already reads it, else the next free one (`read` marks the taken ones).
-    fn round_for(&mut self, bank: usize, word: u64, read: &mut u64) -> usize {
-        for (r, reg) in self.word[bank].iter_mut().enumerate() {
-            let at = bank * ROUNDS + r;
-            if *read >> at & 1 == 0 {
-                reg.set_next_bits(word);
-                *read |= 1 << at;
-                return r;
-            }
-            if reg.next_bits() == word {
-                return r;
-            }
-        }
-        unreachable!("a footprint reads at most four texels of one bank");
-    }
-}
-
-impl Regs for BankWords {
-    fn tick_regs(&mut self, reset: bool) {
-        self.read.tick(reset);
-        self.word.tick_regs(reset);
-    }
-    fn visit_regs(&self, v: &mut dyn Visitor) {
-        if let Some(s) = self.scope {
-            v.enter(s, s);
-        }
-        v.reg(&self.read);
-        self.word.visit_regs(v);
-        if self.scope.is_some() {
-            v.leave();
-        }
-    }
-}
-
-/// One access as it goes from 812 to the banks 810: the words it reads, where each of its
-/// eight texels comes from, its weights and the output stage's inputs.
-#[derive(Clone, Debug, Regs)]
-pub struct AccessRegs {
-    pub valid: Reg,
-    pub words: BankWords,
-    /// Texel t's bank and round, `4 bank + round`, in bits `5t..5t+5`.
-    pub src: Reg,
-    /// Texel t is the border colour instead (bit t): no bank is read for it.
-    pub border: Reg,
-    /// a0, b0, a1, b1, f in bytes 0-4.
-    pub weights: Reg,
-    /// The border colour.
-    pub colour: Reg,
-    /// The DRF's configuration is index (CLUT 814).
-    pub index: Reg,
-    /// The colour component this access reads (planar, literal) and whether it is the
-    /// request's last; a luminance or index access is part 0 and last.
-    pub part: Reg,
-    pub last: Reg,
-    /// Eq. 5: the request's illumination, and the DRF's choice (0 I_d, 1 k_T, 2 one) with k_T.
-    pub illum: Reg,
-    pub modulate: Reg,
-}
-
-impl AccessRegs {
-    /// The registers; the bank words in the scope `decoders` if given.
-    pub fn new(decoders: Option<&'static str>) -> AccessRegs {
-        let u = |name, bits| Reg::new(name, Format::uint(bits));
-        AccessRegs {
-            valid: u("valid", 1),
-            words: BankWords::new(decoders),
-            src: u("src", 40),
-            border: u("border", 8),
-            weights: u("weights", 40),
-            colour: u("colour", 8),
-            index: u("index", 1),
-            part: u("part", 2),
-            last: u("last", 1),
-            illum: u("illum", 32),
-            modulate: u("modulate", 10),
-        }
-    }
-
-    /// At the edge every register but `valid` takes `o`'s value: the access moving on.
-    pub fn take_from(&mut self, o: &AccessRegs) {
-        let copy = |to: &mut Reg, from: &Reg| to.set_next_bits(from.q().bits());
-        copy(&mut self.words.read, &o.words.read);
-        let words = self.words.word.iter_mut().flatten();
-        for (to, from) in words.zip(o.words.word.iter().flatten()) {
-            copy(to, from);
-        }
-        copy(&mut self.src, &o.src);
-        copy(&mut self.border, &o.border);
-        copy(&mut self.weights, &o.weights);
-        copy(&mut self.colour, &o.colour);
-        copy(&mut self.index, &o.index);
-        copy(&mut self.part, &o.part);
-        copy(&mut self.last, &o.last);
-        copy(&mut self.illum, &o.illum);
-        copy(&mut self.modulate, &o.modulate);
-    }
-
-    /// Texel `t`'s bank and word, or `None` when it is the border colour.
-    pub fn texel_word(&self, t: usize) -> Option<(usize, u64)> {
-        if self.border.q().bits() >> t & 1 == 1 {
-            return None;
-        }
-        let at = (self.src.q().bits() >> (5 * t) & 0x1F) as usize;
-        let (bank, round) = (at / ROUNDS, at % ROUNDS);
-        Some((bank, self.words.word[bank][round].q().bits()))
-    }
-
-    /// The weights `a`, `b` per level and `f`.
-    pub fn weights(&self) -> ([u8; 2], [u8; 2], u8) {
-        let w = self.weights.q().bits().to_le_bytes();
-        ([w[0], w[2]], [w[1], w[3]], w[4])
-    }
-
-    /// Eq. 5's factor.
-    pub fn modulate(&self) -> Modulate {
-        let m = self.modulate.q().bits();
-        match m >> 8 {
-            0 => Modulate::Illumination,
-            1 => Modulate::Constant(m as u8),
-            _ => Modulate::One,
-        }
     }
 }
 

@@ -35,7 +35,8 @@
 //! from the rasterizer are counted in `video_port_808/shift_registers_826/video_slots`, and
 //! in `slots` with the rasterizer's.
 
-use super::address_812::{Address812, Footprint, ROUNDS};
+use super::address_812::{Address812, Footprint};
+use super::banks_810::ROUNDS;
 use super::banks_810::{bank_words, locate, store_level, Banks810, BANKS, ROW_WORDS};
 use super::clut_814::{Clut, Clut814};
 use super::output_820::Output820;
