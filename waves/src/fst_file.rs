@@ -265,7 +265,7 @@ impl<W: Write + Seek> FstBody<W> {
             let w = self.widths[h] as usize;
             let digits = &mut self.frame[at..at + w];
             match self.value[h] {
-                Some(v) => crate::vcd_trace::binary_digits(digits, v),
+                Some(v) => crate::vcd_text::binary_digits(digits, v),
                 None => digits.fill(b'x'),
             }
             at += w;
@@ -467,7 +467,7 @@ mod tests {
             Call::Time(t) => b.time_change(t).unwrap(),
             Call::Change(i, v) => {
                 text.clear();
-                crate::vcd_trace::push_binary(&mut text, widths[i], v);
+                crate::vcd_text::push_binary(&mut text, widths[i], v);
                 b.signal_change(ids[i], &text).unwrap();
             }
             Call::Flush => b.flush().unwrap(),

@@ -17,6 +17,7 @@ mod fst_file;
 mod fst_trace;
 pub mod glob;
 pub mod gtkw;
+mod vcd_text;
 mod vcd_trace;
 mod vcd_writer;
 

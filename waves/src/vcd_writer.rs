@@ -5,7 +5,7 @@
 //! other. The text is what formatting the records one after another gives (the functions
 //! are tested against [`push_change`] and `push_time`, themselves against the `vcd` crate).
 
-use crate::vcd_trace::{push_change, push_real, real_of, BINARY};
+use crate::vcd_text::{push_change, push_real, real_of, BINARY};
 use hdl::fx::Format;
 use std::collections::BTreeMap;
 use std::fs::File;
@@ -508,7 +508,7 @@ mod tests {
             let mut text = Text::new();
             text.time(t);
             let mut want = Vec::new();
-            crate::vcd_trace::push_time(&mut want, t);
+            crate::vcd_text::push_time(&mut want, t);
             assert_eq!(&text.buf[..text.pos], &want[..], "t {t}");
         }
     }
