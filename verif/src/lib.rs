@@ -71,6 +71,7 @@ pub mod vectors;
 mod workload;
 
 pub use coverage::{Coverage, Coverpoint, Cross};
+pub use jobs::{aggregate, run_jobs, run_testbench};
 pub use pins::{PinDriver, PinMonitor};
 pub use probe::ProbeSink;
 pub use protocol::{Handshake, Violation};
@@ -83,10 +84,7 @@ pub use run::{
 pub use scoreboard::{within, Mismatch, Outcome, Scoreboard};
 pub use stats::ErrorStats;
 pub use stream::{StreamAt, StreamDriver, StreamMonitor};
-pub use testbench::{
-    aggregate, conclude, config_seed, run_jobs, run_testbench, About, Ctx, Registry, RunOptions,
-    Testbench, WaveOut,
-};
+pub use testbench::{conclude, config_seed, About, Ctx, Registry, RunOptions, Testbench, WaveOut};
 pub use workload::Workload;
 
 #[cfg(test)]

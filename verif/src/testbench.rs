@@ -5,17 +5,17 @@
 //! the unit of sharding and of seeding. The framework runs each configuration the shard owns
 //! with its own seed (so shards together run exactly what one unsharded run does), merges the
 //! results, and decides pass or fail the same way for every testbench: no mismatch, no
-//! failure, and (for a whole run) no coverage hole.
+//! failure, and (for a whole run) no coverage hole. The running itself, job by job, is
+//! [`crate::jobs`]'s.
 
 use crate::coverage::Coverage;
-use crate::jobs::{job_label, job_seed, JobRef, JobResult};
 use crate::random::{Seed, Shard};
 use crate::result::TbResult;
 use hdl::kernel::{Module, Sim};
 use std::path::PathBuf;
 use waves::{TraceConfig, VcdTracer};
 
-/// What a configuration is run with; built by [`run_testbench`].
+/// What a configuration is run with; built by [`run_testbench`](crate::run_testbench).
 #[derive(Clone, Debug)]
 pub struct Ctx {
     /// The configuration's index in [`Testbench::configurations`] and its label.
@@ -246,127 +246,6 @@ pub fn config_seed(seed: Seed, name: &str, index: usize) -> Seed {
     seed.derive(h).derive(index as u64)
 }
 
-/// Runs every configuration of `tb` that the shard owns (under each of `opts.seeds` seeds:
-/// the testbench's jobs, dealt round-robin), calling `progress` with each label before it
-/// runs, and merges the results; pass/fail as the module says. The waveform folder is made if
-/// it is not there.
-pub fn run_testbench(
-    tb: &dyn Testbench,
-    opts: &RunOptions,
-    progress: &mut dyn FnMut(&str),
-) -> Result<TbResult, String> {
-    let mine: Vec<JobRef> = crate::jobs::numbered(0, tb.configurations().len(), opts.seeds)
-        .into_iter()
-        .filter(|j| opts.shard.owns(j.index))
-        .collect();
-    let results = run_jobs(tb, opts, &mine, progress)?;
-    aggregate(tb, opts.seed, &results, opts.shard.is_all())
-}
-
-/// Runs `jobs` of `tb` (on `opts.jobs` threads), each result in its job's place.
-pub fn run_jobs(
-    tb: &dyn Testbench,
-    opts: &RunOptions,
-    jobs: &[JobRef],
-    progress: &mut dyn FnMut(&str),
-) -> Result<Vec<JobResult>, String> {
-    if let Some((dir, _, _)) = &opts.waves {
-        std::fs::create_dir_all(dir).map_err(|e| format!("{}: {e}", dir.display()))?;
-    }
-    let labels = tb.configurations();
-    let label = |j: &JobRef| job_label(&labels[j.configuration], j.repeat);
-    let results = if opts.jobs > 1 && jobs.len() > 1 {
-        run_parallel(tb, opts, jobs, &labels, progress)
-    } else {
-        jobs.iter()
-            .map(|j| {
-                progress(&label(j));
-                timed(|| run_job(tb, opts, j, &labels[j.configuration]))
-            })
-            .collect()
-    };
-    jobs.iter()
-        .zip(results)
-        .map(|(j, (r, seconds))| {
-            Ok(JobResult {
-                index: j.index,
-                configuration: j.configuration,
-                repeat: j.repeat,
-                result: r?,
-                seconds,
-            })
-        })
-        .collect()
-}
-
-/// `f`'s result and the seconds it took.
-fn timed<T>(f: impl FnOnce() -> T) -> (T, f64) {
-    let t = std::time::Instant::now();
-    let r = f();
-    (r, t.elapsed().as_secs_f64())
-}
-
-/// The jobs' results of `tb` merged in the order given (a run's, or a merge's sorted by job
-/// index: the same result), then concluded; `whole_run` decides whether coverage holes fail.
-pub fn aggregate(
-    tb: &dyn Testbench,
-    seed: Seed,
-    results: &[JobResult],
-    whole_run: bool,
-) -> Result<TbResult, String> {
-    let labels = tb.configurations();
-    let mut merged = TbResult::new(tb.name(), tb.unit());
-    merged.seed = Some(seed.to_string());
-    merged.coverage = Some(tb.coverage());
-    for j in results {
-        let l = labels
-            .get(j.configuration)
-            .ok_or_else(|| format!("{}: no configuration {}", tb.name(), j.configuration))?;
-        let label = job_label(l, j.repeat);
-        merged
-            .absorb(&j.result, Some(&label))
-            .map_err(|e| format!("{} [{label}]: {e}", tb.name()))?;
-    }
-    conclude(tb, &mut merged, whole_run);
-    Ok(merged)
-}
-
-/// One job of `tb`.
-fn run_job(
-    tb: &dyn Testbench,
-    opts: &RunOptions,
-    job: &JobRef,
-    label: &str,
-) -> Result<TbResult, String> {
-    let traced = opts.trace_every_job || (job.configuration == tb.traced() && job.repeat == 0);
-    let waves = opts.waves.as_ref().filter(|_| traced);
-    let ctx = Ctx {
-        index: job.configuration,
-        seed: job_seed(opts.seed, tb.name(), job.configuration, job.repeat),
-        count: opts.count.unwrap_or_else(|| tb.default_count()),
-        waves: waves.map(|(dir, trace, period_ps)| WaveOut {
-            vcd: dir.join(format!("{}.vcd", tb.name())),
-            trace: trace.clone(),
-            period_ps: *period_ps,
-        }),
-        check_schedule: opts.check_schedule,
-        label: label.to_string(),
-    };
-    // Tracking is per thread: on for this job's run, as it was after.
-    let was = hdl::fx::tracking();
-    hdl::fx::set_tracking(opts.numeric);
-    let r = unpanicked_sim(|| tb.run(&ctx));
-    hdl::fx::set_tracking(was);
-    let r = r.unwrap_or_else(|(cycle, p)| {
-        let said = match cycle {
-            Some(c) => format!("panicked in cycle {c}: {p}"),
-            None => format!("panicked: {p}"),
-        };
-        Ok(panicked(tb, &ctx, &said))
-    });
-    r.map_err(|e| format!("{} [{}]: {e}", tb.name(), job_label(label, job.repeat)))
-}
-
 /// `f`'s value, or the message of a panic in it: a model's value that does not fit its
 /// signal's format, say, which is a finding about the design, not the end of a regression.
 /// (The panic is also printed where it happened, by the panic hook.)
@@ -384,68 +263,6 @@ pub(crate) fn unpanicked<T>(f: impl FnOnce() -> T) -> Result<T, String> {
 pub(crate) fn unpanicked_sim<T>(f: impl FnOnce() -> T) -> Result<T, (Option<u64>, String)> {
     let _ = hdl::kernel::panicked_in_cycle(); // not an earlier panic's
     unpanicked(f).map_err(|said| (hdl::kernel::panicked_in_cycle(), said))
-}
-
-/// The result of a job whose run panicked: failed, with the panic's message and, when it was
-/// traced, its waveform as far as it got (its view opens on the last cycle before the panic).
-fn panicked(tb: &dyn Testbench, ctx: &Ctx, said: &str) -> TbResult {
-    let mut r = TbResult::new(tb.name(), tb.unit());
-    let wave = ctx.waves.as_ref().map(|w| &w.vcd).filter(|v| v.is_file());
-    r.failures.push(match wave {
-        Some(v) => format!("{said} (the waveform up to it: {})", v.display()),
-        None => said.to_string(),
-    });
-    r.finish_with(false);
-    r
-}
-
-/// The `jobs` on `opts.jobs` threads, each result in its job's place; `progress` is told of
-/// each as it finishes.
-fn run_parallel(
-    tb: &dyn Testbench,
-    opts: &RunOptions,
-    jobs: &[JobRef],
-    labels: &[String],
-    progress: &mut dyn FnMut(&str),
-) -> Vec<(Result<TbResult, String>, f64)> {
-    use std::sync::atomic::{AtomicUsize, Ordering};
-    type Timed = (Result<TbResult, String>, f64);
-    let next = AtomicUsize::new(0);
-    let (tx, rx) = std::sync::mpsc::channel();
-    let mut results: Vec<Option<Timed>> = jobs.iter().map(|_| None).collect();
-    std::thread::scope(|s| {
-        for _ in 0..opts.jobs.min(jobs.len()) {
-            let tx = tx.clone();
-            let next = &next;
-            s.spawn(move || loop {
-                let k = next.fetch_add(1, Ordering::Relaxed);
-                let Some(j) = jobs.get(k) else {
-                    break;
-                };
-                if tx
-                    .send((k, timed(|| run_job(tb, opts, j, &labels[j.configuration]))))
-                    .is_err()
-                {
-                    break;
-                }
-            });
-        }
-        drop(tx);
-        for (k, r) in rx {
-            let j = &jobs[k];
-            progress(&job_label(&labels[j.configuration], j.repeat));
-            results[k] = Some(r);
-        }
-    });
-    results
-        .into_iter()
-        .map(|r| {
-            r.unwrap_or_else(|| {
-                let e = format!("{}: a configuration did not finish", tb.name());
-                (Err(e), 0.0)
-            })
-        })
-        .collect()
 }
 
 /// The framework's verdict on a merged result: coverage figures, the testbench's own
@@ -506,26 +323,12 @@ impl Registry {
     pub fn position(&self, name: &str) -> Option<usize> {
         self.iter().position(|t| t.name() == name)
     }
-
-    /// Configurations a shard runs under one seed, over the selected testbenches (`only`,
-    /// empty: all).
-    pub fn owned_configurations(&self, shard: Shard, only: &[String]) -> u64 {
-        self.owned_jobs(1, shard, only)
-    }
-
-    /// Jobs a shard runs under `seeds` seeds ([`crate::jobs`]), for a progress bar.
-    pub fn owned_jobs(&self, seeds: u32, shard: Shard, only: &[String]) -> u64 {
-        let selected = |n: &str| only.is_empty() || only.iter().any(|o| o == n);
-        crate::jobs::owned(self, seeds, shard, &selected)
-            .iter()
-            .map(|(_, j)| j.len() as u64)
-            .sum()
-    }
 }
 
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::jobs::{run_jobs, run_testbench};
     use crate::Coverpoint;
     use serde::Serialize;
     use std::sync::Mutex;
