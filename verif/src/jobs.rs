@@ -179,7 +179,7 @@ impl Registry {
         self.owned_jobs(1, shard, only)
     }
 
-    /// Jobs a shard runs under `seeds` seeds (this module's), for a progress bar.
+    /// Jobs a shard runs under `seeds` seeds (numbered as above), for a progress bar.
     pub fn owned_jobs(&self, seeds: u32, shard: Shard, only: &[String]) -> u64 {
         let selected = |n: &str| only.is_empty() || only.iter().any(|o| o == n);
         owned(self, seeds, shard, &selected)

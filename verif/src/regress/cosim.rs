@@ -10,16 +10,14 @@
 //! (unless `--no-vcd`); a later seed's only when it differs, and a later seed that agrees
 //! leaves no folder: its seed makes it again.
 
-use super::{FailingJob, RegressConfig, Summary, COSIM};
+use super::{FailingJob, RegressConfig, COSIM};
 use crate::cosim::{CosimUnit, RunOptions, Simulator};
 use crate::project::Project;
 use crate::{Seed, TbResult};
 use serde::{Deserialize, Serialize};
-use std::collections::BTreeMap;
 use std::path::{Path, PathBuf};
 use std::sync::atomic::{AtomicUsize, Ordering};
 use std::sync::Mutex;
-use waves::output::shorten;
 
 /// Cycles each twin is co-simulated for in a regression: Verilator / Icarus.
 pub const COSIM_CYCLES: [usize; 2] = [100_000, 20_000];
@@ -375,76 +373,4 @@ pub(super) fn failing(program: &str, jobs: &[&CosimJob], seed: Seed) -> Vec<Fail
             }
         })
         .collect()
-}
-
-/// The co-simulation rows, failing jobs and RTL coverage by file of a merge of `shards` (the
-/// run's shards, checked alike): every job of the plan once, the first missing named by its
-/// shard, then [`rows`].
-pub(super) fn merged_rows(
-    project: &Project,
-    shards: &[(PathBuf, Summary)],
-    after: u64,
-) -> Result<Merged, String> {
-    let (first_path, first) = &shards[0];
-    let sims: Vec<Simulator> = (first.simulators.iter())
-        .map(|n| {
-            Simulator::parse(n)
-                .ok_or_else(|| format!("{}: simulator '{}'", first_path.display(), shorten(n)))
-        })
-        .collect::<Result<_, _>>()?;
-    let plan = plan(project, &sims, first.seeds);
-    let keys: Vec<(String, u32)> = plan.iter().map(|q| (q.row(), q.repeat)).collect();
-    let ours: std::collections::BTreeSet<&(String, u32)> = keys.iter().collect();
-    let mut have: BTreeMap<(String, u32), (&Path, &CosimJob)> = BTreeMap::new();
-    for (p, s) in shards {
-        for j in &s.cosim_jobs {
-            let key = (j.row.clone(), j.repeat);
-            if !ours.contains(&key) {
-                return Err(format!(
-                    "{}: co-simulation {} seed #{} is not one of this run's jobs",
-                    p.display(),
-                    shorten(&j.row),
-                    j.repeat
-                ));
-            }
-            if let Some((q, _)) = have.insert(key, (p, j)) {
-                return Err(format!(
-                    "{}: co-simulation {} seed #{} is in {} too",
-                    p.display(),
-                    j.row,
-                    j.repeat,
-                    q.display()
-                ));
-            }
-        }
-    }
-    let mut ordered = Vec::new();
-    for (k, (q, key)) in plan.iter().zip(&keys).enumerate() {
-        match have.get(key) {
-            Some((_, j)) => ordered.push(*j),
-            None => {
-                let what = format!("co-simulation {} seed #{}", q.row(), q.repeat);
-                return Err(super::merge::missing(shards, after + k as u64, &what));
-            }
-        }
-    }
-    // The merged coverage's files are the whole run's to keep; a merge keeps its figures.
-    static MERGES: AtomicUsize = AtomicUsize::new(0);
-    let k = MERGES.fetch_add(1, Ordering::Relaxed);
-    let scratch = std::env::temp_dir().join(format!("texrtl-merge-{}-{k}", std::process::id()));
-    let r = rows(&ordered, &scratch);
-    let _ = std::fs::remove_dir_all(&scratch);
-    let seed = Seed::parse(&first.seed)?;
-    Ok(Merged {
-        rows: r?,
-        failing: failing(project.name(), &ordered, seed),
-        rtl_coverage: by_file(&ordered),
-    })
-}
-
-/// What a merge makes again from the shards' co-simulation jobs.
-pub(super) struct Merged {
-    pub(super) rows: Vec<TbResult>,
-    pub(super) failing: Vec<FailingJob>,
-    pub(super) rtl_coverage: Vec<crate::cosim::FileCoverage>,
 }

@@ -1,14 +1,18 @@
 //! `merge`: the summaries of a run's shards combined into the summary the unsharded run
 //! writes, byte for byte. Each shard keeps its jobs one by one; the merge takes them all,
 //! refuses a job given twice and names the first one missing, and merges each testbench's
-//! jobs in job order, as the unsharded run does.
+//! jobs in job order, as the unsharded run does. The co-simulation jobs alike: their rows,
+//! failing jobs and RTL coverage are made again from the jobs of every shard.
 
-use super::{failing_jobs, Summary};
+use super::cosim::{by_file, failing, plan, rows};
+use super::{failing_jobs, CosimJob, FailingJob, Summary};
+use crate::cosim::Simulator;
 use crate::jobs::{self, JobResult};
 use crate::project::Project;
 use crate::{Registry, Seed, Shard, TbResult};
 use std::collections::BTreeMap;
 use std::path::{Path, PathBuf};
+use std::sync::atomic::{AtomicUsize, Ordering};
 use waves::output::shorten;
 
 /// `texrtl merge`: combines the `summary.json` of every shard of one run into one: counts and
@@ -208,7 +212,7 @@ pub fn merge_shards(project: &Project, shards: &[(PathBuf, Summary)]) -> Result<
     }
     rows.extend(other_rows(reg, shards)?);
     let after = jobs::count(reg, first.seeds, &selected);
-    let cosim = super::cosim::merged_rows(project, shards, after)?;
+    let cosim = merged_rows(project, shards, after)?;
     rows.extend(cosim.rows);
     failing.extend(cosim.failing);
     Ok(Summary {
@@ -251,4 +255,76 @@ fn other_rows(reg: &Registry, shards: &[(PathBuf, Summary)]) -> Result<Vec<TbRes
         m.finish_with(true);
     }
     Ok(rows)
+}
+
+/// The co-simulation rows, failing jobs and RTL coverage by file of a merge of `shards` (the
+/// run's shards, checked alike): every job of the plan once, the first missing named by its
+/// shard, then [`rows`](super::cosim::rows).
+pub(super) fn merged_rows(
+    project: &Project,
+    shards: &[(PathBuf, Summary)],
+    after: u64,
+) -> Result<Merged, String> {
+    let (first_path, first) = &shards[0];
+    let sims: Vec<Simulator> = (first.simulators.iter())
+        .map(|n| {
+            Simulator::parse(n)
+                .ok_or_else(|| format!("{}: simulator '{}'", first_path.display(), shorten(n)))
+        })
+        .collect::<Result<_, _>>()?;
+    let plan = plan(project, &sims, first.seeds);
+    let keys: Vec<(String, u32)> = plan.iter().map(|q| (q.row(), q.repeat)).collect();
+    let ours: std::collections::BTreeSet<&(String, u32)> = keys.iter().collect();
+    let mut have: BTreeMap<(String, u32), (&Path, &CosimJob)> = BTreeMap::new();
+    for (p, s) in shards {
+        for j in &s.cosim_jobs {
+            let key = (j.row.clone(), j.repeat);
+            if !ours.contains(&key) {
+                return Err(format!(
+                    "{}: co-simulation {} seed #{} is not one of this run's jobs",
+                    p.display(),
+                    shorten(&j.row),
+                    j.repeat
+                ));
+            }
+            if let Some((q, _)) = have.insert(key, (p, j)) {
+                return Err(format!(
+                    "{}: co-simulation {} seed #{} is in {} too",
+                    p.display(),
+                    j.row,
+                    j.repeat,
+                    q.display()
+                ));
+            }
+        }
+    }
+    let mut ordered = Vec::new();
+    for (k, (q, key)) in plan.iter().zip(&keys).enumerate() {
+        match have.get(key) {
+            Some((_, j)) => ordered.push(*j),
+            None => {
+                let what = format!("co-simulation {} seed #{}", q.row(), q.repeat);
+                return Err(missing(shards, after + k as u64, &what));
+            }
+        }
+    }
+    // The merged coverage's files are the whole run's to keep; a merge keeps its figures.
+    static MERGES: AtomicUsize = AtomicUsize::new(0);
+    let k = MERGES.fetch_add(1, Ordering::Relaxed);
+    let scratch = std::env::temp_dir().join(format!("texrtl-merge-{}-{k}", std::process::id()));
+    let r = rows(&ordered, &scratch);
+    let _ = std::fs::remove_dir_all(&scratch);
+    let seed = Seed::parse(&first.seed)?;
+    Ok(Merged {
+        rows: r?,
+        failing: failing(project.name(), &ordered, seed),
+        rtl_coverage: by_file(&ordered),
+    })
+}
+
+/// What a merge makes again from the shards' co-simulation jobs.
+pub(super) struct Merged {
+    pub(super) rows: Vec<TbResult>,
+    pub(super) failing: Vec<FailingJob>,
+    pub(super) rtl_coverage: Vec<crate::cosim::FileCoverage>,
 }
