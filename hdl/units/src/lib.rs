@@ -74,6 +74,22 @@
 
 pub use hdl::{fx, kernel, signals};
 
+/// `FromStr` for an enum of named values: `parse_names!(T, "name" => T::A, ...)`; an
+/// unknown name is refused with the type and every name (`unknown t 'x' (one of a, b)`).
+macro_rules! parse_names {
+    ($t:ty, $($name:literal => $v:expr),+) => {
+        impl std::str::FromStr for $t {
+            type Err = String;
+            fn from_str(s: &str) -> Result<Self, String> {
+                match s {
+                    $($name => Ok($v),)+
+                    _ => Err(format!("unknown {} '{s}' (one of {})", stringify!($t).to_lowercase(), [$($name),+].join(", "))),
+                }
+            }
+        }
+    };
+}
+
 /// FIG. 7 of US 2004/0207631: the per-pixel normal pipeline.
 pub mod bump;
 /// Section 7 of Schilling & Knittel: environment mapping (frame, reflection, cube face).

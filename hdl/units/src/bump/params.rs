@@ -33,20 +33,6 @@ pub enum Border {
     Constant(u8),
 }
 
-macro_rules! parse_names {
-    ($t:ty, $($name:literal => $v:expr),+) => {
-        impl FromStr for $t {
-            type Err = String;
-            fn from_str(s: &str) -> Result<Self, String> {
-                match s {
-                    $($name => Ok($v),)+
-                    _ => Err(format!("unknown {} '{s}' (one of {})", stringify!($t).to_lowercase(), [$($name),+].join(", "))),
-                }
-            }
-        }
-    };
-}
-
 parse_names!(Filter, "bspline" => Filter::BSpline, "bezier" => Filter::Bezier, "blinn" => Filter::Blinn);
 
 impl FromStr for Border {

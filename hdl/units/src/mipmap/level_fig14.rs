@@ -15,16 +15,7 @@ pub enum Rounding {
     Truncate,
 }
 
-impl std::str::FromStr for Rounding {
-    type Err = String;
-    fn from_str(s: &str) -> Result<Rounding, String> {
-        match s {
-            "round" => Ok(Rounding::Round),
-            "truncate" => Ok(Rounding::Truncate),
-            _ => Err(format!("unknown rounding '{s}' (round, truncate)")),
-        }
-    }
-}
+parse_names!(Rounding, "round" => Rounding::Round, "truncate" => Rounding::Truncate);
 
 /// `sum / n` with the chosen rounding (n = 2 or 4).
 #[inline]

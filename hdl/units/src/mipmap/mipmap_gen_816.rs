@@ -49,19 +49,7 @@ pub enum Scan {
     InterlacedBottom,
 }
 
-impl std::str::FromStr for Scan {
-    type Err = String;
-    fn from_str(s: &str) -> Result<Scan, String> {
-        match s {
-            "progressive" => Ok(Scan::Progressive),
-            "interlaced-top" => Ok(Scan::InterlacedTop),
-            "interlaced-bottom" => Ok(Scan::InterlacedBottom),
-            _ => Err(format!(
-                "unknown scan '{s}' (progressive, interlaced-top, interlaced-bottom)"
-            )),
-        }
-    }
-}
+parse_names!(Scan, "progressive" => Scan::Progressive, "interlaced-top" => Scan::InterlacedTop, "interlaced-bottom" => Scan::InterlacedBottom);
 
 /// Frame size, scan order, rounding.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
