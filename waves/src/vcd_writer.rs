@@ -33,44 +33,56 @@ pub(crate) struct Code {
     pub real: Option<(Box<[u8]>, Format)>,
 }
 
-/// What ends a change line: the code and a newline, padded to a fixed 16 bytes so that it is
-/// copied in one move (a copy of the code's own length was a call to `memcpy` per change).
+/// How a variable's change line is formatted, worked out once and read once per record (32
+/// bytes, one load of half a cache line): what follows the digits, padded to a fixed 16 bytes
+/// so that it is copied in one move (a copy of the code's own length was a call to `memcpy`
+/// per change), and the widths the line needs, so that formatting a change computes none.
 #[derive(Clone, Copy)]
-struct Tail {
-    bytes: [u8; 16],
-    len: usize,
-}
-
-impl Tail {
-    /// The tail of `code`, if it is short enough (up to 15 characters: 94^15 variables).
-    fn of(code: &[u8]) -> Option<Tail> {
-        let mut bytes = [0u8; 16];
-        bytes.get_mut(..code.len())?.copy_from_slice(code);
-        *bytes.get_mut(code.len())? = b'\n';
-        Some(Tail {
-            bytes,
-            len: code.len() + 1,
-        })
-    }
-}
-
-/// How a variable's change is formatted, dense and read once per record: its [`Tail`] (if
-/// its code is short enough) and width, and whether the line is [`Text::change`] alone (a
-/// tail, no `real` companion) or takes the general path through its [`Code`].
-#[derive(Clone, Copy)]
+#[repr(C, align(32))]
 struct Line {
-    tail: Option<Tail>,
-    width: u32,
+    /// After the digits: a space (wider than one bit), the code and a newline, zero padded;
+    /// meaningful only when `short`.
+    after: [u8; 16],
+    /// The width, 1 to 64.
+    width: u8,
+    /// The shift that puts the bits at the top of a word: `64 - width`.
+    shift: u8,
+    /// The digits' whole bytes: `width / 8` rounded up.
+    groups: u8,
+    /// The line's length.
+    len: u8,
+    /// Whether the tail fits `after` (a code of up to 15 characters, 14 after a space:
+    /// 94^14 variables).
+    short: bool,
+    /// Whether the change is this line alone (short, and no `real` companion); otherwise it
+    /// takes the general path through its [`Code`].
     alone: bool,
 }
 
 impl Line {
     fn of(c: &Code) -> Line {
-        let tail = Tail::of(&c.code);
+        let w = c.width.clamp(1, 64) as usize;
+        let space = usize::from(w > 1);
+        let tail = space + c.code.len() + 1;
+        let short = tail <= 16;
+        let mut after = [0u8; 16];
+        if short {
+            if space == 1 {
+                after[0] = b' ';
+            }
+            after[space..tail - 1].copy_from_slice(&c.code);
+            after[tail - 1] = b'\n';
+        }
+        let digits = if w > 1 { 1 + w } else { 1 };
         Line {
-            tail,
-            width: c.width,
-            alone: tail.is_some() && c.real.is_none(),
+            after,
+            width: w as u8,
+            shift: (64 - w) as u8,
+            groups: w.div_ceil(8) as u8,
+            // At most 81 when short; the general path formats the others.
+            len: if short { (digits + tail) as u8 } else { 0 },
+            short,
+            alone: short && c.real.is_none(),
         }
     }
 }
@@ -141,9 +153,10 @@ impl Batch {
 const TEXTS: [&[u8]; 2] = [b"$dumpvars\n", b"$end\n"];
 
 impl Rec {
-    const TIME: u32 = 0;
-    const TEXT: u32 = 1 << 30;
-    const BITS: u32 = 2 << 30;
+    // A value change, the most common record, is kind 0: its tag is the variable's index.
+    const BITS: u32 = 0;
+    const TIME: u32 = 1 << 30;
+    const TEXT: u32 = 2 << 30;
     const REAL: u32 = 3 << 30;
 
     /// `#t`.
@@ -185,9 +198,9 @@ struct Text {
     pos: usize,
 }
 
-/// The longest line a change makes: `b`, 64 digits, a space and a [`Tail`]; a longer code
-/// or a `real` goes through a `Vec`.
-const LINE: usize = 1 + 64 + 1 + 16;
+/// The room a change line is formatted in: `b`, 64 digits and the 16 bytes [`Line::after`]
+/// them; a longer code or a `real` goes through a `Vec`.
+const LINE: usize = 1 + 64 + 16;
 
 impl Text {
     fn new() -> Text {
@@ -212,52 +225,28 @@ impl Text {
     }
 
     /// The [`LINE`] bytes of room at the cursor (the text grows when they would pass its
-    /// end). The test and the slice's own bounds check are one compare.
+    /// end).
     #[inline(always)]
     fn room(&mut self) -> &mut [u8; LINE] {
-        if self.pos + LINE > self.buf.len() {
+        // The cursor never passes the end: one compare tests the room and is the slice's
+        // bounds check.
+        if self.buf.len() - self.pos < LINE {
             self.grow();
         }
         let p = self.pos;
         (&mut self.buf[p..p + LINE]).try_into().expect("LINE")
     }
 
-    /// A value change, as [`push_change`] writes it. The line is formatted within the
-    /// [`LINE`] bytes of room at the cursor, in whole 8-byte moves: the bits shifted to the
-    /// top of a word, a byte's eight digits at a time from the top; the digits past the width
-    /// (of the last byte's eight) are overwritten by the space and the tail.
-    #[inline(always)]
-    fn change(&mut self, tail: &Tail, width: u32, bits: u64) {
-        let line = self.room();
-        let w = (width as usize).clamp(1, 64);
-        let end = if w == 1 {
-            line[0] = b'0' + (bits & 1) as u8;
-            1
-        } else {
-            line[0] = b'b';
-            let top = bits << (64 - w);
-            for g in 0..w.div_ceil(8) {
-                let byte = (top >> (56 - 8 * g)) & 0xff;
-                line[1 + 8 * g..][..8].copy_from_slice(&BINARY[byte as usize]);
-            }
-            line[1 + w] = b' ';
-            w + 2
-        };
-        line[end..end + 16].copy_from_slice(&tail.bytes);
-        self.pos += end + tail.len;
+    /// A value change of a [`Line::short`] line ([`change_at`]).
+    fn change(&mut self, l: &Line, bits: u64) {
+        self.room();
+        self.pos = change_at(&mut self.buf, self.pos, l, bits);
     }
 
-    /// A timestamp, as [`push_time`] writes it: `#`, the digits and a newline, within the
-    /// [`LINE`] bytes of room at the cursor (at most 22 of them).
-    #[inline(always)]
+    /// A timestamp ([`time_at`]).
     fn time(&mut self, t: u64) {
-        let mut digits = itoa::Buffer::new();
-        let d = digits.format(t).as_bytes();
-        let line = self.room();
-        line[0] = b'#';
-        line[1..1 + d.len()].copy_from_slice(d);
-        line[1 + d.len()] = b'\n';
-        self.pos += d.len() + 2;
+        self.room();
+        self.pos = time_at(&mut self.buf, self.pos, t);
     }
 
     /// Doubles the room (a batch's text is formatted whole before it is written).
@@ -275,33 +264,132 @@ impl Text {
     }
 }
 
-/// Formats `recs` onto the end of `text` (which grows to hold them all).
-fn format(text: &mut Text, scratch: &mut Vec<u8>, codes: &[Code], lines: &[Line], recs: &[Rec]) {
-    for r in recs {
-        let i = (r.tag & !(3 << 30)) as usize;
-        match r.tag & (3 << 30) {
-            Rec::TIME => text.time(r.value),
-            Rec::TEXT => text.put(TEXTS[i]),
-            Rec::BITS => {
-                let l = &lines[i];
-                if let (true, Some(tail)) = (l.alone, &l.tail) {
-                    text.change(tail, l.width, r.value);
-                    continue;
-                }
-                let c = &codes[i];
-                match &l.tail {
-                    Some(tail) => text.change(tail, c.width, r.value),
-                    None => text.with_vec(scratch, |b| push_change(b, &c.code, c.width, r.value)),
-                }
-                if let Some((code, fmt)) = &c.real {
-                    text.with_vec(scratch, |b| push_real(b, code, real_of(r.value, *fmt)));
-                }
-            }
-            _ => {
-                let code = &codes[i].code;
-                text.with_vec(scratch, |b| push_real(b, code, f64::from_bits(r.value)));
-            }
+/// A value change of a [`Line::short`] line at `p` in `buf`, which has [`LINE`] bytes of room
+/// there, as [`push_change`] writes it; the cursor after it. The line is formatted in whole
+/// 8-byte moves: the bits shifted to the top of a word, a byte's eight digits at a time from
+/// the top; the digits past the width (of the last byte's eight) are overwritten by what
+/// follows them.
+#[inline(always)]
+fn change_at(buf: &mut [u8], p: usize, l: &Line, bits: u64) -> usize {
+    let line: &mut [u8; LINE] = (&mut buf[p..][..LINE]).try_into().expect("LINE");
+    let at = if l.width == 1 {
+        line[0] = b'0' + (bits & 1) as u8;
+        1
+    } else {
+        line[0] = b'b';
+        let top = bits << l.shift;
+        for g in 0..usize::from(l.groups) {
+            let byte = (top >> (56 - 8 * g)) & 0xff;
+            line[1 + 8 * g..][..8].copy_from_slice(&BINARY[byte as usize]);
         }
+        1 + usize::from(l.width)
+    };
+    line[at..at + 16].copy_from_slice(&l.after);
+    p + usize::from(l.len)
+}
+
+/// The decimal digits of every number below 100, two each.
+static PAIRS: [[u8; 2]; 100] = {
+    let mut t = [[0u8; 2]; 100];
+    let mut v = 0;
+    while v < 100 {
+        t[v] = [b'0' + (v / 10) as u8, b'0' + (v % 10) as u8];
+        v += 1;
+    }
+    t
+};
+
+/// A timestamp at `p` in `buf`, which has [`LINE`] bytes of room there, as [`push_time`]
+/// writes it: `#`, the digits and a newline (at most 22 bytes); the cursor after it. The
+/// digits are written in place, two at a time from the last: digits made elsewhere and copied
+/// in whole words were read back before their narrow writes had landed (a stall for every
+/// timestamp), and a copy of their own length was a call to `memcpy`.
+#[inline(always)]
+fn time_at(buf: &mut [u8], p: usize, t: u64) -> usize {
+    let line: &mut [u8; LINE] = (&mut buf[p..][..LINE]).try_into().expect("LINE");
+    let n = t.checked_ilog10().map_or(1, |l| l as usize + 1);
+    let (mut v, mut k) = (t, 1 + n);
+    while k >= 3 {
+        k -= 2;
+        line[k..k + 2].copy_from_slice(&PAIRS[(v % 100) as usize]);
+        v /= 100;
+    }
+    if k == 2 {
+        line[1] = b'0' + v as u8;
+    }
+    line[0] = b'#';
+    line[1 + n] = b'\n';
+    p + n + 2
+}
+
+/// Formats `recs` onto the end of `text` (which grows to hold them all): runs of value
+/// changes and timestamps with the text's buffer and cursor in registers, and each record
+/// that ends a run (another kind, or the room run short) on its own.
+fn format(text: &mut Text, scratch: &mut Vec<u8>, codes: &[Code], lines: &[Line], recs: &[Rec]) {
+    let mut rest = recs;
+    loop {
+        let done = format_lines(&mut text.buf, &mut text.pos, lines, rest);
+        let Some((r, after)) = rest[done..].split_first() else {
+            return;
+        };
+        format_record(text, scratch, codes, lines, r);
+        rest = after;
+    }
+}
+
+/// The value changes that are their [`Line`] alone and the timestamps from the start of
+/// `recs`, while the room lasts; how many. The cursor is a local here (the text's own was
+/// stored and loaded again for every record, a dependency from each line to the next).
+#[inline(always)]
+fn format_lines(buf: &mut [u8], pos: &mut usize, lines: &[Line], recs: &[Rec]) -> usize {
+    let mut p = *pos;
+    let mut n = 0;
+    for r in recs {
+        if buf.len() - p < LINE {
+            break;
+        }
+        // A value change with one compare: its tag is its index.
+        if r.tag < Rec::TIME {
+            let l = &lines[r.tag as usize];
+            if !l.alone {
+                break;
+            }
+            p = change_at(buf, p, l, r.value);
+        } else if r.tag == Rec::TIME {
+            p = time_at(buf, p, r.value);
+        } else {
+            break;
+        }
+        n += 1;
+    }
+    *pos = p;
+    n
+}
+
+/// A record that ended a run of lines, with the text grown as it needs.
+fn format_record(text: &mut Text, scratch: &mut Vec<u8>, codes: &[Code], lines: &[Line], r: &Rec) {
+    let i = (r.tag & !(3 << 30)) as usize;
+    match r.tag & (3 << 30) {
+        Rec::BITS => general_change(text, scratch, &codes[i], &lines[i], r.value),
+        Rec::TIME => text.time(r.value),
+        Rec::TEXT => text.put(TEXTS[i]),
+        _ => {
+            let code = &codes[i].code;
+            text.with_vec(scratch, |b| push_real(b, code, f64::from_bits(r.value)));
+        }
+    }
+}
+
+/// A value change that is not its [`Line`] alone (a code too long for [`Line::after`], or a
+/// `real` companion after the line), or one that found too little room.
+fn general_change(text: &mut Text, scratch: &mut Vec<u8>, c: &Code, l: &Line, bits: u64) {
+    if l.short {
+        text.change(l, bits);
+    } else {
+        text.with_vec(scratch, |b| push_change(b, &c.code, c.width, bits));
+    }
+    if let Some((code, fmt)) = &c.real {
+        text.with_vec(scratch, |b| push_real(b, code, real_of(bits, *fmt)));
     }
 }
 
@@ -473,18 +561,28 @@ impl WriterThread {
 mod tests {
     use super::*;
 
+    /// The line of `code` (no `real` companion) at `width`.
+    fn line(code: &[u8], width: u32) -> Line {
+        Line::of(&Code {
+            code: code.into(),
+            width,
+            real: None,
+        })
+    }
+
     /// The writer thread's line is the same text as [`push_change`] (itself tested against
     /// the `vcd` crate) for every width, bit patterns across the byte boundaries, and codes
-    /// of one to fifteen characters.
+    /// of one to fourteen characters.
     #[test]
     fn text_change_is_push_change() {
-        for code in [&b"!"[..], b"#%", b"abcdefghijklmno"] {
-            let tail = Tail::of(code).expect("short code");
+        for code in [&b"!"[..], b"#%", b"abcdefghijklmn"] {
             for width in 1..=64u32 {
+                let l = line(code, width);
+                assert!(l.alone, "{code:?} at {width} bits fits");
                 let mask = u64::MAX >> (64 - width);
                 for bits in [0, mask, 0xa5a5_5a5a_f00f_0ff0 & mask, 1u64 << (width - 1)] {
                     let mut text = Text::new();
-                    text.change(&tail, width, bits);
+                    text.change(&l, bits);
                     let mut want = Vec::new();
                     push_change(&mut want, code, width, bits);
                     assert_eq!(
@@ -495,16 +593,110 @@ mod tests {
                 }
             }
         }
-        assert!(
-            Tail::of(b"0123456789abcdef").is_none(),
-            "16 characters take the long path"
-        );
+        // Fifteen characters fit after a bit, not after a space; sixteen never.
+        assert!(line(b"0123456789abcde", 1).short);
+        assert!(!line(b"0123456789abcde", 2).short);
+        assert!(!line(b"0123456789abcdef", 1).short);
+    }
+
+    /// A change whose code is too long for the fast line, or that has a `real` companion, is
+    /// what [`push_change`] (and [`push_real`]) write.
+    #[test]
+    fn the_general_path_is_push_change_and_push_real() {
+        let fmt = Format::signed(8, 4);
+        for (code, real) in [
+            (&b"0123456789abcdef"[..], false),
+            (b"!", true),
+            (b"0123456789abcdef", true),
+        ] {
+            let c = Code {
+                code: code.into(),
+                width: 8,
+                real: real.then(|| (b"%".to_vec().into_boxed_slice(), fmt)),
+            };
+            let l = Line::of(&c);
+            assert!(!l.alone);
+            let (mut text, mut scratch) = (Text::new(), Vec::new());
+            general_change(&mut text, &mut scratch, &c, &l, 0xb7);
+            let mut want = Vec::new();
+            push_change(&mut want, code, 8, 0xb7);
+            if real {
+                push_real(&mut want, b"%", real_of(0xb7, fmt));
+            }
+            assert_eq!(&text.buf[..text.pos], &want[..], "{code:?} real {real}");
+        }
+    }
+
+    /// A batch of every kind of record, longer than a text's first chunk, formats as the
+    /// records one after another do: runs of lines, the records that end them, the growth.
+    #[test]
+    fn a_batch_is_its_records_one_after_another() {
+        let fmt = Format::unsigned(12, 4);
+        let codes: Arc<[Code]> = vec![
+            Code {
+                code: b"!"[..].into(),
+                width: 1,
+                real: None,
+            },
+            Code {
+                code: b"#%"[..].into(),
+                width: 12,
+                real: None,
+            },
+            Code {
+                code: b"$"[..].into(),
+                width: 12,
+                real: Some((b"&".to_vec().into(), fmt)),
+            },
+            Code {
+                code: b"0123456789abcdef"[..].into(),
+                width: 64,
+                real: None,
+            },
+        ]
+        .into();
+        let lines: Vec<Line> = codes.iter().map(Line::of).collect();
+        let (mut recs, mut want) = (Vec::new(), Vec::new());
+        recs.push(Rec::text(false));
+        want.extend_from_slice(TEXTS[0]);
+        for k in 0..40_000u64 {
+            recs.push(Rec::time(5_000 * k));
+            crate::vcd_text::push_time(&mut want, 5_000 * k);
+            let i = (k % 5) as usize;
+            let bits = k.wrapping_mul(0x9e37_79b9_7f4a_7c15) >> (64 - codes[i % 4].width);
+            if i == 4 {
+                recs.push(Rec::real(0, 0.25 * k as f64));
+                push_real(&mut want, b"!", 0.25 * k as f64);
+                continue;
+            }
+            recs.push(Rec::bits(i as u32, bits));
+            let c = &codes[i];
+            push_change(&mut want, &c.code, c.width, bits);
+            if let Some((code, fmt)) = &c.real {
+                push_real(&mut want, code, real_of(bits, *fmt));
+            }
+        }
+        let (mut text, mut scratch) = (Text::new(), Vec::new());
+        format(&mut text, &mut scratch, &codes, &lines, &recs);
+        assert!(want.len() > CHUNK, "the text grew");
+        assert_eq!(&text.buf[..text.pos], &want[..]);
     }
 
     /// A timestamp is [`push_time`]'s text, from one digit to twenty.
     #[test]
     fn text_time_is_push_time() {
-        for t in [0, 7, 5_000, 1_234_567_890, u64::MAX] {
+        for t in [
+            0,
+            7,
+            10,
+            99,
+            100,
+            5_000,
+            12_345,
+            1_234_567_890,
+            10u64.pow(19),
+            u64::MAX,
+        ] {
             let mut text = Text::new();
             text.time(t);
             let mut want = Vec::new();
@@ -517,17 +709,17 @@ mod tests {
     /// companion after it fits: the buffer grows, nothing is lost or overwritten.
     #[test]
     fn a_change_and_its_companion_fit_past_the_chunk() {
-        let tail = Tail::of(b"!").unwrap();
+        let l = line(b"!", 64);
         let mut text = Text::new();
         text.pos = CHUNK - 1;
-        text.change(&tail, 64, u64::MAX);
+        text.change(&l, u64::MAX);
         let real = [b'r'; 3 * LINE];
         text.put(&real);
         let mut want = Vec::new();
         push_change(&mut want, b"!", 64, u64::MAX);
         want.extend_from_slice(&real);
         assert_eq!(&text.buf[CHUNK - 1..text.pos], &want[..]);
-        text.change(&tail, 64, 0);
+        text.change(&l, 0);
         // The second change went into the room the growth kept: b, 64 digits, space, "!\n".
         assert_eq!(text.buf.len() - text.pos, LINE - (1 + 64 + 1 + 2));
     }
