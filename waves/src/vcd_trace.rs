@@ -148,13 +148,13 @@ struct Entry {
 }
 
 /// What sampling reads and writes of an entry, kept dense (an entry's codes and format are
-/// for the header and the writer thread): the last value, whether traced, whether it has a
-/// real companion.
+/// for the header and the writer thread): the last value, whether traced, and the value
+/// changes a change of it makes in the dump (two with a real companion).
 #[derive(Clone, Copy)]
 struct Hot {
     last: u64,
+    changes: u32,
     traced: bool,
-    real: bool,
 }
 
 /// An identifier code as the VCD writes it.
@@ -618,10 +618,11 @@ impl Visitor for Declare<'_> {
     }
 }
 
-/// Collects the changes of one cycle (every value when `all`) as records for the writer
+/// Collects the changes of one cycle (every value when `ALL`: a constant, so that the test
+/// of every signal after the first cycle is its comparison alone) as records for the writer
 /// thread; the count of value changes the dump gets (a real companion's too).
 #[inline]
-fn sample_changes<M: Module>(top: &M, hot: &mut [Hot], recs: &mut Batch, all: bool) -> u64 {
+fn sample_changes<M: Module, const ALL: bool>(top: &M, hot: &mut [Hot], recs: &mut Batch) -> u64 {
     let (mut i, mut changes) = (0usize, 0u64);
     // The cursor in a local, written back once.
     let (buf, at) = recs.parts();
@@ -629,11 +630,11 @@ fn sample_changes<M: Module>(top: &M, hot: &mut [Hot], recs: &mut Batch, all: bo
     top.visit_bits(&mut |bits| {
         let h = &mut hot[i];
         i += 1;
-        if h.traced && (all || bits != h.last) {
+        if h.traced && (ALL || bits != h.last) {
             h.last = bits;
             buf[n] = Rec::bits(i as u32 - 1, bits);
             n += 1;
-            changes += 1 + u64::from(h.real);
+            changes += u64::from(h.changes);
         }
     });
     *at = n;
@@ -724,7 +725,7 @@ impl Trace for VcdTracer {
         let hot = self.entries.iter().map(|e| Hot {
             last: 0,
             traced: e.id.is_some(),
-            real: e.real.is_some(),
+            changes: 1 + u32::from(e.real.is_some()),
         });
         self.hot = hot.collect();
         // A cycle adds its signals' and probes' changes and at most seven more records (two
@@ -808,7 +809,11 @@ impl Trace for VcdTracer {
             }
             n += 1;
         }
-        n += sample_changes(top, &mut self.hot, recs, all);
+        n += if all {
+            sample_changes::<M, true>(top, &mut self.hot, recs)
+        } else {
+            sample_changes::<M, false>(top, &mut self.hot, recs)
+        };
         for (k, p) in self.probes.iter_mut().enumerate() {
             if all || p.last != Some(p.value) {
                 let i = probes + k as u32;
