@@ -92,9 +92,12 @@ pub fn lookahead_direction(
 ) -> impl Iterator<Item = (u32, u32)> {
     let nx = step(bx, dx, bw);
     let ny = step(by, dy, bh);
-    [nx.map(|nx| (nx, by)), ny.map(|ny| (bx, ny)), nx.zip(ny)]
-        .into_iter()
-        .flatten()
+    // A chain, not an array of the three: the array's pairs were written a word at a time
+    // and read back two words at once before the writes had landed, a stall in every
+    // lookahead of the texture unit.
+    (nx.map(|nx| (nx, by)).into_iter())
+        .chain(ny.map(|ny| (bx, ny)))
+        .chain(nx.zip(ny))
 }
 
 /// One entry.

@@ -408,14 +408,16 @@ impl LookaheadQueue {
         (self.mask.q().bits(), q)
     }
 
-    /// The neighbours of the completing request at `(u, v)`: none for the first point of a
-    /// scanline; those of its quadrant, or those in the direction of motion from the previous
-    /// point of the scanline.
-    fn candidates(&self, u: u64, v: u64, newline: bool) -> (u64, [(u32, u32); 3]) {
+    /// The neighbours of the completing request at `(u, v)` as the slots' next blocks (an
+    /// empty slot's block 0, 0): none for the first point of a scanline; those of its
+    /// quadrant, or those in the direction of motion from the previous point of the scanline.
+    /// Returns the live slots. (Written into the registers as they are found: returned as an
+    /// array of pairs, they were written a word at a time and copied out two words at once
+    /// before the writes had landed, a stall in every lookahead.)
+    fn candidates(&mut self, u: u64, v: u64, newline: bool) -> u64 {
         let f = self.frac_bits;
         let (x0, y0) = ((u >> f) as u32, (v >> f) as u32);
         let (bw, bh) = self.blocks;
-        let (mut q, mut m) = ([(0, 0); 3], 0);
         // The footprint's blocks (clamped at the edge, as stage 0 reads them).
         let (x1, y1) = ((x0 + 1).min(4 * bw - 1), (y0 + 1).min(4 * bh - 1));
         let foot = [(x0, y0), (x1, y0), (x0, y1), (x1, y1)].map(|(x, y)| (x >> 2, y >> 2));
@@ -424,9 +426,15 @@ impl LookaheadQueue {
             let e = entry_of(b.0, b.1);
             (0..4).any(|i| foot_entries[i] == e && foot[i] != b)
         };
-        let mut put = |k: usize, blk: (u32, u32)| {
-            if !evicts(blk) {
-                q[k] = blk;
+        for k in 0..3 {
+            self.bx[k].set_next_bits(0);
+            self.by[k].set_next_bits(0);
+        }
+        let (bxs, bys, mut m) = (&mut self.bx, &mut self.by, 0);
+        let mut put = |k: usize, (bx, by): (u32, u32)| {
+            if !evicts((bx, by)) {
+                bxs[k].set_next_bits(u64::from(bx));
+                bys[k].set_next_bits(u64::from(by));
                 m |= 1 << k;
             }
         };
@@ -444,7 +452,7 @@ impl LookaheadQueue {
                 put(k, blk);
             }
         }
-        (m, q)
+        m
     }
 }
 
@@ -457,11 +465,10 @@ impl LookaheadQueue {
         // The registered slots are read only when taken: copying them into an array of pairs
         // made a store-forwarding stall (narrow stores, one wide load) a quarter of the
         // texture unit's cycle.
-        let (mut m, fresh) = if complete {
-            let (m, q) = self.candidates(u, v, self.newline.is_high());
-            (m, Some(q))
+        let mut m = if complete {
+            self.candidates(u, v, self.newline.is_high())
         } else {
-            (self.mask.q().bits(), None)
+            self.mask.q().bits()
         };
         if complete && self.mode == Lookahead::Direction {
             self.prev_valid.set_next_bool(true);
@@ -473,17 +480,14 @@ impl LookaheadQueue {
             m = 0;
         } else if self.engine_free.is_high() && m != 0 && !self.stage0_missing.is_high() {
             let k = m.trailing_zeros() as usize;
-            take = Some(match &fresh {
-                Some(q) => q[k],
-                None => (self.bx[k].q().bits() as u32, self.by[k].q().bits() as u32),
+            // A fresh candidate is taken from the slot's next value, as written this cycle.
+            let (bx, by) = (&self.bx[k], &self.by[k]);
+            take = Some(if complete {
+                (bx.next_bits() as u32, by.next_bits() as u32)
+            } else {
+                (bx.q().bits() as u32, by.q().bits() as u32)
             });
             m &= !(1 << k);
-        }
-        if let Some(q) = fresh {
-            for (k, &(bx, by)) in q.iter().enumerate() {
-                self.bx[k].set_next_bits(u64::from(bx));
-                self.by[k].set_next_bits(u64::from(by));
-            }
         }
         self.mask.set_next_bits(m);
         self.take.set_bool(take.is_some());
