@@ -112,24 +112,16 @@ impl BlendRaw {
 /// The four models as units of their own, each with its Verilog as its twin.
 pub fn units() -> [Unit; 4] {
     let sat_acc = |d: &mut documented::SatAcc, v: &[u64]| {
-        d.valid_in.set_bits(v[0]);
-        d.x.set_bits(v[1]);
+        Signal::set_row([&mut d.valid_in, &mut d.x], v);
     };
     let sat_acc_raw = |d: &mut SatAccRaw, v: &[u64]| {
-        d.valid_in.set_bits(v[0]);
-        d.x.set_bits(v[1]);
+        Signal::set_row([&mut d.valid_in, &mut d.x], v);
     };
     let blend = |d: &mut blend::Blend, v: &[u64]| {
-        d.valid_in.set_bits(v[0]);
-        d.a.set_bits(v[1]);
-        d.b.set_bits(v[2]);
-        d.alpha.set_bits(v[3]);
+        Signal::set_row([&mut d.valid_in, &mut d.a, &mut d.b, &mut d.alpha], v);
     };
     let blend_raw = |d: &mut BlendRaw, v: &[u64]| {
-        d.valid_in.set_bits(v[0]);
-        d.a.set_bits(v[1]);
-        d.b.set_bits(v[2]);
-        d.alpha.set_bits(v[3]);
+        Signal::set_row([&mut d.valid_in, &mut d.a, &mut d.b, &mut d.alpha], v);
     };
     let sat_acc_v = here("../examples/sat_acc/rtl/sat_acc.v");
     let blend_v = here("../docs/rtl/blend.v");

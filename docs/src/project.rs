@@ -4,6 +4,7 @@
 
 use crate::blend::Blend;
 use crate::blend_tb::BlendTb;
+use hdl::kernel::Signal;
 use std::path::Path;
 use verif::cosim::{CosimUnit, Twin};
 use verif::project::{Project, Unit};
@@ -14,10 +15,7 @@ use verif::vectors::{Field, UnitVectors};
 /// takes it as a function pointer and returns a nameable `Twin<Blend>`).
 pub fn twin() -> impl CosimUnit {
     let drive = |d: &mut Blend, v: &[u64]| {
-        d.valid_in.set_bits(v[0]);
-        d.a.set_bits(v[1]);
-        d.b.set_bits(v[2]);
-        d.alpha.set_bits(v[3]);
+        Signal::set_row([&mut d.valid_in, &mut d.a, &mut d.b, &mut d.alpha], v);
     };
     let rtl = Path::new(env!("CARGO_MANIFEST_DIR")).join("rtl/blend.v");
     Twin::with_drive(Blend::default, drive).sources([rtl])

@@ -6,6 +6,7 @@
 //! Verilog does not build fails its row, and the run goes on.
 
 use guide::blend::Blend;
+use hdl::kernel::Signal;
 use std::path::{Path, PathBuf};
 use verif::cosim::{CosimUnit, Simulator, Twin};
 use verif::project::{Project, Unit};
@@ -27,10 +28,7 @@ fn broken_rtl(dir: &Path) -> PathBuf {
 
 fn twin(rtl: PathBuf) -> impl CosimUnit {
     let drive = |d: &mut Blend, v: &[u64]| {
-        d.valid_in.set_bits(v[0]);
-        d.a.set_bits(v[1]);
-        d.b.set_bits(v[2]);
-        d.alpha.set_bits(v[3]);
+        Signal::set_row([&mut d.valid_in, &mut d.a, &mut d.b, &mut d.alpha], v);
     };
     Twin::with_drive(Blend::default, drive).sources([rtl])
 }

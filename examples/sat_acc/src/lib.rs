@@ -4,6 +4,7 @@ pub mod tb;
 pub mod unit;
 
 use std::path::Path;
+use hdl::kernel::Signal;
 use verif::cosim::{CosimUnit, Twin};
 use verif::project::{Project, Unit};
 use verif::vectors::{Field, UnitVectors};
@@ -12,8 +13,7 @@ use verif::vectors::{Field, UnitVectors};
 /// drive keeps its own type (`with_drive`), so `bench` inlines it.
 pub fn twin() -> impl CosimUnit {
     let drive = |d: &mut unit::SatAcc, v: &[u64]| {
-        d.valid_in.set_bits(v[0]);
-        d.x.set_bits(v[1]);
+        Signal::set_row([&mut d.valid_in, &mut d.x], v);
     };
     Twin::with_drive(unit::SatAcc::default, drive)
         .sources([Path::new(env!("CARGO_MANIFEST_DIR")).join("rtl/sat_acc.v")])

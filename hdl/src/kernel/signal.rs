@@ -144,6 +144,19 @@ impl Signal {
         self.bits = bits;
     }
 
+    /// Writes the first `N` bit patterns of `row` into `signals`, in order (one cycle of a
+    /// stimulus row into a unit's input ports); panics if `row` is shorter or a pattern does
+    /// not fit its signal. The row's length is checked once and the writes unroll, where a
+    /// `zip` over a slice of unknown length runs as a loop (a third of a small unit's cycle).
+    #[inline]
+    #[track_caller]
+    pub fn set_row<const N: usize>(signals: [&mut Signal; N], row: &[u64]) {
+        let row: &[u64; N] = row[..N].try_into().expect("a slice of N");
+        for (s, x) in signals.into_iter().zip(row) {
+            s.set_bits(*x);
+        }
+    }
+
     /// Writes a raw integer (value `raw * 2^-frac`); panics if it is out of range.
     #[inline]
     #[track_caller]

@@ -526,3 +526,31 @@ fn a_delay_line_shows_each_input_depth_cycles_later() {
         }
     }
 }
+
+/// A stimulus row goes into the signals in order; the values past them are not read.
+#[test]
+fn a_row_sets_each_signal_in_order() {
+    let mut a = Signal::new("a", Format::uint(4));
+    let mut b = Signal::new("b", Format::signed(6, 2));
+    let mut c = Signal::bit("c");
+    Signal::set_row([&mut a, &mut b, &mut c], &[9, 0x3f, 1, 77]);
+    assert_eq!((a.bits(), b.raw(), c.is_high()), (9, -1, true));
+}
+
+/// A pattern wider than its signal is refused, naming the signal, as `set_bits` refuses it.
+#[test]
+#[should_panic(expected = "signal 'c' (u1")]
+fn a_row_refuses_a_pattern_its_signal_cannot_hold() {
+    let mut a = Signal::new("a", Format::uint(4));
+    let mut c = Signal::bit("c");
+    Signal::set_row([&mut a, &mut c], &[3, 2]);
+}
+
+/// A row shorter than the signals is refused before any is written.
+#[test]
+#[should_panic(expected = "out of range")]
+fn a_short_row_is_refused() {
+    let mut a = Signal::new("a", Format::uint(4));
+    let mut b = Signal::new("b", Format::uint(4));
+    Signal::set_row([&mut a, &mut b], &[3]);
+}

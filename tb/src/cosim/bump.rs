@@ -3,6 +3,7 @@
 
 use super::twin;
 use hdl::fx::Format;
+use hdl::kernel::Signal;
 use std::path::PathBuf;
 use units::bump::height_map::HeightMap;
 use units::bump::params::{Border, BumpParams};
@@ -29,10 +30,15 @@ impl CosimUnit for BlendAdjustCosim {
         Ok(Box::new(ModelSim::new(
             dut,
             |d: &mut BlendAdjust, v: &[u64]| {
-                d.i.valid_in.set_bits(v[0]);
-                d.i.bypass.set_bits(v[1]);
-                d.i.u_in.set_bits(v[2]);
-                d.i.v_in.set_bits(v[3]);
+                Signal::set_row(
+                    [
+                        &mut d.i.valid_in,
+                        &mut d.i.bypass,
+                        &mut d.i.u_in,
+                        &mut d.i.v_in,
+                    ],
+                    v,
+                );
             },
         )))
     }
@@ -85,9 +91,7 @@ impl CosimUnit for AddressCosim {
         Ok(Box::new(ModelSim::new(
             dut,
             |d: &mut AddressUnit, v: &[u64]| {
-                d.u.set_bits(v[0]);
-                d.v.set_bits(v[1]);
-                d.colour.set_bits(v[2]);
+                Signal::set_row([&mut d.u, &mut d.v, &mut d.colour], v);
             },
         )))
     }
@@ -131,9 +135,7 @@ impl CosimUnit for ReplicateCosim {
         Ok(Box::new(ModelSim::new(
             dut,
             |d: &mut Replicate, v: &[u64]| {
-                for (s, x) in d.h.iter_mut().zip(v) {
-                    s.set_bits(*x);
-                }
+                Signal::set_row(d.h.each_mut(), v);
             },
         )))
     }
@@ -203,11 +205,8 @@ impl CosimUnit for BilinearCosim {
         Ok(Box::new(ModelSim::new(
             dut,
             |d: &mut Bilinear, v: &[u64]| {
-                for (s, x) in d.p.iter_mut().zip(v) {
-                    s.set_bits(*x);
-                }
-                d.s.set_bits(v[4]);
-                d.t.set_bits(v[5]);
+                let [p0, p1, p2, p3] = &mut d.p;
+                Signal::set_row([p0, p1, p2, p3, &mut d.s, &mut d.t], v);
             },
         )))
     }
@@ -374,8 +373,7 @@ impl CosimUnit for NormalCosim {
         self.0.validate()?;
         let dut = Normal::new(self.name(), &self.0)?;
         Ok(Box::new(ModelSim::new(dut, |d: &mut Normal, v: &[u64]| {
-            d.du.set_bits(v[0]);
-            d.dv.set_bits(v[1]);
+            Signal::set_row([&mut d.du, &mut d.dv], v);
         })))
     }
     /// Tangents in the symmetric range unit 155 produces: corners (0, +-1, +-largest), slopes
@@ -471,8 +469,7 @@ impl CosimUnit for TexelFetchCosim {
         Ok(Box::new(ModelSim::new(
             dut,
             |d: &mut TexelFetch, v: &[u64]| {
-                d.ui.set_bits(v[0]);
-                d.vj.set_bits(v[1]);
+                Signal::set_row([&mut d.ui, &mut d.vj], v);
             },
         )))
     }
@@ -586,11 +583,16 @@ impl CosimUnit for PipelineCosim {
         Ok(Box::new(ModelSim::new(
             dut,
             |d: &mut NormalPipeline, v: &[u64]| {
-                d.valid_in.set_bits(v[0]);
-                d.u.set_bits(v[1]);
-                d.v.set_bits(v[2]);
-                d.scale.set_bits(v[3]);
-                d.lod.set_bits(v[4]);
+                Signal::set_row(
+                    [
+                        &mut d.valid_in,
+                        &mut d.u,
+                        &mut d.v,
+                        &mut d.scale,
+                        &mut d.lod,
+                    ],
+                    v,
+                );
             },
         )))
     }

@@ -4,6 +4,7 @@
 //! stimulus.
 
 use super::twin;
+use hdl::kernel::Signal;
 use std::path::PathBuf;
 use units::mapchain::drf_812::{ChainDrf, DetailMode, DrfFile, Kind};
 use units::mapchain::walker_812::{MapChain812, Pixel};
@@ -163,9 +164,7 @@ type Walker = MapChain812<HashBanks>;
 #[inline]
 pub fn drive_walker(d: &mut Walker, v: &[u64]) {
     d.req.valid.set_bits(v[0]);
-    for (s, x) in d.req.payload.each_mut().into_iter().zip(&v[1..]) {
-        s.set_bits(*x);
-    }
+    Signal::set_row(d.req.payload.each_mut(), &v[1..]);
 }
 
 /// What is compared besides the port's ready, in the twin's port order.

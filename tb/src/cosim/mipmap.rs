@@ -3,6 +3,7 @@
 //! parameters and video stimulus.
 
 use super::twin;
+use hdl::kernel::Signal;
 use std::path::PathBuf;
 use units::mipmap::mipmap_gen_816::{MipmapGen, MipmapParams, Rounding, Scan};
 use verif::cosim::{CosimModel, CosimUnit, ModelSim, Port, Unmodelled};
@@ -77,9 +78,7 @@ impl CosimUnit for MipmapCosim {
             })
             .collect();
         let m = ModelSim::new(dut, |d: &mut MipmapGen, v: &[u64]| {
-            d.valid.set_bits(v[0]);
-            d.texel.set_bits(v[1]);
-            d.sof.set_bits(v[2]);
+            Signal::set_row([&mut d.valid, &mut d.texel, &mut d.sof], v);
         });
         Ok(Box::new(m.probes(probes, |d: &MipmapGen| {
             d.levels

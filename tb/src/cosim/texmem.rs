@@ -3,6 +3,7 @@
 
 use super::twin;
 use hdl::fx::Format;
+use hdl::kernel::Signal;
 use std::path::PathBuf;
 use units::texmem::cache_614::{Lookahead, TextureCache};
 use units::texmem::control_607::{DramCtrl, FillEngine, LookaheadQueue};
@@ -70,8 +71,7 @@ impl CosimUnit for ControlCosim {
     fn model(&self) -> Result<Box<dyn CosimModel>, String> {
         let dut = DramCtrl::new(self.name(), self.0)?;
         let m = ModelSim::new(dut, |d: &mut DramCtrl, v: &[u64]| {
-            d.req_valid.set_bits(v[0]);
-            d.req_addr.set_bits(v[1]);
+            Signal::set_row([&mut d.req_valid, &mut d.req_addr], v);
         });
         Ok(Box::new(m.probes(dram_probes(), |d: &DramCtrl| {
             dram_probe_values(&d.dram)
@@ -108,9 +108,7 @@ pub fn drive_lookahead(d: &mut LookaheadQueue, v: &[u64]) {
         &mut d.engine_free,
         &mut d.stage0_missing,
     ];
-    for (s, x) in ins.into_iter().zip(v) {
-        s.set_bits(*x);
-    }
+    Signal::set_row(ins, v);
 }
 
 /// Drives the block fetch's inputs from one cycle of [`FillCosim`]'s stimulus.
@@ -125,9 +123,7 @@ pub fn drive_fill(d: &mut FillEngine, v: &[u64]) {
         &mut d.word_resp,
         &mut d.line_done,
     ];
-    for (s, x) in ins.into_iter().zip(v) {
-        s.set_bits(*x);
-    }
+    Signal::set_row(ins, v);
 }
 
 /// The lookahead queue of control unit 607 against `rtl/texmem/lookahead_queue_607.v`, for a
@@ -260,9 +256,7 @@ impl CosimUnit for CacheCosim {
                 &mut d.write_data,
                 &mut d.write_prefetched,
             ];
-            for (s, x) in ins.into_iter().zip(v) {
-                s.set_bits(*x);
-            }
+            Signal::set_row(ins, v);
         });
         Ok(Box::new(m.probes(
             cache_probes(self.tag_bits),
@@ -383,10 +377,10 @@ impl CosimUnit for FillCosim {
 /// Drives texture unit 602's request port from one cycle of [`TextureCosim`]'s stimulus.
 #[inline]
 pub fn drive_texture(d: &mut units::texmem::texture_unit_602::TextureUnit, v: &[u64]) {
-    d.in_valid.set_bits(v[0]);
-    d.in_u.set_bits(v[1]);
-    d.in_v.set_bits(v[2]);
-    d.in_newline.set_bits(v[3]);
+    Signal::set_row(
+        [&mut d.in_valid, &mut d.in_u, &mut d.in_v, &mut d.in_newline],
+        v,
+    );
 }
 
 /// Texture mapping unit 602 end to end against `rtl/texmem/texture_unit_602.v` and its

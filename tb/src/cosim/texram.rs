@@ -3,6 +3,7 @@
 //! stimulus.
 
 use super::twin;
+use hdl::kernel::Signal;
 use std::path::PathBuf;
 use units::texram::banks_810::{bank_words, group_words, store_level, BANKS};
 use units::texram::clut_814::Clut;
@@ -182,9 +183,7 @@ pub fn drive_texram(d: &mut Texram802, v: &[u64]) {
         &mut d.req_lambda,
         &mut d.req_illum,
     ];
-    for (s, x) in ins.into_iter().zip(v) {
-        s.set_bits(*x);
-    }
+    Signal::set_row(ins, v);
 }
 
 impl CosimUnit for TexramCosim {
