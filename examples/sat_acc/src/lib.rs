@@ -3,8 +3,8 @@
 pub mod tb;
 pub mod unit;
 
-use std::path::Path;
 use hdl::kernel::Signal;
+use std::path::Path;
 use verif::cosim::{CosimUnit, Twin};
 use verif::project::{Project, Unit};
 use verif::vectors::{Field, UnitVectors};

@@ -1,6 +1,8 @@
 //! The testbench: seeded stimulus, a scoreboard against golden, coverage, probes in the waveform.
 use crate::unit::{golden, SatAcc};
-use verif::{About, Coverage, Coverpoint, Ctx, Pacing, PinDriver, PinMonitor, ProbeSink, RunSpec, Scoreboard};
+use verif::{
+    About, Coverage, Coverpoint, Ctx, Pacing, PinDriver, PinMonitor, ProbeSink, RunSpec, Scoreboard,
+};
 use verif::{TbResult, Testbench};
 
 /// A transaction, the raw value of `x`, to the pins.

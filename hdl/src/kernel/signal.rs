@@ -147,7 +147,7 @@ impl Signal {
     /// Writes the first `N` bit patterns of `row` into `signals`, in order (one cycle of a
     /// stimulus row into a unit's input ports); panics if `row` is shorter or a pattern does
     /// not fit its signal. The row's length is checked once and the writes unroll, where a
-    /// `zip` over a slice of unknown length runs as a loop (a third of a small unit's cycle).
+    /// `zip` over a slice of unknown length runs as a loop (a quarter of a small unit's cycle).
     #[inline]
     #[track_caller]
     pub fn set_row<const N: usize>(signals: [&mut Signal; N], row: &[u64]) {
