@@ -148,6 +148,14 @@ impl Signal {
     /// stimulus row into a unit's input ports); panics if `row` is shorter or a pattern does
     /// not fit its signal. The row's length is checked once and the writes unroll, where a
     /// `zip` over a slice of unknown length runs as a loop (a quarter of a small unit's cycle).
+    ///
+    /// ```
+    /// use hdl::fx::Format;
+    /// use hdl::kernel::Signal;
+    /// let (mut valid, mut x) = (Signal::bit("valid_in"), Signal::new("x", Format::signed(8, 4)));
+    /// Signal::set_row([&mut valid, &mut x], &[1, 0xf8]);
+    /// assert_eq!((valid.is_high(), x.raw()), (true, -8));
+    /// ```
     #[inline]
     #[track_caller]
     pub fn set_row<const N: usize>(signals: [&mut Signal; N], row: &[u64]) {
