@@ -42,7 +42,7 @@ fn main() -> ExitCode {
         let u = project.twin(unit, "UNIT")?;
         let stim = u.stimulus(verif::Seed(0xbe7c), cycles);
         let resets = verif::cosim::reset_cycles(u);
-        let t = u.model()?.bench(&stim, resets, trace)?;
+        let t = u.model()?.bench(&stim, cycles, resets, trace)?;
         let secs = t.as_secs_f64();
         let rate = cycles as f64 / secs.max(1e-9);
         eprintln!("model-cycles: {cycles} cycles in {secs:.3} s ({rate:.0} cycles/s)");

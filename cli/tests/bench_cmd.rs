@@ -1,7 +1,8 @@
 //! `texrtl bench` as a user runs it: one small twin against Verilator in two rounds of a few
-//! thousand cycles. One row, every rate positive, every ratio its row's quotient and inside the
-//! range of its rounds, the table also in `table.md`, no trace left behind. Without Verilator
-//! the test says so and passes, unless `TEXRTL_REQUIRE_COSIM=1`.
+//! thousand cycles, replaying a ring of fewer stimulus rows. One row, every rate positive,
+//! every ratio its row's quotient and inside the range of its rounds, the table also in
+//! `table.md`, no trace left behind. Without Verilator the test says so and passes, unless
+//! `TEXRTL_REQUIRE_COSIM=1`.
 
 mod common;
 use common::dir;
@@ -44,7 +45,15 @@ fn bench_measures_a_twin_in_alternating_rounds() {
     let d = dir("bench", "rounds");
     let child = Command::new(env!("CARGO_BIN_EXE_texrtl"))
         .args(["bench", "--unit", "address_150", "--cycles", "5000"])
-        .args(["--traced-cycles", "2000", "--rounds", "2", "--out"])
+        .args([
+            "--traced-cycles",
+            "2000",
+            "--rounds",
+            "2",
+            "--stimulus-rows",
+            "700",
+        ])
+        .arg("--out")
         .arg(d.as_os_str())
         .stdout(Stdio::piped())
         .stderr(Stdio::piped())
@@ -59,9 +68,14 @@ fn bench_measures_a_twin_in_alternating_rounds() {
     assert_eq!(warned, cfg!(debug_assertions), "{err}");
     let table = String::from_utf8(o.stdout).unwrap();
     assert!(
-        table.contains("over 5000 cycles, traced over 2000"),
+        table.contains("over 5000 cycles, traced over 2000, both replaying 700 rows"),
         "{table}"
     );
+    // The stimulus file holds the 700 rows the harness replays, a 64-bit word an input.
+    let stim = std::fs::metadata(d.join("address_150/stim.bin"))
+        .unwrap()
+        .len();
+    assert!(stim > 0 && stim.is_multiple_of(700 * 8), "{stim} bytes");
     assert!(table.contains("2 rounds, each side in turn"), "{table}");
     let rows: Vec<&str> = table
         .lines()

@@ -202,6 +202,10 @@ fn bad_input_is_one_line_exit_2_and_no_output() {
             vec!["bench", "--out", o_s, "--traced-cycles", "0"],
             "--traced-cycles 0",
         ),
+        (
+            vec!["bench", "--out", o_s, "--stimulus-rows", "0"],
+            "--stimulus-rows 0: 1..=100000000",
+        ),
         (vec!["bench", "--out", o_s, "--unit", "nope"], "nope"),
         (
             vec!["bench", "--out", o_s, "--instructions", "10000001"],

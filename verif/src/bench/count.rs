@@ -81,7 +81,7 @@ impl Child<'_> {
         let resets = crate::cosim::reset_cycles(self.unit);
         self.unit
             .model()?
-            .bench(&stim[..self.cycles], resets, BenchTrace::None)
+            .bench(&stim, self.cycles, resets, BenchTrace::None)
             .map(|_| ())
     }
 }
@@ -132,7 +132,11 @@ pub fn count(unit: &dyn CosimUnit, seed: Seed, n: usize, dir: &Path) -> Result<C
     let me = std::env::current_exe().map_err(|e| format!("this program: {e}"))?;
     let twin = |cycles: usize| -> Result<u64, String> {
         let mut c = callgrind(&["--toggle-collect=main"]);
-        c.arg(exe).arg(bin).arg(cycles.to_string());
+        // The whole stimulus as rows: no cycle counted replays one.
+        c.arg(exe)
+            .arg(bin)
+            .arg(cycles.to_string())
+            .arg(total.to_string());
         // Symbols bound at load, before `main`: bound lazily, the binding's instructions fell
         // inside or outside `main` as the harness's threads happened to run.
         c.current_dir(dir).env("LD_BIND_NOW", "1");

@@ -61,14 +61,14 @@ pub fn main_cpp(unit: &dyn CosimUnit, ins: &[Port], outs: &[Port], mode: Mode) -
     );
     let _ = write!(
         s,
-        "    if (argc < {}) return 2;\n    const size_t cycles = std::strtoull(argv[2], nullptr, 10);\n    const size_t n = {};\n    std::vector<uint64_t> stim(cycles * n);\n    FILE* f = std::fopen(argv[1], \"rb\");\n    if (!f || std::fread(stim.data(), 8, stim.size(), f) != stim.size()) return 3;\n    std::fclose(f);\n    VerilatedContext ctx;\n",
-        if traced { 4 } else { 3 },
+        "    if (argc < {}) return 2;\n    const size_t cycles = std::strtoull(argv[2], nullptr, 10);\n    const size_t rows = std::strtoull(argv[3], nullptr, 10);\n    const size_t n = {};\n    if (rows == 0) return 2;\n    std::vector<uint64_t> stim(rows * n);\n    FILE* f = std::fopen(argv[1], \"rb\");\n    if (!f || std::fread(stim.data(), 8, stim.size(), f) != stim.size()) return 3;\n    std::fclose(f);\n    VerilatedContext ctx;\n",
+        if traced { 5 } else { 4 },
         ins.len()
     );
     if traced {
         let _ = write!(
             s,
-            "    ctx.traceEverOn(true);\n    V{top} top(&ctx);\n    {class} tfp;\n    top.trace(&tfp, 99);\n    tfp.open(argv[3]);\n"
+            "    ctx.traceEverOn(true);\n    V{top} top(&ctx);\n    {class} tfp;\n    top.trace(&tfp, 99);\n    tfp.open(argv[4]);\n"
         );
     } else {
         let _ = writeln!(s, "    V{top} top(&ctx);");
@@ -86,7 +86,7 @@ pub fn main_cpp(unit: &dyn CosimUnit, ins: &[Port], outs: &[Port], mode: Mode) -
     };
     let _ = write!(
         s,
-        "    uint64_t sum = 0;\n    // One pass from reset: the benchmark alternates passes of the two sides.\n    const auto t0 = std::chrono::steady_clock::now();\n    for (size_t c = 0; c < cycles; ++c) {{\n        const uint64_t* s = &stim[c * n];\n"
+        "    uint64_t sum = 0;\n    // One pass from reset: the benchmark alternates passes of the two sides.\n    // The rows in a ring, as the model replays them.\n    const uint64_t* s = stim.data();\n    const uint64_t* const end = s + rows * n;\n    const auto t0 = std::chrono::steady_clock::now();\n    for (size_t c = 0; c < cycles; ++c) {{\n"
     );
     if let Some(r) = clocking
         .as_ref()
@@ -116,6 +116,7 @@ pub fn main_cpp(unit: &dyn CosimUnit, ins: &[Port], outs: &[Port], mode: Mode) -
     for p in outs {
         let _ = writeln!(s, "        sum += top.{};", p.name);
     }
+    s += "        s += n;\n        if (s == end) s = stim.data();\n";
     let close = if traced { "    tfp.close();\n" } else { "" };
     let _ = write!(
         s,
@@ -194,17 +195,19 @@ pub fn build(unit: &dyn CosimUnit, cpp: &str, mode: Mode, dir: &Path) -> Result<
     Ok(mdir.join("bench"))
 }
 
-/// Runs a built harness on `cycles` cycles of `stim` (in `dir`, where memory images are), one
-/// pass; returns the seconds of its cycle loop.
+/// Runs a built harness on `cycles` cycles of the `rows` rows of `stim`, replayed in a ring (in
+/// `dir`, where memory images are), one pass; returns the seconds of its cycle loop.
 pub fn time(
     exe: &Path,
     stim: &Path,
     cycles: usize,
+    rows: usize,
     trace: Option<&Path>,
     dir: &Path,
 ) -> Result<f64, String> {
     let mut c = Command::new(exe);
-    c.arg(stim).arg(cycles.to_string()).current_dir(dir);
+    c.arg(stim).arg(cycles.to_string()).arg(rows.to_string());
+    c.current_dir(dir);
     if let Some(t) = trace {
         c.arg(t);
     }

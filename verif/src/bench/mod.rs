@@ -26,6 +26,11 @@ pub struct BenchConfig {
     /// Cycles of the traced runs, VCD and FST (1..=10000000, at most `cycles`; one run a
     /// round).
     pub traced_cycles: usize,
+    /// Rows of seeded stimulus (1..=100000000; at most `cycles` are drawn), which every run,
+    /// on both sides, replays in a ring: cycle `c` drives row `c % rows`. Rows that fit the
+    /// core's cache measure the two simulators; a row a cycle streamed from memory measures
+    /// the memory too, and caps the faster side (see the user guide's speed chapter).
+    pub stimulus_rows: usize,
     /// The twins to measure (empty: every one).
     pub units: Vec<String>,
     /// Folder for the harnesses, builds, stimulus and `table.md`.
@@ -44,6 +49,12 @@ pub struct BenchConfig {
 pub fn check<'p>(project: &'p Project, a: &BenchConfig) -> Result<Vec<&'p dyn CosimUnit>, String> {
     if !(1..=100_000_000).contains(&a.cycles) {
         return Err(format!("--cycles {}: 1..=100000000", a.cycles));
+    }
+    if !(1..=100_000_000).contains(&a.stimulus_rows) {
+        return Err(format!(
+            "--stimulus-rows {}: 1..=100000000",
+            a.stimulus_rows
+        ));
     }
     if !(1..=20).contains(&a.rounds) {
         return Err(format!("--rounds {}: 1..=20", a.rounds));
@@ -118,8 +129,8 @@ fn unit_dir(a: &BenchConfig, unit: &dyn CosimUnit) -> Result<PathBuf, String> {
     Ok(dir)
 }
 
-/// What both sides of a unit's measurement run: its model, `cycles` cycles of its seeded
-/// stimulus (also in the harness's file), and its twin's harness built for each mode asked.
+/// What both sides of a unit's measurement run: its model, `rows` rows of its seeded stimulus
+/// (also in the harness's file), and its twin's harness built for each mode asked.
 struct Prepared {
     model: Box<dyn crate::cosim::CosimModel>,
     stim: Vec<Vec<u64>>,
@@ -130,13 +141,13 @@ struct Prepared {
 fn prepare(
     unit: &dyn CosimUnit,
     seed: Seed,
-    cycles: usize,
+    rows: usize,
     modes: &[Mode],
     dir: &Path,
 ) -> Result<Prepared, String> {
     let model = unit.model()?;
     let (ins, outs) = model.ports();
-    let stim = unit.stimulus(seed, cycles);
+    let stim = unit.stimulus(seed, rows);
     let bin = dir.join("stim.bin");
     write_bin(&bin, &stim)?;
     let exes = modes
@@ -213,15 +224,16 @@ fn write_bin(path: &Path, stim: &[Vec<u64>]) -> Result<(), String> {
     std::fs::write(path, bytes).map_err(|e| format!("{}: {e}", path.display()))
 }
 
-/// The model's seconds for one pass over `stim`, untraced or traced (its trace for the caller
-/// to delete).
+/// The model's seconds for one pass of `cycles` cycles over `stim`, untraced or traced (its
+/// trace for the caller to delete).
 fn model_pass(
     model: &dyn crate::cosim::CosimModel,
     stim: &[Vec<u64>],
+    cycles: usize,
     resets: usize,
     trace: BenchTrace,
 ) -> Result<f64, String> {
-    let timed = crate::testbench::unpanicked_sim(|| model.bench(stim, resets, trace));
+    let timed = crate::testbench::unpanicked_sim(|| model.bench(stim, cycles, resets, trace));
     let timed = timed.map_err(|(cycle, said)| match cycle {
         Some(c) => format!("{}{c}: {said}", crate::cosim::MODEL_PANICKED),
         None => format!("the model panicked: {said}"),
@@ -238,7 +250,13 @@ fn measure(a: &BenchConfig, unit: &dyn CosimUnit) -> Result<Row, String> {
         stim,
         bin,
         exes,
-    } = prepare(unit, a.seed, a.cycles, &Mode::ALL, &dir)?;
+    } = prepare(
+        unit,
+        a.seed,
+        a.stimulus_rows.min(a.cycles),
+        &Mode::ALL,
+        &dir,
+    )?;
     let tdir = trace_dir(name, &dir)?;
     let counts = [a.cycles, a.traced_cycles, a.traced_cycles];
     let run = Run {
@@ -265,8 +283,8 @@ fn measure(a: &BenchConfig, unit: &dyn CosimUnit) -> Result<Row, String> {
     ))
 }
 
-/// What one unit's rounds run: its model and stimulus, the twin's three builds, and where the
-/// stimulus, the memory images and the traces are.
+/// What one unit's rounds run: its model and stimulus (its rows, replayed in a ring), the
+/// twin's three builds, and where the stimulus, the memory images and the traces are.
 struct Run<'a> {
     model: &'a dyn crate::cosim::CosimModel,
     stim: &'a [Vec<u64>],
@@ -296,10 +314,11 @@ impl Run<'_> {
                 _ => BenchTrace::Vcd(&ours),
             };
             let n = self.counts[k];
-            let model = model_pass(self.model, &self.stim[..n], self.resets, trace);
+            let model = model_pass(self.model, self.stim, n, self.resets, trace);
             let _ = std::fs::remove_file(&ours);
             secs[k].0 = model?;
-            let twin = harness::time(&self.exes[k], self.bin, n, Some(&theirs), self.dir);
+            let rows = self.stim.len();
+            let twin = harness::time(&self.exes[k], self.bin, n, rows, Some(&theirs), self.dir);
             let _ = std::fs::remove_file(&theirs);
             secs[k].1 = twin?;
         }
@@ -316,8 +335,8 @@ impl Run<'_> {
         let (mut best, mut total) = ((f64::MAX, f64::MAX), (0.0, 0.0));
         let mut passes = 0;
         while !harness::enough(passes, f64::min(total.0, total.1)) {
-            let m = model_pass(self.model, &self.stim[..n], self.resets, BenchTrace::None)?;
-            let t = harness::time(&self.exes[0], self.bin, n, None, self.dir)?;
+            let m = model_pass(self.model, self.stim, n, self.resets, BenchTrace::None)?;
+            let t = harness::time(&self.exes[0], self.bin, n, self.stim.len(), None, self.dir)?;
             best = (best.0.min(m), best.1.min(t));
             total = (total.0 + m, total.1 + t);
             passes += 1;
@@ -366,8 +385,8 @@ fn table(a: &BenchConfig, rows: &[Row]) -> String {
         )
     };
     let mut s = format!(
-        "Cycles/s: untraced over {} cycles, traced over {} (seed {}); {rounds}; ratio = model / Verilator.\n\n",
-        a.cycles, a.traced_cycles, a.seed
+        "Cycles/s: untraced over {} cycles, traced over {}, both replaying {} rows of stimulus (seed {}); {rounds}; ratio = model / Verilator.\n\n",
+        a.cycles, a.traced_cycles, a.stimulus_rows.min(a.cycles), a.seed
     );
     s += "| unit | model | Verilator -O3 | ratio | model VCD | Verilator --trace | ratio | model FST | Verilator --trace-fst | ratio |\n";
     s += "|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|\n";
@@ -401,12 +420,14 @@ mod tests {
         std::fs::create_dir_all(&dir).unwrap();
         let vcd = dir.join("model.vcd");
         for trace in [BenchTrace::None, BenchTrace::Vcd(&vcd)] {
-            let e = model_pass(model.as_ref(), &stim, 1, trace).unwrap_err();
+            let e = model_pass(model.as_ref(), &stim, 5, 1, trace).unwrap_err();
             let want =
                 "the model panicked in cycle 3: signal 'y' (u3, 3 bits): bits 0x8 does not fit";
             assert_eq!(e, want);
         }
-        assert!(model_pass(model.as_ref(), &stim[..3], 1, BenchTrace::None).is_ok());
+        assert!(model_pass(model.as_ref(), &stim[..3], 3, 1, BenchTrace::None).is_ok());
+        // Replayed in a ring, the good rows run as long as asked.
+        assert!(model_pass(model.as_ref(), &stim[..3], 100, 1, BenchTrace::None).is_ok());
         std::fs::remove_dir_all(&dir).unwrap();
     }
 

@@ -15,6 +15,8 @@ pub struct BenchArgs {
     pub cycles: usize,
     /// Cycles of the traced runs, VCD and FST.
     pub traced_cycles: usize,
+    /// Rows of stimulus, replayed in a ring.
+    pub stimulus_rows: usize,
     /// Units to measure (default every twin).
     pub unit: Vec<String>,
     /// Folder for the harnesses, builds, stimulus and table.md.
@@ -34,6 +36,7 @@ impl BenchArgs {
         c.args([
             value("cycles", "CYCLES", value_parser!(usize), "Cycles of the untraced runs (1..=100000000; in each round the two sides' passes take turns, at least three each, more until each side's take a quarter second, and each side's fastest counts)").default_value("1000000"),
             value("traced-cycles", "TRACED_CYCLES", value_parser!(usize), "Cycles of the traced runs, VCD and FST (1..=10000000; one run a round)").default_value("1000000"),
+            value("stimulus-rows", "ROWS", value_parser!(usize), "Rows of seeded stimulus (1..=100000000; at most CYCLES are drawn) that both sides replay in a ring, cycle c driving row c % ROWS: rows in the core's cache time the simulators, a row a cycle streamed from memory times the memory too").default_value("16384"),
             value("rounds", "ROUNDS", value_parser!(usize), "Rounds (1..=20), each measuring every mode on both sides in turn; a unit's row is its round with the median ratio, the range of the ratios beside it").default_value("3"),
             values("unit", "UNIT", value_parser!(String), "Units to measure (repeatable; default every twin)"),
             path("out", "OUT", "Folder for the harnesses, builds, stimulus and table.md (default target/NAME-bench; traces go to /dev/shm when there is one, and are deleted)"),
@@ -46,6 +49,7 @@ impl BenchArgs {
         BenchArgs {
             cycles: given(m, "cycles"),
             traced_cycles: given(m, "traced-cycles"),
+            stimulus_rows: given(m, "stimulus-rows"),
             unit: all(m, "unit"),
             out: one(m, "out"),
             seed: given(m, "seed"),
@@ -68,6 +72,7 @@ pub fn run(project: &Project, a: &BenchArgs) -> Result<String, CmdError> {
     let cfg = BenchConfig {
         cycles: a.cycles,
         traced_cycles: a.traced_cycles,
+        stimulus_rows: a.stimulus_rows,
         units: a.unit.clone(),
         out: a
             .out

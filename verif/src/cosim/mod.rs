@@ -84,13 +84,15 @@ pub trait CosimModel {
     ) -> Option<ModelInternals> {
         None
     }
-    /// A benchmark run of the design as built (not as [`CosimModel::cycle`] left it): `stim`
-    /// driven cycle by cycle (the first `resets` in reset), no schedule check, no output read;
-    /// untraced, or traced (every signal, no `real` companions). Returns the time of the cycle
-    /// loop with the trace's final flush.
+    /// A benchmark run of the design as built (not as [`CosimModel::cycle`] left it):
+    /// `cycles` cycles of `stim`'s rows replayed as a ring (cycle `c` drives row
+    /// `c % stim.len()`; the first `resets` cycles in reset), no schedule check, no output
+    /// read; untraced, or traced (every signal, no `real` companions). Returns the time of the
+    /// cycle loop with the trace's final flush.
     fn bench(
         &self,
         stim: &[Vec<u64>],
+        cycles: usize,
         resets: usize,
         trace: BenchTrace,
     ) -> Result<std::time::Duration, String>;
@@ -107,40 +109,62 @@ pub enum BenchTrace<'a> {
     Fst(&'a Path),
 }
 
+/// What a benchmark run replays: `rows` of `n` inputs each, in one contiguous array (as the
+/// Verilator side reads them: no pointer a cycle), over `cycles` cycles.
+struct Replay<'a> {
+    flat: &'a [u64],
+    n: usize,
+    cycles: usize,
+    resets: usize,
+}
+
 /// The cycle loop of a benchmark run; its time, the trace finished.
 fn bench_loop<M: Module, T: hdl::kernel::Trace, D: Fn(&mut M, &[u64])>(
     mut sim: Sim<M, T>,
     stim: &[Vec<u64>],
+    cycles: usize,
     resets: usize,
     drive: &D,
 ) -> std::io::Result<std::time::Duration> {
-    // One contiguous array, as the Verilator side replays it: no pointer per cycle.
+    assert!(
+        !stim.is_empty() || cycles == 0,
+        "cycles to run and no stimulus"
+    );
     let n = stim.first().map_or(0, Vec::len);
     let flat: Vec<u64> = stim.iter().flatten().copied().collect();
     assert_eq!(flat.len(), n * stim.len(), "every cycle drives every input");
+    let replay = Replay {
+        flat: &flat,
+        n,
+        cycles,
+        resets,
+    };
     let t0 = std::time::Instant::now();
-    cycle_loop(&mut sim, &flat, stim.len(), resets, drive);
+    cycle_loop(&mut sim, &replay, drive);
     sim.finish()?;
     Ok(t0.elapsed())
 }
 
-/// The timed cycles of a benchmark run, `n` inputs a cycle from `flat`: a function of its own,
+/// The timed cycles of a benchmark run, the replay's rows in a ring: a function of its own,
 /// never inlined, so that callgrind counts the cycles alone
 /// (`--toggle-collect='*cosim::cycle_loop*'`), not the stimulus copy before them.
 #[inline(never)]
 fn cycle_loop<M: Module, T: hdl::kernel::Trace, D: Fn(&mut M, &[u64])>(
     sim: &mut Sim<M, T>,
-    flat: &[u64],
-    cycles: usize,
-    resets: usize,
+    r: &Replay,
     drive: &D,
 ) {
-    let n = flat.len() / cycles.max(1);
-    for c in 0..cycles {
-        sim.set_reset(c < resets);
-        drive(&mut sim.dut, &flat[c * n..(c + 1) * n]);
+    let mut at = 0;
+    for c in 0..r.cycles {
+        sim.set_reset(c < r.resets);
+        drive(&mut sim.dut, &r.flat[at..at + r.n]);
         sim.eval();
         sim.tick();
+        // The next row, or the first after the last (a compare, as the harness's).
+        at += r.n;
+        if at == r.flat.len() {
+            at = 0;
+        }
     }
 }
 
@@ -273,6 +297,7 @@ impl<M: Module + Clone, D: Fn(&mut M, &[u64])> CosimModel for ModelSim<M, D> {
     fn bench(
         &self,
         stim: &[Vec<u64>],
+        cycles: usize,
         resets: usize,
         trace: BenchTrace,
     ) -> Result<std::time::Duration, String> {
@@ -282,16 +307,16 @@ impl<M: Module + Clone, D: Fn(&mut M, &[u64])> CosimModel for ModelSim<M, D> {
             ..Default::default()
         };
         let r = match trace {
-            BenchTrace::None => bench_loop(Sim::new(dut), stim, resets, &self.drive),
+            BenchTrace::None => bench_loop(Sim::new(dut), stim, cycles, resets, &self.drive),
             BenchTrace::Vcd(p) => {
                 let title = format!("{} benchmark", self.pristine.kind());
                 waves::VcdTracer::create(p, &title, cfg)
                     .and_then(|t| Sim::traced(dut, t))
-                    .and_then(|s| bench_loop(s, stim, resets, &self.drive))
+                    .and_then(|s| bench_loop(s, stim, cycles, resets, &self.drive))
             }
             BenchTrace::Fst(p) => waves::FstTracer::create(p, cfg)
                 .and_then(|t| Sim::traced(dut, t))
-                .and_then(|s| bench_loop(s, stim, resets, &self.drive)),
+                .and_then(|s| bench_loop(s, stim, cycles, resets, &self.drive)),
         };
         r.map_err(|e| e.to_string())
     }
