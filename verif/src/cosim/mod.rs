@@ -109,15 +109,6 @@ pub enum BenchTrace<'a> {
     Fst(&'a Path),
 }
 
-/// What a benchmark run replays: `rows` of `n` inputs each, in one contiguous array (as the
-/// Verilator side reads them: no pointer a cycle), over `cycles` cycles.
-struct Replay<'a> {
-    flat: &'a [u64],
-    n: usize,
-    cycles: usize,
-    resets: usize,
-}
-
 /// The cycle loop of a benchmark run; its time, the trace finished.
 fn bench_loop<M: Module, T: hdl::kernel::Trace, D: Fn(&mut M, &[u64])>(
     mut sim: Sim<M, T>,
@@ -133,39 +124,54 @@ fn bench_loop<M: Module, T: hdl::kernel::Trace, D: Fn(&mut M, &[u64])>(
     let n = stim.first().map_or(0, Vec::len);
     let flat: Vec<u64> = stim.iter().flatten().copied().collect();
     assert_eq!(flat.len(), n * stim.len(), "every cycle drives every input");
-    let replay = Replay {
-        flat: &flat,
-        n,
-        cycles,
-        resets,
-    };
     let t0 = std::time::Instant::now();
-    cycle_loop(&mut sim, &replay, drive);
+    cycle_loop(&mut sim, (&flat, n), cycles, resets, drive);
     sim.finish()?;
     Ok(t0.elapsed())
 }
 
-/// The timed cycles of a benchmark run, the replay's rows in a ring: a function of its own,
-/// never inlined, so that callgrind counts the cycles alone
-/// (`--toggle-collect='*cosim::cycle_loop*'`), not the stimulus copy before them.
+/// The timed cycles of a benchmark run: the rows of `n` inputs in `flat` (one contiguous
+/// array, as the Verilator side reads them) replayed in a ring. A function of its own, never
+/// inlined, so that callgrind counts the cycles alone (`--toggle-collect='*cosim::cycle_loop*'`),
+/// not the stimulus copy before them.
 #[inline(never)]
 fn cycle_loop<M: Module, T: hdl::kernel::Trace, D: Fn(&mut M, &[u64])>(
     sim: &mut Sim<M, T>,
-    r: &Replay,
+    (flat, n): (&[u64], usize),
+    cycles: usize,
+    resets: usize,
     drive: &D,
 ) {
-    let mut at = 0;
-    for c in 0..r.cycles {
-        sim.set_reset(c < r.resets);
-        drive(&mut sim.dut, &r.flat[at..at + r.n]);
-        sim.eval();
-        sim.tick();
-        // The next row, or the first after the last (a compare, as the harness's).
-        at += r.n;
-        if at == r.flat.len() {
-            at = 0;
+    if n == 0 {
+        // No inputs: every row is the empty one.
+        for c in 0..cycles {
+            step(sim, c < resets, &[], drive);
+        }
+        return;
+    }
+    // Passes over the rows (the last over as many as the cycles left need): a row is a chunk
+    // of the array, with no index to check.
+    let mut c = 0;
+    while c < cycles {
+        for row in flat.chunks_exact(n).take(cycles - c) {
+            step(sim, c < resets, row, drive);
+            c += 1;
         }
     }
+}
+
+/// One cycle of a benchmark run: `row` driven, the design evaluated, its clock edge.
+#[inline(always)]
+fn step<M: Module, T: hdl::kernel::Trace, D: Fn(&mut M, &[u64])>(
+    sim: &mut Sim<M, T>,
+    reset: bool,
+    row: &[u64],
+    drive: &D,
+) {
+    sim.set_reset(reset);
+    drive(&mut sim.dut, row);
+    sim.eval();
+    sim.tick();
 }
 
 /// A co-simulation model of a [`Module`] whose inputs `drive` sets from raw bits (a
