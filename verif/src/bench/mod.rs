@@ -431,6 +431,56 @@ mod tests {
         std::fs::remove_dir_all(&dir).unwrap();
     }
 
+    /// Adds one and its inputs into a 6-bit register each cycle: the cycle whose sum does not
+    /// fit says how many rows, in which order, the run drove.
+    #[derive(Clone, hdl::kernel::Module)]
+    #[module(kind = "count")]
+    struct Count {
+        #[input]
+        xs: Vec<hdl::kernel::Signal>,
+        #[reg]
+        acc: hdl::kernel::Reg,
+    }
+
+    impl Count {
+        fn eval(&mut self) {
+            let sum = self.xs.iter().map(|x| x.bits()).sum::<u64>();
+            self.acc.set_next_bits(self.acc.q().bits() + 1 + sum);
+        }
+    }
+
+    /// The rows replayed in a ring, in order: rows 2, 0, 0 add 3, 1, 1, so the sum reaches 64
+    /// in cycle 37 (in order backwards, in cycle 38; three rows alone stop at cycle 2); with no
+    /// inputs, every row the empty one, in cycle 63.
+    #[test]
+    fn the_model_replays_its_rows_in_a_ring() {
+        use hdl::fx::Format;
+        use hdl::kernel::{Reg, Signal};
+        let cases = [
+            (1, vec![vec![2], vec![0], vec![0]], 37),
+            (0, vec![vec![]; 5], 63),
+        ];
+        for (inputs, rows, panics) in cases {
+            let dut = Count {
+                xs: (0..inputs)
+                    .map(|_| Signal::new("x", Format::uint(2)))
+                    .collect(),
+                acc: Reg::new("acc", Format::uint(6)),
+            };
+            let drive = |d: &mut Count, v: &[u64]| {
+                for (x, b) in d.xs.iter_mut().zip(v) {
+                    x.set_bits(*b);
+                }
+            };
+            let model = crate::cosim::ModelSim::new(dut, drive);
+            let at = |cycles| model_pass(&model, &rows, cycles, 0, BenchTrace::None);
+            assert!(at(panics).is_ok());
+            let e = at(panics + 1).unwrap_err();
+            let want = format!("{}{panics}:", crate::cosim::MODEL_PANICKED);
+            assert!(e.starts_with(&want), "{e}");
+        }
+    }
+
     /// A row is the round with the median ratio, both sides' rates from that round; the
     /// range is the lowest and highest ratio; an even count takes the lower middle.
     #[test]
