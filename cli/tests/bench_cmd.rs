@@ -43,6 +43,30 @@ fn bench_measures_a_twin_in_alternating_rounds() {
         return;
     }
     let d = dir("bench", "rounds");
+    let cache = d.join("cache");
+    let (o, pid) = bench(&d.join("first"), &cache);
+    let err = String::from_utf8_lossy(&o.stderr);
+    assert_eq!(o.status.code(), Some(0), "{err}");
+    assert!(
+        err.contains("address_150: harnesses built 3, kept 0"),
+        "{err}"
+    );
+    check_table(o, pid, &d.join("first"));
+    // A second run builds nothing: its three harnesses are the first run's, kept.
+    let (o, pid) = bench(&d.join("second"), &cache);
+    let err = String::from_utf8_lossy(&o.stderr);
+    assert_eq!(o.status.code(), Some(0), "{err}");
+    assert!(
+        err.contains("address_150: harnesses built 0, kept 3"),
+        "{err}"
+    );
+    assert!(!d.join("second/address_150/obj_untraced").exists());
+    check_table(o, pid, &d.join("second"));
+}
+
+/// `texrtl bench` of address unit 150 into `out`, with the simulator cache `cache`: its output
+/// and process id.
+fn bench(out: &Path, cache: &Path) -> (std::process::Output, u32) {
     let child = Command::new(env!("CARGO_BIN_EXE_texrtl"))
         .args(["bench", "--unit", "address_150", "--cycles", "5000"])
         .args([
@@ -54,15 +78,19 @@ fn bench_measures_a_twin_in_alternating_rounds() {
             "700",
         ])
         .arg("--out")
-        .arg(d.as_os_str())
+        .arg(out)
+        .env("TEXRTL_SIM_CACHE", cache)
         .stdout(Stdio::piped())
         .stderr(Stdio::piped())
         .spawn()
         .unwrap();
     let pid = child.id();
-    let o = child.wait_with_output().unwrap();
+    (child.wait_with_output().unwrap(), pid)
+}
+
+/// The table of a bench run `o` (process `pid`) into `d`, and what it leaves behind.
+fn check_table(o: std::process::Output, pid: u32, d: &Path) {
     let err = String::from_utf8_lossy(&o.stderr);
-    assert_eq!(o.status.code(), Some(0), "{err}");
     // This test's program is built as the test is: a debug build says so.
     let warned = err.contains("texrtl: warning: a debug build (debug assertions on)");
     assert_eq!(warned, cfg!(debug_assertions), "{err}");

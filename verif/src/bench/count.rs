@@ -127,7 +127,8 @@ pub struct Counted {
 /// `dir`.
 pub fn count(unit: &dyn CosimUnit, seed: Seed, n: usize, dir: &Path) -> Result<Counted, String> {
     let total = WARM + n;
-    let built = super::prepare(unit, seed, total, &[Mode::Untraced], dir)?;
+    let exes = super::harnesses(unit, &[Mode::Untraced], dir)?;
+    let built = super::prepare(unit, seed, total, exes, dir)?;
     let (exe, bin) = (&built.exes[0], &built.bin);
     let me = std::env::current_exe().map_err(|e| format!("this program: {e}"))?;
     let twin = |cycles: usize| -> Result<u64, String> {

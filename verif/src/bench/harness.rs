@@ -142,57 +142,101 @@ fn run(cmd: &mut Command, what: &str) -> Result<String, String> {
     ))
 }
 
-/// Builds the twin of `unit` with the harness for `mode` in `dir`; returns the executable.
-pub fn build(unit: &dyn CosimUnit, cpp: &str, mode: Mode, dir: &Path) -> Result<PathBuf, String> {
+/// Verilator's options for a harness in `mode`, but for the files and folders.
+fn options(unit: &dyn CosimUnit, mode: Mode) -> Vec<String> {
+    let fixed = [
+        "--cc",
+        "--exe",
+        "--build",
+        "-j",
+        "2",
+        "-O3",
+        "--x-assign",
+        "fast",
+    ];
+    let more = [
+        "--x-initial",
+        "fast",
+        "--noassert",
+        "-Wno-fatal",
+        "-Wno-lint",
+        "-Wno-style",
+    ];
+    // The C++ at -O3 too (Verilator's makefile defaults to -Os, half the speed here).
+    let cpp = ["-MAKEFLAGS", "OPT_FAST=-O3", "-MAKEFLAGS", "OPT_GLOBAL=-O3"];
+    let trace = match mode {
+        Mode::Untraced => None,
+        Mode::Vcd => Some("--trace"),
+        Mode::Fst => Some("--trace-fst"),
+    };
+    let top = ["--top-module", unit.top(), "-o", "bench"];
+    let params = unit
+        .parameters()
+        .into_iter()
+        .map(|(k, v)| format!("-G{k}={v}"));
+    (fixed
+        .iter()
+        .chain(&more)
+        .chain(&cpp)
+        .chain(&trace)
+        .chain(&top))
+    .map(|s| s.to_string())
+    .chain(params)
+    .collect()
+}
+
+/// A harness ready to time: its executable, and whether it was kept from an earlier build.
+pub struct Harness {
+    pub exe: PathBuf,
+    pub kept: bool,
+}
+
+/// Builds the twin of `unit` with the harness for `mode` in `dir`, or takes the build kept in
+/// the simulator cache ([`crate::cosim::cache`]) under the same key: Verilator's and the C++
+/// compiler's versions, the options, the harness's text and everything the sources are made of
+/// ([`crate::cosim::made_of`]). The stimulus, the cycle count and the memory images are read
+/// when the harness runs, so they are not part of it.
+pub fn build(unit: &dyn CosimUnit, cpp: &str, mode: Mode, dir: &Path) -> Result<Harness, String> {
     // Run in `dir`, as a co-simulation's build runs in its run's folder (Verilator looks for
     // modules in its current folder too).
     let dir = &std::path::absolute(dir).map_err(|e| format!("{}: {e}", dir.display()))?;
     let main = dir.join(format!("main_{}.cpp", mode.name()));
     std::fs::write(&main, cpp).map_err(|e| format!("{}: {e}", main.display()))?;
+    let build = crate::cosim::Build::of(unit, &[])?;
+    let options = options(unit, mode);
+    let (inputs, made_of) =
+        crate::cosim::made_of(Verilator, &build.sources, &build.pre, &build.library)?;
+    let what = format!("bench-verilator {} {inputs}", options.join(" "));
+    let root = crate::cosim::cache::root();
+    let key = root
+        .as_deref()
+        .zip(crate::cosim::cache::key(&what, cpp, &made_of));
+    let kept_exe = dir.join(format!("kept-bench-{}", mode.name()));
+    if key
+        .as_ref()
+        .is_some_and(|(root, k)| crate::cosim::cache::take(root, k, "bench", &kept_exe, true))
+    {
+        return Ok(Harness {
+            exe: kept_exe,
+            kept: true,
+        });
+    }
     let mdir = dir.join(format!("obj_{}", mode.name()));
     let mut c = Command::new("verilator");
     c.current_dir(dir)
-        .args([
-            "--cc",
-            "--exe",
-            "--build",
-            "-j",
-            "2",
-            "-O3",
-            "--x-assign",
-            "fast",
-        ])
-        .args([
-            "--x-initial",
-            "fast",
-            "--noassert",
-            "-Wno-fatal",
-            "-Wno-lint",
-            "-Wno-style",
-        ])
-        // The C++ at -O3 too (Verilator's makefile defaults to -Os, half the speed here).
-        .args(["-MAKEFLAGS", "OPT_FAST=-O3", "-MAKEFLAGS", "OPT_GLOBAL=-O3"]);
-    match mode {
-        Mode::Untraced => {}
-        Mode::Vcd => {
-            c.arg("--trace");
-        }
-        Mode::Fst => {
-            c.arg("--trace-fst");
-        }
-    }
-    c.args(["--top-module", unit.top(), "-o", "bench", "--Mdir"])
-        .arg(&mdir);
-    for (k, v) in unit.parameters() {
-        c.arg(format!("-G{k}={v}"));
-    }
-    c.arg(&main);
-    let build = crate::cosim::Build::of(unit, &[])?;
+        .args(&options)
+        .arg("--Mdir")
+        .arg(&mdir)
+        .arg(&main);
     c.args(build.pre.flags())
         .args(build.library.flags(Verilator, &build.pre.include_dirs))
         .args(&build.sources);
     run(&mut c, "verilator")?;
-    Ok(mdir.join("bench"))
+    let exe = mdir.join("bench");
+    if let Some((root, k)) = &key {
+        crate::cosim::cache::store(root, k, &exe);
+    }
+    Ok(Harness { exe, kept: false })
 }
 
 /// Runs a built harness on `cycles` cycles of the `rows` rows of `stim`, replayed in a ring (in

@@ -92,9 +92,16 @@ pub fn measure_all(a: &BenchConfig, units: &[&dyn CosimUnit]) -> Result<String, 
     if let Some(n) = a.instructions {
         return count_all(a, n, units);
     }
-    let mut rows = Vec::new();
+    // Every twin's harnesses first, so that no build runs between two units' rounds (and a
+    // build that fails does so before the timing starts).
+    let mut built = Vec::with_capacity(units.len());
     for u in units {
-        let r = measure(a, *u)?;
+        let dir = unit_dir(a, *u)?;
+        built.push(harnesses(*u, &Mode::ALL, &dir).map_err(|e| format!("{}: {e}", u.name()))?);
+    }
+    let mut rows = Vec::new();
+    for (u, exes) in units.iter().zip(built) {
+        let r = measure(a, *u, exes)?;
         eprintln!("{}", line(&r));
         rows.push(r);
     }
@@ -130,7 +137,7 @@ fn unit_dir(a: &BenchConfig, unit: &dyn CosimUnit) -> Result<PathBuf, String> {
 }
 
 /// What both sides of a unit's measurement run: its model, `rows` rows of its seeded stimulus
-/// (also in the harness's file), and its twin's harness built for each mode asked.
+/// (also in the harness's file), and its twin's harness for each mode asked.
 struct Prepared {
     model: Box<dyn crate::cosim::CosimModel>,
     stim: Vec<Vec<u64>>,
@@ -138,25 +145,38 @@ struct Prepared {
     exes: Vec<PathBuf>,
 }
 
+/// The twin's harness of `unit` for each of `modes`, built in `dir` or kept from an earlier
+/// build ([`harness::build`]); says on stderr how many of each.
+fn harnesses(unit: &dyn CosimUnit, modes: &[Mode], dir: &Path) -> Result<Vec<PathBuf>, String> {
+    let model = unit.model()?;
+    let (ins, outs) = model.ports();
+    let mut exes = Vec::with_capacity(modes.len());
+    let mut kept = 0;
+    for &mode in modes {
+        let cpp = harness::main_cpp(unit, &ins, &outs, mode);
+        let h = harness::build(unit, &cpp, mode, dir)?;
+        kept += usize::from(h.kept);
+        exes.push(h.exe);
+    }
+    eprintln!(
+        "{}: harnesses built {}, kept {kept}",
+        unit.name(),
+        exes.len() - kept
+    );
+    Ok(exes)
+}
+
 fn prepare(
     unit: &dyn CosimUnit,
     seed: Seed,
     rows: usize,
-    modes: &[Mode],
+    exes: Vec<PathBuf>,
     dir: &Path,
 ) -> Result<Prepared, String> {
     let model = unit.model()?;
-    let (ins, outs) = model.ports();
     let stim = unit.stimulus(seed, rows);
     let bin = dir.join("stim.bin");
     write_bin(&bin, &stim)?;
-    let exes = modes
-        .iter()
-        .map(|&mode| {
-            let cpp = harness::main_cpp(unit, &ins, &outs, mode);
-            harness::build(unit, &cpp, mode, dir)
-        })
-        .collect::<Result<_, _>>()?;
     Ok(Prepared {
         model,
         stim,
@@ -241,22 +261,18 @@ fn model_pass(
     Ok(timed?.as_secs_f64())
 }
 
-fn measure(a: &BenchConfig, unit: &dyn CosimUnit) -> Result<Row, String> {
+/// One unit's rounds, with its twin's harnesses `exes` (one for each of [`Mode::ALL`]).
+fn measure(a: &BenchConfig, unit: &dyn CosimUnit, exes: Vec<PathBuf>) -> Result<Row, String> {
     let name = unit.name();
     let resets = crate::cosim::reset_cycles(unit);
     let dir = unit_dir(a, unit)?;
+    let rows = a.stimulus_rows.min(a.cycles);
     let Prepared {
         model,
         stim,
         bin,
         exes,
-    } = prepare(
-        unit,
-        a.seed,
-        a.stimulus_rows.min(a.cycles),
-        &Mode::ALL,
-        &dir,
-    )?;
+    } = prepare(unit, a.seed, rows, exes, &dir)?;
     let tdir = trace_dir(name, &dir)?;
     let counts = [a.cycles, a.traced_cycles, a.traced_cycles];
     let run = Run {

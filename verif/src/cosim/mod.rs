@@ -26,6 +26,7 @@ mod filelist;
 mod internals;
 mod library;
 mod rtl;
+pub(crate) use rtl::made_of;
 mod twin;
 mod verilator;
 

@@ -369,13 +369,8 @@ fn keys(sim: Simulator, r: &RtlRun) -> Result<Keys, String> {
         }
         Simulator::Icarus => "iverilog -g2012".to_string(),
     };
-    let flags = [r.pre.flags(), r.library.flags(sim, &r.pre.include_dirs)].concat();
-    // The module files the simulator may take from a folder: where, how long, when changed.
-    let listing = r.library.listing(&r.pre.include_dirs)?;
-    let what = format!("{what} {}\n{listing}", flags.join(" "));
-    // The library files and the files all these include are part of what a build is made of.
-    let read = [r.sources, &r.library.files].concat();
-    let made_of = [&read[..], &included(&read, &r.pre.include_dirs)].concat();
+    let (inputs, made_of) = made_of(sim, r.sources, &r.pre, r.library)?;
+    let what = format!("{what} {inputs}");
     let build = cache::key(&what, &text, &made_of);
     let random_init = match sim {
         Simulator::Verilator => format!(" {RANDOM_INIT}"),
@@ -394,6 +389,24 @@ fn keys(sim: Simulator, r: &RtlRun) -> Result<Keys, String> {
         run,
         init_seed: init_seed(seeded.as_deref()),
     })
+}
+
+/// What a build of `sources` by `sim` with `pre` and `library` is made of, for its cache key:
+/// the flags they give the simulator and a line for each module file the library's folders
+/// offer (where, how long, when changed), and every file the build may read (the sources, the
+/// library's files and the files all these include). The co-simulation's builds and the speed
+/// bench's harnesses are keyed by it.
+pub(crate) fn made_of(
+    sim: Simulator,
+    sources: &[PathBuf],
+    pre: &super::Preprocessor,
+    library: &super::Library,
+) -> Result<(String, Vec<PathBuf>), String> {
+    let flags = [pre.flags(), library.flags(sim, &pre.include_dirs)].concat();
+    let listing = library.listing(&pre.include_dirs)?;
+    let read = [sources, &library.files].concat();
+    let files = [&read[..], &included(&read, &pre.include_dirs)].concat();
+    Ok((format!("{}\n{listing}", flags.join(" ")), files))
 }
 
 /// Verilator's seed for the random values of what is not reset, from `key`: a run repeats
