@@ -223,9 +223,6 @@ fn narrowings(dut: &NormalPipeline) -> Vec<verif::numeric::NarrowRow> {
     }
 }
 
-/// The coverage model: border mode x variant, blend factors at 0 / interior / max, samples
-/// in edge cells, and height extremes (the 3x3 neighbourhood holds the lowest and/or highest
-/// texel value of the format).
 /// The speed benchmarks' stimulus: `cycles` cycles of the default pipeline (16 x 16 texels),
 /// `u` and `v` stepping through every texel at two strides, a valid sample and a unit scale
 /// every cycle; the sum of the `nz` outputs (so that nothing is optimised away).
@@ -243,6 +240,9 @@ pub fn bench_cycles<T: Trace>(sim: &mut Sim<NormalPipeline, T>, cycles: u64) -> 
     acc
 }
 
+/// The coverage model: border mode x variant, blend factors at 0 / interior / max, samples
+/// in edge cells, and height extremes (the 3x3 neighbourhood holds the lowest and/or highest
+/// texel value of the format).
 pub fn coverage_model() -> Coverage {
     let mut c = Coverage::new();
     let b = c.add(Coverpoint::new("border").values(&["wrap", "clamp", "mirror", "constant"]));
