@@ -39,7 +39,7 @@ impl BenchArgs {
             value("stimulus-rows", "ROWS", value_parser!(usize), "Rows of seeded stimulus (1..=100000000; at most CYCLES are drawn) that both sides replay in a ring, cycle c driving row c % ROWS: rows in the core's cache time the simulators, a row a cycle streamed from memory times the memory too").default_value("16384"),
             value("rounds", "ROUNDS", value_parser!(usize), "Rounds (1..=20), each measuring every mode on both sides in turn; a unit's row is its round with the median ratio, the range of the ratios beside it").default_value("3"),
             values("unit", "UNIT", value_parser!(String), "Units to measure (repeatable; default every twin)"),
-            path("out", "OUT", "Folder for the harnesses, builds, stimulus and table.md (default target/NAME-bench; traces go to /dev/shm when there is one, and are deleted)"),
+            path("out", "OUT", "Folder for the harnesses, builds, stimulus and table.md (default target/NAME-bench; traces go to /dev/shm when there is one, and are deleted). Every harness is built before any unit is timed, and kept in the simulator cache (TEXRTL_SIM_CACHE; off: build every time)"),
             value("seed", "SEED", Seed::parse, "Stimulus seed").default_value("0xbe7c"),
             value("instructions", "CYCLES", value_parser!(usize), "Count instead of timing: instructions a cycle of each side, untraced, over CYCLES cycles after the first 1000 (1..=10000000; default 10000), under callgrind (needs valgrind; a count, which a busy machine does not move; the model's side runs this program again). The table also in instructions.md").num_args(0..=1).default_missing_value("10000"),
         ])
