@@ -197,6 +197,18 @@ pub struct Harness {
 /// ([`crate::cosim::made_of`]). The stimulus, the cycle count and the memory images are read
 /// when the harness runs, so they are not part of it.
 pub fn build(unit: &dyn CosimUnit, cpp: &str, mode: Mode, dir: &Path) -> Result<Harness, String> {
+    let root = crate::cosim::cache::root();
+    build_in(root.as_deref(), unit, cpp, mode, dir)
+}
+
+/// [`build`] with the cache in `root` (`None`: none).
+fn build_in(
+    root: Option<&Path>,
+    unit: &dyn CosimUnit,
+    cpp: &str,
+    mode: Mode,
+    dir: &Path,
+) -> Result<Harness, String> {
     // Run in `dir`, as a co-simulation's build runs in its run's folder (Verilator looks for
     // modules in its current folder too).
     let dir = &std::path::absolute(dir).map_err(|e| format!("{}: {e}", dir.display()))?;
@@ -207,10 +219,7 @@ pub fn build(unit: &dyn CosimUnit, cpp: &str, mode: Mode, dir: &Path) -> Result<
     let (inputs, made_of) =
         crate::cosim::made_of(Verilator, &build.sources, &build.pre, &build.library)?;
     let what = format!("bench-verilator {} {inputs}", options.join(" "));
-    let root = crate::cosim::cache::root();
-    let key = root
-        .as_deref()
-        .zip(crate::cosim::cache::key(&what, cpp, &made_of));
+    let key = root.zip(crate::cosim::cache::key(&what, cpp, &made_of));
     let kept_exe = dir.join(format!("kept-bench-{}", mode.name()));
     if key
         .as_ref()
@@ -265,6 +274,52 @@ pub fn time(
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// A harness is kept under everything it is built from: a second build of the same twin
+    /// is the first's, an edited source or another mode builds anew. Without Verilator the
+    /// test says so and passes, unless `TEXRTL_REQUIRE_COSIM=1`.
+    #[test]
+    fn a_harness_is_kept_until_its_twin_changes() {
+        use crate::cosim::tests::Echo;
+        use hdl::fx::Format;
+        use hdl::kernel::Signal;
+        if Command::new("verilator").arg("--version").output().is_err() {
+            let required = std::env::var("TEXRTL_REQUIRE_COSIM").as_deref() == Ok("1");
+            assert!(!required, "TEXRTL_REQUIRE_COSIM=1 and no verilator");
+            eprintln!("verilator not installed: the test is skipped");
+            return;
+        }
+        let dir = std::env::temp_dir().join(format!("texrtl-bench-kept-{}", std::process::id()));
+        let _ = std::fs::remove_dir_all(&dir);
+        std::fs::create_dir_all(&dir).unwrap();
+        let v = dir.join("echo.v");
+        let text = "module echo(input [3:0] x, output [2:0] y);\n  assign y = x[2:0];\nendmodule\n";
+        std::fs::write(&v, text).unwrap();
+        let make = || Echo {
+            x: Signal::new("x", Format::uint(4)),
+            y: Signal::new("y", Format::uint(3)),
+        };
+        let unit = crate::cosim::Twin::new(make, |d, v| d.x.set_bits(v[0]))
+            .sources([v.clone()])
+            .clocked_by(None);
+        let (ins, outs) = unit.model().unwrap().ports();
+        let root = dir.join("cache");
+        let built = |mode: Mode, run: &str| {
+            let out = dir.join(run);
+            std::fs::create_dir_all(&out).unwrap();
+            let cpp = main_cpp(&unit, &ins, &outs, mode);
+            let h = build_in(Some(&root), &unit, &cpp, mode, &out).unwrap();
+            assert!(h.exe.is_file(), "{}", h.exe.display());
+            h.kept
+        };
+        assert!(!built(Mode::Untraced, "first"));
+        assert!(built(Mode::Untraced, "second"));
+        assert!(!built(Mode::Vcd, "traced"));
+        std::fs::write(&v, format!("{text}// edited\n")).unwrap();
+        assert!(!built(Mode::Untraced, "edited"));
+        assert!(built(Mode::Untraced, "edited_again"));
+        std::fs::remove_dir_all(&dir).unwrap();
+    }
 
     /// At least three passes; more while they add up to less than the quarter second; never
     /// more than the cap.
