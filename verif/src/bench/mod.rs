@@ -97,11 +97,12 @@ pub fn measure_all(a: &BenchConfig, units: &[&dyn CosimUnit]) -> Result<String, 
     let mut built = Vec::with_capacity(units.len());
     for u in units {
         let dir = unit_dir(a, *u)?;
-        built.push(harnesses(*u, &Mode::ALL, &dir).map_err(|e| format!("{}: {e}", u.name()))?);
+        let exes = harnesses(*u, &Mode::ALL, &dir).map_err(|e| format!("{}: {e}", u.name()))?;
+        built.push((dir, exes));
     }
     let mut rows = Vec::new();
-    for (u, exes) in units.iter().zip(built) {
-        let r = measure(a, *u, exes)?;
+    for (u, (dir, exes)) in units.iter().zip(built) {
+        let r = measure(a, *u, &dir, exes)?;
         eprintln!("{}", line(&r));
         rows.push(r);
     }
@@ -261,19 +262,24 @@ fn model_pass(
     Ok(timed?.as_secs_f64())
 }
 
-/// One unit's rounds, with its twin's harnesses `exes` (one for each of [`Mode::ALL`]).
-fn measure(a: &BenchConfig, unit: &dyn CosimUnit, exes: Vec<PathBuf>) -> Result<Row, String> {
+/// One unit's rounds in its folder `dir` ([`unit_dir`]), with its twin's harnesses `exes` (one
+/// for each of [`Mode::ALL`]).
+fn measure(
+    a: &BenchConfig,
+    unit: &dyn CosimUnit,
+    dir: &Path,
+    exes: Vec<PathBuf>,
+) -> Result<Row, String> {
     let name = unit.name();
     let resets = crate::cosim::reset_cycles(unit);
-    let dir = unit_dir(a, unit)?;
     let rows = a.stimulus_rows.min(a.cycles);
     let Prepared {
         model,
         stim,
         bin,
         exes,
-    } = prepare(unit, a.seed, rows, exes, &dir)?;
-    let tdir = trace_dir(name, &dir)?;
+    } = prepare(unit, a.seed, rows, exes, dir)?;
+    let tdir = trace_dir(name, dir)?;
     let counts = [a.cycles, a.traced_cycles, a.traced_cycles];
     let run = Run {
         model: model.as_ref(),
@@ -281,7 +287,7 @@ fn measure(a: &BenchConfig, unit: &dyn CosimUnit, exes: Vec<PathBuf>) -> Result<
         resets,
         exes: &exes,
         bin: &bin,
-        dir: &dir,
+        dir,
         tdir: &tdir,
         counts,
     };
