@@ -128,14 +128,13 @@ pub struct Counted {
 pub fn count(unit: &dyn CosimUnit, seed: Seed, n: usize, dir: &Path) -> Result<Counted, String> {
     let total = WARM + n;
     let exes = super::harnesses(unit, &[Mode::Untraced], dir)?;
-    let built = super::prepare(unit, seed, total, exes, dir)?;
-    let (exe, bin) = (&built.exes[0], &built.bin);
+    let (exe, bin) = (&exes[0], super::prepare(unit, seed, total, dir)?.bin);
     let me = std::env::current_exe().map_err(|e| format!("this program: {e}"))?;
     let twin = |cycles: usize| -> Result<u64, String> {
         let mut c = callgrind(&["--toggle-collect=main"]);
         // The whole stimulus as rows: no cycle counted replays one.
         c.arg(exe)
-            .arg(bin)
+            .arg(&bin)
             .arg(cycles.to_string())
             .arg(total.to_string());
         // Symbols bound at load, before `main`: bound lazily, the binding's instructions fell

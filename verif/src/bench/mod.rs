@@ -137,13 +137,12 @@ fn unit_dir(a: &BenchConfig, unit: &dyn CosimUnit) -> Result<PathBuf, String> {
     Ok(dir)
 }
 
-/// What both sides of a unit's measurement run: its model, `rows` rows of its seeded stimulus
-/// (also in the harness's file), and its twin's harness for each mode asked.
+/// What both sides of a unit's measurement run besides the twin's harnesses: its model and
+/// `rows` rows of its seeded stimulus, also in the harnesses' file `bin`.
 struct Prepared {
     model: Box<dyn crate::cosim::CosimModel>,
     stim: Vec<Vec<u64>>,
     bin: PathBuf,
-    exes: Vec<PathBuf>,
 }
 
 /// The twin's harness of `unit` for each of `modes`, built in `dir` or kept from an earlier
@@ -167,23 +166,12 @@ fn harnesses(unit: &dyn CosimUnit, modes: &[Mode], dir: &Path) -> Result<Vec<Pat
     Ok(exes)
 }
 
-fn prepare(
-    unit: &dyn CosimUnit,
-    seed: Seed,
-    rows: usize,
-    exes: Vec<PathBuf>,
-    dir: &Path,
-) -> Result<Prepared, String> {
+fn prepare(unit: &dyn CosimUnit, seed: Seed, rows: usize, dir: &Path) -> Result<Prepared, String> {
     let model = unit.model()?;
     let stim = unit.stimulus(seed, rows);
     let bin = dir.join("stim.bin");
     write_bin(&bin, &stim)?;
-    Ok(Prepared {
-        model,
-        stim,
-        bin,
-        exes,
-    })
+    Ok(Prepared { model, stim, bin })
 }
 
 /// One unit's figures in each mode: the round with the median ratio (both sides' cycles per
@@ -273,12 +261,7 @@ fn measure(
     let name = unit.name();
     let resets = crate::cosim::reset_cycles(unit);
     let rows = a.stimulus_rows.min(a.cycles);
-    let Prepared {
-        model,
-        stim,
-        bin,
-        exes,
-    } = prepare(unit, a.seed, rows, exes, dir)?;
+    let Prepared { model, stim, bin } = prepare(unit, a.seed, rows, dir)?;
     let tdir = trace_dir(name, dir)?;
     let counts = [a.cycles, a.traced_cycles, a.traced_cycles];
     let run = Run {
