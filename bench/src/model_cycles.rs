@@ -3,6 +3,8 @@
 //! derive against a hand-written `Module`, say) exactly, whatever else the machine runs.
 //! Untraced, or traced to the VCD or FST file named third (to count a tracer's cost). Prints
 //! the cycle loop's time (one run: a rough figure; the benchmark's are best of several).
+//! Like `bench`, it replays at most [`RING`] rows of stimulus in a ring, so that a sampling
+//! profile of a long run (`perf record`) shows the cycles, not the drawing of the stimulus.
 //! Usage: model-cycles UNIT CYCLES [FILE.vcd|FILE.fst]
 
 #[path = "styles.rs"]
@@ -10,6 +12,9 @@ mod styles;
 
 use std::process::ExitCode;
 use verif::cosim::BenchTrace;
+
+/// The rows drawn and replayed in a ring: `bench`'s default `--stimulus-rows`.
+const RING: usize = 16_384;
 
 fn main() -> ExitCode {
     let args: Vec<String> = std::env::args().skip(1).collect();
@@ -40,7 +45,7 @@ fn main() -> ExitCode {
         .fold(tb::project::project(), |p, u| p.unit(u));
     let run = || -> Result<(), String> {
         let u = project.twin(unit, "UNIT")?;
-        let stim = u.stimulus(verif::Seed(0xbe7c), cycles);
+        let stim = u.stimulus(verif::Seed(0xbe7c), cycles.min(RING));
         let resets = verif::cosim::reset_cycles(u);
         let t = u.model()?.bench(&stim, cycles, resets, trace)?;
         let secs = t.as_secs_f64();
