@@ -48,6 +48,17 @@ impl Basis {
             ],
         }
     }
+
+    /// The fit's design matrix over a dome: one [`Basis::row`] a light, at its `(u, v)`.
+    pub fn rows(self, lights: &[Light]) -> Vec<Vec<f64>> {
+        lights
+            .iter()
+            .map(|l| {
+                let (u, v) = l.uv();
+                self.row(u, v)
+            })
+            .collect()
+    }
 }
 
 /// The cubic basis as \[0037\] prints it: `A1 u` where `A1 u^3` is meant (u appears twice).

@@ -33,13 +33,7 @@ pub fn host_pinv(lights: &[Light]) -> Result<[Vec<i32>; 6], String> {
             lights.len()
         ));
     }
-    let rows: Vec<Vec<f64>> = lights
-        .iter()
-        .map(|l| {
-            let (u, v) = l.uv();
-            Basis::Quadratic.row(u, v)
-        })
-        .collect();
+    let rows = Basis::Quadratic.rows(lights);
     let p = golden::ptm::pseudo_inverse(&rows).ok_or(
         "the lights leave the fit singular (one elevation makes u^2 + v^2 constant: use two rings or more)",
     )?;
@@ -131,13 +125,7 @@ pub fn golden_fit(
     fmt: &PtmFormat,
     s: &[u8],
 ) -> ([f64; 6], [f64; 6]) {
-    let rows: Vec<Vec<f64>> = lights
-        .iter()
-        .map(|l| {
-            let (u, v) = l.uv();
-            Basis::Quadratic.row(u, v)
-        })
-        .collect();
+    let rows = Basis::Quadratic.rows(lights);
     let k: Vec<f64> = s.iter().map(|&x| 1.0 - f64::from(x) / 255.0).collect();
     let c = golden::ptm::fit(&rows, &k).unwrap_or_else(|| vec![0.0; 6]);
     let unit = 2f64.powi(-20);

@@ -47,13 +47,7 @@ fn a_lit_texel_fits_to_no_occlusion() {
     }
     // The printed polarity, K_i = sample_i / 255: the lit texel fits to K = 1, fully
     // occluded, against [0036]'s K = 0 for no occlusion.
-    let rows: Vec<Vec<f64>> = lights
-        .iter()
-        .map(|l| {
-            let (u, v) = l.uv();
-            golden::ptm::Basis::Quadratic.row(u, v)
-        })
-        .collect();
+    let rows = golden::ptm::Basis::Quadratic.rows(&lights);
     let printed: Vec<f64> = lit.iter().map(|&x| f64::from(x) / 255.0).collect();
     let c = golden::ptm::fit(&rows, &printed).unwrap();
     let (u, v) = lights[0].uv();
