@@ -123,12 +123,15 @@ pub struct Counted {
     pub twin: f64,
 }
 
-/// Counts `unit` over `n` cycles after [`WARM`], its harness built and its stimulus written in
-/// `dir`.
+/// Counts `unit` over `n` cycles after [`WARM`], its harness built (and checked against the
+/// model, as the timing's is) and its stimulus written in `dir`.
 pub fn count(unit: &dyn CosimUnit, seed: Seed, n: usize, dir: &Path) -> Result<Counted, String> {
     let total = WARM + n;
     let exes = super::harnesses(unit, &[Mode::Untraced], dir)?;
-    let (exe, bin) = (&exes[0], super::prepare(unit, seed, total, dir)?.bin);
+    let prepared = super::prepare(unit, seed, total, dir)?;
+    let exe = &exes[0];
+    super::check_twin(unit, &prepared, exe, total.min(super::CHECK_CYCLES), dir)?;
+    let bin = prepared.bin;
     let me = std::env::current_exe().map_err(|e| format!("this program: {e}"))?;
     let twin = |cycles: usize| -> Result<u64, String> {
         let mut c = callgrind(&["--toggle-collect=main"]);

@@ -45,11 +45,17 @@ impl Mode {
     }
 }
 
-/// The C++ main for `unit`'s top with inputs `ins` and outputs `outs`.
-pub fn main_cpp(unit: &dyn CosimUnit, ins: &[Port], outs: &[Port], mode: Mode) -> String {
+/// The C++ main for `unit`'s top with inputs `ins` and outputs `outs`. An untraced harness
+/// given a fourth argument (`check`) runs the check instead of the timed loop: the
+/// co-simulation's comparison as a checksum ([`crate::cosim::compared_checksum`]), which the
+/// model's must equal before the twin is timed.
+pub fn main_cpp(
+    unit: &dyn CosimUnit,
+    ins: &[Port],
+    outs: &[Port],
+    mode: Mode,
+) -> Result<String, String> {
     let top = unit.top();
-    let clocking = unit.clocking();
-    let resets = crate::cosim::reset_cycles(unit);
     let (include, class) = match mode {
         Mode::Untraced => ("", ""),
         Mode::Vcd => ("#include \"verilated_vcd_c.h\"\n", "VerilatedVcdC"),
@@ -77,6 +83,57 @@ pub fn main_cpp(unit: &dyn CosimUnit, ins: &[Port], outs: &[Port], mode: Mode) -
     for (n, bits) in unit.unmodelled().iter().filter_map(|u| u.tied()) {
         let _ = writeln!(s, "    top.{n} = {bits}ULL;");
     }
+    if !traced {
+        s += &check_cpp(unit, ins, outs)?;
+    }
+    s += &timed_cpp(unit, ins, outs, traced);
+    Ok(s)
+}
+
+/// A cycle's inputs from the row at `s`, in reset for the first cycles, as both loops drive
+/// them.
+fn drive_cpp(unit: &dyn CosimUnit, ins: &[Port], indent: &str) -> String {
+    let mut s = String::new();
+    if let Some(c) = unit.clocking() {
+        if let Some(r) = &c.reset {
+            let (on, off) = if c.reset_active_high { (1, 0) } else { (0, 1) };
+            let resets = crate::cosim::reset_cycles(unit);
+            let _ = writeln!(s, "{indent}top.{r} = c < {resets} ? {on} : {off};");
+        }
+    }
+    for (k, p) in ins.iter().enumerate() {
+        let _ = writeln!(s, "{indent}top.{} = s[{k}];", p.name);
+    }
+    s
+}
+
+/// The check: every cycle's compared outputs sampled with the inputs settled, before the
+/// rising edge (where the co-simulation compares them), from its first compared cycle.
+fn check_cpp(unit: &dyn CosimUnit, ins: &[Port], outs: &[Port]) -> Result<String, String> {
+    let sums = crate::cosim::compared_checksum_cpp(unit, outs)?;
+    let first = crate::cosim::FIRST_COMPARED;
+    let mut s = String::from(
+        "    if (argc > 4) {\n        // The check, untimed: the co-simulation's comparison as a checksum.\n        uint64_t sum = 0;\n        const uint64_t* s = stim.data();\n        const uint64_t* const end = s + rows * n;\n        for (size_t c = 0; c < cycles; ++c) {\n",
+    );
+    s += &drive_cpp(unit, ins, "            ");
+    let sample = format!("            if (c >= {first}) {{ {sums}}}\n");
+    match unit.clocking() {
+        Some(c) => {
+            let clk = &c.clock;
+            let _ = write!(
+                s,
+                "            top.{clk} = 0; top.eval();\n{sample}            top.{clk} = 1; top.eval();\n"
+            );
+        }
+        None => s += &format!("            top.eval();\n{sample}"),
+    }
+    s += "            s += n;\n            if (s == end) s = stim.data();\n        }\n        top.final();\n        std::printf(\"checksum %llu\\n\", (unsigned long long)sum);\n        return 0;\n    }\n";
+    Ok(s)
+}
+
+/// The timed loop: every output added into a checksum after the rising edge, so that nothing
+/// the twin computes is unused; the loop's seconds and the checksum printed.
+fn timed_cpp(unit: &dyn CosimUnit, ins: &[Port], outs: &[Port], traced: bool) -> String {
     let dump = |t: &str| {
         if traced {
             format!(" tfp.dump({t});")
@@ -84,25 +141,11 @@ pub fn main_cpp(unit: &dyn CosimUnit, ins: &[Port], outs: &[Port], mode: Mode) -
             String::new()
         }
     };
-    let _ = write!(
-        s,
-        "    uint64_t sum = 0;\n    // One pass from reset: the benchmark alternates passes of the two sides.\n    // The rows in a ring, as the model replays them.\n    const uint64_t* s = stim.data();\n    const uint64_t* const end = s + rows * n;\n    const auto t0 = std::chrono::steady_clock::now();\n    for (size_t c = 0; c < cycles; ++c) {{\n"
+    let mut s = String::from(
+        "    uint64_t sum = 0;\n    // One pass from reset: the benchmark alternates passes of the two sides.\n    // The rows in a ring, as the model replays them.\n    const uint64_t* s = stim.data();\n    const uint64_t* const end = s + rows * n;\n    const auto t0 = std::chrono::steady_clock::now();\n    for (size_t c = 0; c < cycles; ++c) {\n",
     );
-    if let Some(r) = clocking
-        .as_ref()
-        .and_then(|c| c.reset.as_ref().map(|r| (r, c)))
-    {
-        let (on, off) = if r.1.reset_active_high {
-            (1, 0)
-        } else {
-            (0, 1)
-        };
-        let _ = writeln!(s, "        top.{} = c < {resets} ? {on} : {off};", r.0);
-    }
-    for (k, p) in ins.iter().enumerate() {
-        let _ = writeln!(s, "        top.{} = s[{k}];", p.name);
-    }
-    if let Some(c) = &clocking {
+    s += &drive_cpp(unit, ins, "        ");
+    if let Some(c) = unit.clocking() {
         let _ = writeln!(
             s,
             "        top.{clk} = 0; top.eval();{}\n        top.{clk} = 1; top.eval();{}",
@@ -271,6 +314,24 @@ pub fn time(
         .ok_or_else(|| format!("{}: no timing in '{}'", exe.display(), out.trim()))
 }
 
+/// Runs a built untraced harness's check ([`main_cpp`]) on `cycles` cycles of the `rows` rows
+/// of `stim` (in `dir`); returns its checksum.
+pub fn check(
+    exe: &Path,
+    stim: &Path,
+    cycles: usize,
+    rows: usize,
+    dir: &Path,
+) -> Result<u64, String> {
+    let mut c = Command::new(exe);
+    c.arg(stim).arg(cycles.to_string()).arg(rows.to_string());
+    c.arg("check").current_dir(dir);
+    let out = run(&mut c, &exe.display().to_string())?;
+    out.strip_prefix("checksum ")
+        .and_then(|x| x.trim().parse().ok())
+        .ok_or_else(|| format!("{}: no checksum in '{}'", exe.display(), out.trim()))
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -307,7 +368,7 @@ mod tests {
         let built = |mode: Mode, run: &str| {
             let out = dir.join(run);
             std::fs::create_dir_all(&out).unwrap();
-            let cpp = main_cpp(&unit, &ins, &outs, mode);
+            let cpp = main_cpp(&unit, &ins, &outs, mode).unwrap();
             let h = build_in(Some(&root), &unit, &cpp, mode, &out).unwrap();
             assert!(h.exe.is_file(), "{}", h.exe.display());
             h.kept
@@ -318,6 +379,51 @@ mod tests {
         std::fs::write(&v, format!("{text}// edited\n")).unwrap();
         assert!(!built(Mode::Untraced, "edited"));
         assert!(built(Mode::Untraced, "edited_again"));
+        std::fs::remove_dir_all(&dir).unwrap();
+    }
+
+    /// The check before the timing: a twin whose harness computes what the model does
+    /// passes, a model driven otherwise (one input bit dropped) is refused with both sums.
+    #[test]
+    fn the_check_refuses_a_twin_that_computes_something_else() {
+        use crate::cosim::tests::Echo;
+        use hdl::fx::Format;
+        use hdl::kernel::Signal;
+        if Command::new("verilator").arg("--version").output().is_err() {
+            let required = std::env::var("TEXRTL_REQUIRE_COSIM").as_deref() == Ok("1");
+            assert!(!required, "TEXRTL_REQUIRE_COSIM=1 and no verilator");
+            eprintln!("verilator not installed: the test is skipped");
+            return;
+        }
+        let dir = std::env::temp_dir().join(format!("texrtl-bench-check-{}", std::process::id()));
+        let _ = std::fs::remove_dir_all(&dir);
+        std::fs::create_dir_all(&dir).unwrap();
+        let v = dir.join("echo.v");
+        let text = "module echo(input [3:0] x, output [2:0] y);\n  assign y = x[2:0];\nendmodule\n";
+        std::fs::write(&v, text).unwrap();
+        let make = || Echo {
+            x: Signal::new("x", Format::uint(4)),
+            y: Signal::new("y", Format::uint(3)),
+        };
+        let twin = |drive: fn(&mut Echo, &[u64])| {
+            crate::cosim::Twin::new(make, drive)
+                .sources([v.clone()])
+                .clocked_by(None)
+        };
+        let unit = twin(|d, v| d.x.set_bits(v[0] & 7));
+        let (ins, outs) = unit.model().unwrap().ports();
+        let cpp = main_cpp(&unit, &ins, &outs, Mode::Untraced).unwrap();
+        let exe = build_in(None, &unit, &cpp, Mode::Untraced, &dir)
+            .unwrap()
+            .exe;
+        // 300 cycles over a ring of 100 rows.
+        let p = super::super::prepare(&unit, crate::Seed(1), 100, &dir).unwrap();
+        super::super::check_twin(&unit, &p, &exe, 300, &dir).unwrap();
+        let other = twin(|d, v| d.x.set_bits(v[0] & 3));
+        let e = super::super::check_twin(&other, &p, &exe, 300, &dir).unwrap_err();
+        assert!(e.contains("the twin and the model disagree"), "{e}");
+        let ours = crate::cosim::compared_checksum(&other, &p.stim, 300).unwrap();
+        assert!(e.contains(&format!("{ours} in the model")), "{e}");
         std::fs::remove_dir_all(&dir).unwrap();
     }
 

@@ -93,16 +93,15 @@ pub fn measure_all(a: &BenchConfig, units: &[&dyn CosimUnit]) -> Result<String, 
         return count_all(a, n, units);
     }
     // Every twin's harnesses first, so that no build runs between two units' rounds (and a
-    // build that fails does so before the timing starts).
-    let mut built = Vec::with_capacity(units.len());
+    // build that fails, or a twin that disagrees with its model, does so before the timing
+    // starts).
+    let mut ready = Vec::with_capacity(units.len());
     for u in units {
-        let dir = unit_dir(a, *u)?;
-        let exes = harnesses(*u, &Mode::ALL, &dir).map_err(|e| format!("{}: {e}", u.name()))?;
-        built.push((dir, exes));
+        ready.push(make_ready(a, *u).map_err(|e| format!("{}: {e}", u.name()))?);
     }
     let mut rows = Vec::new();
-    for (u, (dir, exes)) in units.iter().zip(built) {
-        let r = measure(a, *u, &dir, exes)?;
+    for (u, r) in units.iter().zip(ready) {
+        let r = measure(a, *u, r)?;
         eprintln!("{}", line(&r));
         rows.push(r);
     }
@@ -137,6 +136,53 @@ fn unit_dir(a: &BenchConfig, unit: &dyn CosimUnit) -> Result<PathBuf, String> {
     Ok(dir)
 }
 
+/// Cycles of the check of a twin's harness against its model ([`check_twin`]).
+const CHECK_CYCLES: usize = 16_384;
+
+/// A unit ready to time: its folder ([`unit_dir`]), its twin's harnesses (one for each of
+/// [`Mode::ALL`]), its model and stimulus.
+struct Ready {
+    dir: PathBuf,
+    exes: Vec<PathBuf>,
+    prepared: Prepared,
+}
+
+/// Builds or takes `unit`'s harnesses, draws its stimulus and checks the twin's harness
+/// against the model on it.
+fn make_ready(a: &BenchConfig, unit: &dyn CosimUnit) -> Result<Ready, String> {
+    let dir = unit_dir(a, unit)?;
+    let exes = harnesses(unit, &Mode::ALL, &dir)?;
+    let prepared = prepare(unit, a.seed, a.stimulus_rows.min(a.cycles), &dir)?;
+    check_twin(unit, &prepared, &exes[0], a.cycles.min(CHECK_CYCLES), &dir)?;
+    Ok(Ready {
+        dir,
+        exes,
+        prepared,
+    })
+}
+
+/// The twin's harness computes what the model does on the bench's stimulus: the
+/// co-simulation's comparison as a checksum ([`crate::cosim::compared_checksum`]) over
+/// `cycles` cycles of the rows, on both sides. A harness that drove the twin otherwise than
+/// the model is driven, or a twin that computes something else, would time another
+/// computation.
+fn check_twin(
+    unit: &dyn CosimUnit,
+    p: &Prepared,
+    exe: &Path,
+    cycles: usize,
+    dir: &Path,
+) -> Result<(), String> {
+    let ours = crate::cosim::compared_checksum(unit, &p.stim, cycles)?;
+    let theirs = harness::check(exe, &p.bin, cycles, p.stim.len(), dir)?;
+    if ours != theirs {
+        return Err(format!(
+            "the twin and the model disagree on the bench's stimulus (the compared outputs of {cycles} cycles sum to {theirs} in the twin's harness, {ours} in the model); `cosim` shows where"
+        ));
+    }
+    Ok(())
+}
+
 /// What both sides of a unit's measurement run besides the twin's harnesses: its model and
 /// `rows` rows of its seeded stimulus, also in the harnesses' file `bin`.
 struct Prepared {
@@ -153,7 +199,7 @@ fn harnesses(unit: &dyn CosimUnit, modes: &[Mode], dir: &Path) -> Result<Vec<Pat
     let mut exes = Vec::with_capacity(modes.len());
     let mut kept = 0;
     for &mode in modes {
-        let cpp = harness::main_cpp(unit, &ins, &outs, mode);
+        let cpp = harness::main_cpp(unit, &ins, &outs, mode)?;
         let h = harness::build(unit, &cpp, mode, dir)?;
         kept += usize::from(h.kept);
         exes.push(h.exe);
@@ -250,18 +296,16 @@ fn model_pass(
     Ok(timed?.as_secs_f64())
 }
 
-/// One unit's rounds in its folder `dir` ([`unit_dir`]), with its twin's harnesses `exes` (one
-/// for each of [`Mode::ALL`]).
-fn measure(
-    a: &BenchConfig,
-    unit: &dyn CosimUnit,
-    dir: &Path,
-    exes: Vec<PathBuf>,
-) -> Result<Row, String> {
+/// One unit's rounds, made ready by [`make_ready`].
+fn measure(a: &BenchConfig, unit: &dyn CosimUnit, ready: Ready) -> Result<Row, String> {
     let name = unit.name();
     let resets = crate::cosim::reset_cycles(unit);
-    let rows = a.stimulus_rows.min(a.cycles);
-    let Prepared { model, stim, bin } = prepare(unit, a.seed, rows, dir)?;
+    let Ready {
+        dir,
+        exes,
+        prepared: Prepared { model, stim, bin },
+    } = ready;
+    let dir = dir.as_path();
     let tdir = trace_dir(name, dir)?;
     let counts = [a.cycles, a.traced_cycles, a.traced_cycles];
     let run = Run {

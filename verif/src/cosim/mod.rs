@@ -647,6 +647,62 @@ impl Rules {
         }
         g[k].is_none_or(|g| (g ^ e[k]) & mask != 0)
     }
+
+    /// The bits of a cycle's outputs `o` that the comparison looks at, summed (wrapping): an
+    /// output under its mask, on a cycle its qualifier is 1.
+    fn compared_sum(&self, o: &[u64]) -> u64 {
+        let mut sum = 0u64;
+        for (&(q, mask), v) in self.per_port.iter().zip(o) {
+            if q.is_none_or(|q| o[q] != 0) {
+                sum = sum.wrapping_add(v & mask);
+            }
+        }
+        sum
+    }
+
+    /// [`Rules::compared_sum`] in C++, over the outputs `outs` of a Verilator model `top`,
+    /// added into `sum`: one statement an output.
+    fn compared_sum_cpp(&self, outs: &[Port]) -> String {
+        let mut s = String::new();
+        for (p, &(q, mask)) in outs.iter().zip(&self.per_port) {
+            let add = format!("sum += (uint64_t)top.{} & {mask}ULL;", p.name);
+            match q {
+                Some(q) => s += &format!("if (top.{}) {add} ", outs[q].name),
+                None => s += &format!("{add} "),
+            }
+        }
+        s
+    }
+}
+
+/// The co-simulation's comparison of `unit` as one number, for a harness that runs the twin
+/// but does not compare it cycle by cycle (the bench's): the model run on `cycles` cycles of
+/// `stim`'s rows replayed in a ring (the first [`reset_cycles`] in reset), and on every cycle
+/// from [`FIRST_COMPARED`] the bits of every output its rule compares, sampled where the
+/// co-simulation samples them (inputs settled, before the clock edge), summed (wrapping).
+pub(crate) fn compared_checksum(
+    unit: &dyn CosimUnit,
+    stim: &[Vec<u64>],
+    cycles: usize,
+) -> Result<u64, String> {
+    let mut model = unit.model()?;
+    let rules = Rules::new(unit, &model.ports().1)?;
+    let resets = reset_cycles(unit);
+    let mut sum = 0u64;
+    for (c, inputs) in stim.iter().cycle().take(cycles).enumerate() {
+        let o = crate::testbench::unpanicked(|| model.cycle(c < resets, inputs))
+            .map_err(|said| format!("{MODEL_PANICKED}{c}: {said}"))?;
+        if c >= FIRST_COMPARED {
+            sum = sum.wrapping_add(rules.compared_sum(&o));
+        }
+    }
+    Ok(sum)
+}
+
+/// The C++ statements that add a cycle's [`compared_checksum`] terms into `sum`, over the
+/// outputs `outs` of `unit`'s Verilator model `top`.
+pub(crate) fn compared_checksum_cpp(unit: &dyn CosimUnit, outs: &[Port]) -> Result<String, String> {
+    Ok(Rules::new(unit, outs)?.compared_sum_cpp(outs))
 }
 
 fn width_mask(width: u32) -> u64 {
@@ -1225,6 +1281,23 @@ pub(crate) mod tests {
             v.signal(Dir::Output, &self.y);
             v.leave();
         }
+    }
+
+    /// The bench's checksum adds what the comparison looks at: an output under its mask, a
+    /// qualified one only on a cycle its qualifier is 1; and its C++ says the same.
+    #[test]
+    fn the_compared_sum_takes_what_the_comparison_compares() {
+        let rules = Rules {
+            per_port: vec![(None, 0b111), (Some(2), u64::MAX), (None, 1)],
+        };
+        assert_eq!(rules.compared_sum(&[0xff, 5, 0]), 7);
+        assert_eq!(rules.compared_sum(&[0xff, 5, 1]), 7 + 5 + 1);
+        assert_eq!(rules.compared_sum(&[u64::MAX, u64::MAX, 1]), 7);
+        let outs = [Port::uint("a", 8), Port::uint("b", 64), Port::uint("ok", 1)];
+        assert_eq!(
+            rules.compared_sum_cpp(&outs),
+            "sum += (uint64_t)top.a & 7ULL; if (top.ok) sum += (uint64_t)top.b & 18446744073709551615ULL; sum += (uint64_t)top.ok & 1ULL; "
+        );
     }
 
     /// A model that panics is named with the cycle it panicked in and why; the cycles before
