@@ -265,23 +265,13 @@ pub fn lit(h: &[f64], n: usize, x: usize, y: usize, l: Light) -> bool {
 mod tests {
     use super::*;
 
-    fn rows(lights: &[Light], b: Basis) -> Vec<Vec<f64>> {
-        lights
-            .iter()
-            .map(|l| {
-                let (u, v) = l.uv();
-                b.row(u, v)
-            })
-            .collect()
-    }
-
     /// Data made from the basis is recovered exactly (to rounding); the residual of any data
     /// is orthogonal to the basis.
     #[test]
     fn the_fit_recovers_the_basis_and_its_residual_is_orthogonal() {
         let lights = dome(3, 8);
         for b in [Basis::Quadratic, Basis::Cubic] {
-            let a = rows(&lights, b);
+            let a = b.rows(&lights);
             let c: Vec<f64> = (0..b.terms()).map(|j| 0.3 - 0.1 * j as f64).collect();
             let k: Vec<f64> = a
                 .iter()
@@ -316,8 +306,8 @@ mod tests {
     /// has no unique answer; two rings fix it.
     #[test]
     fn one_ring_of_lights_is_singular() {
-        assert!(fit(&rows(&dome(1, 12), Basis::Quadratic), &[0.5; 12]).is_none());
-        assert!(fit(&rows(&dome(2, 6), Basis::Quadratic), &[0.5; 12]).is_some());
+        assert!(fit(&Basis::Quadratic.rows(&dome(1, 12)), &[0.5; 12]).is_none());
+        assert!(fit(&Basis::Quadratic.rows(&dome(2, 6)), &[0.5; 12]).is_some());
     }
 
     /// \[0037\] as printed repeats u: its design matrix is rank deficient on any dome; with
@@ -333,7 +323,7 @@ mod tests {
             })
             .collect();
         assert!(fit(&printed, &vec![0.5; lights.len()]).is_none());
-        assert!(fit(&rows(&lights, Basis::Cubic), &vec![0.5; lights.len()]).is_some());
+        assert!(fit(&Basis::Cubic.rows(&lights), &vec![0.5; lights.len()]).is_some());
     }
 
     /// A flat field is lit from everywhere; a deep pit is not lit from a low light.

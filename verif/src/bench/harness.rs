@@ -357,32 +357,49 @@ pub fn check(
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::cosim::tests::Echo;
+    use hdl::fx::Format;
+    use hdl::kernel::Signal;
+
+    /// The Verilog twin of [`Echo`] of a 4-bit input and a 3-bit output.
+    const ECHO_V: &str =
+        "module echo(input [3:0] x, output [2:0] y);\n  assign y = x[2:0];\nendmodule\n";
+
+    /// A fresh folder for a test `what` with the Verilog twin of [`echo`] in it (the folder and
+    /// the file); `None` without Verilator (the test is then skipped, unless
+    /// `TEXRTL_REQUIRE_COSIM=1`).
+    fn echo_folder(what: &str) -> Option<(PathBuf, PathBuf)> {
+        if Command::new("verilator").arg("--version").output().is_err() {
+            let required = std::env::var("TEXRTL_REQUIRE_COSIM").as_deref() == Ok("1");
+            assert!(!required, "TEXRTL_REQUIRE_COSIM=1 and no verilator");
+            eprintln!("verilator not installed: the test is skipped");
+            return None;
+        }
+        let dir = std::env::temp_dir().join(format!("texrtl-bench-{what}-{}", std::process::id()));
+        let _ = std::fs::remove_dir_all(&dir);
+        std::fs::create_dir_all(&dir).unwrap();
+        let v = dir.join("echo.v");
+        std::fs::write(&v, ECHO_V).unwrap();
+        Some((dir, v))
+    }
+
+    /// The model of the twin in [`echo_folder`].
+    fn echo() -> Echo {
+        Echo {
+            x: Signal::new("x", Format::uint(4)),
+            y: Signal::new("y", Format::uint(3)),
+        }
+    }
 
     /// A harness is kept under everything it is built from: a second build of the same twin
     /// is the first's, an edited source or another mode builds anew. Without Verilator the
     /// test says so and passes, unless `TEXRTL_REQUIRE_COSIM=1`.
     #[test]
     fn a_harness_is_kept_until_its_twin_changes() {
-        use crate::cosim::tests::Echo;
-        use hdl::fx::Format;
-        use hdl::kernel::Signal;
-        if Command::new("verilator").arg("--version").output().is_err() {
-            let required = std::env::var("TEXRTL_REQUIRE_COSIM").as_deref() == Ok("1");
-            assert!(!required, "TEXRTL_REQUIRE_COSIM=1 and no verilator");
-            eprintln!("verilator not installed: the test is skipped");
+        let Some((dir, v)) = echo_folder("kept") else {
             return;
-        }
-        let dir = std::env::temp_dir().join(format!("texrtl-bench-kept-{}", std::process::id()));
-        let _ = std::fs::remove_dir_all(&dir);
-        std::fs::create_dir_all(&dir).unwrap();
-        let v = dir.join("echo.v");
-        let text = "module echo(input [3:0] x, output [2:0] y);\n  assign y = x[2:0];\nendmodule\n";
-        std::fs::write(&v, text).unwrap();
-        let make = || Echo {
-            x: Signal::new("x", Format::uint(4)),
-            y: Signal::new("y", Format::uint(3)),
         };
-        let unit = crate::cosim::Twin::new(make, |d, v| d.x.set_bits(v[0]))
+        let unit = crate::cosim::Twin::new(echo, |d, v| d.x.set_bits(v[0]))
             .sources([v.clone()])
             .clocked_by(None);
         let (ins, outs) = unit.model().unwrap().ports();
@@ -398,7 +415,7 @@ mod tests {
         assert!(!built(Mode::Untraced, "first"));
         assert!(built(Mode::Untraced, "second"));
         assert!(!built(Mode::Vcd, "traced"));
-        std::fs::write(&v, format!("{text}// edited\n")).unwrap();
+        std::fs::write(&v, format!("{ECHO_V}// edited\n")).unwrap();
         assert!(!built(Mode::Untraced, "edited"));
         assert!(built(Mode::Untraced, "edited_again"));
         std::fs::remove_dir_all(&dir).unwrap();
@@ -408,27 +425,11 @@ mod tests {
     /// passes, a model driven otherwise (one input bit dropped) is refused with both sums.
     #[test]
     fn the_check_refuses_a_twin_that_computes_something_else() {
-        use crate::cosim::tests::Echo;
-        use hdl::fx::Format;
-        use hdl::kernel::Signal;
-        if Command::new("verilator").arg("--version").output().is_err() {
-            let required = std::env::var("TEXRTL_REQUIRE_COSIM").as_deref() == Ok("1");
-            assert!(!required, "TEXRTL_REQUIRE_COSIM=1 and no verilator");
-            eprintln!("verilator not installed: the test is skipped");
+        let Some((dir, v)) = echo_folder("check") else {
             return;
-        }
-        let dir = std::env::temp_dir().join(format!("texrtl-bench-check-{}", std::process::id()));
-        let _ = std::fs::remove_dir_all(&dir);
-        std::fs::create_dir_all(&dir).unwrap();
-        let v = dir.join("echo.v");
-        let text = "module echo(input [3:0] x, output [2:0] y);\n  assign y = x[2:0];\nendmodule\n";
-        std::fs::write(&v, text).unwrap();
-        let make = || Echo {
-            x: Signal::new("x", Format::uint(4)),
-            y: Signal::new("y", Format::uint(3)),
         };
         let twin = |drive: fn(&mut Echo, &[u64])| {
-            crate::cosim::Twin::new(make, drive)
+            crate::cosim::Twin::new(echo, drive)
                 .sources([v.clone()])
                 .clocked_by(None)
         };
