@@ -139,26 +139,22 @@ fn unit_dir(a: &BenchConfig, unit: &dyn CosimUnit) -> Result<PathBuf, String> {
 /// Cycles of the check of a twin's harness against its model ([`check_twin`]).
 const CHECK_CYCLES: usize = 16_384;
 
-/// A unit ready to time: its folder ([`unit_dir`]), its twin's harnesses (one for each of
-/// [`Mode::ALL`]), its model and stimulus.
+/// A unit ready to time: its folder ([`unit_dir`]) and its twin's harnesses (one for each of
+/// [`Mode::ALL`]), checked against its model.
 struct Ready {
     dir: PathBuf,
     exes: Vec<PathBuf>,
-    prepared: Prepared,
 }
 
-/// Builds or takes `unit`'s harnesses, draws its stimulus and checks the twin's harness
-/// against the model on it.
+/// Builds or takes `unit`'s harnesses and checks the twin's harness against the model on the
+/// stimulus. The stimulus is drawn again for the unit's rounds, so that no more than one
+/// unit's is held at a time (a million rows of their own take up to a hundred megabytes).
 fn make_ready(a: &BenchConfig, unit: &dyn CosimUnit) -> Result<Ready, String> {
     let dir = unit_dir(a, unit)?;
     let exes = harnesses(unit, &Mode::ALL, &dir)?;
     let prepared = prepare(unit, a.seed, a.stimulus_rows.min(a.cycles), &dir)?;
     check_twin(unit, &prepared, &exes[0], a.cycles.min(CHECK_CYCLES), &dir)?;
-    Ok(Ready {
-        dir,
-        exes,
-        prepared,
-    })
+    Ok(Ready { dir, exes })
 }
 
 /// The twin's harness computes what the model does on the bench's stimulus: the
@@ -300,12 +296,10 @@ fn model_pass(
 fn measure(a: &BenchConfig, unit: &dyn CosimUnit, ready: Ready) -> Result<Row, String> {
     let name = unit.name();
     let resets = crate::cosim::reset_cycles(unit);
-    let Ready {
-        dir,
-        exes,
-        prepared: Prepared { model, stim, bin },
-    } = ready;
+    let Ready { dir, exes } = ready;
     let dir = dir.as_path();
+    let rows = a.stimulus_rows.min(a.cycles);
+    let Prepared { model, stim, bin } = prepare(unit, a.seed, rows, dir)?;
     let tdir = trace_dir(name, dir)?;
     let counts = [a.cycles, a.traced_cycles, a.traced_cycles];
     let run = Run {
