@@ -86,10 +86,7 @@ pub fn main_cpp(
     } else {
         let _ = writeln!(s, "    V{top} top(&ctx);");
     }
-    // The inputs the model lacks, as the co-simulation's testbench ties them.
-    for (n, bits) in unit.unmodelled().iter().filter_map(|u| u.tied()) {
-        let _ = writeln!(s, "    top.{n} = {bits}ULL;");
-    }
+    s += &tied_cpp(unit);
     s += &timed_cpp(unit, ins, outs, traced);
     Ok(s)
 }
@@ -101,6 +98,15 @@ fn read_cpp(ins: &[Port]) -> String {
         "    const size_t cycles = std::strtoull(argv[2], nullptr, 10);\n    const size_t rows = std::strtoull(argv[3], nullptr, 10);\n    const size_t n = {};\n    if (rows == 0) return 2;\n    std::vector<uint64_t> stim(rows * n);\n    FILE* f = std::fopen(argv[1], \"rb\");\n    if (!f || std::fread(stim.data(), 8, stim.size(), f) != stim.size()) return 3;\n    std::fclose(f);\n    VerilatedContext ctx;\n",
         ins.len()
     )
+}
+
+/// The inputs the model lacks, as the co-simulation's testbench ties them.
+fn tied_cpp(unit: &dyn CosimUnit) -> String {
+    let mut s = String::new();
+    for (n, bits) in unit.unmodelled().iter().filter_map(|u| u.tied()) {
+        let _ = writeln!(s, "    top.{n} = {bits}ULL;");
+    }
+    s
 }
 
 /// A cycle's inputs from the row at `s`, in reset for the first cycles, as both loops drive
@@ -133,9 +139,7 @@ fn check_cpp(unit: &dyn CosimUnit, ins: &[Port], outs: &[Port]) -> Result<String
     );
     s += &read_cpp(ins);
     let _ = writeln!(s, "    V{top} top(&ctx);");
-    for (n, bits) in unit.unmodelled().iter().filter_map(|u| u.tied()) {
-        let _ = writeln!(s, "    top.{n} = {bits}ULL;");
-    }
+    s += &tied_cpp(unit);
     s += "    uint64_t sum = 0;\n    const uint64_t* s = stim.data();\n    const uint64_t* const end = s + rows * n;\n    for (size_t c = 0; c < cycles; ++c) {\n";
     s += &drive_cpp(unit, ins, "        ");
     let sample = format!("        if (c >= {first}) {{ {sums}}}\n");
