@@ -173,7 +173,8 @@ fn check_twin(
     let theirs = harness::check(exe, &p.bin, cycles, p.stim.len(), dir)?;
     if ours != theirs {
         return Err(format!(
-            "the twin and the model disagree on the bench's stimulus (the compared outputs of {cycles} cycles sum to {theirs} in the twin's harness, {ours} in the model); `cosim` shows where"
+            "the twin and the model disagree on the bench's stimulus (the compared outputs of {cycles} cycles sum to {theirs} in the twin's harness, {ours} in the model); `cosim --unit {}` shows the first difference",
+            unit.name()
         ));
     }
     Ok(())
