@@ -128,9 +128,15 @@ pub struct Counted {
 pub fn count(unit: &dyn CosimUnit, seed: Seed, n: usize, dir: &Path) -> Result<Counted, String> {
     let total = WARM + n;
     let exes = super::harnesses(unit, &[Mode::Untraced], dir)?;
-    let prepared = super::prepare(unit, seed, total, dir)?;
+    let mut prepared = super::prepare(unit, seed, total, dir)?;
     let exe = &exes[0];
-    super::check_twin(unit, &prepared, exe, total.min(super::CHECK_CYCLES), dir)?;
+    super::check_twin(
+        unit,
+        &mut prepared,
+        exe,
+        total.min(super::CHECK_CYCLES),
+        dir,
+    )?;
     let bin = prepared.bin;
     let me = std::env::current_exe().map_err(|e| format!("this program: {e}"))?;
     let twin = |cycles: usize| -> Result<u64, String> {

@@ -444,12 +444,14 @@ mod tests {
             .unwrap()
             .exe;
         // 300 cycles over a ring of 100 rows.
-        let p = super::super::prepare(&unit, crate::Seed(1), 100, &dir).unwrap();
-        super::super::check_twin(&unit, &p, &exe, 300, &dir).unwrap();
+        let mut p = super::super::prepare(&unit, crate::Seed(1), 100, &dir).unwrap();
+        super::super::check_twin(&unit, &mut p, &exe, 300, &dir).unwrap();
         let other = twin(|d, v| d.x.set_bits(v[0] & 3));
-        let e = super::super::check_twin(&other, &p, &exe, 300, &dir).unwrap_err();
+        let mut q = super::super::prepare(&other, crate::Seed(1), 100, &dir).unwrap();
+        let e = super::super::check_twin(&other, &mut q, &exe, 300, &dir).unwrap_err();
         assert!(e.contains("the twin and the model disagree"), "{e}");
-        let ours = crate::cosim::compared_checksum(&other, &p.stim, 300).unwrap();
+        let mut model = other.model().unwrap();
+        let ours = crate::cosim::compared_checksum(&other, model.as_mut(), &q.stim, 300).unwrap();
         assert!(e.contains(&format!("{ours} in the model")), "{e}");
         std::fs::remove_dir_all(&dir).unwrap();
     }

@@ -152,8 +152,14 @@ struct Ready {
 fn make_ready(a: &BenchConfig, unit: &dyn CosimUnit) -> Result<Ready, String> {
     let dir = unit_dir(a, unit)?;
     let exes = harnesses(unit, &Mode::ALL, &dir)?;
-    let prepared = prepare(unit, a.seed, a.stimulus_rows.min(a.cycles), &dir)?;
-    check_twin(unit, &prepared, &exes[0], a.cycles.min(CHECK_CYCLES), &dir)?;
+    let mut prepared = prepare(unit, a.seed, a.stimulus_rows.min(a.cycles), &dir)?;
+    check_twin(
+        unit,
+        &mut prepared,
+        &exes[0],
+        a.cycles.min(CHECK_CYCLES),
+        &dir,
+    )?;
     Ok(Ready { dir, exes })
 }
 
@@ -161,15 +167,16 @@ fn make_ready(a: &BenchConfig, unit: &dyn CosimUnit) -> Result<Ready, String> {
 /// co-simulation's comparison as a checksum ([`crate::cosim::compared_checksum`]) over
 /// `cycles` cycles of the rows, on both sides. A harness that drove the twin otherwise than
 /// the model is driven, or a twin that computes something else, would time another
-/// computation.
+/// computation. The check runs `p`'s model, which is left as the check leaves it (a benchmark
+/// run starts from the design as built).
 fn check_twin(
     unit: &dyn CosimUnit,
-    p: &Prepared,
+    p: &mut Prepared,
     exe: &Path,
     cycles: usize,
     dir: &Path,
 ) -> Result<(), String> {
-    let ours = crate::cosim::compared_checksum(unit, &p.stim, cycles)?;
+    let ours = crate::cosim::compared_checksum(unit, p.model.as_mut(), &p.stim, cycles)?;
     let theirs = harness::check(exe, &p.bin, cycles, p.stim.len(), dir)?;
     if ours != theirs {
         return Err(format!(

@@ -676,16 +676,17 @@ impl Rules {
 }
 
 /// The co-simulation's comparison of `unit` as one number, for a harness that runs the twin
-/// but does not compare it cycle by cycle (the bench's): the model run on `cycles` cycles of
-/// `stim`'s rows replayed in a ring (the first [`reset_cycles`] in reset), and on every cycle
-/// from [`FIRST_COMPARED`] the bits of every output its rule compares, sampled where the
-/// co-simulation samples them (inputs settled, before the clock edge), summed (wrapping).
+/// but does not compare it cycle by cycle (the bench's): its `model`, as built, run on
+/// `cycles` cycles of `stim`'s rows replayed in a ring (the first [`reset_cycles`] in reset),
+/// and on every cycle from [`FIRST_COMPARED`] the bits of every output its rule compares,
+/// sampled where the co-simulation samples them (inputs settled, before the clock edge),
+/// summed (wrapping).
 pub(crate) fn compared_checksum(
     unit: &dyn CosimUnit,
+    model: &mut dyn CosimModel,
     stim: &[Vec<u64>],
     cycles: usize,
 ) -> Result<u64, String> {
-    let mut model = unit.model()?;
     let rules = Rules::new(unit, &model.ports().1)?;
     let resets = reset_cycles(unit);
     let mut sum = 0u64;
