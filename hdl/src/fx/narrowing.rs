@@ -344,10 +344,61 @@ impl Narrowing {
     }
 
     /// `raw * 2^-src_frac` narrowed: [`quantise`] into the destination, counted when tracking.
+    ///
+    /// Inline, the count's call (when tracking) and the word path ([`Narrowing::in_words`]);
+    /// the rest of `quantise` (a value out of range, a shift outside a word, a wide value) is
+    /// one call out of line. The destination is a run-time value here, so `quantise` inlined
+    /// in its place folded nothing and only grew the unit's `eval` around it.
     #[inline(always)]
     pub fn raw(&mut self, raw: i128, src_frac: i32) -> i128 {
+        if tracking() {
+            self.count(raw, src_frac);
+        }
+        let v = match self.modes {
+            Modes::EvenSaturate | Modes::EvenSymmetric => {
+                self.in_words(raw, src_frac, Quant::RoundHalfEven)
+            }
+            Modes::TruncWrap => self.in_words(raw, src_frac, Quant::Trunc),
+            Modes::Other => self.in_words(raw, src_frac, self.q),
+        };
+        match v {
+            Some(v) => v,
+            None => self.resolve(raw, src_frac),
+        }
+    }
+
+    /// Counts one value narrowed ([`Narrowing::record`], its rounding mode a constant for the
+    /// common modes).
+    #[cold]
+    #[inline(never)]
+    fn count(&mut self, raw: i128, src_frac: i32) {
+        match self.modes {
+            Modes::EvenSaturate | Modes::EvenSymmetric => self.record::<EVEN>(raw, src_frac),
+            Modes::TruncWrap => self.record::<TRUNC>(raw, src_frac),
+            Modes::Other => self.record::<ANY>(raw, src_frac),
+        }
+    }
+
+    /// [`quantise`] beyond the word path, its modes constants where they are the common ones,
+    /// so that its rounding and overflow logic folds as at a call site that names them.
+    #[cold]
+    #[inline(never)]
+    fn resolve(&self, raw: i128, src_frac: i32) -> i128 {
         let dst = self.dst;
-        self.raw_to(dst, raw, src_frac)
+        match self.modes {
+            Modes::EvenSaturate => {
+                quantise(raw, src_frac, dst, Quant::RoundHalfEven, Overflow::Saturate)
+            }
+            Modes::EvenSymmetric => quantise(
+                raw,
+                src_frac,
+                dst,
+                Quant::RoundHalfEven,
+                Overflow::SaturateSymmetric,
+            ),
+            Modes::TruncWrap => quantise(raw, src_frac, dst, Quant::Trunc, Overflow::Wrap),
+            Modes::Other => quantise(raw, src_frac, dst, self.q, self.o),
+        }
     }
 
     /// [`quantise`]'s result where it is found in machine words with nothing to resolve: a
@@ -366,50 +417,6 @@ impl Narrowing {
             Err(_) => wide_in_words(raw, shift, q)?,
         };
         (v >= self.lo && v <= self.hi).then_some(i128::from(v))
-    }
-
-    /// [`Narrowing::raw`] into `dst`, which is the destination (a constant where the caller
-    /// knows it at compile time, so the narrowing folds as a `convert` naming it does).
-    #[inline(always)]
-    fn raw_to(&mut self, dst: Format, raw: i128, src_frac: i32) -> i128 {
-        debug_assert_eq!(dst, self.dst);
-        let tracked = tracking();
-        // The modes as constants where they are the common ones, so `quantise`'s rounding and
-        // overflow logic folds as it does at a call site that names them (one predictable
-        // branch here instead of a run-time match inside), and so does the count's rounding.
-        match self.modes {
-            Modes::EvenSaturate => {
-                if tracked {
-                    self.record::<EVEN>(raw, src_frac);
-                }
-                let (q, o) = (Quant::RoundHalfEven, Overflow::Saturate);
-                self.in_words(raw, src_frac, q)
-                    .unwrap_or_else(|| quantise(raw, src_frac, dst, q, o))
-            }
-            Modes::EvenSymmetric => {
-                if tracked {
-                    self.record::<EVEN>(raw, src_frac);
-                }
-                let (q, o) = (Quant::RoundHalfEven, Overflow::SaturateSymmetric);
-                self.in_words(raw, src_frac, q)
-                    .unwrap_or_else(|| quantise(raw, src_frac, dst, q, o))
-            }
-            Modes::TruncWrap => {
-                if tracked {
-                    self.record::<TRUNC>(raw, src_frac);
-                }
-                let (q, o) = (Quant::Trunc, Overflow::Wrap);
-                self.in_words(raw, src_frac, q)
-                    .unwrap_or_else(|| quantise(raw, src_frac, dst, q, o))
-            }
-            Modes::Other => {
-                if tracked {
-                    self.record::<ANY>(raw, src_frac);
-                }
-                self.in_words(raw, src_frac, self.q)
-                    .unwrap_or_else(|| quantise(raw, src_frac, dst, self.q, self.o))
-            }
-        }
     }
 
     /// `v` narrowed: [`Fx::convert`] into the destination, counted when tracking.
@@ -468,9 +475,9 @@ impl Narrowing {
 }
 
 /// A named narrowing into a format known at compile time (`F`, declared with
-/// [`formats!`](crate::formats)): the typed style's [`Narrowing`]. Its destination is a
-/// constant, so `fx` compiles to what `convert(F::FMT, q, o)` does, plus the one thread-local
-/// test of numeric tracking. It reads as a [`Narrowing`] (its name, counts, flag).
+/// [`formats!`](crate::formats)): the typed style's [`Narrowing`]. `fx` gives what
+/// `convert(F::FMT, q, o)` gives, as an `Fx` of the constant format `F::FMT`, by the same
+/// word path as [`Narrowing::raw`]. It reads as a [`Narrowing`] (its name, counts, flag).
 ///
 /// ```
 /// use hdl::fx::{Format, Fx, NarrowingOf, Overflow, Quant};
@@ -505,14 +512,13 @@ impl<F: Fmt> NarrowingOf<F> {
     /// `v` narrowed into `F`: [`Fx::convert`], counted when tracking.
     #[inline(always)]
     pub fn fx(&mut self, v: Fx) -> Fx {
-        let raw = self.inner.raw_to(F::FMT, v.raw(), v.fmt().frac());
-        Fx::from_fitting_raw(F::FMT, raw)
+        Fx::from_fitting_raw(F::FMT, self.inner.raw(v.raw(), v.fmt().frac()))
     }
 
     /// `raw * 2^-src_frac` narrowed into `F`: [`quantise`], counted when tracking.
     #[inline(always)]
     pub fn raw(&mut self, raw: i128, src_frac: i32) -> i128 {
-        self.inner.raw_to(F::FMT, raw, src_frac)
+        self.inner.raw(raw, src_frac)
     }
 }
 

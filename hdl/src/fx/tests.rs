@@ -422,6 +422,40 @@ fn quantise_fast_paths_at_their_edges() {
     }
 }
 
+/// The shift-and-round of the word paths, in both machine words, at every shift it is used
+/// with, on values around every power of two (ties, one either side of them, the extremes),
+/// every mode, against the reference.
+#[test]
+fn round_shift_at_every_shift() {
+    let mut values = vec![0i128, i128::from(i64::MIN), i128::from(i64::MAX)];
+    for k in 0..63 {
+        for d in [-1i128, 0, 1] {
+            values.push((1i128 << k) + d);
+            values.push(-(1i128 << k) + d);
+            values.push(3 * (1i128 << k) + d);
+            values.push(-3 * (1i128 << k) + d);
+        }
+    }
+    for q in Quant::ALL {
+        for s in 1..63u32 {
+            for &r in values.iter().filter(|&&r| i64::try_from(r).is_ok()) {
+                let want = ref_round(r, 1i128 << s, q);
+                let got = super::value::round_shift(r as i64, s, q);
+                assert_eq!(i128::from(got), want, "i64 {r} >> {s} {q}");
+            }
+        }
+        for s in 1..127u32 {
+            for &r in &values {
+                for v in [r, r << 60, i128::MIN + r.abs(), i128::MAX - r.abs()] {
+                    let want = ref_round(v, 1i128 << s, q);
+                    let got = super::value::round_shift(v, s, q);
+                    assert_eq!(got, want, "i128 {v} >> {s} {q}");
+                }
+            }
+        }
+    }
+}
+
 /// Widening by 128 fraction bits or more: every bit of the value is above the destination's
 /// width, so wrapping leaves zero and saturation the extreme of the value's sign.
 #[test]

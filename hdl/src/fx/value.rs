@@ -165,7 +165,11 @@ fn quantise_wide(raw: i128, shift: i32, src_frac: i32, dst: Format, q: Quant, o:
     quantise_general(raw, src_frac, dst, q, o)
 }
 
-/// `r >> s` (1 <= s < bits) rounded by `q`, in any signed machine integer.
+/// `r >> s` (1 <= s < bits - 1) rounded by `q`, in any signed machine integer.
+///
+/// The dropped bits plus an offset that carries into the kept bits exactly when the mode
+/// rounds up: for round half to even, `half - 1` plus the kept LSB (a tie carries only from
+/// an odd value). The sum is below `2^(s+1)`, so it never overflows.
 #[inline]
 pub(crate) fn round_shift<T: num_traits::PrimInt + num_traits::Signed>(
     r: T,
@@ -174,18 +178,19 @@ pub(crate) fn round_shift<T: num_traits::PrimInt + num_traits::Signed>(
 ) -> T {
     let (zero, one) = (T::zero(), T::one());
     let floor = r >> s as usize;
-    let half_bit = one << (s - 1) as usize;
-    let inc = q.increment(
-        r < zero,
-        floor & one == one,
-        r & half_bit != zero,
-        r & (half_bit - one) != zero,
-    );
-    if inc {
-        floor + one
-    } else {
-        floor
-    }
+    let low = (one << s as usize) - one;
+    let half_less = low >> 1;
+    let negative = if r < zero { one } else { zero };
+    let offset = match q {
+        Quant::Trunc => return floor,
+        Quant::TruncZero => low & (zero - negative),
+        Quant::RoundHalfUp => half_less + one,
+        Quant::RoundHalfZero => half_less + negative,
+        Quant::RoundHalfAway => half_less + one - negative,
+        Quant::RoundHalfDown => half_less,
+        Quant::RoundHalfEven => half_less + (floor & one),
+    };
+    floor + (((r & low) + offset) >> s as usize)
 }
 
 /// `raw * 2^-src_frac` rounded by `q` to units of `2^-dst_frac`, before any overflow rule;
