@@ -345,10 +345,11 @@ impl Narrowing {
 
     /// `raw * 2^-src_frac` narrowed: [`quantise`] into the destination, counted when tracking.
     ///
-    /// Inline, the count's call (when tracking) and the word path ([`Narrowing::in_words`]);
-    /// the rest of `quantise` (a value out of range, a shift outside a word, a wide value) is
-    /// one call out of line. The destination is a run-time value here, so `quantise` inlined
-    /// in its place folded nothing and only grew the unit's `eval` around it.
+    /// Inline, the count's call (when tracking) and the word path: a value and result within
+    /// 64 bits, fewer than 63 bits dropped, the result inside the destination's range. The
+    /// rest of `quantise` (a value out of range, a shift outside a word, a wide value) is one
+    /// call out of line. The destination is a run-time value here, so `quantise` inlined in
+    /// its place folded nothing and only grew the unit's `eval` around it.
     #[inline(always)]
     pub fn raw(&mut self, raw: i128, src_frac: i32) -> i128 {
         if tracking() {
