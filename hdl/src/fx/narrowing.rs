@@ -244,9 +244,10 @@ impl Modes {
 
 /// A value wider than a word whose rounded result fits one (a product such as rsqrt 156's
 /// `m y^2`), for [`Narrowing`]'s word path: the kept bits shifted down, the rounding bits
-/// from the low word; `None` for any other. Out of line, so that the word path, inlined at
-/// every narrowing, stays small.
-#[inline(never)]
+/// from the low word; `None` for any other. Inlined with the word path: where the value is
+/// an `i64` widened, the compiler drops it; where it is wider, its rounding mode folds (rsqrt
+/// 156 executed 7 % more instructions a cycle with it out of line).
+#[inline]
 fn wide_in_words(raw: i128, shift: i32, q: Quant) -> Option<i64> {
     if !(1..64).contains(&shift) {
         return None;
