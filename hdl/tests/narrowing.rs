@@ -57,6 +57,56 @@ hdl::formats! {
     Out = Format::signed(8, 4);
 }
 
+hdl::formats! {
+    Half = Format::signed(4, 1);
+    Quarter = Format::unsigned(5, 2);
+    Twos = Format::signed(6, -1);
+    Word = Format::signed(62, 3);
+}
+
+/// The typed narrowing, whose destination's fraction bits are a constant that its shift and
+/// rounding fold with, gives what `quantise` gives: every raw value of 12-bit sources with
+/// -2..=7 fraction bits, and values around every power of two up to 2^70, into destinations
+/// with positive, zero-shift, negative and word-sized formats, every mode, tracking off and on.
+#[test]
+fn a_typed_narrowing_is_quantise() {
+    fn check<F: hdl::fx::Fmt>(cases: &[(i128, i32)]) {
+        for q in Quant::ALL {
+            for o in Overflow::ALL {
+                let mut n = hdl::fx::NarrowingOf::<F>::new("y", q, o);
+                for on in [false, true] {
+                    set_tracking(on);
+                    for &(raw, frac) in cases {
+                        let want = quantise(raw, frac, F::FMT, q, o);
+                        assert_eq!(
+                            n.raw(raw, frac),
+                            want,
+                            "{raw} >> {frac} into {} {q} {o}",
+                            F::FMT
+                        );
+                    }
+                }
+                set_tracking(false);
+            }
+        }
+    }
+    let mut cases: Vec<(i128, i32)> = (-2..=7)
+        .flat_map(|frac| (-2048i128..2048).map(move |raw| (raw, frac)))
+        .collect();
+    for k in 0..70 {
+        for d in [-1i128, 0, 1] {
+            for frac in [0, 1, 3, 4, 40, 62, 63, 65] {
+                cases.extend([((1i128 << k) + d, frac), (-(1i128 << k) + d, frac)]);
+            }
+        }
+    }
+    check::<Half>(&cases);
+    check::<Quarter>(&cases);
+    check::<Twos>(&cases);
+    check::<Word>(&cases);
+    check::<Out>(&cases);
+}
+
 /// A unit with a narrowing: its path in the hierarchy, and its counts after a run.
 #[derive(Module)]
 #[module(kind = "clip")]
