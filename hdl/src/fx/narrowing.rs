@@ -4,8 +4,8 @@
 //! as the mode says), rounding ties, values that lost fraction bits, and the range of the
 //! values before narrowing.
 
-use super::value::{dropped, round_shift, rounded};
-use super::{quantise, Fmt, Format, Fx, Overflow, Quant};
+use super::value::{dropped, quantise_wide, round_shift, rounded};
+use super::{Fmt, Format, Fx, Overflow, Quant};
 use crate::kernel::Signal;
 use std::cell::Cell;
 use std::marker::PhantomData;
@@ -185,7 +185,7 @@ impl NarrowPath {
 
 /// One narrowing of a unit, named (its path in the hierarchy is the unit's instance path and
 /// this name: `normal_pipeline_fig7.normal_156.nx`). `raw` and `fx` give exactly what
-/// [`quantise`] and [`Fx::convert`] give.
+/// [`quantise`](super::quantise) and [`Fx::convert`] give.
 ///
 /// While tracking is on, its flag (a one-bit wire `<name>_sat`, or `<name>_wrap` under
 /// [`Overflow::Wrap`], in the unit's waveform scope) tells whether the latest value narrowed
@@ -344,7 +344,7 @@ impl Narrowing {
         &self.stats
     }
 
-    /// `raw * 2^-src_frac` narrowed: [`quantise`] into the destination, counted when tracking.
+    /// `raw * 2^-src_frac` narrowed: [`quantise`](super::quantise) into the destination, counted when tracking.
     ///
     /// Inline, the count's call (when tracking) and the word path: a value and result within
     /// 64 bits, fewer than 63 bits dropped, the result inside the destination's range. The
@@ -389,54 +389,24 @@ impl Narrowing {
         }
     }
 
-    /// [`quantise`] beyond the word path: a saturation in machine words, else `quantise` with
-    /// its modes constants where they are the common ones, so that its rounding and overflow
-    /// logic folds as at a call site that names them.
+    /// [`quantise`](super::quantise) beyond the word path: its part beyond its own fast paths, which the word
+    /// path has tried (a word value saturating is clamped there), with the modes constants
+    /// where they are the common ones, so that its rounding and overflow logic folds as at a
+    /// call site that names them.
     #[cold]
     #[inline(never)]
     fn resolve(&self, raw: i128, src_frac: i32) -> i128 {
-        if let Some(v) = self.saturated_in_words(raw, src_frac) {
-            return v;
-        }
         let dst = self.dst;
+        let rest = |q, o| quantise_wide(raw, src_frac - dst.frac(), src_frac, dst, q, o);
         match self.modes {
-            Modes::EvenSaturate => {
-                quantise(raw, src_frac, dst, Quant::RoundHalfEven, Overflow::Saturate)
-            }
-            Modes::EvenSymmetric => quantise(
-                raw,
-                src_frac,
-                dst,
-                Quant::RoundHalfEven,
-                Overflow::SaturateSymmetric,
-            ),
-            Modes::TruncWrap => quantise(raw, src_frac, dst, Quant::Trunc, Overflow::Wrap),
-            Modes::Other => quantise(raw, src_frac, dst, self.q, self.o),
+            Modes::EvenSaturate => rest(Quant::RoundHalfEven, Overflow::Saturate),
+            Modes::EvenSymmetric => rest(Quant::RoundHalfEven, Overflow::SaturateSymmetric),
+            Modes::TruncWrap => rest(Quant::Trunc, Overflow::Wrap),
+            Modes::Other => rest(self.q, self.o),
         }
     }
 
-    /// [`quantise`]'s result for a value of a machine word under a saturating mode: its
-    /// rounded value clamped to the range the constructor worked out (under symmetric
-    /// saturation that range leaves out the most negative code). `None` for any other mode, a
-    /// value or destination wider than a word, or a shift outside one. Where a unit saturates
-    /// often (the worked example's accumulator) it takes a tenth off the cycle. Its rounding
-    /// repeats [`Narrowing::in_words`]'s: shared through one function, the FIG. 7 pipeline
-    /// executed 2 % more instructions a cycle.
-    fn saturated_in_words(&self, raw: i128, src_frac: i32) -> Option<i128> {
-        let saturates = matches!(self.o, Overflow::Saturate | Overflow::SaturateSymmetric);
-        if !saturates || self.lo > self.hi {
-            return None;
-        }
-        let r = i64::try_from(raw).ok()?;
-        let v = match src_frac - self.dst.frac() {
-            0 => r,
-            s @ 1..63 => round_shift(r, s as u32, self.q),
-            _ => return None,
-        };
-        Some(i128::from(v.clamp(self.lo, self.hi)))
-    }
-
-    /// [`quantise`]'s result where it is found in machine words with nothing to resolve: a
+    /// [`quantise`](super::quantise)'s result where it is found in machine words with nothing to resolve: a
     /// value and result within 64 bits, fewer than 63 bits dropped, the result inside the
     /// destination's range (under the overflow mode), which the constructor worked out once.
     /// `None` where `quantise` has more to do.
@@ -552,7 +522,7 @@ impl<F: Fmt> NarrowingOf<F> {
         Fx::from_fitting_raw(F::FMT, self.raw(v.raw(), v.fmt().frac()))
     }
 
-    /// `raw * 2^-src_frac` narrowed into `F`: [`quantise`], counted when tracking.
+    /// `raw * 2^-src_frac` narrowed into `F`: [`quantise`](super::quantise), counted when tracking.
     #[inline(always)]
     pub fn raw(&mut self, raw: i128, src_frac: i32) -> i128 {
         self.inner.raw_into(raw, src_frac, |_| F::FMT.frac())

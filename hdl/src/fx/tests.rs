@@ -495,7 +495,7 @@ fn quantise_takes_the_path_meant_for_each_input() {
         Overflow::Saturate,
     );
     // (raw, source fraction bits, destination, overflow, path)
-    let cases: [(i128, i32, Format, Overflow, u8); 14] = [
+    let cases: [(i128, i32, Format, Overflow, u8); 18] = [
         (5, 4, s(12, 4), sym, 1),
         (0, 4, u(12, 4), sym, 1),
         (-7, 4, s(12, 4), sat, 1),
@@ -510,6 +510,10 @@ fn quantise_takes_the_path_meant_for_each_input() {
         ((1 << 120) + 3, 100, s(40, 0), sat, 4),
         ((1 << 126) + 3, 127, s(8, 0), sat, 5),
         (77, -3, s(40, 0), sat, 5),
+        (1234, 4, s(8, 4), sat, 6),
+        (-1234, 4, s(8, 4), sym, 6),
+        (-1_000_000, 14, s(8, 4), sym, 6),
+        (1_000_000, 14, u(8, 4), sym, 6),
     ];
     for (raw, frac, dst, o, path) in cases {
         let v = quantise(raw, frac, dst, q, o);

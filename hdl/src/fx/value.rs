@@ -81,7 +81,8 @@ fn any_low(raw: i128, n: u32) -> bool {
 
 // Which path the last `quantise` of this thread took (tests only, to hold the fast paths
 // to the inputs they are meant to cover): 1 nothing dropped, 2 the 64-bit path, 3 a wide
-// value with a word-sized result, 4 the i128 path, 5 the general one.
+// value with a word-sized result, 4 the i128 path, 5 the general one, 6 a word value
+// saturated.
 #[cfg(test)]
 thread_local! {
     pub(crate) static PATH: std::cell::Cell<u8> = const { std::cell::Cell::new(0) };
@@ -132,7 +133,18 @@ pub fn quantise(raw: i128, src_frac: i32, dst: Format, q: Quant, o: Overflow) ->
 /// result fits one (a product such as rsqrt 156's `m y^2`, 74 bits): the rounding bits come
 /// from the low word; then the same in i128; then the general case.
 #[inline]
-fn quantise_wide(raw: i128, shift: i32, src_frac: i32, dst: Format, q: Quant, o: Overflow) -> i128 {
+pub(crate) fn quantise_wide(
+    raw: i128,
+    shift: i32,
+    src_frac: i32,
+    dst: Format,
+    q: Quant,
+    o: Overflow,
+) -> i128 {
+    if let Some(v) = saturated_in_words(raw, shift, dst, q, o) {
+        took(6);
+        return v;
+    }
     let in_range = |v: i128| {
         dst.contains_raw(v)
             && !(o == Overflow::SaturateSymmetric && dst.is_signed() && v == dst.min_raw())
@@ -163,6 +175,34 @@ fn quantise_wide(raw: i128, shift: i32, src_frac: i32, dst: Format, q: Quant, o:
     }
     took(5);
     quantise_general(raw, src_frac, dst, q, o)
+}
+
+/// A value of a word narrowed by fewer than 63 bits into a destination of fewer than 63,
+/// under saturation: its rounded value clamped to the destination's range (from `-max` under
+/// symmetric saturation of a signed one). `None` for any other mode or input.
+#[inline]
+fn saturated_in_words(raw: i128, shift: i32, dst: Format, q: Quant, o: Overflow) -> Option<i128> {
+    let symmetric = match o {
+        Overflow::Saturate => false,
+        Overflow::SaturateSymmetric => dst.is_signed(),
+        _ => return None,
+    };
+    if dst.width() >= 63 {
+        return None;
+    }
+    let r = i64::try_from(raw).ok()?;
+    let v = match shift {
+        0 => r,
+        1..63 => round_shift(r, shift as u32, q),
+        _ => return None,
+    };
+    let top = dst.max_raw() as i64;
+    let bottom = if symmetric {
+        -top
+    } else {
+        dst.min_raw() as i64
+    };
+    Some(i128::from(v.clamp(bottom, top)))
 }
 
 /// `r >> s` (1 <= s < bits - 1) rounded by `q`, in any signed machine integer.
