@@ -344,7 +344,8 @@ impl Narrowing {
         &self.stats
     }
 
-    /// `raw * 2^-src_frac` narrowed: [`quantise`](super::quantise) into the destination, counted when tracking.
+    /// `raw * 2^-src_frac` narrowed: [`quantise`](super::quantise) into the destination,
+    /// counted when tracking.
     ///
     /// Inline, the count's call (when tracking) and the word path: a value and result within
     /// 64 bits, fewer than 63 bits dropped, the result inside the destination's range. The
@@ -389,10 +390,11 @@ impl Narrowing {
         }
     }
 
-    /// [`quantise`](super::quantise) beyond the word path: its part beyond its own fast paths, which the word
-    /// path has tried (a word value saturating is clamped there), with the modes constants
-    /// where they are the common ones, so that its rounding and overflow logic folds as at a
-    /// call site that names them.
+    /// The rest of [`quantise`](super::quantise), past the fast paths the word path has
+    /// tried (a destination of 63 bits or more, which the word path leaves, takes `quantise`'s
+    /// general path): a word value that saturates clamped in machine words, else the wide
+    /// paths and the general one, with the modes constants where they are the common ones, so
+    /// that their rounding and overflow logic folds as at a call site that names them.
     #[cold]
     #[inline(never)]
     fn resolve(&self, raw: i128, src_frac: i32) -> i128 {
@@ -406,10 +408,10 @@ impl Narrowing {
         }
     }
 
-    /// [`quantise`](super::quantise)'s result where it is found in machine words with nothing to resolve: a
-    /// value and result within 64 bits, fewer than 63 bits dropped, the result inside the
-    /// destination's range (under the overflow mode), which the constructor worked out once.
-    /// `None` where `quantise` has more to do.
+    /// [`quantise`](super::quantise)'s result where it is found in machine words with
+    /// nothing to resolve: a value and result within 64 bits, fewer than 63 bits dropped,
+    /// the result inside the destination's range (under the overflow mode), which the
+    /// constructor worked out once. `None` where `quantise` has more to do.
     #[inline(always)]
     fn in_words(&self, raw: i128, src_frac: i32, dst_frac: i32, q: Quant) -> Option<i128> {
         let shift = src_frac - dst_frac;
@@ -522,7 +524,8 @@ impl<F: Fmt> NarrowingOf<F> {
         Fx::from_fitting_raw(F::FMT, self.raw(v.raw(), v.fmt().frac()))
     }
 
-    /// `raw * 2^-src_frac` narrowed into `F`: [`quantise`](super::quantise), counted when tracking.
+    /// `raw * 2^-src_frac` narrowed into `F`: [`quantise`](super::quantise), counted when
+    /// tracking.
     #[inline(always)]
     pub fn raw(&mut self, raw: i128, src_frac: i32) -> i128 {
         self.inner.raw_into(raw, src_frac, |_| F::FMT.frac())
