@@ -19,8 +19,23 @@
 //! CLUT output is registered), one with it on colour b; in that second cycle `line_valid` is
 //! high and `line` carries the whole entry to the cache (write enable, line 616).
 
-use crate::fx::Format;
-use crate::kernel::{Module, Reg, Signal};
+use crate::fx::{Bit, Format};
+use crate::kernel::{Module, RegOf, SignalOf};
+
+hdl::formats! {
+    /// A DRAM word.
+    pub Word = Format::uint(16);
+    /// Register 608: word 0 in bits 31..16, word 1 in bits 15..0.
+    pub Reg608 = Format::uint(32);
+    /// A CLUT 612 address: a colour index.
+    pub ClutIndex = Format::uint(8);
+    /// A CLUT 612 entry: 24-bit RGB, 8 bits unsigned a channel.
+    pub Rgb = Format::uint(24);
+    /// A cache line ([`Line`]).
+    pub LineWord = Format::uint(64);
+    /// The decoder's state: LOAD, LUT_A, LUT_B.
+    pub State = Format::uint(2);
+}
 
 /// One encoded block as stored in DRAM.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Default)]
@@ -80,31 +95,31 @@ pub struct CccDecode {
     clut: Vec<u32>,
     /// A DRAM word arrives (from control unit 607).
     #[input]
-    pub word_valid: Signal,
+    pub word_valid: SignalOf<Bit>,
     #[input]
-    pub word: Signal,
+    pub word: SignalOf<Word>,
     /// Multiplexer 610's select: 0 colour a, 1 colour b.
     #[wire]
-    pub mux_sel: Signal,
+    pub mux_sel: SignalOf<Bit>,
     /// CLUT 612's address and data.
     #[wire]
-    pub clut_addr: Signal,
+    pub clut_addr: SignalOf<ClutIndex>,
     #[wire]
-    pub clut_data: Signal,
+    pub clut_data: SignalOf<Rgb>,
     /// The finished cache line (write enable and data).
     #[output]
-    pub line_valid: Signal,
+    pub line_valid: SignalOf<Bit>,
     #[output]
-    pub line: Signal,
+    pub line: SignalOf<LineWord>,
     #[reg]
-    pub reg_608: Reg,
+    pub reg_608: RegOf<Reg608>,
     /// Words held (0, 1) while loading.
     #[reg]
-    words_in: Reg,
+    words_in: RegOf<Bit>,
     #[reg]
-    pub state: Reg,
+    pub state: RegOf<State>,
     #[reg]
-    color_a: Reg,
+    color_a: RegOf<Rgb>,
 }
 
 impl CccDecode {
@@ -119,17 +134,17 @@ impl CccDecode {
         Ok(CccDecode {
             name: name.into(),
             clut: clut.to_vec(),
-            word_valid: Signal::bit("word_valid"),
-            word: Signal::new("word", Format::uint(16)),
-            mux_sel: Signal::bit("mux_610_sel"),
-            clut_addr: Signal::new("clut_612_addr", Format::uint(8)),
-            clut_data: Signal::new("clut_612_data", Format::uint(24)),
-            line_valid: Signal::bit("line_valid"),
-            line: Signal::new("line", Format::uint(64)),
-            reg_608: Reg::new("reg_608", Format::uint(32)),
-            words_in: Reg::new("words_in", Format::uint(1)),
-            state: Reg::new("state", Format::uint(2)).with_states(STATES),
-            color_a: Reg::new("color_a", Format::uint(24)),
+            word_valid: SignalOf::new("word_valid"),
+            word: SignalOf::new("word"),
+            mux_sel: SignalOf::new("mux_610_sel"),
+            clut_addr: SignalOf::new("clut_612_addr"),
+            clut_data: SignalOf::new("clut_612_data"),
+            line_valid: SignalOf::new("line_valid"),
+            line: SignalOf::new("line"),
+            reg_608: RegOf::new("reg_608"),
+            words_in: RegOf::new("words_in"),
+            state: RegOf::new("state").with_states(STATES),
+            color_a: RegOf::new("color_a"),
         })
     }
 }
