@@ -97,6 +97,40 @@ fn typed_writes_are_checked() {
     );
 }
 
+/// A typed bit-pattern write takes exactly the patterns of its width, at every width and both
+/// signednesses (as the run-time signal does), and may read the signal in its argument.
+#[test]
+fn typed_bit_writes_take_the_width_exactly() {
+    hdl::formats! {
+        S1 = Format::signed(1, 0);
+        U7 = Format::uint(7);
+        S12 = Format::signed(12, 4);
+        U64 = Format::uint(64);
+    }
+    fn check<F: hdl::fx::Fmt>(top: u64) {
+        let mut s = SignalOf::<F>::new("s");
+        let mut d = Signal::new("s", F::FMT);
+        s.set_bits(top);
+        d.set_bits(top);
+        assert_eq!((s.bits(), s.raw()), (d.bits(), d.raw()));
+        s.set_bits(0);
+        s.set_bits(s.bits() | 1);
+        assert_eq!(s.bits(), 1);
+        if let Some(over) = top.checked_add(1) {
+            let r = std::panic::catch_unwind(|| SignalOf::<F>::new("s").set_bits(over));
+            let msg = *r.unwrap_err().downcast::<String>().unwrap();
+            assert!(
+                msg.contains("'s'") && msg.contains(&format!("bits {over:#x}")),
+                "{msg}"
+            );
+        }
+    }
+    check::<S1>(1);
+    check::<U7>(127);
+    check::<S12>(0xfff);
+    check::<U64>(u64::MAX);
+}
+
 /// A derived module of typed fields: built from the types alone (a reset value and state
 /// names too), visited like a run-time-format one, and a `fmt` that contradicts a type fails.
 #[derive(Clone, Module)]

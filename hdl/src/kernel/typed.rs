@@ -92,6 +92,24 @@ impl<F: Fmt> SignalOf<F> {
         }
         self.s.bits = (raw as u64) & mask_of::<F>();
     }
+
+    /// Writes a bit pattern; panics if bits above `F`'s width are set (one compare with a
+    /// constant). An inherent method, so that `s.set_bits(s.bits() | b)` borrows as it does
+    /// on a [`Signal`] (a write through `DerefMut` could not read `s` in its argument).
+    #[inline(always)]
+    #[track_caller]
+    pub fn set_bits(&mut self, bits: u64) {
+        if bits > mask_of::<F>() {
+            self.s.misfit(Misfit::Bits(bits));
+        }
+        self.s.bits = bits;
+    }
+
+    /// Writes a bool as the bit pattern 0 or 1 (see [`Signal::set_bool`]).
+    #[inline(always)]
+    pub fn set_bool(&mut self, b: bool) {
+        self.s.set_bool(b);
+    }
 }
 
 /// `v`'s bits in `F`: no check when `v` is of `F` (the common case, folded away when `v`'s

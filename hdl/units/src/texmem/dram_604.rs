@@ -18,9 +18,20 @@
 //! document's figures: a page-mode access `t_cas + t_cp` = 3 + 3 cycles = 30 ns, a page fault
 //! `t_rp + t_rcd` = 3 + 3 cycles = another 30 ns.
 
-use crate::fx::{Format, Fx};
+use crate::fx::{Bit, Format, Fx};
 use crate::kernel::declared::Regs;
-use crate::kernel::{Dir, Module, Reg, Signal, Visitor};
+use crate::kernel::{Dir, Module, Reg, RegOf, Signal, SignalOf, Visitor};
+
+hdl::formats! {
+    /// The address pins: a row, then a column.
+    pub Addr = Format::uint(11);
+    /// A data word.
+    pub Word = Format::uint(16);
+    /// One bit a rule ([`rule`]).
+    pub Rules = Format::uint(8);
+    /// Cycles a pin has held its level, saturating at 1023.
+    pub Level = Format::uint(10);
+}
 
 /// Geometry and timing.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -202,22 +213,22 @@ pub struct Dram {
     p: DramParams,
     mem: Vec<u16>,
     #[input]
-    pub ras_n: Signal,
+    pub ras_n: SignalOf<Bit>,
     #[input]
-    pub cas_n: Signal,
+    pub cas_n: SignalOf<Bit>,
     #[input]
-    pub we_n: Signal,
+    pub we_n: SignalOf<Bit>,
     #[input]
-    pub oe_n: Signal,
+    pub oe_n: SignalOf<Bit>,
     #[input]
-    pub addr: Signal,
+    pub addr: SignalOf<Addr>,
     #[output]
-    pub dq: Signal,
+    pub dq: SignalOf<Word>,
     #[output]
-    pub dq_valid: Signal,
+    pub dq_valid: SignalOf<Bit>,
     /// The rules ([`rule`]) the pins break at the coming edge.
     #[wire]
-    pub violation: Signal,
+    pub violation: SignalOf<Rules>,
     /// The page register: the open row (valid while RAS# is low).
     #[reg]
     pub page_row: Reg,
@@ -225,16 +236,16 @@ pub struct Dram {
     col: Reg,
     /// RAS# and CAS# at the last edge.
     #[reg]
-    ras_n_was: Reg,
+    ras_n_was: RegOf<Bit>,
     #[reg]
-    cas_n_was: Reg,
+    cas_n_was: RegOf<Bit>,
     /// Cycles RAS#/CAS# have held their level, and cycles since RAS# fell.
     #[reg]
-    ras_level_for: Reg,
+    ras_level_for: RegOf<Level>,
     #[reg]
-    cas_level_for: Reg,
+    cas_level_for: RegOf<Level>,
     #[reg]
-    since_ras_fall: Reg,
+    since_ras_fall: RegOf<Level>,
     #[reg]
     log: ViolationLog,
 }
@@ -245,13 +256,13 @@ impl Dram {
         let rb = 32 - (p.rows - 1).leading_zeros().min(31);
         let cb = 32 - (p.cols - 1).leading_zeros().min(31);
         let high = |n| {
-            let mut s = Signal::bit(n);
+            let mut s = SignalOf::new(n);
             s.set_bool(true);
             s
         };
-        let (u10, bit) = (Format::uint(10), Format::uint(1));
+        let was_high = |n| RegOf::new(n).reset_to(Fx::from_int(Bit::FMT, 1));
         // After reset both pins have been high "long ago".
-        let level = |n| Reg::with_reset(n, u10, Fx::from_int(u10, 1000));
+        let level = |n| RegOf::new(n).reset_to(Fx::from_int(Level::FMT, 1000));
         Ok(Dram {
             name,
             mem: (0..p.words()).map(DramParams::pattern).collect(),
@@ -260,17 +271,17 @@ impl Dram {
             cas_n: high("cas_n"),
             we_n: high("we_n"),
             oe_n: high("oe_n"),
-            addr: Signal::new("addr", Format::uint(11)),
-            dq: Signal::new("dq", Format::uint(16)),
-            dq_valid: Signal::bit("dq_valid"),
-            violation: Signal::new("violation", Format::uint(8)),
+            addr: SignalOf::new("addr"),
+            dq: SignalOf::new("dq"),
+            dq_valid: SignalOf::new("dq_valid"),
+            violation: SignalOf::new("violation"),
             page_row: Reg::new("page_row", Format::uint(rb.max(1))),
             col: Reg::new("col", Format::uint(cb.max(1))),
-            ras_n_was: Reg::with_reset("ras_n_was", bit, Fx::from_int(bit, 1)),
-            cas_n_was: Reg::with_reset("cas_n_was", bit, Fx::from_int(bit, 1)),
+            ras_n_was: was_high("ras_n_was"),
+            cas_n_was: was_high("cas_n_was"),
             ras_level_for: level("ras_level_for"),
             cas_level_for: level("cas_level_for"),
-            since_ras_fall: Reg::new("since_ras_fall", u10),
+            since_ras_fall: RegOf::new("since_ras_fall"),
             log: ViolationLog::new(),
         })
     }
