@@ -12,10 +12,28 @@
 //! Timing parameters and the DRAM are in [`super::dram_604`].
 
 use super::cache_614::{entry_of, lookahead, lookahead_direction, Lookahead};
+use super::dram_604::Word;
 use super::dram_604::{Dram, DramParams};
 use super::layout::BlockMap;
-use crate::fx::Format;
-use crate::kernel::{Module, Reg, Signal};
+use crate::fx::{Bit, Format};
+use crate::kernel::{Module, Reg, RegOf, Signal, SignalOf};
+
+hdl::formats! {
+    /// The word controller's state ([`DramCtrl`]).
+    pub CtrlState = Format::uint(3);
+    /// A timing count, cycles (every timing is at most 1000).
+    pub Count = Format::uint(11);
+    /// A DRAM row.
+    pub Row = Format::uint(11);
+    /// A statistics counter.
+    pub Tally = Format::uint(40);
+    /// The fill engine's state ([`FillEngine`]).
+    pub FillState = Format::uint(2);
+    /// Words of a block requested so far (0..=2).
+    pub Issued = Format::uint(2);
+    /// The lookahead queue's live slots, one bit each.
+    pub Slots = Format::uint(3);
+}
 
 /// Controller states.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -38,32 +56,32 @@ pub struct DramCtrl {
     name: String,
     p: DramParams,
     #[input]
-    pub req_valid: Signal,
+    pub req_valid: SignalOf<Bit>,
     #[input]
     pub req_addr: Signal,
     #[output]
-    pub ready: Signal,
+    pub ready: SignalOf<Bit>,
     #[output]
-    pub resp_valid: Signal,
+    pub resp_valid: SignalOf<Bit>,
     #[output]
-    pub resp_data: Signal,
+    pub resp_data: SignalOf<Word>,
     #[reg]
-    pub state: Reg,
+    pub state: RegOf<CtrlState>,
     #[reg]
-    count: Reg,
+    count: RegOf<Count>,
     #[reg]
-    open_row: Reg,
+    open_row: RegOf<Row>,
     #[reg]
-    row_open: Reg,
+    row_open: RegOf<Bit>,
     #[reg]
     addr_r: Reg,
     /// Reads taken, and of them page hits and page faults.
     #[reg]
-    pub reads: Reg,
+    pub reads: RegOf<Tally>,
     #[reg]
-    pub page_hits: Reg,
+    pub page_hits: RegOf<Tally>,
     #[reg]
-    pub page_faults: Reg,
+    pub page_faults: RegOf<Tally>,
     #[child]
     pub dram: Dram,
 }
@@ -75,20 +93,20 @@ impl DramCtrl {
         Ok(DramCtrl {
             name: name.into(),
             p,
-            req_valid: Signal::bit("req_valid"),
+            req_valid: SignalOf::new("req_valid"),
             req_addr: Signal::new("req_addr", Format::uint(ab.max(1))),
-            ready: Signal::bit("ready"),
-            resp_valid: Signal::bit("resp_valid"),
-            resp_data: Signal::new("resp_data", Format::uint(16)),
-            state: Reg::new("state", Format::uint(3)).with_states(STATES),
-            count: Reg::new("count", Format::uint(11)),
-            open_row: Reg::new("open_row", Format::uint(11)),
-            row_open: Reg::new("row_open", Format::uint(1)),
+            ready: SignalOf::new("ready"),
+            resp_valid: SignalOf::new("resp_valid"),
+            resp_data: SignalOf::new("resp_data"),
+            state: RegOf::new("state").with_states(STATES),
+            count: RegOf::new("count"),
+            open_row: RegOf::new("open_row"),
+            row_open: RegOf::new("row_open"),
             addr_r: Reg::new("addr_r", Format::uint(ab.max(1))),
             dram,
-            reads: Reg::new("reads", Format::uint(40)),
-            page_hits: Reg::new("page_hits", Format::uint(40)),
-            page_faults: Reg::new("page_faults", Format::uint(40)),
+            reads: RegOf::new("reads"),
+            page_hits: RegOf::new("page_hits"),
+            page_faults: RegOf::new("page_faults"),
         })
     }
 
@@ -176,7 +194,7 @@ impl DramCtrl {
             self.addr_r.set_next_bits(addr);
             self.open_row.set_next_bits(row);
             self.row_open.set_next_bool(true);
-            let count = |r: &mut Reg| r.set_next_bits(r.q().bits() + 1);
+            let count = |r: &mut RegOf<Tally>| r.set_next_bits(r.q().bits() + 1);
             count(&mut self.reads);
             count(if open {
                 &mut self.page_hits
@@ -207,33 +225,33 @@ const FILL_STATES: &[&str] = &["IDLE", "FETCH", "DECODE"];
 pub struct FillEngine {
     map: BlockMap,
     #[input]
-    pub start: Signal,
+    pub start: SignalOf<Bit>,
     #[input]
     pub start_bx: Signal,
     #[input]
     pub start_by: Signal,
     #[input]
-    pub start_prefetch: Signal,
+    pub start_prefetch: SignalOf<Bit>,
     #[input]
-    pub word_ready: Signal,
+    pub word_ready: SignalOf<Bit>,
     #[input]
-    pub word_resp: Signal,
+    pub word_resp: SignalOf<Bit>,
     #[input]
-    pub line_done: Signal,
+    pub line_done: SignalOf<Bit>,
     #[output]
-    pub word_req: Signal,
+    pub word_req: SignalOf<Bit>,
     #[output]
     pub word_addr: Signal,
     #[reg]
-    pub state: Reg,
+    pub state: RegOf<FillState>,
     #[reg]
     pub bx: Reg,
     #[reg]
     pub by: Reg,
     #[reg]
-    pub prefetch: Reg,
+    pub prefetch: RegOf<Bit>,
     #[reg]
-    words_issued: Reg,
+    words_issued: RegOf<Issued>,
 }
 
 impl FillEngine {
@@ -243,20 +261,20 @@ impl FillEngine {
         let b = Format::uint(block_bits);
         FillEngine {
             map,
-            start: Signal::bit("start"),
+            start: SignalOf::new("start"),
             start_bx: Signal::new("start_bx", b),
             start_by: Signal::new("start_by", b),
-            start_prefetch: Signal::bit("start_prefetch"),
-            word_ready: Signal::bit("word_ready"),
-            word_resp: Signal::bit("word_resp"),
-            line_done: Signal::bit("line_done"),
-            word_req: Signal::bit("word_req"),
+            start_prefetch: SignalOf::new("start_prefetch"),
+            word_ready: SignalOf::new("word_ready"),
+            word_resp: SignalOf::new("word_resp"),
+            line_done: SignalOf::new("line_done"),
+            word_req: SignalOf::new("word_req"),
             word_addr: Signal::new("word_addr", addr),
-            state: Reg::new("state", Format::uint(2)).with_states(FILL_STATES),
+            state: RegOf::new("state").with_states(FILL_STATES),
             bx: Reg::new("bx", b),
             by: Reg::new("by", b),
-            prefetch: Reg::new("prefetch", Format::uint(1)),
-            words_issued: Reg::new("words_issued", Format::uint(2)),
+            prefetch: RegOf::new("prefetch"),
+            words_issued: RegOf::new("words_issued"),
         }
     }
 
@@ -339,31 +357,31 @@ pub struct LookaheadQueue {
     blocks: (u32, u32),
     frac_bits: u32,
     #[input]
-    pub complete: Signal,
+    pub complete: SignalOf<Bit>,
     #[input]
     pub u: Signal,
     #[input]
     pub v: Signal,
     #[input]
-    pub newline: Signal,
+    pub newline: SignalOf<Bit>,
     #[input]
-    pub flush: Signal,
+    pub flush: SignalOf<Bit>,
     #[input]
-    pub engine_free: Signal,
+    pub engine_free: SignalOf<Bit>,
     #[input]
-    pub stage0_missing: Signal,
+    pub stage0_missing: SignalOf<Bit>,
     #[output]
-    pub take: Signal,
+    pub take: SignalOf<Bit>,
     #[output]
     pub take_bx: Signal,
     #[output]
     pub take_by: Signal,
     /// Live slots, and the blocks in them.
     #[reg]
-    pub mask: Reg,
+    pub mask: RegOf<Slots>,
     /// The previous completed point of this scanline (direction lookahead).
     #[reg]
-    pub prev_valid: Reg,
+    pub prev_valid: RegOf<Bit>,
     #[reg]
     pub prev_u: Reg,
     #[reg]
@@ -383,20 +401,20 @@ impl LookaheadQueue {
             mode,
             blocks,
             frac_bits: uq.frac() as u32,
-            complete: Signal::bit("complete"),
+            complete: SignalOf::new("complete"),
             u: Signal::new("u", uq),
             v: Signal::new("v", uq),
-            newline: Signal::bit("newline"),
-            flush: Signal::bit("flush"),
-            engine_free: Signal::bit("engine_free"),
-            stage0_missing: Signal::bit("stage0_missing"),
-            take: Signal::bit("take"),
+            newline: SignalOf::new("newline"),
+            flush: SignalOf::new("flush"),
+            engine_free: SignalOf::new("engine_free"),
+            stage0_missing: SignalOf::new("stage0_missing"),
+            take: SignalOf::new("take"),
             take_bx: Signal::new("take_bx", b),
             take_by: Signal::new("take_by", b),
-            mask: Reg::new("mask", Format::uint(3)),
+            mask: RegOf::new("mask"),
             bx: ["slot0_bx", "slot1_bx", "slot2_bx"].map(|n| Reg::new(n, b)),
             by: ["slot0_by", "slot1_by", "slot2_by"].map(|n| Reg::new(n, b)),
-            prev_valid: Reg::new("prev_valid", Format::uint(1)),
+            prev_valid: RegOf::new("prev_valid"),
             prev_u: Reg::new("prev_u", uq),
             prev_v: Reg::new("prev_v", uq),
         }
