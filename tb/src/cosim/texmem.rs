@@ -247,7 +247,7 @@ impl CosimUnit for CacheCosim {
         }
         let dut = TextureCache::new(self.name(), self.tag_bits);
         let m = ModelSim::new(dut, |d: &mut TextureCache, v: &[u64]| {
-            let ins = [
+            let ins: [&mut Signal; 7] = [
                 &mut d.touch,
                 &mut d.invalidate,
                 &mut d.write,

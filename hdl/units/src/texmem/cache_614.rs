@@ -28,8 +28,14 @@
 //! `valid` (1), `tag_x`, `tag_y` (`tag_bits`), `data` (64), `prefetched` (1: filled by a
 //! prefetch and not yet used by a request; for the statistics only).
 
-use crate::fx::Format;
-use crate::kernel::{Module, Reg, Signal};
+use super::ccc_decode_608::LineWord;
+use crate::fx::{Bit, Format};
+use crate::kernel::{Module, Reg, RegOf, Signal, SignalOf};
+
+hdl::formats! {
+    /// The entries a request used, one bit each (A-D).
+    pub EntryMask = Format::uint(4);
+}
 
 /// Entry of block `(bx, by)` (Figure 7).
 #[inline]
@@ -107,15 +113,15 @@ pub struct Entry {
     #[instance]
     name: String,
     #[reg]
-    pub valid: Reg,
+    pub valid: RegOf<Bit>,
     #[reg]
     pub tag_x: Reg,
     #[reg]
     pub tag_y: Reg,
     #[reg]
-    pub data: Reg,
+    pub data: RegOf<LineWord>,
     #[reg]
-    pub prefetched: Reg,
+    pub prefetched: RegOf<Bit>,
 }
 
 impl Entry {
@@ -144,19 +150,19 @@ pub struct TextureCache {
     #[instance]
     name: String,
     #[input]
-    pub touch: Signal,
+    pub touch: SignalOf<EntryMask>,
     #[input]
-    pub invalidate: Signal,
+    pub invalidate: SignalOf<Bit>,
     #[input]
-    pub write: Signal,
+    pub write: SignalOf<Bit>,
     #[input]
     pub write_bx: Signal,
     #[input]
     pub write_by: Signal,
     #[input]
-    pub write_data: Signal,
+    pub write_data: SignalOf<LineWord>,
     #[input]
-    pub write_prefetched: Signal,
+    pub write_prefetched: SignalOf<Bit>,
     #[child]
     pub entries: [Entry; 4],
 }
@@ -166,22 +172,22 @@ impl TextureCache {
     pub fn new(name: &str, tag_bits: u32) -> TextureCache {
         let e = |n: &str| Entry {
             name: n.into(),
-            valid: Reg::new("valid", Format::uint(1)),
+            valid: RegOf::new("valid"),
             tag_x: Reg::new("tag_x", Format::uint(tag_bits)),
             tag_y: Reg::new("tag_y", Format::uint(tag_bits)),
-            data: Reg::new("data", Format::uint(64)),
-            prefetched: Reg::new("prefetched", Format::uint(1)),
+            data: RegOf::new("data"),
+            prefetched: RegOf::new("prefetched"),
         };
         let b = Format::uint(tag_bits + 1);
         TextureCache {
             name: name.into(),
-            touch: Signal::new("touch", Format::uint(4)),
-            invalidate: Signal::bit("invalidate"),
-            write: Signal::bit("write"),
+            touch: SignalOf::new("touch"),
+            invalidate: SignalOf::new("invalidate"),
+            write: SignalOf::new("write"),
             write_bx: Signal::new("write_bx", b),
             write_by: Signal::new("write_by", b),
-            write_data: Signal::new("write_data", Format::uint(64)),
-            write_prefetched: Signal::bit("write_prefetched"),
+            write_data: SignalOf::new("write_data"),
+            write_prefetched: SignalOf::new("write_prefetched"),
             entries: [e("entry_a"), e("entry_b"), e("entry_c"), e("entry_d")],
         }
     }
