@@ -11,8 +11,9 @@
 //!
 //! The result is registered: one cycle from 618's registers to `rgb` / `valid`.
 
-use crate::fx::Format;
-use crate::kernel::{Module, Reg, Signal};
+use crate::fx::{Bit, Format};
+use crate::kernel::{Module, Reg, RegOf, Signal, SignalOf};
+use crate::texmem::ccc_decode_608::Rgb;
 
 /// The arithmetic of one channel (exposed for the unit's exhaustive test).
 #[inline]
@@ -39,18 +40,18 @@ pub struct ColorBilinear {
     name: String,
     frac_bits: u32,
     #[input]
-    pub in_valid: Signal,
+    pub in_valid: SignalOf<Bit>,
     /// The 2 x 2 texels c00, c10, c01, c11 (24-bit RGB).
     #[input]
-    pub c: [Signal; 4],
+    pub c: [SignalOf<Rgb>; 4],
     #[input]
     pub fu: Signal,
     #[input]
     pub fv: Signal,
     #[reg]
-    pub valid: Reg,
+    pub valid: RegOf<Bit>,
     #[reg]
-    pub rgb: Reg,
+    pub rgb: RegOf<Rgb>,
     /// The exact sums before the rounding, R, G, B (for footprint assembly).
     #[reg]
     pub sums: [Reg; 3],
@@ -64,16 +65,15 @@ impl ColorBilinear {
                 "bilinear 622: frac_bits {frac_bits} outside 1..=12"
             ));
         }
-        let c = |n| Signal::new(n, Format::uint(24));
         Ok(ColorBilinear {
             name: name.into(),
             frac_bits,
-            in_valid: Signal::bit("in_valid"),
-            c: [c("c00"), c("c10"), c("c01"), c("c11")],
+            in_valid: SignalOf::new("in_valid"),
+            c: ["c00", "c10", "c01", "c11"].map(SignalOf::new),
             fu: Signal::new("fu", Format::unsigned(frac_bits, frac_bits as i32)),
             fv: Signal::new("fv", Format::unsigned(frac_bits, frac_bits as i32)),
-            valid: Reg::new("valid", Format::uint(1)),
-            rgb: Reg::new("rgb", Format::uint(24)),
+            valid: RegOf::new("valid"),
+            rgb: RegOf::new("rgb"),
             sums: ["sum_r", "sum_g", "sum_b"]
                 .map(|n| Reg::new(n, Format::unsigned(8 + 2 * frac_bits, 2 * frac_bits as i32))),
         })

@@ -12,10 +12,10 @@
 //!
 //! Pure selection: no arithmetic, no rounding.
 
-use crate::fx::Format;
-use crate::kernel::{Module, Reg, Signal};
+use crate::fx::{Bit, Format};
+use crate::kernel::{Module, Reg, RegOf, Signal, SignalOf};
 use crate::texmem::cache_614::entry_of;
-use crate::texmem::ccc_decode_608::Line;
+use crate::texmem::ccc_decode_608::{Line, Rgb};
 
 #[derive(Clone, Debug, Module)]
 #[module(kind = "extract_618")]
@@ -23,7 +23,7 @@ pub struct ColorExtract {
     #[instance]
     name: String,
     #[input]
-    pub in_valid: Signal,
+    pub in_valid: SignalOf<Bit>,
     #[input]
     pub x0: Signal,
     #[input]
@@ -39,15 +39,15 @@ pub struct ColorExtract {
     /// The four 64-bit lines from cache 614 (entries A-D).
     pub lines: [u64; 4],
     #[reg]
-    pub valid: Reg,
+    pub valid: RegOf<Bit>,
     #[reg]
-    pub c00: Reg,
+    pub c00: RegOf<Rgb>,
     #[reg]
-    pub c10: Reg,
+    pub c10: RegOf<Rgb>,
     #[reg]
-    pub c01: Reg,
+    pub c01: RegOf<Rgb>,
     #[reg]
-    pub c11: Reg,
+    pub c11: RegOf<Rgb>,
     #[reg]
     pub fu: Reg,
     #[reg]
@@ -56,10 +56,10 @@ pub struct ColorExtract {
 
 impl ColorExtract {
     pub fn new(name: &str, coord_bits: u32, frac_bits: u32) -> ColorExtract {
-        let c = |n| Reg::new(n, Format::uint(24));
+        let c = RegOf::new;
         ColorExtract {
             name: name.into(),
-            in_valid: Signal::bit("in_valid"),
+            in_valid: SignalOf::new("in_valid"),
             x0: Signal::new("x0", Format::uint(coord_bits)),
             x1: Signal::new("x1", Format::uint(coord_bits)),
             y0: Signal::new("y0", Format::uint(coord_bits)),
@@ -67,7 +67,7 @@ impl ColorExtract {
             in_fu: Signal::new("in_fu", Format::unsigned(frac_bits, frac_bits as i32)),
             in_fv: Signal::new("in_fv", Format::unsigned(frac_bits, frac_bits as i32)),
             lines: [0; 4],
-            valid: Reg::new("valid", Format::uint(1)),
+            valid: RegOf::new("valid"),
             c00: c("c00"),
             c10: c("c10"),
             c01: c("c01"),

@@ -37,12 +37,12 @@
 //! # Statistics ([`TexStats`])
 //! Counted at clock edges (so a schedule check evaluating twice does not count twice).
 
-use crate::fx::Format;
+use crate::fx::{Bit, Format};
 use crate::kernel::declared::Regs;
-use crate::kernel::{Module, Reg, Signal, Visitor};
+use crate::kernel::{Module, Reg, RegOf, Signal, SignalOf, Visitor};
 use crate::texmem::bilinear_622::ColorBilinear;
-use crate::texmem::cache_614::{entry_of, Lookahead, TextureCache};
-use crate::texmem::ccc_decode_608::CccDecode;
+use crate::texmem::cache_614::{entry_of, EntryMask, Lookahead, TextureCache};
+use crate::texmem::ccc_decode_608::{CccDecode, Rgb};
 use crate::texmem::control_607::{DramCtrl, FillEngine, LookaheadQueue};
 use crate::texmem::dram_604::DramParams;
 use crate::texmem::extract_618::ColorExtract;
@@ -189,35 +189,35 @@ pub struct TextureUnit {
     p: TexParams,
     // Rasterizer side.
     #[input]
-    pub in_valid: Signal,
+    pub in_valid: SignalOf<Bit>,
     #[input]
     pub in_u: Signal,
     #[input]
     pub in_v: Signal,
     #[input]
-    pub in_newline: Signal,
+    pub in_newline: SignalOf<Bit>,
     #[output]
-    pub in_ready: Signal,
+    pub in_ready: SignalOf<Bit>,
     #[output]
-    pub out_valid: Signal,
+    pub out_valid: SignalOf<Bit>,
     #[output]
-    pub out_rgb: Signal,
+    pub out_rgb: SignalOf<Rgb>,
     // Stage 0.
     #[reg]
-    pub req_valid: Reg,
+    pub req_valid: RegOf<Bit>,
     #[reg]
     pub req_u: Reg,
     #[reg]
     pub req_v: Reg,
     #[reg]
-    pub req_newline: Reg,
+    pub req_newline: RegOf<Bit>,
     #[reg]
-    req_seen: Reg,
+    req_seen: RegOf<Bit>,
     /// Entries the request needs and entries that hit (this cycle).
     #[wire]
-    pub need_mask: Signal,
+    pub need_mask: SignalOf<EntryMask>,
     #[wire]
-    pub hit_mask: Signal,
+    pub hit_mask: SignalOf<EntryMask>,
     /// Control unit 607: block fetch, lookahead queue, word reads (with DRAM 604).
     #[child]
     pub fill: FillEngine,
@@ -260,20 +260,20 @@ impl TextureUnit {
         Ok(TextureUnit {
             name: name.into(),
             p,
-            in_valid: Signal::bit("in_valid"),
+            in_valid: SignalOf::new("in_valid"),
             in_u: Signal::new("in_u", uq),
             in_v: Signal::new("in_v", uq),
-            in_newline: Signal::bit("in_newline"),
-            in_ready: Signal::bit("in_ready"),
-            out_valid: Signal::bit("out_valid"),
-            out_rgb: Signal::new("out_rgb", Format::uint(24)),
-            req_valid: Reg::new("req_valid", Format::uint(1)),
+            in_newline: SignalOf::new("in_newline"),
+            in_ready: SignalOf::new("in_ready"),
+            out_valid: SignalOf::new("out_valid"),
+            out_rgb: SignalOf::new("out_rgb"),
+            req_valid: RegOf::new("req_valid"),
             req_u: Reg::new("req_u", uq),
             req_v: Reg::new("req_v", uq),
-            req_newline: Reg::new("req_newline", Format::uint(1)),
-            req_seen: Reg::new("req_seen", Format::uint(1)),
-            need_mask: Signal::new("need_mask", Format::uint(4)),
-            hit_mask: Signal::new("hit_mask", Format::uint(4)),
+            req_newline: RegOf::new("req_newline"),
+            req_seen: RegOf::new("req_seen"),
+            need_mask: SignalOf::new("need_mask"),
+            hit_mask: SignalOf::new("hit_mask"),
             fill: FillEngine::new(p.block_map(), bb, mem.req_addr.fmt()),
             queue: LookaheadQueue::new(look, p.blocks(), uq, bb),
             mem,
