@@ -6,8 +6,9 @@
 //! then pop, then push. [`Fifo::front`] and [`Fifo::iter`] read the stored entries (the
 //! FIFO's registered state) and may be used before the inputs are driven.
 
-use crate::fx::Format;
-use crate::kernel::{Mem, Module, Reg, Signal};
+use super::level_fig14::ErrCode;
+use crate::fx::{Bit, Format};
+use crate::kernel::{Mem, Module, Reg, Signal, SignalOf};
 
 /// What went wrong with a FIFO.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -48,19 +49,19 @@ pub struct Fifo {
     name: &'static str,
     kind: &'static str,
     #[input]
-    pub push: Signal,
+    pub push: SignalOf<Bit>,
     #[input]
     pub push_data: Signal,
     #[input]
-    pub pop: Signal,
+    pub pop: SignalOf<Bit>,
     /// Empties the FIFO at the edge (a parallel transfer of its line), before pop and push.
     #[input]
-    pub clear: Signal,
+    pub clear: SignalOf<Bit>,
     #[output]
     pub occupancy: Signal,
     /// 0 none, 1 overflow, 2 underflow (this cycle's inputs against the stored state).
     #[output]
-    pub error: Signal,
+    pub error: SignalOf<ErrCode>,
     /// The oldest entry's place, the entries held, the most ever held.
     #[reg]
     head: Reg,
@@ -87,12 +88,12 @@ impl Fifo {
         Ok(Fifo {
             name,
             kind: name,
-            push: Signal::bit("push"),
+            push: SignalOf::new("push"),
             push_data: Signal::new("push_data", Format::uint(width)),
-            pop: Signal::bit("pop"),
-            clear: Signal::bit("clear"),
+            pop: SignalOf::new("pop"),
+            clear: SignalOf::new("clear"),
             occupancy: Signal::new("occupancy", count),
-            error: Signal::new("error", Format::uint(2)),
+            error: SignalOf::new("error"),
             head: Reg::new("head", count),
             len: Reg::new("len", count),
             max: Reg::new("max_occupancy", count),

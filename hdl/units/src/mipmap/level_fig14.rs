@@ -3,8 +3,23 @@
 //! [`super::mipmap_gen_816`] for how the levels are chained and what each does.
 
 use super::fifo::Fifo;
-use crate::fx::Format;
-use crate::kernel::{Module, Reg, Signal};
+use crate::fx::{Bit, Format};
+use crate::kernel::{Module, RegOf, SignalOf};
+
+hdl::formats! {
+    /// A texel, 8 bits.
+    pub Texel = Format::uint(8);
+    /// Adder 1402's sum of two texels.
+    pub Sum2 = Format::uint(9);
+    /// Adder 1410's sum of four texels.
+    pub Sum4 = Format::uint(10);
+    /// A column or row of a level (up to 1024).
+    pub Coord = Format::uint(11);
+    /// A FIFO error code: 0 none, 1 overflow, 2 underflow.
+    pub ErrCode = Format::uint(2);
+    /// A frame number.
+    pub FrameNo = Format::uint(40);
+}
 
 /// Division of the box sums.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
@@ -49,45 +64,45 @@ pub struct Level {
     /// Level 1 of interlaced video: vertical pairs from the shift register.
     interlaced: bool,
     #[input]
-    pub in_valid: Signal,
+    pub in_valid: SignalOf<Bit>,
     #[input]
-    pub in_texel: Signal,
+    pub in_texel: SignalOf<Texel>,
     /// Interlaced level 1: the partner line's texel from shift register 826.
     #[input]
-    pub sr_texel: Option<Signal>,
+    pub sr_texel: Option<SignalOf<Texel>>,
     #[wire]
-    pub sum1402: Signal,
+    pub sum1402: SignalOf<Sum2>,
     #[wire]
-    pub sum1410: Signal,
+    pub sum1410: SignalOf<Sum4>,
     #[output]
-    pub out_valid: Signal,
+    pub out_valid: SignalOf<Bit>,
     #[output]
-    pub out_texel: Signal,
+    pub out_texel: SignalOf<Texel>,
     #[reg]
-    x: Reg,
+    x: RegOf<Coord>,
     #[reg]
-    y: Reg,
+    y: RegOf<Coord>,
     #[reg]
-    r1404: Reg,
+    r1404: RegOf<Texel>,
     #[reg]
-    out_v: Reg,
+    out_v: RegOf<Bit>,
     #[reg]
-    out_t: Reg,
+    out_t: RegOf<Texel>,
     /// Sticky FIFO error: 0 none, 1 overflow, 2 underflow.
     #[reg]
-    err: Reg,
+    err: RegOf<ErrCode>,
     #[child]
     pub fifo_1408: Fifo,
     #[child]
     pub fifo_1412: Fifo,
     /// Frame and row (of this level) of the next line FIFO 1412 writes to the frame store.
     #[reg]
-    frame: Reg,
+    frame: RegOf<FrameNo>,
     #[reg]
-    rows_out: Reg,
+    rows_out: RegOf<Coord>,
     /// The clock enable: whether this cycle changes anything (an idle level skips its edge).
     #[wire]
-    busy: Signal,
+    busy: SignalOf<Bit>,
 }
 
 const NAMES: [&str; 11] = [
@@ -105,7 +120,6 @@ impl Level {
     ) -> Result<Level, String> {
         let (wp, hp) = prev;
         let wk = (wp / 2).max(1) as usize;
-        let c = |b: u32| Format::uint(b);
         Ok(Level {
             name: NAMES.get(k).ok_or(format!("level {k}: at most 10"))?,
             wp,
@@ -114,25 +128,25 @@ impl Level {
             pair_y: hp > 1,
             rounding,
             interlaced,
-            in_valid: Signal::bit("in_valid"),
-            in_texel: Signal::new("in_texel", c(8)),
-            sr_texel: interlaced.then(|| Signal::new("sr826", c(8))),
-            sum1402: Signal::new("sum1402", c(9)),
-            sum1410: Signal::new("sum1410", c(10)),
-            out_valid: Signal::bit("out_valid"),
-            out_texel: Signal::new("out_texel", c(8)),
-            x: Reg::new("x", c(11)),
-            y: Reg::new("y", c(11)),
-            r1404: Reg::new("r1404", c(8)),
-            out_v: Reg::new("out_valid_r", c(1)),
-            out_t: Reg::new("out_texel_r", c(8)),
-            err: Reg::new("fifo_error", c(2)),
+            in_valid: SignalOf::new("in_valid"),
+            in_texel: SignalOf::new("in_texel"),
+            sr_texel: interlaced.then(|| SignalOf::new("sr826")),
+            sum1402: SignalOf::new("sum1402"),
+            sum1410: SignalOf::new("sum1410"),
+            out_valid: SignalOf::new("out_valid"),
+            out_texel: SignalOf::new("out_texel"),
+            x: RegOf::new("x"),
+            y: RegOf::new("y"),
+            r1404: RegOf::new("r1404"),
+            out_v: RegOf::new("out_valid_r"),
+            out_t: RegOf::new("out_texel_r"),
+            err: RegOf::new("fifo_error"),
             fifo_1408: Fifo::new("fifo_1408", wk, 9)?,
             fifo_1412: Fifo::new("fifo_1412", wk, 8)?,
-            frame: Reg::new("frame", c(40)),
-            rows_out: Reg::new("rows_out", c(11)),
+            frame: RegOf::new("frame"),
+            rows_out: RegOf::new("rows_out"),
             busy: {
-                let mut b = Signal::bit("busy");
+                let mut b = SignalOf::new("busy");
                 b.set_bool(true);
                 b
             },
@@ -182,7 +196,7 @@ impl Level {
     /// through FIFO 1408 (a one-entry register).
     fn reduce_interlaced(&mut self, t: u32, x: u32) -> (Ops, Option<u32>) {
         let r = self.rounding;
-        let sr = self.sr_texel.as_ref().map_or(0, Signal::bits);
+        let sr = self.sr_texel.as_ref().map_or(0, |s| s.bits());
         let s = t + sr as u32;
         self.sum1402.set_bits(u64::from(s));
         let mut ops = Ops::default();

@@ -32,11 +32,11 @@
 //! Errors (sticky `error`, `err_code`): 1 FIFO overflow, 2 FIFO underflow, 3 video sync
 //! (`sof` high other than with a frame's first texel, or low with it).
 
-use crate::fx::Format;
+use crate::fx::Bit;
 use crate::kernel::declared::Regs;
-use crate::kernel::{Module, Reg, Signal, Visitor};
-use crate::mipmap::level_fig14::Level;
+use crate::kernel::{Module, RegOf, SignalOf, Visitor};
 pub use crate::mipmap::level_fig14::Rounding;
+use crate::mipmap::level_fig14::{Coord, ErrCode, FrameNo, Level, Texel};
 use crate::pages::page_registers_824::PageRegisters824;
 
 /// Arrival order of a frame's lines.
@@ -243,37 +243,37 @@ pub struct MipmapGen {
     p: MipmapParams,
     dims: Vec<(u32, u32)>,
     #[input]
-    pub valid: Signal,
+    pub valid: SignalOf<Bit>,
     #[input]
-    pub texel: Signal,
+    pub texel: SignalOf<Texel>,
     #[input]
-    pub sof: Signal,
+    pub sof: SignalOf<Bit>,
     #[output]
-    pub error: Signal,
+    pub error: SignalOf<Bit>,
     #[output]
-    pub err_code: Signal,
+    pub err_code: SignalOf<ErrCode>,
     #[output]
-    pub frame_done: Signal,
+    pub frame_done: SignalOf<Bit>,
     /// Level-0 arrival counters: x, line within the field, field; the frame arriving.
     #[reg]
-    x: Reg,
+    x: RegOf<Coord>,
     #[reg]
-    line: Reg,
+    line: RegOf<Coord>,
     #[reg]
-    field: Reg,
+    field: RegOf<Bit>,
     #[reg]
-    frame0: Reg,
+    frame0: RegOf<FrameNo>,
     /// Sticky error and its code.
     #[reg]
-    err: Reg,
+    err: RegOf<Bit>,
     #[reg]
-    code: Reg,
+    code: RegOf<ErrCode>,
     /// A frame's mipmap was completed at the last edge.
     #[reg]
-    done: Reg,
+    done: RegOf<Bit>,
     /// Row activations of the own frame store's banks 0, 1 and 2.
     #[reg]
-    activations: [Reg; 3],
+    activations: [RegOf<FrameNo>; 3],
     /// The page registers 824 of the own frame store's three banks (none on the TEXRAM's,
     /// whose own count).
     #[child]
@@ -295,25 +295,23 @@ impl MipmapGen {
         let levels = (1..dims.len())
             .map(|k| Level::new(k, dims[k - 1], p.rounding, interlaced && k == 1))
             .collect::<Result<_, _>>()?;
-        let u = Format::uint;
         Ok(MipmapGen {
             name: name.into(),
             p,
-            valid: Signal::bit("valid"),
-            texel: Signal::new("texel", u(8)),
-            sof: Signal::bit("sof"),
-            error: Signal::bit("error"),
-            err_code: Signal::new("err_code", u(2)),
-            frame_done: Signal::bit("frame_done"),
-            x: Reg::new("x0", u(11)),
-            line: Reg::new("line0", u(11)),
-            field: Reg::new("field", u(1)),
-            frame0: Reg::new("frame", u(40)),
-            err: Reg::new("error_r", u(1)),
-            code: Reg::new("err_code_r", u(2)),
-            done: Reg::new("frame_done_r", u(1)),
-            activations: ["activations0", "activations1", "activations2"]
-                .map(|n| Reg::new(n, u(40))),
+            valid: SignalOf::new("valid"),
+            texel: SignalOf::new("texel"),
+            sof: SignalOf::new("sof"),
+            error: SignalOf::new("error"),
+            err_code: SignalOf::new("err_code"),
+            frame_done: SignalOf::new("frame_done"),
+            x: RegOf::new("x0"),
+            line: RegOf::new("line0"),
+            field: RegOf::new("field"),
+            frame0: RegOf::new("frame"),
+            err: RegOf::new("error_r"),
+            code: RegOf::new("err_code_r"),
+            done: RegOf::new("frame_done_r"),
+            activations: ["activations0", "activations1", "activations2"].map(RegOf::new),
             pages: Some(PageRegisters824::new(3, 16)),
             levels,
             store: FrameStore::new(&dims, true),
