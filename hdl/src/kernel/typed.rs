@@ -10,7 +10,7 @@ use std::marker::PhantomData;
 use std::ops::{Deref, DerefMut};
 
 /// A [`Signal`] of format `F`. Everything a `Signal` offers is there (it dereferences to one);
-/// `fx`, `raw`, `set` and `set_raw` use `F::FMT` as a constant.
+/// `fx`, `raw`, `set`, `set_raw` and `set_bits` use `F::FMT` as a constant.
 #[repr(transparent)]
 pub struct SignalOf<F> {
     s: Signal,

@@ -19,12 +19,11 @@
 //! CLUT output is registered), one with it on colour b; in that second cycle `line_valid` is
 //! high and `line` carries the whole entry to the cache (write enable, line 616).
 
+use super::dram_604::Word;
 use crate::fx::{Bit, Format};
 use crate::kernel::{Module, RegOf, SignalOf};
 
 hdl::formats! {
-    /// A DRAM word.
-    pub Word = Format::uint(16);
     /// Register 608: word 0 in bits 31..16, word 1 in bits 15..0.
     pub Reg608 = Format::uint(32);
     /// A CLUT 612 address: a colour index.

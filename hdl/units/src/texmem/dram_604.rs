@@ -30,7 +30,7 @@ hdl::formats! {
     /// One bit a rule ([`rule`]).
     pub Rules = Format::uint(8);
     /// Cycles a pin has held its level, saturating at 1023.
-    pub Level = Format::uint(10);
+    pub HeldCycles = Format::uint(10);
 }
 
 /// Geometry and timing.
@@ -241,11 +241,11 @@ pub struct Dram {
     cas_n_was: RegOf<Bit>,
     /// Cycles RAS#/CAS# have held their level, and cycles since RAS# fell.
     #[reg]
-    ras_level_for: RegOf<Level>,
+    ras_level_for: RegOf<HeldCycles>,
     #[reg]
-    cas_level_for: RegOf<Level>,
+    cas_level_for: RegOf<HeldCycles>,
     #[reg]
-    since_ras_fall: RegOf<Level>,
+    since_ras_fall: RegOf<HeldCycles>,
     #[reg]
     log: ViolationLog,
 }
@@ -262,7 +262,7 @@ impl Dram {
         };
         let was_high = |n| RegOf::new(n).reset_to(Fx::from_int(Bit::FMT, 1));
         // After reset both pins have been high "long ago".
-        let level = |n| RegOf::new(n).reset_to(Fx::from_int(Level::FMT, 1000));
+        let level = |n| RegOf::new(n).reset_to(Fx::from_int(HeldCycles::FMT, 1000));
         Ok(Dram {
             name,
             mem: (0..p.words()).map(DramParams::pattern).collect(),
