@@ -32,12 +32,17 @@
 //! Errors (sticky `error`, `err_code`): 1 FIFO overflow, 2 FIFO underflow, 3 video sync
 //! (`sof` high other than with a frame's first texel, or low with it).
 
-use crate::fx::Bit;
+use crate::fx::{Bit, Format};
 use crate::kernel::declared::Regs;
 use crate::kernel::{Module, RegOf, SignalOf, Visitor};
 pub use crate::mipmap::level_fig14::Rounding;
 use crate::mipmap::level_fig14::{Coord, ErrCode, FrameNo, Level, Texel};
 use crate::pages::page_registers_824::PageRegisters824;
+
+hdl::formats! {
+    /// Row activations of a frame-store bank, counted.
+    pub Activations = Format::uint(40);
+}
 
 /// Arrival order of a frame's lines.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
@@ -273,7 +278,7 @@ pub struct MipmapGen {
     done: RegOf<Bit>,
     /// Row activations of the own frame store's banks 0, 1 and 2.
     #[reg]
-    activations: [RegOf<FrameNo>; 3],
+    activations: [RegOf<Activations>; 3],
     /// The page registers 824 of the own frame store's three banks (none on the TEXRAM's,
     /// whose own count).
     #[child]
