@@ -6,9 +6,13 @@
 //! then pop, then push. [`Fifo::front`] and [`Fifo::iter`] read the stored entries (the
 //! FIFO's registered state) and may be used before the inputs are driven.
 
-use super::level_fig14::ErrCode;
 use crate::fx::{Bit, Format};
 use crate::kernel::{Mem, Module, Reg, Signal, SignalOf};
+
+hdl::formats! {
+    /// A FIFO error code ([`FifoError::code`]): 0 none, 1 overflow, 2 underflow.
+    pub ErrCode = Format::uint(2);
+}
 
 /// What went wrong with a FIFO.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]

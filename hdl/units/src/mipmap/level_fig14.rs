@@ -2,7 +2,7 @@
 //! of level `k-1`, with adder 1402, register 1404, FIFO 1408, adder 1410 and FIFO 1412. See
 //! [`super::mipmap_gen_816`] for how the levels are chained and what each does.
 
-use super::fifo::Fifo;
+use super::fifo::{ErrCode, Fifo};
 use crate::fx::{Bit, Format};
 use crate::kernel::{Module, RegOf, SignalOf};
 
@@ -15,8 +15,6 @@ hdl::formats! {
     pub Sum4 = Format::uint(10);
     /// A column or row of a level (up to 1024).
     pub Coord = Format::uint(11);
-    /// A FIFO error code: 0 none, 1 overflow, 2 underflow.
-    pub ErrCode = Format::uint(2);
     /// A frame number.
     pub FrameNo = Format::uint(40);
 }

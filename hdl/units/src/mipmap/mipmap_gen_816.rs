@@ -35,8 +35,9 @@
 use crate::fx::{Bit, Format};
 use crate::kernel::declared::Regs;
 use crate::kernel::{Module, RegOf, SignalOf, Visitor};
+use crate::mipmap::fifo::ErrCode;
 pub use crate::mipmap::level_fig14::Rounding;
-use crate::mipmap::level_fig14::{Coord, ErrCode, FrameNo, Level, Texel};
+use crate::mipmap::level_fig14::{Coord, FrameNo, Level, Texel};
 use crate::pages::page_registers_824::PageRegisters824;
 
 hdl::formats! {
