@@ -53,6 +53,9 @@ fn bench_measures_a_twin_in_alternating_rounds() {
             err.contains(&format!("address_150: harnesses {said}")),
             "{err}"
         );
+        // Progress on stderr names its unit first: a copy of both streams has one table.
+        assert!(err.contains("\naddress_150: measured | "), "{err}");
+        assert!(!err.lines().any(|l| l.starts_with('|')), "{err}");
         check_table(o, pid, &d.join(run));
     }
     assert!(!d.join("second/address_150/obj_untraced").exists());
@@ -144,6 +147,8 @@ fn bench_counts_instructions_the_same_on_every_run() {
             .unwrap();
         let err = String::from_utf8_lossy(&o.stderr);
         assert_eq!(o.status.code(), Some(0), "{err}");
+        assert!(err.contains("\naddress_150: counted | "), "{err}");
+        assert!(!err.lines().any(|l| l.starts_with('|')), "{err}");
         String::from_utf8(o.stdout).unwrap()
     };
     let figures = |table: &str| -> [f64; 3] {

@@ -184,9 +184,13 @@ pub fn table(seed: Seed, n: usize, rows: &[Counted]) -> String {
 
 /// A row of the table.
 pub fn line(r: &Counted) -> String {
+    format!("| {} |{}", r.unit, cells(r))
+}
+
+/// The cells of a row after the unit's name: both counts and their ratio.
+pub fn cells(r: &Counted) -> String {
     format!(
-        "| {} | {:.1} | {:.1} | {:.2} |",
-        r.unit,
+        " {:.1} | {:.1} | {:.2} |",
         r.model,
         r.twin,
         r.twin / r.model.max(f64::MIN_POSITIVE)

@@ -102,7 +102,8 @@ pub fn measure_all(a: &BenchConfig, units: &[&dyn CosimUnit]) -> Result<String, 
     let mut rows = Vec::new();
     for (u, r) in units.iter().zip(ready) {
         let r = measure(a, *u, r)?;
-        eprintln!("{}", line(&r));
+        // Not a table row (those are on stdout): a copy of both streams keeps one table.
+        eprintln!("{}: measured |{}", r.unit, cells(&r));
         rows.push(r);
     }
     let t = table(a, &rows);
@@ -117,7 +118,7 @@ fn count_all(a: &BenchConfig, n: usize, units: &[&dyn CosimUnit]) -> Result<Stri
     for u in units {
         let dir = unit_dir(a, *u)?;
         let r = count::count(*u, a.seed, n, &dir).map_err(|e| format!("{}: {e}", u.name()))?;
-        eprintln!("{}", count::line(&r));
+        eprintln!("{}: counted |{}", r.unit, count::cells(&r));
         rows.push(r);
     }
     let t = count::table(a.seed, n, &rows);
@@ -407,8 +408,14 @@ fn rate(x: f64) -> String {
     }
 }
 
+/// A unit's row of the table.
 fn line(r: &Row) -> String {
-    let mut s = format!("| {} |", r.unit);
+    format!("| {} |{}", r.unit, cells(r))
+}
+
+/// The cells of a unit's row after its name: each mode's two rates and their ratio.
+fn cells(r: &Row) -> String {
+    let mut s = String::new();
     for k in 0..3 {
         let (lo, hi) = r.range[k];
         let spread = if lo < hi {
