@@ -15,7 +15,9 @@ pub const PASSES: usize = 3;
 /// Untraced, both sides go on past [`PASSES`] until each side's passes add up to this many
 /// seconds (at most [`MAX_PASSES`]): a pass of a small unit over a million cycles takes a few
 /// milliseconds, and three of them were often all caught by one slow stretch of the machine.
-pub const MIN_SECONDS: f64 = 0.25;
+/// A second, not a quarter: a large unit's pass takes a tenth of one, and three of them left
+/// its rounds' ratios as far apart as the margin a claim needs.
+pub const MIN_SECONDS: f64 = 1.0;
 
 /// The most untraced passes a side makes in a round.
 pub const MAX_PASSES: usize = 200;
