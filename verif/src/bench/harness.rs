@@ -458,10 +458,10 @@ mod tests {
         std::fs::remove_dir_all(&dir).unwrap();
     }
 
-    /// At least three passes; more while they add up to less than the quarter second; never
+    /// At least three passes; more while they add up to less than the second; never
     /// more than the cap.
     #[test]
-    fn passes_until_a_quarter_second_or_the_cap() {
+    fn passes_until_a_second_or_the_cap() {
         assert!(!enough(PASSES - 1, 10.0));
         assert!(!enough(PASSES, MIN_SECONDS / 2.0));
         assert!(enough(PASSES, MIN_SECONDS));

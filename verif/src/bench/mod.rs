@@ -20,7 +20,7 @@ use std::path::{Path, PathBuf};
 #[derive(Clone, Debug)]
 pub struct BenchConfig {
     /// Cycles of the untraced runs (1..=100000000; in each round the two sides' passes take
-    /// turns, at least three each and more until each side's add up to a quarter of a second,
+    /// turns, at least three each and more until each side's add up to a second,
     /// and each side's fastest counts).
     pub cycles: usize,
     /// Cycles of the traced runs, VCD and FST (1..=10000000, at most `cycles`; one run a

@@ -34,7 +34,7 @@ clap_args!(BenchArgs);
 impl BenchArgs {
     pub(super) fn augment(c: Command) -> Command {
         c.args([
-            value("cycles", "CYCLES", value_parser!(usize), "Cycles of the untraced runs (1..=100000000; in each round the two sides' passes take turns, at least three each, more until each side's take a quarter second, and each side's fastest counts)").default_value("1000000"),
+            value("cycles", "CYCLES", value_parser!(usize), "Cycles of the untraced runs (1..=100000000; in each round the two sides' passes take turns, at least three each, more until each side's take a second, and each side's fastest counts)").default_value("1000000"),
             value("traced-cycles", "TRACED_CYCLES", value_parser!(usize), "Cycles of the traced runs, VCD and FST (1..=10000000; one run a round)").default_value("1000000"),
             value("stimulus-rows", "ROWS", value_parser!(usize), "Rows of seeded stimulus (1..=100000000; at most CYCLES are drawn) that both sides replay in a ring, cycle c driving row c % ROWS: rows in the core's cache time the simulators, a row a cycle streamed from memory times the memory too").default_value("16384"),
             value("rounds", "ROUNDS", value_parser!(usize), "Rounds (1..=20), each measuring every mode on both sides in turn; a unit's row is its round with the median ratio, the range of the ratios beside it").default_value("3"),
