@@ -2,14 +2,14 @@
 //! the program answers with exit 0 (or 1, a failed testbench, for `regress`) or with exit 2
 //! and one line naming the problem, never with a panic (101) or an abort.
 
-use std::path::{Path, PathBuf};
+mod common;
+
+use std::path::Path;
 use std::process::Command;
 
-fn dir(test: &str) -> PathBuf {
-    let d = std::env::temp_dir().join(format!("texrtl-limits-{}-{test}", std::process::id()));
-    let _ = std::fs::remove_dir_all(&d);
-    std::fs::create_dir_all(&d).unwrap();
-    d
+/// A fresh folder for `test`, removed when it passes.
+fn dir(test: &str) -> common::TestDir {
+    common::dir("limits", test)
 }
 
 fn write(d: &Path, name: &str, data: &[u8]) -> String {
@@ -140,7 +140,6 @@ fn normals_options_at_their_limits() {
         false,
     );
     sweep(&base, "--lod", &[("0.5", 2)], false);
-    let _ = std::fs::remove_dir_all(&d);
 }
 
 #[test]
@@ -185,7 +184,6 @@ fn render_options_at_their_limits() {
         &[("0", 0), ("1e308", 2), ("-1", 2)],
         false,
     );
-    let _ = std::fs::remove_dir_all(&d);
 }
 
 #[test]
@@ -280,7 +278,6 @@ fn memory_path_options_at_their_limits() {
         let code = check(&s(&["ccc", "encode", "--in", &p, "--out", &ccc]), false);
         assert_eq!(code, want, "{hdr:?}");
     }
-    let _ = std::fs::remove_dir_all(&d);
 }
 
 #[test]
@@ -344,7 +341,6 @@ fn mipmap_sweep_and_vectors_options_at_their_limits() {
         &[("blend_adjust_153", 0), ("mipmap_gen_816", 0), ("bogus", 2)],
         false,
     );
-    let _ = std::fs::remove_dir_all(&d);
 }
 
 #[test]
@@ -442,7 +438,6 @@ fn regress_options_at_their_limits() {
         true,
     );
     sweep(&base, "--only", &[("vectors", 0), ("bogus", 2)], true);
-    let _ = std::fs::remove_dir_all(&d);
 }
 
 #[test]
