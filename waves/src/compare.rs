@@ -49,17 +49,66 @@ impl Values<'_> {
         }
     }
 
-    /// The text of signal `k` (`width` bits) in cycle `c`.
-    fn text(&self, c: usize, k: usize, width: u32) -> String {
+    /// What signal `k` (`width` bits) shows in cycle `c`.
+    fn level(&self, c: usize, k: usize, width: u32) -> Level {
         match *self {
-            Values::Every(v) => value(v.get(c).and_then(|v| v.get(k)).copied(), width),
+            Values::Every(v) => Level::of(v.get(c).and_then(|v| v.get(k)).copied(), width),
             Values::From(first, v) => match c.checked_sub(first).and_then(|i| v.get(i)) {
-                Some(row) => value(row.get(k).copied().flatten(), width),
-                None if width == 1 => "z".into(),
-                None => "bz ".into(),
+                Some(row) => Level::of(row.get(k).copied().flatten(), width),
+                None => Level::Unrecorded,
             },
         }
     }
+}
+
+/// A value as the waveform shows it: its bits (a one-bit signal's lowest only), unknown
+/// (`x`), or not recorded (`z`). Equal levels are equal texts, so a change is found without
+/// formatting the value.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+enum Level {
+    Bits(u64),
+    Unknown,
+    Unrecorded,
+}
+
+impl Level {
+    fn of(v: Option<u64>, width: u32) -> Level {
+        match v {
+            Some(b) if width == 1 => Level::Bits(b & 1),
+            Some(b) => Level::Bits(b),
+            None => Level::Unknown,
+        }
+    }
+
+    /// Writes the value change of a `width`-bit signal `id` to this level: `1!`, `b0101 !`,
+    /// `x!`, `bz !` (binary digits down to the width, more where the bits reach higher).
+    fn write(self, w: &mut impl Write, width: u32, id: &IdCode) -> std::io::Result<()> {
+        let mut text = [0u8; 68];
+        let n = match (self, width) {
+            (Level::Bits(b), 1) => put(&mut text, &[b'0' + b as u8]),
+            (Level::Unknown, 1) => put(&mut text, b"x"),
+            (Level::Unrecorded, 1) => put(&mut text, b"z"),
+            (Level::Bits(b), _) => {
+                let digits = width.max(64 - b.leading_zeros()).max(1) as usize;
+                text[0] = b'b';
+                for (i, t) in text[1..=digits].iter_mut().enumerate() {
+                    *t = b'0' + (b >> (digits - 1 - i) & 1) as u8;
+                }
+                text[digits + 1] = b' ';
+                digits + 2
+            }
+            (Level::Unknown, _) => put(&mut text, b"bx "),
+            (Level::Unrecorded, _) => put(&mut text, b"bz "),
+        };
+        w.write_all(&text[..n])?;
+        writeln!(w, "{id}")
+    }
+}
+
+/// Copies `s` to the start of `text`; its length.
+fn put(text: &mut [u8], s: &[u8]) -> usize {
+    text[..s.len()].copy_from_slice(s);
+    s.len()
 }
 
 /// Writes `path` (and its `.gtkw`): `model[c][k]` and `rtl[c][k]` are port `k`'s values in
@@ -80,10 +129,10 @@ pub fn write(
     let f = out.create().map_err(|e| e.to_string())?;
     let mut w = vcd::Writer::new(BufWriter::new(f));
     let (ids, shown_ids) = header(&mut w, title, ports, shown).map_err(err)?;
-    let mut last: Vec<Option<String>> = vec![None; ids.len()];
+    let mut last: Vec<Option<Level>> = vec![None; ids.len()];
     let mut first = None;
     let mut differed = vec![false; ports.len()];
-    let mut last_shown: Vec<Vec<Option<String>>> =
+    let mut last_shown: Vec<Vec<Option<Level>>> =
         shown.iter().map(|s| vec![None; s.signals.len()]).collect();
     for (c, (m, r)) in model.iter().zip(rtl).enumerate() {
         w.timestamp(c as u64 * PERIOD).map_err(err)?;
@@ -97,11 +146,10 @@ pub fn write(
             let vals = [Some(m[k]), r[k], Some(u64::from(flag))];
             for (j, v) in vals.into_iter().enumerate() {
                 let wd = if j == 2 { 1 } else { width };
-                let text = value(v, wd);
-                let slot = 3 * k + j;
-                if last[slot].as_deref() != Some(text.as_str()) {
-                    writeln!(w.writer(), "{text}{}", ids[slot]).map_err(err)?;
-                    last[slot] = Some(text);
+                let (level, slot) = (Level::of(v, wd), 3 * k + j);
+                if last[slot] != Some(level) {
+                    level.write(w.writer(), wd, &ids[slot]).map_err(err)?;
+                    last[slot] = Some(level);
                 }
             }
         }
@@ -111,10 +159,12 @@ pub fn write(
             .filter(|(_, sh)| sh.values.may_change(c))
         {
             for (k, &(_, width, _)) in sh.signals.iter().enumerate() {
-                let text = sh.values.text(c, k, width);
-                if last_shown[i][k].as_deref() != Some(text.as_str()) {
-                    writeln!(w.writer(), "{text}{}", shown_ids[i][k]).map_err(err)?;
-                    last_shown[i][k] = Some(text);
+                let level = sh.values.level(c, k, width);
+                if last_shown[i][k] != Some(level) {
+                    level
+                        .write(w.writer(), width, &shown_ids[i][k])
+                        .map_err(err)?;
+                    last_shown[i][k] = Some(level);
                 }
             }
         }
@@ -164,16 +214,6 @@ fn out_of_reset(values: &[Vec<u64>]) -> u64 {
         .iter()
         .position(|v| v.first() == Some(&0))
         .unwrap_or(0) as u64
-}
-
-/// `b0101 ` / `1` / `x` text of a value change (the id follows).
-fn value(v: Option<u64>, width: u32) -> String {
-    match (v, width) {
-        (Some(b), 1) => format!("{}", b & 1),
-        (None, 1) => "x".into(),
-        (Some(b), w) => format!("b{b:0w$b} ", w = w as usize),
-        (None, _) => "bx ".into(),
-    }
 }
 
 /// The ids of the compared ports (model, RTL, mismatch of each) and of each shown scope's.

@@ -440,10 +440,7 @@ pub fn regress(
     } else {
         (Vec::new(), cosim_jobs)
     };
-    for r in &mut results {
-        focus_on_mismatch(r);
-        check_waveform(r, cfg.fst);
-    }
+    check_waveforms(&mut results, cfg);
     let passed = results.iter().all(|r| r.passed);
     let summary = Summary {
         texrtl: project.version().to_string(),
@@ -497,6 +494,25 @@ fn vectors_row(project: &Project, dir: &std::path::Path) -> TbResult {
     }
     r.finish_with(false);
     r
+}
+
+/// Every result's waveform focused on its first mismatch and checked, on the run's threads
+/// (each result on its own: a twin's waveform is tens of megabytes to read back).
+fn check_waveforms(results: &mut [TbResult], cfg: &RegressConfig) {
+    let threads = cfg.jobs.clamp(1, results.len().max(1));
+    let queue = std::sync::Mutex::new(results.iter_mut());
+    std::thread::scope(|s| {
+        for _ in 0..threads {
+            s.spawn(|| {
+                // The lock is held while a result is taken, not while it is checked.
+                let take = || queue.lock().ok()?.next();
+                while let Some(r) = take() {
+                    focus_on_mismatch(r);
+                    check_waveform(r, cfg.fst);
+                }
+            });
+        }
+    });
 }
 
 /// A failing result's waveform opens at its first mismatch, marker A on it.
