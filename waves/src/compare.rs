@@ -83,32 +83,30 @@ impl Level {
     /// Writes the value change of a `width`-bit signal `id` to this level: `1!`, `b0101 !`,
     /// `x!`, `bz !` (binary digits down to the width, more where the bits reach higher).
     fn write(self, w: &mut impl Write, width: u32, id: &IdCode) -> std::io::Result<()> {
-        let mut text = [0u8; 68];
-        let n = match (self, width) {
-            (Level::Bits(b), 1) => put(&mut text, &[b'0' + b as u8]),
-            (Level::Unknown, 1) => put(&mut text, b"x"),
-            (Level::Unrecorded, 1) => put(&mut text, b"z"),
+        match (self, width) {
+            (Level::Bits(b), 1) => w.write_all(&[b'0' + b as u8])?,
+            (Level::Unknown, 1) => w.write_all(b"x")?,
+            (Level::Unrecorded, 1) => w.write_all(b"z")?,
             (Level::Bits(b), _) => {
                 let digits = width.max(64 - b.leading_zeros()).max(1) as usize;
-                text[0] = b'b';
-                for (i, t) in text[1..=digits].iter_mut().enumerate() {
-                    *t = b'0' + (b >> (digits - 1 - i) & 1) as u8;
+                // `b`, the zeros above a 64-bit value's bits (a wider signal), the bits, ` `.
+                let mut text = [b'0'; 66];
+                let low = digits.min(64);
+                for (i, t) in text[1..=low].iter_mut().enumerate() {
+                    *t = b'0' + (b >> (low - 1 - i) & 1) as u8;
                 }
-                text[digits + 1] = b' ';
-                digits + 2
+                w.write_all(b"b")?;
+                for _ in low..digits {
+                    w.write_all(b"0")?;
+                }
+                text[low + 1] = b' ';
+                w.write_all(&text[1..low + 2])?;
             }
-            (Level::Unknown, _) => put(&mut text, b"bx "),
-            (Level::Unrecorded, _) => put(&mut text, b"bz "),
-        };
-        w.write_all(&text[..n])?;
+            (Level::Unknown, _) => w.write_all(b"bx ")?,
+            (Level::Unrecorded, _) => w.write_all(b"bz ")?,
+        }
         writeln!(w, "{id}")
     }
-}
-
-/// Copies `s` to the start of `text`; its length.
-fn put(text: &mut [u8], s: &[u8]) -> usize {
-    text[..s.len()].copy_from_slice(s);
-    s.len()
 }
 
 /// Writes `path` (and its `.gtkw`): `model[c][k]` and `rtl[c][k]` are port `k`'s values in
@@ -362,4 +360,56 @@ fn gtkw(
     }
     g.write(&format!("cosim {title}"))
         .map_err(|e| format!("{}: {e}", g.path().display()))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// A value change's text as VCD writes it, from `format!`: what [`Level::write`] must write
+    /// byte for byte without formatting.
+    fn expected(l: Level, width: u32) -> String {
+        match (l, width) {
+            (Level::Bits(b), 1) => format!("{}", b & 1),
+            (Level::Unknown, 1) => "x".into(),
+            (Level::Unrecorded, 1) => "z".into(),
+            (Level::Bits(b), w) => format!("b{b:0w$b} ", w = w as usize),
+            (Level::Unknown, _) => "bx ".into(),
+            (Level::Unrecorded, _) => "bz ".into(),
+        }
+    }
+
+    /// Every width from 1 to 80 bits (wider than a value's 64) with values at the edges of
+    /// the width and beyond it, unknown and unrecorded: the same text, then the id.
+    #[test]
+    fn a_value_change_is_written_as_format_writes_it() {
+        let id = IdCode::from(7u32);
+        for width in 1..=80u32 {
+            let top = if width >= 64 {
+                u64::MAX
+            } else {
+                (1 << width) - 1
+            };
+            let values = [
+                0,
+                1,
+                2,
+                top,
+                top >> 1,
+                top.wrapping_add(1),
+                u64::MAX,
+                0x5a5a,
+            ];
+            let levels = values
+                .iter()
+                .map(|&v| Level::of(Some(v), width))
+                .chain([Level::Unknown, Level::Unrecorded]);
+            for l in levels {
+                let mut got = Vec::new();
+                l.write(&mut got, width, &id).unwrap();
+                let want = format!("{}{id}\n", expected(l, width));
+                assert_eq!(String::from_utf8(got).unwrap(), want, "{l:?}, {width} bits");
+            }
+        }
+    }
 }
