@@ -88,19 +88,17 @@ impl Level {
             (Level::Unknown, 1) => w.write_all(b"x")?,
             (Level::Unrecorded, 1) => w.write_all(b"z")?,
             (Level::Bits(b), _) => {
-                let digits = width.max(64 - b.leading_zeros()).max(1) as usize;
                 // `b`, the zeros above a 64-bit value's bits (a wider signal), the bits, ` `.
-                let mut text = [b'0'; 66];
+                let digits = width.max(64 - b.leading_zeros()).max(1) as usize;
                 let low = digits.min(64);
-                for (i, t) in text[1..=low].iter_mut().enumerate() {
-                    *t = b'0' + (b >> (low - 1 - i) & 1) as u8;
-                }
+                let mut text = [0u8; 64];
+                crate::vcd_text::binary_digits(&mut text[..low], b);
                 w.write_all(b"b")?;
                 for _ in low..digits {
                     w.write_all(b"0")?;
                 }
-                text[low + 1] = b' ';
-                w.write_all(&text[1..low + 2])?;
+                w.write_all(&text[..low])?;
+                w.write_all(b" ")?;
             }
             (Level::Unknown, _) => w.write_all(b"bx ")?,
             (Level::Unrecorded, _) => w.write_all(b"bz ")?,
