@@ -241,7 +241,8 @@ mod tests {
     }
 
     /// A stored artifact is found under its key with the same bytes; a second store of the
-    /// key keeps one entry; past the bound the least recently used go.
+    /// key keeps one entry; past the bound the least recently used go, and nothing but
+    /// entries.
     #[test]
     fn entries_are_kept_whole_and_bounded() {
         let d = folder("store");
@@ -273,6 +274,12 @@ mod tests {
         assert_eq!(names(&root), ["k1", "k3"]);
         prune(&root, 2, 2 * (6 + 2) - 1); // each entry: "binary" and a 2-byte marker
         assert_eq!(names(&root), ["k1"], "the oldest goes for size too");
+        // A dot-named folder (Verilator's runtime objects) is not an entry: never pruned.
+        let runtime = root.join(".verilator-runtime-0");
+        std::fs::create_dir_all(&runtime).unwrap();
+        std::fs::write(runtime.join("verilated.o"), b"object").unwrap();
+        prune(&root, 0, 0);
+        assert_eq!(names(&root), [".verilator-runtime-0"]);
         std::fs::remove_dir_all(&d).unwrap();
     }
 }

@@ -3,10 +3,12 @@
 //! `verilator --binary` compiles Verilator's own runtime (`verilated.cpp`, its threads and
 //! timing support) into every build: about 4 of a build's 5 seconds on this machine. These
 //! objects depend only on Verilator, the C++ compiler and the options, which are the same for
-//! every co-simulation, so the first build leaves them in a cache (in the system's temporary
-//! folder, keyed by both tools' version lines) and later builds copy them into their build
-//! folder, where `make` finds them newer than their sources and does not compile them again.
-//! The testbench and the design are always compiled anew.
+//! every co-simulation, so the first build leaves them in the simulator cache (a folder of its
+//! own there, `.verilator-runtime-<hash>`, keyed by both tools' version lines; the cache's
+//! pruning passes over it, and deleting the cache clears it) and later builds copy them into
+//! their build folder, where `make` finds them newer than their sources and does not compile
+//! them again. With the cache off (`TEXRTL_SIM_CACHE=off`) every build compiles them. The
+//! testbench and the design are always compiled anew.
 
 use std::path::{Path, PathBuf};
 use std::process::Command;
@@ -23,8 +25,9 @@ pub(super) const OPTIONS: [&str; 7] = [
     "-Wno-style",
 ];
 
-/// The runtime cache's folder: one per Verilator and C++ compiler version, and for builds
-/// with and without `--trace` (whose runtime differs).
+/// The runtime cache's folder in the simulator cache: one per Verilator and C++ compiler
+/// version, and for builds with and without `--trace` (whose runtime differs); `None` with the
+/// cache off.
 fn cache_dir(trace: bool) -> &'static Option<PathBuf> {
     static DIRS: [OnceLock<Option<PathBuf>>; 2] = [OnceLock::new(), OnceLock::new()];
     DIRS[usize::from(trace)].get_or_init(|| {
@@ -44,7 +47,8 @@ fn cache_dir(trace: bool) -> &'static Option<PathBuf> {
         let h = key.bytes().fold(0xcbf2_9ce4_8422_2325u64, |h, b| {
             (h ^ u64::from(b)).wrapping_mul(0x100_0000_01b3)
         });
-        Some(std::env::temp_dir().join(format!("texrtl-verilator-runtime-{h:016x}")))
+        // A dot-name: not an entry of the cache's, so never pruned (it is a few hundred kB).
+        Some(super::cache::root()?.join(format!(".verilator-runtime-{h:016x}")))
     })
 }
 
