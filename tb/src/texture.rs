@@ -621,25 +621,3 @@ pub fn table(rows: &[TableRow]) -> String {
     }
     t
 }
-
-#[cfg(test)]
-mod tests {
-    use super::*;
-
-    #[test]
-    fn reference_filter_hits_texels_at_integers() {
-        let px = (0..64u32)
-            .flat_map(|i| [(i % 8 * 30) as u8, (i / 8 * 30) as u8, 7])
-            .collect();
-        let p = Ppm {
-            width: 8,
-            height: 8,
-            maxval: 255,
-            pixels: px,
-        };
-        let c = formats::ccc::encode(&p).unwrap();
-        for (x, y) in [(0, 0), (3, 5), (7, 7)] {
-            assert_eq!(reference_filter(&c, x << 4, y << 4, 4), c.texel(x, y));
-        }
-    }
-}

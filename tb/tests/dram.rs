@@ -2,7 +2,8 @@
 //! checks of the DRAM model, and `texrtl dram`.
 
 use hdl::kernel::Sim;
-use tb::dram::run_trace;
+use tb::dram::{drive_dram, run_trace, settle};
+use units::texmem::control_607::DramCtrl;
 use units::texmem::dram_604::{Dram, DramParams};
 
 #[test]
@@ -171,4 +172,27 @@ fn the_dram_model_flags_each_rule_it_checks() {
             words - 2
         )
     );
+}
+
+/// A read in flight holds `ready` low for a page fault's cycles: the watchdog says so
+/// when its limit comes first, and leaves the run to finish otherwise.
+#[test]
+fn the_watchdog_fires_only_past_its_limit() {
+    let p = DramParams::default();
+    let mut sim = Sim::new(DramCtrl::new("control_607", p).unwrap());
+    sim.reset(1);
+    drive_dram(&mut sim.dut, Some(&700));
+    sim.step();
+    drive_dram(&mut sim.dut, None);
+    let (mut done_at, now) = (None, sim.cycle());
+    let said = settle(&mut sim, &mut done_at, now).unwrap_err();
+    assert_eq!(
+        said,
+        format!("watchdog: control unit 607 not ready again by cycle {now}")
+    );
+    assert_eq!(done_at, None);
+    settle(&mut sim, &mut done_at, now + 100).unwrap();
+    let worst = u64::from(p.t_rp + p.t_rcd + p.t_cas + p.t_cp);
+    let done = done_at.expect("ready again");
+    assert!(now < done && done <= now + worst, "{now} {done}");
 }

@@ -28,6 +28,8 @@ mod normals;
 mod ptm;
 #[path = "tangents.rs"]
 mod tangents;
+#[path = "test_files.rs"]
+mod test_files;
 #[path = "texram.rs"]
 mod texram;
 #[path = "texram_video.rs"]

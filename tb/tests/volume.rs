@@ -178,3 +178,37 @@ fn four_chips_in_lock_step_render_the_built_in_volume() {
         "background rays stay dark"
     );
 }
+
+/// The mirror in constant time equals reflecting step by step at 0 and n - 1, for every
+/// size up to 9 and every index within twenty periods either side.
+#[test]
+fn mirror_equals_reflecting_step_by_step() {
+    let reflect = |mut i: i64, n: i64| -> usize {
+        if n == 1 {
+            return 0;
+        }
+        loop {
+            if i < 0 {
+                i = -i;
+            } else if i >= n {
+                i = 2 * (n - 1) - i;
+            } else {
+                return i as usize;
+            }
+        }
+    };
+    for n in 1..=9u32 {
+        let span = 40 * i64::from(n);
+        for i in -span..=span {
+            assert_eq!(
+                tb::volume::mirror(i, n),
+                reflect(i, i64::from(n)),
+                "i {i}, n {n}"
+            );
+        }
+    }
+    assert_eq!(
+        tb::volume::mirror(i64::from(i32::MAX), 5),
+        reflect(i64::from(i32::MAX), 5)
+    );
+}
