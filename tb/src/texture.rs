@@ -419,7 +419,7 @@ pub const NAME: &str = "texture_unit_602";
 const TEXTURE_SEED: Seed = Seed(0x602);
 
 /// The fixture: the synthetic texture and its CCC encoding, made once per process.
-pub(crate) fn fixture() -> Result<&'static (Ppm, Ccc), String> {
+pub fn fixture() -> Result<&'static (Ppm, Ccc), String> {
     static FIXTURE: std::sync::OnceLock<Result<(Ppm, Ccc), String>> = std::sync::OnceLock::new();
     FIXTURE
         .get_or_init(|| {

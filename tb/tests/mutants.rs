@@ -24,6 +24,8 @@ mod mapchain;
 mod mipmap;
 #[path = "normals.rs"]
 mod normals;
+#[path = "project.rs"]
+mod project;
 #[path = "ptm.rs"]
 mod ptm;
 #[path = "tangents.rs"]

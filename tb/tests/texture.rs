@@ -6,7 +6,7 @@
 use formats::ccc::Ccc;
 use hdl::kernel::Sim;
 use proptest::prelude::*;
-use tb::runs::texture::{drive, drive_raster, run_texread, TexRequest};
+use tb::runs::texture::{drain, drive, drive_raster, run_texread, Handshakes, TexRequest};
 use tb::texture::reference_filter;
 use units::texmem::bilinear_622::lerp2;
 use units::texmem::cache_614::Lookahead;
@@ -642,4 +642,28 @@ fn reference_filter_hits_texels_at_integers() {
     for (x, y) in [(0, 0), (3, 5), (7, 7)] {
         assert_eq!(reference_filter(&c, x << 4, y << 4, 4), c.texel(x, y));
     }
+}
+
+/// A first request misses the cold cache: the unit is busy for its fill, and the
+/// watchdog says so when its limit comes first, and lets it finish otherwise.
+#[test]
+fn the_watchdog_fires_only_past_its_limit() {
+    let (_, tex) = tb::texture::fixture().unwrap();
+    let p = TexParams::new(tex.width, tex.height);
+    let words = tex.dram_words(&p.block_map());
+    let mut sim = Sim::new(TextureUnit::new("t", p, &tex.clut, &words).unwrap());
+    sim.reset(1);
+    let first = TexRequest {
+        u: 0,
+        v: 0,
+        newline: true,
+    };
+    drive_raster(&mut sim.dut, Some(&first));
+    sim.step();
+    let (mut pins, now) = (Handshakes::new(), sim.cycle());
+    let said = drain(&mut sim, &mut pins, now).unwrap_err();
+    assert_eq!(said, format!("watchdog: the unit not idle by cycle {now}"));
+    drain(&mut sim, &mut pins, now + 1000).unwrap();
+    assert!(sim.dut.idle());
+    pins.check().unwrap();
 }

@@ -262,22 +262,30 @@ impl LookupLog {
 /// The unit's two valid/ready handshakes checked at the pins every cycle: the rasterizer's
 /// request into the unit and fill engine 607's word request to the word controller (inside
 /// the unit: results may match while it breaks the rules, see [`Handshake`]).
-struct Handshakes {
+pub struct Handshakes {
     /// `(u, v, newline)`.
     raster: Handshake<(u64, u64, bool)>,
     /// The word address.
     words: Handshake,
 }
 
+impl Default for Handshakes {
+    fn default() -> Self {
+        Handshakes::new()
+    }
+}
+
 impl Handshakes {
-    fn new() -> Handshakes {
+    /// Both handshakes, nothing sampled yet.
+    pub fn new() -> Handshakes {
         Handshakes {
             raster: Handshake::new("texture_unit_602.in_valid"),
             words: Handshake::new("texture_unit_602.control_607.req_valid"),
         }
     }
 
-    fn sample(&mut self, cycle: u64, d: &TextureUnit) {
+    /// Samples both handshakes' pins in `cycle`.
+    pub fn sample(&mut self, cycle: u64, d: &TextureUnit) {
         let req = (d.in_u.bits(), d.in_v.bits(), d.in_newline.is_high());
         let ready = d.in_ready.is_high();
         self.raster.sample(cycle, d.in_valid.is_high(), ready, req);
@@ -287,7 +295,8 @@ impl Handshakes {
             .sample(cycle, valid, m.ready.is_high(), m.req_addr.bits());
     }
 
-    fn check(&self) -> Result<(), String> {
+    /// The first rule either handshake broke.
+    pub fn check(&self) -> Result<(), String> {
         self.raster.check().and(self.words.check())
     }
 }
@@ -369,7 +378,7 @@ pub fn drive<T: Trace + ProbeSink>(
 
 /// Lets prefetches still in flight or queued finish, so the counts add up (a run's time ends
 /// with its last result), by cycle `limit` at the latest.
-fn drain<T: Trace>(
+pub fn drain<T: Trace>(
     sim: &mut Sim<TextureUnit, T>,
     pins: &mut Handshakes,
     limit: u64,
@@ -427,34 +436,5 @@ fn read_stats(
         scanlines,
         page_faults_per_scanline: d.mem.page_faults.q().bits() as f64 / scanlines.max(1) as f64,
         violations: d.mem.dram.violations(),
-    }
-}
-
-#[cfg(test)]
-mod tests {
-    use super::*;
-
-    /// A first request misses the cold cache: the unit is busy for its fill, and the
-    /// watchdog says so when its limit comes first, and lets it finish otherwise.
-    #[test]
-    fn the_watchdog_fires_only_past_its_limit() {
-        let (_, tex) = crate::texture::fixture().unwrap();
-        let p = TexParams::new(tex.width, tex.height);
-        let words = tex.dram_words(&p.block_map());
-        let mut sim = Sim::new(TextureUnit::new("t", p, &tex.clut, &words).unwrap());
-        sim.reset(1);
-        let first = TexRequest {
-            u: 0,
-            v: 0,
-            newline: true,
-        };
-        drive_raster(&mut sim.dut, Some(&first));
-        sim.step();
-        let (mut pins, now) = (Handshakes::new(), sim.cycle());
-        let said = drain(&mut sim, &mut pins, now).unwrap_err();
-        assert_eq!(said, format!("watchdog: the unit not idle by cycle {now}"));
-        drain(&mut sim, &mut pins, now + 1000).unwrap();
-        assert!(sim.dut.idle());
-        pins.check().unwrap();
     }
 }
