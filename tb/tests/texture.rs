@@ -660,7 +660,7 @@ fn the_watchdog_fires_only_past_its_limit() {
     };
     drive_raster(&mut sim.dut, Some(&first));
     sim.step();
-    let (mut pins, now) = (Handshakes::new(), sim.cycle());
+    let (mut pins, now) = (Handshakes::default(), sim.cycle());
     let said = drain(&mut sim, &mut pins, now).unwrap_err();
     assert_eq!(said, format!("watchdog: the unit not idle by cycle {now}"));
     drain(&mut sim, &mut pins, now + 1000).unwrap();

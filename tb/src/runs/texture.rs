@@ -269,21 +269,17 @@ pub struct Handshakes {
     words: Handshake,
 }
 
+/// Both handshakes, nothing sampled yet.
 impl Default for Handshakes {
     fn default() -> Self {
-        Handshakes::new()
-    }
-}
-
-impl Handshakes {
-    /// Both handshakes, nothing sampled yet.
-    pub fn new() -> Handshakes {
         Handshakes {
             raster: Handshake::new("texture_unit_602.in_valid"),
             words: Handshake::new("texture_unit_602.control_607.req_valid"),
         }
     }
+}
 
+impl Handshakes {
     /// Samples both handshakes' pins in `cycle`.
     pub fn sample(&mut self, cycle: u64, d: &TextureUnit) {
         let req = (d.in_u.bits(), d.in_v.bits(), d.in_newline.is_high());
@@ -320,7 +316,7 @@ pub fn drive<T: Trace + ProbeSink>(
         ..LookupLog::default()
     };
     let (mut scanlines, mut sent) = (0u64, 0usize);
-    let mut pins = Handshakes::new();
+    let mut pins = Handshakes::default();
     // Worst case per request: four blocks, each two reads with a page fault, plus decode.
     let p = *sim.dut.params();
     let per_req = 4 * (2 * u64::from(p.dram.t_rp + p.dram.t_rcd + p.dram.t_cas + p.dram.t_cp) + 8);
