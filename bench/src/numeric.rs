@@ -44,7 +44,7 @@ fn pass(cycles: u64, on: bool) -> f64 {
     let mut sim = Sim::new(dut);
     hdl::fx::set_tracking(on);
     let t = Instant::now();
-    black_box(tb::normals::bench_cycles(&mut sim, cycles));
+    black_box(tb::runs::normals::bench_cycles(&mut sim, cycles));
     let ns = t.elapsed().as_secs_f64() * 1e9 / cycles as f64;
     hdl::fx::set_tracking(false);
     ns

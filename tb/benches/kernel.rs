@@ -128,7 +128,7 @@ fn fixed_point(c: &mut Criterion) {
 }
 
 fn pipeline<T: Trace>(sim: &mut Sim<NormalPipeline, T>) -> u64 {
-    tb::normals::bench_cycles(sim, CYCLES)
+    tb::runs::normals::bench_cycles(sim, CYCLES)
 }
 
 fn normal_pipeline(c: &mut Criterion) {
@@ -228,10 +228,10 @@ fn dram(c: &mut Criterion) {
     let p = units::texmem::dram_604::DramParams::default();
     // A scanline-like trace: runs of 8 reads, a page change every 4.
     let trace: Vec<u64> = (0..4096u64).map(|k| (k / 4 % 512) * 512 + k % 4).collect();
-    let cycles = tb::dram::run_trace(p, &trace, None).unwrap().cycles;
+    let cycles = tb::runs::dram::run_trace(p, &trace, None).unwrap().cycles;
     g.throughput(Throughput::Elements(cycles));
     g.bench_function("simulated_cycles_untraced", |b| {
-        b.iter(|| black_box(tb::dram::run_trace(p, &trace, None).unwrap().reads))
+        b.iter(|| black_box(tb::runs::dram::run_trace(p, &trace, None).unwrap().reads))
     });
     g.finish();
 }

@@ -9,7 +9,7 @@
 //! the slots add up (`slots = accesses + fault slots + video slots`); the transfers are the
 //! row segments the frames' lines make; no video error (overrun, underrun, generator).
 
-use crate::mipmap::{video_stream, VideoTexel};
+use crate::runs::mipmap::{video_stream, VideoTexel};
 use crate::texram::{sample_tex, test_map, RefMipmap, TexDriver, TexOut, TexReq, CYCLE_PS};
 use hdl::kernel::{Sim, Trace};
 use proptest::prelude::*;

@@ -6,7 +6,7 @@
 //! (`tb/tests/vectors.rs`); `texrtl vectors --bless` rewrites the files after a deliberate
 //! change and prints what changed.
 
-use crate::normals::{quantise, run_normals, NormalsRun, Sample};
+use crate::runs::normals::{quantise, run_normals, NormalsRun, Sample};
 use hdl::kernel::Sim;
 use std::path::{Path, PathBuf};
 use units::bump::blend_adjust_153::{BlendAdjust, BlendAdjustParams};
@@ -169,7 +169,7 @@ pub fn mipmap() -> Result<UnitVectors, String> {
         let code = u64::from(scan != Scan::Progressive);
         let p = mipmap_params(scan);
         let frames = mipmap_frame();
-        let o = crate::mipmap::run_mipmap(p, &frames, None)?;
+        let o = crate::runs::mipmap::run_mipmap(p, &frames, None)?;
         // One row per output texel: (scan, level, index) -> value; the frame itself is level 0.
         for (k, level) in o.frames[0].iter().enumerate() {
             for (i, &t) in level.iter().enumerate() {

@@ -2,7 +2,7 @@
 //! checks of the DRAM model, and `texrtl dram`.
 
 use hdl::kernel::Sim;
-use tb::dram::{drive_dram, run_trace, settle};
+use tb::runs::dram::{drive_dram, run_trace, settle};
 use units::texmem::control_607::DramCtrl;
 use units::texmem::dram_604::{Dram, DramParams};
 

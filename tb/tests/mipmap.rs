@@ -3,7 +3,8 @@
 //! frames back to back, errors reported; and the `texrtl mipmap` command.
 
 use hdl::kernel::Sim;
-use tb::mipmap::{drive_video, reference, run_mipmap, synthetic_video, video_stream};
+use tb::mipmap::{reference, synthetic_video};
+use tb::runs::mipmap::{drive_video, run_mipmap, video_stream};
 use units::mipmap::{MipmapGen, MipmapParams, Rounding, Scan};
 use verif::{seeded_stimulus, Seed};
 
@@ -181,7 +182,7 @@ fn a_reset_part_way_restores_every_level() {
     for _ in 0..50 {
         sim.step();
     }
-    let again = tb::mipmap::run_mipmap_on(sim, &frames).unwrap();
+    let again = tb::runs::mipmap::run_mipmap_on(sim, &frames).unwrap();
     assert_eq!(again.frames, fresh.frames);
     assert_eq!(again.error, 0);
 }

@@ -5,7 +5,8 @@ use units::bump::params::{Border, BumpParams, Filter};
 
 use proptest::prelude::*;
 use tb::maps::builtin;
-use tb::normals::{run_normals, NormalsRun, Sample, ANGLE_TOL_DEG, COMPONENT_TOL};
+use tb::normals::{ANGLE_TOL_DEG, COMPONENT_TOL};
+use tb::runs::normals::{run_normals, NormalsRun, Sample};
 use verif::{seeded_runner, Seed};
 
 /// Positions on the blend grid: random ones, 0, just below 1, and every border cell.
@@ -60,7 +61,12 @@ fn positions(w: u32, h: u32, f: u32, n: usize, seed: u64) -> Vec<Sample> {
     s
 }
 
-fn run(name: &str, p: BumpParams, map: &str, samples: Vec<Sample>) -> tb::normals::NormalsOutcome {
+fn run(
+    name: &str,
+    p: BumpParams,
+    map: &str,
+    samples: Vec<Sample>,
+) -> tb::runs::normals::NormalsOutcome {
     let m = builtin(map, 16, 12, p.texel_fmt()).unwrap();
     run_normals(&NormalsRun {
         name: name.into(),

@@ -94,7 +94,7 @@ fn dram_cmd(
         }
     })?;
     let addrs = read_trace(trace, p.words()).map_err(CmdError::Input)?;
-    let st = tb::dram::run_trace(p, &addrs, vcd).map_err(super::run_error)?;
+    let st = tb::runs::dram::run_trace(p, &addrs, vcd).map_err(super::run_error)?;
     if st.violations != 0 || st.data_errors != 0 {
         return Err(CmdError::Failed(format!(
             "{} timing violations, {} data errors",

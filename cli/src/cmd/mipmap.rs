@@ -122,7 +122,7 @@ fn mipmap(a: &MipmapArgs) -> Result<String, CmdError> {
         scan: a.scan,
         rounding: a.rounding,
     };
-    let o = tb::mipmap::run_mipmap(
+    let o = tb::runs::mipmap::run_mipmap(
         p,
         &frames,
         a.vcd.clone().map(|v| (v, TraceConfig::default())),

@@ -7,7 +7,7 @@ use formats::netpbm;
 use hdl::fx::Fx;
 use std::fmt::Write;
 use std::path::{Path, PathBuf};
-use tb::normals::{quantise, run_normals, NormalsRun, Sample};
+use tb::runs::normals::{quantise, run_normals, NormalsRun, Sample};
 use units::bump::derivative_0086::{DerivFilter, Derivative, DerivativeUnit};
 use units::bump::height_map::HeightMap;
 use units::bump::params::{Border, BumpParams, Filter};
@@ -125,7 +125,7 @@ fn normals(a: &NormalsArgs) -> Result<String, CmdError> {
         scale: a.scale,
         lod: a.lod,
     };
-    tb::normals::quantise(&p, &at_origin).map_err(|e| CmdError::Input(format!("--{e}")))?;
+    tb::runs::normals::quantise(&p, &at_origin).map_err(|e| CmdError::Input(format!("--{e}")))?;
     let map = read_height(&a.height, &p)?;
     let coords = read_coords(&a.coords)?;
     let samples: Vec<Sample> = coords

@@ -64,13 +64,13 @@ pub fn run(a: &RenderArgs) -> Result<String, CmdError> {
     }
     let p = a.widths.params()?;
     // The scale every pixel shares, checked before the height map is read, named as the option.
-    let at_origin = tb::normals::Sample {
+    let at_origin = tb::runs::normals::Sample {
         u: 0.0,
         v: 0.0,
         scale: a.scale,
         lod: 0.0,
     };
-    tb::normals::quantise(&p, &at_origin).map_err(|e| CmdError::Input(format!("--{e}")))?;
+    tb::runs::normals::quantise(&p, &at_origin).map_err(|e| CmdError::Input(format!("--{e}")))?;
     let map = read_height(&a.height, &p)?;
     let (w, h) = (map.width() * a.zoom, map.height() * a.zoom);
     if u64::from(w) * u64::from(h) > MAX_PANEL_PIXELS {

@@ -4,7 +4,7 @@ use super::widths::Widths;
 use super::CmdError;
 use clap::Subcommand;
 use std::fmt::Write;
-use tb::normals::{run_normals, NormalsRun, Sample};
+use tb::runs::normals::{run_normals, NormalsRun, Sample};
 use units::bump::params::BumpParams;
 use verif::Seed;
 use waves::TraceConfig;

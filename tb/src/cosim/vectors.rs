@@ -51,7 +51,7 @@ pub fn pipeline() -> Result<Vec<Directed>, String> {
             let rows = normal_samples()
                 .iter()
                 .map(|s| {
-                    let r = crate::normals::quantise(&params, s)?;
+                    let r = crate::runs::normals::quantise(&params, s)?;
                     Ok(vec![1, mask(r.u), mask(r.v), r.scale, r.lod])
                 })
                 .collect::<Result<Vec<_>, String>>()?;
@@ -71,7 +71,7 @@ pub fn mipmap() -> Vec<Directed> {
         .iter()
         .map(|&scan| {
             let params = mipmap_params(scan);
-            let rows = crate::mipmap::video_stream(&params, &frame)
+            let rows = crate::runs::mipmap::video_stream(&params, &frame)
                 .into_iter()
                 .map(|t| vec![1, u64::from(t.texel), u64::from(t.sof)]);
             Directed {

@@ -1,7 +1,7 @@
 //! Dot3 lighting of a height map through the FIG. 7 pipeline: the pictures of `texrtl render`
 //! and of the report (FIG. 8a against 8b).
 
-use crate::normals::{run_normals, NormalsRun, RawNormal, Sample};
+use crate::runs::normals::{run_normals, NormalsOutcome, NormalsRun, RawNormal, Sample};
 use units::bump::height_map::HeightMap;
 use units::bump::params::{BumpParams, Filter};
 use verif::Seed;
@@ -17,7 +17,7 @@ fn zoomed(
     p: &BumpParams,
     scale: f64,
     zoom: u32,
-) -> Result<crate::normals::NormalsOutcome, String> {
+) -> Result<NormalsOutcome, String> {
     let (w, h) = (map.width() * zoom, map.height() * zoom);
     let z = f64::from(zoom);
     let samples: Vec<Sample> = (0..h)

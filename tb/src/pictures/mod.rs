@@ -70,7 +70,7 @@ pub fn mipmap_picture(out: &std::path::Path) -> Result<(String, String), String>
         rounding: units::mipmap::Rounding::Round,
     };
     let frame = crate::mipmap::synthetic_video(64, 32, 1, Seed(3));
-    let o = crate::mipmap::run_mipmap(mp, &frame, None)?;
+    let o = crate::runs::mipmap::run_mipmap(mp, &frame, None)?;
     let dims = mp.levels();
     let mut img = image::RgbImage::new(dims.len() as u32 * 68, 32);
     for (k, level) in o.frames[0].iter().enumerate() {

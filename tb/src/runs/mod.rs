@@ -4,8 +4,11 @@
 //! document's timings and rates, the footprint's quality, the video port's cost), which the
 //! testbenches' conclusions hold against the document.
 
+pub mod dram;
 pub mod footprint;
 pub mod mapchain;
+pub mod mipmap;
+pub mod normals;
 pub mod ptm;
 pub mod tangents;
 pub mod texram;
