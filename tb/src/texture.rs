@@ -239,44 +239,90 @@ fn coverage_model() -> Coverage {
     c
 }
 
-/// One configuration of the suite, checked; returns its statistics.
-#[allow(clippy::too_many_arguments)]
-fn check_run(
-    res: &mut TbResult,
-    cov: &mut Coverage,
-    tex: &Ccc,
-    orig: &Ppm,
-    p: TexParams,
-    reqs: &[TexRequest],
-    interval: u32,
-    vcd: Option<(PathBuf, TraceConfig)>,
-    compression: &mut verif::ErrorStats,
-    check: bool,
-) -> Result<TexRun, String> {
-    let run = run_texread_checked(tex, p, reqs, interval, vcd, check)?;
-    let s = &run.stats;
-    let f = p.frac_bits;
-    let one = f64::from(1u32 << f);
-    let mode = match (p.cache, p.lookahead) {
-        (false, _) => 2,
-        (true, Lookahead::Quadrant) => 0,
-        (true, Lookahead::Off) => 1,
-        (true, Lookahead::Direction) => 3,
-    };
-    let tag = format!(
-        "{} {} interval {interval}",
-        p.layout.name(),
-        ["cache+quadrant", "cache", "no cache", "cache+direction"][mode]
-    );
-    if !run.findings.is_empty() {
-        // A hang or a broken handshake: the results and counts stop there; that is the finding.
-        (res.failures).extend(run.findings.iter().map(|f| format!("{tag}: {f}")));
-        res.cycles += s.cycles;
-        return Ok(run);
+/// What a testbench run's configurations add to: its result, coverage and compression error
+/// (the hardware against the golden model of the original texture), over the fixture.
+struct Checks {
+    res: TbResult,
+    cov: Coverage,
+    compression: verif::ErrorStats,
+    check_schedule: bool,
+    orig: &'static Ppm,
+    tex: &'static Ccc,
+}
+
+impl Checks {
+    fn new(ctx: &Ctx) -> Result<Checks, String> {
+        let (orig, tex) = fixture()?;
+        Ok(Checks {
+            res: TbResult::new(NAME, TextureTb.unit()),
+            cov: coverage_model(),
+            compression: verif::ErrorStats::new(),
+            check_schedule: ctx.check_schedule,
+            orig,
+            tex,
+        })
     }
-    for (i, r) in reqs.iter().enumerate() {
-        let got = run.rgb[i];
-        let want = reference_filter(tex, r.u, r.v, f);
+
+    /// One configuration: every result against the integer reference and the golden model,
+    /// the unit's counters against each other, coverage sampled; returns the run.
+    fn run(
+        &mut self,
+        p: TexParams,
+        reqs: &[TexRequest],
+        interval: u32,
+        vcd: Option<(PathBuf, TraceConfig)>,
+    ) -> Result<TexRun, String> {
+        let run = run_texread_checked(self.tex, p, reqs, interval, vcd, self.check_schedule)?;
+        let mode = match (p.cache, p.lookahead) {
+            (false, _) => 2,
+            (true, Lookahead::Quadrant) => 0,
+            (true, Lookahead::Off) => 1,
+            (true, Lookahead::Direction) => 3,
+        };
+        let tag = format!(
+            "{} {} interval {interval}",
+            p.layout.name(),
+            ["cache+quadrant", "cache", "no cache", "cache+direction"][mode]
+        );
+        self.res.cycles += run.stats.cycles;
+        if !run.findings.is_empty() {
+            // A hang or a broken handshake: the results and counts stop there; that is the finding.
+            let failures = run.findings.iter().map(|f| format!("{tag}: {f}"));
+            self.res.failures.extend(failures);
+            return Ok(run);
+        }
+        for (i, r) in reqs.iter().enumerate() {
+            self.request(&p, r, run.rgb[i], &tag, i);
+            let edge = (r.u >> p.frac_bits) + 1 >= p.width || (r.v >> p.frac_bits) + 1 >= p.height;
+            let (nb, hits) = run.lookups[i];
+            let outcome = if hits == nb { 2 } else { i64::from(hits > 0) };
+            let tiled = i64::from(p.layout == Layout::Tiled);
+            let bins = [
+                nb.into(),
+                outcome,
+                (hits < nb).into(),
+                mode as i64,
+                tiled,
+                edge.into(),
+            ];
+            self.cov.sample(&bins);
+        }
+        if self.res.stats.max_abs_lsb > golden::texture::ERROR_BOUND_LSB {
+            self.res.failures.push(format!(
+                "{tag}: error {:.3} LSB against the golden model of the decoded texture, bound 0.5",
+                self.res.stats.max_abs_lsb
+            ));
+        }
+        let counts = count_failures(&run.stats, p.cache, reqs.len() as u64);
+        (self.res.failures).extend(counts.into_iter().map(|f| format!("{tag}: {f}")));
+        Ok(run)
+    }
+
+    /// Request `i`'s result `got` against the integer reference (bit for bit), the golden
+    /// model of the decoded texture and that of the original.
+    fn request(&mut self, p: &TexParams, r: &TexRequest, got: u32, tag: &str, i: usize) {
+        let (tex, orig, res) = (self.tex, self.orig, &mut self.res);
+        let want = reference_filter(tex, r.u, r.v, p.frac_bits);
         res.transactions += 1;
         if got != want {
             res.mismatches += 1;
@@ -287,6 +333,7 @@ fn check_run(
                 ));
             }
         }
+        let one = f64::from(1u32 << p.frac_bits);
         let (u, v) = (f64::from(r.u) / one, f64::from(r.v) / one);
         let dec = |x: u32, y: u32| {
             let c = tex.texel(x, y);
@@ -301,88 +348,55 @@ fn check_run(
         for (c, sh) in [16, 8, 0].into_iter().enumerate() {
             let dut = f64::from(got >> sh & 0xff);
             res.stats.record(dut, g[c], 1.0);
-            compression.record(dut, go[c], 1.0);
+            self.compression.record(dut, go[c], 1.0);
         }
-        let edge = (r.u >> f) + 1 >= p.width || (r.v >> f) + 1 >= p.height;
-        let (nb, hits) = run.lookups[i];
-        let outcome = if hits == nb { 2 } else { i64::from(hits > 0) };
-        cov.sample(&[
-            i64::from(nb),
-            outcome,
-            i64::from(hits < nb),
-            mode as i64,
-            i64::from(p.layout == Layout::Tiled),
-            i64::from(edge),
-        ]);
     }
-    if res.stats.max_abs_lsb > golden::texture::ERROR_BOUND_LSB {
-        res.failures.push(format!(
-            "{tag}: error {:.3} LSB against the golden model of the decoded texture, bound 0.5",
-            res.stats.max_abs_lsb
-        ));
-    }
-    check_counts(res, s, p.cache, reqs.len() as u64, &tag);
-    res.cycles += s.cycles;
-    Ok(run)
 }
 
 /// The unit's counters against each other: every request accepted, misses split completely,
 /// two DRAM reads per fill, no hit with the cache off, no prefetch without lookahead, every
-/// miss served by a fill or a late prefetch, no DRAM timing violation.
-fn check_counts(res: &mut TbResult, s: &TexReadStats, cache: bool, requests: u64, tag: &str) {
-    let fail = |res: &mut TbResult, what: String| res.failures.push(format!("{tag}: {what}"));
-    if s.violations != 0 {
-        fail(res, format!("{} DRAM timing violations", s.violations));
-    }
-    if s.requests != requests {
-        fail(
-            res,
-            format!("{} requests accepted of {}", s.requests, requests),
-        );
-    }
-    if s.misses != s.misses_cold + s.misses_capacity + s.misses_conflict {
-        fail(
-            res,
-            format!("misses {} != cold + capacity + conflict", s.misses),
-        );
-    }
-    if s.dram_reads != 2 * (s.demand_fills + s.prefetch_fills) {
-        fail(
-            res,
+/// miss served by a fill or a late prefetch, no DRAM timing violation. Returns what fails.
+fn count_failures(s: &TexReadStats, cache: bool, requests: u64) -> Vec<String> {
+    let (fills, misses) = (s.demand_fills + s.prefetch_fills, s.misses);
+    let off = s.lookahead == "off";
+    let (demand, prefetch, late) = (s.demand_fills, s.prefetch_fills, s.late_prefetches);
+    let split = s.misses_cold + s.misses_capacity + s.misses_conflict;
+    [
+        (
+            s.violations == 0,
+            format!("{} DRAM timing violations", s.violations),
+        ),
+        (
+            s.requests == requests,
+            format!("{} requests accepted of {requests}", s.requests),
+        ),
+        (
+            misses == split,
+            format!("misses {misses} != cold + capacity + conflict"),
+        ),
+        (
+            s.dram_reads == 2 * fills,
+            format!("{} DRAM reads for {fills} fills", s.dram_reads),
+        ),
+        (
+            cache || (s.hits == 0 && demand == s.block_refs),
             format!(
-                "{} DRAM reads for {} fills",
-                s.dram_reads,
-                s.demand_fills + s.prefetch_fills
+                "cache off: {} hits, {demand} fills for {} blocks",
+                s.hits, s.block_refs
             ),
-        );
-    }
-    if !cache && (s.hits != 0 || s.demand_fills != s.block_refs) {
-        fail(
-            res,
-            format!(
-                "cache off: {} hits, {} fills for {} blocks",
-                s.hits, s.demand_fills, s.block_refs
-            ),
-        );
-    }
-    if s.lookahead == "off" && (s.prefetch_fills != 0 || s.demand_fills != s.misses) {
-        fail(
-            res,
-            format!(
-                "no lookahead: {} prefetches, {} fills for {} misses",
-                s.prefetch_fills, s.demand_fills, s.misses
-            ),
-        );
-    }
-    if s.demand_fills + s.late_prefetches < s.misses {
-        fail(
-            res,
-            format!(
-                "{} misses but {} fills + {} late prefetches",
-                s.misses, s.demand_fills, s.late_prefetches
-            ),
-        );
-    }
+        ),
+        (
+            !off || (prefetch == 0 && demand == misses),
+            format!("no lookahead: {prefetch} prefetches, {demand} fills for {misses} misses"),
+        ),
+        (
+            demand + late >= misses,
+            format!("{misses} misses but {demand} fills + {late} late prefetches"),
+        ),
+    ]
+    .into_iter()
+    .filter_map(|(ok, what)| (!ok).then_some(what))
+    .collect()
 }
 
 /// Texture size of the testbench.
@@ -448,14 +462,11 @@ impl Testbench for TextureTb {
         coverage_model()
     }
     fn run(&self, ctx: &Ctx) -> Result<TbResult, String> {
-        let (orig, tex) = fixture()?;
-        let mut res = TbResult::new(self.name(), self.unit());
-        let mut cov = coverage_model();
-        let mut compression = verif::ErrorStats::new();
+        let mut c = Checks::new(ctx)?;
         let (w, h) = (TB_SIZE, TB_SIZE);
         if ctx.index == 0 {
-            let (db, worst) = formats::ccc::psnr(&orig.pixels, &tex.decode());
-            res.notes.push(format!(
+            let (db, worst) = formats::ccc::psnr(&c.orig.pixels, &c.tex.decode());
+            c.res.notes.push(format!(
                 "CCC of the {w}x{h} test texture: {db:.2} dB PSNR, worst texel error {worst} levels"
             ));
             let mut reqs = trace(TraceKind::Horizontal, w, h, 4, 96, ctx.seed);
@@ -464,35 +475,15 @@ impl Testbench for TextureTb {
             reqs.extend((0..4).map(|k| edge(((w - 1) << 4) + 4 * k, (40 + k) << 4, k == 0)));
             reqs.extend((0..4).map(|k| edge((40 + 3 * k) << 4, ((h - 1) << 4) + 5, k == 0)));
             let wave = ctx.waves.as_ref().map(|x| (x.vcd.clone(), x.config(5_000)));
-            let p = TexParams::new(w, h);
-            check_run(
-                &mut res,
-                &mut cov,
-                tex,
-                orig,
-                p,
-                &reqs,
-                1,
-                wave,
-                &mut compression,
-                ctx.check_schedule,
-            )?;
-            res.vcd = ctx.waves.as_ref().map(|x| x.vcd.clone());
+            c.run(TexParams::new(w, h), &reqs, 1, wave)?;
+            c.res.vcd = ctx.waves.as_ref().map(|x| x.vcd.clone());
         } else {
             let kind = TraceKind::ALL[ctx.index - 1];
-            let reqs = trace(kind, w, h, 4, ctx.count, ctx.seed);
-            every_mode(
-                &mut res,
-                &mut cov,
-                kind,
-                &reqs,
-                &mut compression,
-                ctx.check_schedule,
-            )?;
+            every_mode(&mut c, kind, &trace(kind, w, h, 4, ctx.count, ctx.seed))?;
         }
-        res.record(&compression);
-        res.coverage = Some(cov);
-        Ok(res)
+        c.res.record(&c.compression);
+        c.res.coverage = Some(c.cov);
+        Ok(c.res)
     }
     fn conclude(&self, merged: &mut TbResult) {
         let mut compression = verif::ErrorStats::new();
@@ -537,36 +528,15 @@ impl Testbench for TextureTb {
 
 /// Runs one trace in every mode of [`TB_CONFIGS`], requiring bit-identical results; records a
 /// table row per mode.
-fn every_mode(
-    res: &mut TbResult,
-    cov: &mut Coverage,
-    kind: TraceKind,
-    reqs: &[TexRequest],
-    compression: &mut verif::ErrorStats,
-    check: bool,
-) -> Result<(), String> {
-    let (orig, tex) = fixture()?;
+fn every_mode(c: &mut Checks, kind: TraceKind, reqs: &[TexRequest]) -> Result<(), String> {
     let mut first: Option<Vec<u32>> = None;
     for (layout, cache, look, interval) in TB_CONFIGS {
         let mut p = TexParams::new(TB_SIZE, TB_SIZE);
-        p.layout = layout;
-        p.cache = cache;
-        p.lookahead = look;
-        let run = check_run(
-            res,
-            cov,
-            tex,
-            orig,
-            p,
-            reqs,
-            interval,
-            None,
-            compression,
-            check,
-        )?;
+        (p.layout, p.cache, p.lookahead) = (layout, cache, look);
+        let run = c.run(p, reqs, interval, None)?;
         match &first {
             None => first = Some(run.rgb.clone()),
-            Some(r) if *r != run.rgb && run.findings.is_empty() => res.failures.push(format!(
+            Some(r) if *r != run.rgb && run.findings.is_empty() => c.res.failures.push(format!(
                 "{}: results differ from the first configuration in {} cache {cache} lookahead {} interval {interval}",
                 kind.name(),
                 layout.name(),
@@ -574,7 +544,7 @@ fn every_mode(
             )),
             _ => {}
         }
-        res.record(&TableRow {
+        c.res.record(&TableRow {
             trace: kind.name().into(),
             stats: run.stats,
         });
