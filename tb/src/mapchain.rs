@@ -360,63 +360,48 @@ pub fn scene(shape: Shape, m: &Maps) -> Result<Scene, String> {
         d.detail = mode;
         Ok::<_, String>(())
     };
-    let faces = m.faces.clone();
-    let link = |s: &mut Scene, from: usize, to: u8| {
-        if let Some(d) = s.file.drfs[from].as_mut() {
-            d.link = Some(to);
-        }
+    let reflectance = |s: &mut Scene, border: Border| {
+        s.add(3, Kind::Reflectance, t, border, vec![m.reflectance.clone()])
+            .map(|r| r.light_env = shape != Shape::Reflectance)
     };
-    match shape {
-        Shape::Texture => {}
-        Shape::Detail | Shape::DetailMap => {
-            let (mode, border) = if shape == Shape::Detail {
-                (DetailMode::Multiply, Border::Tile(4))
-            } else {
-                (DetailMode::Replace, Border::Wrap)
-            };
-            detail(&mut s, 1, mode, border)?;
-            link(&mut s, 0, 1);
+    let environment = |s: &mut Scene, k_s: Option<u8>| {
+        let e = s.add(6, Kind::Environment, fl, Border::Clamp, m.faces.clone())?;
+        e.k_s = k_s.unwrap_or(e.k_s);
+        Ok::<_, String>(())
+    };
+    let links: &[(usize, u8)] = match shape {
+        Shape::Texture => &[],
+        Shape::Detail => {
+            detail(&mut s, 1, DetailMode::Multiply, Border::Tile(4))?;
+            &[(0, 1)]
+        }
+        Shape::DetailMap => {
+            detail(&mut s, 1, DetailMode::Replace, Border::Wrap)?;
+            &[(0, 1)]
         }
         Shape::Environment => {
-            s.add(6, Kind::Environment, fl, Border::Clamp, faces)?.k_s = 160;
-            link(&mut s, 0, 6);
+            environment(&mut s, Some(160))?;
+            &[(0, 6)]
         }
         Shape::Reflectance => {
-            let r = s.add(
-                3,
-                Kind::Reflectance,
-                t,
-                Border::Mirror,
-                vec![m.reflectance.clone()],
-            )?;
-            r.light_env = false;
-            link(&mut s, 0, 3);
+            reflectance(&mut s, Border::Mirror)?;
+            &[(0, 3)]
         }
         Shape::Longest => {
             detail(&mut s, 1, DetailMode::AddSigned, Border::Tile(4))?;
-            s.add(
-                3,
-                Kind::Reflectance,
-                t,
-                Border::Wrap,
-                vec![m.reflectance.clone()],
-            )?;
+            reflectance(&mut s, Border::Wrap)?;
             detail(&mut s, 4, DetailMode::Multiply, Border::Tile(4))?;
-            s.add(6, Kind::Environment, fl, Border::Clamp, faces)?;
-            for (a, b) in [(0, 1), (2, 3), (3, 4), (5, 6)] {
-                link(&mut s, a, b);
-            }
+            environment(&mut s, None)?;
+            &[(0, 1), (2, 3), (3, 4), (5, 6)]
         }
         Shape::Cycle => {
-            s.add(
-                3,
-                Kind::Reflectance,
-                t,
-                Border::Wrap,
-                vec![m.reflectance.clone()],
-            )?;
-            link(&mut s, 0, 3);
-            link(&mut s, 3, 0);
+            reflectance(&mut s, Border::Wrap)?;
+            &[(0, 3), (3, 0)]
+        }
+    };
+    for &(from, to) in links {
+        if let Some(d) = s.file.drfs[from].as_mut() {
+            d.link = Some(to);
         }
     }
     s.file.validate()?;
@@ -598,18 +583,13 @@ fn compare(e: &Expected, got: &ChainResult) -> Result<(), String> {
     }
 }
 
-/// The testbench's configurations: every shape on the stub, the longest chain also on the
+/// The testbench's configurations: every shape on the stub, then the longest chain on the
 /// cycle-accurate chip 802.
-const CONFIGS: [(Shape, bool); 8] = [
-    (Shape::Texture, false),
-    (Shape::Detail, false),
-    (Shape::DetailMap, false),
-    (Shape::Environment, false),
-    (Shape::Reflectance, false),
-    (Shape::Longest, false),
-    (Shape::Cycle, false),
-    (Shape::Longest, true),
-];
+fn config(index: usize) -> (Shape, bool) {
+    Shape::ALL
+        .get(index)
+        .map_or((Shape::Longest, true), |s| (*s, false))
+}
 
 /// The regress testbench.
 pub struct WalkerTb;
@@ -622,14 +602,10 @@ impl Testbench for WalkerTb {
             .traced(5)
     }
     fn configurations(&self) -> Vec<String> {
-        CONFIGS
-            .iter()
-            .map(|(s, chip)| {
-                format!(
-                    "{}{}",
-                    s.name(),
-                    if *chip { " on the chip 802" } else { "" }
-                )
+        (0..=Shape::ALL.len())
+            .map(|i| match config(i) {
+                (s, false) => s.name().to_string(),
+                (s, true) => format!("{} on the chip 802", s.name()),
             })
             .collect()
     }
@@ -640,7 +616,7 @@ impl Testbench for WalkerTb {
         conclude_timings(merged);
     }
     fn run(&self, ctx: &Ctx) -> Result<TbResult, String> {
-        let (shape, on_chip) = CONFIGS[ctx.index];
+        let (shape, on_chip) = config(ctx.index);
         let mut stim = Stimulus::new(ctx.seed);
         let maps = Maps::new(&mut stim);
         let sc = scene(shape, &maps)?;
