@@ -128,12 +128,24 @@ pub fn run_footprint(
     stats.slots = Some(c.slots.q().bits());
     stats.page_faults = c.fault_slots.q().bits();
     stats.bank_misses = Some(c.faults.q().bits());
-    let results = results
-        .into_iter()
-        .zip(pixels)
-        .map(|(r, q)| (r, ref_setup(&p, q).2))
-        .collect();
-    Ok(FootprintRun { results, stats })
+    Ok(FootprintRun::new(results, pixels, &p, stats))
+}
+
+impl FootprintRun {
+    /// The run's results, each beside its pixel's level of detail by the reference setup.
+    fn new(
+        results: Vec<Assembled>,
+        pixels: &[Pixel],
+        p: &SetupParams,
+        stats: FootprintStats,
+    ) -> FootprintRun {
+        let results = results
+            .into_iter()
+            .zip(pixels)
+            .map(|(r, q)| (r, ref_setup(p, q).2))
+            .collect();
+        FootprintRun { results, stats }
+    }
 }
 
 /// `pixels` through [`FootprintFig12`] driving Figure 6's texture unit 602 (`tp`) with the
@@ -162,12 +174,7 @@ pub fn run_footprint_texture(
     let (results, cycles, dut) = drive_pixels(dut, pixels, (vcd, period), want)?;
     let mut stats = stats_of(&results, cycles, period);
     stats.page_faults = dut.assembly.chip.mem.page_faults.q().bits();
-    let results = results
-        .into_iter()
-        .zip(pixels)
-        .map(|(r, q)| (r, ref_setup(&p, q).2))
-        .collect();
-    Ok(FootprintRun { results, stats })
+    Ok(FootprintRun::new(results, pixels, &p, stats))
 }
 
 // ---------------------------------------------------------------------------------------
