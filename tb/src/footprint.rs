@@ -4,7 +4,7 @@
 //! tilted plane, against the f64 box average over each pixel's exact footprint) is
 //! [`crate::runs::footprint::quality`].
 
-use crate::runs::footprint::{quality, TILTS};
+use crate::runs::footprint::{on_texram, on_texture, quality, TILTS};
 use crate::texram::{border_class, ref_border, test_map, RefBorder, RefMipmap, CYCLE_PS};
 use crate::texture::reference_sums;
 use formats::ccc::Ccc;
@@ -13,7 +13,6 @@ use proptest::prelude::*;
 use units::footprint::assembly_fig12::SampleTarget;
 use units::footprint::footprint_fig12::FootprintFig12;
 use units::footprint::setup_fig12::{NRounding, SetupParams};
-use units::texram::texram_802::{Texram802, TexramParams};
 use units::texram::{Border, Drf};
 use verif::{
     run, About, Coverage, Coverpoint, Ctx, Event, Handshake, Pacing, PinDriver, PinMonitor,
@@ -390,10 +389,7 @@ impl Testbench for FootprintTb {
             Unit::Texram => {
                 let level0 = test_map(1 << wl, 1 << hl, &mut stim);
                 px.extend(pixels(wl, hl, ctx.count, &mut stim));
-                let mut chip = Texram802::new(TexramParams::default())?;
-                chip.set_drf(0, Drf::new(wl, hl, border))?;
-                chip.load(0, &level0)?;
-                let dut = FootprintFig12::new(p, chip)?;
+                let dut = on_texram(p, Drf::new(wl, hl, border), &level0)?;
                 let (sim, _) = ctx.sim(dut, &title, CYCLE_PS, |_| ())?;
                 let reference = RefMipmap::build(1 << wl, 1 << hl, &level0);
                 let expect = |q: &Pixel| expect(&reference, border, &p, q);
@@ -412,16 +408,8 @@ impl Testbench for FootprintTb {
                 let tex = crate::texture::test_pattern(1 << wl, 1 << hl);
                 px.extend(pixels(wl, hl, ctx.count, &mut stim));
                 let mut tp = units::texmem::texture_unit_602::TexParams::new(1 << wl, 1 << hl);
-                tp.frac_bits = f;
-                tp.cache = cache;
-                let words = tex.dram_words(&tp.block_map());
-                let unit = units::texmem::texture_unit_602::TextureUnit::new(
-                    "texture_unit_602",
-                    tp,
-                    &tex.clut,
-                    &words,
-                )?;
-                let dut = FootprintFig12::new(p, unit)?;
+                (tp.frac_bits, tp.cache) = (f, cache);
+                let dut = on_texture(p, &tex, tp)?;
                 let (sim, _) = ctx.sim(dut, &title, CYCLE_PS, |_| ())?;
                 let expect = |q: &Pixel| {
                     let (a, mean) = ref_assemble_texture(&tex, f, &p, q);

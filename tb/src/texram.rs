@@ -454,17 +454,23 @@ struct Oracles<'a> {
 }
 
 impl Oracles<'_> {
+    /// The stub's access for `q` (to DRF 0).
+    fn stub_access(&mut self, q: &TexReq) -> units::texram::TexramReply {
+        use units::texram::{TexramAccess, TexramRequest};
+        let (u, v, lambda) = (q.u, q.v, q.lambda);
+        let req = TexramRequest {
+            drf: 0,
+            u,
+            v,
+            lambda,
+        };
+        self.stub.access(req).expect("requests are in range")
+    }
+
     /// The expectation of a colour or index request: the stub's colour (the reference and
     /// golden are per component maps, held against the stub in `tb/tests/texram.rs`).
     fn expect_colour(&mut self, q: &TexReq) -> Expected {
-        use units::texram::{TexramAccess, TexramRequest};
-        let req = TexramRequest {
-            drf: 0,
-            u: q.u,
-            v: q.v,
-            lambda: q.lambda,
-        };
-        let r = self.stub.access(req).expect("requests are in range");
+        let r = self.stub_access(q);
         (
             *q,
             TexOut {
@@ -481,17 +487,10 @@ impl Oracles<'_> {
         if self.config != Config::Luminance {
             return self.expect_colour(q);
         }
-        use units::texram::{TexramAccess, TexramRequest};
         let (texels, value) = self
             .reference
             .access(q.u, q.v, q.lambda, ref_border(self.border));
-        let req = TexramRequest {
-            drf: 0,
-            u: q.u,
-            v: q.v,
-            lambda: q.lambda,
-        };
-        let s = self.stub.access(req).expect("requests are in range");
+        let s = self.stub_access(q);
         let f = |x: i32| f64::from(x) / 256.0;
         let lmax = self.lmax as usize;
         let wts = golden::texram::Weights::truncated(f(q.u), f(q.v), f(q.lambda), lmax);

@@ -12,6 +12,7 @@ use formats::ccc::Ccc;
 use units::footprint::assembly_fig12::SampleTarget;
 use units::footprint::footprint_fig12::FootprintFig12;
 use units::footprint::setup_fig12::SetupParams;
+use units::texmem::texture_unit_602::{TexParams, TextureUnit};
 use units::texram::texram_802::{Texram802, TexramParams};
 use units::texram::{Border, Drf};
 use verif::{run, Event, PinDriver, PinMonitor, RunSpec, Workload};
@@ -105,6 +106,29 @@ fn stats_of(results: &[Assembled], cycles: u64, period_ps: u64) -> FootprintStat
     }
 }
 
+/// Figure 12's units before a TEXRAM chip holding the map `level0` in DRF 0 as `drf` says.
+pub fn on_texram(
+    p: SetupParams,
+    drf: Drf,
+    level0: &[u8],
+) -> Result<FootprintFig12<Texram802>, String> {
+    let mut chip = Texram802::new(TexramParams::default())?;
+    chip.set_drf(0, drf)?;
+    chip.load(0, level0)?;
+    FootprintFig12::new(p, chip)
+}
+
+/// Figure 12's units before texture unit 602 (`tp`) holding the CCC texture `tex`.
+pub fn on_texture(
+    p: SetupParams,
+    tex: &Ccc,
+    tp: TexParams,
+) -> Result<FootprintFig12<TextureUnit>, String> {
+    let words = tex.dram_words(&tp.block_map());
+    let unit = TextureUnit::new("texture_unit_602", tp, &tex.clut, &words)?;
+    FootprintFig12::new(p, unit)
+}
+
 /// `pixels` through [`FootprintFig12`] with the map `level0` in DRF 0 of the TEXRAM chip,
 /// each result checked against the integer reference (`Err` names the first that differs).
 pub fn run_footprint(
@@ -114,10 +138,7 @@ pub fn run_footprint(
     pixels: &[Pixel],
     vcd: Option<&std::path::Path>,
 ) -> Result<FootprintRun, crate::RunError> {
-    let mut chip = Texram802::new(TexramParams::default())?;
-    chip.set_drf(0, drf)?;
-    chip.load(0, level0)?;
-    let dut = FootprintFig12::new(p, chip)?;
+    let dut = on_texram(p, drf, level0)?;
     let (w, h) = (1 << drf.width_log2, 1 << drf.height_log2);
     let reference = RefMipmap::build(w, h, level0);
     let border = ref_border(drf.border);
@@ -152,12 +173,11 @@ impl FootprintRun {
 /// CCC texture `tex`, each result checked against the integer reference.
 pub fn run_footprint_texture(
     tex: &Ccc,
-    tp: units::texmem::texture_unit_602::TexParams,
+    tp: TexParams,
     p: SetupParams,
     pixels: &[Pixel],
     vcd: Option<&std::path::Path>,
 ) -> Result<FootprintRun, crate::RunError> {
-    use units::texmem::texture_unit_602::TextureUnit;
     if (tex.width, tex.height) != (tp.width, tp.height) {
         return Err(format!(
             "texture is {}x{}, the unit is set up for {}x{}",
@@ -166,9 +186,7 @@ pub fn run_footprint_texture(
         .into());
     }
     tp.validate()?;
-    let words = tex.dram_words(&tp.block_map());
-    let unit = TextureUnit::new("texture_unit_602", tp, &tex.clut, &words)?;
-    let dut = FootprintFig12::new(p, unit)?;
+    let dut = on_texture(p, tex, tp)?;
     let period = u64::from(tp.dram.cycle_ns) * 1000;
     let want = |k: usize| ref_assemble_texture(tex, tp.frac_bits, &p, &pixels[k]).0;
     let (results, cycles, dut) = drive_pixels(dut, pixels, (vcd, period), want)?;
