@@ -360,9 +360,9 @@ pub fn scene(shape: Shape, m: &Maps) -> Result<Scene, String> {
         d.detail = mode;
         Ok::<_, String>(())
     };
-    let reflectance = |s: &mut Scene, border: Border| {
+    let reflectance = |s: &mut Scene, border: Border, light_env: bool| {
         s.add(3, Kind::Reflectance, t, border, vec![m.reflectance.clone()])
-            .map(|r| r.light_env = shape != Shape::Reflectance)
+            .map(|r| r.light_env = light_env)
     };
     let environment = |s: &mut Scene, k_s: Option<u8>| {
         let e = s.add(6, Kind::Environment, fl, Border::Clamp, m.faces.clone())?;
@@ -384,18 +384,18 @@ pub fn scene(shape: Shape, m: &Maps) -> Result<Scene, String> {
             &[(0, 6)]
         }
         Shape::Reflectance => {
-            reflectance(&mut s, Border::Mirror)?;
+            reflectance(&mut s, Border::Mirror, false)?;
             &[(0, 3)]
         }
         Shape::Longest => {
             detail(&mut s, 1, DetailMode::AddSigned, Border::Tile(4))?;
-            reflectance(&mut s, Border::Wrap)?;
+            reflectance(&mut s, Border::Wrap, true)?;
             detail(&mut s, 4, DetailMode::Multiply, Border::Tile(4))?;
             environment(&mut s, None)?;
             &[(0, 1), (2, 3), (3, 4), (5, 6)]
         }
         Shape::Cycle => {
-            reflectance(&mut s, Border::Wrap)?;
+            reflectance(&mut s, Border::Wrap, true)?;
             &[(0, 3), (3, 0)]
         }
     };
